@@ -1,0 +1,1 @@
+//! The versioned gRPC API of needlesim (`needlesim.v1`); the protocol definitions arrive with the server issue.

@@ -1,0 +1,364 @@
+//! The tissue model and its compliance on demand: columns of $C = K_{ff}^{-1}$ for the nodes the
+//! needle touches, from a sparse factorisation instead of a dense inverse.
+//!
+//! [`TissueModel`] assembles $K$, removes the fixed nodes and factorises $K_{ff}$ once. The two
+//! columns of node $w$ are two sparse solves, $K_{ff}\,[c_{x}, c_{y}] = [e_{2w}, e_{2w+1}]$, cost
+//! $O(\mathrm{nnz}(L))$. [`ComplianceCache`] keeps them (full DOF length, zero at fixed DOFs) so the
+//! working set $\mathcal W$ grows node by node without refactorisation, gives the blocks of
+//! $C_{\mathcal{WW}}$, and the displacement of every node caused by forces on $\mathcal W$:
+//! $u = \sum_{w \in \mathcal W} C_{:,w} f_w$, cost $O(n\,|\mathcal W|)$.
+
+use std::sync::Arc;
+
+use faer::Mat;
+use faer::sparse::SparseColMat;
+
+use crate::assembly::{MaterialMap, assemble_stiffness};
+use crate::factor::{CholeskyScratch, DofMap, FactorError, SparseCholesky};
+use crate::mesh::Mesh;
+
+/// Errors of the tissue model and its compliance.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TissueError {
+    /// A fixed node id does not exist.
+    #[error("fixed node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
+    UnknownFixedNode { node_idx: usize, n_nodes: usize },
+    /// A node id does not exist.
+    #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
+    UnknownNode { node_idx: usize, n_nodes: usize },
+    /// No node is fixed: the tissue would float.
+    #[error("no node is fixed: the tissue needs a fixed boundary")]
+    NoFixedNodes,
+    /// The factorisation failed (rigid-body motion, for example).
+    #[error(transparent)]
+    Factor(#[from] FactorError),
+}
+
+/// The tissue: mesh, materials, fixed nodes and the factorised free stiffness. Immutable once
+/// built, so it can be shared (`Arc`) between the real-time thread and column workers.
+#[derive(Debug)]
+pub struct TissueModel {
+    mesh: Mesh,
+    materials: MaterialMap,
+    fixed: Vec<bool>,
+    stiffness: SparseColMat<usize, f64>,
+    chol: SparseCholesky,
+}
+
+/// Scratch for [`TissueModel::compliance_columns_into`]; allocate once per thread.
+pub struct ColumnScratch {
+    rhs: Mat<f64>,
+    chol: CholeskyScratch,
+}
+
+impl TissueModel {
+    /// Assembles and factorises. Errors when a fixed node does not exist, when no node is fixed,
+    /// and when the model is singular (see [`FactorError`]).
+    pub fn new(mesh: Mesh, materials: MaterialMap, fixed_nodes: &[usize]) -> Result<Self, TissueError> {
+        let n_nodes = mesh.n_nodes();
+        if fixed_nodes.is_empty() {
+            return Err(TissueError::NoFixedNodes);
+        }
+        let mut fixed = vec![false; n_nodes];
+        for &node_idx in fixed_nodes {
+            if node_idx >= n_nodes {
+                return Err(TissueError::UnknownFixedNode { node_idx, n_nodes });
+            }
+            fixed[node_idx] = true;
+        }
+        let stiffness = assemble_stiffness(&mesh, &materials, None);
+        let constrained: Vec<bool> = (0..2 * n_nodes).map(|d| fixed[d / 2]).collect();
+        let chol = SparseCholesky::new(&stiffness, DofMap::new(&constrained))?;
+        Ok(Self { mesh, materials, fixed, stiffness, chol })
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+    /// The materials.
+    pub fn materials(&self) -> &MaterialMap {
+        &self.materials
+    }
+    /// The full stiffness $K$ (all DOFs, both triangles).
+    pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
+        &self.stiffness
+    }
+    /// The factorisation of $K_{ff}$.
+    pub fn cholesky(&self) -> &SparseCholesky {
+        &self.chol
+    }
+    /// Whether node `node_idx` is fixed.
+    pub fn is_fixed(&self, node_idx: usize) -> bool {
+        self.fixed[node_idx]
+    }
+    /// Number of DOFs, $2n$.
+    pub fn n_dofs(&self) -> usize {
+        2 * self.mesh.n_nodes()
+    }
+    /// Scratch for column computations.
+    pub fn column_scratch(&self) -> ColumnScratch {
+        ColumnScratch { rhs: Mat::zeros(self.chol.n_free(), 2), chol: self.chol.scratch(2) }
+    }
+
+    /// Writes the two compliance columns of node `node_idx` into `out` (length $2 \cdot 2n$: the
+    /// column for a unit $f_x$, then the one for a unit $f_y$, each over all DOFs, zero at fixed
+    /// DOFs). A fixed node has zero columns. Allocates nothing.
+    pub fn compliance_columns_into(&self, node_idx: usize, out: &mut [f64], scratch: &mut ColumnScratch) -> Result<(), TissueError> {
+        let n_nodes = self.mesh.n_nodes();
+        if node_idx >= n_nodes {
+            return Err(TissueError::UnknownNode { node_idx, n_nodes });
+        }
+        let n_dofs = self.n_dofs();
+        assert_eq!(out.len(), 2 * n_dofs, "out holds two full columns");
+        out.fill(0.0);
+        if self.fixed[node_idx] {
+            return Ok(());
+        }
+        let dofs = self.chol.dofs();
+        scratch.rhs.fill(0.0);
+        for comp in 0..2 {
+            let f = dofs.free_index(2 * node_idx + comp).expect("a free node has free DOFs");
+            scratch.rhs[(f, comp)] = 1.0;
+        }
+        self.chol.solve_in_place(scratch.rhs.as_mut(), &mut scratch.chol);
+        for comp in 0..2 {
+            let col = &mut out[comp * n_dofs..(comp + 1) * n_dofs];
+            for (f, &d) in dofs.free_dofs().iter().enumerate() {
+                col[d] = scratch.rhs[(f, comp)];
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Cached compliance columns by node. Storage grows only in [`ComplianceCache::insert`] (and
+/// [`ComplianceCache::reserve`]); reads allocate nothing.
+#[derive(Debug, Clone)]
+pub struct ComplianceCache {
+    n_dofs: usize,
+    slot_of_node: Vec<u32>,
+    node_of_slot: Vec<usize>,
+    free_slots: Vec<u32>,
+    columns: Vec<f64>,
+    n_computed: u64,
+}
+
+const NO_SLOT: u32 = u32::MAX;
+
+impl ComplianceCache {
+    /// An empty cache for a model of `n_nodes` nodes.
+    pub fn new(n_nodes: usize) -> Self {
+        Self {
+            n_dofs: 2 * n_nodes,
+            slot_of_node: vec![NO_SLOT; n_nodes],
+            node_of_slot: Vec::new(),
+            free_slots: Vec::new(),
+            columns: Vec::new(),
+            n_computed: 0,
+        }
+    }
+
+    /// Reserves room for `n_nodes` more nodes' columns.
+    pub fn reserve(&mut self, n_nodes: usize) {
+        self.columns.reserve(n_nodes * 2 * self.n_dofs);
+        self.node_of_slot.reserve(n_nodes);
+    }
+
+    /// Whether the columns of `node_idx` are cached.
+    pub fn contains(&self, node_idx: usize) -> bool {
+        self.slot_of_node.get(node_idx).is_some_and(|&s| s != NO_SLOT)
+    }
+
+    /// Number of nodes cached.
+    pub fn len(&self) -> usize {
+        self.node_of_slot.len() - self.free_slots.len()
+    }
+    /// Whether the cache is empty.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// How many columns pairs were computed through [`ComplianceCache::ensure`].
+    pub fn n_computed(&self) -> u64 {
+        self.n_computed
+    }
+
+    /// Stores columns computed elsewhere (for example by a worker thread with
+    /// [`TissueModel::compliance_columns_into`]). `columns` has length $2 \cdot 2n$.
+    pub fn insert(&mut self, node_idx: usize, columns: &[f64]) {
+        assert_eq!(columns.len(), 2 * self.n_dofs, "two full columns");
+        let len = 2 * self.n_dofs;
+        let slot = match self.slot_of_node[node_idx] {
+            NO_SLOT => match self.free_slots.pop() {
+                Some(s) => s,
+                None => {
+                    self.columns.extend(std::iter::repeat_n(0.0, len));
+                    self.node_of_slot.push(node_idx);
+                    (self.node_of_slot.len() - 1) as u32
+                }
+            },
+            s => s,
+        };
+        self.slot_of_node[node_idx] = slot;
+        self.node_of_slot[slot as usize] = node_idx;
+        self.columns[slot as usize * len..(slot as usize + 1) * len].copy_from_slice(columns);
+    }
+
+    /// Computes and stores the columns of `node_idx` unless cached. Returns whether it computed.
+    pub fn ensure(&mut self, model: &TissueModel, node_idx: usize, scratch: &mut ColumnScratch) -> Result<bool, TissueError> {
+        if node_idx >= self.slot_of_node.len() {
+            return Err(TissueError::UnknownNode { node_idx, n_nodes: self.slot_of_node.len() });
+        }
+        if self.contains(node_idx) {
+            return Ok(false);
+        }
+        let mut cols = vec![0.0; 2 * self.n_dofs];
+        model.compliance_columns_into(node_idx, &mut cols, scratch)?;
+        self.insert(node_idx, &cols);
+        self.n_computed += 1;
+        Ok(true)
+    }
+
+    /// Forgets the columns of `node_idx` (its storage is reused by the next insert).
+    pub fn evict(&mut self, node_idx: usize) {
+        if let Some(&s) = self.slot_of_node.get(node_idx)
+            && s != NO_SLOT
+        {
+            self.slot_of_node[node_idx] = NO_SLOT;
+            self.free_slots.push(s);
+        }
+    }
+
+    /// The column of all DOFs' displacement for a unit force on `node_idx`, component `comp`
+    /// (0 = x, 1 = y); `None` when not cached.
+    pub fn column(&self, node_idx: usize, comp: usize) -> Option<&[f64]> {
+        let s = *self.slot_of_node.get(node_idx)?;
+        if s == NO_SLOT {
+            return None;
+        }
+        let start = (s as usize * 2 + comp) * self.n_dofs;
+        Some(&self.columns[start..start + self.n_dofs])
+    }
+
+    /// The world-frame block $C_{ab}$ (2 × 2): displacement of node `a` per unit force on node
+    /// `b`. Needs `b`'s columns; `None` when they are not cached.
+    pub fn block(&self, a: usize, b: usize) -> Option<[[f64; 2]; 2]> {
+        let cx = self.column(b, 0)?;
+        let cy = self.column(b, 1)?;
+        Some([[cx[2 * a], cy[2 * a]], [cx[2 * a + 1], cy[2 * a + 1]]])
+    }
+
+    /// $C_{\mathcal{WW}}$ for the given nodes, DOF order `[ux(w0), uy(w0), ux(w1), …]`, row-major
+    /// into `out` (length $(2m)^2$). Symmetrised as $\tfrac12 (C + C^\top)$ to remove round-off.
+    pub fn working_block_into(&self, nodes: &[usize], out: &mut [f64]) -> Option<()> {
+        let d = 2 * nodes.len();
+        assert_eq!(out.len(), d * d);
+        for (j, &b) in nodes.iter().enumerate() {
+            for comp in 0..2 {
+                let col = self.column(b, comp)?;
+                for (i, &a) in nodes.iter().enumerate() {
+                    out[(2 * i) * d + 2 * j + comp] = col[2 * a];
+                    out[(2 * i + 1) * d + 2 * j + comp] = col[2 * a + 1];
+                }
+            }
+        }
+        for i in 0..d {
+            for j in i + 1..d {
+                let m = 0.5 * (out[i * d + j] + out[j * d + i]);
+                out[i * d + j] = m;
+                out[j * d + i] = m;
+            }
+        }
+        Some(())
+    }
+
+    /// Displacement of every DOF caused by world forces on cached nodes,
+    /// $u = \sum_w C_{:,w} f_w$, written into `out` (length $2n$). Returns `None` if a node is not
+    /// cached. Allocates nothing.
+    pub fn displacement_from_forces_into(&self, forces_n: impl IntoIterator<Item = (usize, [f64; 2])>, out: &mut [f64]) -> Option<()> {
+        out.fill(0.0);
+        for (node, f) in forces_n {
+            for (comp, &fc) in f.iter().enumerate() {
+                if fc != 0.0 {
+                    for (o, c) in out.iter_mut().zip(self.column(node, comp)?) {
+                        *o += c * fc;
+                    }
+                }
+            }
+        }
+        Some(())
+    }
+}
+
+/// A shareable tissue model.
+pub type SharedTissue = Arc<TissueModel>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{Material, PlaneModel};
+    use crate::mesh::{MeshLimits, RectMeshParams};
+
+    fn model(nx: usize) -> TissueModel {
+        let mesh = RectMeshParams::new(nx, nx, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
+        let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }], PlaneModel::Strain { thickness_m: 1.0 })
+            .unwrap();
+        let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
+        TissueModel::new(mesh, mats, &fixed).unwrap()
+    }
+
+    #[test]
+    fn columns_invert_the_stiffness_and_are_symmetric() {
+        let m = model(8);
+        let mut cache = ComplianceCache::new(m.mesh().n_nodes());
+        let mut scratch = m.column_scratch();
+        let nodes = [20usize, 37, 63];
+        for &n in &nodes {
+            assert!(cache.ensure(&m, n, &mut scratch).unwrap());
+            assert!(!cache.ensure(&m, n, &mut scratch).unwrap());
+        }
+        assert_eq!(cache.n_computed(), 3);
+        // K c = e at free DOFs.
+        let mut kc = vec![0.0; m.n_dofs()];
+        for &n in &nodes {
+            for comp in 0..2 {
+                crate::assembly::mul_stiffness(m.stiffness(), cache.column(n, comp).unwrap(), &mut kc);
+                for d in 0..m.n_dofs() {
+                    if !m.is_fixed(d / 2) {
+                        let e = if d == 2 * n + comp { 1.0 } else { 0.0 };
+                        assert!((kc[d] - e).abs() < 1e-9, "K c at {d}: {}", kc[d]);
+                    }
+                }
+            }
+        }
+        let a = cache.block(20, 63).unwrap();
+        let b = cache.block(63, 20).unwrap();
+        for i in 0..2 {
+            for j in 0..2 {
+                assert!((a[i][j] - b[j][i]).abs() < 1e-12 * a[i][j].abs().max(1e-9));
+            }
+        }
+        let mut u = vec![0.0; m.n_dofs()];
+        cache.displacement_from_forces_into([(37, [0.0, 2.0])], &mut u).unwrap();
+        assert_eq!(u[2 * 20 + 1], 2.0 * cache.block(20, 37).unwrap()[1][1]);
+        assert!(cache.displacement_from_forces_into([(5, [0.0, 1.0])], &mut u).is_none());
+        cache.evict(37);
+        assert!(!cache.contains(37));
+        cache.ensure(&m, 40, &mut scratch).unwrap();
+        assert_eq!(cache.len(), 3);
+    }
+
+    #[test]
+    fn model_errors_are_named() {
+        let mesh = RectMeshParams::new(3, 3, 1.0, 1.0).build(&MeshLimits::default()).unwrap();
+        let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 1.0, poisson_ratio: 0.3 }], PlaneModel::Strain { thickness_m: 1.0 })
+            .unwrap();
+        let e = TissueModel::new(mesh.clone(), mats.clone(), &[]).unwrap_err();
+        assert_eq!(e, TissueError::NoFixedNodes);
+        let e = TissueModel::new(mesh.clone(), mats.clone(), &[0, 12]).unwrap_err();
+        assert!(e.to_string().contains("fixed node 12 does not exist"), "{e}");
+        // One fixed node: the body can still rotate about it.
+        let e = TissueModel::new(mesh, mats, &[4]).unwrap_err();
+        assert!(e.to_string().contains("rigid body"), "{e}");
+    }
+}

@@ -1,0 +1,32 @@
+//! needlesim-core: the pure real-time solver of needlesim.
+//!
+//! A 2D linear-elastic tissue model discretised with linear triangles ([`mesh`], [`material`],
+//! [`assembly`]), a sparse Cholesky factorisation of its free stiffness ([`factor`]), static
+//! solves with mixed and local-frame conditions ([`statics`]), compliance columns on demand
+//! ([`compliance`]) and the condensed mixed boundary-condition solve on the working nodes with
+//! O(d²) updates ([`mixed`]). Gmsh meshes are read from text by [`msh`]. The needle ([`needle`])
+//! and the insertion simulation stepped once per haptic tick ([`sim`]) sit on top, with a spatial
+//! grid ([`spatial`]) for finding the nodes near the tip.
+//!
+//! The crate does no I/O and knows no async runtime or protocol: state in, state out, typed errors.
+
+pub mod assembly;
+pub mod compliance;
+pub mod factor;
+pub mod material;
+pub mod mesh;
+pub mod mixed;
+pub mod msh;
+pub mod needle;
+pub mod sim;
+pub mod spatial;
+pub mod statics;
+
+pub use assembly::MaterialMap;
+pub use compliance::{ColumnScratch, ComplianceCache, TissueError, TissueModel};
+pub use material::{Material, MaterialError, PlaneModel};
+pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};
+pub use mixed::{Condition, MixedError, MixedSolver};
+pub use needle::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle};
+pub use sim::{NodeState, SimError, SimParams, SimStats, Simulation, StepOutput, TargetParams};
+pub use statics::{NodeCondition, StaticError, StaticProblem, StaticSolution};

@@ -1,0 +1,899 @@
+//! The needle–tissue insertion simulation: one [`Simulation::step`] per haptic tick, from the
+//! commanded base pose to forces, needle-node states, tip and targets.
+//!
+//! A step, in order (each stage a method taking the simulation's explicit state):
+//! 1. **Pose**: reject non-finite poses, clamp jumps larger than the configured step.
+//! 2. **Frames and values**: rotate every needle node's frame with the needle (section 4.2) and
+//!    set its prescribed values: lateral $u_n = -n\cdot(X-b)$ keeps the node on the shaft, axial
+//!    $u_t = s_a - t\cdot(X-b)$ holds a stuck node at its shaft point $s_a$ (the tip node at $s = L$).
+//! 3. **Release**: shaft nodes the tip has withdrawn past leave the working set.
+//! 4. **Capture**: nodes near the tip (spatial grid, never a scan) whose deformed position the tip
+//!    passed within the capture radius become needle nodes. If no node is carried by the tip,
+//!    the most distal one is (puncture: it is pushed until its axial reaction exceeds the
+//!    region's puncture force, or its cutting force inside a region).
+//! 5. **Friction**: each shaft node gets the integral of the friction distribution over its
+//!    tributary segment (see [`crate::needle`]).
+//! 6. **Active set**: solve; stuck nodes whose axial force exceeds static friction slip, slipping
+//!    nodes whose relative motion stopped or reversed stick, the tip node punctures or, when it no
+//!    longer pushes, lets go; repeat (bounded), each change an $O(d^2)$ update.
+//! 7. **Output**: force and torque on the needle base, $F = -\sum_i f_i$, $\tau = \sum_i (p_i - b)\times(-f_i)$,
+//!    node states, tip, targets.
+//!
+//! The tissue factorisation is never touched: compliance columns come from the cache, computed
+//! ahead of time for the nodes the tip approaches ([`Simulation::prefetch_columns`]), and counted
+//! when a step has to compute one itself.
+
+use std::sync::Arc;
+
+use crate::compliance::{ColumnScratch, ComplianceCache, TissueError, TissueModel};
+use crate::mixed::{Condition, MixedError, MixedSolver};
+use crate::needle::{BasePose, NeedleShape, RegionNeedleParams};
+use crate::spatial::NodeGrid;
+
+/// A target embedded in the tissue: a point (radius 0) or a small disc.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TargetParams {
+    pub name: String,
+    pub center_m: [f64; 2],
+    pub radius_m: f64,
+}
+
+/// Everything the simulation needs besides the tissue model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimParams {
+    pub needle: NeedleShape,
+    pub initial_pose: BasePose,
+    /// A node whose deformed position lies within this lateral distance of the shaft line when
+    /// the tip passes it becomes a needle node.
+    pub capture_radius_m: f64,
+    /// Capacity of the working set.
+    pub max_needle_nodes: usize,
+    /// Needle parameters per tissue region (one per mesh region).
+    pub regions: Vec<RegionNeedleParams>,
+    pub targets: Vec<TargetParams>,
+    pub tick_rate_hz: f64,
+    /// Largest base translation accepted in one tick; larger jumps are clamped.
+    pub max_base_step_m: f64,
+    /// Largest base rotation accepted in one tick; larger jumps are clamped.
+    pub max_base_step_rad: f64,
+    /// Bound on the stick/slip iterations within one tick.
+    pub max_active_set_iterations: usize,
+    /// How far ahead of the tip nodes are reported as approaching (for column prefetch).
+    pub lookahead_m: f64,
+}
+
+/// The contact state of a needle node (the paper's Fig. 5a).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NodeState {
+    /// Held at a fixed point of the shaft.
+    Stuck,
+    /// Sliding along the shaft against friction.
+    Slipping,
+    /// Carried ahead of the tip until puncture.
+    Tip,
+}
+
+impl NodeState {
+    /// Lower-case name, as written in files.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            NodeState::Stuck => "stuck",
+            NodeState::Slipping => "slipping",
+            NodeState::Tip => "tip",
+        }
+    }
+}
+
+/// Errors of the simulation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// A parameter is invalid; the message names it.
+    #[error("invalid simulation parameter: {0}")]
+    InvalidParams(String),
+    /// The commanded pose has a NaN or infinite component; the state is unchanged.
+    #[error("tick {tick}: the commanded base pose ({x_m}, {y_m}, {theta_rad}) is not finite; the pose was rejected and the state kept")]
+    NonFinitePose { tick: u64, x_m: f64, y_m: f64, theta_rad: f64 },
+    /// The tissue model failed (computing a column).
+    #[error(transparent)]
+    Tissue(#[from] TissueError),
+    /// The working-set solver failed.
+    #[error(transparent)]
+    Mixed(#[from] MixedError),
+}
+
+/// One needle node in a step's output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NeedleNodeOut {
+    pub node_idx: usize,
+    pub state: NodeState,
+    /// Deformed position.
+    pub position_m: [f64; 2],
+    /// Force of the needle on the tissue node, world frame.
+    pub force_n: [f64; 2],
+    /// Arc length along the shaft.
+    pub s_m: f64,
+}
+
+/// A target in a step's output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetOut {
+    /// Current (displaced) centre.
+    pub position_m: [f64; 2],
+    /// Distance from the tip to the centre.
+    pub distance_m: f64,
+    /// Whether the tip has been within the radius at any tick so far.
+    pub hit: bool,
+}
+
+/// The result of a step. Owned by the simulation and reused: reading it allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct StepOutput {
+    pub tick: u64,
+    pub time_s: f64,
+    /// The pose applied (after clamping).
+    pub base: BasePose,
+    /// Force of the tissue on the needle base (world frame), N.
+    pub force_n: [f64; 2],
+    /// Torque of the tissue on the needle about the base, N·m (counter-clockwise positive).
+    pub torque_nm: f64,
+    /// Axial component $t\cdot F$ (negative when the tissue resists insertion).
+    pub force_axial_n: f64,
+    /// Lateral component $n\cdot F$.
+    pub force_lateral_n: f64,
+    pub tip_m: [f64; 2],
+    /// Length of shaft between the most proximal needle node and the tip (0 outside the tissue).
+    pub inserted_length_m: f64,
+    pub n_stuck: usize,
+    pub n_slipping: usize,
+    pub n_tip: usize,
+    pub needle_nodes: Vec<NeedleNodeOut>,
+    pub targets: Vec<TargetOut>,
+    /// Nodes ahead of the tip whose compliance columns are not cached yet.
+    pub approaching: Vec<usize>,
+    pub active_set_iterations: usize,
+    pub converged: bool,
+    /// The commanded pose was clamped this tick.
+    pub clamped: bool,
+}
+
+/// Counters over the simulation's life.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SimStats {
+    pub ticks: u64,
+    /// Columns a step had to compute itself (the prefetch did not have them ready).
+    pub column_misses: u64,
+    pub clamped_ticks: u64,
+    pub rejected_poses: u64,
+    pub unconverged_ticks: u64,
+    pub captures: u64,
+    pub releases: u64,
+    pub punctures: u64,
+    pub stick_to_slip: u64,
+    pub slip_to_stick: u64,
+    /// Captures dropped because the working set was full.
+    pub capacity_drops: u64,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct NeedleNode {
+    node_idx: usize,
+    state: NodeState,
+    /// Shaft point a stuck node is held at.
+    anchor_s_m: f64,
+    /// Arc length at the end of the previous tick.
+    s_prev_m: f64,
+    /// Kinetic friction share.
+    friction_n: f64,
+    /// Shaft position used for the friction shares (scratch).
+    s_work_m: f64,
+    /// Direction of the friction force on the tissue along $t$ while slipping (±1).
+    slip_sign: f64,
+    /// Axial force at which a tip node is released.
+    release_force_n: f64,
+    region: usize,
+}
+
+#[derive(Debug, Clone)]
+struct LocatedTarget {
+    nodes: [usize; 3],
+    bary: [f64; 3],
+    radius_m: f64,
+    hit: bool,
+}
+
+/// What changed in one active-set pass for one slot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Change {
+    Puncture,
+    LetGo,
+    Slip(f64),
+    Stick(f64),
+}
+
+const NO_SLOT: usize = usize::MAX;
+
+/// Bound on the friction-share sweeps per active-set iteration.
+const FRICTION_SWEEPS: usize = 6;
+
+/// The simulation of one needle in one tissue.
+pub struct Simulation {
+    model: Arc<TissueModel>,
+    params: SimParams,
+    cache: ComplianceCache,
+    solver: MixedSolver,
+    col_scratch: ColumnScratch,
+    col_buf: Vec<f64>,
+    grid: NodeGrid,
+    is_boundary: Vec<bool>,
+    node_region: Vec<usize>,
+    targets: Vec<LocatedTarget>,
+    pose: BasePose,
+    nodes: Vec<NeedleNode>,
+    slot_of_node: Vec<usize>,
+    f_world: Vec<[f64; 2]>,
+    u_world: Vec<[f64; 2]>,
+    last_tip_region: Option<usize>,
+    order: Vec<usize>,
+    candidates: Vec<usize>,
+    captured: Vec<(usize, f64, f64)>,
+    changes: Vec<(usize, Change)>,
+    out: StepOutput,
+    stats: SimStats,
+    tick: u64,
+}
+
+impl Simulation {
+    /// Validates the parameters against the model and sets up the simulation (spatial grid,
+    /// boundary nodes, target locations, all per-step storage).
+    pub fn new(model: Arc<TissueModel>, params: SimParams) -> Result<Self, SimError> {
+        let mesh = model.mesh();
+        let bad = |m: String| Err(SimError::InvalidParams(m));
+        params.needle.validate().map_err(SimError::InvalidParams)?;
+        if !params.initial_pose.is_finite() {
+            return bad(format!("initial_pose {:?} is not finite", params.initial_pose));
+        }
+        let positive = [
+            ("capture_radius_m", params.capture_radius_m),
+            ("tick_rate_hz", params.tick_rate_hz),
+            ("max_base_step_m", params.max_base_step_m),
+            ("max_base_step_rad", params.max_base_step_rad),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{name} = {v} must be finite and > 0"));
+            }
+        }
+        if !(params.lookahead_m.is_finite() && params.lookahead_m >= 0.0) {
+            return bad(format!("lookahead_m = {} must be finite and ≥ 0", params.lookahead_m));
+        }
+        if params.max_needle_nodes == 0 || params.max_needle_nodes > 4096 {
+            return bad(format!("max_needle_nodes = {} must be in 1..=4096", params.max_needle_nodes));
+        }
+        if params.max_active_set_iterations == 0 {
+            return bad("max_active_set_iterations must be ≥ 1".to_owned());
+        }
+        if params.regions.len() != mesh.region_names().len() {
+            return bad(format!(
+                "the mesh has {} region(s) ({}) but needle parameters were given for {}",
+                mesh.region_names().len(),
+                mesh.region_names().join(", "),
+                params.regions.len()
+            ));
+        }
+        for (r, name) in params.regions.iter().zip(mesh.region_names()) {
+            r.validate(name).map_err(SimError::InvalidParams)?;
+        }
+        let mut targets = Vec::with_capacity(params.targets.len());
+        for t in &params.targets {
+            if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
+                return bad(format!("target '{}': radius_m = {} must be finite and ≥ 0", t.name, t.radius_m));
+            }
+            if !(t.center_m[0].is_finite() && t.center_m[1].is_finite()) {
+                return bad(format!("target '{}': center_m {:?} is not finite", t.name, t.center_m));
+            }
+            let (nodes, bary) = locate(mesh, t.center_m)
+                .ok_or_else(|| SimError::InvalidParams(format!("target '{}' at {:?} lies outside the mesh", t.name, t.center_m)))?;
+            targets.push(LocatedTarget { nodes, bary, radius_m: t.radius_m, hit: false });
+        }
+        let n_nodes = mesh.n_nodes();
+        // Boundary nodes: on an edge used by one triangle only.
+        let mut edges: Vec<(usize, usize)> = Vec::with_capacity(3 * mesh.n_triangles());
+        for t in mesh.triangles() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.push((a.min(b), a.max(b)));
+            }
+        }
+        edges.sort_unstable();
+        let mut is_boundary = vec![false; n_nodes];
+        let mut i = 0;
+        let mut edge_len_sum = 0.0;
+        while i < edges.len() {
+            let mut j = i + 1;
+            while j < edges.len() && edges[j] == edges[i] {
+                j += 1;
+            }
+            if j - i == 1 {
+                is_boundary[edges[i].0] = true;
+                is_boundary[edges[i].1] = true;
+            }
+            let (a, b) = (mesh.nodes_m()[edges[i].0], mesh.nodes_m()[edges[i].1]);
+            edge_len_sum += (a[0] - b[0]).hypot(a[1] - b[1]);
+            i = j;
+        }
+        // A node's region: the one covering most area around it.
+        let mut area = vec![[0.0f64; 8]; n_nodes];
+        let mut node_region = vec![0usize; n_nodes];
+        let n_regions = mesh.region_names().len();
+        if n_regions <= 8 {
+            for (ti, t) in mesh.triangles().iter().enumerate() {
+                let a = mesh.signed_area_m2(ti).abs();
+                for &n in t {
+                    area[n][mesh.region_of_tri()[ti]] += a;
+                }
+            }
+            for n in 0..n_nodes {
+                node_region[n] = (0..n_regions).max_by(|&a, &b| area[n][a].total_cmp(&area[n][b])).unwrap_or(0);
+            }
+        } else {
+            for (ti, t) in mesh.triangles().iter().enumerate() {
+                for &n in t {
+                    node_region[n] = mesh.region_of_tri()[ti];
+                }
+            }
+        }
+        let mean_edge = edge_len_sum / edges.len().max(1) as f64;
+        let grid = NodeGrid::new(mesh.nodes_m(), mean_edge.max(1e-9));
+        let cap = params.max_needle_nodes;
+        let mut cache = ComplianceCache::new(n_nodes);
+        cache.reserve(cap + 16);
+        let col_scratch = model.column_scratch();
+        let col_buf = vec![0.0; 2 * model.n_dofs()];
+        let out = StepOutput {
+            needle_nodes: Vec::with_capacity(cap),
+            targets: Vec::with_capacity(targets.len()),
+            approaching: Vec::with_capacity(256),
+            base: params.initial_pose,
+            tip_m: params.needle.tip_m(&params.initial_pose),
+            converged: true,
+            ..Default::default()
+        };
+        Ok(Self {
+            solver: MixedSolver::with_capacity(cap),
+            pose: params.initial_pose,
+            nodes: Vec::with_capacity(cap),
+            slot_of_node: vec![NO_SLOT; n_nodes],
+            f_world: Vec::with_capacity(cap),
+            u_world: Vec::with_capacity(cap),
+            last_tip_region: None,
+            order: Vec::with_capacity(cap),
+            candidates: Vec::with_capacity(1024),
+            captured: Vec::with_capacity(64),
+            changes: Vec::with_capacity(2 * cap),
+            out,
+            stats: SimStats::default(),
+            tick: 0,
+            model,
+            params,
+            cache,
+            col_scratch,
+            col_buf,
+            grid,
+            is_boundary,
+            node_region,
+            targets,
+        })
+    }
+
+    /// The tissue model.
+    pub fn model(&self) -> &Arc<TissueModel> {
+        &self.model
+    }
+    /// The parameters.
+    pub fn params(&self) -> &SimParams {
+        &self.params
+    }
+    /// Counters.
+    pub fn stats(&self) -> SimStats {
+        self.stats
+    }
+    /// The working-set solver (for its update counters).
+    pub fn solver(&self) -> &MixedSolver {
+        &self.solver
+    }
+    /// The current base pose.
+    pub fn pose(&self) -> BasePose {
+        self.pose
+    }
+    /// The last step's output.
+    pub fn output(&self) -> &StepOutput {
+        &self.out
+    }
+    /// The compliance cache.
+    pub fn cache(&self) -> &ComplianceCache {
+        &self.cache
+    }
+
+    /// Computes (allocating, outside any step) the compliance columns of up to `max_nodes` of
+    /// the nodes the last step reported as approaching. Returns how many it computed.
+    pub fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, SimError> {
+        let mut n = 0;
+        for k in 0..self.out.approaching.len() {
+            if n == max_nodes {
+                break;
+            }
+            let node = self.out.approaching[k];
+            if !self.cache.contains(node) {
+                self.model.compliance_columns_into(node, &mut self.col_buf, &mut self.col_scratch)?;
+                self.cache.insert(node, &self.col_buf);
+                n += 1;
+            }
+        }
+        Ok(n)
+    }
+
+    /// Stores columns computed by a worker ([`TissueModel::compliance_columns_into`]).
+    pub fn insert_columns(&mut self, node_idx: usize, columns: &[f64]) {
+        self.cache.insert(node_idx, columns);
+    }
+
+    /// Advances one tick towards the commanded base pose.
+    pub fn step(&mut self, commanded: BasePose) -> Result<&StepOutput, SimError> {
+        if !commanded.is_finite() {
+            self.stats.rejected_poses += 1;
+            return Err(SimError::NonFinitePose { tick: self.tick, x_m: commanded.x_m, y_m: commanded.y_m, theta_rad: commanded.theta_rad });
+        }
+        let prev_tip = self.params.needle.tip_m(&self.pose);
+        let clamped = self.apply_pose(commanded)?;
+        self.set_prescribed_values();
+        self.release_withdrawn()?;
+        self.capture(prev_tip)?;
+        self.update_friction(false);
+        let (iterations, converged) = self.resolve_active_set()?;
+        self.tick += 1;
+        self.stats.ticks += 1;
+        self.stats.clamped_ticks += clamped as u64;
+        self.stats.unconverged_ticks += (!converged) as u64;
+        self.write_output(iterations, converged, clamped);
+        Ok(&self.out)
+    }
+
+    /// Stage 1: clamps the pose change and rotates the node frames.
+    fn apply_pose(&mut self, cmd: BasePose) -> Result<bool, SimError> {
+        let mut pose = cmd;
+        let mut clamped = false;
+        let (dx, dy) = (cmd.x_m - self.pose.x_m, cmd.y_m - self.pose.y_m);
+        let dist = dx.hypot(dy);
+        if dist > self.params.max_base_step_m {
+            let k = self.params.max_base_step_m / dist;
+            pose.x_m = self.pose.x_m + k * dx;
+            pose.y_m = self.pose.y_m + k * dy;
+            clamped = true;
+        }
+        let dth = cmd.theta_rad - self.pose.theta_rad;
+        if dth.abs() > self.params.max_base_step_rad {
+            pose.theta_rad = self.pose.theta_rad + self.params.max_base_step_rad.copysign(dth);
+            clamped = true;
+        }
+        if pose.theta_rad != self.pose.theta_rad {
+            for slot in 0..self.solver.n_nodes() {
+                let s = self.nodes[slot].s_prev_m;
+                let a = self.params.needle.frame_angle_at(&pose, s);
+                self.solver.set_angle(slot, a)?;
+            }
+        }
+        self.pose = pose;
+        Ok(clamped)
+    }
+
+    /// Stage 2: lateral and axial prescribed values from the pose.
+    fn set_prescribed_values(&mut self) {
+        let s_tip = self.params.needle.tip_s_m();
+        for slot in 0..self.nodes.len() {
+            let nn = self.nodes[slot];
+            let x = self.model.mesh().nodes_m()[nn.node_idx];
+            let (s0, lat0) = self.params.needle.project(&self.pose, x);
+            self.solver.set_value(slot, 1, -lat0);
+            match nn.state {
+                NodeState::Stuck => self.solver.set_value(slot, 0, nn.anchor_s_m - s0),
+                NodeState::Tip => self.solver.set_value(slot, 0, s_tip - s0),
+                NodeState::Slipping => {}
+            }
+        }
+    }
+
+    fn remove_slot(&mut self, slot: usize) -> Result<(), SimError> {
+        self.solver.remove_slot(slot)?;
+        let gone = self.nodes.swap_remove(slot);
+        self.f_world.swap_remove(slot);
+        self.u_world.swap_remove(slot);
+        self.slot_of_node[gone.node_idx] = NO_SLOT;
+        if slot < self.nodes.len() {
+            self.slot_of_node[self.nodes[slot].node_idx] = slot;
+        }
+        self.stats.releases += 1;
+        Ok(())
+    }
+
+    /// Stage 3: shaft nodes beyond the (withdrawn) tip leave the needle.
+    fn release_withdrawn(&mut self) -> Result<(), SimError> {
+        let s_tip = self.params.needle.tip_s_m();
+        for slot in (0..self.nodes.len()).rev() {
+            let nn = self.nodes[slot];
+            let s = match nn.state {
+                NodeState::Stuck => nn.anchor_s_m,
+                NodeState::Slipping => nn.s_prev_m,
+                NodeState::Tip => continue,
+            };
+            if s > s_tip {
+                self.remove_slot(slot)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Displacement of any node from the current working forces, $O(d)$.
+    fn node_displacement(&self, node_idx: usize) -> [f64; 2] {
+        let mut u = [0.0; 2];
+        for (slot, f) in self.f_world.iter().enumerate() {
+            let w = self.nodes[slot].node_idx;
+            let (Some(cx), Some(cy)) = (self.cache.column(w, 0), self.cache.column(w, 1)) else { continue };
+            u[0] += cx[2 * node_idx] * f[0] + cy[2 * node_idx] * f[1];
+            u[1] += cx[2 * node_idx + 1] * f[0] + cy[2 * node_idx + 1] * f[1];
+        }
+        u
+    }
+
+    fn ensure_columns(&mut self, node_idx: usize) -> Result<(), SimError> {
+        if !self.cache.contains(node_idx) {
+            self.model.compliance_columns_into(node_idx, &mut self.col_buf, &mut self.col_scratch)?;
+            self.cache.insert(node_idx, &self.col_buf);
+            self.stats.column_misses += 1;
+        }
+        Ok(())
+    }
+
+    /// Stage 4: interception of nodes the tip has passed, and the list of approaching nodes.
+    fn capture(&mut self, prev_tip: [f64; 2]) -> Result<(), SimError> {
+        let shape = self.params.needle;
+        let tip = shape.tip_m(&self.pose);
+        let s_tip = shape.tip_s_m();
+        let cap_r = self.params.capture_radius_m;
+        let (s_prev_tip, _) = shape.project(&self.pose, prev_tip);
+        let u_max = self.u_world.iter().fold(0.0f64, |m, u| m.max(u[0].hypot(u[1])));
+        let advance = (tip[0] - prev_tip[0]).hypot(tip[1] - prev_tip[1]);
+        let radius = 2.0 * cap_r + 1.5 * u_max + advance + self.params.lookahead_m;
+        self.candidates.clear();
+        self.grid.query_into(tip, radius, &mut self.candidates);
+        self.captured.clear();
+        self.out.approaching.clear();
+        for k in 0..self.candidates.len() {
+            let j = self.candidates[k];
+            if self.slot_of_node[j] != NO_SLOT || self.model.is_fixed(j) {
+                continue;
+            }
+            let x = self.model.mesh().nodes_m()[j];
+            let u = self.node_displacement(j);
+            let (s, lat) = shape.project(&self.pose, [x[0] + u[0], x[1] + u[1]]);
+            if lat.abs() <= cap_r && s <= s_tip && s >= s_prev_tip - cap_r {
+                if self.captured.len() < self.captured.capacity() {
+                    self.captured.push((j, s, lat));
+                }
+            } else if lat.abs() <= 2.0 * cap_r && s > s_tip && s <= s_tip + self.params.lookahead_m && !self.cache.contains(j) {
+                if self.out.approaching.len() < self.out.approaching.capacity() {
+                    self.out.approaching.push(j);
+                }
+            }
+        }
+        if self.captured.is_empty() {
+            return Ok(());
+        }
+        self.captured.sort_unstable_by(|a, b| a.1.total_cmp(&b.1));
+        let has_tip = self.nodes.iter().any(|n| n.state == NodeState::Tip);
+        let n_cap = self.captured.len();
+        for k in 0..n_cap {
+            let (j, s, _) = self.captured[k];
+            if self.nodes.len() == self.params.max_needle_nodes {
+                self.stats.capacity_drops += (n_cap - k) as u64;
+                break;
+            }
+            self.ensure_columns(j)?;
+            let angle = shape.frame_angle_at(&self.pose, s);
+            let slot = self.solver.add_node(&self.cache, j, angle)?;
+            let x = self.model.mesh().nodes_m()[j];
+            let (s0, lat0) = shape.project(&self.pose, x);
+            let region = self.node_region[j];
+            let is_tip = !has_tip && k + 1 == n_cap;
+            let entering = self.is_boundary[j] || self.last_tip_region != Some(region);
+            let rp = self.params.regions[region];
+            let nn = NeedleNode {
+                node_idx: j,
+                state: if is_tip { NodeState::Tip } else { NodeState::Slipping },
+                anchor_s_m: s,
+                s_prev_m: s,
+                s_work_m: s,
+                friction_n: 0.0,
+                slip_sign: 1.0,
+                release_force_n: if entering { rp.puncture_force_n } else { rp.cutting_force_n },
+                region,
+            };
+            self.solver.set_condition(slot, 1, Condition::Displacement, -lat0)?;
+            if is_tip {
+                self.solver.set_condition(slot, 0, Condition::Displacement, s_tip - s0)?;
+                self.last_tip_region = Some(region);
+            }
+            self.nodes.push(nn);
+            self.f_world.push([0.0; 2]);
+            self.u_world.push([0.0; 2]);
+            self.slot_of_node[j] = slot;
+            self.stats.captures += 1;
+        }
+        Ok(())
+    }
+
+    /// Stage 5: each shaft node's share of the friction distribution, from the nodes' shaft
+    /// positions: the anchor of a stuck node; for a slipping node its position at the end of the
+    /// last tick, or (`current`) in the current solution. Returns the largest change of a
+    /// slipping node's force.
+    fn update_friction(&mut self, current: bool) -> f64 {
+        let s_tip = self.params.needle.tip_s_m();
+        self.order.clear();
+        for slot in 0..self.nodes.len() {
+            let nn = &mut self.nodes[slot];
+            nn.s_work_m = match nn.state {
+                NodeState::Stuck => nn.anchor_s_m,
+                NodeState::Slipping if current => {
+                    let x = self.model.mesh().nodes_m()[nn.node_idx];
+                    self.params.needle.project(&self.pose, x).0 + self.solver.displacement_local(slot)[0]
+                }
+                NodeState::Slipping => nn.s_prev_m,
+                NodeState::Tip => continue,
+            };
+            self.order.push(slot);
+        }
+        let nodes = &self.nodes;
+        self.order.sort_unstable_by(|&a, &b| nodes[a].s_work_m.total_cmp(&nodes[b].s_work_m));
+        let k = self.order.len();
+        let mut max_change: f64 = 0.0;
+        for i in 0..k {
+            let slot = self.order[i];
+            let s = self.nodes[slot].s_work_m;
+            let lo = if i == 0 { s } else { 0.5 * (s + self.nodes[self.order[i - 1]].s_work_m) };
+            let hi = if i + 1 == k { s_tip.max(s) } else { 0.5 * (s + self.nodes[self.order[i + 1]].s_work_m) };
+            let rp = self.params.regions[self.nodes[slot].region];
+            let f = rp.friction_integral_n(s_tip - hi, s_tip - lo);
+            let nn = &mut self.nodes[slot];
+            if nn.state == NodeState::Slipping {
+                max_change = max_change.max((f - nn.friction_n).abs());
+                // The kind is Force for a slipping node already pivoted; only its value changes.
+                if self.solver.condition(slot, 0) == Condition::Force {
+                    self.solver.set_value(slot, 0, nn.slip_sign * f);
+                }
+            }
+            nn.friction_n = f;
+        }
+        max_change
+    }
+
+    /// Stage 6: the bounded stick/slip iteration. Returns (iterations, converged).
+    fn resolve_active_set(&mut self) -> Result<(usize, bool), SimError> {
+        let shape = self.params.needle;
+        // Slipping nodes just captured still need their force condition.
+        for slot in 0..self.nodes.len() {
+            let nn = self.nodes[slot];
+            if nn.state == NodeState::Slipping && self.solver.condition(slot, 0) != Condition::Force {
+                self.solver.set_condition(slot, 0, Condition::Force, nn.slip_sign * nn.friction_n)?;
+            }
+        }
+        let max_iter = self.params.max_active_set_iterations;
+        for iter in 1..=max_iter {
+            self.solver.solve();
+            // Friction shares follow the slipping nodes' positions (a node sliding back lengthens
+            // its tributary segment): a short fixed-point iteration, contracting when the friction
+            // per length is small against the tissue stiffness.
+            let total: f64 = self.nodes.iter().map(|n| n.friction_n).sum();
+            for _ in 0..FRICTION_SWEEPS {
+                if self.update_friction(true) <= 1e-9 * total.max(1e-12) {
+                    break;
+                }
+                self.solver.solve();
+            }
+            self.changes.clear();
+            for slot in 0..self.nodes.len() {
+                let nn = self.nodes[slot];
+                let f = self.solver.force_local(slot);
+                let x = self.model.mesh().nodes_m()[nn.node_idx];
+                let (s0, _) = shape.project(&self.pose, x);
+                let s_now = s0 + self.solver.displacement_local(slot)[0];
+                let change = match nn.state {
+                    NodeState::Tip if f[0] > nn.release_force_n => Some(Change::Puncture),
+                    NodeState::Tip if f[0] <= 0.0 => Some(Change::LetGo),
+                    NodeState::Stuck => {
+                        let threshold = (self.params.regions[nn.region].static_friction_ratio * nn.friction_n).max(1e-12);
+                        (f[0].abs() > threshold).then(|| Change::Slip(f[0].signum()))
+                    }
+                    NodeState::Slipping => {
+                        // Consistent sliding moves the node backwards along the shaft relative to
+                        // the friction it receives: slip_sign * ds < 0.
+                        let ds = s_now - nn.s_prev_m;
+                        (nn.slip_sign * ds >= -1e-12).then_some(Change::Stick(nn.s_prev_m))
+                    }
+                    NodeState::Tip => None,
+                };
+                if let Some(c) = change {
+                    self.changes.push((slot, c));
+                }
+            }
+            if self.changes.is_empty() {
+                return Ok((iter, true));
+            }
+            // Apply in descending slot order so removals do not disturb pending slots.
+            self.changes.sort_unstable_by(|a, b| b.0.cmp(&a.0));
+            for k in 0..self.changes.len() {
+                let (slot, change) = self.changes[k];
+                let x = self.model.mesh().nodes_m()[self.nodes[slot].node_idx];
+                let (s0, _) = shape.project(&self.pose, x);
+                match change {
+                    Change::Puncture => {
+                        let nn = &mut self.nodes[slot];
+                        nn.state = NodeState::Slipping;
+                        nn.slip_sign = 1.0;
+                        nn.s_prev_m = s0 + self.solver.displacement_local(slot)[0];
+                        let value = nn.friction_n;
+                        self.solver.set_condition(slot, 0, Condition::Force, value)?;
+                        self.stats.punctures += 1;
+                    }
+                    Change::LetGo => self.remove_slot(slot)?,
+                    Change::Slip(sign) => {
+                        let nn = &mut self.nodes[slot];
+                        nn.state = NodeState::Slipping;
+                        nn.slip_sign = sign;
+                        let value = sign * nn.friction_n;
+                        self.solver.set_condition(slot, 0, Condition::Force, value)?;
+                        self.stats.stick_to_slip += 1;
+                    }
+                    Change::Stick(anchor) => {
+                        let nn = &mut self.nodes[slot];
+                        nn.state = NodeState::Stuck;
+                        nn.anchor_s_m = anchor;
+                        self.solver.set_condition(slot, 0, Condition::Displacement, anchor - s0)?;
+                        self.stats.slip_to_stick += 1;
+                    }
+                }
+            }
+            if iter == max_iter {
+                // Leave a state whose solution matches its conditions.
+                self.solver.solve();
+            }
+        }
+        Ok((max_iter, false))
+    }
+
+    /// Stage 7: forces, torque, node states, targets.
+    fn write_output(&mut self, iterations: usize, converged: bool, clamped: bool) {
+        let shape = self.params.needle;
+        let b = self.pose.position_m();
+        let (t, n) = (self.pose.axis(), self.pose.normal());
+        let mut force = [0.0; 2];
+        let mut torque = 0.0;
+        let mut min_s = f64::INFINITY;
+        self.out.needle_nodes.clear();
+        let (mut n_stuck, mut n_slip, mut n_tip) = (0, 0, 0);
+        for slot in 0..self.nodes.len() {
+            let f = self.solver.force_world(slot);
+            let u = self.solver.displacement_world(slot);
+            self.f_world[slot] = f;
+            self.u_world[slot] = u;
+            let nn = &mut self.nodes[slot];
+            let x = self.model.mesh().nodes_m()[nn.node_idx];
+            let p = [x[0] + u[0], x[1] + u[1]];
+            let (s, _) = shape.project(&self.pose, p);
+            nn.s_prev_m = s;
+            min_s = min_s.min(s);
+            force[0] -= f[0];
+            force[1] -= f[1];
+            torque += (p[0] - b[0]) * (-f[1]) - (p[1] - b[1]) * (-f[0]);
+            match nn.state {
+                NodeState::Stuck => n_stuck += 1,
+                NodeState::Slipping => n_slip += 1,
+                NodeState::Tip => n_tip += 1,
+            }
+            self.out.needle_nodes.push(NeedleNodeOut { node_idx: nn.node_idx, state: nn.state, position_m: p, force_n: f, s_m: s });
+        }
+        let tip = shape.tip_m(&self.pose);
+        self.out.targets.clear();
+        for k in 0..self.targets.len() {
+            let tg = self.targets[k].clone();
+            let mut pos = [0.0; 2];
+            for (&node, &w) in tg.nodes.iter().zip(&tg.bary) {
+                let x = self.model.mesh().nodes_m()[node];
+                let u = self.node_displacement(node);
+                pos[0] += w * (x[0] + u[0]);
+                pos[1] += w * (x[1] + u[1]);
+            }
+            let distance_m = (pos[0] - tip[0]).hypot(pos[1] - tip[1]);
+            let hit = tg.hit || distance_m <= tg.radius_m;
+            self.targets[k].hit = hit;
+            self.out.targets.push(TargetOut { position_m: pos, distance_m, hit });
+        }
+        let o = &mut self.out;
+        o.tick = self.tick;
+        o.time_s = self.tick as f64 / self.params.tick_rate_hz;
+        o.base = self.pose;
+        o.force_n = force;
+        o.torque_nm = torque;
+        o.force_axial_n = t[0] * force[0] + t[1] * force[1];
+        o.force_lateral_n = n[0] * force[0] + n[1] * force[1];
+        o.tip_m = tip;
+        o.inserted_length_m = if self.nodes.is_empty() { 0.0 } else { (shape.tip_s_m() - min_s).max(0.0) };
+        o.n_stuck = n_stuck;
+        o.n_slipping = n_slip;
+        o.n_tip = n_tip;
+        o.active_set_iterations = iterations;
+        o.converged = converged;
+        o.clamped = clamped;
+    }
+
+    /// Displacement of every DOF ($O(n\,d)$; for rendering at frame rate, not every tick).
+    pub fn displacement_field_into(&self, out: &mut [f64]) {
+        let forces = (0..self.nodes.len()).map(|k| (self.nodes[k].node_idx, self.f_world[k]));
+        self.cache.displacement_from_forces_into(forces, out).expect("working nodes are cached");
+    }
+
+    /// The static problem that the last step solved: each needle node's conditions in its frame
+    /// (`un` always; `ut` when stuck or carried by the tip) and the friction loads of slipping
+    /// nodes (world components).
+    pub fn snapshot(&self) -> StateSnapshot {
+        let mut conditions = Vec::with_capacity(self.nodes.len());
+        let mut loads_n = Vec::new();
+        for (slot, nn) in self.nodes.iter().enumerate() {
+            let angle = self.solver.angle_rad(slot);
+            let val = |c| (self.solver.condition(slot, c) == Condition::Displacement).then(|| self.solver.prescribed_value(slot, c));
+            conditions.push(LocalCondition { node_idx: nn.node_idx, angle_rad: angle, ut_m: val(0), un_m: val(1) });
+            for c in 0..2 {
+                if self.solver.condition(slot, c) == Condition::Force {
+                    let mut v = [0.0; 2];
+                    v[c] = self.solver.prescribed_value(slot, c);
+                    let w = crate::mixed::local_to_world(v, angle);
+                    loads_n.push((nn.node_idx, w));
+                }
+            }
+        }
+        StateSnapshot { conditions, loads_n, needle_nodes: self.out.needle_nodes.clone() }
+    }
+}
+
+/// One needle node's conditions in its frame, as in the exchange format's `prescribed_local`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LocalCondition {
+    pub node_idx: usize,
+    pub angle_rad: f64,
+    pub ut_m: Option<f64>,
+    pub un_m: Option<f64>,
+}
+
+/// The static problem of the last step (see [`Simulation::snapshot`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StateSnapshot {
+    pub conditions: Vec<LocalCondition>,
+    pub loads_n: Vec<(usize, [f64; 2])>,
+    pub needle_nodes: Vec<NeedleNodeOut>,
+}
+
+/// The triangle containing `p` and its barycentric coordinates (a setup-time scan).
+fn locate(mesh: &crate::mesh::Mesh, p: [f64; 2]) -> Option<([usize; 3], [f64; 3])> {
+    let mut best: Option<([usize; 3], [f64; 3], f64)> = None;
+    for (ti, t) in mesh.triangles().iter().enumerate() {
+        let [a, b, c] = t.map(|i| mesh.nodes_m()[i]);
+        let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        let l1 = ((b[0] - p[0]) * (c[1] - p[1]) - (c[0] - p[0]) * (b[1] - p[1])) / det;
+        let l2 = ((c[0] - p[0]) * (a[1] - p[1]) - (a[0] - p[0]) * (c[1] - p[1])) / det;
+        let l3 = 1.0 - l1 - l2;
+        let worst = l1.min(l2).min(l3);
+        if best.as_ref().is_none_or(|bst| worst > bst.2) {
+            best = Some((*t, [l1, l2, l3], worst));
+        }
+        let _ = ti;
+    }
+    best.filter(|b| b.2 >= -1e-9).map(|b| (b.0, b.1))
+}

@@ -1,0 +1,312 @@
+//! The static-problem exchange format of ../shared/validation (scenario in, result out), and its
+//! conversion to and from the core's types. The only place where that JSON meets the core.
+
+use std::collections::BTreeMap;
+
+use anyhow::{Context, Result, bail};
+use needlesim_core::compliance::{ComplianceCache, TissueModel};
+use needlesim_core::{Material, MaterialMap, Mesh, MeshLimits, NodeCondition, PlaneModel, StaticProblem};
+use serde::de::{Error as _, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
+
+/// A static problem (see ../shared/validation/README.md). Node ids are 0-based.
+#[derive(Debug, Clone, Deserialize, Serialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    #[serde(deserialize_with = "node_coordinates")]
+    pub nodes: Vec<[f64; 2]>,
+    pub triangles: Vec<[i64; 3]>,
+    #[serde(rename = "E")]
+    pub young_modulus_pa: f64,
+    pub nu: f64,
+    #[serde(default = "default_plane")]
+    pub plane: String,
+    #[serde(default = "one")]
+    pub thickness: f64,
+    #[serde(rename = "E_elem", default, skip_serializing_if = "Option::is_none")]
+    pub young_modulus_elem_pa: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu_elem: Option<Vec<f64>>,
+    #[serde(default)]
+    pub fixed_nodes: Vec<i64>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub prescribed: Vec<Prescribed>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub prescribed_local: Vec<PrescribedLocal>,
+    #[serde(default)]
+    pub loads: Vec<Load>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub working_nodes: Option<Vec<i64>>,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub output_stresses: bool,
+    /// Written by `simulate --dump-state`: the simulator's own displacements, `[[ux, uy], …]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solver_displacements: Option<Vec<[f64; 2]>>,
+    /// Written by `simulate --dump-state`: the needle nodes as the simulator saw them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub needle_nodes: Option<serde_json::Value>,
+}
+
+/// `nodes`, with errors that name the node. serde_json alone reports a coordinate such as 1e999
+/// (beyond the range of f64, the only way JSON can spell an infinite value) as a bare
+/// "number out of range".
+fn node_coordinates<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<[f64; 2]>, D::Error> {
+    struct Nodes;
+    impl<'de> Visitor<'de> for Nodes {
+        type Value = Vec<[f64; 2]>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a list of [x, y] node coordinates")
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+            let mut nodes = Vec::new();
+            loop {
+                match seq.next_element::<[f64; 2]>() {
+                    Ok(Some(xy)) => nodes.push(xy),
+                    Ok(None) => return Ok(nodes),
+                    Err(e) => {
+                        // Keep serde_json's " at line L column C" last, where it parses it back from.
+                        let msg = e.to_string();
+                        let (what, at) = msg.rsplit_once(" at line ").map_or((msg.as_str(), String::new()), |(w, a)| (w, format!(" at line {a}")));
+                        let hint = if what.contains("out of range") {
+                            ": coordinates must be finite numbers (JSON has no NaN or Infinity, and a number such as 1e999 overflows)"
+                        } else {
+                            ""
+                        };
+                        return Err(A::Error::custom(format!("node {} (nodes[{}]): {what}{hint}{at}", nodes.len(), nodes.len())));
+                    }
+                }
+            }
+        }
+    }
+    deserializer.deserialize_seq(Nodes)
+}
+
+fn default_plane() -> String {
+    "strain".to_owned()
+}
+fn one() -> f64 {
+    1.0
+}
+
+/// A prescribed displacement in world components; a missing or null component is free.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Prescribed {
+    pub node: i64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ux: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uy: Option<f64>,
+}
+
+/// A prescribed displacement in a frame rotated by `angle_rad`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrescribedLocal {
+    pub node: i64,
+    pub angle_rad: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ut: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub un: Option<f64>,
+}
+
+/// A nodal point force in world components.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Load {
+    pub node: i64,
+    #[serde(default)]
+    pub fx: f64,
+    #[serde(default)]
+    pub fy: f64,
+}
+
+/// The result format of ../shared/validation.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ScenarioResult {
+    pub name: String,
+    pub n_nodes: usize,
+    pub n_triangles: usize,
+    pub n_dofs: usize,
+    pub plane: String,
+    pub thickness: f64,
+    pub displacements: Vec<[f64; 2]>,
+    pub reactions: Vec<Reaction>,
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub reactions_local: Vec<ReactionLocal>,
+    pub reaction_sum: [f64; 2],
+    pub strain_energy: f64,
+    pub max_abs_displacement: f64,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub element_stresses_sxx_syy_sxy: Option<Vec<[f64; 3]>>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub compliance: Option<ComplianceBlock>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Reaction {
+    pub node: usize,
+    pub rx: Option<f64>,
+    pub ry: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ReactionLocal {
+    pub node: usize,
+    pub angle_rad: f64,
+    pub rt: Option<f64>,
+    pub rn: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ComplianceBlock {
+    pub working_nodes: Vec<usize>,
+    pub dof_order: String,
+    pub matrix: Vec<Vec<f64>>,
+}
+
+/// A node id from JSON: non-negative and below `n_nodes`.
+fn node_id(v: i64, n_nodes: usize, what: &str) -> Result<usize> {
+    if v < 0 || v as u64 >= n_nodes as u64 {
+        bail!("{what} names node {v}, but the mesh has nodes 0..{} (ids are 0-based)", n_nodes.saturating_sub(1));
+    }
+    Ok(v as usize)
+}
+
+impl Scenario {
+    /// Builds the mesh and materials, validating both.
+    pub fn mesh_and_materials(&self, limits: &MeshLimits) -> Result<(Mesh, MaterialMap)> {
+        let mut triangles = Vec::with_capacity(self.triangles.len());
+        for (i, t) in self.triangles.iter().enumerate() {
+            let mut tri = [0usize; 3];
+            for k in 0..3 {
+                if t[k] < 0 {
+                    bail!("triangles[{i}] refers to node {}, but node ids are 0-based and non-negative", t[k]);
+                }
+                tri[k] = usize::try_from(t[k]).unwrap_or(usize::MAX);
+            }
+            triangles.push(tri);
+        }
+        let mesh = Mesh::new(self.nodes.clone(), triangles, limits).context("invalid mesh")?;
+        let plane = match self.plane.as_str() {
+            "strain" => PlaneModel::Strain { thickness_m: self.thickness },
+            "stress" => PlaneModel::Stress { thickness_m: self.thickness },
+            p => bail!("plane must be \"strain\" or \"stress\", found \"{p}\""),
+        };
+        let n_tri = mesh.n_triangles();
+        let materials = if self.young_modulus_elem_pa.is_some() || self.nu_elem.is_some() {
+            let e = self.young_modulus_elem_pa.clone().unwrap_or_else(|| vec![self.young_modulus_pa; n_tri]);
+            let nu = self.nu_elem.clone().unwrap_or_else(|| vec![self.nu; n_tri]);
+            if e.len() != n_tri {
+                bail!("E_elem has {} entries but there are {n_tri} triangles", e.len());
+            }
+            if nu.len() != n_tri {
+                bail!("nu_elem has {} entries but there are {n_tri} triangles", nu.len());
+            }
+            let per = e.iter().zip(&nu).map(|(&e, &nu)| Material { young_modulus_pa: e, poisson_ratio: nu }).collect();
+            MaterialMap::per_element(&mesh, per, plane).context("invalid material")?
+        } else {
+            let m = Material { young_modulus_pa: self.young_modulus_pa, poisson_ratio: self.nu };
+            MaterialMap::per_region(&mesh, &[m], plane).context("invalid material")?
+        };
+        Ok((mesh, materials))
+    }
+
+    /// The static problem: fixed nodes, prescribed (world entries for one node merge) and loads.
+    pub fn static_problem(&self, n_nodes: usize) -> Result<StaticProblem> {
+        let mut conditions = Vec::new();
+        for &n in &self.fixed_nodes {
+            conditions.push((node_id(n, n_nodes, "fixed_nodes")?, NodeCondition::Fixed));
+        }
+        let mut world: BTreeMap<usize, (Option<f64>, Option<f64>)> = BTreeMap::new();
+        for p in &self.prescribed {
+            let n = node_id(p.node, n_nodes, "prescribed")?;
+            let e = world.entry(n).or_default();
+            if p.ux.is_some() {
+                e.0 = p.ux;
+            }
+            if p.uy.is_some() {
+                e.1 = p.uy;
+            }
+        }
+        for (n, (ux_m, uy_m)) in world {
+            conditions.push((n, NodeCondition::World { ux_m, uy_m }));
+        }
+        for p in &self.prescribed_local {
+            let n = node_id(p.node, n_nodes, "prescribed_local")?;
+            conditions.push((n, NodeCondition::Local { angle_rad: p.angle_rad, ut_m: p.ut, un_m: p.un }));
+        }
+        let mut loads_n = Vec::new();
+        for l in &self.loads {
+            loads_n.push((node_id(l.node, n_nodes, "loads")?, [l.fx, l.fy]));
+        }
+        Ok(StaticProblem { conditions, loads_n })
+    }
+}
+
+/// Solves a scenario as the `solve` command does.
+pub fn solve_scenario(sc: &Scenario, limits: &MeshLimits) -> Result<ScenarioResult> {
+    let (mesh, materials) = sc.mesh_and_materials(limits)?;
+    let problem = sc.static_problem(mesh.n_nodes())?;
+    let sol = problem.solve(&mesh, &materials).context("static solve failed")?;
+    let displacements: Vec<[f64; 2]> = sol.displacement_m.chunks(2).map(|c| [c[0], c[1]]).collect();
+    let reactions: Vec<Reaction> = sol.reactions_n.iter().map(|&(node, [rx, ry])| Reaction { node, rx, ry }).collect();
+    let reaction_sum = [
+        reactions.iter().filter_map(|r| r.rx).sum::<f64>(),
+        reactions.iter().filter_map(|r| r.ry).sum::<f64>(),
+    ];
+    let element_stresses_sxx_syy_sxy = sc.output_stresses.then(|| sol.element_stresses_pa(&mesh, &materials));
+    let compliance = match &sc.working_nodes {
+        Some(w) if !w.is_empty() => Some(compliance_block(sc, w, mesh.clone(), materials.clone())?),
+        _ => None,
+    };
+    Ok(ScenarioResult {
+        name: sc.name.clone().unwrap_or_default(),
+        n_nodes: mesh.n_nodes(),
+        n_triangles: mesh.n_triangles(),
+        n_dofs: 2 * mesh.n_nodes(),
+        plane: sc.plane.clone(),
+        thickness: sc.thickness,
+        max_abs_displacement: sol.displacement_m.iter().fold(0.0, |m, v| m.max(v.abs())),
+        displacements,
+        reactions,
+        reactions_local: sol
+            .reactions_local_n
+            .iter()
+            .map(|&(node, angle_rad, [rt, rn])| ReactionLocal { node, angle_rad, rt, rn })
+            .collect(),
+        reaction_sum,
+        strain_energy: sol.strain_energy_j,
+        element_stresses_sxx_syy_sxy,
+        compliance,
+    })
+}
+
+/// $C = K_{ff}^{-1}$ restricted to the working nodes, where only `fixed_nodes` are removed.
+fn compliance_block(sc: &Scenario, working: &[i64], mesh: Mesh, materials: MaterialMap) -> Result<ComplianceBlock> {
+    let n_nodes = mesh.n_nodes();
+    let fixed = sc.fixed_nodes.iter().map(|&n| node_id(n, n_nodes, "fixed_nodes")).collect::<Result<Vec<_>>>()?;
+    let nodes = working.iter().map(|&n| node_id(n, n_nodes, "working_nodes")).collect::<Result<Vec<_>>>()?;
+    let model = TissueModel::new(mesh, materials, &fixed).context("the compliance needs fixed_nodes that hold the tissue")?;
+    if let Some(&n) = nodes.iter().find(|&&n| model.is_fixed(n)) {
+        bail!("working_nodes names node {n}, which is fixed: its compliance is zero");
+    }
+    let mut cache = ComplianceCache::new(n_nodes);
+    let mut scratch = model.column_scratch();
+    for &n in &nodes {
+        cache.ensure(&model, n, &mut scratch)?;
+    }
+    let d = 2 * nodes.len();
+    let mut c = vec![0.0; d * d];
+    cache.working_block_into(&nodes, &mut c).expect("all columns cached above");
+    Ok(ComplianceBlock {
+        working_nodes: nodes,
+        dof_order: "[ux(w0), uy(w0), ux(w1), uy(w1), ...]".to_owned(),
+        matrix: c.chunks(d).map(<[f64]>::to_vec).collect(),
+    })
+}

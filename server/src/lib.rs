@@ -1,0 +1,6 @@
+//! needlesim-server as a library: the scene format, the exchange format of the validation suite,
+//! and the offline commands, shared by the `needlesim-server` binary and the tests.
+
+pub mod exchange;
+pub mod scene;
+pub mod simulate;

@@ -1,0 +1,150 @@
+//! `needlesim-server`: the needlesim server and its offline commands.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::{Args, Parser, Subcommand};
+use needlesim_core::MeshLimits;
+
+use needlesim_server::{exchange, scene, simulate};
+
+#[derive(Parser)]
+#[command(name = "needlesim-server", version, about = "Real-time needle insertion simulator: server and offline tools")]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+#[derive(Args, Clone, Copy)]
+struct LimitArgs {
+    /// Largest mesh accepted, in nodes.
+    #[arg(long, global = true, default_value_t = MeshLimits::default().max_nodes)]
+    max_nodes: usize,
+    /// Largest mesh accepted, in triangles.
+    #[arg(long, global = true, default_value_t = MeshLimits::default().max_triangles)]
+    max_triangles: usize,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a static problem in the exchange format of the validation suite.
+    Solve {
+        /// The scenario JSON (nodes, triangles, E, nu, fixed_nodes, prescribed, loads, …).
+        scenario: PathBuf,
+        /// Where to write the result JSON (standard output when absent).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// Run a scripted insertion through the real-time step function, offline.
+    Simulate {
+        /// A scene TOML file, or a shipped example's name (paper-phantom, fig3-target).
+        #[arg(long)]
+        scene: String,
+        /// The base trajectory CSV (t_s,x_m,y_m,theta_rad); defaults to the example's own.
+        #[arg(long)]
+        trajectory: Option<PathBuf>,
+        /// Where to write the time series CSV (standard output when absent).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Write the final state as a static problem in the validation exchange format.
+        #[arg(long)]
+        dump_state: Option<PathBuf>,
+    },
+}
+
+fn main() -> ExitCode {
+    tracing_subscriber::fmt()
+        .with_writer(std::io::stderr)
+        .with_env_filter(tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "info".into()))
+        .init();
+    let cli = Cli::parse();
+    let limits = MeshLimits { max_nodes: cli.limits.max_nodes, max_triangles: cli.limits.max_triangles };
+    let result = match cli.command {
+        Some(Command::Solve { scenario, output }) => solve(&scenario, output.as_deref(), &limits),
+        Some(Command::Simulate { scene, trajectory, output, dump_state }) => {
+            run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), &limits)
+        }
+        None => {
+            let example = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/paper19x19.json");
+            solve(example.as_ref(), None, &limits)
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn solve(scenario: &std::path::Path, output: Option<&std::path::Path>, limits: &MeshLimits) -> Result<()> {
+    let text = std::fs::read_to_string(scenario).with_context(|| format!("cannot read {}", scenario.display()))?;
+    let sc: exchange::Scenario = serde_json::from_str(&text).with_context(|| format!("{} is not a valid scenario", scenario.display()))?;
+    let t0 = std::time::Instant::now();
+    let result = exchange::solve_scenario(&sc, limits).with_context(|| format!("{}", scenario.display()))?;
+    tracing::info!(
+        scenario = %scenario.display(),
+        n_nodes = result.n_nodes,
+        strain_energy_j = result.strain_energy,
+        max_abs_displacement_m = result.max_abs_displacement,
+        elapsed_ms = t0.elapsed().as_secs_f64() * 1e3,
+        "solved"
+    );
+    let json = serde_json::to_string(&result)?;
+    match output {
+        Some(p) => std::fs::write(p, json).with_context(|| format!("cannot write {}", p.display()))?,
+        None => println!("{json}"),
+    }
+    Ok(())
+}
+
+fn run_simulate(
+    scene_spec: &str,
+    trajectory: Option<&std::path::Path>,
+    output: Option<&std::path::Path>,
+    dump: Option<&std::path::Path>,
+    limits: &MeshLimits,
+) -> Result<()> {
+    let scene = scene::load_scene(scene_spec, limits)?;
+    let traj = match (trajectory, scene.example_trajectory) {
+        (Some(p), _) => {
+            let text = std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?;
+            scene::Trajectory::parse_csv(&text).with_context(|| format!("{}", p.display()))?
+        }
+        (None, Some(text)) => scene::Trajectory::parse_csv(text)?,
+        (None, None) => anyhow::bail!("--trajectory is needed: scene '{scene_spec}' is not a shipped example with its own"),
+    };
+    let mut csv = String::new();
+    let t0 = std::time::Instant::now();
+    let (sim, summary) = simulate::run(&scene, &traj, Some(&mut csv))?;
+    let mut times = summary.step_times_s.clone();
+    times.sort_by(f64::total_cmp);
+    let pct = |q: f64| times.get(((times.len() as f64 - 1.0) * q).round() as usize).copied().unwrap_or(0.0) * 1e6;
+    tracing::info!(
+        scene = %scene.name,
+        n_nodes = scene.tissue.mesh().n_nodes(),
+        ticks = summary.ticks,
+        step_p50_us = pct(0.5),
+        step_p99_us = pct(0.99),
+        step_max_us = pct(1.0),
+        column_misses = summary.column_misses,
+        prefetched_columns = summary.prefetched_columns,
+        clamped_ticks = summary.clamped_ticks,
+        unconverged_ticks = summary.unconverged_ticks,
+        wall_s = t0.elapsed().as_secs_f64(),
+        "simulated"
+    );
+    match output {
+        Some(p) => std::fs::write(p, &csv).with_context(|| format!("cannot write {}", p.display()))?,
+        None => print!("{csv}"),
+    }
+    if let Some(p) = dump {
+        let state = simulate::dump_state(&scene, &sim);
+        std::fs::write(p, serde_json::to_string(&state)?).with_context(|| format!("cannot write {}", p.display()))?;
+    }
+    Ok(())
+}

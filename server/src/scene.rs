@@ -1,0 +1,491 @@
+//! Scene files (TOML, edited by users) and their conversion to the core's tissue model and
+//! simulation parameters. Shipped examples live in server/scenes and are embedded in the binary.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{Context, Result, bail};
+use needlesim_core::compliance::TissueModel;
+use needlesim_core::mesh::DiagonalPattern;
+use needlesim_core::sim::{SimParams, TargetParams};
+use needlesim_core::{BasePose, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle};
+use serde::Deserialize;
+
+/// The shipped examples: (name, scene TOML, trajectory CSV).
+pub const EXAMPLES: &[(&str, &str, &str)] = &[
+    ("paper-phantom", include_str!("../scenes/paper-phantom.toml"), include_str!("../scenes/paper-phantom.csv")),
+    ("fig3-target", include_str!("../scenes/fig3-target.toml"), include_str!("../scenes/fig3-target.csv")),
+];
+
+/// A scene as written in TOML.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub name: Option<String>,
+    pub description: Option<String>,
+    /// Haptic tick rate.
+    #[serde(default = "default_rate")]
+    pub tick_rate_hz: f64,
+    pub mesh: MeshSpec,
+    #[serde(default)]
+    pub plane: PlaneSpec,
+    /// Boundary sets (by name) whose nodes are fixed, e.g. `["bottom"]`.
+    #[serde(default)]
+    pub fixed: Vec<String>,
+    /// Further fixed nodes by index.
+    #[serde(default)]
+    pub fixed_nodes: Vec<usize>,
+    pub regions: Vec<RegionSpec>,
+    pub needle: NeedleSpec,
+    #[serde(default)]
+    pub targets: Vec<TargetSpec>,
+    #[serde(default)]
+    pub limits: LimitsSpec,
+}
+
+fn default_rate() -> f64 {
+    1000.0
+}
+
+/// The mesh: a generated grid or a Gmsh file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields, tag = "type", rename_all = "lowercase")]
+pub enum MeshSpec {
+    /// A structured rectangle of `nx × ny` nodes; boundary sets bottom, top, left, right.
+    Grid {
+        nx: usize,
+        ny: usize,
+        width_m: f64,
+        height_m: f64,
+        #[serde(default)]
+        origin_m: [f64; 2],
+        #[serde(default)]
+        pattern: PatternSpec,
+    },
+    /// A Gmsh ASCII file (2.2 or 4.1), relative to the scene file.
+    Msh { file: PathBuf },
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum PatternSpec {
+    #[default]
+    Alternate,
+    Right,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSpec {
+    /// "stress" (a slice of given thickness) or "strain".
+    pub model: String,
+    pub thickness_m: f64,
+}
+
+impl Default for PlaneSpec {
+    fn default() -> Self {
+        Self { model: "stress".to_owned(), thickness_m: 0.01 }
+    }
+}
+
+/// A tissue region: elasticity and needle interaction.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSpec {
+    pub name: String,
+    pub young_modulus_pa: f64,
+    pub poisson_ratio: f64,
+    /// For grid meshes: the triangles whose centroid lies in this disc belong to the region
+    /// (later regions win). Absent for the first (background) region; for .msh files regions are
+    /// matched by physical-group name.
+    pub disc: Option<DiscSpec>,
+    #[serde(default = "d_friction")]
+    pub friction_n_per_m: f64,
+    #[serde(default = "d_static")]
+    pub static_friction_ratio: f64,
+    #[serde(default = "d_peak")]
+    pub tip_peak_ratio: f64,
+    #[serde(default = "d_peak_w")]
+    pub tip_peak_width_m: f64,
+    #[serde(default = "d_puncture")]
+    pub puncture_force_n: f64,
+    #[serde(default = "d_cutting")]
+    pub cutting_force_n: f64,
+}
+
+fn d_friction() -> f64 {
+    RegionNeedleParams::default().friction_n_per_m
+}
+fn d_static() -> f64 {
+    RegionNeedleParams::default().static_friction_ratio
+}
+fn d_peak() -> f64 {
+    RegionNeedleParams::default().tip_peak_ratio
+}
+fn d_peak_w() -> f64 {
+    RegionNeedleParams::default().tip_peak_width_m
+}
+fn d_puncture() -> f64 {
+    RegionNeedleParams::default().puncture_force_n
+}
+fn d_cutting() -> f64 {
+    RegionNeedleParams::default().cutting_force_n
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiscSpec {
+    pub center_m: [f64; 2],
+    pub radius_m: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeedleSpec {
+    pub length_m: f64,
+    /// Initial base pose `[x_m, y_m, theta_rad]`.
+    pub base: [f64; 3],
+    pub capture_radius_m: Option<f64>,
+    #[serde(default = "d_max_nodes")]
+    pub max_nodes: usize,
+}
+
+fn d_max_nodes() -> usize {
+    128
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TargetSpec {
+    pub name: String,
+    pub center_m: [f64; 2],
+    #[serde(default)]
+    pub radius_m: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsSpec {
+    #[serde(default = "d_step_m")]
+    pub max_base_step_m: f64,
+    #[serde(default = "d_step_rad")]
+    pub max_base_step_rad: f64,
+    #[serde(default = "d_iters")]
+    pub max_active_set_iterations: usize,
+    #[serde(default = "d_lookahead")]
+    pub lookahead_m: f64,
+}
+
+fn d_step_m() -> f64 {
+    0.002
+}
+fn d_step_rad() -> f64 {
+    0.05
+}
+fn d_iters() -> usize {
+    12
+}
+fn d_lookahead() -> f64 {
+    0.01
+}
+
+impl Default for LimitsSpec {
+    fn default() -> Self {
+        Self { max_base_step_m: d_step_m(), max_base_step_rad: d_step_rad(), max_active_set_iterations: d_iters(), lookahead_m: d_lookahead() }
+    }
+}
+
+/// A loaded scene: the factorised tissue and the simulation parameters.
+pub struct Scene {
+    pub name: String,
+    pub tissue: Arc<TissueModel>,
+    pub params: SimParams,
+    pub fixed_nodes: Vec<usize>,
+    pub target_names: Vec<String>,
+    /// The example trajectory shipped with the scene, if any.
+    pub example_trajectory: Option<&'static str>,
+}
+
+/// Reads a scene: a path to a TOML file, or the name of a shipped example.
+pub fn load_scene(spec: &str, limits: &MeshLimits) -> Result<Scene> {
+    if let Some((name, toml_text, csv)) = EXAMPLES.iter().find(|e| e.0 == spec) {
+        let mut scene = parse_scene(toml_text, Path::new("server/scenes"), limits).with_context(|| format!("example scene {name}"))?;
+        scene.example_trajectory = Some(csv);
+        return Ok(scene);
+    }
+    let path = Path::new(spec);
+    if !path.exists() {
+        let names: Vec<&str> = EXAMPLES.iter().map(|e| e.0).collect();
+        bail!("scene '{spec}' is neither a file nor a shipped example (examples: {})", names.join(", "));
+    }
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    parse_scene(&text, path.parent().unwrap_or(Path::new(".")), limits).with_context(|| format!("scene {}", path.display()))
+}
+
+/// Parses scene TOML; `base_dir` resolves relative mesh files.
+pub fn parse_scene(text: &str, base_dir: &Path, limits: &MeshLimits) -> Result<Scene> {
+    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", e.to_string().trim_end()))?;
+    build_scene(&file, base_dir, limits)
+}
+
+fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Scene> {
+    if f.regions.is_empty() {
+        bail!("regions: at least one region is needed");
+    }
+    let mut mesh = match &f.mesh {
+        MeshSpec::Grid { nx, ny, width_m, height_m, origin_m, pattern } => {
+            let pattern = match pattern {
+                PatternSpec::Alternate => DiagonalPattern::Alternate,
+                PatternSpec::Right => DiagonalPattern::Right,
+            };
+            let m = RectMeshParams { nx: *nx, ny: *ny, width_m: *width_m, height_m: *height_m, origin_m: *origin_m, pattern }
+                .build(limits)
+                .context("mesh")?;
+            assign_disc_regions(m, &f.regions, limits)?
+        }
+        MeshSpec::Msh { file } => {
+            let path = base_dir.join(file);
+            let text = std::fs::read_to_string(&path).with_context(|| format!("mesh.file: cannot read {}", path.display()))?;
+            needlesim_core::msh::parse_msh(&text, limits).with_context(|| format!("mesh.file {}", path.display()))?.mesh
+        }
+    };
+    // Materials and needle parameters in the mesh's region order, matched by name.
+    let mut materials = Vec::new();
+    let mut needle_params = Vec::new();
+    for rname in mesh.region_names() {
+        let r = f.regions.iter().find(|r| &r.name == rname).with_context(|| {
+            format!("regions: the mesh has a region '{rname}' but no [[regions]] entry is named so")
+        })?;
+        materials.push(Material { young_modulus_pa: r.young_modulus_pa, poisson_ratio: r.poisson_ratio });
+        needle_params.push(RegionNeedleParams {
+            friction_n_per_m: r.friction_n_per_m,
+            static_friction_ratio: r.static_friction_ratio,
+            tip_peak_ratio: r.tip_peak_ratio,
+            tip_peak_width_m: r.tip_peak_width_m,
+            puncture_force_n: r.puncture_force_n,
+            cutting_force_n: r.cutting_force_n,
+        });
+    }
+    for r in &f.regions {
+        if !mesh.region_names().contains(&r.name) {
+            bail!("regions: '{}' is not a region of the mesh (mesh regions: {})", r.name, mesh.region_names().join(", "));
+        }
+    }
+    let plane = match f.plane.model.as_str() {
+        "stress" => PlaneModel::Stress { thickness_m: f.plane.thickness_m },
+        "strain" => PlaneModel::Strain { thickness_m: f.plane.thickness_m },
+        m => bail!("plane.model must be \"stress\" or \"strain\", found \"{m}\""),
+    };
+    let mats = MaterialMap::per_region(&mesh, &materials, plane).context("regions")?;
+    let mut fixed = f.fixed_nodes.clone();
+    for set in &f.fixed {
+        let nodes = mesh.boundary_set(set).with_context(|| {
+            let names: Vec<&String> = mesh.boundary_sets().keys().collect();
+            format!("fixed: the mesh has no boundary set '{set}' (it has: {names:?})")
+        })?;
+        fixed.extend_from_slice(nodes);
+    }
+    fixed.sort_unstable();
+    fixed.dedup();
+    if let Some(&n) = fixed.iter().find(|&&n| n >= mesh.n_nodes()) {
+        bail!("fixed_nodes: node {n} does not exist (the mesh has {} nodes)", mesh.n_nodes());
+    }
+    let n_fixed = fixed.len();
+    // Keep the boundary sets on the mesh (the fixed set gets a name for later reference).
+    mesh.set_boundary_set("fixed", fixed.clone()).context("fixed")?;
+    let tissue = Arc::new(TissueModel::new(mesh, mats, &fixed).with_context(|| format!("tissue ({n_fixed} fixed nodes)"))?);
+    let mean_edge = mean_edge_m(tissue.mesh());
+    let n = &f.needle;
+    let params = SimParams {
+        needle: NeedleShape::Rigid(RigidNeedle { length_m: n.length_m }),
+        initial_pose: BasePose::new(n.base[0], n.base[1], n.base[2]),
+        capture_radius_m: n.capture_radius_m.unwrap_or(0.5 * mean_edge),
+        max_needle_nodes: n.max_nodes,
+        regions: needle_params,
+        targets: f.targets.iter().map(|t| TargetParams { name: t.name.clone(), center_m: t.center_m, radius_m: t.radius_m }).collect(),
+        tick_rate_hz: f.tick_rate_hz,
+        max_base_step_m: f.limits.max_base_step_m,
+        max_base_step_rad: f.limits.max_base_step_rad,
+        max_active_set_iterations: f.limits.max_active_set_iterations,
+        lookahead_m: f.limits.lookahead_m,
+    };
+    if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
+        bail!("tick_rate_hz = {} must be between 100 and 10000", f.tick_rate_hz);
+    }
+    Ok(Scene {
+        name: f.name.clone().unwrap_or_else(|| "scene".to_owned()),
+        tissue,
+        params,
+        fixed_nodes: fixed,
+        target_names: f.targets.iter().map(|t| t.name.clone()).collect(),
+        example_trajectory: None,
+    })
+}
+
+fn mean_edge_m(mesh: &Mesh) -> f64 {
+    let mut sum = 0.0;
+    for t in mesh.triangles() {
+        for k in 0..3 {
+            let (a, b) = (mesh.nodes_m()[t[k]], mesh.nodes_m()[t[(k + 1) % 3]]);
+            sum += (a[0] - b[0]).hypot(a[1] - b[1]);
+        }
+    }
+    sum / (3 * mesh.n_triangles()) as f64
+}
+
+/// Regions of a generated grid: the first region is the background; each later region with a
+/// `disc` claims the triangles whose centroid lies inside it.
+fn assign_disc_regions(mesh: Mesh, regions: &[RegionSpec], limits: &MeshLimits) -> Result<Mesh> {
+    if regions[0].disc.is_some() {
+        bail!("regions[0] ('{}') is the background of a grid mesh and takes no disc", regions[0].name);
+    }
+    let mut region_of_tri = vec![0usize; mesh.n_triangles()];
+    for (ri, r) in regions.iter().enumerate().skip(1) {
+        let d = r.disc.with_context(|| format!("regions[{ri}] ('{}'): a grid mesh region after the first needs a disc", r.name))?;
+        if !(d.radius_m.is_finite() && d.radius_m > 0.0 && d.center_m.iter().all(|v| v.is_finite())) {
+            bail!("regions[{ri}] ('{}'): disc must have a finite centre and a radius > 0", r.name);
+        }
+        for (ti, t) in mesh.triangles().iter().enumerate() {
+            let c = t.iter().fold([0.0; 2], |acc, &n| [acc[0] + mesh.nodes_m()[n][0] / 3.0, acc[1] + mesh.nodes_m()[n][1] / 3.0]);
+            if (c[0] - d.center_m[0]).hypot(c[1] - d.center_m[1]) <= d.radius_m {
+                region_of_tri[ti] = ri;
+            }
+        }
+    }
+    let names = regions.iter().map(|r| r.name.clone()).collect();
+    Ok(Mesh::with_regions(
+        mesh.nodes_m().to_vec(),
+        mesh.triangles().to_vec(),
+        region_of_tri,
+        names,
+        mesh.boundary_sets().clone(),
+        limits,
+    )?)
+}
+
+/// A base trajectory: samples of `t_s,x_m,y_m,theta_rad`, strictly increasing in time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trajectory {
+    pub samples: Vec<(f64, BasePose)>,
+}
+
+#[derive(Debug, Deserialize)]
+struct TrajRow {
+    t_s: f64,
+    x_m: f64,
+    y_m: f64,
+    theta_rad: f64,
+}
+
+impl Trajectory {
+    /// Parses the CSV; errors name the line and the column.
+    pub fn parse_csv(text: &str) -> Result<Self> {
+        let mut rdr = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
+        let headers = rdr.headers().context("trajectory: cannot read the header")?.clone();
+        let expect = ["t_s", "x_m", "y_m", "theta_rad"];
+        if headers.iter().collect::<Vec<_>>() != expect {
+            bail!("trajectory: the header must be t_s,x_m,y_m,theta_rad, found {}", headers.iter().collect::<Vec<_>>().join(","));
+        }
+        let mut samples: Vec<(f64, BasePose)> = Vec::new();
+        for rec in rdr.deserialize::<TrajRow>() {
+            let row = rec.map_err(|e| {
+                let line = e.position().map_or(0, |p| p.line());
+                anyhow::anyhow!("trajectory line {line}: {}", csv_kind(&e))
+            })?;
+            let line = samples.len() + 2;
+            for (name, v) in [("t_s", row.t_s), ("x_m", row.x_m), ("y_m", row.y_m), ("theta_rad", row.theta_rad)] {
+                if !v.is_finite() {
+                    bail!("trajectory row {} (line {line}): {name} is {v}, not a finite number", samples.len() + 1);
+                }
+            }
+            if let Some(&(t_prev, _)) = samples.last()
+                && row.t_s <= t_prev
+            {
+                bail!("trajectory line {line}: t_s = {} does not increase (previous {t_prev})", row.t_s);
+            }
+            samples.push((row.t_s, BasePose::new(row.x_m, row.y_m, row.theta_rad)));
+        }
+        if samples.is_empty() {
+            bail!("trajectory: no samples");
+        }
+        Ok(Self { samples })
+    }
+
+    /// The pose at time `t_s`, linearly interpolated (held constant beyond the ends).
+    pub fn pose_at(&self, t_s: f64) -> BasePose {
+        let s = &self.samples;
+        if t_s <= s[0].0 {
+            return s[0].1;
+        }
+        let k = s.partition_point(|(t, _)| *t <= t_s);
+        if k >= s.len() {
+            return s[s.len() - 1].1;
+        }
+        let (t0, a) = s[k - 1];
+        let (t1, b) = s[k];
+        let w = (t_s - t0) / (t1 - t0);
+        BasePose::new(a.x_m + w * (b.x_m - a.x_m), a.y_m + w * (b.y_m - a.y_m), a.theta_rad + w * (b.theta_rad - a.theta_rad))
+    }
+
+    /// Start and end time.
+    pub fn span_s(&self) -> (f64, f64) {
+        (self.samples[0].0, self.samples[self.samples.len() - 1].0)
+    }
+}
+
+fn csv_kind(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::Deserialize { err, .. } => {
+            let field = err.field().map(|f| ["t_s", "x_m", "y_m", "theta_rad"].get(f as usize).copied().unwrap_or("?")).unwrap_or("?");
+            format!("column {field}: {}", err.kind())
+        }
+        csv::ErrorKind::UnequalLengths { expected_len, len, .. } => format!("{len} fields where the header has {expected_len}"),
+        _ => e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn trajectory_interpolates_and_rejects_bad_rows() {
+        let t = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,1,2,0.5\n").unwrap();
+        assert_eq!(t.pose_at(0.5), BasePose::new(0.5, 1.0, 0.25));
+        assert_eq!(t.pose_at(7.0), BasePose::new(1.0, 2.0, 0.5));
+        let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,NaN,2,0\n").unwrap_err();
+        assert!(e.to_string().contains("line 3: x_m is NaN"), "{e}");
+        let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n0,1,2,0\n").unwrap_err();
+        assert!(e.to_string().contains("line 3: t_s = 0 does not increase"), "{e}");
+        let e = Trajectory::parse_csv("t,x,y\n0,0,0\n").unwrap_err();
+        assert!(e.to_string().contains("header must be t_s,x_m,y_m,theta_rad"), "{e}");
+        let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,abc,0\n").unwrap_err();
+        assert!(e.to_string().contains("line 2: column y_m"), "{e}");
+    }
+
+    #[test]
+    fn shipped_examples_load() {
+        for (name, _, csv) in EXAMPLES {
+            let s = load_scene(name, &MeshLimits::default()).unwrap();
+            assert!(s.tissue.mesh().n_nodes() > 100);
+            Trajectory::parse_csv(csv).unwrap();
+        }
+    }
+
+    #[test]
+    fn scene_errors_name_the_field() {
+        let base = include_str!("../scenes/paper-phantom.toml");
+        let lim = MeshLimits::default();
+        let e = parse_scene(&base.replace("young_modulus_pa = 30e3", "young_modulus_pa = -1"), Path::new("."), &lim).err().unwrap();
+        assert!(format!("{e:#}").contains("Young's modulus E = -1"), "{e:#}");
+        let e = parse_scene(&base.replace("fixed = [\"bottom\"]", "fixed = [\"floor\"]"), Path::new("."), &lim).err().unwrap();
+        assert!(format!("{e:#}").contains("no boundary set 'floor'"), "{e:#}");
+        let e = parse_scene(&base.replace("length_m = ", "lenght_m = "), Path::new("."), &lim).err().unwrap();
+        assert!(format!("{e:#}").contains("lenght_m"), "{e:#}");
+        let e = parse_scene(&base.replace("friction_n_per_m = 10", "friction_n_per_m = -3"), Path::new("."), &lim);
+        // Needle parameters are checked when the simulation is built.
+        let s = e.unwrap();
+        let err = needlesim_core::Simulation::new(s.tissue, s.params).err().unwrap();
+        assert!(err.to_string().contains("friction_n_per_m = -3"), "{err}");
+    }
+}

@@ -1,0 +1,194 @@
+//! Helpers for the integration tests: locating the built binaries, the shared validation data and the Python reference tools, running them, and scratch directories.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The workspace root (the parent of this crate's directory).
+pub fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tests/ has a parent")
+        .to_path_buf()
+}
+
+/// The directory holding the built binaries (`target/debug`), derived from the running test
+/// executable, which cargo places in `target/debug/deps/`.
+pub fn target_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test knows its own executable");
+    let dir = exe.parent().expect("the test executable is in a directory");
+    if dir.file_name().is_some_and(|n| n == "deps") {
+        dir.parent().expect("deps/ has a parent").to_path_buf()
+    } else {
+        dir.to_path_buf()
+    }
+}
+
+/// The path of the workspace binary `name` (e.g. `needlesim-server`). Panics with instructions
+/// when it has not been built: `cargo test` does not build other packages' binaries.
+pub fn bin(name: &str) -> PathBuf {
+    let path = target_dir().join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    assert!(
+        path.is_file(),
+        "{} does not exist: run cargo build --workspace --bins first (tests/run does it)",
+        path.display()
+    );
+    path
+}
+
+/// The shared validation data: `$NEEDLESIM_VALIDATION`, else `<repo>/../shared/validation`.
+pub fn validation_dir() -> PathBuf {
+    let dir = match std::env::var_os("NEEDLESIM_VALIDATION") {
+        Some(d) => PathBuf::from(d),
+        None => repo_root().join("../shared/validation"),
+    };
+    assert!(
+        dir.join("scenarios").is_dir() && dir.join("compare.py").is_file(),
+        "no validation data at {} (set NEEDLESIM_VALIDATION to the folder holding scenarios/, results/ and compare.py)",
+        dir.display()
+    );
+    dir
+}
+
+/// The Python with numpy, scipy and scikit-fem: `$NEEDLESIM_PYTHON`, else `tests/.venv/bin/python`.
+pub fn python() -> PathBuf {
+    let py = match std::env::var_os("NEEDLESIM_PYTHON") {
+        Some(p) => PathBuf::from(p),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python"),
+    };
+    assert!(
+        py.exists(),
+        "no Python at {} (tests/run creates tests/.venv; or set NEEDLESIM_PYTHON)",
+        py.display()
+    );
+    py
+}
+
+/// A fresh directory under the system temporary directory, removed on drop (kept when
+/// `NEEDLESIM_KEEP_TMP` is set, for debugging).
+pub struct TempDir {
+    path: PathBuf,
+}
+
+impl TempDir {
+    /// Creates a new, unique, empty directory whose name contains `label`.
+    pub fn new(label: &str) -> Self {
+        static COUNTER: AtomicU64 = AtomicU64::new(0);
+        loop {
+            let nanos = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.subsec_nanos());
+            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+            let path = std::env::temp_dir().join(format!(
+                "needlesim-{label}-{}-{n}-{nanos}",
+                std::process::id()
+            ));
+            match std::fs::create_dir(&path) {
+                Ok(()) => return Self { path },
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+                Err(e) => panic!("cannot create {}: {e}", path.display()),
+            }
+        }
+    }
+
+    /// The directory.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// A path inside the directory.
+    pub fn join(&self, name: &str) -> PathBuf {
+        self.path.join(name)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        if std::env::var_os("NEEDLESIM_KEEP_TMP").is_none() {
+            let _ = std::fs::remove_dir_all(&self.path);
+        }
+    }
+}
+
+/// Runs a command to completion, capturing its output; panics only when it cannot be started.
+pub fn run(cmd: &mut Command) -> Output {
+    cmd.output()
+        .unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"))
+}
+
+/// Standard output and standard error of a finished command, as text.
+pub fn text(out: &Output) -> (String, String) {
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// `needlesim-server [extra_args…] solve SCENARIO -o RESULT`.
+pub fn server_solve(scenario: &Path, result: &Path, extra_args: &[&str]) -> Output {
+    run(Command::new(bin("needlesim-server"))
+        .args(extra_args)
+        .arg("solve")
+        .arg(scenario)
+        .arg("-o")
+        .arg(result))
+}
+
+/// `python compare.py REF CANDIDATE --tol TOL` from the validation data.
+pub fn compare(reference: &Path, candidate: &Path, tol: f64) -> Output {
+    let script = validation_dir().join("compare.py");
+    run(Command::new(python())
+        .arg(script)
+        .arg(reference)
+        .arg(candidate)
+        .arg("--tol")
+        .arg(tol.to_string()))
+}
+
+/// Reads a JSON file.
+pub fn read_json(path: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
+}
+
+/// Writes a JSON file.
+pub fn write_json(path: &Path, value: &serde_json::Value) {
+    std::fs::write(
+        path,
+        serde_json::to_string(value).expect("a Value serialises"),
+    )
+    .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+}
+
+/// The `[[x, y], …]` array of `key` in a result JSON, as pairs.
+pub fn pairs(value: &serde_json::Value, key: &str) -> Vec<[f64; 2]> {
+    let arr = value[key]
+        .as_array()
+        .unwrap_or_else(|| panic!("`{key}` is not an array"));
+    arr.iter()
+        .map(|p| {
+            let f = |i: usize| {
+                p[i].as_f64()
+                    .unwrap_or_else(|| panic!("`{key}` holds a non-number: {p}"))
+            };
+            [f(0), f(1)]
+        })
+        .collect()
+}
+
+/// `max |a - b| / max |b|` over all components; panics when the lengths differ.
+pub fn max_rel_error(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
+    assert_eq!(a.len(), b.len(), "different numbers of nodes");
+    let err = a
+        .iter()
+        .zip(b)
+        .flat_map(|(p, q)| [(p[0] - q[0]).abs(), (p[1] - q[1]).abs()])
+        .fold(0.0, f64::max);
+    let scale = b
+        .iter()
+        .flat_map(|q| [q[0].abs(), q[1].abs()])
+        .fold(0.0, f64::max);
+    assert!(scale > 0.0, "the reference field is zero");
+    err / scale
+}
