@@ -70,13 +70,15 @@ fn node_coordinates<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<[f
                     Err(e) => {
                         // Keep serde_json's " at line L column C" last, where it parses it back from.
                         let msg = e.to_string();
-                        let (what, at) = msg.rsplit_once(" at line ").map_or((msg.as_str(), String::new()), |(w, a)| (w, format!(" at line {a}")));
+                        let (what, at) =
+                            msg.rsplit_once(" at line ").map_or((msg.as_str(), String::new()), |(w, a)| (w, format!(" at line {a}")));
                         let hint = if what.contains("out of range") {
                             ": coordinates must be finite numbers (JSON has no NaN or Infinity, and a number such as 1e999 overflows)"
                         } else {
                             ""
                         };
-                        return Err(A::Error::custom(format!("node {} (nodes[{}]): {what}{hint}{at}", nodes.len(), nodes.len())));
+                        let i = nodes.len();
+                        return Err(A::Error::custom(format!("node {i} (nodes[{i}]): {what}{hint}{at}")));
                     }
                 }
             }
@@ -256,10 +258,7 @@ pub fn solve_scenario(sc: &Scenario, limits: &MeshLimits) -> Result<ScenarioResu
     let sol = problem.solve(&mesh, &materials).context("static solve failed")?;
     let displacements: Vec<[f64; 2]> = sol.displacement_m.chunks(2).map(|c| [c[0], c[1]]).collect();
     let reactions: Vec<Reaction> = sol.reactions_n.iter().map(|&(node, [rx, ry])| Reaction { node, rx, ry }).collect();
-    let reaction_sum = [
-        reactions.iter().filter_map(|r| r.rx).sum::<f64>(),
-        reactions.iter().filter_map(|r| r.ry).sum::<f64>(),
-    ];
+    let reaction_sum = [reactions.iter().filter_map(|r| r.rx).sum::<f64>(), reactions.iter().filter_map(|r| r.ry).sum::<f64>()];
     let element_stresses_sxx_syy_sxy = sc.output_stresses.then(|| sol.element_stresses_pa(&mesh, &materials));
     let compliance = match &sc.working_nodes {
         Some(w) if !w.is_empty() => Some(compliance_block(sc, w, mesh.clone(), materials.clone())?),
@@ -292,6 +291,9 @@ fn compliance_block(sc: &Scenario, working: &[i64], mesh: Mesh, materials: Mater
     let n_nodes = mesh.n_nodes();
     let fixed = sc.fixed_nodes.iter().map(|&n| node_id(n, n_nodes, "fixed_nodes")).collect::<Result<Vec<_>>>()?;
     let nodes = working.iter().map(|&n| node_id(n, n_nodes, "working_nodes")).collect::<Result<Vec<_>>>()?;
+    if let Some(n) = nodes.iter().enumerate().find_map(|(i, n)| nodes[..i].contains(n).then_some(*n)) {
+        bail!("working_nodes lists node {n} twice");
+    }
     let model = TissueModel::new(mesh, materials, &fixed).context("the compliance needs fixed_nodes that hold the tissue")?;
     if let Some(&n) = nodes.iter().find(|&&n| model.is_fixed(n)) {
         bail!("working_nodes names node {n}, which is fixed: its compliance is zero");

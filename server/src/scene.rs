@@ -8,7 +8,9 @@ use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::mesh::DiagonalPattern;
 use needlesim_core::sim::{SimParams, TargetParams};
-use needlesim_core::{BasePose, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle};
+use needlesim_core::{
+    BasePose, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle,
+};
 use serde::Deserialize;
 
 /// The shipped examples: (name, scene TOML, trajectory CSV).
@@ -191,7 +193,12 @@ fn d_lookahead() -> f64 {
 
 impl Default for LimitsSpec {
     fn default() -> Self {
-        Self { max_base_step_m: d_step_m(), max_base_step_rad: d_step_rad(), max_active_set_iterations: d_iters(), lookahead_m: d_lookahead() }
+        Self {
+            max_base_step_m: d_step_m(),
+            max_base_step_rad: d_step_rad(),
+            max_active_set_iterations: d_iters(),
+            lookahead_m: d_lookahead(),
+        }
     }
 }
 
@@ -253,9 +260,11 @@ fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Sc
     let mut materials = Vec::new();
     let mut needle_params = Vec::new();
     for rname in mesh.region_names() {
-        let r = f.regions.iter().find(|r| &r.name == rname).with_context(|| {
-            format!("regions: the mesh has a region '{rname}' but no [[regions]] entry is named so")
-        })?;
+        let r = f
+            .regions
+            .iter()
+            .find(|r| &r.name == rname)
+            .with_context(|| format!("regions: the mesh has a region '{rname}' but no [[regions]] entry is named so"))?;
         materials.push(Material { young_modulus_pa: r.young_modulus_pa, poisson_ratio: r.poisson_ratio });
         needle_params.push(RegionNeedleParams {
             friction_n_per_m: r.friction_n_per_m,
@@ -353,14 +362,7 @@ fn assign_disc_regions(mesh: Mesh, regions: &[RegionSpec], limits: &MeshLimits) 
         }
     }
     let names = regions.iter().map(|r| r.name.clone()).collect();
-    Ok(Mesh::with_regions(
-        mesh.nodes_m().to_vec(),
-        mesh.triangles().to_vec(),
-        region_of_tri,
-        names,
-        mesh.boundary_sets().clone(),
-        limits,
-    )?)
+    Ok(Mesh::with_regions(mesh.nodes_m().to_vec(), mesh.triangles().to_vec(), region_of_tri, names, mesh.boundary_sets().clone(), limits)?)
 }
 
 /// A base trajectory: samples of `t_s,x_m,y_m,theta_rad`, strictly increasing in time.
@@ -454,7 +456,7 @@ mod tests {
         assert_eq!(t.pose_at(0.5), BasePose::new(0.5, 1.0, 0.25));
         assert_eq!(t.pose_at(7.0), BasePose::new(1.0, 2.0, 0.5));
         let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,NaN,2,0\n").unwrap_err();
-        assert!(e.to_string().contains("line 3: x_m is NaN"), "{e}");
+        assert!(e.to_string().contains("(line 3): x_m is NaN"), "{e}");
         let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n0,1,2,0\n").unwrap_err();
         assert!(e.to_string().contains("line 3: t_s = 0 does not increase"), "{e}");
         let e = Trajectory::parse_csv("t,x,y\n0,0,0\n").unwrap_err();

@@ -24,9 +24,8 @@ pub struct RunSummary {
 
 /// The CSV header for a scene's targets.
 pub fn csv_header(target_names: &[String]) -> String {
-    let mut h = String::from(
-        "t_s,x_m,y_m,theta_rad,fx_n,fy_n,torque_nm,f_axial_n,f_lateral_n,tip_x_m,tip_y_m,inserted_m,n_stuck,n_slipping,n_tip",
-    );
+    let mut h =
+        String::from("t_s,x_m,y_m,theta_rad,fx_n,fy_n,torque_nm,f_axial_n,f_lateral_n,tip_x_m,tip_y_m,inserted_m,n_stuck,n_slipping,n_tip");
     for n in target_names {
         let _ = write!(h, ",target_{n}_distance_m,target_{n}_x_m,target_{n}_y_m,target_{n}_hit");
     }
@@ -80,7 +79,7 @@ pub fn run(scene: &Scene, traj: &Trajectory, mut csv: Option<&mut String>) -> Re
             let _ = write!(
                 c,
                 "{:.6},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{},{}",
-                out.time_s + t0,
+                t0 + out.time_s,
                 b.x_m,
                 b.y_m,
                 b.theta_rad,

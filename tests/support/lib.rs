@@ -6,10 +6,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The workspace root (the parent of this crate's directory).
 pub fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("tests/ has a parent")
-        .to_path_buf()
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("tests/ has a parent").to_path_buf()
 }
 
 /// The directory holding the built binaries (`target/debug`), derived from the running test
@@ -17,22 +14,14 @@ pub fn repo_root() -> PathBuf {
 pub fn target_dir() -> PathBuf {
     let exe = std::env::current_exe().expect("the test knows its own executable");
     let dir = exe.parent().expect("the test executable is in a directory");
-    if dir.file_name().is_some_and(|n| n == "deps") {
-        dir.parent().expect("deps/ has a parent").to_path_buf()
-    } else {
-        dir.to_path_buf()
-    }
+    if dir.file_name().is_some_and(|n| n == "deps") { dir.parent().expect("deps/ has a parent").to_path_buf() } else { dir.to_path_buf() }
 }
 
 /// The path of the workspace binary `name` (e.g. `needlesim-server`). Panics with instructions
 /// when it has not been built: `cargo test` does not build other packages' binaries.
 pub fn bin(name: &str) -> PathBuf {
     let path = target_dir().join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
-    assert!(
-        path.is_file(),
-        "{} does not exist: run cargo build --workspace --bins first (tests/run does it)",
-        path.display()
-    );
+    assert!(path.is_file(), "{} does not exist: run cargo build --workspace --bins first (tests/run does it)", path.display());
     path
 }
 
@@ -56,11 +45,7 @@ pub fn python() -> PathBuf {
         Some(p) => PathBuf::from(p),
         None => Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python"),
     };
-    assert!(
-        py.exists(),
-        "no Python at {} (tests/run creates tests/.venv; or set NEEDLESIM_PYTHON)",
-        py.display()
-    );
+    assert!(py.exists(), "no Python at {} (tests/run creates tests/.venv; or set NEEDLESIM_PYTHON)", py.display());
     py
 }
 
@@ -75,14 +60,9 @@ impl TempDir {
     pub fn new(label: &str) -> Self {
         static COUNTER: AtomicU64 = AtomicU64::new(0);
         loop {
-            let nanos = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0, |d| d.subsec_nanos());
+            let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.subsec_nanos());
             let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-            let path = std::env::temp_dir().join(format!(
-                "needlesim-{label}-{}-{n}-{nanos}",
-                std::process::id()
-            ));
+            let path = std::env::temp_dir().join(format!("needlesim-{label}-{}-{n}-{nanos}", std::process::id()));
             match std::fs::create_dir(&path) {
                 Ok(()) => return Self { path },
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
@@ -112,66 +92,43 @@ impl Drop for TempDir {
 
 /// Runs a command to completion, capturing its output; panics only when it cannot be started.
 pub fn run(cmd: &mut Command) -> Output {
-    cmd.output()
-        .unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"))
+    cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"))
 }
 
 /// Standard output and standard error of a finished command, as text.
 pub fn text(out: &Output) -> (String, String) {
-    (
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
 }
 
 /// `needlesim-server [extra_args…] solve SCENARIO -o RESULT`.
 pub fn server_solve(scenario: &Path, result: &Path, extra_args: &[&str]) -> Output {
-    run(Command::new(bin("needlesim-server"))
-        .args(extra_args)
-        .arg("solve")
-        .arg(scenario)
-        .arg("-o")
-        .arg(result))
+    run(Command::new(bin("needlesim-server")).args(extra_args).arg("solve").arg(scenario).arg("-o").arg(result))
 }
 
 /// `python compare.py REF CANDIDATE --tol TOL` from the validation data.
 pub fn compare(reference: &Path, candidate: &Path, tol: f64) -> Output {
     let script = validation_dir().join("compare.py");
-    run(Command::new(python())
-        .arg(script)
-        .arg(reference)
-        .arg(candidate)
-        .arg("--tol")
-        .arg(tol.to_string()))
+    run(Command::new(python()).arg(script).arg(reference).arg(candidate).arg("--tol").arg(tol.to_string()))
 }
 
 /// Reads a JSON file.
 pub fn read_json(path: &Path) -> serde_json::Value {
-    let text = std::fs::read_to_string(path)
-        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
 }
 
 /// Writes a JSON file.
 pub fn write_json(path: &Path, value: &serde_json::Value) {
-    std::fs::write(
-        path,
-        serde_json::to_string(value).expect("a Value serialises"),
-    )
-    .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+    std::fs::write(path, serde_json::to_string(value).expect("a Value serialises"))
+        .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
 }
 
 /// The `[[x, y], …]` array of `key` in a result JSON, as pairs.
 pub fn pairs(value: &serde_json::Value, key: &str) -> Vec<[f64; 2]> {
-    let arr = value[key]
-        .as_array()
-        .unwrap_or_else(|| panic!("`{key}` is not an array"));
+    let arr = value[key].as_array().unwrap_or_else(|| panic!("`{key}` is not an array"));
     arr.iter()
         .map(|p| {
-            let f = |i: usize| {
-                p[i].as_f64()
-                    .unwrap_or_else(|| panic!("`{key}` holds a non-number: {p}"))
-            };
+            let f = |i: usize| p[i].as_f64().unwrap_or_else(|| panic!("`{key}` holds a non-number: {p}"));
             [f(0), f(1)]
         })
         .collect()
@@ -180,15 +137,8 @@ pub fn pairs(value: &serde_json::Value, key: &str) -> Vec<[f64; 2]> {
 /// `max |a - b| / max |b|` over all components; panics when the lengths differ.
 pub fn max_rel_error(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     assert_eq!(a.len(), b.len(), "different numbers of nodes");
-    let err = a
-        .iter()
-        .zip(b)
-        .flat_map(|(p, q)| [(p[0] - q[0]).abs(), (p[1] - q[1]).abs()])
-        .fold(0.0, f64::max);
-    let scale = b
-        .iter()
-        .flat_map(|q| [q[0].abs(), q[1].abs()])
-        .fold(0.0, f64::max);
+    let err = a.iter().zip(b).flat_map(|(p, q)| [(p[0] - q[0]).abs(), (p[1] - q[1]).abs()]).fold(0.0, f64::max);
+    let scale = b.iter().flat_map(|q| [q[0].abs(), q[1].abs()]).fold(0.0, f64::max);
     assert!(scale > 0.0, "the reference field is zero");
     err / scale
 }

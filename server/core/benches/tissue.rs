@@ -8,10 +8,7 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use needlesim_core::{
-    ComplianceCache, Condition, Material, MaterialMap, MeshLimits, MixedSolver, PlaneModel,
-    RectMeshParams, TissueModel,
-};
+use needlesim_core::{ComplianceCache, Condition, Material, MaterialMap, MeshLimits, MixedSolver, PlaneModel, RectMeshParams, TissueModel};
 use rand::rngs::SmallRng;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
@@ -44,8 +41,7 @@ fn sample(plan: &Plan, warmup: usize, mut f: impl FnMut() -> Duration) -> Vec<Du
     }
     let start = Instant::now();
     let mut out = Vec::with_capacity(plan.max_reps.min(1 << 20));
-    while out.len() < plan.max_reps && (out.len() < plan.min_reps || start.elapsed() < plan.budget)
-    {
+    while out.len() < plan.max_reps && (out.len() < plan.min_reps || start.elapsed() < plan.budget) {
         out.push(f());
     }
     out
@@ -59,22 +55,14 @@ fn percentile(sorted: &[Duration], q: f64) -> Duration {
 
 fn fmt(d: Duration) -> String {
     let s = d.as_secs_f64();
-    if s >= 1e-3 {
-        format!("{:.2} ms", s * 1e3)
-    } else {
-        format!("{:.2} µs", s * 1e6)
-    }
+    if s >= 1e-3 { format!("{:.2} ms", s * 1e3) } else { format!("{:.2} µs", s * 1e6) }
 }
 
 fn machine() -> String {
     let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
     let model = cpuinfo
         .lines()
-        .find_map(|l| {
-            l.strip_prefix("model name")
-                .and_then(|r| r.split_once(':'))
-                .map(|(_, v)| v.trim().to_owned())
-        })
+        .find_map(|l| l.strip_prefix("model name").and_then(|r| r.split_once(':')).map(|(_, v)| v.trim().to_owned()))
         .unwrap_or_else(|| "unknown".to_owned());
     let nproc = std::thread::available_parallelism().map_or(0, |n| n.get());
     format!("{model}, nproc = {nproc}")
@@ -82,29 +70,14 @@ fn machine() -> String {
 
 /// A working set of `n_nodes` random free nodes with random frame angles and `n_p` random
 /// displacement-prescribed DOFs (the rest force-prescribed), all values random.
-fn working_set(
-    model: &TissueModel,
-    cache: &mut ComplianceCache,
-    rng: &mut SmallRng,
-    n_nodes: usize,
-    n_p: usize,
-) -> MixedSolver {
-    let mut free: Vec<usize> = (0..model.mesh().n_nodes())
-        .filter(|&n| !model.is_fixed(n))
-        .collect();
+fn working_set(model: &TissueModel, cache: &mut ComplianceCache, rng: &mut SmallRng, n_nodes: usize, n_p: usize) -> MixedSolver {
+    let mut free: Vec<usize> = (0..model.mesh().n_nodes()).filter(|&n| !model.is_fixed(n)).collect();
     free.shuffle(rng);
     let mut scratch = model.column_scratch();
     let mut s = MixedSolver::with_capacity(n_nodes);
     for &node in &free[..n_nodes] {
-        cache
-            .ensure(model, node, &mut scratch)
-            .expect("columns of a free node");
-        s.add_node(
-            cache,
-            node,
-            rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
-        )
-        .expect("room for the node");
+        cache.ensure(model, node, &mut scratch).expect("columns of a free node");
+        s.add_node(cache, node, rng.random_range(-std::f64::consts::PI..std::f64::consts::PI)).expect("room for the node");
     }
     let mut dofs: Vec<usize> = (0..2 * n_nodes).collect();
     dofs.shuffle(rng);
@@ -114,8 +87,7 @@ fn working_set(
         } else {
             (Condition::Force, rng.random_range(-0.01..0.01))
         };
-        s.set_condition(k / 2, k % 2, cond, v)
-            .expect("a non-singular pivot");
+        s.set_condition(k / 2, k % 2, cond, v).expect("a non-singular pivot");
     }
     s
 }
@@ -142,27 +114,14 @@ fn main() {
     let mut rows = Vec::new();
     let mut notes = Vec::new();
     for &n in &GRIDS {
-        let mesh = RectMeshParams::new(n, n, 0.1, 0.1)
-            .build(&MeshLimits::default())
-            .expect("grid");
+        let mesh = RectMeshParams::new(n, n, 0.1, 0.1).build(&MeshLimits::default()).expect("grid");
         let plane = PlaneModel::Strain { thickness_m: 1.0 };
-        let materials = MaterialMap::per_region(
-            &mesh,
-            &[Material {
-                young_modulus_pa: 15e3,
-                poisson_ratio: 0.45,
-            }],
-            plane,
-        )
-        .expect("material");
+        let materials =
+            MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }], plane).expect("material");
         let fixed = mesh.boundary_set("bottom").expect("bottom edge").to_vec();
 
         // Factorisation: assembly + symbolic + numeric, as TissueModel::new does them.
-        let plan = Plan {
-            min_reps: 10,
-            max_reps: 500,
-            budget: Duration::from_secs(8),
-        };
+        let plan = Plan { min_reps: 10, max_reps: 500, budget: Duration::from_secs(8) };
         let factor = sample(&plan, 1, || {
             let (m, mats) = (mesh.clone(), materials.clone());
             let t0 = Instant::now();
@@ -173,46 +132,20 @@ fn main() {
         });
         let model = TissueModel::new(mesh.clone(), materials.clone(), &fixed).expect("factorises");
         let chol = model.cholesky();
-        let (n_nodes, n_dofs, n_free, nnz_l) = (
-            model.mesh().n_nodes(),
-            model.n_dofs(),
-            chol.n_free(),
-            chol.factor_nnz(),
-        );
-        notes.push(format!(
-            "{n}×{n}: faer chose the {} factorisation",
-            if chol.is_supernodal() {
-                "supernodal"
-            } else {
-                "simplicial"
-            }
-        ));
-        let row = |what: &str, samples| Row {
-            grid: n,
-            n_nodes,
-            n_dofs,
-            n_free,
-            nnz_l,
-            what: what.to_owned(),
-            samples,
-        };
+        let (n_nodes, n_dofs, n_free, nnz_l) = (model.mesh().n_nodes(), model.n_dofs(), chol.n_free(), chol.factor_nnz());
+        notes.push(format!("{n}×{n}: faer chose the {} factorisation", if chol.is_supernodal() { "supernodal" } else { "simplicial" }));
+        let row = |what: &str, samples| Row { grid: n, n_nodes, n_dofs, n_free, nnz_l, what: what.to_owned(), samples };
         rows.push(row("factorisation (TissueModel::new)", factor));
 
         // One compliance column pair (two sparse solves) of a random free node.
         let free: Vec<usize> = (0..n_nodes).filter(|&i| !model.is_fixed(i)).collect();
         let mut out = vec![0.0; 2 * n_dofs];
         let mut scratch = model.column_scratch();
-        let plan = Plan {
-            min_reps: 50,
-            max_reps: 20_000,
-            budget: Duration::from_secs(3),
-        };
+        let plan = Plan { min_reps: 50, max_reps: 20_000, budget: Duration::from_secs(3) };
         let columns = sample(&plan, 5, || {
             let node = free[rng.random_range(0..free.len())];
             let t0 = Instant::now();
-            model
-                .compliance_columns_into(node, &mut out, &mut scratch)
-                .expect("a free node");
+            model.compliance_columns_into(node, &mut out, &mut scratch).expect("a free node");
             let dt = t0.elapsed();
             black_box(&out);
             dt
@@ -224,11 +157,7 @@ fn main() {
         for (n_work, n_p) in [(30usize, 20usize), (60, 60)] {
             let d = 2 * n_work;
             let mut s = working_set(&model, &mut cache, &mut rng, n_work, n_p);
-            let plan = Plan {
-                min_reps: 1000,
-                max_reps: 200_000,
-                budget: Duration::from_secs(1),
-            };
+            let plan = Plan { min_reps: 1000, max_reps: 200_000, budget: Duration::from_secs(1) };
             let solve = sample(&plan, 1000, || {
                 let t0 = Instant::now();
                 s.solve();
@@ -236,13 +165,7 @@ fn main() {
                 black_box(s.displacement_local(0));
                 dt
             });
-            rows.push(row(
-                &format!(
-                    "MixedSolver::solve, {n_work} nodes, {n_p} P / {} F DOFs",
-                    d - n_p
-                ),
-                solve,
-            ));
+            rows.push(row(&format!("MixedSolver::solve, {n_work} nodes, {n_p} P / {} F DOFs", d - n_p), solve));
 
             // Each call switches one DOF; the next call switches it back, then on to another DOF.
             let mut order: Vec<usize> = (0..d).collect();
@@ -257,8 +180,7 @@ fn main() {
                     Condition::Displacement => (Condition::Force, 1e-3),
                 };
                 let t0 = Instant::now();
-                s.set_condition(slot, comp, cond, v)
-                    .expect("a non-singular pivot");
+                s.set_condition(slot, comp, cond, v).expect("a non-singular pivot");
                 t0.elapsed()
             });
             notes.push(format!(
@@ -266,24 +188,14 @@ fn main() {
                 switch.len() + 1000,
                 drift(&s, &cache)
             ));
-            rows.push(row(
-                &format!("set_condition P↔F switch, {n_work} nodes (d = {d})"),
-                switch,
-            ));
+            rows.push(row(&format!("set_condition P↔F switch, {n_work} nodes (d = {d})"), switch));
         }
     }
 
     println!("## needlesim-core tissue benchmark\n");
-    println!(
-        "Machine: {}. Profile: bench (release, opt-level 3), faer sequential (Par::Seq).",
-        machine()
-    );
-    println!(
-        "Grids: 0.1 m square, E = 15 kPa, ν = 0.45, plane strain, bottom fixed; seed {SEED}.\n"
-    );
-    println!(
-        "| grid | nodes | DOFs (free) | nnz(L) | operation | reps | median | p90 | p99 | max |"
-    );
+    println!("Machine: {}. Profile: bench (release, opt-level 3), faer sequential (Par::Seq).", machine());
+    println!("Grids: 0.1 m square, E = 15 kPa, ν = 0.45, plane strain, bottom fixed; seed {SEED}.\n");
+    println!("| grid | nodes | DOFs (free) | nnz(L) | operation | reps | median | p90 | p99 | max |");
     println!("|---|---:|---:|---:|---|---:|---:|---:|---:|---:|");
     for r in &rows {
         let mut s = r.samples.clone();
@@ -307,8 +219,5 @@ fn main() {
     for n in &notes {
         println!("- {n}");
     }
-    println!(
-        "\nTotal benchmark time {:.1} s.",
-        t_start.elapsed().as_secs_f64()
-    );
+    println!("\nTotal benchmark time {:.1} s.", t_start.elapsed().as_secs_f64());
 }

@@ -29,7 +29,7 @@ impl MaterialMap {
             return Err(MaterialError::Count { n_regions, n_materials: materials.len() });
         }
         for (m, name) in materials.iter().zip(mesh.region_names()) {
-            m.validate(plane, name)?;
+            m.validate(plane, &format!("region {name}"))?;
         }
         let material_of_tri = mesh.region_of_tri().iter().map(|&r| materials[r]).collect();
         Ok(Self { material_of_tri, plane })
@@ -194,7 +194,13 @@ mod tests {
                     match mode {
                         0 => (d % 2 == 0) as u8 as f64,
                         1 => (d % 2 == 1) as u8 as f64,
-                        _ => if d % 2 == 0 { -p[1] } else { p[0] },
+                        _ => {
+                            if d % 2 == 0 {
+                                -p[1]
+                            } else {
+                                p[0]
+                            }
+                        }
                     }
                 })
                 .collect();

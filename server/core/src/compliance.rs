@@ -301,8 +301,12 @@ mod tests {
 
     fn model(nx: usize) -> TissueModel {
         let mesh = RectMeshParams::new(nx, nx, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }], PlaneModel::Strain { thickness_m: 1.0 })
-            .unwrap();
+        let mats = MaterialMap::per_region(
+            &mesh,
+            &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }],
+            PlaneModel::Strain { thickness_m: 1.0 },
+        )
+        .unwrap();
         let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
         TissueModel::new(mesh, mats, &fixed).unwrap()
     }
@@ -351,8 +355,12 @@ mod tests {
     #[test]
     fn model_errors_are_named() {
         let mesh = RectMeshParams::new(3, 3, 1.0, 1.0).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 1.0, poisson_ratio: 0.3 }], PlaneModel::Strain { thickness_m: 1.0 })
-            .unwrap();
+        let mats = MaterialMap::per_region(
+            &mesh,
+            &[Material { young_modulus_pa: 1.0, poisson_ratio: 0.3 }],
+            PlaneModel::Strain { thickness_m: 1.0 },
+        )
+        .unwrap();
         let e = TissueModel::new(mesh.clone(), mats.clone(), &[]).unwrap_err();
         assert_eq!(e, TissueError::NoFixedNodes);
         let e = TissueModel::new(mesh.clone(), mats.clone(), &[0, 12]).unwrap_err();

@@ -12,9 +12,7 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, factorize_symbolic_cholesky,
-};
+use faer::sparse::linalg::cholesky::{CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, factorize_symbolic_cholesky};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par, Side, Spec};
 
@@ -130,7 +128,7 @@ impl SparseCholesky {
         }
         if let Some(f) = diag.iter().position(|&v| !(v > 0.0)) {
             let dof = dofs.free_dofs()[f];
-            return Err(FactorError::ZeroStiffness { dof, node: dof / 2, comp: if dof % 2 == 0 { "x" } else { "y" } });
+            return Err(FactorError::ZeroStiffness { dof, node: dof / 2, comp: if dof.is_multiple_of(2) { "x" } else { "y" } });
         }
         let scale: Vec<f64> = diag.iter().map(|v| 1.0 / v.sqrt()).collect();
         let mut triplets = Vec::with_capacity(vals.len() / 2 + n);
@@ -146,8 +144,7 @@ impl SparseCholesky {
         let scaled_upper = SparseColMat::try_new_from_triplets(n, n, &triplets).map_err(|e| FactorError::Faer(format!("{e:?}")))?;
         let symbolic = factorize_symbolic_cholesky(scaled_upper.symbolic(), Side::Upper, Default::default(), params)
             .map_err(|e| FactorError::Faer(format!("{e:?}")))?;
-        let mut this =
-            Self { dofs, l_values: vec![0.0; symbolic.len_val()], symbolic, scaled_upper, scale, n_numeric_factorisations: 0 };
+        let mut this = Self { dofs, l_values: vec![0.0; symbolic.len_val()], symbolic, scaled_upper, scale, n_numeric_factorisations: 0 };
         this.factorize_numeric()?;
         Ok(this)
     }
@@ -264,8 +261,12 @@ mod tests {
 
     fn model(nx: usize) -> (crate::mesh::Mesh, SparseColMat<usize, f64>) {
         let mesh = RectMeshParams::new(nx, nx, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }], PlaneModel::Strain { thickness_m: 1.0 })
-            .unwrap();
+        let mats = MaterialMap::per_region(
+            &mesh,
+            &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }],
+            PlaneModel::Strain { thickness_m: 1.0 },
+        )
+        .unwrap();
         let k = assemble_stiffness(&mesh, &mats, None);
         (mesh, k)
     }

@@ -9,10 +9,10 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MaterialError {
     /// Young's modulus is not a finite positive number.
-    #[error("region {region}: Young's modulus E = {young_modulus_pa} Pa must be finite and > 0")]
+    #[error("{region}: Young's modulus E = {young_modulus_pa} Pa must be finite and > 0")]
     YoungModulus { region: String, young_modulus_pa: f64 },
     /// Poisson's ratio is outside (−1, 0.5] in plane stress, or outside (−1, 0.5) in plane strain.
-    #[error("region {region}: Poisson ratio ν = {poisson_ratio} must be finite and in {}", if *.plane_strain { "(−1, 0.5) in plane strain (ν = 0.5, incompressible, makes λ infinite)" } else { "(−1, 0.5] in plane stress" })]
+    #[error("{region}: Poisson ratio ν = {poisson_ratio} must be finite and in {}", if *.plane_strain { "(−1, 0.5) in plane strain (ν = 0.5, incompressible, makes λ infinite)" } else { "(−1, 0.5] in plane stress" })]
     PoissonRatio { region: String, poisson_ratio: f64, plane_strain: bool },
     /// The plane-stress thickness is not a finite positive number.
     #[error("thickness {thickness_m} m must be finite and > 0")]
@@ -60,7 +60,8 @@ impl PlaneModel {
 }
 
 impl Material {
-    /// Checks E and ν for the given plane model; `region` names the region in the error.
+    /// Checks E and ν for the given plane model; `region` names the item in the error, e.g.
+    /// `region tissue` or `element 12`.
     pub fn validate(&self, plane: PlaneModel, region: &str) -> Result<(), MaterialError> {
         let (e, nu) = (self.young_modulus_pa, self.poisson_ratio);
         if !(e.is_finite() && e > 0.0) {
@@ -115,7 +116,7 @@ mod tests {
     #[test]
     fn invalid_parameters_are_named() {
         let strain = PlaneModel::Strain { thickness_m: 1.0 };
-        let e = Material { young_modulus_pa: 0.0, poisson_ratio: 0.3 }.validate(strain, "lesion").unwrap_err();
+        let e = Material { young_modulus_pa: 0.0, poisson_ratio: 0.3 }.validate(strain, "region lesion").unwrap_err();
         assert!(e.to_string().contains("region lesion: Young's modulus E = 0 Pa"), "{e}");
         let e = Material { young_modulus_pa: f64::NAN, poisson_ratio: 0.3 }.validate(strain, "a").unwrap_err();
         assert!(e.to_string().contains("E = NaN"), "{e}");

@@ -264,7 +264,7 @@ impl RectMeshParams {
         if !(origin_m[0].is_finite() && origin_m[1].is_finite()) {
             return Err(MeshError::InvalidRectangle(format!("origin must be finite, got {origin_m:?}")));
         }
-        let n_nodes = nx.checked_mul(ny).unwrap_or(usize::MAX);
+        let n_nodes = nx.saturating_mul(ny);
         if n_nodes > limits.max_nodes {
             return Err(MeshError::TooManyNodes { n_nodes, max_nodes: limits.max_nodes });
         }
@@ -349,9 +349,9 @@ mod tests {
         let small = MeshLimits { max_nodes: 100, max_triangles: 1000 };
         let e = RectMeshParams::new(11, 10, 1.0, 1.0).build(&small).unwrap_err();
         assert!(e.to_string().contains("110 nodes, over the limit of 100"), "{e}");
-        let e = Mesh::new(nodes, vec![[0, 1, 2], [1, 3, 2]], &small).map(|_| ()).and_then(|_| {
-            RectMeshParams::new(1, 3, 1.0, 1.0).build(&small).map(|_| ())
-        });
+        let e = Mesh::new(nodes, vec![[0, 1, 2], [1, 3, 2]], &small)
+            .map(|_| ())
+            .and_then(|_| RectMeshParams::new(1, 3, 1.0, 1.0).build(&small).map(|_| ()));
         assert!(e.unwrap_err().to_string().contains("at least 2"));
     }
 

@@ -366,12 +366,12 @@ impl MixedSolver {
         }
         self.angle_rad[slot] = angle_rad;
         self.stats.n_rotations += 1;
-        if let Some(k) = mixed_pivot {
-            if let Err(e) = self.pivot(k) {
-                // Leave a consistent state: the node stays force-prescribed on that DOF.
-                self.x[k] = 0.0;
-                return Err(e);
-            }
+        if let Some(k) = mixed_pivot
+            && let Err(e) = self.pivot(k)
+        {
+            // Leave a consistent state: the node stays force-prescribed on that DOF.
+            self.x[k] = 0.0;
+            return Err(e);
         }
         Ok(())
     }
@@ -546,8 +546,12 @@ mod tests {
 
     fn model(nx: usize) -> TissueModel {
         let mesh = RectMeshParams::new(nx, nx, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }], PlaneModel::Strain { thickness_m: 1.0 })
-            .unwrap();
+        let mats = MaterialMap::per_region(
+            &mesh,
+            &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }],
+            PlaneModel::Strain { thickness_m: 1.0 },
+        )
+        .unwrap();
         let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
         TissueModel::new(mesh, mats, &fixed).unwrap()
     }
@@ -609,7 +613,11 @@ mod tests {
                 } else {
                     // fresh values on every DOF
                     for k in 0..s.n_dofs() {
-                        let v = if s.kind[k] == Condition::Displacement { rng.random_range(-1e-3..1e-3) } else { rng.random_range(-0.01..0.01) };
+                        let v = if s.kind[k] == Condition::Displacement {
+                            rng.random_range(-1e-3..1e-3)
+                        } else {
+                            rng.random_range(-0.01..0.01)
+                        };
                         s.x[k] = v;
                     }
                 }

@@ -184,7 +184,12 @@ pub fn parse_msh(text: &str, limits: &MeshLimits) -> Result<MshMesh, MshError> {
             }
             "$Entities" if v4 => {
                 c.begin_line("entity counts")?;
-                let counts = [c.usize("number of points")?, c.usize("number of curves")?, c.usize("number of surfaces")?, c.usize("number of volumes")?];
+                let counts = [
+                    c.usize("number of points")?,
+                    c.usize("number of curves")?,
+                    c.usize("number of surfaces")?,
+                    c.usize("number of volumes")?,
+                ];
                 for (dim, &n) in counts.iter().enumerate() {
                     for _ in 0..n {
                         c.begin_line("an entity")?;
@@ -202,12 +207,20 @@ pub fn parse_msh(text: &str, limits: &MeshLimits) -> Result<MshMesh, MshError> {
             }
             "$Nodes" => {
                 seen_nodes = true;
-                if v4 { read_nodes_v4(&mut c, &mut raw, limits)? } else { read_nodes_v2(&mut c, &mut raw, limits)? }
+                if v4 {
+                    read_nodes_v4(&mut c, &mut raw, limits)?
+                } else {
+                    read_nodes_v2(&mut c, &mut raw, limits)?
+                }
                 c.expect_line("$EndNodes")?;
             }
             "$Elements" => {
                 seen_elements = true;
-                if v4 { read_elements_v4(&mut c, &mut raw, &entity_phys, limits)? } else { read_elements_v2(&mut c, &mut raw, limits)? }
+                if v4 {
+                    read_elements_v4(&mut c, &mut raw, &entity_phys, limits)?
+                } else {
+                    read_elements_v2(&mut c, &mut raw, limits)?
+                }
                 c.expect_line("$EndElements")?;
             }
             s if s.starts_with('$') && !s.starts_with("$End") => {
@@ -383,7 +396,8 @@ fn build(raw: Raw, version: String, limits: &MeshLimits) -> Result<MshMesh, MshE
     let mut used = vec![false; raw.nodes.len()];
     for (tri, _, line) in &raw.triangles {
         for t in tri {
-            let i = *index_of_tag.get(t).ok_or_else(|| syntax(*line, format!("triangle uses node tag {t}, which $Nodes does not define")))?;
+            let i =
+                *index_of_tag.get(t).ok_or_else(|| syntax(*line, format!("triangle uses node tag {t}, which $Nodes does not define")))?;
             used[i] = true;
         }
     }
@@ -415,7 +429,9 @@ fn build(raw: Raw, version: String, limits: &MeshLimits) -> Result<MshMesh, MshE
         let name = raw.names.get(&(*dim, *p)).cloned().unwrap_or_else(|| format!("physical{p}"));
         let set = sets.entry(name).or_default();
         for t in tags {
-            let i = *index_of_tag.get(t).ok_or_else(|| syntax(0, format!("boundary element uses node tag {t}, which $Nodes does not define")))?;
+            let i = *index_of_tag
+                .get(t)
+                .ok_or_else(|| syntax(0, format!("boundary element uses node tag {t}, which $Nodes does not define")))?;
             if new_index[i] != usize::MAX {
                 set.push(new_index[i]);
             }

@@ -184,6 +184,8 @@ struct NeedleNode {
     s_prev_m: f64,
     /// Kinetic friction share.
     friction_n: f64,
+    /// A share being computed (scratch).
+    friction_new_n: f64,
     /// Shaft position used for the friction shares (scratch).
     s_work_m: f64,
     /// Direction of the friction force on the tissue along $t$ while slipping (±1).
@@ -214,6 +216,10 @@ const NO_SLOT: usize = usize::MAX;
 
 /// Bound on the friction-share sweeps per active-set iteration.
 const FRICTION_SWEEPS: usize = 6;
+
+/// The friction shares have converged when no slipping node's share changes by more than this
+/// fraction of the total friction (1 µN per newton: far below what a hand or a device resolves).
+const FRICTION_TOL: f64 = 1e-6;
 
 /// The simulation of one needle in one tissue.
 pub struct Simulation {
@@ -441,20 +447,25 @@ impl Simulation {
     pub fn step(&mut self, commanded: BasePose) -> Result<&StepOutput, SimError> {
         if !commanded.is_finite() {
             self.stats.rejected_poses += 1;
-            return Err(SimError::NonFinitePose { tick: self.tick, x_m: commanded.x_m, y_m: commanded.y_m, theta_rad: commanded.theta_rad });
+            return Err(SimError::NonFinitePose {
+                tick: self.tick,
+                x_m: commanded.x_m,
+                y_m: commanded.y_m,
+                theta_rad: commanded.theta_rad,
+            });
         }
         let prev_tip = self.params.needle.tip_m(&self.pose);
         let clamped = self.apply_pose(commanded)?;
         self.set_prescribed_values();
         self.release_withdrawn()?;
         self.capture(prev_tip)?;
-        self.update_friction(false);
+        self.update_friction(false, 0.0);
         let (iterations, converged) = self.resolve_active_set()?;
+        self.write_output(iterations, converged, clamped);
         self.tick += 1;
         self.stats.ticks += 1;
         self.stats.clamped_ticks += clamped as u64;
         self.stats.unconverged_ticks += (!converged) as u64;
-        self.write_output(iterations, converged, clamped);
         Ok(&self.out)
     }
 
@@ -554,19 +565,26 @@ impl Simulation {
     }
 
     /// Stage 4: interception of nodes the tip has passed, and the list of approaching nodes.
+    ///
+    /// The search is centred on the material point at the tip, $q = x_{tip} - u_d$, where $u_d$ is
+    /// the displacement of the most distal needle node: only nodes within a few capture radii of
+    /// it get their exact deformed position ($O(d)$ each). Nodes ahead of the tip are reported as
+    /// approaching from their reference positions shifted by $u_d$, at no per-node solve cost.
     fn capture(&mut self, prev_tip: [f64; 2]) -> Result<(), SimError> {
         let shape = self.params.needle;
         let tip = shape.tip_m(&self.pose);
         let s_tip = shape.tip_s_m();
         let cap_r = self.params.capture_radius_m;
         let (s_prev_tip, _) = shape.project(&self.pose, prev_tip);
-        let u_max = self.u_world.iter().fold(0.0f64, |m, u| m.max(u[0].hypot(u[1])));
+        let distal = (0..self.nodes.len()).max_by(|&a, &b| self.nodes[a].s_prev_m.total_cmp(&self.nodes[b].s_prev_m));
+        let u_d = distal.map_or([0.0; 2], |k| self.u_world[k]);
+        let q = [tip[0] - u_d[0], tip[1] - u_d[1]];
         let advance = (tip[0] - prev_tip[0]).hypot(tip[1] - prev_tip[1]);
-        let radius = 2.0 * cap_r + 1.5 * u_max + advance + self.params.lookahead_m;
+        // Around the tip the tissue strains: allow a quarter of the local displacement as margin.
+        let radius = 3.0 * cap_r + advance + 0.25 * u_d[0].hypot(u_d[1]);
         self.candidates.clear();
-        self.grid.query_into(tip, radius, &mut self.candidates);
+        self.grid.query_into(q, radius, &mut self.candidates);
         self.captured.clear();
-        self.out.approaching.clear();
         for k in 0..self.candidates.len() {
             let j = self.candidates[k];
             if self.slot_of_node[j] != NO_SLOT || self.model.is_fixed(j) {
@@ -575,15 +593,33 @@ impl Simulation {
             let x = self.model.mesh().nodes_m()[j];
             let u = self.node_displacement(j);
             let (s, lat) = shape.project(&self.pose, [x[0] + u[0], x[1] + u[1]]);
-            if lat.abs() <= cap_r && s <= s_tip && s >= s_prev_tip - cap_r {
-                if self.captured.len() < self.captured.capacity() {
-                    self.captured.push((j, s, lat));
+            if lat.abs() <= cap_r && s <= s_tip && s >= s_prev_tip - cap_r && self.captured.len() < self.captured.capacity() {
+                self.captured.push((j, s, lat));
+            }
+        }
+        // Approaching nodes: ahead of the tip, within the lookahead.
+        self.out.approaching.clear();
+        let look = self.params.lookahead_m;
+        if look > 0.0 {
+            let t = self.pose.axis();
+            let centre = [q[0] + 0.5 * look * t[0], q[1] + 0.5 * look * t[1]];
+            self.candidates.clear();
+            self.grid.query_into(centre, 0.5 * look + 2.0 * cap_r, &mut self.candidates);
+            for k in 0..self.candidates.len() {
+                let j = self.candidates[k];
+                if self.cache.contains(j) || self.model.is_fixed(j) || self.out.approaching.len() == self.out.approaching.capacity() {
+                    continue;
                 }
-            } else if lat.abs() <= 2.0 * cap_r && s > s_tip && s <= s_tip + self.params.lookahead_m && !self.cache.contains(j) {
-                if self.out.approaching.len() < self.out.approaching.capacity() {
+                let x = self.model.mesh().nodes_m()[j];
+                let (s, lat) = shape.project(&self.pose, [x[0] + u_d[0], x[1] + u_d[1]]);
+                if lat.abs() <= 2.0 * cap_r && s > s_tip - cap_r && s <= s_tip + look {
                     self.out.approaching.push(j);
                 }
             }
+            // Nearest first, so a bounded prefetch takes the most urgent.
+            let nodes_m = self.model.mesh().nodes_m();
+            let key = |j: &usize| shape.project(&self.pose, [nodes_m[*j][0] + u_d[0], nodes_m[*j][1] + u_d[1]]).0;
+            self.out.approaching.sort_unstable_by(|a, b| key(a).total_cmp(&key(b)));
         }
         if self.captured.is_empty() {
             return Ok(());
@@ -613,6 +649,7 @@ impl Simulation {
                 s_prev_m: s,
                 s_work_m: s,
                 friction_n: 0.0,
+                friction_new_n: 0.0,
                 slip_sign: 1.0,
                 release_force_n: if entering { rp.puncture_force_n } else { rp.cutting_force_n },
                 region,
@@ -633,9 +670,10 @@ impl Simulation {
 
     /// Stage 5: each shaft node's share of the friction distribution, from the nodes' shaft
     /// positions: the anchor of a stuck node; for a slipping node its position at the end of the
-    /// last tick, or (`current`) in the current solution. Returns the largest change of a
-    /// slipping node's force.
-    fn update_friction(&mut self, current: bool) -> f64 {
+    /// last tick, or (`current`) in the current solution. The new shares are applied only when
+    /// some slipping node's share changes by more than `min_change_n`, so that the applied values
+    /// always belong to the last solve. Returns the largest change.
+    fn update_friction(&mut self, current: bool, min_change_n: f64) -> f64 {
         let s_tip = self.params.needle.tip_s_m();
         self.order.clear();
         for slot in 0..self.nodes.len() {
@@ -661,16 +699,22 @@ impl Simulation {
             let lo = if i == 0 { s } else { 0.5 * (s + self.nodes[self.order[i - 1]].s_work_m) };
             let hi = if i + 1 == k { s_tip.max(s) } else { 0.5 * (s + self.nodes[self.order[i + 1]].s_work_m) };
             let rp = self.params.regions[self.nodes[slot].region];
-            let f = rp.friction_integral_n(s_tip - hi, s_tip - lo);
             let nn = &mut self.nodes[slot];
+            nn.friction_new_n = rp.friction_integral_n(s_tip - hi, s_tip - lo);
             if nn.state == NodeState::Slipping {
-                max_change = max_change.max((f - nn.friction_n).abs());
+                max_change = max_change.max((nn.friction_new_n - nn.friction_n).abs());
+            }
+        }
+        if max_change > min_change_n || !current {
+            for i in 0..k {
+                let slot = self.order[i];
+                let nn = &mut self.nodes[slot];
+                nn.friction_n = nn.friction_new_n;
                 // The kind is Force for a slipping node already pivoted; only its value changes.
-                if self.solver.condition(slot, 0) == Condition::Force {
-                    self.solver.set_value(slot, 0, nn.slip_sign * f);
+                if nn.state == NodeState::Slipping && self.solver.condition(slot, 0) == Condition::Force {
+                    self.solver.set_value(slot, 0, nn.slip_sign * nn.friction_n);
                 }
             }
-            nn.friction_n = f;
         }
         max_change
     }
@@ -692,8 +736,9 @@ impl Simulation {
             // its tributary segment): a short fixed-point iteration, contracting when the friction
             // per length is small against the tissue stiffness.
             let total: f64 = self.nodes.iter().map(|n| n.friction_n).sum();
+            let tol = FRICTION_TOL * total.max(1e-12);
             for _ in 0..FRICTION_SWEEPS {
-                if self.update_friction(true) <= 1e-9 * total.max(1e-12) {
+                if self.update_friction(true, tol) <= tol {
                     break;
                 }
                 self.solver.solve();
@@ -728,7 +773,7 @@ impl Simulation {
                 return Ok((iter, true));
             }
             // Apply in descending slot order so removals do not disturb pending slots.
-            self.changes.sort_unstable_by(|a, b| b.0.cmp(&a.0));
+            self.changes.sort_unstable_by_key(|c| std::cmp::Reverse(c.0));
             for k in 0..self.changes.len() {
                 let (slot, change) = self.changes[k];
                 let x = self.model.mesh().nodes_m()[self.nodes[slot].node_idx];

@@ -39,8 +39,8 @@ pub enum StaticError {
     /// A value is NaN or infinite.
     #[error("{what} on node {node_idx} is not finite")]
     NonFinite { what: &'static str, node_idx: usize },
-    /// A node has a local-frame condition and another condition.
-    #[error("node {node_idx} has a local-frame condition and also another condition; a node takes at most one")]
+    /// A node has more than one kind of condition (fixed, world, local frame).
+    #[error("node {node_idx} has more than one kind of condition (fixed, prescribed, prescribed_local); a node takes at most one")]
     Conflict { node_idx: usize },
     /// The factorisation failed (for example: rigid-body motion).
     #[error(transparent)]
@@ -96,6 +96,19 @@ impl StaticProblem {
                 set(2 * node + 1, un_m);
             }
         }
+        let mut kind_seen = vec![0u8; n_nodes];
+        for &(node, c) in &self.conditions {
+            check_node("a condition", node)?;
+            let bit = match c {
+                NodeCondition::Fixed => 1,
+                NodeCondition::World { .. } => 2,
+                NodeCondition::Local { .. } => 4,
+            };
+            if kind_seen[node] & !bit != 0 {
+                return Err(StaticError::Conflict { node_idx: node });
+            }
+            kind_seen[node] |= bit;
+        }
         for &(node, c) in &self.conditions {
             let (ux, uy) = match c {
                 NodeCondition::Fixed => (Some(0.0), Some(0.0)),
@@ -141,13 +154,16 @@ impl StaticProblem {
         let mut ku = vec![0.0; n_dofs];
         mul_stiffness(&k, &u, &mut ku);
         let dofs = DofMap::new(&constrained);
-        let chol = SparseCholesky::new(&k, dofs)?;
-        let free = chol.dofs().free_dofs().to_vec();
-        let mut rhs = faer::Mat::<f64>::from_fn(free.len(), 1, |i, _| f[free[i]] - ku[free[i]]);
-        let mut scratch = chol.scratch(1);
-        chol.solve_in_place(rhs.as_mut(), &mut scratch);
-        for (i, &d) in free.iter().enumerate() {
-            u[d] = rhs[(i, 0)];
+        // With every DOF prescribed the displacement is known and only reactions remain.
+        if dofs.n_free() > 0 {
+            let chol = SparseCholesky::new(&k, dofs)?;
+            let free = chol.dofs().free_dofs().to_vec();
+            let mut rhs = faer::Mat::<f64>::from_fn(free.len(), 1, |i, _| f[free[i]] - ku[free[i]]);
+            let mut scratch = chol.scratch(1);
+            chol.solve_in_place(rhs.as_mut(), &mut scratch);
+            for (i, &d) in free.iter().enumerate() {
+                u[d] = rhs[(i, 0)];
+            }
         }
         // Residual r = K u - f: reactions at constrained DOFs (local frames where rotated).
         mul_stiffness(&k, &u, &mut ku);
@@ -252,8 +268,12 @@ mod tests {
     #[test]
     fn bad_conditions_are_named() {
         let mesh = RectMeshParams::new(3, 3, 1.0, 1.0).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 10.0, poisson_ratio: 0.3 }], PlaneModel::Strain { thickness_m: 1.0 })
-            .unwrap();
+        let mats = MaterialMap::per_region(
+            &mesh,
+            &[Material { young_modulus_pa: 10.0, poisson_ratio: 0.3 }],
+            PlaneModel::Strain { thickness_m: 1.0 },
+        )
+        .unwrap();
         let fixed = vec![(0, NodeCondition::Fixed), (1, NodeCondition::Fixed)];
         let p = StaticProblem { conditions: fixed.clone(), loads_n: vec![(9, [1.0, 0.0])] };
         let e = p.solve(&mesh, &mats).unwrap_err();
@@ -266,5 +286,27 @@ mod tests {
         assert_eq!(e, StaticError::Conflict { node_idx: 0 });
         let e = StaticProblem { conditions: vec![], loads_n: vec![(4, [1.0, 0.0])] }.solve(&mesh, &mats).unwrap_err();
         assert!(e.to_string().contains("rigid body"), "{e}");
+        let mut c = fixed.clone();
+        c.push((1, NodeCondition::World { ux_m: Some(0.1), uy_m: None }));
+        let e = StaticProblem { conditions: c, loads_n: vec![] }.solve(&mesh, &mats).unwrap_err();
+        assert!(e.to_string().contains("node 1 has more than one kind of condition"), "{e}");
+    }
+
+    /// With every DOF prescribed the field is known; the reactions are $K u - f$.
+    #[test]
+    fn fully_prescribed_problem_gives_reactions() {
+        let mesh = RectMeshParams::new(3, 3, 1.0, 1.0).build(&MeshLimits::default()).unwrap();
+        let mats = MaterialMap::per_region(
+            &mesh,
+            &[Material { young_modulus_pa: 10.0, poisson_ratio: 0.3 }],
+            PlaneModel::Strain { thickness_m: 1.0 },
+        )
+        .unwrap();
+        let conditions = (0..9).map(|n| (n, NodeCondition::World { ux_m: Some(0.01 * n as f64), uy_m: Some(0.0) })).collect();
+        let s = StaticProblem { conditions, loads_n: vec![] }.solve(&mesh, &mats).unwrap();
+        assert_eq!(s.displacement_m[2 * 8], 0.08);
+        let sum: f64 = s.reactions_n.iter().map(|r| r.1[0].unwrap()).sum();
+        assert!(sum.abs() < 1e-12, "reactions balance: {sum}");
+        assert!(s.strain_energy_j > 0.0);
     }
 }

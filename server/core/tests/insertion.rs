@@ -1,0 +1,294 @@
+//! Physics of the insertion model: force against depth, puncture, withdrawal, stick–slip,
+//! re-insertion, frames of a rotating needle against a fresh static solve, bad poses, and the
+//! guarantee that no step refactorises the stiffness.
+
+use std::sync::Arc;
+
+use needlesim_core::compliance::TissueModel;
+use needlesim_core::sim::{SimParams, Simulation, StepOutput, TargetParams};
+use needlesim_core::{
+    BasePose, Material, MaterialMap, MeshLimits, NeedleShape, NodeCondition, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle,
+    StaticProblem,
+};
+
+const FRAC_PI_2: f64 = std::f64::consts::FRAC_PI_2;
+
+/// The paper's phantom: 0.1 m square, 19 × 19 nodes, PVC-like, fixed along the bottom.
+fn phantom(n: usize) -> Arc<TissueModel> {
+    let mesh = RectMeshParams::new(n, n, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
+    let mats = MaterialMap::per_region(
+        &mesh,
+        &[Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 }],
+        PlaneModel::Stress { thickness_m: 0.01 },
+    )
+    .unwrap();
+    let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
+    Arc::new(TissueModel::new(mesh, mats, &fixed).unwrap())
+}
+
+fn params(region: RegionNeedleParams, base: BasePose) -> SimParams {
+    SimParams {
+        needle: NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }),
+        initial_pose: base,
+        capture_radius_m: 0.0015,
+        max_needle_nodes: 64,
+        regions: vec![region],
+        targets: vec![TargetParams { name: "c".into(), center_m: [0.05, 0.05], radius_m: 0.001 }],
+        tick_rate_hz: 1000.0,
+        max_base_step_m: 0.002,
+        max_base_step_rad: 0.05,
+        max_active_set_iterations: 12,
+        lookahead_m: 0.01,
+    }
+}
+
+/// A vertical needle above the top edge, tip 5 mm outside.
+fn top_base() -> BasePose {
+    BasePose::new(0.05, 0.205, -FRAC_PI_2)
+}
+
+/// Steps along `poses`, prefetching columns between steps as the server's worker does.
+fn run(sim: &mut Simulation, poses: impl IntoIterator<Item = BasePose>) -> Vec<StepOutput> {
+    let mut outs = Vec::new();
+    for p in poses {
+        outs.push(sim.step(p).unwrap().clone());
+        sim.prefetch_columns(16).unwrap();
+    }
+    outs
+}
+
+/// Vertical moves of the base at `speed` m/s from y0 to y1, one pose per 1 ms tick.
+fn vertical(y0: f64, y1: f64, speed: f64) -> Vec<BasePose> {
+    let n = ((y1 - y0).abs() / speed * 1000.0).round() as usize;
+    (1..=n).map(|k| BasePose::new(0.05, y0 + (y1 - y0) * k as f64 / n as f64, -FRAC_PI_2)).collect()
+}
+
+fn uniform_friction() -> RegionNeedleParams {
+    RegionNeedleParams { tip_peak_ratio: 0.0, ..RegionNeedleParams::default() }
+}
+
+/// Least-squares line and R².
+fn fit(xs: &[f64], ys: &[f64]) -> (f64, f64, f64) {
+    let n = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
+    let sxy: f64 = xs.iter().zip(ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+    let syy: f64 = ys.iter().map(|y| (y - my).powi(2)).sum();
+    let slope = sxy / sxx;
+    (slope, my - slope * mx, sxy * sxy / (sxx * syy))
+}
+
+#[test]
+fn axial_force_grows_linearly_with_depth_under_uniform_friction() {
+    let model = phantom(19);
+    let region = uniform_friction();
+    let mut sim = Simulation::new(model.clone(), params(region, top_base())).unwrap();
+    let outs = run(&mut sim, vertical(0.205, 0.14, 0.01));
+    // After the skin is punctured: depth against resisting force.
+    let (mut depth, mut force) = (Vec::new(), Vec::new());
+    for o in &outs {
+        if o.inserted_length_m > 0.01 {
+            depth.push(o.inserted_length_m);
+            force.push(-o.force_axial_n);
+        }
+    }
+    assert!(depth.len() > 3000, "the needle reached {} m", outs.last().unwrap().inserted_length_m);
+    let (slope, _, r2) = fit(&depth, &force);
+    // The friction is q0 per metre of inserted shaft; the tip's cutting adds a small sawtooth.
+    assert!(
+        (slope - region.friction_n_per_m).abs() < 0.05 * region.friction_n_per_m,
+        "slope {slope} N/m vs q0 {}",
+        region.friction_n_per_m
+    );
+    assert!(r2 > 0.98, "force against depth is not linear: R² = {r2}");
+    // Every resisting force points back along the needle.
+    assert!(outs.iter().all(|o| o.force_axial_n <= 1e-12));
+    assert_eq!(sim.stats().column_misses, 0, "prefetch kept up");
+}
+
+#[test]
+fn force_rises_then_drops_at_skin_puncture() {
+    let model = phantom(19);
+    let region = RegionNeedleParams::default();
+    let mut sim = Simulation::new(model, params(region, top_base())).unwrap();
+    let outs = run(&mut sim, vertical(0.205, 0.19, 0.01));
+    let first_puncture = outs.windows(2).position(|w| w[0].n_tip == 1 && w[1].n_tip == 0).expect("the skin is punctured");
+    let before = -outs[first_puncture].force_axial_n;
+    let after = -outs[first_puncture + 1].force_axial_n;
+    // The carried surface node rises to the puncture force, then the force drops to friction.
+    assert!(before >= 0.95 * region.puncture_force_n && before <= region.puncture_force_n * 1.05, "peak {before} N");
+    assert!(after < 0.3 * before, "after puncture {after} N vs {before} N before");
+    // The rise is gradual: the surface indents over several ticks.
+    let rise_ticks = outs[..first_puncture].iter().filter(|o| o.n_tip == 1).count();
+    assert!(rise_ticks > 50, "rise over {rise_ticks} ticks");
+    assert_eq!(sim.stats().punctures as usize, outs.windows(2).filter(|w| w[0].n_tip == 1 && w[1].n_tip == 0).count());
+}
+
+#[test]
+fn force_changes_sign_on_withdrawal_and_reinsertion_works() {
+    let model = phantom(19);
+    let mut sim = Simulation::new(model, params(uniform_friction(), top_base())).unwrap();
+    let ins = run(&mut sim, vertical(0.205, 0.15, 0.01));
+    let out = run(&mut sim, vertical(0.15, 0.205, 0.01));
+    let depth_max = ins.last().unwrap().inserted_length_m;
+    assert!(depth_max > 0.04);
+    // Withdrawing, the tissue holds the needle in: the force on the base points along +t.
+    let withdrawing: Vec<_> = out.iter().filter(|o| o.inserted_length_m > 0.005 && o.inserted_length_m < depth_max - 0.005).collect();
+    assert!(withdrawing.len() > 1000);
+    assert!(withdrawing.iter().all(|o| o.force_axial_n > 0.0), "withdrawal force must pull inwards");
+    let end = out.last().unwrap();
+    assert_eq!(end.needle_nodes.len(), 0, "all nodes released once withdrawn");
+    assert!(end.force_n[0].abs() + end.force_n[1].abs() < 1e-12);
+    // Re-insertion along the same track meets the same tissue again.
+    let again = run(&mut sim, vertical(0.205, 0.15, 0.01));
+    let (f1, f2) = (-ins.last().unwrap().force_axial_n, -again.last().unwrap().force_axial_n);
+    assert!((f1 - f2).abs() < 0.05 * f1, "first {f1} N, again {f2} N");
+    assert!((again.last().unwrap().inserted_length_m - depth_max).abs() < 0.002);
+}
+
+#[test]
+fn pause_sticks_every_node_and_restart_breaks_away() {
+    let model = phantom(19);
+    let region = uniform_friction();
+    let mut sim = Simulation::new(model, params(region, top_base())).unwrap();
+    let ins = run(&mut sim, vertical(0.205, 0.16, 0.01));
+    let level = -ins.last().unwrap().force_axial_n;
+    assert!(ins.last().unwrap().n_slipping > 3, "steady insertion slips");
+    // Hold still: relative motion stops, every shaft node sticks.
+    let hold = run(&mut sim, std::iter::repeat_n(BasePose::new(0.05, 0.16, -FRAC_PI_2), 200));
+    let h = hold.last().unwrap();
+    assert_eq!(h.n_slipping, 0);
+    assert_eq!(h.n_stuck, h.needle_nodes.len());
+    assert!((-h.force_axial_n - level).abs() < 1e-9 * level.max(1.0) + 0.05 * level);
+    // Restart: stuck nodes load up beyond kinetic friction before they slip (stick–slip).
+    let restart = run(&mut sim, vertical(0.16, 0.15, 0.01));
+    let mixed = restart.iter().filter(|o| o.n_stuck > 0 && o.n_slipping > 0).count();
+    assert!(mixed > 0, "nodes break away one after another");
+    let peak = restart.iter().map(|o| -o.force_axial_n).fold(0.0, f64::max);
+    let steady = -restart.last().unwrap().force_axial_n;
+    assert!(peak > 1.1 * level, "breakaway peak {peak} N over kinetic level {level} N");
+    assert!(restart.iter().take(20).any(|o| o.n_stuck > 0));
+    assert!(steady < peak);
+    let st = sim.stats();
+    assert!(st.stick_to_slip > 5 && st.slip_to_stick > 5, "{st:?}");
+}
+
+#[test]
+fn no_step_refactorises_and_prefetch_avoids_misses() {
+    let model = phantom(19);
+    assert_eq!(model.cholesky().n_numeric_factorisations(), 1);
+    let mut sim = Simulation::new(model.clone(), params(RegionNeedleParams::default(), top_base())).unwrap();
+    run(&mut sim, vertical(0.205, 0.14, 0.01));
+    run(&mut sim, vertical(0.14, 0.205, 0.01));
+    assert_eq!(model.cholesky().n_numeric_factorisations(), 1, "a step refactorised K");
+    assert!(sim.stats().ticks > 12_000);
+    assert_eq!(sim.stats().column_misses, 0);
+    assert!(sim.stats().captures > 10);
+    // Without prefetch the step computes columns itself, and counts each one.
+    let mut cold = Simulation::new(model.clone(), params(RegionNeedleParams::default(), top_base())).unwrap();
+    for p in vertical(0.205, 0.17, 0.01) {
+        cold.step(p).unwrap();
+    }
+    assert!(cold.stats().column_misses > 3);
+    assert_eq!(cold.stats().column_misses, cold.cache().len() as u64, "every cached column was a miss");
+    assert_eq!(model.cholesky().n_numeric_factorisations(), 1);
+}
+
+/// The simulator's state, re-solved as a full static problem with the same local-frame
+/// conditions, gives the same displacement field: checks frames, values and forces of a needle
+/// that is inserted obliquely and then rotated.
+#[test]
+fn rotating_oblique_needle_state_equals_fresh_static_solve() {
+    let model = phantom(25);
+    let a0 = -1.2;
+    let entry = [0.03, 0.1];
+    let base_at = |d: f64, a: f64| BasePose::new(entry[0] + (d - 0.1) * a.cos(), entry[1] + (d - 0.1) * a.sin(), a);
+    let mut sim = Simulation::new(model.clone(), params(RegionNeedleParams::default(), base_at(-0.004, a0))).unwrap();
+    let mut poses: Vec<BasePose> = (1..=4000).map(|k| base_at(-0.004 + 0.044 * k as f64 / 4000.0, a0)).collect();
+    // Rotate about the entry point by 0.1 rad while holding the depth.
+    let last = *poses.last().unwrap();
+    poses.extend((1..=500).map(|k| {
+        let a = a0 + 0.1 * k as f64 / 500.0;
+        let d = 0.04;
+        let _ = last;
+        base_at(d, a)
+    }));
+    let outs = run(&mut sim, poses);
+    let o = outs.last().unwrap();
+    assert!(o.needle_nodes.len() >= 5, "{} needle nodes", o.needle_nodes.len());
+    assert!(sim.solver().stats().n_rotations > 100);
+    assert!(o.torque_nm.abs() > 0.0);
+    let snap = sim.snapshot();
+    let mut problem = StaticProblem {
+        conditions: model.mesh().boundary_set("bottom").unwrap().iter().map(|&n| (n, NodeCondition::Fixed)).collect(),
+        loads_n: snap.loads_n.clone(),
+    };
+    for c in &snap.conditions {
+        problem.conditions.push((c.node_idx, NodeCondition::Local { angle_rad: c.angle_rad, ut_m: c.ut_m, un_m: c.un_m }));
+    }
+    let fresh = problem.solve(model.mesh(), model.materials()).unwrap();
+    let mut u = vec![0.0; model.n_dofs()];
+    sim.displacement_field_into(&mut u);
+    let norm = fresh.displacement_m.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let diff = u.iter().zip(&fresh.displacement_m).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+    assert!(diff < 1e-9 * norm, "rel diff {}", diff / norm);
+    // The base force equals minus the sum of the static reactions on the needle nodes.
+    let mut f = [0.0; 2];
+    for (node, r) in &fresh.reactions_n {
+        if snap.conditions.iter().any(|c| c.node_idx == *node) {
+            f[0] -= r[0].unwrap();
+            f[1] -= r[1].unwrap();
+        }
+    }
+    for (node, l) in &snap.loads_n {
+        let _ = node;
+        f[0] -= l[0];
+        f[1] -= l[1];
+    }
+    for k in 0..2 {
+        assert!((f[k] - o.force_n[k]).abs() < 1e-8 * (o.force_n[0].hypot(o.force_n[1])), "force {f:?} vs {:?}", o.force_n);
+    }
+}
+
+#[test]
+fn bad_poses_are_rejected_or_clamped_and_state_stays_valid() {
+    let model = phantom(19);
+    let mut sim = Simulation::new(model, params(RegionNeedleParams::default(), top_base())).unwrap();
+    run(&mut sim, vertical(0.205, 0.17, 0.01));
+    let before = sim.output().clone();
+    let pose = sim.pose();
+    let e = sim.step(BasePose::new(f64::NAN, 0.17, -FRAC_PI_2)).unwrap_err();
+    assert!(e.to_string().contains("not finite") && e.to_string().contains("rejected"), "{e}");
+    assert_eq!(sim.pose(), pose);
+    assert_eq!(sim.output().tick, before.tick);
+    assert_eq!(sim.stats().ticks, before.tick + 1);
+    assert_eq!(sim.stats().rejected_poses, 1);
+    // A 5 cm jump in one tick moves the base by the configured 2 mm only.
+    let o = sim.step(BasePose::new(0.05, 0.12, -FRAC_PI_2)).unwrap().clone();
+    assert!(o.clamped);
+    assert!((o.base.y_m - (0.17 - 0.002)).abs() < 1e-12);
+    let o = sim.step(BasePose::new(0.05, 0.168, -FRAC_PI_2 + 1.0)).unwrap().clone();
+    assert!(o.clamped && (o.base.theta_rad - (-FRAC_PI_2 + 0.05)).abs() < 1e-12);
+    // The simulation goes on normally.
+    let o = sim.step(BasePose::new(0.05, 0.168, -FRAC_PI_2 + 0.05)).unwrap().clone();
+    assert!(!o.clamped && o.force_axial_n.is_finite());
+    assert_eq!(sim.stats().clamped_ticks, 2);
+}
+
+#[test]
+fn invalid_parameters_are_named() {
+    let model = phantom(7);
+    let mut p = params(RegionNeedleParams::default(), top_base());
+    p.targets[0].center_m = [0.5, 0.5];
+    let e = Simulation::new(model.clone(), p).err().unwrap();
+    assert!(e.to_string().contains("target 'c'") && e.to_string().contains("outside the mesh"), "{e}");
+    let mut p = params(RegionNeedleParams::default(), top_base());
+    p.capture_radius_m = 0.0;
+    assert!(Simulation::new(model.clone(), p).err().unwrap().to_string().contains("capture_radius_m = 0"));
+    let mut p = params(RegionNeedleParams::default(), top_base());
+    p.regions.push(RegionNeedleParams::default());
+    assert!(Simulation::new(model.clone(), p).err().unwrap().to_string().contains("1 region(s)"));
+    let mut p = params(RegionNeedleParams::default(), top_base());
+    p.needle = NeedleShape::Rigid(RigidNeedle { length_m: -1.0 });
+    assert!(Simulation::new(model, p).err().unwrap().to_string().contains("needle length -1"));
+}

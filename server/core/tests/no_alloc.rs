@@ -1,0 +1,93 @@
+//! A step allocates nothing once warmed up: a counting global allocator watches every
+//! allocation made inside `Simulation::step` during an insertion, a hold, a rotation and a
+//! withdrawal (compliance columns are prefetched between steps, as the server's worker does).
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+use needlesim_core::compliance::TissueModel;
+use needlesim_core::sim::{SimParams, Simulation};
+use needlesim_core::{
+    BasePose, Material, MaterialMap, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle,
+};
+
+struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCS: AtomicU64 = AtomicU64::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCS.fetch_add(1, Ordering::Relaxed);
+        }
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCS.fetch_add(1, Ordering::Relaxed);
+        }
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn steps_allocate_nothing_after_warm_up() {
+    let mesh = RectMeshParams::new(25, 25, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
+    let mats = MaterialMap::per_region(
+        &mesh,
+        &[Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 }],
+        PlaneModel::Stress { thickness_m: 0.01 },
+    )
+    .unwrap();
+    let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
+    let model = Arc::new(TissueModel::new(mesh, mats, &fixed).unwrap());
+    let a0 = -1.3f64;
+    let base_at = |d: f64, a: f64| BasePose::new(0.04 + (d - 0.1) * a.cos(), 0.1 + (d - 0.1) * a.sin(), a);
+    let params = SimParams {
+        needle: NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }),
+        initial_pose: base_at(-0.005, a0),
+        capture_radius_m: 0.0015,
+        max_needle_nodes: 64,
+        regions: vec![RegionNeedleParams::default()],
+        targets: vec![needlesim_core::TargetParams { name: "t".into(), center_m: [0.05, 0.04], radius_m: 0.002 }],
+        tick_rate_hz: 1000.0,
+        max_base_step_m: 0.002,
+        max_base_step_rad: 0.05,
+        max_active_set_iterations: 12,
+        lookahead_m: 0.01,
+    };
+    let mut sim = Simulation::new(model, params).unwrap();
+    let mut poses: Vec<BasePose> = (0..=4000).map(|k| base_at(-0.005 + 0.045 * k as f64 / 4000.0, a0)).collect();
+    poses.extend(std::iter::repeat_n(base_at(0.04, a0), 300));
+    poses.extend((0..=500).map(|k| base_at(0.04, a0 + 0.08 * k as f64 / 500.0)));
+    poses.extend((0..=4500).map(|k| base_at(0.04 - 0.045 * k as f64 / 4500.0, a0 + 0.08)));
+    let mut steps_with_allocation = 0;
+    let mut total = 0;
+    for (k, p) in poses.iter().enumerate() {
+        ALLOCS.store(0, Ordering::Relaxed);
+        COUNTING.store(true, Ordering::Relaxed);
+        let r = sim.step(*p).map(|o| o.needle_nodes.len());
+        COUNTING.store(false, Ordering::Relaxed);
+        r.unwrap();
+        let n = ALLOCS.load(Ordering::Relaxed);
+        // The first ticks size the per-step buffers; after that nothing may allocate.
+        if k >= 10 && n > 0 {
+            steps_with_allocation += 1;
+            total += n;
+        }
+        sim.prefetch_columns(16).unwrap();
+    }
+    let st = sim.stats();
+    assert!(st.captures > 8 && st.releases > 8 && st.punctures > 3, "the run exercised the model: {st:?}");
+    assert!(sim.solver().stats().n_rotations > 100);
+    assert_eq!(st.column_misses, 0);
+    assert_eq!(steps_with_allocation, 0, "{total} allocations inside steps after warm-up");
+}

@@ -1,0 +1,213 @@
+//! The `simulate` command through the real binary: its `--dump-state` re-solved by the
+//! independent reference solver (fem_ref.py) for axis-aligned, oblique and rotating needles at
+//! several depths, the paper's Fig. 3 miss, and the errors for bad trajectories and scenes.
+
+use std::path::Path;
+use std::process::Command;
+
+use needlesim_tests::{TempDir, bin, pairs, python, read_json, run, text, validation_dir};
+use serde_json::Value;
+
+const FRAC_PI_2: f64 = std::f64::consts::FRAC_PI_2;
+
+/// A trajectory: `(t_s, x_m, y_m, theta_rad)` rows.
+type Rows = Vec<(f64, f64, f64, f64)>;
+
+/// Writes a trajectory CSV of `(t_s, x_m, y_m, theta_rad)` rows.
+fn write_traj(path: &Path, rows: &[(f64, f64, f64, f64)]) {
+    let mut s = String::from("t_s,x_m,y_m,theta_rad\n");
+    for (t, x, y, a) in rows {
+        s.push_str(&format!("{t},{x},{y},{a}\n"));
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+/// Runs `needlesim-server simulate`; returns (stdout, stderr), panicking on failure.
+fn simulate_ok(args: &[&str]) -> (String, String) {
+    let o = run(Command::new(bin("needlesim-server")).arg("simulate").args(args));
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "simulate {args:?} failed: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    (out, err)
+}
+
+/// Parses a time series CSV into header and rows of numbers.
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_owned).collect();
+    let rows = lines.map(|l| l.split(',').map(|v| v.parse::<f64>().unwrap()).collect()).collect();
+    (header, rows)
+}
+
+fn col(header: &[String], name: &str) -> usize {
+    header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"))
+}
+
+/// Re-solves a dumped state with fem_ref.py and returns the relative L2 difference of the
+/// displacement fields, and the dumped JSON.
+fn resolve_with_reference(dir: &TempDir, dump: &Path, label: &str) -> (f64, Value) {
+    let reference = dir.join(&format!("{label}.ref.json"));
+    let o = run(Command::new(python()).arg(validation_dir().join("fem_ref.py")).arg(dump).arg(&reference));
+    assert!(o.status.success(), "fem_ref.py failed: {}", text(&o).1);
+    let state = read_json(dump);
+    let ours = pairs(&state, "solver_displacements");
+    let theirs = pairs(&read_json(&reference), "displacements");
+    let num: f64 = ours.iter().zip(&theirs).map(|(a, b)| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sum();
+    let den: f64 = theirs.iter().map(|b| b[0] * b[0] + b[1] * b[1]).sum();
+    assert!(den > 0.0, "{label}: the reference field is zero");
+    ((num / den).sqrt(), state)
+}
+
+fn states(state: &Value) -> Vec<String> {
+    state["needle_nodes"].as_array().unwrap().iter().map(|n| n["state"].as_str().unwrap().to_owned()).collect()
+}
+
+/// Every dumped needle node holds `un`; `ut` exactly when stuck or carried by the tip; and a
+/// slipping node carries its friction as a load.
+fn check_dump_conditions(state: &Value) {
+    let nodes = state["needle_nodes"].as_array().unwrap();
+    let pl = state["prescribed_local"].as_array().unwrap();
+    let loads = state["loads"].as_array().unwrap();
+    assert_eq!(nodes.len(), pl.len());
+    for n in nodes {
+        let id = n["node"].as_u64().unwrap();
+        let c = pl.iter().find(|c| c["node"].as_u64() == Some(id)).expect("conditions for every needle node");
+        assert!(c["un"].is_number());
+        let st = n["state"].as_str().unwrap();
+        assert_eq!(c["ut"].is_number(), st != "slipping", "node {id} ({st}): {c}");
+        assert_eq!(loads.iter().any(|l| l["node"].as_u64() == Some(id)), st == "slipping", "node {id} ({st})");
+    }
+}
+
+#[test]
+fn dumped_states_resolve_to_the_same_field_with_the_reference_solver() {
+    let dir = TempDir::new("dump");
+    let down = -FRAC_PI_2;
+    // (label, trajectory rows): the paper phantom, tip starting 5 mm above the top surface.
+    let oblique = -1.2f64;
+    let (ex, ey) = (0.03, 0.1);
+    let ob = |d: f64, a: f64| (ex + (d - 0.1) * a.cos(), ey + (d - 0.1) * a.sin());
+    let cases: Vec<(&str, Rows)> = vec![
+        ("axis-20mm", vec![(0.0, 0.05, 0.205, down), (2.5, 0.05, 0.18, down)]),
+        ("axis-45mm", vec![(0.0, 0.05, 0.205, down), (5.0, 0.05, 0.155, down)]),
+        // Insert, hold (all stuck), move on 0.15 mm: some nodes have broken away, some not.
+        (
+            "axis-stick-slip",
+            vec![(0.0, 0.05, 0.205, down), (4.0, 0.05, 0.165, down), (4.2, 0.05, 0.165, down), (4.23, 0.05, 0.16485, down)],
+        ),
+        ("oblique-30mm", {
+            let (a, b) = (ob(-0.005, oblique), ob(0.03, oblique));
+            vec![(0.0, a.0, a.1, oblique), (3.5, b.0, b.1, oblique)]
+        }),
+        ("rotating", {
+            let (a, b) = (ob(-0.005, oblique), ob(0.035, oblique));
+            let c = ob(0.035, oblique + 0.12);
+            vec![(0.0, a.0, a.1, oblique), (4.0, b.0, b.1, oblique), (4.6, c.0, c.1, oblique + 0.12)]
+        }),
+    ];
+    let mut seen_mixed = false;
+    for (label, rows) in cases {
+        let traj = dir.join(&format!("{label}.csv"));
+        let dump = dir.join(&format!("{label}.state.json"));
+        let series = dir.join(&format!("{label}.out.csv"));
+        write_traj(&traj, &rows);
+        simulate_ok(&[
+            "--scene",
+            "paper-phantom",
+            "--trajectory",
+            traj.to_str().unwrap(),
+            "-o",
+            series.to_str().unwrap(),
+            "--dump-state",
+            dump.to_str().unwrap(),
+        ]);
+        let (rel, state) = resolve_with_reference(&dir, &dump, label);
+        let st = states(&state);
+        println!("{label}: {} needle nodes {st:?}, rel L2 difference to fem_ref {rel:.3e}", st.len());
+        assert!(st.len() >= 3, "{label}: the needle is in the tissue");
+        check_dump_conditions(&state);
+        assert!(rel <= 1e-9, "{label}: solver and reference differ by {rel:e}");
+        if st.iter().any(|s| s == "stuck") && st.iter().any(|s| s == "slipping") {
+            seen_mixed = true;
+        }
+        if label == "rotating" {
+            let angles: Vec<f64> = state["prescribed_local"].as_array().unwrap().iter().map(|c| c["angle_rad"].as_f64().unwrap()).collect();
+            assert!(angles.iter().all(|a| (a - (oblique + 0.12)).abs() < 1e-12), "frames follow the needle: {angles:?}");
+        }
+    }
+    assert!(seen_mixed, "one dumped moment has both stuck and slipping nodes");
+}
+
+/// The paper's Fig. 3: the needle aimed straight at the target's undeformed centre misses it,
+/// because the insertion carries the target off the axis, towards the free surface.
+#[test]
+fn fig3_needle_aimed_at_target_misses() {
+    let dir = TempDir::new("fig3");
+    let series = dir.join("fig3.csv");
+    simulate_ok(&["--scene", "fig3-target", "-o", series.to_str().unwrap()]);
+    let (h, rows) = read_csv(&series);
+    let (dist, tx, ty, hit) =
+        (col(&h, "target_biopsy_distance_m"), col(&h, "target_biopsy_x_m"), col(&h, "target_biopsy_y_m"), col(&h, "target_biopsy_hit"));
+    let (bx, by, th) = (col(&h, "x_m"), col(&h, "y_m"), col(&h, "theta_rad"));
+    let start = &rows[0];
+    let closest = rows.iter().min_by(|a, b| a[dist].total_cmp(&b[dist])).unwrap();
+    let end = rows.last().unwrap();
+    let radius = 0.0015;
+    // Undeformed, the target's centre lies on the needle axis.
+    let lateral = |r: &Vec<f64>| {
+        let (s, c) = r[th].sin_cos();
+        -s * (r[tx] - r[bx]) + c * (r[ty] - r[by])
+    };
+    assert!(lateral(start).abs() < 1e-9, "aimed straight at the target: {}", lateral(start));
+    // The tip passes the target beside it.
+    let miss = closest[dist];
+    println!("closest approach {:.3} mm, lateral offset {:.3} mm", miss * 1e3, lateral(closest) * 1e3);
+    assert!(miss > radius + 0.0005, "miss distance {miss} m is not clear of the {radius} m target");
+    assert!(miss < 0.01, "the needle passes near the target ({miss} m)");
+    assert_eq!(end[hit], 0.0);
+    // The target moved with the tissue, off the axis towards the free top surface (+n side),
+    // away from the fixed bottom edge.
+    assert!(lateral(closest) > radius, "lateral offset {} m", lateral(closest));
+    let moved = (closest[tx] - start[tx]).hypot(closest[ty] - start[ty]);
+    assert!(moved > 0.003, "target displaced by {moved} m");
+    // The tip went past the target's depth.
+    let along = |r: &Vec<f64>| {
+        let (s, c) = r[th].sin_cos();
+        c * (r[tx] - r[col(&h, "tip_x_m")]) + s * (r[ty] - r[col(&h, "tip_y_m")])
+    };
+    assert!(along(end) < 0.0, "the tip ends beyond the target");
+}
+
+#[test]
+fn bad_trajectories_and_scenes_get_clear_errors() {
+    let dir = TempDir::new("badtraj");
+    let nan = dir.join("nan.csv");
+    std::fs::write(&nan, "t_s,x_m,y_m,theta_rad\n0,0.05,0.205,-1.57\n1,NaN,0.2,-1.57\n").unwrap();
+    let o = run(Command::new(bin("needlesim-server")).args(["simulate", "--scene", "paper-phantom", "--trajectory"]).arg(&nan));
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("(line 3): x_m is NaN"), "{err}");
+    let o = run(Command::new(bin("needlesim-server")).args(["simulate", "--scene", "no-such-scene"]));
+    let (_, err) = text(&o);
+    assert!(!o.status.success() && err.contains("neither a file nor a shipped example") && err.contains("paper-phantom"), "{err}");
+    // A jump of 5 cm in one millisecond is clamped, said on stderr, and the run completes.
+    let jump = dir.join("jump.csv");
+    write_traj(
+        &jump,
+        &[(0.0, 0.05, 0.205, -FRAC_PI_2), (1.0, 0.05, 0.2, -FRAC_PI_2), (1.001, 0.05, 0.15, -FRAC_PI_2), (2.0, 0.05, 0.15, -FRAC_PI_2)],
+    );
+    let out = dir.join("jump.out.csv");
+    let (_, err) = simulate_ok(&["--scene", "paper-phantom", "--trajectory", jump.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(err.contains("clamped"), "{err}");
+    let (h, rows) = read_csv(&out);
+    let y = col(&h, "y_m");
+    let max_step = rows.windows(2).map(|w| (w[1][y] - w[0][y]).abs()).fold(0.0, f64::max);
+    assert!(max_step <= 0.002 + 1e-12, "base moved {max_step} m in one tick");
+    assert!(rows.iter().all(|r| r.iter().all(|v| v.is_finite())));
+    let bad_scene = dir.join("bad.toml");
+    std::fs::write(&bad_scene, "name = \"x\"\n[mesh]\ntype = \"grid\"\nnx = 5\nny = 5\nwidth_m = 0.1\nheight_m = 0.1\n").unwrap();
+    let o = run(Command::new(bin("needlesim-server")).args(["simulate", "--scene"]).arg(&bad_scene).args(["--trajectory"]).arg(&jump));
+    let (_, err) = text(&o);
+    assert!(!o.status.success() && err.contains("missing field") && err.contains("regions"), "{err}");
+}
