@@ -67,10 +67,7 @@ fn main() -> ExitCode {
         Some(Command::Simulate { scene, trajectory, output, dump_state }) => {
             run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), &limits)
         }
-        None => {
-            let example = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/paper19x19.json");
-            solve(example.as_ref(), None, &limits)
-        }
+        None => demo(&limits),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -146,5 +143,40 @@ fn run_simulate(
         let state = simulate::dump_state(&scene, &sim);
         std::fs::write(p, serde_json::to_string(&state)?).with_context(|| format!("cannot write {}", p.display()))?;
     }
+    Ok(())
+}
+
+/// With no command: the paper's phantom, inserted and withdrawn, summarised every half second.
+fn demo(limits: &MeshLimits) -> Result<()> {
+    let scene = scene::load_scene("paper-phantom", limits)?;
+    let traj = scene::Trajectory::parse_csv(scene.example_trajectory.expect("a shipped example has a trajectory"))?;
+    let mut csv = String::new();
+    let (sim, summary) = simulate::run(&scene, &traj, Some(&mut csv))?;
+    println!(
+        "needlesim: {} ({} nodes), {} ticks at {} Hz",
+        scene.name,
+        scene.tissue.mesh().n_nodes(),
+        summary.ticks,
+        sim.params().tick_rate_hz
+    );
+    println!("{:>6} {:>9} {:>10} {:>6} {:>8} {:>11}", "t [s]", "depth [mm]", "axial [N]", "stuck", "slipping", "target [mm]");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name);
+    let (ti, di, fi, si, pi, gi) =
+        (col("t_s"), col("inserted_m"), col("f_axial_n"), col("n_stuck"), col("n_slipping"), col("target_centre_distance_m"));
+    for (k, line) in lines.enumerate() {
+        if k % 500 != 0 {
+            continue;
+        }
+        let v: Vec<&str> = line.split(',').collect();
+        let num = |i: Option<usize>| i.and_then(|i| v.get(i)).and_then(|s| s.parse::<f64>().ok()).unwrap_or(f64::NAN);
+        println!("{:>6.2} {:>9.1} {:>10.3} {:>6} {:>8} {:>11.1}", num(ti), num(di) * 1e3, num(fi), num(si), num(pi), num(gi) * 1e3);
+    }
+    let mut times = summary.step_times_s;
+    times.sort_by(f64::total_cmp);
+    let p = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize] * 1e6;
+    println!("step time: p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs (debug builds are slower; use --release)", p(0.5), p(0.99), p(1.0));
+    println!("full time series: needlesim-server simulate --scene paper-phantom -o paper-phantom.csv");
     Ok(())
 }
