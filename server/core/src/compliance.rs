@@ -132,15 +132,16 @@ impl TissueModel {
     }
 }
 
-/// Cached compliance columns by node. Storage grows only in [`ComplianceCache::insert`] (and
-/// [`ComplianceCache::reserve`]); reads allocate nothing.
+/// Cached compliance columns by node, one boxed pair of columns per node (so memory follows the
+/// nodes cached, and growth never copies other nodes' columns). Storage grows only in
+/// [`ComplianceCache::insert`]; evicted storage is reused; reads allocate nothing.
 #[derive(Debug, Clone)]
 pub struct ComplianceCache {
     n_dofs: usize,
     slot_of_node: Vec<u32>,
     node_of_slot: Vec<usize>,
     free_slots: Vec<u32>,
-    columns: Vec<f64>,
+    columns: Vec<Box<[f64]>>,
     n_computed: u64,
 }
 
@@ -159,10 +160,16 @@ impl ComplianceCache {
         }
     }
 
-    /// Reserves room for `n_nodes` more nodes' columns.
+    /// Reserves bookkeeping room for `n_nodes` more nodes (not their columns).
     pub fn reserve(&mut self, n_nodes: usize) {
-        self.columns.reserve(n_nodes * 2 * self.n_dofs);
+        self.columns.reserve(n_nodes);
         self.node_of_slot.reserve(n_nodes);
+        self.free_slots.reserve(n_nodes);
+    }
+
+    /// Bytes held by cached columns (including evicted storage kept for reuse).
+    pub fn column_bytes(&self) -> usize {
+        self.columns.len() * 2 * self.n_dofs * std::mem::size_of::<f64>()
     }
 
     /// Whether the columns of `node_idx` are cached.
@@ -187,12 +194,11 @@ impl ComplianceCache {
     /// [`TissueModel::compliance_columns_into`]). `columns` has length $2 \cdot 2n$.
     pub fn insert(&mut self, node_idx: usize, columns: &[f64]) {
         assert_eq!(columns.len(), 2 * self.n_dofs, "two full columns");
-        let len = 2 * self.n_dofs;
         let slot = match self.slot_of_node[node_idx] {
             NO_SLOT => match self.free_slots.pop() {
                 Some(s) => s,
                 None => {
-                    self.columns.extend(std::iter::repeat_n(0.0, len));
+                    self.columns.push(columns.into());
                     self.node_of_slot.push(node_idx);
                     (self.node_of_slot.len() - 1) as u32
                 }
@@ -201,7 +207,7 @@ impl ComplianceCache {
         };
         self.slot_of_node[node_idx] = slot;
         self.node_of_slot[slot as usize] = node_idx;
-        self.columns[slot as usize * len..(slot as usize + 1) * len].copy_from_slice(columns);
+        self.columns[slot as usize].copy_from_slice(columns);
     }
 
     /// Computes and stores the columns of `node_idx` unless cached. Returns whether it computed.
@@ -236,8 +242,7 @@ impl ComplianceCache {
         if s == NO_SLOT {
             return None;
         }
-        let start = (s as usize * 2 + comp) * self.n_dofs;
-        Some(&self.columns[start..start + self.n_dofs])
+        Some(&self.columns[s as usize][comp * self.n_dofs..(comp + 1) * self.n_dofs])
     }
 
     /// The world-frame block $C_{ab}$ (2 × 2): displacement of node `a` per unit force on node
