@@ -1,7 +1,13 @@
 //! needlesim-server as a library: the scene format, the exchange format of the validation suite,
-//! and the offline commands (solve, simulate, bench), shared by the `needlesim-server` binary and the tests.
+//! the offline commands (solve, simulate, bench), and the real-time server (sessions, gRPC
+//! services, recordings), shared by the `needlesim-server` binary and the tests.
 
 pub mod bench;
+pub mod convert;
 pub mod exchange;
+pub mod grpc;
+pub mod recording;
 pub mod scene;
+pub mod serve;
+pub mod session;
 pub mod simulate;

@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use needlesim_core::MeshLimits;
 
-use needlesim_server::{bench, exchange, scene, simulate};
+use needlesim_server::{bench, exchange, grpc, scene, serve, simulate};
 
 /// Counts heap bytes for `bench`'s peak-memory figures (a relaxed atomic add per allocation).
 #[global_allocator]
@@ -32,8 +32,50 @@ struct LimitArgs {
     max_triangles: usize,
 }
 
+#[derive(Args, Clone)]
+struct ServeArgs {
+    /// Address and port to listen on.
+    #[arg(long, default_value = "127.0.0.1:50051")]
+    listen: std::net::SocketAddr,
+    /// Where recordings and other data are written.
+    #[arg(long, default_value = "needlesim-data")]
+    data_dir: PathBuf,
+    /// The static files of the web viewer.
+    #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web"))]
+    web_dir: PathBuf,
+    /// PEM certificate chain: with --tls-key, serve over TLS.
+    #[arg(long, requires = "tls_key")]
+    tls_cert: Option<PathBuf>,
+    /// PEM private key for --tls-cert.
+    #[arg(long, requires = "tls_cert")]
+    tls_key: Option<PathBuf>,
+    /// Most sessions at once.
+    #[arg(long, default_value_t = 16)]
+    max_sessions: usize,
+    /// Most observers per session.
+    #[arg(long, default_value_t = 256)]
+    max_observers: usize,
+    /// Largest gRPC message accepted, in bytes.
+    #[arg(long, default_value_t = 64 << 20)]
+    max_message_bytes: usize,
+    /// The example scene of the default session ("none" for no default session).
+    #[arg(long, default_value = "paper-phantom")]
+    default_scene: String,
+}
+
+/// The defaults of `serve`, for a command line without a command.
+#[derive(Parser)]
+struct DefaultServe {
+    #[command(flatten)]
+    args: ServeArgs,
+}
+
 #[derive(Subcommand)]
 enum Command {
+    /// Start the gRPC server (the default when no command is given).
+    Serve(ServeArgs),
+    /// Print a summary of the paper-phantom insertion, offline.
+    Demo,
     /// Solve a static problem in the exchange format of the validation suite.
     Solve {
         /// The scenario JSON (nodes, triangles, E, nu, fixed_nodes, prescribed, loads, …).
@@ -92,7 +134,9 @@ fn main() -> ExitCode {
         Some(Command::Bench { quick, json, plot, sizes, no_scipy }) => {
             run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json)
         }
-        None => demo(&limits),
+        Some(Command::Demo) => demo(&limits),
+        Some(Command::Serve(args)) => run_serve(args, &limits),
+        None => run_serve(DefaultServe::parse_from(["needlesim-server"]).args, &limits),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -214,4 +258,26 @@ fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
         print!("{markdown}");
     }
     Ok(())
+}
+
+fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
+    let config = serve::ServeConfig {
+        listen: args.listen,
+        data_dir: args.data_dir,
+        web_dir: args.web_dir,
+        tls: args.tls_cert.zip(args.tls_key),
+        limits: grpc::ServerLimits {
+            max_sessions: args.max_sessions,
+            max_observers_per_session: args.max_observers,
+            mesh: *limits,
+            ..Default::default()
+        },
+        max_message_bytes: args.max_message_bytes,
+        default_scene: (args.default_scene != "none").then_some(args.default_scene),
+    };
+    let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
+    runtime.block_on(serve::serve(config, async {
+        let _ = tokio::signal::ctrl_c().await;
+        tracing::info!("shutting down");
+    }))
 }

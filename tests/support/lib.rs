@@ -142,3 +142,73 @@ pub fn max_rel_error(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     assert!(scale > 0.0, "the reference field is zero");
     err / scale
 }
+
+/// A running `needlesim-server serve` process on a free loopback port, killed on drop.
+pub struct ServerProcess {
+    pub child: std::process::Child,
+    pub addr: String,
+    pub data_dir: TempDir,
+    /// The server's standard error, collected in the background.
+    pub stderr: std::sync::Arc<std::sync::Mutex<String>>,
+}
+
+impl ServerProcess {
+    /// Starts the server with `extra` arguments after `serve --listen 127.0.0.1:0 --data-dir …`
+    /// and waits until it prints its address.
+    pub fn start(extra: &[&str]) -> Self {
+        use std::io::{BufRead, BufReader};
+        let data_dir = TempDir::new("server");
+        let mut child = Command::new(bin("needlesim-server"))
+            .args(["serve", "--listen", "127.0.0.1:0", "--data-dir"])
+            .arg(data_dir.path())
+            .args(extra)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("needlesim-server starts");
+        let stderr = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
+        if let Some(err_pipe) = child.stderr.take() {
+            let sink = stderr.clone();
+            std::thread::spawn(move || {
+                for line in BufReader::new(err_pipe).lines().map_while(Result::ok) {
+                    sink.lock().unwrap().push_str(&line);
+                    sink.lock().unwrap().push('\n');
+                }
+            });
+        }
+        let Some(stdout) = child.stdout.take() else {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("the server's stdout is not piped");
+        };
+        let mut out = BufReader::new(stdout);
+        let mut line = String::new();
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+        loop {
+            line.clear();
+            let n = out.read_line(&mut line).unwrap_or(0);
+            if let Some(addr) = line.trim().strip_prefix("listening on ") {
+                let addr = addr.to_owned();
+                std::thread::spawn(move || for _ in out.lines() {});
+                return Self { child, addr, data_dir, stderr };
+            }
+            if n == 0 || std::time::Instant::now() > deadline {
+                let _ = child.kill();
+                let _ = child.wait();
+                panic!("the server did not start: {}", stderr.lock().unwrap());
+            }
+        }
+    }
+
+    /// `http://ADDR`.
+    pub fn url(&self) -> String {
+        format!("http://{}", self.addr)
+    }
+}
+
+impl Drop for ServerProcess {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}

@@ -210,6 +210,29 @@ impl ComplianceCache {
         self.columns[slot as usize].copy_from_slice(columns);
     }
 
+    /// Stores columns handed over as an owned box (length $2 \cdot 2n$), without allocating
+    /// column storage: the box is kept, or copied into reused storage. Returns a box the caller
+    /// may drop elsewhere (the one not kept), so a real-time thread can hand it back to a worker.
+    pub fn insert_owned(&mut self, node_idx: usize, columns: Box<[f64]>) -> Option<Box<[f64]>> {
+        assert_eq!(columns.len(), 2 * self.n_dofs, "two full columns");
+        match self.slot_of_node[node_idx] {
+            NO_SLOT => match self.free_slots.pop() {
+                Some(s) => {
+                    self.slot_of_node[node_idx] = s;
+                    self.node_of_slot[s as usize] = node_idx;
+                    Some(std::mem::replace(&mut self.columns[s as usize], columns))
+                }
+                None => {
+                    self.columns.push(columns);
+                    self.node_of_slot.push(node_idx);
+                    self.slot_of_node[node_idx] = (self.node_of_slot.len() - 1) as u32;
+                    None
+                }
+            },
+            s => Some(std::mem::replace(&mut self.columns[s as usize], columns)),
+        }
+    }
+
     /// Computes and stores the columns of `node_idx` unless cached. Returns whether it computed.
     pub fn ensure(&mut self, model: &TissueModel, node_idx: usize, scratch: &mut ColumnScratch) -> Result<bool, TissueError> {
         if node_idx >= self.slot_of_node.len() {

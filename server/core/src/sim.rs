@@ -443,6 +443,17 @@ impl Simulation {
         self.cache.insert(node_idx, columns);
     }
 
+    /// Stores columns handed over as an owned box, allocating no column storage (for the
+    /// real-time thread); returns the box not kept, to be dropped off the real-time thread.
+    pub fn insert_columns_owned(&mut self, node_idx: usize, columns: Box<[f64]>) -> Option<Box<[f64]>> {
+        self.cache.insert_owned(node_idx, columns)
+    }
+
+    /// Reserves bookkeeping room in the column cache for `n_nodes` more nodes.
+    pub fn reserve_cached_nodes(&mut self, n_nodes: usize) {
+        self.cache.reserve(n_nodes);
+    }
+
     /// Advances one tick towards the commanded base pose.
     pub fn step(&mut self, commanded: BasePose) -> Result<&StepOutput, SimError> {
         if !commanded.is_finite() {

@@ -1,0 +1,539 @@
+#!/usr/bin/env python3
+"""A small Python client of the needlesim gRPC API (package needlesim.v1), as planning software
+would integrate it.
+
+Setup: generate the stubs once (they are not committed) and put them on the import path::
+
+    python client/python/generate.py /tmp/needlesim-stubs
+    PYTHONPATH=/tmp/needlesim-stubs python client/python/needlesim_client.py \\
+        --address 127.0.0.1:50051 demo
+
+(`--stubs DIR` does the same as PYTHONPATH and generates the stubs into DIR when they are
+missing.) Needs grpcio, protobuf, grpcio-health-checking and grpcio-reflection; see tests/run for
+the pinned versions.
+
+Usage from Python::
+
+    from needlesim_client import NeedlesimClient
+    with NeedlesimClient("127.0.0.1:50051") as c:
+        s = c.create_session_from_mesh(nodes, triangles, regions, fixed_nodes, needle, targets)
+        for frame in c.watch(s.session_id, rate_hz=30, n_frames=10):
+            print(frame.tick, frame.tip_m.x, frame.tip_m.y)
+        c.close_session(s.session_id)
+
+Conventions (see proto/needlesim/v1/needlesim.proto): SI units, 2D positions (x, y) in metres,
+angles counter-clockwise in radians. Creating a session returns a controller token (to drive the
+needle, record and close) and an observer token (to watch); the client keeps both per session
+and sends the right one as `authorization: Bearer <token>` metadata.
+
+Command line: `demo`, `health [SERVICE]`, `services`, `record` and `hold` (see --help).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import importlib
+import json
+import math
+import os
+import sys
+import threading
+import time
+from typing import Callable, Iterable, Iterator, Optional, Sequence
+
+import grpc
+
+pb = None  # needlesim.v1.needlesim_pb2, loaded by load_stubs()
+pb_grpc = None  # needlesim.v1.needlesim_pb2_grpc
+
+
+def load_stubs(stubs_dir: Optional[str] = None) -> None:
+    """Imports the generated stubs, from stubs_dir if given (generating them there when missing),
+    else from the import path."""
+    global pb, pb_grpc
+    if stubs_dir is not None:
+        stubs_dir = os.path.abspath(stubs_dir)
+        if not os.path.isfile(os.path.join(stubs_dir, "needlesim", "v1", "needlesim_pb2.py")):
+            sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+            from generate import generate
+
+            generate(stubs_dir)
+        if stubs_dir not in sys.path:
+            sys.path.insert(0, stubs_dir)
+    try:
+        pb = importlib.import_module("needlesim.v1.needlesim_pb2")
+        pb_grpc = importlib.import_module("needlesim.v1.needlesim_pb2_grpc")
+    except ImportError as e:
+        raise ImportError(
+            "the needlesim.v1 stubs are not importable: run client/python/generate.py OUT_DIR and put "
+            f"OUT_DIR on PYTHONPATH, or pass --stubs OUT_DIR ({e})"
+        ) from e
+
+
+@dataclasses.dataclass
+class Session:
+    """A session created by this client, with its tokens."""
+
+    session_id: str
+    controller_token: str
+    observer_token: str
+    info: object  # needlesim.v1.SessionInfo
+
+
+class NeedlesimClient:
+    """A connection to a needlesim server.
+
+    address: "host:port". root_cert: PEM bytes, or the path of a PEM file, of the CA that signed the
+    server's certificate; with it the channel uses TLS, without it plain text. Use as a context
+    manager or call close().
+    """
+
+    def __init__(self, address: str, root_cert: Optional[bytes | str] = None, max_message_bytes: int = 64 << 20):
+        if pb is None:
+            load_stubs()
+        options = [
+            ("grpc.max_receive_message_length", max_message_bytes),
+            ("grpc.max_send_message_length", max_message_bytes),
+        ]
+        if root_cert is not None:
+            if isinstance(root_cert, str):
+                with open(root_cert, "rb") as f:
+                    root_cert = f.read()
+            self.channel = grpc.secure_channel(address, grpc.ssl_channel_credentials(root_certificates=root_cert), options)
+        else:
+            self.channel = grpc.insecure_channel(address, options)
+        self.sessions = pb_grpc.SessionServiceStub(self.channel)
+        self.control = pb_grpc.ControlServiceStub(self.channel)
+        self.observe = pb_grpc.ObserveServiceStub(self.channel)
+        self.simulation = pb_grpc.SimulationServiceStub(self.channel)
+        self.recordings = pb_grpc.RecordingServiceStub(self.channel)
+        # session id -> Session (tokens), for sessions created by this client or added with add_tokens.
+        self.tokens: dict[str, Session] = {}
+
+    def close(self) -> None:
+        self.channel.close()
+
+    def __enter__(self) -> "NeedlesimClient":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    # -- tokens -----------------------------------------------------------------------------
+
+    def add_tokens(self, session_id: str, controller_token: str = "", observer_token: str = "") -> None:
+        """Registers the tokens of a session this client did not create."""
+        self.tokens[session_id] = Session(session_id, controller_token, observer_token, None)
+
+    def _md(self, session_id: str, role: str, token: Optional[str] = None) -> list[tuple[str, str]]:
+        if token is None:
+            s = self.tokens.get(session_id)
+            if s is None:
+                raise KeyError(f"no tokens for session {session_id}: pass one or call add_tokens")
+            token = s.controller_token if role == "controller" else (s.observer_token or s.controller_token)
+        return [("authorization", f"Bearer {token}")]
+
+    # -- scenes and sessions ----------------------------------------------------------------
+
+    @staticmethod
+    def uploaded_scene(
+        nodes: Sequence[Sequence[float]],
+        triangles: Sequence[Sequence[int]],
+        regions: Sequence[dict],
+        fixed_nodes: Iterable[int],
+        needle: dict,
+        targets: Sequence[dict] = (),
+        triangle_regions: Optional[Sequence[int]] = None,
+        name: str = "uploaded",
+        plane: str = "stress",
+        thickness_m: float = 0.0,
+        tick_rate_hz: float = 0.0,
+    ):
+        """Builds a needlesim.v1.UploadedScene.
+
+        nodes: [(x, y), ...] in metres. triangles: [(a, b, c), ...] 0-based node indices.
+        regions: [{"name", "young_modulus_pa", "poisson_ratio", optional friction_n_per_m,
+        static_friction_ratio, tip_peak_ratio, tip_peak_width_m, puncture_force_n,
+        cutting_force_n}]; triangle_regions: the region index of each triangle (default: all 0).
+        fixed_nodes: node indices held in place. needle: {"base": (x, y, theta_rad),
+        optional "length_m", "capture_radius_m"}. targets: [{"name", "center": (x, y), "radius_m"}].
+        """
+        mesh = pb.Mesh(
+            node_xy_m=[float(v) for p in nodes for v in (p[0], p[1])],
+            triangle_nodes=[int(i) for t in triangles for i in t[:3]],
+            triangle_region=list(triangle_regions) if triangle_regions is not None else [],
+        )
+        base = needle["base"]
+        return pb.UploadedScene(
+            name=name,
+            mesh=mesh,
+            regions=[pb.Region(**r) for r in regions],
+            fixed_nodes=[int(n) for n in fixed_nodes],
+            plane=plane,
+            thickness_m=thickness_m,
+            needle_length_m=float(needle.get("length_m", 0.0)),
+            needle_base=pb.Pose2(x_m=base[0], y_m=base[1], theta_rad=base[2]),
+            capture_radius_m=float(needle.get("capture_radius_m", 0.0)),
+            targets=[
+                pb.Target(name=t["name"], center_m=pb.Vec2(x=t["center"][0], y=t["center"][1]), radius_m=t["radius_m"])
+                for t in targets
+            ],
+            tick_rate_hz=tick_rate_hz,
+        )
+
+    def create_session_from_mesh(
+        self,
+        nodes,
+        triangles,
+        regions,
+        fixed_nodes,
+        needle,
+        targets=(),
+        *,
+        triangle_regions=None,
+        name: str = "uploaded",
+        tick_rate_hz: float = 0.0,
+        record: bool = False,
+        timeout: float = 60.0,
+    ) -> Session:
+        """Creates a live session from a mesh given as data (see uploaded_scene for the arguments);
+        record=True records every tick to an MCAP file from the start. Returns the Session with
+        its tokens, which the client also keeps."""
+        scene = self.uploaded_scene(nodes, triangles, regions, fixed_nodes, needle, targets, triangle_regions, name)
+        return self.create_session(pb.SceneSource(uploaded=scene), tick_rate_hz=tick_rate_hz, record=record, timeout=timeout)
+
+    def create_session(self, scene, tick_rate_hz: float = 0.0, record: bool = False, timeout: float = 60.0) -> Session:
+        """Creates a session from a SceneSource, an UploadedScene or a shipped example's name."""
+        scene = _scene_source(scene)
+        r = self.sessions.CreateSession(pb.CreateSessionRequest(scene=scene, tick_rate_hz=tick_rate_hz, record=record), timeout=timeout)
+        s = Session(r.session.session_id, r.controller_token, r.observer_token, r.session)
+        self.tokens[s.session_id] = s
+        return s
+
+    def get_session(self, session_id: str):
+        return self.sessions.GetSession(pb.GetSessionRequest(session_id=session_id), timeout=10)
+
+    def stats(self, session_id: str, token: Optional[str] = None):
+        """The tick statistics (SessionStats) of a session."""
+        return self.sessions.GetStats(pb.GetSessionRequest(session_id=session_id), metadata=self._md(session_id, "observer", token), timeout=10)
+
+    def close_session(self, session_id: str, token: Optional[str] = None) -> None:
+        self.sessions.CloseSession(pb.CloseSessionRequest(session_id=session_id), metadata=self._md(session_id, "controller", token), timeout=30)
+        self.tokens.pop(session_id, None)
+
+    # -- driving and watching ---------------------------------------------------------------
+
+    def set_pose(self, session_id: str, x_m: float, y_m: float, theta_rad: float, token: Optional[str] = None):
+        """Moves the needle base (one pose; answered with the latest ControlResponse)."""
+        req = pb.SetPoseRequest(session_id=session_id, base=pb.Pose2(x_m=x_m, y_m=y_m, theta_rad=theta_rad))
+        return self.control.SetPose(req, metadata=self._md(session_id, "controller", token), timeout=10)
+
+    def control_stream(self, session_id: str, poses: Iterable[tuple[float, float, float]], token: Optional[str] = None):
+        """Opens the bidirectional Control stream: poses (x, y, theta) in, one ControlResponse per
+        tick out (an iterator; cancel() it to stop)."""
+
+        def requests():
+            for seq, (x, y, th) in enumerate(poses, start=1):
+                yield pb.ControlRequest(
+                    session_id=session_id if seq == 1 else "",
+                    base=pb.Pose2(x_m=x, y_m=y, theta_rad=th),
+                    client_time_ns=time.monotonic_ns(),
+                    seq=seq,
+                )
+
+        return self.control.Control(requests(), metadata=self._md(session_id, "controller", token))
+
+    def watch(
+        self,
+        session_id: str,
+        observer_token: Optional[str] = None,
+        rate_hz: float = 30.0,
+        n_frames: Optional[int] = None,
+        duration_s: Optional[float] = None,
+        include_displacements: bool = False,
+    ) -> Iterator[object]:
+        """Yields the Frames of a live session at rate_hz (30..120, or 0 for every tick) until
+        n_frames frames have arrived or duration_s has passed (whichever comes first)."""
+        req = pb.ObserveRequest(session_id=session_id, rate_hz=rate_hz, include_displacements=include_displacements)
+        call = self.observe.Observe(req, metadata=self._md(session_id, "observer", observer_token), timeout=duration_s)
+        n = 0
+        try:
+            for frame in call:
+                yield frame
+                n += 1
+                if n_frames is not None and n >= n_frames:
+                    break
+        except grpc.RpcError as e:
+            if not (duration_s is not None and e.code() == grpc.StatusCode.DEADLINE_EXCEEDED):
+                raise
+        finally:
+            call.cancel()
+
+    # -- offline simulation -----------------------------------------------------------------
+
+    def simulate(
+        self,
+        scene,
+        trajectory: Sequence[tuple[float, float, float, float]] = (),
+        decimate: int = 1,
+        on_progress: Optional[Callable[[int, int], None]] = None,
+        timeout: Optional[float] = 600.0,
+    ):
+        """Runs an offline insertion (faster than real time on the server's workers).
+
+        scene: an UploadedScene, a SceneSource or a shipped example's name. trajectory:
+        [(t_s, x_m, y_m, theta_rad), ...] of the needle base (empty: the example's own). Calls
+        on_progress(ticks_done, ticks_total) as progress arrives; returns the SimulateResult
+        (.rows: one SeriesRow every `decimate` ticks)."""
+        req = pb.SimulateRequest(
+            scene=_scene_source(scene),
+            trajectory=[pb.TrajectorySample(t_s=t, base=pb.Pose2(x_m=x, y_m=y, theta_rad=th)) for (t, x, y, th) in trajectory],
+            decimate=decimate,
+        )
+        result = None
+        for ev in self.simulation.Simulate(req, timeout=timeout):
+            kind = ev.WhichOneof("event")
+            if kind == "progress" and on_progress is not None:
+                on_progress(ev.progress.ticks_done, ev.progress.ticks_total)
+            elif kind == "result":
+                result = ev.result
+        if result is None:
+            raise RuntimeError("the Simulate stream ended without a result")
+        return result
+
+    # -- recordings -------------------------------------------------------------------------
+
+    def start_recording(self, session_id: str, token: Optional[str] = None):
+        return self.recordings.StartRecording(pb.StartRecordingRequest(session_id=session_id), metadata=self._md(session_id, "controller", token), timeout=10)
+
+    def stop_recording(self, session_id: str, token: Optional[str] = None):
+        """Finishes the recording of a session; returns its RecordingInfo (name, messages, ...)."""
+        return self.recordings.StopRecording(pb.StopRecordingRequest(session_id=session_id), metadata=self._md(session_id, "controller", token), timeout=60)
+
+    def list_recordings(self):
+        return list(self.recordings.ListRecordings(pb.ListRecordingsRequest(), timeout=10).recordings)
+
+    def download_recording(self, name: str, path: str) -> int:
+        """Downloads the MCAP file `name` into path; returns its size in bytes."""
+        size = 0
+        with open(path, "wb") as f:
+            for chunk in self.recordings.DownloadRecording(pb.DownloadRecordingRequest(name=name), timeout=120):
+                if chunk.offset != size:
+                    raise RuntimeError(f"recording chunk at offset {chunk.offset}, expected {size}")
+                f.write(chunk.data)
+                size += len(chunk.data)
+        return size
+
+    # -- health and reflection --------------------------------------------------------------
+
+    def health(self, service: str = "") -> str:
+        """The grpc.health.v1 status of `service` ("" = the whole server): "SERVING",
+        "NOT_SERVING", ..., or "NOT_FOUND" when the server does not know the service."""
+        from grpc_health.v1 import health_pb2, health_pb2_grpc
+
+        stub = health_pb2_grpc.HealthStub(self.channel)
+        try:
+            r = stub.Check(health_pb2.HealthCheckRequest(service=service), timeout=10)
+        except grpc.RpcError as e:
+            if e.code() == grpc.StatusCode.NOT_FOUND:
+                return "NOT_FOUND"
+            raise
+        return health_pb2.HealthCheckResponse.ServingStatus.Name(r.status)
+
+    def list_services(self) -> list[str]:
+        """The services the server lists through gRPC server reflection (grpc.reflection.v1,
+        falling back to v1alpha). The v1 and v1alpha messages are identical on the wire, so the
+        v1alpha message classes of grpcio-reflection serve both."""
+        from grpc_reflection.v1alpha import reflection_pb2 as rpb
+
+        last = None
+        for version in ("v1", "v1alpha"):
+            method = self.channel.stream_stream(
+                f"/grpc.reflection.{version}.ServerReflection/ServerReflectionInfo",
+                request_serializer=rpb.ServerReflectionRequest.SerializeToString,
+                response_deserializer=rpb.ServerReflectionResponse.FromString,
+            )
+            try:
+                for resp in method(iter([rpb.ServerReflectionRequest(list_services="")]), timeout=10):
+                    if resp.HasField("error_response"):
+                        raise RuntimeError(f"reflection error {resp.error_response.error_code}: {resp.error_response.error_message}")
+                    return sorted(s.name for s in resp.list_services_response.service)
+            except grpc.RpcError as e:
+                if e.code() != grpc.StatusCode.UNIMPLEMENTED:
+                    raise
+                last = e
+        raise RuntimeError(f"the server has no reflection service: {last}")
+
+
+def _scene_source(scene):
+    if isinstance(scene, str):
+        return pb.SceneSource(example=scene)
+    if isinstance(scene, pb.UploadedScene):
+        return pb.SceneSource(uploaded=scene)
+    return scene
+
+
+# -- the demo -----------------------------------------------------------------------------------
+
+
+def grid_mesh(width_m: float = 0.1, height_m: float = 0.06, nx: int = 21, ny: int = 13):
+    """A structured triangle mesh of [0, width] x [0, height]: nx * ny nodes (row-major from the
+    bottom-left), two triangles per cell. Returns (nodes, triangles, bottom_nodes)."""
+    nodes = [(width_m * i / (nx - 1), height_m * j / (ny - 1)) for j in range(ny) for i in range(nx)]
+    tris = []
+    for j in range(ny - 1):
+        for i in range(nx - 1):
+            a, b, c, d = j * nx + i, j * nx + i + 1, (j + 1) * nx + i + 1, (j + 1) * nx + i
+            tris += [(a, b, c), (a, c, d)]
+    return nodes, tris, list(range(nx))
+
+
+DOWN = -math.pi / 2
+
+
+def demo(client: NeedlesimClient) -> int:
+    nodes, tris, bottom = grid_mesh()
+    regions = [{"name": "tissue", "young_modulus_pa": 20e3, "poisson_ratio": 0.45}]
+    length = 0.05
+    # The needle points down; its tip starts 5 mm above the top surface (y = 0.06 m).
+    x0, tip0 = 0.05, 0.065
+    needle = {"base": (x0, tip0 + length, DOWN), "length_m": length}
+    targets = [{"name": "lesion", "center": (0.05, 0.03), "radius_m": 0.003}]
+    s = client.create_session_from_mesh(nodes, tris, regions, bottom, needle, targets, name="demo-grid")
+    print(f"session created: {s.session_id} ({s.info.n_nodes} nodes, {s.info.n_triangles} triangles, {s.info.tick_rate_hz:g} Hz)", flush=True)
+
+    # Offline: a straight insertion of the tip from 5 mm above the surface to 32 mm deep in 2 s.
+    scene = client.uploaded_scene(nodes, tris, regions, bottom, needle, targets, name="demo-grid")
+    depth, secs = 0.037, 2.0
+    traj = [(t, x0, tip0 + length - depth * t / secs, DOWN) for t in (secs * k / 20 for k in range(21))]
+
+    def progress(done, total):
+        print(f"simulate progress: {done}/{total}", flush=True)
+
+    t = time.monotonic()
+    result = client.simulate(scene, traj, decimate=10, on_progress=progress)
+    first, last = result.rows[0], result.rows[-1]
+    print(f"simulate result: {len(result.rows)} rows, {result.ticks} ticks in {time.monotonic() - t:.2f} s (step p50 {result.step_p50_us:.0f} us)")
+    print(f"tip: ({last.tip_m.x:.4f}, {last.tip_m.y:.4f}) m, inserted {last.inserted_length_m * 1e3:.1f} mm, axial force {last.force_axial_n:.3f} N")
+    for t0, t1 in zip(first.targets, last.targets):
+        print(f"tip-target distance: {t1.name} start {t0.distance_m:.6f} m end {t1.distance_m:.6f} m hit {t1.hit}")
+
+    # Live: watch the session for 1 s at 30 Hz.
+    frames = list(client.watch(s.session_id, rate_hz=30.0, duration_s=1.0))
+    ticks = [f.tick for f in frames]
+    span = f"ticks {ticks[0]}..{ticks[-1]}" if ticks else "no ticks"
+    print(f"watched: {len(frames)} frames in 1 s at 30 Hz ({span})", flush=True)
+
+    client.close_session(s.session_id)
+    print(f"session closed: {s.session_id}", flush=True)
+    return 0
+
+
+def record(client: NeedlesimClient, seconds: float, out: str) -> int:
+    """Records a session driven by SetPose for `seconds`, downloads the MCAP file into `out` and
+    prints a JSON summary."""
+    nodes, tris, bottom = grid_mesh()
+    regions = [{"name": "tissue", "young_modulus_pa": 20e3, "poisson_ratio": 0.45}]
+    length = 0.05
+    needle = {"base": (0.05, 0.065 + length, DOWN), "length_m": length}
+    s = client.create_session_from_mesh(nodes, tris, regions, bottom, needle, [], name="record-grid", record=True, tick_rate_hz=1000.0)
+    t0 = time.monotonic()
+    n_poses = 0
+    while (t := time.monotonic() - t0) < seconds:
+        client.set_pose(s.session_id, 0.05, 0.065 + length - 0.02 * t / seconds, DOWN)
+        n_poses += 1
+        time.sleep(0.005)
+    info = client.stop_recording(s.session_id)
+    stats = client.stats(s.session_id)
+    size = client.download_recording(info.name, out)
+    client.close_session(s.session_id)
+    print(
+        json.dumps(
+            {
+                "name": info.name,
+                "messages": info.messages,
+                "size_bytes": info.size_bytes,
+                "finished": info.finished,
+                "downloaded_bytes": size,
+                "poses": n_poses,
+                "ticks": stats.ticks,
+                "dropped_records": stats.dropped_records,
+            }
+        ),
+        flush=True,
+    )
+    return 0
+
+
+def hold(client: NeedlesimClient, session_id: str, token: str) -> int:
+    """Opens a full-rate Observe stream and a Control stream and keeps them open (until killed),
+    printing `holding` once both deliver."""
+    client.add_tokens(session_id, controller_token=token)
+    stop = threading.Event()
+
+    def poses():
+        while not stop.is_set():
+            yield (0.05, 0.115, DOWN)
+            time.sleep(0.001)
+
+    ctl = client.control_stream(session_id, poses())
+    obs = client.observe.Observe(pb.ObserveRequest(session_id=session_id, rate_hz=0.0), metadata=client._md(session_id, "observer"))
+    counts = {"frames": 0, "responses": 0}
+
+    def drain(it, key):
+        for _ in it:
+            counts[key] += 1
+
+    threads = [threading.Thread(target=drain, args=(ctl, "responses"), daemon=True), threading.Thread(target=drain, args=(obs, "frames"), daemon=True)]
+    for th in threads:
+        th.start()
+    deadline = time.monotonic() + 30.0
+    while counts["frames"] == 0 or counts["responses"] == 0:
+        if time.monotonic() > deadline:
+            print(f"no frames or responses within 30 s: {counts}", file=sys.stderr, flush=True)
+            return 1
+        time.sleep(0.01)
+    print(f"holding: {counts['frames']} frames, {counts['responses']} responses", flush=True)
+    while True:
+        time.sleep(1)
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    p = argparse.ArgumentParser(description="needlesim gRPC client")
+    p.add_argument("--address", default="127.0.0.1:50051", help="host:port of the server")
+    p.add_argument("--root-cert", help="PEM file of the CA of the server's certificate (enables TLS)")
+    p.add_argument("--stubs", help="directory of the generated stubs (generated there if missing)")
+    sub = p.add_subparsers(dest="command", required=True)
+    sub.add_parser("demo", help="upload a grid mesh, simulate an insertion offline, watch the live session")
+    h = sub.add_parser("health", help="grpc.health.v1 status of a service ('' = the server)")
+    h.add_argument("service", nargs="?", default="")
+    sub.add_parser("services", help="the services listed by server reflection")
+    r = sub.add_parser("record", help="record a session driven by SetPose and download the MCAP file")
+    r.add_argument("--seconds", type=float, default=2.0)
+    r.add_argument("--out", required=True)
+    k = sub.add_parser("hold", help="keep a full-rate Observe and a Control stream open until killed")
+    k.add_argument("--session", required=True)
+    k.add_argument("--token", required=True, help="the controller token")
+    args = p.parse_args(argv)
+
+    load_stubs(args.stubs)
+    with NeedlesimClient(args.address, root_cert=args.root_cert) as client:
+        if args.command == "demo":
+            return demo(client)
+        if args.command == "health":
+            print(client.health(args.service))
+            return 0
+        if args.command == "services":
+            for name in client.list_services():
+                print(name)
+            return 0
+        if args.command == "record":
+            return record(client, args.seconds, args.out)
+        if args.command == "hold":
+            return hold(client, args.session, args.token)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,719 @@
+//! Session recordings: the frames of a session written to an MCAP file (protobuf messages with
+//! their schema), readable by Foxglove and by the `mcap` libraries, and the listing and opening
+//! of the recordings of a directory.
+//!
+//! A [`Recorder`] owns a dedicated writer thread. The I/O thread hands frames over with
+//! [`Recorder::write_from_io`], which encodes the frame and queues it without blocking (a full
+//! queue drops the frame and counts it). The writer thread writes them into small chunks
+//! (about [`CHUNK_BYTES`] of messages each) and hands every finished chunk to the OS at once, so
+//! that a killed server leaves a file that the streaming readers can read up to its last chunk.
+//! [`Recorder::finish`] (or dropping the recorder) drains the queue and writes the summary and
+//! footer.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, BufWriter, Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, SyncSender, TrySendError};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+use needlesim_proto::v1::Frame;
+use prost::Message as _;
+
+/// The topic of the frames in a recording.
+pub const FRAME_TOPIC: &str = "/needlesim/frames";
+/// The schema name of the frames: the full name of the protobuf message.
+pub const FRAME_SCHEMA_NAME: &str = "needlesim.v1.Frame";
+/// The schema and message encoding of the frames.
+pub const PROTOBUF_ENCODING: &str = "protobuf";
+/// The file name extension of recordings.
+pub const EXTENSION: &str = "mcap";
+/// The writer closes a chunk, and hands it to the OS, once it holds this many bytes of messages.
+pub const CHUNK_BYTES: usize = 64 * 1024;
+/// The writer also closes a non-empty chunk after this long, so that a slow stream is on disk.
+pub const FLUSH_INTERVAL: Duration = Duration::from_secs(1);
+/// Frames that can wait for the writer thread before [`Recorder::write_from_io`] drops them.
+pub const QUEUE_FRAMES: usize = 4096;
+
+/// Why a recording could not be started, written, finished or opened.
+#[derive(Debug)]
+pub enum RecordingError {
+    /// [`Recorder::start`]: the recording directory could not be created.
+    CreateDir { dir: PathBuf, source: io::Error },
+    /// [`Recorder::start`]: the recording file could not be created (including: every candidate
+    /// name already exists).
+    CreateFile { path: PathBuf, source: io::Error },
+    /// [`Recorder::start`]: the session id is empty or holds characters other than ASCII letters,
+    /// digits, `-`, `_` and `.` (it becomes part of a file name).
+    InvalidSessionId { session_id: String },
+    /// [`Recorder::start`]: the writer thread could not be spawned.
+    SpawnThread(io::Error),
+    /// [`Recorder::start`] (header, schema, channel), the writer thread (a chunk) or
+    /// [`Recorder::finish`] (the summary and footer): the MCAP writer failed, usually an I/O
+    /// error such as a full disk. After a failed write the recording stops and later frames count
+    /// as dropped; `finish` reports the first error.
+    Mcap(mcap::McapError),
+    /// [`Recorder::finish`]: the writer thread panicked.
+    WriterPanicked,
+    /// [`open_recording`]: the name is not the plain file name of a recording (it holds a path
+    /// separator or `..`, or does not end in `.mcap`).
+    InvalidName { name: String, reason: &'static str },
+    /// [`open_recording`]: there is no recording of that name.
+    NotFound { name: String },
+    /// [`open_recording`]: the recording exists but could not be opened.
+    Open { name: String, source: io::Error },
+}
+
+impl fmt::Display for RecordingError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::CreateDir { dir, source } => write!(f, "cannot create the recording directory {}: {source}", dir.display()),
+            Self::CreateFile { path, source } => write!(f, "cannot create the recording {}: {source}", path.display()),
+            Self::InvalidSessionId { session_id } => {
+                write!(f, "invalid session id {session_id:?} for a recording: use ASCII letters, digits, '-', '_' and '.'")
+            }
+            Self::SpawnThread(e) => write!(f, "cannot spawn the recording writer thread: {e}"),
+            Self::Mcap(e) => write!(f, "cannot write the recording: {e}"),
+            Self::WriterPanicked => write!(f, "the recording writer thread panicked"),
+            Self::InvalidName { name, reason } => write!(f, "invalid recording name {name:?}: {reason}"),
+            Self::NotFound { name } => write!(f, "no recording named {name:?}"),
+            Self::Open { name, source } => write!(f, "cannot open the recording {name:?}: {source}"),
+        }
+    }
+}
+
+impl std::error::Error for RecordingError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::CreateDir { source, .. } | Self::CreateFile { source, .. } | Self::Open { source, .. } => Some(source),
+            Self::SpawnThread(e) => Some(e),
+            Self::Mcap(e) => Some(e),
+            Self::InvalidSessionId { .. } | Self::WriterPanicked | Self::InvalidName { .. } | Self::NotFound { .. } => None,
+        }
+    }
+}
+
+impl From<mcap::McapError> for RecordingError {
+    fn from(e: mcap::McapError) -> Self {
+        Self::Mcap(e)
+    }
+}
+
+/// A recording, live or on disk.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RecordingInfo {
+    /// The file name, `<session_id>-<UTC time>[-<n>].mcap`.
+    pub name: String,
+    /// The session id given to [`Recorder::start`].
+    pub session_id: String,
+    /// Bytes handed to the OS so far (live), or the file size (on disk).
+    pub size_bytes: u64,
+    /// Frames written by the writer thread (live; 0 when listed from disk).
+    pub messages: u64,
+    /// Frames dropped because the queue was full or the writer had failed (live; 0 from disk).
+    pub dropped: u64,
+    /// Whether the file is complete: it ends with the MCAP magic (summary and footer written).
+    pub finished: bool,
+}
+
+/// Counters shared by the recorder and its writer thread.
+#[derive(Default)]
+struct Counters {
+    /// Frames written into the MCAP writer.
+    messages: AtomicU64,
+    /// Frames in closed chunks handed to the OS.
+    flushed_messages: AtomicU64,
+    dropped: AtomicU64,
+    /// Bytes handed to the OS.
+    size_bytes: AtomicU64,
+    finished: AtomicBool,
+}
+
+/// A frame on its way to the writer thread, encoded by the caller.
+struct Queued {
+    tick: u64,
+    time_s: f64,
+    data: Vec<u8>,
+}
+
+/// Records the frames of one session into an MCAP file on a writer thread.
+pub struct Recorder {
+    name: String,
+    session_id: String,
+    path: PathBuf,
+    tx: Option<SyncSender<Queued>>,
+    thread: Option<JoinHandle<Result<(), RecordingError>>>,
+    counters: Arc<Counters>,
+}
+
+impl Recorder {
+    /// Creates `dir` if needed and a new recording `<session_id>-<UTC time>[-<n>].mcap` in it
+    /// (never overwriting a file), writes the MCAP header, the schema and the channel, and starts
+    /// the writer thread.
+    pub fn start(dir: &Path, session_id: &str) -> Result<Recorder, RecordingError> {
+        if session_id.is_empty() || !session_id.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.')) {
+            return Err(RecordingError::InvalidSessionId { session_id: session_id.to_owned() });
+        }
+        fs::create_dir_all(dir).map_err(|source| RecordingError::CreateDir { dir: dir.to_owned(), source })?;
+        let now = SystemTime::now().duration_since(UNIX_EPOCH).unwrap_or_default();
+        let stamp = utc_stamp(now.as_secs());
+        let (name, path, file) = create_unique(dir, &format!("{session_id}-{stamp}"))?;
+        let start_ns = u64::try_from(now.as_nanos()).unwrap_or(u64::MAX);
+
+        let options = mcap::WriteOptions::new()
+            .library(concat!("needlesim-server ", env!("CARGO_PKG_VERSION")))
+            .profile("")
+            // Chunks are closed by the writer thread (see CHUNK_BYTES), and buffered whole in
+            // memory, so that the file only ever receives complete chunks.
+            .chunk_size(None)
+            .disable_seeking(true);
+        let counters = Arc::new(Counters::default());
+        let sink = Sink { file: BufWriter::new(file), position: 0, counters: Arc::clone(&counters) };
+        let mut writer = options.create(sink)?;
+        let schema_id = writer.add_schema(FRAME_SCHEMA_NAME, PROTOBUF_ENCODING, needlesim_proto::FILE_DESCRIPTOR_SET)?;
+        let channel_id = writer.add_channel(schema_id, FRAME_TOPIC, PROTOBUF_ENCODING, &BTreeMap::new())?;
+        let metadata = BTreeMap::from([
+            ("session_id".to_owned(), session_id.to_owned()),
+            ("start_utc".to_owned(), stamp),
+            ("server_version".to_owned(), env!("CARGO_PKG_VERSION").to_owned()),
+        ]);
+        writer.write_metadata(&mcap::records::Metadata { name: "needlesim".to_owned(), metadata })?;
+        writer.flush()?;
+
+        let (tx, rx) = mpsc::sync_channel(QUEUE_FRAMES);
+        let thread_counters = Arc::clone(&counters);
+        let thread = std::thread::Builder::new()
+            .name(format!("recorder-{session_id}"))
+            .spawn(move || {
+                let w = WriterThread {
+                    writer,
+                    channel_id,
+                    start_ns,
+                    offset_ns: None,
+                    counters: thread_counters,
+                    pending_bytes: 0,
+                    pending_messages: 0,
+                };
+                w.run(rx)
+            })
+            .map_err(RecordingError::SpawnThread)?;
+        tracing::info!(recording = %path.display(), session_id, "recording started");
+        Ok(Recorder { name, session_id: session_id.to_owned(), path, tx: Some(tx), thread: Some(thread), counters })
+    }
+
+    /// Encodes `frame` and queues it for the writer thread, without blocking and without file
+    /// I/O. Returns false, and counts the frame as dropped, when the queue is full or the writer
+    /// has stopped.
+    pub fn write_from_io(&self, frame: &Frame) -> bool {
+        let Some(tx) = &self.tx else { return false };
+        let queued = Queued { tick: frame.tick, time_s: frame.time_s, data: frame.encode_to_vec() };
+        match tx.try_send(queued) {
+            Ok(()) => true,
+            Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) => {
+                let dropped = self.counters.dropped.fetch_add(1, Ordering::Relaxed) + 1;
+                if dropped.is_power_of_two() {
+                    tracing::warn!(recording = %self.name, dropped, "recording queue full or writer stopped: frames dropped");
+                }
+                false
+            }
+        }
+    }
+
+    /// The recording so far (counts are live).
+    pub fn info(&self) -> RecordingInfo {
+        RecordingInfo {
+            name: self.name.clone(),
+            session_id: self.session_id.clone(),
+            size_bytes: self.counters.size_bytes.load(Ordering::Relaxed),
+            messages: self.counters.messages.load(Ordering::Relaxed),
+            dropped: self.counters.dropped.load(Ordering::Relaxed),
+            finished: self.counters.finished.load(Ordering::Relaxed),
+        }
+    }
+
+    /// The path of the recording file.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Writes the queued frames, the summary and the footer, and joins the writer thread. This
+    /// waits for file I/O (at most [`QUEUE_FRAMES`] frames and the summary): from async code, call
+    /// it (or drop the recorder) in `spawn_blocking`.
+    pub fn finish(mut self) -> Result<RecordingInfo, RecordingError> {
+        self.finish_inner()?;
+        Ok(self.info())
+    }
+
+    fn finish_inner(&mut self) -> Result<(), RecordingError> {
+        // Closing the queue makes the writer thread drain it and finish the file.
+        drop(self.tx.take());
+        let Some(thread) = self.thread.take() else { return Ok(()) };
+        let result = thread.join().unwrap_or(Err(RecordingError::WriterPanicked));
+        match &result {
+            Ok(()) => {
+                let info = self.info();
+                tracing::info!(recording = %self.path.display(), messages = info.messages, dropped = info.dropped, size_bytes = info.size_bytes, "recording finished");
+            }
+            Err(e) => tracing::error!(recording = %self.path.display(), error = %e, "recording failed"),
+        }
+        result
+    }
+
+    /// Frames in chunks handed to the OS (what survives a killed server).
+    #[cfg(test)]
+    fn flushed_messages(&self) -> u64 {
+        self.counters.flushed_messages.load(Ordering::Relaxed)
+    }
+}
+
+impl Drop for Recorder {
+    /// Finishes the recording, best effort (errors are logged).
+    fn drop(&mut self) {
+        let _ = self.finish_inner();
+    }
+}
+
+type McapWriter = mcap::Writer<Sink>;
+
+/// The writer thread: owns the MCAP writer.
+struct WriterThread {
+    writer: McapWriter,
+    channel_id: u16,
+    /// Wall-clock time of the start of the recording, ns since the Unix epoch.
+    start_ns: u64,
+    /// Added to the simulated time (ns) of a frame to give its log time; fixed by the first frame
+    /// so that it is logged at `start_ns`.
+    offset_ns: Option<i128>,
+    counters: Arc<Counters>,
+    /// Message bytes and messages in the open chunk.
+    pending_bytes: usize,
+    pending_messages: u64,
+}
+
+impl WriterThread {
+    fn run(mut self, rx: Receiver<Queued>) -> Result<(), RecordingError> {
+        let mut last_flush = Instant::now();
+        loop {
+            let timeout = FLUSH_INTERVAL.saturating_sub(last_flush.elapsed());
+            match rx.recv_timeout(timeout) {
+                Ok(queued) => {
+                    if let Err(e) = self.write(&queued) {
+                        self.counters.dropped.fetch_add(1, Ordering::Relaxed);
+                        return Err(self.fail(e, rx));
+                    }
+                    if self.pending_bytes >= CHUNK_BYTES {
+                        if let Err(e) = self.flush() {
+                            return Err(self.fail(e, rx));
+                        }
+                        last_flush = Instant::now();
+                    }
+                }
+                Err(RecvTimeoutError::Timeout) => {
+                    if self.pending_messages > 0
+                        && let Err(e) = self.flush()
+                    {
+                        return Err(self.fail(e, rx));
+                    }
+                    last_flush = Instant::now();
+                }
+                Err(RecvTimeoutError::Disconnected) => break,
+            }
+        }
+        self.writer.finish()?;
+        // `finish` leaves the summary and footer in the buffer.
+        self.writer.into_inner().flush().map_err(mcap::McapError::from)?;
+        self.counters.flushed_messages.fetch_add(self.pending_messages, Ordering::Relaxed);
+        self.counters.finished.store(true, Ordering::Relaxed);
+        Ok(())
+    }
+
+    fn write(&mut self, queued: &Queued) -> Result<(), mcap::McapError> {
+        let sim_ns = (queued.time_s * 1e9).round();
+        let sim_ns = if sim_ns.is_finite() { sim_ns as i128 } else { 0 };
+        let offset = *self.offset_ns.get_or_insert(i128::from(self.start_ns) - sim_ns);
+        let time = u64::try_from((sim_ns + offset).max(0)).unwrap_or(u64::MAX);
+        // MCAP sequences are 32 bits: the tick wraps after 2^32 frames.
+        let header =
+            mcap::records::MessageHeader { channel_id: self.channel_id, sequence: queued.tick as u32, log_time: time, publish_time: time };
+        self.writer.write_to_known_channel(&header, &queued.data)?;
+        self.counters.messages.fetch_add(1, Ordering::Relaxed);
+        self.pending_bytes += queued.data.len();
+        self.pending_messages += 1;
+        Ok(())
+    }
+
+    /// Closes the open chunk and hands it to the OS.
+    fn flush(&mut self) -> Result<(), mcap::McapError> {
+        self.writer.flush()?;
+        self.counters.flushed_messages.fetch_add(self.pending_messages, Ordering::Relaxed);
+        self.pending_bytes = 0;
+        self.pending_messages = 0;
+        Ok(())
+    }
+
+    /// After a failed write: counts every later frame as dropped until the queue closes.
+    fn fail(&mut self, e: mcap::McapError, rx: Receiver<Queued>) -> RecordingError {
+        tracing::error!(error = %e, "recording write failed: dropping the remaining frames");
+        for _ in rx.iter() {
+            self.counters.dropped.fetch_add(1, Ordering::Relaxed);
+        }
+        RecordingError::Mcap(e)
+    }
+}
+
+/// The file under the MCAP writer: buffered, counting the bytes handed to the OS. It does not
+/// seek (the writer is told not to), but reports its position.
+struct Sink {
+    file: BufWriter<File>,
+    position: u64,
+    counters: Arc<Counters>,
+}
+
+impl Write for Sink {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let n = self.file.write(buf)?;
+        self.position += n as u64;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.file.flush()?;
+        self.counters.size_bytes.store(self.position, Ordering::Relaxed);
+        Ok(())
+    }
+}
+
+impl Seek for Sink {
+    fn seek(&mut self, pos: SeekFrom) -> io::Result<u64> {
+        match pos {
+            SeekFrom::Current(0) => Ok(self.position),
+            _ => Err(io::Error::new(io::ErrorKind::Unsupported, "a recording is written without seeking")),
+        }
+    }
+}
+
+/// Creates `<stem>.mcap` in `dir`, or `<stem>-1.mcap`, `<stem>-2.mcap`, ... if it exists.
+fn create_unique(dir: &Path, stem: &str) -> Result<(String, PathBuf, File), RecordingError> {
+    let mut last_error = None;
+    for n in 0..1000 {
+        let name = if n == 0 { format!("{stem}.{EXTENSION}") } else { format!("{stem}-{n}.{EXTENSION}") };
+        let path = dir.join(&name);
+        match OpenOptions::new().write(true).create_new(true).open(&path) {
+            Ok(file) => return Ok((name, path, file)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => last_error = Some((path, e)),
+            Err(source) => return Err(RecordingError::CreateFile { path, source }),
+        }
+    }
+    let (path, source) = last_error.expect("the loop ran");
+    Err(RecordingError::CreateFile { path, source })
+}
+
+/// `YYYYMMDDTHHMMSSZ` for seconds since the Unix epoch (UTC).
+fn utc_stamp(secs: u64) -> String {
+    let days = (secs / 86_400) as i64;
+    let rem = secs % 86_400;
+    // Civil date from days since 1970-01-01 (H. Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!("{year:04}{month:02}{day:02}T{:02}{:02}{:02}Z", rem / 3600, rem / 60 % 60, rem % 60)
+}
+
+/// The session id in a recording name `<session_id>-<YYYYMMDDTHHMMSSZ>[-<n>].mcap`, or the
+/// stem when the name is not of that form.
+fn session_id_of(name: &str) -> String {
+    let stem = name.strip_suffix(".mcap").unwrap_or(name);
+    let is_stamp = |s: &str| s.len() == 16 && s.as_bytes()[8] == b'T' && s.ends_with('Z');
+    let mut parts: Vec<&str> = stem.rsplitn(3, '-').collect();
+    // parts: [last, second to last, rest] in reverse order.
+    if parts.len() == 3 && parts[0].bytes().all(|b| b.is_ascii_digit()) && is_stamp(parts[1]) {
+        return parts[2].to_owned();
+    }
+    parts = stem.rsplitn(2, '-').collect();
+    if parts.len() == 2 && is_stamp(parts[0]) {
+        return parts[1].to_owned();
+    }
+    stem.to_owned()
+}
+
+/// Whether the file ends with the MCAP magic, i.e. was finished.
+fn ends_with_magic(path: &Path) -> bool {
+    let read_tail = || -> io::Result<bool> {
+        let mut file = File::open(path)?;
+        let len = file.metadata()?.len();
+        let magic_len = mcap::MAGIC.len() as u64;
+        if len < 2 * magic_len {
+            return Ok(false);
+        }
+        file.seek(SeekFrom::Start(len - magic_len))?;
+        let mut tail = [0u8; 8];
+        file.read_exact(&mut tail)?;
+        Ok(tail[..] == *mcap::MAGIC)
+    };
+    read_tail().unwrap_or(false)
+}
+
+/// The recordings (`*.mcap`) in `dir`, by name; empty when `dir` does not exist. Only
+/// `name`, `session_id`, `size_bytes` and `finished` are known from the file.
+pub fn list_recordings(dir: &Path) -> Vec<RecordingInfo> {
+    let Ok(entries) = fs::read_dir(dir) else { return Vec::new() };
+    let mut list: Vec<RecordingInfo> = entries
+        .filter_map(Result::ok)
+        .filter_map(|entry| {
+            let name = entry.file_name().into_string().ok()?;
+            let meta = entry.metadata().ok()?;
+            if !meta.is_file() || !name.ends_with(".mcap") {
+                return None;
+            }
+            Some(RecordingInfo {
+                session_id: session_id_of(&name),
+                size_bytes: meta.len(),
+                messages: 0,
+                dropped: 0,
+                finished: ends_with_magic(&entry.path()),
+                name,
+            })
+        })
+        .collect();
+    list.sort_by(|a, b| a.name.cmp(&b.name));
+    list
+}
+
+/// Opens the recording `name` in `dir` for reading. `name` must be a plain file name ending in
+/// `.mcap`.
+pub fn open_recording(dir: &Path, name: &str) -> Result<File, RecordingError> {
+    let invalid = |reason| Err(RecordingError::InvalidName { name: name.to_owned(), reason });
+    if name.contains('/') || name.contains('\\') || name.contains(std::path::MAIN_SEPARATOR) {
+        return invalid("it holds a path separator");
+    }
+    if name.contains("..") {
+        return invalid("it holds '..'");
+    }
+    if name.contains('\0') {
+        return invalid("it holds a NUL character");
+    }
+    if !name.ends_with(".mcap") || name.len() <= ".mcap".len() {
+        return invalid("it does not end in .mcap");
+    }
+    let path = dir.join(name);
+    match File::open(&path) {
+        Ok(file) if file.metadata().map(|m| m.is_file()).unwrap_or(false) => Ok(file),
+        Ok(_) => Err(RecordingError::NotFound { name: name.to_owned() }),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Err(RecordingError::NotFound { name: name.to_owned() }),
+        Err(source) => Err(RecordingError::Open { name: name.to_owned(), source }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use needlesim_proto::v1::{NeedleNode, NodeState, Pose2, TargetState, Vec2};
+
+    fn frame(tick: u64) -> Frame {
+        let t = tick as f64 * 1e-3;
+        let v = |x: f64, y: f64| Some(Vec2 { x, y });
+        Frame {
+            tick,
+            time_s: t,
+            base: Some(Pose2 { x_m: 0.01 * t, y_m: -0.002 * t.sin(), theta_rad: 0.05 * t.cos() }),
+            force_n: v(0.3 * t, -0.1 * t),
+            torque_nm: 1e-3 * t,
+            force_axial_n: 0.31 * t,
+            force_lateral_n: -0.05 * t,
+            tip_m: v(0.02 + 0.01 * t, 0.001),
+            inserted_length_m: 0.01 * t,
+            needle_nodes: (0..6)
+                .map(|i| NeedleNode {
+                    node: 40 + i,
+                    state: if i == 5 { NodeState::Tip } else { NodeState::Stuck } as i32,
+                    position_m: v(0.02 + 0.001 * f64::from(i), 1e-4 * f64::from(i)),
+                    force_n: v(0.01 * f64::from(i) * t, -0.002),
+                })
+                .collect(),
+            targets: vec![TargetState { name: "lesion".into(), position_m: v(0.05, 0.0), distance_m: 0.05 - 0.01 * t, hit: false }],
+            node_displacement_m: (0..16).map(|i| 1e-5 * f64::from(i) * t).collect(),
+            missed_ticks: 0,
+            compute_us: 120.0 + (tick % 7) as f64,
+        }
+    }
+
+    fn temp_dir(test: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("needlesim-recording-{test}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        dir
+    }
+
+    /// Copies `path` to `$NEEDLESIM_KEEP_TMP/<as_name>` when that variable is set (for
+    /// tests/mcap_check.py).
+    fn keep(path: &Path, as_name: &str) {
+        if let Some(keep) = std::env::var_os("NEEDLESIM_KEEP_TMP") {
+            let keep = PathBuf::from(keep);
+            fs::create_dir_all(&keep).unwrap();
+            fs::copy(path, keep.join(as_name)).unwrap();
+        }
+    }
+
+    /// Writes frames, waiting for the queue rather than dropping them.
+    fn write_all(recorder: &Recorder, frames: &[Frame]) {
+        for f in frames {
+            while !recorder.write_from_io(f) {
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        }
+    }
+
+    /// Decodes the messages of an MCAP file up to its end or its first error (a truncated end);
+    /// returns them and whether an error ended them.
+    fn read_frames(bytes: &[u8], ignore_end_magic: bool) -> (Vec<(mcap::Message<'static>, Frame)>, bool) {
+        let mut out = Vec::new();
+        let stream = if ignore_end_magic {
+            mcap::read::MessageStream::new_with_options(bytes, mcap::read::Options::IgnoreEndMagic.into())
+        } else {
+            mcap::read::MessageStream::new(bytes)
+        };
+        for m in stream.unwrap() {
+            match m {
+                Ok(m) => {
+                    let f = Frame::decode(&m.data[..]).unwrap();
+                    out.push((m, f));
+                }
+                Err(_) => return (out, true),
+            }
+        }
+        (out, false)
+    }
+
+    #[test]
+    fn records_and_reads_back_frames() {
+        let dir = temp_dir("roundtrip");
+        let frames: Vec<Frame> = (0..2000).map(|t| frame(1000 + t)).collect();
+        let recorder = Recorder::start(&dir, "s-42").unwrap();
+        let name = recorder.info().name;
+        assert!(name.starts_with("s-42-") && name.ends_with(".mcap"), "{name}");
+        write_all(&recorder, &frames);
+        let info = recorder.finish().unwrap();
+        assert_eq!((info.messages, info.dropped, info.finished), (2000, 0, true));
+        assert_eq!(info.session_id, "s-42");
+        let path = dir.join(&info.name);
+        assert_eq!(info.size_bytes, fs::metadata(&path).unwrap().len());
+        keep(&path, "roundtrip.mcap");
+
+        let bytes = fs::read(&path).unwrap();
+        let (read, error) = read_frames(&bytes, false);
+        assert!(!error);
+        assert_eq!(read.len(), frames.len());
+        let start = read[0].0.log_time;
+        for ((m, f), original) in read.iter().zip(&frames) {
+            assert_eq!(f, original);
+            assert_eq!(m.sequence, original.tick as u32);
+            assert_eq!(m.log_time, m.publish_time);
+            assert_eq!(m.log_time - start, (original.time_s * 1e9).round() as u64 - 1_000_000_000);
+            assert_eq!(m.channel.topic, FRAME_TOPIC);
+            assert_eq!(m.channel.message_encoding, PROTOBUF_ENCODING);
+            let schema = m.channel.schema.as_ref().unwrap();
+            assert_eq!((schema.name.as_str(), schema.encoding.as_str()), (FRAME_SCHEMA_NAME, PROTOBUF_ENCODING));
+            assert_eq!(&schema.data[..], needlesim_proto::FILE_DESCRIPTOR_SET);
+        }
+        // The summary is there and indexes several small chunks.
+        let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
+        assert_eq!(summary.stats.as_ref().unwrap().message_count, 2000);
+        assert!(summary.chunk_indexes.len() >= 4, "{} chunks", summary.chunk_indexes.len());
+        assert!(summary.chunk_indexes.iter().all(|c| c.uncompressed_size < 2 * CHUNK_BYTES as u64));
+
+        // A second recording of the same session gets its own file; both are listed.
+        let second = Recorder::start(&dir, "s-42").unwrap();
+        assert_ne!(second.info().name, info.name);
+        let listed = list_recordings(&dir);
+        assert_eq!(listed.len(), 2);
+        let first = listed.iter().find(|r| r.name == info.name).unwrap();
+        assert_eq!((first.session_id.as_str(), first.size_bytes, first.finished), ("s-42", info.size_bytes, true));
+        let live = listed.iter().find(|r| r.name != info.name).unwrap();
+        assert_eq!((live.session_id.as_str(), live.finished), ("s-42", false));
+        drop(second); // finishes on drop
+        assert!(list_recordings(&dir).iter().all(|r| r.finished));
+        open_recording(&dir, &info.name).unwrap();
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn flushed_chunks_survive_a_crash() {
+        let dir = temp_dir("crash");
+        let frames: Vec<Frame> = (0..3000).map(frame).collect();
+        let recorder = Recorder::start(&dir, "crash").unwrap();
+        write_all(&recorder, &frames);
+        // Wait until the writer has handed most frames to the OS in closed chunks, then take the
+        // file as a killed server would leave it: no last chunk, no summary, no footer.
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while recorder.flushed_messages() < 2500 {
+            assert!(Instant::now() < deadline, "only {} frames flushed", recorder.flushed_messages());
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        let flushed = recorder.flushed_messages();
+        let bytes = fs::read(recorder.path()).unwrap();
+        assert!(!bytes.ends_with(mcap::MAGIC));
+        let copy = dir.join("crash-copy.mcap");
+        fs::write(&copy, &bytes).unwrap();
+        keep(&copy, "truncated.mcap");
+        assert!(list_recordings(&dir).iter().any(|r| r.name == "crash-copy.mcap" && !r.finished));
+
+        // The streaming reader reads every flushed chunk, then reports the truncated end.
+        for ignore_end_magic in [false, true] {
+            let (read, error) = read_frames(&bytes, ignore_end_magic);
+            // Without IgnoreEndMagic the missing end is an error after the last message.
+            assert!(error || ignore_end_magic);
+            assert!(read.len() as u64 >= flushed, "{} of {flushed} flushed frames read", read.len());
+            assert!(read.len() >= 2500);
+            for ((_, f), original) in read.iter().zip(&frames) {
+                assert_eq!(f, original);
+            }
+        }
+        // Cutting the file anywhere (a kill in the middle of a write) loses at most the last chunk.
+        let (whole, _) = read_frames(&bytes, false);
+        for cut in [bytes.len() - 1, bytes.len() - 1000, bytes.len() * 3 / 4] {
+            let (read, error) = read_frames(&bytes[..cut], false);
+            assert!(error);
+            assert!(read.len() + 400 >= whole.len() * cut / bytes.len(), "{} frames from {cut} bytes", read.len());
+            assert!(read.iter().zip(&frames).all(|((_, f), o)| f == o));
+        }
+        let info = recorder.finish().unwrap();
+        assert_eq!(info.messages, 3000);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn open_recording_rejects_bad_names() {
+        let dir = temp_dir("names");
+        fs::create_dir_all(&dir).unwrap();
+        for name in ["../x.mcap", "a/b.mcap", "x.txt", "a\\b.mcap", "..mcap", ".mcap", ""] {
+            match open_recording(&dir, name) {
+                Err(e @ RecordingError::InvalidName { .. }) => assert!(e.to_string().contains(&format!("{name:?}")), "{e}"),
+                other => panic!("{name:?}: {other:?}"),
+            }
+        }
+        let e = open_recording(&dir, "missing.mcap").unwrap_err();
+        assert!(matches!(e, RecordingError::NotFound { .. }), "{e:?}");
+        assert!(e.to_string().contains("missing.mcap"));
+        assert!(matches!(Recorder::start(&dir, "../evil"), Err(RecordingError::InvalidSessionId { .. })));
+        assert!(list_recordings(&dir.join("nowhere")).is_empty());
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn names() {
+        assert_eq!(utc_stamp(0), "19700101T000000Z");
+        assert_eq!(utc_stamp(1_709_210_096), "20240229T123456Z");
+        assert_eq!(session_id_of("s-42-20240229T123456Z.mcap"), "s-42");
+        assert_eq!(session_id_of("s-42-20240229T123456Z-3.mcap"), "s-42");
+        assert_eq!(session_id_of("other.mcap"), "other");
+    }
+}

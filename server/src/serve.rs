@@ -1,0 +1,187 @@
+//! The network server: every gRPC service of `needlesim.v1`, gRPC health checking
+//! (grpc.health.v1), server reflection, gRPC-web (applied to the gRPC routes only), Prometheus
+//! metrics at `/metrics` and the static files of web/, all on one port; TLS when a certificate is
+//! configured.
+
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+
+use anyhow::{Context, Result};
+use needlesim_proto::v1 as pb;
+use tokio_stream::wrappers::TcpListenerStream;
+
+use crate::grpc::{Api, ServerLimits, ServerState};
+
+/// How the server is run.
+#[derive(Debug, Clone)]
+pub struct ServeConfig {
+    pub listen: SocketAddr,
+    pub data_dir: PathBuf,
+    pub web_dir: PathBuf,
+    /// PEM certificate chain and private key; TLS when both are given.
+    pub tls: Option<(PathBuf, PathBuf)>,
+    pub limits: ServerLimits,
+    pub max_message_bytes: usize,
+    /// A session to create at start-up (a shipped example's name), if any.
+    pub default_scene: Option<String>,
+}
+
+/// Prometheus text exposition of every session's counters and percentiles.
+fn metrics_text(state: &ServerState) -> String {
+    use prometheus_client::encoding::EncodeLabelSet;
+    use prometheus_client::metrics::family::Family;
+    use prometheus_client::metrics::gauge::Gauge;
+    #[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
+    struct Labels {
+        session: String,
+    }
+    let mut registry = prometheus_client::registry::Registry::with_prefix("needlesim");
+    let sessions = state.sessions.read().expect("sessions lock");
+    type F64Family<L> = Family<L, Gauge<f64, std::sync::atomic::AtomicU64>>;
+    let mut gauges: Vec<(&str, &str, F64Family<Labels>)> = vec![
+        ("ticks", "Ticks computed", Family::default()),
+        ("tick_compute_p50_seconds", "Median tick compute time", Family::default()),
+        ("tick_compute_p99_seconds", "99th percentile tick compute time", Family::default()),
+        ("tick_lateness_p99_seconds", "99th percentile tick start lateness", Family::default()),
+        ("missed_deadlines", "Ticks that ended after the next deadline", Family::default()),
+        ("dropped_records", "Tick records the real-time thread could not hand over", Family::default()),
+        ("superseded_poses", "Poses replaced before a tick used them", Family::default()),
+        ("observers", "Observers attached", Family::default()),
+        ("column_misses", "Compliance columns computed inside a tick", Family::default()),
+    ];
+    for s in sessions.values() {
+        let st = s.stats();
+        let labels = Labels { session: s.id.clone() };
+        let values = [
+            st.ticks as f64,
+            st.compute_us[0] * 1e-6,
+            st.compute_us[1] * 1e-6,
+            st.lateness_us[1] * 1e-6,
+            st.missed_deadlines as f64,
+            st.dropped_records as f64,
+            st.superseded_poses as f64,
+            s.n_observers.load(Ordering::Relaxed) as f64,
+            st.column_misses as f64,
+        ];
+        for ((_, _, fam), v) in gauges.iter_mut().zip(values) {
+            fam.get_or_create(&labels).set(v);
+        }
+    }
+    let n_sessions: Gauge<f64, std::sync::atomic::AtomicU64> = Gauge::default();
+    n_sessions.set(sessions.len() as f64);
+    registry.register("sessions", "Sessions running", n_sessions);
+    for (name, help, fam) in gauges {
+        registry.register(name, help, fam);
+    }
+    let mut out = String::new();
+    let _ = prometheus_client::encoding::text::encode(&mut out, &registry);
+    out
+}
+
+/// The fallback route: a gRPC request for a service this server does not have gets the gRPC
+/// status UNIMPLEMENTED (not an HTTP error from the static files); anything else is a static file
+/// of the web viewer.
+fn static_or_unimplemented(
+    web_dir: PathBuf,
+) -> impl Fn(axum::extract::Request) -> std::pin::Pin<Box<dyn std::future::Future<Output = axum::response::Response> + Send>> + Clone {
+    use tower::ServiceExt;
+    let files = tower_http::services::ServeDir::new(web_dir);
+    move |req: axum::extract::Request| {
+        let files = files.clone();
+        Box::pin(async move {
+            let is_grpc = req
+                .headers()
+                .get(axum::http::header::CONTENT_TYPE)
+                .and_then(|v| v.to_str().ok())
+                .is_some_and(|ct| ct.starts_with("application/grpc"));
+            if is_grpc {
+                let path = req.uri().path().to_owned();
+                return tonic::Status::unimplemented(format!("no such gRPC method: {path}")).into_http();
+            }
+            match files.oneshot(req).await {
+                Ok(resp) => resp.map(axum::body::Body::new),
+                Err(e) => {
+                    let mut r = axum::response::Response::new(axum::body::Body::from(format!("static files: {e}")));
+                    *r.status_mut() = axum::http::StatusCode::INTERNAL_SERVER_ERROR;
+                    r
+                }
+            }
+        })
+    }
+}
+
+/// Runs the server until `shutdown` resolves. Prints `listening on ADDR` once bound.
+pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Output = ()> + Send + 'static) -> Result<()> {
+    std::fs::create_dir_all(&config.data_dir).with_context(|| format!("cannot create the data directory {}", config.data_dir.display()))?;
+    let state = ServerState::new(config.limits.clone(), config.data_dir.clone());
+    if let Some(name) = &config.default_scene {
+        let scene = crate::scene::load_scene(name, &config.limits.mesh)?;
+        let rate = scene.params.tick_rate_hz;
+        let s = state.create_session(&scene, rate).map_err(|e| anyhow::anyhow!("default session: {}", e.message()))?;
+        tracing::info!(
+            session = %s.id,
+            controller_token = %s.controller_token,
+            observer_token = %s.observer_token,
+            "default session '{}' at {} Hz",
+            s.scene_name,
+            rate
+        );
+    }
+    let api = Api { state: state.clone() };
+    let max = config.max_message_bytes;
+    let (health_reporter, health_service) = tonic_health::server::health_reporter();
+    health_reporter.set_serving::<pb::session_service_server::SessionServiceServer<Api>>().await;
+    health_reporter.set_serving::<pb::control_service_server::ControlServiceServer<Api>>().await;
+    health_reporter.set_serving::<pb::observe_service_server::ObserveServiceServer<Api>>().await;
+    health_reporter.set_serving::<pb::simulation_service_server::SimulationServiceServer<Api>>().await;
+    health_reporter.set_serving::<pb::recording_service_server::RecordingServiceServer<Api>>().await;
+    let reflection_builder = || {
+        tonic_reflection::server::Builder::configure()
+            .register_encoded_file_descriptor_set(needlesim_proto::FILE_DESCRIPTOR_SET)
+            .register_encoded_file_descriptor_set(tonic_health::pb::FILE_DESCRIPTOR_SET)
+    };
+    let reflection = reflection_builder().build_v1().context("reflection service")?;
+    // v1alpha too: grpcio's and older grpcurl's reflection clients speak only v1alpha.
+    let reflection_alpha = reflection_builder().build_v1alpha().context("reflection service (v1alpha)")?;
+    let routes = tonic::service::Routes::builder()
+        .add_service(pb::session_service_server::SessionServiceServer::new(api.clone()).max_decoding_message_size(max))
+        .add_service(pb::control_service_server::ControlServiceServer::new(api.clone()).max_decoding_message_size(max))
+        .add_service(pb::observe_service_server::ObserveServiceServer::new(api.clone()).max_decoding_message_size(max))
+        .add_service(pb::simulation_service_server::SimulationServiceServer::new(api.clone()).max_decoding_message_size(max))
+        .add_service(pb::recording_service_server::RecordingServiceServer::new(api.clone()).max_decoding_message_size(max))
+        .add_service(health_service)
+        .add_service(reflection)
+        .add_service(reflection_alpha)
+        .clone()
+        .routes();
+    // gRPC-web on the gRPC routes only: as a plain layer it would answer 400 to static files.
+    let metrics_state = state.clone();
+    let app = routes
+        .into_axum_router()
+        .route_layer(tonic_web::GrpcWebLayer::new())
+        .route("/metrics", axum::routing::get(move || std::future::ready(metrics_text(&metrics_state))))
+        .fallback(static_or_unimplemented(config.web_dir.clone()));
+    let mut server = tonic::transport::Server::builder().accept_http1(true);
+    if let Some((cert, key)) = &config.tls {
+        let cert = std::fs::read(cert).with_context(|| format!("cannot read the TLS certificate {}", cert.display()))?;
+        let key = std::fs::read(key).with_context(|| format!("cannot read the TLS key {}", key.display()))?;
+        server = server
+            .tls_config(tonic::transport::ServerTlsConfig::new().identity(tonic::transport::Identity::from_pem(cert, key)))
+            .context("TLS configuration")?;
+    }
+    let listener = tokio::net::TcpListener::bind(config.listen).await.with_context(|| format!("cannot listen on {}", config.listen))?;
+    let addr = listener.local_addr()?;
+    tracing::info!(%addr, tls = config.tls.is_some(), data_dir = %config.data_dir.display(), "needlesim-server listening");
+    println!("listening on {addr}");
+    let result =
+        server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(TcpListenerStream::new(listener), shutdown).await;
+    let closing = state.clone();
+    tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
+    result.context("server")?;
+    Ok(())
+}
+
+/// Shared handle for tests and benchmarks that embed the server.
+pub type SharedState = Arc<ServerState>;

@@ -1,0 +1,642 @@
+//! A live session: one simulation stepped by its own real-time thread at a fixed rate, a column
+//! worker that computes compliance columns ahead of the tip, and a fan-out thread that turns tick
+//! records into statistics, observer frames, displacement fields and recordings.
+//!
+//! ```text
+//!  IO (gRPC tasks) ──pose──▶ [latest-value slot] ──▶ RT thread ──▶ [SPSC ring of TickRecord] ──▶ fan-out
+//!                                                     │  ▲                                        │
+//!                                   node requests ▼  │ columns (owned boxes)                    ├─▶ broadcast (every tick)
+//!                                               column worker                                  ├─▶ watch (latest)
+//!                                                                                              ├─▶ histograms, stats
+//!                                                                                              └─▶ recorder, field
+//! ```
+//!
+//! The real-time thread only uses non-blocking operations on bounded queues and latest-value
+//! slots, allocates nothing per tick once warmed up, does no I/O, and counts every message it
+//! drops. Its schedule is drift-free: tick $k$ is due at $t_0 + k\,\Delta t$; a tick that ends after
+//! the next deadline is counted as missed and the schedule skips ahead rather than bursting.
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use needlesim_core::BasePose;
+use needlesim_core::compliance::TissueModel;
+use needlesim_core::sim::{NodeState, SimError, Simulation, StepOutput};
+
+use crate::scene::Scene;
+
+/// Needle nodes carried by one tick record (a simulation may have more; they are counted).
+pub const MAX_RECORD_NODES: usize = 128;
+/// Targets carried by one tick record.
+pub const MAX_RECORD_TARGETS: usize = 8;
+/// Capacity of the ring between the real-time thread and the fan-out, in ticks.
+const RECORD_RING: usize = 2048;
+/// Capacity of the column request and delivery queues.
+const COLUMN_QUEUE: usize = 512;
+
+/// One needle node in a tick record.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct NodeRecord {
+    pub node: u32,
+    /// 0 stuck, 1 slipping, 2 tip.
+    pub state: u8,
+    pub position_m: [f64; 2],
+    pub force_n: [f64; 2],
+}
+
+/// One target in a tick record.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TargetRecord {
+    pub position_m: [f64; 2],
+    pub distance_m: f64,
+    pub hit: bool,
+}
+
+/// Everything one tick produced, as plain data of fixed size (copied into the ring without
+/// allocation).
+#[derive(Debug, Clone, Copy)]
+pub struct TickRecord {
+    pub tick: u64,
+    pub time_s: f64,
+    pub base: BasePose,
+    pub force_n: [f64; 2],
+    pub torque_nm: f64,
+    pub force_axial_n: f64,
+    pub force_lateral_n: f64,
+    pub tip_m: [f64; 2],
+    pub inserted_length_m: f64,
+    pub n_stuck: u32,
+    pub n_slipping: u32,
+    pub n_tip: u32,
+    pub n_nodes: u16,
+    pub nodes: [NodeRecord; MAX_RECORD_NODES],
+    pub n_targets: u8,
+    pub targets: [TargetRecord; MAX_RECORD_TARGETS],
+    /// Time spent computing this tick.
+    pub compute_ns: u64,
+    /// How late the tick started after its deadline.
+    pub lateness_ns: u64,
+    /// The newest pose command this tick used.
+    pub pose_seq: u64,
+    pub client_time_ns: u64,
+}
+
+impl Default for TickRecord {
+    fn default() -> Self {
+        Self {
+            tick: 0,
+            time_s: 0.0,
+            base: BasePose::default(),
+            force_n: [0.0; 2],
+            torque_nm: 0.0,
+            force_axial_n: 0.0,
+            force_lateral_n: 0.0,
+            tip_m: [0.0; 2],
+            inserted_length_m: 0.0,
+            n_stuck: 0,
+            n_slipping: 0,
+            n_tip: 0,
+            n_nodes: 0,
+            nodes: [NodeRecord::default(); MAX_RECORD_NODES],
+            n_targets: 0,
+            targets: [TargetRecord::default(); MAX_RECORD_TARGETS],
+            compute_ns: 0,
+            lateness_ns: 0,
+            pose_seq: 0,
+            client_time_ns: 0,
+        }
+    }
+}
+
+impl TickRecord {
+    fn fill(&mut self, out: &StepOutput) {
+        self.tick = out.tick;
+        self.time_s = out.time_s;
+        self.base = out.base;
+        self.force_n = out.force_n;
+        self.torque_nm = out.torque_nm;
+        self.force_axial_n = out.force_axial_n;
+        self.force_lateral_n = out.force_lateral_n;
+        self.tip_m = out.tip_m;
+        self.inserted_length_m = out.inserted_length_m;
+        self.n_stuck = out.n_stuck as u32;
+        self.n_slipping = out.n_slipping as u32;
+        self.n_tip = out.n_tip as u32;
+        let n = out.needle_nodes.len().min(MAX_RECORD_NODES);
+        self.n_nodes = n as u16;
+        for (r, nn) in self.nodes.iter_mut().zip(&out.needle_nodes[..n]) {
+            *r = NodeRecord {
+                node: nn.node_idx as u32,
+                state: match nn.state {
+                    NodeState::Stuck => 0,
+                    NodeState::Slipping => 1,
+                    NodeState::Tip => 2,
+                },
+                position_m: nn.position_m,
+                force_n: nn.force_n,
+            };
+        }
+        let m = out.targets.len().min(MAX_RECORD_TARGETS);
+        self.n_targets = m as u8;
+        for (r, t) in self.targets.iter_mut().zip(&out.targets[..m]) {
+            *r = TargetRecord { position_m: t.position_m, distance_m: t.distance_m, hit: t.hit };
+        }
+    }
+
+    /// The needle nodes of this record.
+    pub fn nodes(&self) -> &[NodeRecord] {
+        &self.nodes[..self.n_nodes as usize]
+    }
+    /// The targets of this record.
+    pub fn targets(&self) -> &[TargetRecord] {
+        &self.targets[..self.n_targets as usize]
+    }
+}
+
+/// A pose command from a controller.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PoseCommand {
+    pub pose: BasePose,
+    pub seq: u64,
+    pub client_time_ns: u64,
+}
+
+/// Counters shared between the threads of a session (atomics: no locks on the real-time side).
+#[derive(Debug, Default)]
+pub struct SessionCounters {
+    pub ticks: AtomicU64,
+    pub missed_deadlines: AtomicU64,
+    pub dropped_records: AtomicU64,
+    pub dropped_column_requests: AtomicU64,
+    pub superseded_poses: AtomicU64,
+    pub poses_written: AtomicU64,
+    pub rejected_poses: AtomicU64,
+    pub column_misses: AtomicU64,
+    pub clamped_ticks: AtomicU64,
+    pub records_truncated: AtomicU64,
+}
+
+/// Percentile summary of the tick loop, kept by the fan-out thread.
+#[derive(Debug, Clone, Default)]
+pub struct StatsSnapshot {
+    pub ticks: u64,
+    pub compute_us: [f64; 4],
+    pub lateness_us: [f64; 3],
+    pub missed_deadlines: u64,
+    pub superseded_poses: u64,
+    pub dropped_records: u64,
+    pub column_misses: u64,
+    pub rejected_poses: u64,
+    pub clamped_ticks: u64,
+}
+
+struct Histograms {
+    compute_ns: hdrhistogram::Histogram<u64>,
+    lateness_ns: hdrhistogram::Histogram<u64>,
+}
+
+/// A displacement field of every node, computed by the fan-out at frame rate.
+#[derive(Debug, Clone, Default)]
+pub struct Field {
+    pub tick: u64,
+    pub displacement_m: Vec<f64>,
+}
+
+/// The IO side's handle on a running session.
+pub struct Session {
+    pub id: String,
+    pub scene_name: String,
+    pub controller_token: String,
+    pub observer_token: String,
+    pub tissue: Arc<TissueModel>,
+    pub tick_rate_hz: f64,
+    pub target_names: Vec<String>,
+    pub created_unix_ms: u64,
+    pub counters: Arc<SessionCounters>,
+    pose_in: Mutex<triple_buffer::Input<PoseCommand>>,
+    stop: Arc<AtomicBool>,
+    /// Every tick record, for full-rate observers (lagging receivers learn how many they missed).
+    pub all_ticks: tokio::sync::broadcast::Sender<Arc<TickRecord>>,
+    /// The latest tick record, for rendering observers.
+    pub latest: tokio::sync::watch::Receiver<Arc<TickRecord>>,
+    /// The latest displacement field; computed only while `field_subscribers` > 0.
+    pub field: tokio::sync::watch::Receiver<Arc<Field>>,
+    pub field_subscribers: Arc<AtomicU64>,
+    pub n_observers: Arc<AtomicU64>,
+    histograms: Arc<Mutex<Histograms>>,
+    /// Frames to record, when a recording is active (set by the IO side, read by the fan-out).
+    pub recorder: Arc<Mutex<Option<crate::recording::Recorder>>>,
+    threads: Mutex<Vec<JoinHandle<()>>>,
+}
+
+/// Errors starting a session.
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    #[error("invalid tick rate {0} Hz: must be between 100 and 10000")]
+    TickRate(f64),
+    #[error(transparent)]
+    Sim(#[from] SimError),
+    #[error("cannot start a session thread: {0}")]
+    Thread(std::io::Error),
+}
+
+fn random_token() -> String {
+    let mut b = [0u8; 16];
+    getrandom::fill(&mut b).expect("the OS random source works");
+    b.iter().map(|x| format!("{x:02x}")).collect()
+}
+
+impl Session {
+    /// Starts the threads of a session for `scene` at `tick_rate_hz`.
+    pub fn start(scene: &Scene, tick_rate_hz: f64) -> Result<Arc<Self>, SessionError> {
+        if !(tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&tick_rate_hz)) {
+            return Err(SessionError::TickRate(tick_rate_hz));
+        }
+        let mut params = scene.params.clone();
+        params.tick_rate_hz = tick_rate_hz;
+        let mut sim = Simulation::new(scene.tissue.clone(), params)?;
+        sim.reserve_cached_nodes(4 * sim.params().max_needle_nodes + 256);
+        let id = random_token()[..12].to_owned();
+        let counters = Arc::new(SessionCounters::default());
+        let stop = Arc::new(AtomicBool::new(false));
+        let initial = PoseCommand { pose: sim.pose(), seq: 0, client_time_ns: 0 };
+        let (pose_in, pose_out) = triple_buffer::triple_buffer(&initial);
+        let (rec_tx, rec_rx) = rtrb::RingBuffer::<TickRecord>::new(RECORD_RING);
+        let (req_tx, req_rx) = rtrb::RingBuffer::<u32>::new(COLUMN_QUEUE);
+        let (col_tx, col_rx) = rtrb::RingBuffer::<(u32, Box<[f64]>)>::new(COLUMN_QUEUE);
+        let (ret_tx, ret_rx) = rtrb::RingBuffer::<Box<[f64]>>::new(COLUMN_QUEUE);
+        // One second of buffering for every-tick observers; beyond it they are told what they missed.
+        let (all_tx, _) = tokio::sync::broadcast::channel(1024);
+        let (latest_tx, latest_rx) = tokio::sync::watch::channel(Arc::new(TickRecord::default()));
+        let (field_tx, field_rx) = tokio::sync::watch::channel(Arc::new(Field::default()));
+        let histograms = Arc::new(Mutex::new(Histograms {
+            compute_ns: hdrhistogram::Histogram::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds"),
+            lateness_ns: hdrhistogram::Histogram::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds"),
+        }));
+        let render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>> = Arc::default();
+        let field_subscribers = Arc::new(AtomicU64::new(0));
+        let recorder = Arc::new(Mutex::new(None));
+        let mut threads = Vec::new();
+
+        let rt = RtLoop {
+            sim,
+            period: Duration::from_secs_f64(1.0 / tick_rate_hz),
+            pose_out,
+            rec_tx,
+            req_tx,
+            col_rx,
+            ret_tx,
+            requested: vec![false; scene.tissue.mesh().n_nodes()],
+            counters: counters.clone(),
+            stop: stop.clone(),
+            record: Box::new(TickRecord::default()),
+        };
+        threads.push(std::thread::Builder::new().name(format!("rt-{id}")).spawn(move || rt.run()).map_err(SessionError::Thread)?);
+        let worker = ColumnWorker {
+            tissue: scene.tissue.clone(),
+            req_rx,
+            col_tx,
+            ret_rx,
+            render_columns: render_columns.clone(),
+            stop: stop.clone(),
+        };
+        threads.push(std::thread::Builder::new().name(format!("columns-{id}")).spawn(move || worker.run()).map_err(SessionError::Thread)?);
+        let fan = FanOut {
+            rec_rx,
+            all_tx: all_tx.clone(),
+            latest_tx,
+            field_tx,
+            field_subscribers: field_subscribers.clone(),
+            render_columns,
+            n_dofs: scene.tissue.n_dofs(),
+            histograms: histograms.clone(),
+            recorder: recorder.clone(),
+            stop: stop.clone(),
+        };
+        threads.push(std::thread::Builder::new().name(format!("fanout-{id}")).spawn(move || fan.run()).map_err(SessionError::Thread)?);
+        let created_unix_ms = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_millis() as u64);
+        Ok(Arc::new(Self {
+            id,
+            scene_name: scene.name.clone(),
+            controller_token: random_token(),
+            observer_token: random_token(),
+            tissue: scene.tissue.clone(),
+            tick_rate_hz,
+            target_names: scene.target_names.clone(),
+            created_unix_ms,
+            counters,
+            pose_in: Mutex::new(pose_in),
+            stop,
+            all_ticks: all_tx,
+            latest: latest_rx,
+            field: field_rx,
+            field_subscribers,
+            n_observers: Arc::new(AtomicU64::new(0)),
+            histograms,
+            recorder,
+            threads: Mutex::new(threads),
+        }))
+    }
+
+    /// Publishes a pose for the next tick (latest value wins; an unconsumed one is counted as
+    /// superseded). Called from IO tasks.
+    pub fn write_pose_from_io(&self, cmd: PoseCommand) {
+        let mut input = self.pose_in.lock().expect("pose slot lock");
+        if input.consumed() {
+            // the previous pose was read by a tick
+        } else if self.counters.poses_written.load(Ordering::Relaxed) > 0 {
+            self.counters.superseded_poses.fetch_add(1, Ordering::Relaxed);
+        }
+        input.write(cmd);
+        self.counters.poses_written.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// The latest tick record.
+    pub fn latest_record(&self) -> Arc<TickRecord> {
+        self.latest.borrow().clone()
+    }
+
+    /// Percentiles and counters of the tick loop.
+    pub fn stats(&self) -> StatsSnapshot {
+        let h = self.histograms.lock().expect("histogram lock");
+        let q = |hist: &hdrhistogram::Histogram<u64>, p: f64| hist.value_at_quantile(p) as f64 / 1e3;
+        let c = &self.counters;
+        StatsSnapshot {
+            ticks: c.ticks.load(Ordering::Relaxed),
+            compute_us: [q(&h.compute_ns, 0.5), q(&h.compute_ns, 0.99), q(&h.compute_ns, 0.999), h.compute_ns.max() as f64 / 1e3],
+            lateness_us: [q(&h.lateness_ns, 0.5), q(&h.lateness_ns, 0.99), q(&h.lateness_ns, 0.999)],
+            missed_deadlines: c.missed_deadlines.load(Ordering::Relaxed),
+            superseded_poses: c.superseded_poses.load(Ordering::Relaxed),
+            dropped_records: c.dropped_records.load(Ordering::Relaxed),
+            column_misses: c.column_misses.load(Ordering::Relaxed),
+            rejected_poses: c.rejected_poses.load(Ordering::Relaxed),
+            clamped_ticks: c.clamped_ticks.load(Ordering::Relaxed),
+        }
+    }
+
+    /// Resets the histograms (e.g. after warm-up, for a benchmark).
+    pub fn reset_histograms(&self) {
+        let mut h = self.histograms.lock().expect("histogram lock");
+        h.compute_ns.reset();
+        h.lateness_ns.reset();
+    }
+
+    /// Stops the threads and waits for them; the recording, if any, is finished.
+    pub fn close(&self) {
+        self.stop.store(true, Ordering::Relaxed);
+        let threads: Vec<_> = std::mem::take(&mut *self.threads.lock().expect("threads lock"));
+        for t in threads {
+            let _ = t.join();
+        }
+        if let Some(r) = self.recorder.lock().expect("recorder lock").take()
+            && let Err(e) = r.finish()
+        {
+            tracing::warn!(session = %self.id, "finishing the recording failed: {e}");
+        }
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::Relaxed);
+    }
+}
+
+thread_local! {
+    /// True on a session's real-time thread while it computes a tick (after its first ticks),
+    /// so that a counting allocator in a test can prove that ticks allocate nothing.
+    pub static IN_TICK: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Ticks after which the real-time thread counts as warmed up.
+pub const WARM_UP_TICKS: u64 = 200;
+
+/// The real-time loop's state.
+struct RtLoop {
+    sim: Simulation,
+    period: Duration,
+    pose_out: triple_buffer::Output<PoseCommand>,
+    rec_tx: rtrb::Producer<TickRecord>,
+    req_tx: rtrb::Producer<u32>,
+    col_rx: rtrb::Consumer<(u32, Box<[f64]>)>,
+    ret_tx: rtrb::Producer<Box<[f64]>>,
+    requested: Vec<bool>,
+    counters: Arc<SessionCounters>,
+    stop: Arc<AtomicBool>,
+    record: Box<TickRecord>,
+}
+
+impl RtLoop {
+    fn run(mut self) {
+        let start = Instant::now();
+        let mut k: u64 = 0;
+        let mut pose = self.sim.pose();
+        let mut last_seq = 0;
+        let mut last_client_time = 0;
+        while !self.stop.load(Ordering::Relaxed) {
+            let deadline = start + self.period.mul_f64(k as f64);
+            let now = Instant::now();
+            if deadline > now {
+                std::thread::sleep(deadline - now);
+            }
+            let woke = Instant::now();
+            let lateness = woke.saturating_duration_since(deadline);
+            self.tick_from_rt(&mut pose, &mut last_seq, &mut last_client_time, lateness);
+            k += 1;
+            // Behind by more than a period: count the missed deadlines and skip ahead.
+            let next = start + self.period.mul_f64(k as f64);
+            let end = Instant::now();
+            if end > next + self.period {
+                let behind = ((end - start).as_secs_f64() / self.period.as_secs_f64()) as u64;
+                self.counters.missed_deadlines.fetch_add(behind.saturating_sub(k), Ordering::Relaxed);
+                k = behind;
+            } else if end > next {
+                self.counters.missed_deadlines.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+    }
+
+    fn tick_from_rt(&mut self, pose: &mut BasePose, last_seq: &mut u64, last_client_time: &mut u64, lateness: Duration) {
+        let warm = self.counters.ticks.load(Ordering::Relaxed) >= WARM_UP_TICKS;
+        IN_TICK.with(|c| c.set(warm));
+        self.compute_tick_from_rt(pose, last_seq, last_client_time, lateness);
+        IN_TICK.with(|c| c.set(false));
+    }
+
+    fn compute_tick_from_rt(&mut self, pose: &mut BasePose, last_seq: &mut u64, last_client_time: &mut u64, lateness: Duration) {
+        let t0 = Instant::now();
+        // Columns delivered by the worker; the box not kept goes back to be freed there.
+        while let Ok((node, cols)) = self.col_rx.pop() {
+            if let Some(spare) = self.sim.insert_columns_owned(node as usize, cols)
+                && let Err(rtrb::PushError::Full(spare)) = self.ret_tx.push(spare)
+            {
+                drop(spare);
+            }
+        }
+        let cmd = *self.pose_out.read();
+        if cmd.seq != *last_seq {
+            *pose = cmd.pose;
+            *last_seq = cmd.seq;
+            *last_client_time = cmd.client_time_ns;
+        }
+        let misses_before = self.sim.stats().column_misses;
+        match self.sim.step(*pose) {
+            Ok(out) => self.record.fill(out),
+            Err(SimError::NonFinitePose { .. }) => {
+                self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+                *pose = self.sim.pose();
+            }
+            Err(e) => {
+                // A failing model cannot go on pushing: hold the last pose.
+                tracing::error!("session step failed: {e}");
+                *pose = self.sim.pose();
+            }
+        }
+        let st = self.sim.stats();
+        self.counters.column_misses.fetch_add(st.column_misses - misses_before, Ordering::Relaxed);
+        self.counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);
+        if self.sim.output().needle_nodes.len() > MAX_RECORD_NODES {
+            self.counters.records_truncated.fetch_add(1, Ordering::Relaxed);
+        }
+        // Ask the worker for the columns of approaching nodes, and of needle nodes whose columns
+        // a tick computed itself (so that the fan-out can render their share of the field).
+        let out = self.sim.output();
+        let n_app = out.approaching.len();
+        for k in 0..n_app + out.needle_nodes.len() {
+            let out = self.sim.output();
+            let node = if k < n_app { out.approaching[k] } else { out.needle_nodes[k - n_app].node_idx };
+            if !self.requested[node] {
+                if self.req_tx.push(node as u32).is_ok() {
+                    self.requested[node] = true;
+                } else {
+                    self.counters.dropped_column_requests.fetch_add(1, Ordering::Relaxed);
+                    break;
+                }
+            }
+        }
+        self.record.pose_seq = *last_seq;
+        self.record.client_time_ns = *last_client_time;
+        self.record.lateness_ns = lateness.as_nanos() as u64;
+        self.record.compute_ns = t0.elapsed().as_nanos() as u64;
+        if self.rec_tx.push(*self.record).is_err() {
+            self.counters.dropped_records.fetch_add(1, Ordering::Relaxed);
+        }
+        self.counters.ticks.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+/// Computes compliance columns off the real-time thread.
+struct ColumnWorker {
+    tissue: Arc<TissueModel>,
+    req_rx: rtrb::Consumer<u32>,
+    col_tx: rtrb::Producer<(u32, Box<[f64]>)>,
+    ret_rx: rtrb::Consumer<Box<[f64]>>,
+    render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>,
+    stop: Arc<AtomicBool>,
+}
+
+impl ColumnWorker {
+    fn run(mut self) {
+        let mut scratch = self.tissue.column_scratch();
+        let len = 2 * self.tissue.n_dofs();
+        while !self.stop.load(Ordering::Relaxed) {
+            while self.ret_rx.pop().is_ok() {}
+            let Ok(node) = self.req_rx.pop() else {
+                std::thread::sleep(Duration::from_micros(500));
+                continue;
+            };
+            let mut cols = vec![0.0; len].into_boxed_slice();
+            if let Err(e) = self.tissue.compliance_columns_into(node as usize, &mut cols, &mut scratch) {
+                tracing::error!("column of node {node}: {e}");
+                continue;
+            }
+            self.render_columns.lock().expect("render columns lock").insert(node, Arc::from(&cols[..]));
+            let mut item = (node, cols);
+            loop {
+                match self.col_tx.push(item) {
+                    Ok(()) => break,
+                    Err(rtrb::PushError::Full(back)) => {
+                        if self.stop.load(Ordering::Relaxed) {
+                            return;
+                        }
+                        item = back;
+                        std::thread::sleep(Duration::from_micros(200));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Distributes tick records off the real-time thread.
+struct FanOut {
+    rec_rx: rtrb::Consumer<TickRecord>,
+    all_tx: tokio::sync::broadcast::Sender<Arc<TickRecord>>,
+    latest_tx: tokio::sync::watch::Sender<Arc<TickRecord>>,
+    field_tx: tokio::sync::watch::Sender<Arc<Field>>,
+    field_subscribers: Arc<AtomicU64>,
+    render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>,
+    n_dofs: usize,
+    histograms: Arc<Mutex<Histograms>>,
+    recorder: Arc<Mutex<Option<crate::recording::Recorder>>>,
+    stop: Arc<AtomicBool>,
+}
+
+/// How often the fan-out computes the displacement field while someone wants it.
+const FIELD_PERIOD: Duration = Duration::from_millis(8);
+
+impl FanOut {
+    fn run(mut self) {
+        let mut last_field = Instant::now() - FIELD_PERIOD;
+        let mut latest: Option<Arc<TickRecord>> = None;
+        while !self.stop.load(Ordering::Relaxed) {
+            let mut any = false;
+            while let Ok(rec) = self.rec_rx.pop() {
+                any = true;
+                {
+                    let mut h = self.histograms.lock().expect("histogram lock");
+                    let _ = h.compute_ns.record(rec.compute_ns.max(1));
+                    let _ = h.lateness_ns.record(rec.lateness_ns.max(1));
+                }
+                let rec = Arc::new(rec);
+                if let Some(r) = self.recorder.lock().expect("recorder lock").as_ref() {
+                    r.write_from_io(&crate::convert::frame_from_record(&rec, &[], 0));
+                }
+                let _ = self.all_tx.send(rec.clone());
+                latest = Some(rec);
+            }
+            if let Some(rec) = &latest {
+                self.latest_tx.send_replace(rec.clone());
+                if self.field_subscribers.load(Ordering::Relaxed) > 0 && last_field.elapsed() >= FIELD_PERIOD {
+                    last_field = Instant::now();
+                    let field = self.field_for(rec);
+                    self.field_tx.send_replace(Arc::new(field));
+                }
+            }
+            if !any {
+                std::thread::sleep(Duration::from_micros(250));
+            }
+        }
+    }
+
+    /// $u = \sum_w C_{:,w} f_w$ from the columns the worker computed.
+    fn field_for(&self, rec: &TickRecord) -> Field {
+        let mut u = vec![0.0; self.n_dofs];
+        let cols = self.render_columns.lock().expect("render columns lock");
+        for nn in rec.nodes() {
+            if let Some(c) = cols.get(&nn.node) {
+                for comp in 0..2 {
+                    let f = nn.force_n[comp];
+                    if f != 0.0 {
+                        for (o, v) in u.iter_mut().zip(&c[comp * self.n_dofs..(comp + 1) * self.n_dofs]) {
+                            *o += v * f;
+                        }
+                    }
+                }
+            }
+        }
+        Field { tick: rec.tick, displacement_m: u }
+    }
+}

@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""Checks an MCAP recording of needlesim with the Python `mcap` package and prints a JSON summary.
+
+usage: mcap_check.py FILE.mcap [--tolerate-truncation]
+
+Prints {"file", "messages", "topics", "schema_names", "schema_encodings", "message_encodings",
+"first_sequence", "last_sequence", "in_order", "truncated"}.
+
+Without --tolerate-truncation the file is read with `mcap.reader.make_reader` (a seeking reader
+that uses the summary): an unfinished file is an error (exit status 1). With
+--tolerate-truncation it is read front to back with the non-seeking (streaming) reader, which
+reads every complete chunk and stops cleanly at a truncated end ("truncated": true).
+"""
+
+import argparse
+import json
+import sys
+
+from mcap.exceptions import EndOfFile, McapError
+from mcap.reader import NonSeekingReader, make_reader
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("file")
+    parser.add_argument(
+        "--tolerate-truncation",
+        action="store_true",
+        help="read with the streaming reader and stop cleanly at a truncated end",
+    )
+    args = parser.parse_args()
+
+    count = 0
+    topics, schema_names, schema_encodings, message_encodings = set(), set(), set(), set()
+    first_seq = last_seq = None
+    in_order = True
+    truncated = False
+    last_time = None
+
+    def add(schema, channel, message):
+        nonlocal count, first_seq, last_seq, in_order, last_time
+        count += 1
+        topics.add(channel.topic)
+        message_encodings.add(channel.message_encoding)
+        if schema is not None:
+            schema_names.add(schema.name)
+            schema_encodings.add(schema.encoding)
+        if first_seq is None:
+            first_seq = message.sequence
+        elif message.sequence <= last_seq or message.log_time < last_time:
+            in_order = False
+        last_seq = message.sequence
+        last_time = message.log_time
+
+    with open(args.file, "rb") as stream:
+        if args.tolerate_truncation:
+            reader = NonSeekingReader(stream)
+            try:
+                for schema, channel, message in reader.iter_messages(log_time_order=False):
+                    add(schema, channel, message)
+            except (EndOfFile, McapError, EOFError) as e:
+                # A killed writer leaves a partial last record (or no footer): stop there.
+                truncated = True
+                print(f"mcap_check: stopped at a truncated end: {type(e).__name__}: {e}", file=sys.stderr)
+        else:
+            try:
+                reader = make_reader(stream)
+                for schema, channel, message in reader.iter_messages():
+                    add(schema, channel, message)
+            except (EndOfFile, McapError, EOFError) as e:
+                print(f"mcap_check: {args.file}: {type(e).__name__}: {e}", file=sys.stderr)
+                return 1
+
+    print(
+        json.dumps(
+            {
+                "file": args.file,
+                "messages": count,
+                "topics": sorted(topics),
+                "schema_names": sorted(schema_names),
+                "schema_encodings": sorted(schema_encodings),
+                "message_encodings": sorted(message_encodings),
+                "first_sequence": first_seq,
+                "last_sequence": last_seq,
+                "in_order": in_order,
+                "truncated": truncated,
+            }
+        )
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,440 @@
+//! The real-time server end to end, through the real binary and real gRPC clients: a 5 s
+//! insertion at 1 kHz through the control stream while 50 observers watch at 60 Hz and a logger
+//! takes every tick; killed, stalled and slow clients; input validation and tokens.
+
+use std::time::{Duration, Instant};
+
+use needlesim_proto::v1 as pb;
+use needlesim_tests::ServerProcess;
+use tokio_stream::StreamExt;
+use tonic::metadata::MetadataValue;
+use tonic::transport::Channel;
+use tonic::{Code, Request};
+
+const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
+
+/// The tests of this file each run a 1 kHz session; on a 2-core machine they take turns, so that
+/// one test's clients do not eat another's real-time budget.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn turn() -> std::sync::MutexGuard<'static, ()> {
+    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+async fn channel(server: &ServerProcess) -> Channel {
+    Channel::from_shared(server.url()).unwrap().connect().await.expect("connect to the server")
+}
+
+fn with_token<T>(msg: T, token: &str) -> Request<T> {
+    let mut r = Request::new(msg);
+    r.metadata_mut().insert("authorization", MetadataValue::try_from(format!("Bearer {token}")).unwrap());
+    r
+}
+
+async fn create(ch: &Channel, example: &str) -> pb::CreateSessionResponse {
+    let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    c.create_session(pb::CreateSessionRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(example.into())) }),
+        tick_rate_hz: 1000.0,
+        record: false,
+    })
+    .await
+    .expect("create a session")
+    .into_inner()
+}
+
+/// Insertion poses of the paper phantom: tip from 5 mm above the top to 40 mm deep over `secs`.
+fn pose_at(t: f64, secs: f64) -> pb::Pose2 {
+    let y = 0.205 - 0.045 * (t / secs).min(1.0);
+    pb::Pose2 { x_m: 0.05, y_m: y, theta_rad: DOWN }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn insertion_at_1khz_with_50_observers_and_a_full_rate_logger() {
+    let _turn = turn();
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let created = create(&ch, "paper-phantom").await;
+    let sid = created.session.as_ref().unwrap().session_id.clone();
+    let (ctl_tok, obs_tok) = (created.controller_token.clone(), created.observer_token.clone());
+    let secs = 5.0;
+
+    // 50 renderers at 60 Hz.
+    let mut renderers = Vec::new();
+    for _ in 0..50 {
+        let ch = ch.clone();
+        let req = with_token(pb::ObserveRequest { session_id: sid.clone(), rate_hz: 60.0, include_displacements: false }, &obs_tok);
+        renderers.push(tokio::spawn(async move {
+            let mut c = pb::observe_service_client::ObserveServiceClient::new(ch);
+            let mut stream = c.observe(req).await.expect("observe").into_inner();
+            let mut frames = 0u64;
+            let end = Instant::now() + Duration::from_secs_f64(secs + 0.5);
+            while let Ok(Some(Ok(_))) = tokio::time::timeout_at(end.into(), stream.next()).await {
+                frames += 1;
+            }
+            frames
+        }));
+    }
+    // One logger at the full tick rate.
+    let logger = {
+        let ch = ch.clone();
+        let req = with_token(pb::ObserveRequest { session_id: sid.clone(), rate_hz: 0.0, include_displacements: false }, &obs_tok);
+        tokio::spawn(async move {
+            let mut c = pb::observe_service_client::ObserveServiceClient::new(ch);
+            let mut stream = c.observe(req).await.expect("observe").into_inner();
+            let (mut received, mut missed, mut first, mut last) = (0u64, 0u64, None, 0u64);
+            let end = Instant::now() + Duration::from_secs_f64(secs + 0.5);
+            while let Ok(Some(Ok(f))) = tokio::time::timeout_at(end.into(), stream.next()).await {
+                received += 1;
+                missed += f.missed_ticks;
+                first.get_or_insert(f.tick);
+                last = f.tick;
+            }
+            (received, missed, first.unwrap_or(0), last)
+        })
+    };
+    // The controller: a pose every millisecond through the bidirectional stream.
+    let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
+    let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let start = Instant::now();
+    tx.send(pb::ControlRequest { session_id: sid.clone(), base: Some(pose_at(0.0, secs)), client_time_ns: 0, seq: 1 }).await.unwrap();
+    let mut responses =
+        ctl.control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), &ctl_tok)).await.expect("control stream").into_inner();
+    let sender = tokio::spawn(async move {
+        let mut interval = tokio::time::interval(Duration::from_millis(1));
+        let mut seq = 1;
+        loop {
+            interval.tick().await;
+            let t = start.elapsed().as_secs_f64();
+            if t > secs {
+                return seq;
+            }
+            seq += 1;
+            let m = pb::ControlRequest { session_id: String::new(), base: Some(pose_at(t, secs)), client_time_ns: 0, seq };
+            if tx.send(m).await.is_err() {
+                return seq;
+            }
+        }
+    });
+    let mut n_responses = 0u64;
+    let mut last_resp = None;
+    let end = Instant::now() + Duration::from_secs_f64(secs + 0.3);
+    while let Ok(Some(Ok(r))) = tokio::time::timeout_at(end.into(), responses.next()).await {
+        n_responses += 1;
+        last_resp = Some(r);
+    }
+    let sent = sender.await.unwrap();
+    let (received, missed, first, last) = logger.await.unwrap();
+    let frames: Vec<u64> = futures_join(renderers).await;
+    let last_resp = last_resp.expect("responses arrived");
+    let stats = pb::session_service_client::SessionServiceClient::new(ch.clone())
+        .get_stats(with_token(pb::GetSessionRequest { session_id: sid.clone() }, &obs_tok))
+        .await
+        .unwrap()
+        .into_inner();
+    println!(
+        "sent {sent} poses; {n_responses} control responses; logger {received} frames + {missed} missed over ticks {first}..={last}; \
+         renderer frames min {} max {}; stats {stats:?}",
+        frames.iter().min().unwrap(),
+        frames.iter().max().unwrap()
+    );
+    // The needle went in: the tissue resists.
+    assert!(last_resp.inserted_length_m > 0.02, "inserted {} m", last_resp.inserted_length_m);
+    assert!(last_resp.force_axial_n < -0.1, "axial force {} N", last_resp.force_axial_n);
+    assert!(last_resp.pose_seq > sent / 2, "the ticks used recent poses ({} of {sent})", last_resp.pose_seq);
+    // The logger saw every tick of its span, or was told exactly how many it missed.
+    assert_eq!(received + missed, last - first + 1, "every tick is either received or counted as missed");
+    assert!(received > 4000, "the logger kept up with most ticks: {received}");
+    // Every renderer got frames at about its rate.
+    assert!(frames.iter().all(|&f| f >= 150), "each 60 Hz renderer gets frames: {frames:?}");
+    // Missed deadlines within budget: at most 2 % of the ticks on a shared 2-core machine.
+    assert!(stats.ticks > 4500);
+    assert!((stats.missed_deadlines as f64) < 0.02 * stats.ticks as f64, "{} missed of {}", stats.missed_deadlines, stats.ticks);
+    assert_eq!(stats.dropped_records, 0);
+}
+
+async fn futures_join(handles: Vec<tokio::task::JoinHandle<u64>>) -> Vec<u64> {
+    let mut out = Vec::with_capacity(handles.len());
+    for h in handles {
+        out.push(h.await.unwrap());
+    }
+    out
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn stalled_killed_and_slow_clients_do_not_disturb_a_session() {
+    let _turn = turn();
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let created = create(&ch, "paper-phantom").await;
+    let sid = created.session.unwrap().session_id;
+    let obs = created.observer_token;
+    // A stalled full-rate observer: opens the stream and never reads.
+    let mut stalled_client = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+    let _stalled = stalled_client
+        .observe(with_token(pb::ObserveRequest { session_id: sid.clone(), rate_hz: 0.0, include_displacements: true }, &obs))
+        .await
+        .unwrap()
+        .into_inner();
+    // A logger that falls behind: it stalls for 5 s (more than the server buffers for it), then
+    // drains. Every tick of its span is either received or counted in `missed_ticks`.
+    let slow = {
+        let ch = Channel::from_shared(server.url()).unwrap().initial_stream_window_size(16 * 1024).connect().await.unwrap();
+        let req = with_token(pb::ObserveRequest { session_id: sid.clone(), rate_hz: 0.0, include_displacements: false }, &obs);
+        tokio::spawn(async move {
+            let mut s = pb::observe_service_client::ObserveServiceClient::new(ch).observe(req).await.unwrap().into_inner();
+            let first_frame = s.next().await.unwrap().unwrap();
+            tokio::time::sleep(Duration::from_secs(5)).await;
+            let (mut received, mut missed, first, mut last) = (1u64, first_frame.missed_ticks, first_frame.tick, first_frame.tick);
+            let end = Instant::now() + Duration::from_millis(2500);
+            while let Ok(Some(Ok(f))) = tokio::time::timeout_at(end.into(), s.next()).await {
+                received += 1;
+                missed += f.missed_ticks;
+                last = f.tick;
+            }
+            (received, missed, first, last)
+        })
+    };
+    // A client that disappears mid-stream (its connection closed abruptly).
+    {
+        let ch2 = channel(&server).await;
+        let mut c = pb::observe_service_client::ObserveServiceClient::new(ch2.clone());
+        let mut s = c
+            .observe(with_token(pb::ObserveRequest { session_id: sid.clone(), rate_hz: 60.0, include_displacements: false }, &obs))
+            .await
+            .unwrap()
+            .into_inner();
+        let _ = s.next().await;
+        drop(s);
+        drop(c);
+        drop(ch2);
+    }
+    let (received, missed, first, last) = slow.await.unwrap();
+    let stats = pb::session_service_client::SessionServiceClient::new(ch.clone())
+        .get_stats(with_token(pb::GetSessionRequest { session_id: sid.clone() }, &obs))
+        .await
+        .unwrap()
+        .into_inner();
+    println!("slow logger: {received} received + {missed} missed over ticks {first}..={last}; stats {stats:?}");
+    assert!(missed > 100, "the slow logger is told how much it missed: {missed}");
+    assert_eq!(received + missed, last - first + 1, "received and missed account for every tick");
+    assert_eq!(stats.dropped_records, 0, "the real-time thread never waits for observers");
+    assert!((stats.missed_deadlines as f64) < 0.02 * stats.ticks as f64);
+    // The session still ticks and answers.
+    let t1 = stats.ticks;
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    let info = pb::session_service_client::SessionServiceClient::new(ch.clone())
+        .get_session(pb::GetSessionRequest { session_id: sid.clone() })
+        .await
+        .unwrap()
+        .into_inner();
+    assert!(info.tick > t1 + 100, "the session keeps ticking ({} → {})", t1, info.tick);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_requests_get_the_right_status() {
+    let _turn = turn();
+    let server = ServerProcess::start(&["--default-scene", "none", "--max-sessions", "2", "--max-nodes", "100000"]);
+    let ch = channel(&server).await;
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let created = create(&ch, "paper-phantom").await;
+    let sid = created.session.unwrap().session_id;
+    // Unknown example, malformed TOML, missing scene.
+    let e = sessions
+        .create_session(pb::CreateSessionRequest {
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("nope".into())) }),
+            ..Default::default()
+        })
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(e.message().contains("scene.example") && e.message().contains("paper-phantom"), "{}", e.message());
+    let e = sessions
+        .create_session(pb::CreateSessionRequest {
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml("name = [".into())) }),
+            ..Default::default()
+        })
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(e.message().contains("scene.scene_toml"), "{}", e.message());
+    let e = sessions.create_session(pb::CreateSessionRequest::default()).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    // An uploaded mesh over the size limit.
+    let big = pb::UploadedScene {
+        mesh: Some(pb::Mesh { node_xy_m: vec![0.0; 2 * 150_000], triangle_nodes: vec![0, 1, 2], ..Default::default() }),
+        ..Default::default()
+    };
+    let e = sessions
+        .create_session(pb::CreateSessionRequest {
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Uploaded(big)) }),
+            ..Default::default()
+        })
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::ResourceExhausted, "{}", e.message());
+    // Unknown session, wrong and missing tokens.
+    let e = sessions.get_session(pb::GetSessionRequest { session_id: "nope".into() }).await.unwrap_err();
+    assert_eq!(e.code(), Code::NotFound);
+    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let pose = Some(pb::Pose2 { x_m: 0.05, y_m: 0.2, theta_rad: DOWN });
+    let e = control.set_pose(pb::SetPoseRequest { session_id: sid.clone(), base: pose }).await.unwrap_err();
+    assert_eq!(e.code(), Code::PermissionDenied);
+    let e = control
+        .set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: pose }, &created.observer_token))
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::PermissionDenied, "an observer token cannot drive");
+    // NaN poses are refused, naming the field; the session goes on.
+    let e = control
+        .set_pose(with_token(
+            pb::SetPoseRequest { session_id: sid.clone(), base: Some(pb::Pose2 { x_m: f64::NAN, y_m: 0.2, theta_rad: 0.0 }) },
+            &created.controller_token,
+        ))
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(e.message().contains("base"), "{}", e.message());
+    let ok = control
+        .set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: pose }, &created.controller_token))
+        .await
+        .unwrap()
+        .into_inner();
+    assert!(ok.tick > 0);
+    // Observe rate out of range.
+    let mut observe = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+    let e = observe
+        .observe(with_token(
+            pb::ObserveRequest { session_id: sid.clone(), rate_hz: -1.0, include_displacements: false },
+            &created.observer_token,
+        ))
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    // Session limit.
+    create(&ch, "paper-phantom").await;
+    let e = sessions
+        .create_session(pb::CreateSessionRequest {
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+            ..Default::default()
+        })
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::ResourceExhausted);
+    // Closing needs the controller token, then the session is gone.
+    let e =
+        sessions.close_session(with_token(pb::CloseSessionRequest { session_id: sid.clone() }, &created.observer_token)).await.unwrap_err();
+    assert_eq!(e.code(), Code::PermissionDenied);
+    sessions.close_session(with_token(pb::CloseSessionRequest { session_id: sid.clone() }, &created.controller_token)).await.unwrap();
+    let e = sessions.get_session(pb::GetSessionRequest { session_id: sid }).await.unwrap_err();
+    assert_eq!(e.code(), Code::NotFound);
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}
+
+/// A raw HTTP/1.1 exchange on loopback; returns the whole response (head and body) as bytes.
+fn http1(addr: &str, request: &[u8]) -> Vec<u8> {
+    use std::io::{Read, Write};
+    let mut s = std::net::TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+    s.write_all(request).unwrap();
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    out
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn one_port_serves_metrics_static_files_and_grpc_web() {
+    let _turn = turn();
+    let server = ServerProcess::start(&[]);
+    // The default session (paper phantom) is running and counted.
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let metrics = String::from_utf8(http1(&server.addr, b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")).unwrap();
+    assert!(metrics.starts_with("HTTP/1.1 200"), "{metrics}");
+    assert!(metrics.contains("needlesim_sessions 1"), "{metrics}");
+    let ticks_line = metrics.lines().find(|l| l.starts_with("needlesim_ticks{")).expect("a tick counter per session");
+    let ticks: f64 = ticks_line.rsplit(' ').next().unwrap().parse().unwrap();
+    assert!(ticks > 100.0, "{ticks_line}");
+    assert!(metrics.contains("needlesim_tick_compute_p99_seconds{"), "{metrics}");
+    // A static file of web/.
+    let page =
+        String::from_utf8_lossy(&http1(&server.addr, b"GET /README.md HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")).into_owned();
+    assert!(page.starts_with("HTTP/1.1 200") && page.contains("web viewer"), "{page}");
+    // gRPC-web over HTTP/1.1, as a browser sends it: ListSessions with an empty message.
+    let req = b"POST /needlesim.v1.SessionService/ListSessions HTTP/1.1\r\nHost: x\r\nContent-Type: application/grpc-web+proto\r\nX-Grpc-Web: 1\r\nContent-Length: 5\r\nConnection: close\r\n\r\n\x00\x00\x00\x00\x00";
+    let resp = http1(&server.addr, req);
+    let text = String::from_utf8_lossy(&resp).into_owned();
+    assert!(text.starts_with("HTTP/1.1 200"), "{text}");
+    assert!(text.to_ascii_lowercase().contains("content-type: application/grpc-web"), "{text}");
+    assert!(text.contains("grpc-status:0") || text.contains("grpc-status: 0"), "a gRPC-web trailer frame with status 0: {text}");
+    assert!(text.contains("paper-phantom"), "the session list came back: {text}");
+    // A static path that does not exist is a plain 404, not a gRPC error.
+    let missing =
+        String::from_utf8_lossy(&http1(&server.addr, b"GET /nope.html HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")).into_owned();
+    assert!(missing.starts_with("HTTP/1.1 404"), "{missing}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn tls_when_a_certificate_is_configured() {
+    let _turn = turn();
+    let dir = needlesim_tests::TempDir::new("tls");
+    let (ca, ca_key, cert, key, csr, ext) =
+        (dir.join("ca.pem"), dir.join("ca.key"), dir.join("cert.pem"), dir.join("key.pem"), dir.join("leaf.csr"), dir.join("ext.cnf"));
+    std::fs::write(&ext, "subjectAltName=DNS:localhost,IP:127.0.0.1\nbasicConstraints=CA:FALSE\nextendedKeyUsage=serverAuth\n").unwrap();
+    let openssl = |args: &[&str]| {
+        let o = std::process::Command::new("openssl").args(args).current_dir(dir.path()).output().expect("openssl runs");
+        assert!(o.status.success(), "openssl {args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    };
+    let ec = ["-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes"];
+    // A test CA, and a server certificate for localhost signed by it.
+    openssl(
+        &[&["req", "-x509"][..], &ec, &["-days", "1", "-subj", "/CN=needlesim test CA", "-keyout", "ca.key", "-out", "ca.pem"]].concat(),
+    );
+    openssl(&[&["req"][..], &ec, &["-subj", "/CN=localhost", "-keyout", "key.pem", "-out", "leaf.csr"]].concat());
+    openssl(&[
+        "x509",
+        "-req",
+        "-in",
+        "leaf.csr",
+        "-CA",
+        "ca.pem",
+        "-CAkey",
+        "ca.key",
+        "-CAcreateserial",
+        "-days",
+        "1",
+        "-out",
+        "cert.pem",
+        "-extfile",
+        "ext.cnf",
+    ]);
+    let _ = (&ca_key, &csr);
+    let server = ServerProcess::start(&["--tls-cert", cert.to_str().unwrap(), "--tls-key", key.to_str().unwrap()]);
+    let ca = tonic::transport::Certificate::from_pem(std::fs::read(&ca).unwrap());
+    let tls = tonic::transport::ClientTlsConfig::new().ca_certificate(ca).domain_name("localhost");
+    let ch =
+        Channel::from_shared(format!("https://{}", server.addr)).unwrap().tls_config(tls).unwrap().connect().await.expect("TLS connect");
+    let list =
+        pb::session_service_client::SessionServiceClient::new(ch).list_sessions(pb::ListSessionsRequest {}).await.unwrap().into_inner();
+    assert_eq!(list.sessions.len(), 1);
+    // Plaintext gRPC to a TLS port fails.
+    let plain = Channel::from_shared(server.url()).unwrap().connect().await;
+    if let Ok(ch) = plain {
+        let r = pb::session_service_client::SessionServiceClient::new(ch).list_sessions(pb::ListSessionsRequest {}).await;
+        assert!(r.is_err(), "plaintext must not reach a TLS server");
+    }
+}
+
+/// Regression (issue 4 review): a call to a gRPC service the server does not have is answered
+/// with the gRPC status UNIMPLEMENTED, not an HTTP error from the static-file fallback.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_4_unknown_grpc_service_is_unimplemented() {
+    let _turn = turn();
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let mut grpc = tonic::client::Grpc::new(ch);
+    grpc.ready().await.unwrap();
+    let path = tonic::codegen::http::uri::PathAndQuery::from_static("/foo.Bar/Baz");
+    let codec = tonic_prost::ProstCodec::<pb::ListSessionsRequest, pb::ListSessionsResponse>::default();
+    let e = grpc.unary(Request::new(pb::ListSessionsRequest {}), path, codec).await.unwrap_err();
+    assert_eq!(e.code(), Code::Unimplemented, "{e:?}");
+}
