@@ -438,3 +438,49 @@ async fn issue_4_unknown_grpc_service_is_unimplemented() {
     let e = grpc.unary(Request::new(pb::ListSessionsRequest {}), path, codec).await.unwrap_err();
     assert_eq!(e.code(), Code::Unimplemented, "{e:?}");
 }
+
+/// `--demo`: the default session plays a scripted insertion by itself, the server prints the URL
+/// to open, and the demo stops as soon as a client sends a pose.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn demo_plays_until_a_client_takes_control() {
+    let _turn = turn();
+    let server = ServerProcess::start(&["--demo"]);
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let line = loop {
+        if let Some(l) = server.stdout.lock().unwrap().lines().find(|l| l.starts_with("demo: open ")).map(str::to_owned) {
+            break l;
+        }
+        assert!(Instant::now() < deadline, "no demo URL printed");
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    };
+    assert!(line.contains(&format!("http://{}/?session=", server.addr)), "{line}");
+    let query = line.split('?').nth(1).unwrap().split(' ').next().unwrap();
+    let param = |k: &str| query.split('&').find_map(|kv| kv.strip_prefix(&format!("{k}="))).unwrap().to_owned();
+    let (sid, token) = (param("session"), param("token"));
+    let ch = channel(&server).await;
+    let mut observe = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+    let mut frames = observe
+        .observe(with_token(pb::ObserveRequest { session_id: sid.clone(), rate_hz: 50.0, include_displacements: false }, &token))
+        .await
+        .unwrap()
+        .into_inner();
+    // Nobody drives, yet the needle moves into the tissue.
+    let mut ys = Vec::new();
+    while ys.len() < 60 {
+        let f = frames.next().await.unwrap().unwrap();
+        ys.push(f.base.unwrap().y_m);
+    }
+    assert!(ys.first().unwrap() - ys.last().unwrap() > 0.005, "the demo inserts the needle: {ys:?}");
+    // A client takes control: the base goes where the client puts it and stays there.
+    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let hold = pb::Pose2 { x_m: 0.05, y_m: 0.21, theta_rad: DOWN };
+    control.set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: Some(hold) }, &token)).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let mut later = Vec::new();
+    while later.len() < 25 {
+        let f = frames.next().await.unwrap().unwrap();
+        later.push(f.base.unwrap().y_m);
+    }
+    let tail = &later[later.len() - 10..];
+    assert!(tail.iter().all(|y| (y - 0.21).abs() < 1e-12), "the client's pose holds: {tail:?}");
+}

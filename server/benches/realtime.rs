@@ -126,6 +126,7 @@ fn main() {
         limits: ServerLimits::default(),
         max_message_bytes: 4 << 20,
         default_scene: None,
+        demo: false,
     };
     let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
     let (stop_tx, stop_rx) = tokio::sync::oneshot::channel::<()>();

@@ -238,7 +238,7 @@ impl pb::control_service_server::ControlService for Api {
             return Err(Status::permission_denied("driving a session needs its controller token (`authorization: Bearer <token>`)"));
         }
         let pose = check_pose(first.base.as_ref(), "base")?;
-        s.write_pose_from_io(PoseCommand { pose, seq: first.seq.max(1), client_time_ns: first.client_time_ns });
+        s.write_client_pose_from_io(PoseCommand { pose, seq: first.seq.max(1), client_time_ns: first.client_time_ns });
         let (tx, rx) = mpsc::channel(256);
         // Poses in: latest value wins; a malformed message ends the stream with its reason.
         let s_in = s.clone();
@@ -250,7 +250,7 @@ impl pb::control_service_server::ControlService for Api {
                     Ok(Some(m)) => match check_pose(m.base.as_ref(), "base") {
                         Ok(pose) => {
                             seq = if m.seq > seq { m.seq } else { seq + 1 };
-                            s_in.write_pose_from_io(PoseCommand { pose, seq, client_time_ns: m.client_time_ns });
+                            s_in.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: m.client_time_ns });
                         }
                         Err(e) => {
                             s_in.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
@@ -285,7 +285,7 @@ impl pb::control_service_server::ControlService for Api {
         authorize(&req, &s, Role::Controller)?;
         let pose = check_pose(req.get_ref().base.as_ref(), "base")?;
         let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
-        s.write_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
+        s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
         Ok(Response::new(convert::control_response(&s.latest_record())))
     }
 }

@@ -15,9 +15,13 @@ static ALLOC: bench::CountingAlloc = bench::CountingAlloc;
 
 #[derive(Parser)]
 #[command(name = "needlesim-server", version, about = "Real-time needle insertion simulator: server and offline tools")]
+#[command(args_conflicts_with_subcommands = true)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// With no command: the server's options (see `serve --help`).
+    #[command(flatten)]
+    serve: ServeArgs,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -61,13 +65,10 @@ struct ServeArgs {
     /// The example scene of the default session ("none" for no default session).
     #[arg(long, default_value = "paper-phantom")]
     default_scene: String,
-}
-
-/// The defaults of `serve`, for a command line without a command.
-#[derive(Parser)]
-struct DefaultServe {
-    #[command(flatten)]
-    args: ServeArgs,
+    /// Play the default scene's insertion in a loop until someone takes control, and print the
+    /// URL to open.
+    #[arg(long)]
+    demo: bool,
 }
 
 #[derive(Subcommand)]
@@ -75,7 +76,7 @@ enum Command {
     /// Start the gRPC server (the default when no command is given).
     Serve(ServeArgs),
     /// Print a summary of the paper-phantom insertion, offline.
-    Demo,
+    Summary,
     /// Solve a static problem in the exchange format of the validation suite.
     Solve {
         /// The scenario JSON (nodes, triangles, E, nu, fixed_nodes, prescribed, loads, …).
@@ -134,9 +135,9 @@ fn main() -> ExitCode {
         Some(Command::Bench { quick, json, plot, sizes, no_scipy }) => {
             run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json)
         }
-        Some(Command::Demo) => demo(&limits),
+        Some(Command::Summary) => summary(&limits),
         Some(Command::Serve(args)) => run_serve(args, &limits),
-        None => run_serve(DefaultServe::parse_from(["needlesim-server"]).args, &limits),
+        None => run_serve(cli.serve, &limits),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -216,7 +217,7 @@ fn run_simulate(
 }
 
 /// With no command: the paper's phantom, inserted and withdrawn, summarised every half second.
-fn demo(limits: &MeshLimits) -> Result<()> {
+fn summary(limits: &MeshLimits) -> Result<()> {
     let scene = scene::load_scene("paper-phantom", limits)?;
     let traj = scene::Trajectory::parse_csv(scene.example_trajectory.expect("a shipped example has a trajectory"))?;
     let mut csv = String::new();
@@ -274,6 +275,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         },
         max_message_bytes: args.max_message_bytes,
         default_scene: (args.default_scene != "none").then_some(args.default_scene),
+        demo: args.demo,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     runtime.block_on(serve::serve(config, async {

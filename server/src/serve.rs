@@ -26,6 +26,8 @@ pub struct ServeConfig {
     pub max_message_bytes: usize,
     /// A session to create at start-up (a shipped example's name), if any.
     pub default_scene: Option<String>,
+    /// Play the default scene's example trajectory in a loop until a client takes control.
+    pub demo: bool,
 }
 
 /// Prometheus text exposition of every session's counters and percentiles.
@@ -112,10 +114,33 @@ fn static_or_unimplemented(
     }
 }
 
+/// Plays `traj` on `session` in a loop (poses every 2 ms, interpolated) until a client sends a
+/// pose or the session closes.
+async fn play_demo(session: Arc<crate::session::Session>, traj: crate::scene::Trajectory) {
+    let (t0, t1) = traj.span_s();
+    let mut interval = tokio::time::interval(std::time::Duration::from_millis(2));
+    let start = tokio::time::Instant::now();
+    let mut seq = 0u64;
+    loop {
+        interval.tick().await;
+        if session.client_in_control() {
+            tracing::info!(session = %session.id, "a client took control: the demo stops");
+            return;
+        }
+        if Arc::strong_count(&session) == 1 {
+            return;
+        }
+        let t = t0 + start.elapsed().as_secs_f64() % (t1 - t0).max(1e-3);
+        seq += 1;
+        session.write_pose_from_io(crate::session::PoseCommand { pose: traj.pose_at(t), seq, client_time_ns: 0 });
+    }
+}
+
 /// Runs the server until `shutdown` resolves. Prints `listening on ADDR` once bound.
 pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Output = ()> + Send + 'static) -> Result<()> {
     std::fs::create_dir_all(&config.data_dir).with_context(|| format!("cannot create the data directory {}", config.data_dir.display()))?;
     let state = ServerState::new(config.limits.clone(), config.data_dir.clone());
+    let mut demo_session = None;
     if let Some(name) = &config.default_scene {
         let scene = crate::scene::load_scene(name, &config.limits.mesh)?;
         let rate = scene.params.tick_rate_hz;
@@ -128,6 +153,11 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
             s.scene_name,
             rate
         );
+        if config.demo {
+            let traj = crate::scene::Trajectory::parse_csv(scene.example_trajectory.context("--demo needs a shipped example scene")?)?;
+            tokio::spawn(play_demo(s.clone(), traj));
+            demo_session = Some(s.clone());
+        }
     }
     let api = Api { state: state.clone() };
     let max = config.max_message_bytes;
@@ -175,6 +205,14 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
     let addr = listener.local_addr()?;
     tracing::info!(%addr, tls = config.tls.is_some(), data_dir = %config.data_dir.display(), "needlesim-server listening");
     println!("listening on {addr}");
+    if let Some(s) = &demo_session {
+        let scheme = if config.tls.is_some() { "https" } else { "http" };
+        println!(
+            "demo: open {scheme}://{addr}/?session={}&token={} (a scripted insertion plays until you take control)",
+            s.id, s.controller_token
+        );
+    }
+    drop(demo_session);
     let result =
         server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(TcpListenerStream::new(listener), shutdown).await;
     let closing = state.clone();

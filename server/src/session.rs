@@ -216,6 +216,7 @@ pub struct Session {
     pub created_unix_ms: u64,
     pub counters: Arc<SessionCounters>,
     pose_in: Mutex<triple_buffer::Input<PoseCommand>>,
+    client_in_control: AtomicBool,
     stop: Arc<AtomicBool>,
     /// Every tick record, for full-rate observers (lagging receivers learn how many they missed).
     pub all_ticks: tokio::sync::broadcast::Sender<Arc<TickRecord>>,
@@ -328,6 +329,7 @@ impl Session {
             created_unix_ms,
             counters,
             pose_in: Mutex::new(pose_in),
+            client_in_control: AtomicBool::new(false),
             stop,
             all_ticks: all_tx,
             latest: latest_rx,
@@ -338,6 +340,18 @@ impl Session {
             recorder,
             threads: Mutex::new(threads),
         }))
+    }
+
+    /// Publishes a pose from a client (a controller, a browser, a device): the same as
+    /// [`Session::write_pose_from_io`], and a scripted demo, if one plays, yields to the client.
+    pub fn write_client_pose_from_io(&self, cmd: PoseCommand) {
+        self.client_in_control.store(true, Ordering::Relaxed);
+        self.write_pose_from_io(cmd);
+    }
+
+    /// Whether a client has sent a pose (a scripted demo stops then).
+    pub fn client_in_control(&self) -> bool {
+        self.client_in_control.load(Ordering::Relaxed)
     }
 
     /// Publishes a pose for the next tick (latest value wins; an unconsumed one is counted as

@@ -150,6 +150,8 @@ pub struct ServerProcess {
     pub data_dir: TempDir,
     /// The server's standard error, collected in the background.
     pub stderr: std::sync::Arc<std::sync::Mutex<String>>,
+    /// The server's standard output after its `listening on` line, collected in the background.
+    pub stdout: std::sync::Arc<std::sync::Mutex<String>>,
 }
 
 impl ServerProcess {
@@ -189,8 +191,15 @@ impl ServerProcess {
             let n = out.read_line(&mut line).unwrap_or(0);
             if let Some(addr) = line.trim().strip_prefix("listening on ") {
                 let addr = addr.to_owned();
-                std::thread::spawn(move || for _ in out.lines() {});
-                return Self { child, addr, data_dir, stderr };
+                let stdout = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
+                let sink = stdout.clone();
+                std::thread::spawn(move || {
+                    for line in out.lines().map_while(Result::ok) {
+                        sink.lock().unwrap().push_str(&line);
+                        sink.lock().unwrap().push('\n');
+                    }
+                });
+                return Self { child, addr, data_dir, stderr, stdout };
             }
             if n == 0 || std::time::Instant::now() > deadline {
                 let _ = child.kill();
