@@ -15,11 +15,7 @@ const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
 
 /// The tests of this file each run a 1 kHz session; on a 2-core machine they take turns, so that
 /// one test's clients do not eat another's real-time budget.
-static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-fn turn() -> std::sync::MutexGuard<'static, ()> {
-    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
-}
+static ONE_AT_A_TIME: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
 
 async fn channel(server: &ServerProcess) -> Channel {
     Channel::from_shared(server.url()).unwrap().connect().await.expect("connect to the server")
@@ -51,7 +47,7 @@ fn pose_at(t: f64, secs: f64) -> pb::Pose2 {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn insertion_at_1khz_with_50_observers_and_a_full_rate_logger() {
-    let _turn = turn();
+    let _turn = ONE_AT_A_TIME.lock().await;
     let server = ServerProcess::start(&["--default-scene", "none"]);
     let ch = channel(&server).await;
     let created = create(&ch, "paper-phantom").await;
@@ -163,7 +159,7 @@ async fn futures_join(handles: Vec<tokio::task::JoinHandle<u64>>) -> Vec<u64> {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn stalled_killed_and_slow_clients_do_not_disturb_a_session() {
-    let _turn = turn();
+    let _turn = ONE_AT_A_TIME.lock().await;
     let server = ServerProcess::start(&["--default-scene", "none"]);
     let ch = channel(&server).await;
     let created = create(&ch, "paper-phantom").await;
@@ -233,7 +229,7 @@ async fn stalled_killed_and_slow_clients_do_not_disturb_a_session() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_requests_get_the_right_status() {
-    let _turn = turn();
+    let _turn = ONE_AT_A_TIME.lock().await;
     let server = ServerProcess::start(&["--default-scene", "none", "--max-sessions", "2", "--max-nodes", "100000"]);
     let ch = channel(&server).await;
     let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
@@ -344,7 +340,7 @@ fn http1(addr: &str, request: &[u8]) -> Vec<u8> {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn one_port_serves_metrics_static_files_and_grpc_web() {
-    let _turn = turn();
+    let _turn = ONE_AT_A_TIME.lock().await;
     let server = ServerProcess::start(&[]);
     // The default session (paper phantom) is running and counted.
     tokio::time::sleep(Duration::from_millis(300)).await;
@@ -375,7 +371,7 @@ async fn one_port_serves_metrics_static_files_and_grpc_web() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn tls_when_a_certificate_is_configured() {
-    let _turn = turn();
+    let _turn = ONE_AT_A_TIME.lock().await;
     let dir = needlesim_tests::TempDir::new("tls");
     let (ca, ca_key, cert, key, csr, ext) =
         (dir.join("ca.pem"), dir.join("ca.key"), dir.join("cert.pem"), dir.join("key.pem"), dir.join("leaf.csr"), dir.join("ext.cnf"));
@@ -428,7 +424,7 @@ async fn tls_when_a_certificate_is_configured() {
 /// with the gRPC status UNIMPLEMENTED, not an HTTP error from the static-file fallback.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn issue_4_unknown_grpc_service_is_unimplemented() {
-    let _turn = turn();
+    let _turn = ONE_AT_A_TIME.lock().await;
     let server = ServerProcess::start(&["--default-scene", "none"]);
     let ch = channel(&server).await;
     let mut grpc = tonic::client::Grpc::new(ch);
@@ -443,7 +439,7 @@ async fn issue_4_unknown_grpc_service_is_unimplemented() {
 /// to open, and the demo stops as soon as a client sends a pose.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn demo_plays_until_a_client_takes_control() {
-    let _turn = turn();
+    let _turn = ONE_AT_A_TIME.lock().await;
     let server = ServerProcess::start(&["--demo"]);
     let deadline = Instant::now() + Duration::from_secs(10);
     let line = loop {
@@ -483,4 +479,34 @@ async fn demo_plays_until_a_client_takes_control() {
     }
     let tail = &later[later.len() - 10..];
     assert!(tail.iter().all(|y| (y - 0.21).abs() < 1e-12), "the client's pose holds: {tail:?}");
+}
+
+/// Regression (issue 6 review): when a controller closes its side of the Control stream, the
+/// server ends the response stream instead of streaming ticks forever.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_6_control_stream_ends_when_the_controller_is_done() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let created = create(&ch, "paper-phantom").await;
+    let sid = created.session.unwrap().session_id;
+    let poses: Vec<pb::ControlRequest> = (0..20)
+        .map(|k| pb::ControlRequest {
+            session_id: sid.clone(),
+            base: Some(pb::Pose2 { x_m: 0.05, y_m: 0.205 - 1e-5 * k as f64, theta_rad: DOWN }),
+            client_time_ns: 0,
+            seq: k + 1,
+        })
+        .collect();
+    let mut ctl = pb::control_service_client::ControlServiceClient::new(ch);
+    let mut responses = ctl.control(with_token(tokio_stream::iter(poses), &created.controller_token)).await.unwrap().into_inner();
+    let mut n = 0;
+    let ended = tokio::time::timeout(Duration::from_secs(5), async {
+        while let Some(r) = responses.next().await {
+            r.unwrap();
+            n += 1;
+        }
+    })
+    .await;
+    assert!(ended.is_ok(), "the response stream did not end after the controller closed its side ({n} responses)");
 }

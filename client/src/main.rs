@@ -1,6 +1,185 @@
-//! The `needlesim` command-line client; its commands arrive with the CLI issue.
+//! `needlesim`: the command-line client of the needlesim gRPC API (sessions, live view, driving,
+//! recordings, offline simulation).
+
+mod commands;
+mod rpc;
+mod traj;
+mod view;
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+#[derive(Debug, Parser)]
+#[command(name = "needlesim", version, about = "Command-line client of the needlesim server (gRPC API needlesim.v1)")]
+pub struct Cli {
+    /// The server URL (http://HOST:PORT, or https:// with --tls-ca).
+    #[arg(long, global = true, env = "NEEDLESIM_SERVER", default_value = "http://127.0.0.1:50051", value_name = "URL")]
+    pub server: String,
+    /// The session token (controller or observer), sent as `authorization: Bearer <token>`.
+    #[arg(long, global = true, env = "NEEDLESIM_TOKEN", value_name = "TOKEN", hide_env_values = true)]
+    pub token: Option<String>,
+    /// The CA certificate (PEM) that signed the server's TLS certificate.
+    #[arg(long, global = true, value_name = "PEM")]
+    pub tls_ca: Option<PathBuf>,
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List, create and close sessions.
+    #[command(subcommand)]
+    Sessions(SessionsCmd),
+    /// A live view of a session (observer token).
+    Watch(WatchArgs),
+    /// Record a session to an MCAP file (controller token).
+    Record(RecordArgs),
+    /// Print the frames of a local MCAP recording, paced by their log times.
+    Replay(ReplayArgs),
+    /// Run a scripted insertion offline on the server (Simulate) and write its time series.
+    Simulate(SimulateArgs),
+    /// Drive a session's needle along a trajectory in real time (controller token).
+    Drive(DriveArgs),
+}
+
+#[derive(Debug, Subcommand)]
+pub enum SessionsCmd {
+    /// The open sessions.
+    List {
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Create a session; prints its id and both tokens.
+    Create(CreateArgs),
+    /// Close a session (controller token).
+    Close {
+        /// The session id.
+        id: String,
+    },
+}
+
+#[derive(Debug, Args, Clone)]
+#[group(required = true, multiple = false)]
+pub struct SceneArgs {
+    /// A shipped example scene: paper-phantom, fig3-target.
+    #[arg(long, value_name = "NAME")]
+    pub example: Option<String>,
+    /// A scene file in the TOML format of the README (it cannot reference mesh files).
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+pub struct CreateArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Tick rate, 500..1000 Hz (default: the scene's).
+    #[arg(long, value_name = "HZ")]
+    pub rate: Option<f64>,
+    /// Record every tick from the start.
+    #[arg(long)]
+    pub record: bool,
+    /// Machine-readable output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct WatchArgs {
+    /// The session id.
+    pub id: String,
+    /// Frames per second (30..120), or 0 for every tick.
+    #[arg(long, value_name = "HZ", default_value_t = 30.0)]
+    pub rate: f64,
+    /// Stop after this many frames.
+    #[arg(long, value_name = "N", conflicts_with = "seconds")]
+    pub ticks: Option<u64>,
+    /// Stop after this many seconds.
+    #[arg(long, value_name = "S")]
+    pub seconds: Option<f64>,
+    /// One line per frame instead of a view redrawn in place (the default when stdout is not a terminal).
+    #[arg(long)]
+    pub plain: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct RecordArgs {
+    /// The session id.
+    pub id: String,
+    /// The MCAP file to write.
+    #[arg(long, value_name = "FILE.mcap")]
+    pub out: PathBuf,
+    /// How long to record.
+    #[arg(long, value_name = "S", default_value_t = 1.0)]
+    pub seconds: f64,
+}
+
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    /// The MCAP recording.
+    pub file: PathBuf,
+    /// Playback speed (1 = real time, 0 = as fast as possible).
+    #[arg(long, value_name = "X", default_value_t = 1.0)]
+    pub speed: f64,
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum Format {
+    Csv,
+    Json,
+}
+
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The base trajectory (t_s,x_m,y_m,theta_rad); default: the example's own.
+    #[arg(long, value_name = "TRAJ.csv")]
+    pub trajectory: Option<PathBuf>,
+    /// Keep one row every N ticks.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub decimate: u32,
+    /// Write here instead of standard output.
+    #[arg(long, short = 'o', value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    pub format: Format,
+}
+
+#[derive(Debug, Args)]
+pub struct DriveArgs {
+    /// The session id.
+    pub id: String,
+    /// The base trajectory (t_s,x_m,y_m,theta_rad), played in real time at 1 kHz.
+    #[arg(long, value_name = "TRAJ.csv")]
+    pub trajectory: PathBuf,
+    /// Repeat the trajectory until interrupted (Ctrl-C).
+    #[arg(long = "loop")]
+    pub repeat: bool,
+}
 
 fn main() {
-    eprintln!("needlesim: the client has no commands yet; use needlesim-server");
-    std::process::exit(2);
+    let cli = Cli::parse();
+    let runtime = match tokio::runtime::Builder::new_multi_thread().worker_threads(2).enable_all().build() {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: cannot start the async runtime: {e}");
+            std::process::exit(1);
+        }
+    };
+    let result = runtime.block_on(commands::run(cli));
+    // Streams still open (observe, control) must not keep the process alive.
+    runtime.shutdown_background();
+    if let Err(e) = result {
+        // `needlesim … | head` closes stdout early: not an error worth reporting.
+        if e.chain().any(|c| c.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)) {
+            std::process::exit(0);
+        }
+        let msg = format!("{e:#}").replace('\n', " ");
+        eprintln!("error: {msg}");
+        std::process::exit(1);
+    }
 }

@@ -240,10 +240,14 @@ impl pb::control_service_server::ControlService for Api {
         let pose = check_pose(first.base.as_ref(), "base")?;
         s.write_client_pose_from_io(PoseCommand { pose, seq: first.seq.max(1), client_time_ns: first.client_time_ns });
         let (tx, rx) = mpsc::channel(256);
+        // When the controller closes its side, the response stream ends too.
+        let client_done = Arc::new(std::sync::atomic::AtomicBool::new(false));
         // Poses in: latest value wins; a malformed message ends the stream with its reason.
         let s_in = s.clone();
         let tx_err = tx.clone();
+        let done_in = client_done.clone();
         tokio::spawn(async move {
+            let _done = SetOnDrop(done_in);
             let mut seq = first.seq.max(1);
             loop {
                 match inbound.message().await {
@@ -266,6 +270,9 @@ impl pb::control_service_server::ControlService for Api {
         let mut ticks = s.all_ticks.subscribe();
         tokio::spawn(async move {
             loop {
+                if client_done.load(Ordering::Relaxed) {
+                    return;
+                }
                 match ticks.recv().await {
                     Ok(rec) => {
                         if tx.send(Ok(convert::control_response(&rec))).await.is_err() {
@@ -287,6 +294,15 @@ impl pb::control_service_server::ControlService for Api {
         let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
         s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
         Ok(Response::new(convert::control_response(&s.latest_record())))
+    }
+}
+
+/// Sets its flag when dropped (when the task holding it ends, however it ends).
+struct SetOnDrop(Arc<std::sync::atomic::AtomicBool>);
+
+impl Drop for SetOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
     }
 }
 

@@ -15,7 +15,6 @@ static ALLOC: bench::CountingAlloc = bench::CountingAlloc;
 
 #[derive(Parser)]
 #[command(name = "needlesim-server", version, about = "Real-time needle insertion simulator: server and offline tools")]
-#[command(args_conflicts_with_subcommands = true)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -69,6 +68,10 @@ struct ServeArgs {
     /// URL to open.
     #[arg(long)]
     demo: bool,
+    /// SCHED_FIFO priority of the sessions' real-time threads (1..99; 0 = normal scheduling).
+    /// Needs CAP_SYS_NICE or root; without it the server says so and runs at normal priority.
+    #[arg(long, default_value_t = 40)]
+    rt_priority: i32,
 }
 
 #[derive(Subcommand)]
@@ -262,6 +265,7 @@ fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
 }
 
 fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
+    needlesim_server::session::set_rt_priority(args.rt_priority);
     let config = serve::ServeConfig {
         listen: args.listen,
         data_dir: args.data_dir,

@@ -232,6 +232,18 @@ pub struct Session {
     threads: Mutex<Vec<JoinHandle<()>>>,
 }
 
+/// The SCHED_FIFO priority real-time threads ask for (0: none); set once at start-up.
+static RT_PRIORITY: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(40);
+
+/// Sets the SCHED_FIFO priority new sessions' real-time threads ask for (0 disables it).
+pub fn set_rt_priority(priority: i32) {
+    RT_PRIORITY.store(priority, Ordering::Relaxed);
+}
+
+fn rt_priority() -> i32 {
+    RT_PRIORITY.load(Ordering::Relaxed)
+}
+
 /// Errors starting a session.
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
@@ -293,6 +305,7 @@ impl Session {
             counters: counters.clone(),
             stop: stop.clone(),
             record: Box::new(TickRecord::default()),
+            rt_priority: rt_priority(),
         };
         threads.push(std::thread::Builder::new().name(format!("rt-{id}")).spawn(move || rt.run()).map_err(SessionError::Thread)?);
         let worker = ColumnWorker {
@@ -314,6 +327,7 @@ impl Session {
             n_dofs: scene.tissue.n_dofs(),
             histograms: histograms.clone(),
             recorder: recorder.clone(),
+            target_names: scene.target_names.clone(),
             stop: stop.clone(),
         };
         threads.push(std::thread::Builder::new().name(format!("fanout-{id}")).spawn(move || fan.run()).map_err(SessionError::Thread)?);
@@ -440,10 +454,36 @@ struct RtLoop {
     counters: Arc<SessionCounters>,
     stop: Arc<AtomicBool>,
     record: Box<TickRecord>,
+    rt_priority: i32,
+}
+
+/// Asks the OS to schedule the calling thread with the real-time policy SCHED_FIFO at
+/// `priority` (1..99), so that other processes cannot preempt a tick. Needs CAP_SYS_NICE (or
+/// root, or an rtprio limit); without it the thread stays a normal one and this says why.
+pub fn request_realtime_priority(priority: i32) -> Result<(), String> {
+    if priority <= 0 {
+        return Err("real-time priority disabled (--rt-priority 0)".to_owned());
+    }
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: pthread_self() is always valid for the calling thread, and `param` lives for
+        // the duration of the call.
+        let param = libc::sched_param { sched_priority: priority.min(99) };
+        let rc = unsafe { libc::pthread_setschedparam(libc::pthread_self(), libc::SCHED_FIFO, &param) };
+        if rc == 0 { Ok(()) } else { Err(format!("SCHED_FIFO priority {priority} refused: {}", std::io::Error::from_raw_os_error(rc))) }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        Err("real-time priority is only requested on Linux".to_owned())
+    }
 }
 
 impl RtLoop {
     fn run(mut self) {
+        match request_realtime_priority(self.rt_priority) {
+            Ok(()) => tracing::debug!(priority = self.rt_priority, "real-time thread runs with SCHED_FIFO"),
+            Err(why) => tracing::warn!("the real-time thread runs without real-time priority ({why}); ticks may be late under load"),
+        }
         let start = Instant::now();
         let mut k: u64 = 0;
         let mut pose = self.sim.pose();
@@ -595,6 +635,7 @@ struct FanOut {
     n_dofs: usize,
     histograms: Arc<Mutex<Histograms>>,
     recorder: Arc<Mutex<Option<crate::recording::Recorder>>>,
+    target_names: Vec<String>,
     stop: Arc<AtomicBool>,
 }
 
@@ -616,7 +657,7 @@ impl FanOut {
                 }
                 let rec = Arc::new(rec);
                 if let Some(r) = self.recorder.lock().expect("recorder lock").as_ref() {
-                    r.write_from_io(&crate::convert::frame_from_record(&rec, &[], 0));
+                    r.write_from_io(&crate::convert::frame_from_record(&rec, &self.target_names, 0));
                 }
                 let _ = self.all_tx.send(rec.clone());
                 latest = Some(rec);

@@ -1,0 +1,129 @@
+//! The web viewer (web/): its committed build is what its sources build to, and the page served by
+//! the real server works in headless Chromium (tests/web_e2e.mjs: create a session, see frames,
+//! drive the needle with the mouse, see the depth and the drawing change, play a recording back).
+//!
+//! Needs Node with `npm ci` done in web/ (playwright-core, esbuild, buf, protoc-gen-es) and
+//! Debian's Chromium at /usr/bin/chromium (or `NEEDLESIM_CHROMIUM`): tests/run installs both.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use needlesim_tests::{ServerProcess, TempDir, repo_root, run, text};
+
+fn web_dir() -> PathBuf {
+    repo_root().join("web")
+}
+
+fn require_node_modules() {
+    let nm = web_dir().join("node_modules");
+    assert!(
+        nm.join(".bin/esbuild").exists() && nm.join("playwright-core").is_dir(),
+        "{} is missing or incomplete: run `npm ci` in web/ (tests/run does it)",
+        nm.display()
+    );
+}
+
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap_or_else(|e| panic!("cannot create {}: {e}", to.display()));
+    for entry in std::fs::read_dir(from).unwrap_or_else(|e| panic!("cannot read {}: {e}", from.display())) {
+        let entry = entry.unwrap();
+        let (src, dst) = (entry.path(), to.join(entry.file_name()));
+        if entry.file_type().unwrap().is_dir() {
+            copy_tree(&src, &dst);
+        } else {
+            std::fs::copy(&src, &dst).unwrap_or_else(|e| panic!("cannot copy {}: {e}", src.display()));
+        }
+    }
+}
+
+/// Every file under `dir`, as paths relative to it, sorted.
+fn files(dir: &Path) -> Vec<PathBuf> {
+    fn walk(root: &Path, dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("cannot read {}: {e}", dir.display())) {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else {
+                out.push(path.strip_prefix(root).unwrap().to_path_buf());
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+#[test]
+fn committed_assets_are_what_the_sources_build_to() {
+    require_node_modules();
+    let web = web_dir();
+    let tmp = TempDir::new("web-build");
+    let copy = tmp.join("web");
+    // A copy of web/ without its generated code and build, beside a copy of proto/.
+    copy_tree(&repo_root().join("proto/needlesim"), &tmp.join("proto/needlesim"));
+    std::fs::create_dir_all(&copy).unwrap();
+    for f in ["build.sh", "buf.gen.yaml", "package.json", "package-lock.json", "index.html"] {
+        std::fs::copy(web.join(f), copy.join(f)).unwrap_or_else(|e| panic!("cannot copy web/{f}: {e}"));
+    }
+    copy_tree(&web.join("src"), &copy.join("src"));
+    std::fs::remove_dir_all(copy.join("src/gen")).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(web.join("node_modules"), copy.join("node_modules")).unwrap();
+
+    let out = run(Command::new("bash").arg(copy.join("build.sh")));
+    let (so, se) = text(&out);
+    assert!(out.status.success(), "web/build.sh failed:\n{so}\n{se}");
+
+    for sub in ["dist", "src/gen"] {
+        let (committed, rebuilt) = (web.join(sub), copy.join(sub));
+        let (a, b) = (files(&committed), files(&rebuilt));
+        assert_eq!(a, b, "web/{sub} holds other files than a rebuild: run web/build.sh and commit the result");
+        for f in &a {
+            let (x, y) = (std::fs::read(committed.join(f)).unwrap(), std::fs::read(rebuilt.join(f)).unwrap());
+            assert!(x == y, "web/{sub}/{} differs from a rebuild from web/src: run web/build.sh and commit the result", f.display());
+        }
+        println!("web/{sub}: {} files identical to a rebuild", a.len());
+    }
+}
+
+#[test]
+fn page_drives_the_needle_in_headless_chromium() {
+    require_node_modules();
+    let chromium = std::env::var("NEEDLESIM_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".to_owned());
+    assert!(
+        Path::new(&chromium).exists(),
+        "no Chromium at {chromium}: apt-get install chromium (tests/run does it), or set NEEDLESIM_CHROMIUM"
+    );
+    let web = web_dir();
+    let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", web.to_str().unwrap()]);
+    let shots = repo_root().join("target/web-screenshots");
+    for f in ["view-before.png", "view-after.png", "page.png", "playback.png", "summary.json"] {
+        let _ = std::fs::remove_file(shots.join(f));
+    }
+    let out = run(Command::new("node")
+        .arg(repo_root().join("tests/web_e2e.mjs"))
+        .arg(server.url())
+        .arg(&shots)
+        .env("NEEDLESIM_CHROMIUM", &chromium));
+    let (so, se) = text(&out);
+    println!("{so}");
+    assert!(out.status.success(), "tests/web_e2e.mjs failed:\n{so}\n{se}\nserver log:\n{}", server.stderr.lock().unwrap());
+
+    let summary = needlesim_tests::read_json(&shots.join("summary.json"));
+    let f = |k: &str| summary[k].as_f64().unwrap_or_else(|| panic!("summary.json has no number `{k}`: {summary}"));
+    assert!(f("frames") >= 10.0, "too few frames: {summary}");
+    assert!(f("poses") >= 1.0, "no pose was sent: {summary}");
+    assert!(f("depth1") > f("depth0") + 0.01, "the drag did not insert the needle: {summary}");
+    assert!(f("playbackFrames") > 10.0, "the recording did not play back: {summary}");
+
+    let read = |name: &str| std::fs::read(shots.join(name)).unwrap_or_else(|e| panic!("no screenshot {name}: {e}"));
+    let (before, after) = (read("view-before.png"), read("view-after.png"));
+    for (name, png) in
+        [("view-before.png", &before), ("view-after.png", &after), ("page.png", &read("page.png")), ("playback.png", &read("playback.png"))]
+    {
+        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 5000, "{name} is not a real screenshot ({} bytes)", png.len());
+    }
+    assert_ne!(before, after, "the tissue view did not change as the needle advanced");
+    println!("screenshots in {}", shots.display());
+}
