@@ -536,18 +536,23 @@ impl RtLoop {
             *last_client_time = cmd.client_time_ns;
         }
         let misses_before = self.sim.stats().column_misses;
-        match self.sim.step(*pose) {
-            Ok(out) => self.record.fill(out),
+        let stepped = match self.sim.step(*pose) {
+            Ok(out) => {
+                self.record.fill(out);
+                true
+            }
             Err(SimError::NonFinitePose { .. }) => {
                 self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
                 *pose = self.sim.pose();
+                false
             }
             Err(e) => {
                 // A failing model cannot go on pushing: hold the last pose.
                 tracing::error!("session step failed: {e}");
                 *pose = self.sim.pose();
+                false
             }
-        }
+        };
         let st = self.sim.stats();
         self.counters.column_misses.fetch_add(st.column_misses - misses_before, Ordering::Relaxed);
         self.counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);
@@ -574,7 +579,8 @@ impl RtLoop {
         self.record.client_time_ns = *last_client_time;
         self.record.lateness_ns = lateness.as_nanos() as u64;
         self.record.compute_ns = t0.elapsed().as_nanos() as u64;
-        if self.rec_tx.push(*self.record).is_err() {
+        // A tick that did not step publishes nothing (observers never see a tick twice).
+        if stepped && self.rec_tx.push(*self.record).is_err() {
             self.counters.dropped_records.fetch_add(1, Ordering::Relaxed);
         }
         self.counters.ticks.fetch_add(1, Ordering::Relaxed);

@@ -130,6 +130,25 @@ impl MixedSolver {
         }
     }
 
+    /// Makes this solver a copy of `other` without allocating (capacities must be equal).
+    /// Panics only on a programming error (different capacities).
+    pub fn copy_from(&mut self, other: &MixedSolver) {
+        assert_eq!(self.cap_nodes, other.cap_nodes, "copy_from needs equal capacities");
+        self.n_nodes = other.n_nodes;
+        self.node_of_slot.copy_from_slice(&other.node_of_slot);
+        self.angle_rad.copy_from_slice(&other.angle_rad);
+        self.c_self.copy_from_slice(&other.c_self);
+        self.kind.copy_from_slice(&other.kind);
+        self.x.copy_from_slice(&other.x);
+        self.y.copy_from_slice(&other.y);
+        let d = other.n_dofs();
+        for i in 0..d {
+            let r = i * self.stride;
+            self.h[r..r + d].copy_from_slice(&other.h[r..r + d]);
+        }
+        self.stats = other.stats;
+    }
+
     /// Working nodes.
     pub fn n_nodes(&self) -> usize {
         self.n_nodes

@@ -227,6 +227,8 @@ pub struct Simulation {
     params: SimParams,
     cache: ComplianceCache,
     solver: MixedSolver,
+    /// A copy of the solver for probing (the stiffness Jacobian), allocated once.
+    probe: MixedSolver,
     col_scratch: ColumnScratch,
     col_buf: Vec<f64>,
     grid: NodeGrid,
@@ -366,6 +368,7 @@ impl Simulation {
         };
         Ok(Self {
             solver: MixedSolver::with_capacity(cap),
+            probe: MixedSolver::with_capacity(cap),
             pose: params.initial_pose,
             nodes: Vec::with_capacity(cap),
             slot_of_node: vec![NO_SLOT; n_nodes],
@@ -888,6 +891,82 @@ impl Simulation {
         o.active_set_iterations = iterations;
         o.converged = converged;
         o.clamped = clamped;
+    }
+
+    /// The force and torque of the tissue on the base, $(F_x, F_y, \tau)$, for a solved
+    /// `solver` whose slots are this simulation's needle nodes, at base `pose`.
+    fn wrench_of(&self, solver: &MixedSolver, pose: &BasePose) -> [f64; 3] {
+        let b = pose.position_m();
+        let mut w = [0.0; 3];
+        for (slot, nn) in self.nodes.iter().enumerate() {
+            let f = solver.force_world(slot);
+            let u = solver.displacement_world(slot);
+            let x = self.model.mesh().nodes_m()[nn.node_idx];
+            let p = [x[0] + u[0], x[1] + u[1]];
+            w[0] -= f[0];
+            w[1] -= f[1];
+            w[2] += (p[0] - b[0]) * (-f[1]) - (p[1] - b[1]) * (-f[0]);
+        }
+        w
+    }
+
+    /// Solves the probe copy of the working set with the base at `pose`, the contact conditions
+    /// (stuck, slipping, tip) and slipping forces held as they are. Allocates nothing.
+    fn probe_wrench(&mut self, pose: &BasePose) -> Result<[f64; 3], SimError> {
+        self.probe.copy_from(&self.solver);
+        let shape = self.params.needle;
+        let s_tip = shape.tip_s_m();
+        for slot in 0..self.nodes.len() {
+            let nn = self.nodes[slot];
+            self.probe.set_angle(slot, shape.frame_angle_at(pose, nn.s_prev_m))?;
+            let x = self.model.mesh().nodes_m()[nn.node_idx];
+            let (s0, lat0) = shape.project(pose, x);
+            self.probe.set_value(slot, 1, -lat0);
+            match nn.state {
+                NodeState::Stuck => self.probe.set_value(slot, 0, nn.anchor_s_m - s0),
+                NodeState::Tip => self.probe.set_value(slot, 0, s_tip - s0),
+                NodeState::Slipping => {}
+            }
+        }
+        self.probe.solve();
+        Ok(self.wrench_of(&self.probe, pose))
+    }
+
+    /// The local stiffness the device feels: the 3 × 3 Jacobian
+    /// $J_{ij} = \partial w_i / \partial q_j$ of the wrench $w = (F_x, F_y, \tau)$ on the base with
+    /// respect to the base pose $q = (x, y, \theta)$, at the current state with the contact
+    /// conditions held (row-major). Central differences of probe solves ($h$ = 1 µm, 1 mrad):
+    /// exact for translations (the held problem is linear in them), $O(h^2)$ for the rotation.
+    /// Six probe solves plus frame rotations: $O(k\,d^2)$ for $k$ slipping nodes; no allocation.
+    /// A device bridge renders $w(q) \approx w_0 + J (q - q_0)$ between server updates.
+    pub fn stiffness_jacobian(&mut self) -> Result<[[f64; 3]; 3], SimError> {
+        let q0 = self.pose;
+        let h = [1e-6, 1e-6, 1e-3];
+        let mut j = [[0.0; 3]; 3];
+        for k in 0..3 {
+            let mut plus = q0;
+            let mut minus = q0;
+            match k {
+                0 => {
+                    plus.x_m += h[0];
+                    minus.x_m -= h[0];
+                }
+                1 => {
+                    plus.y_m += h[1];
+                    minus.y_m -= h[1];
+                }
+                _ => {
+                    plus.theta_rad += h[2];
+                    minus.theta_rad -= h[2];
+                }
+            }
+            let wp = self.probe_wrench(&plus)?;
+            let wm = self.probe_wrench(&minus)?;
+            for i in 0..3 {
+                j[i][k] = (wp[i] - wm[i]) / (2.0 * h[k]);
+            }
+        }
+        Ok(j)
     }
 
     /// Displacement of every DOF ($O(n\,d)$; for rendering at frame rate, not every tick).

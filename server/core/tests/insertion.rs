@@ -292,3 +292,56 @@ fn invalid_parameters_are_named() {
     p.needle = NeedleShape::Rigid(RigidNeedle { length_m: -1.0 });
     assert!(Simulation::new(model, p).err().unwrap().to_string().contains("needle length -1"));
 }
+
+/// The stiffness Jacobian predicts the wrench change of a small base move (all nodes stuck, so
+/// no condition changes), and computing it leaves the simulation untouched.
+#[test]
+fn stiffness_jacobian_predicts_small_moves() {
+    let model = phantom(25);
+    let a0 = -1.25f64;
+    let base_at = |d: f64, a: f64| BasePose::new(0.04 + (d - 0.1) * a.cos(), 0.1 + (d - 0.1) * a.sin(), a);
+    let mut poses: Vec<BasePose> = (1..=3500).map(|k| base_at(-0.005 + 0.04 * k as f64 / 3500.0, a0)).collect();
+    poses.extend(std::iter::repeat_n(*poses.last().unwrap(), 300));
+    let mut a = Simulation::new(model.clone(), params(RegionNeedleParams::default(), base_at(-0.005, a0))).unwrap();
+    let mut b = Simulation::new(model.clone(), params(RegionNeedleParams::default(), base_at(-0.005, a0))).unwrap();
+    run(&mut a, poses.clone());
+    run(&mut b, poses);
+    let held = a.output().clone();
+    assert!(held.n_stuck >= 5 && held.n_slipping == 0, "all nodes stuck after the hold");
+    let j = a.stiffness_jacobian().unwrap();
+    // Computing J leaves the state as it was: both simulations step identically.
+    let q0 = a.pose();
+    let nudge = BasePose::new(q0.x_m + 1e-6, q0.y_m, q0.theta_rad);
+    let oa = a.step(nudge).unwrap().clone();
+    let ob = b.step(nudge).unwrap().clone();
+    assert_eq!(oa.force_n, ob.force_n);
+    assert_eq!(oa.torque_nm, ob.torque_nm);
+    let w = |o: &needlesim_core::StepOutput| [o.force_n[0], o.force_n[1], o.torque_nm];
+    let w0 = w(&held);
+    let scale = [w0[0].hypot(w0[1]), w0[0].hypot(w0[1]), w0[2].abs().max(1e-6)];
+    // Translations: the held problem is linear in them.
+    // (move, tolerance relative to the change): translations are exact; the rotation column is
+    // a central difference and the move itself has second-order terms.
+    for (k, dq, tol) in [(0, [2e-6, 0.0, 0.0], 1e-6), (1, [0.0, -3e-6, 0.0], 1e-6), (2, [0.0, 0.0, 2e-4], 2e-3)] {
+        let mut sim = Simulation::new(model.clone(), params(RegionNeedleParams::default(), base_at(-0.005, a0))).unwrap();
+        let mut poses: Vec<BasePose> = (1..=3500).map(|k| base_at(-0.005 + 0.04 * k as f64 / 3500.0, a0)).collect();
+        poses.extend(std::iter::repeat_n(*poses.last().unwrap(), 300));
+        run(&mut sim, poses);
+        let o = sim.step(BasePose::new(q0.x_m + dq[0], q0.y_m + dq[1], q0.theta_rad + dq[2])).unwrap().clone();
+        assert_eq!(o.n_slipping, 0, "the move must not unstick nodes");
+        let got = w(&o);
+        for i in 0..3 {
+            let predicted = w0[i] + (0..3).map(|c| j[i][c] * dq[c]).sum::<f64>();
+            let change = (got[i] - w0[i]).abs().max(1e-12);
+            assert!(
+                (got[i] - predicted).abs() < tol * change.max(1e-6 * scale[i]),
+                "component {i} of move {k}: got {} predicted {predicted} (J {j:?})",
+                got[i]
+            );
+        }
+    }
+    // The lateral stiffness resists a lateral move of the base.
+    let n = a.pose().normal();
+    let lateral_stiffness = n[0] * (j[0][0] * n[0] + j[0][1] * n[1]) + n[1] * (j[1][0] * n[0] + j[1][1] * n[1]);
+    assert!(lateral_stiffness < 0.0, "a lateral push meets a restoring force: {lateral_stiffness}");
+}
