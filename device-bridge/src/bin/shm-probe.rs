@@ -1,0 +1,63 @@
+//! A helper process for the cross-process tests and benchmarks of the device channel (`needlesim_bridge::shm`).
+//!
+//! `shm-probe write-poses PATH N`: attach, wait for the first force (the go signal), and write N poses at full speed, each with
+//! `x = y = theta = counter` and `buttons = counter as u32`.
+//! `shm-probe echo PATH`: attach and echo every fresh force's tick back as a pose with `x = tick`
+//! until the force state is closing (or the channel goes stale).
+
+use needlesim_bridge::shm::{DeviceChannel, DevicePose, ReadStatus, ServerForce, monotonic_ns};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let usage = "usage: shm-probe write-poses PATH N | shm-probe echo PATH";
+    let (mode, path) = match (args.get(1), args.get(2)) {
+        (Some(m), Some(p)) => (m.as_str(), p.as_str()),
+        _ => {
+            eprintln!("{usage}");
+            std::process::exit(2);
+        }
+    };
+    let mut device = match DeviceChannel::attach(path) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("shm-probe: {e}");
+            std::process::exit(1);
+        }
+    };
+    match mode {
+        "write-poses" => {
+            let n: u64 = args.get(3).and_then(|s| s.parse().ok()).expect(usage);
+            // Start together with the reader: wait for its first force (the "go").
+            while !device.read_force_from_device().fresh() {
+                std::hint::spin_loop();
+            }
+            for _ in 0..n {
+                let c = (device.pose_counter() + 1) as f64;
+                let pose = DevicePose { t_ns: monotonic_ns(), x_m: c, y_m: c, theta_rad: c, buttons: c as u32, counter: 0 };
+                device.write_pose_from_device(&pose).expect("channel went stale");
+            }
+        }
+        "echo" => loop {
+            let f = device.read_force_from_device();
+            if f.status == ReadStatus::Stale {
+                break;
+            }
+            if let Some(force) = f.value {
+                if force.state == ServerForce::STATE_CLOSING {
+                    break;
+                }
+                if f.fresh() {
+                    let pose = DevicePose { t_ns: monotonic_ns(), x_m: force.tick as f64, ..Default::default() };
+                    if device.write_pose_from_device(&pose).is_err() {
+                        break;
+                    }
+                }
+            }
+            std::hint::spin_loop();
+        },
+        _ => {
+            eprintln!("{usage}");
+            std::process::exit(2);
+        }
+    }
+}
