@@ -33,6 +33,7 @@ async fn create(ch: &Channel, example: &str) -> pb::CreateSessionResponse {
         scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(example.into())) }),
         tick_rate_hz: 1000.0,
         record: false,
+        device_channel: false,
     })
     .await
     .expect("create a session")

@@ -127,6 +127,8 @@ fn session_json(s: &pb::SessionInfo) -> serde_json::Value {
         "recording": s.recording,
         "targets": s.target_names,
         "created_unix_ms": s.created_unix_ms,
+        "device_channel_path": s.device_channel_path,
+        "device_stale": s.device_stale,
     })
 }
 
@@ -136,6 +138,7 @@ async fn sessions_create(c: &Conn, a: &CreateArgs, (scene, what): (pb::SceneSour
             scene: Some(scene),
             tick_rate_hz: a.rate.unwrap_or(0.0),
             record: a.record,
+            device_channel: a.device_channel,
         })?)
         .await
         .map_err(|s| c.status_error(&format!("creating a session from {what}"), Role::None, None, &s))?
@@ -153,6 +156,9 @@ async fn sessions_create(c: &Conn, a: &CreateArgs, (scene, what): (pb::SceneSour
     out_line(&format!("observer token    {}", r.observer_token))?;
     if !s.recording.is_empty() {
         out_line(&format!("recording         {}", s.recording))?;
+    }
+    if !s.device_channel_path.is_empty() {
+        out_line(&format!("device channel    {}", s.device_channel_path))?;
     }
     Ok(())
 }

@@ -81,6 +81,10 @@ pub struct CreateArgs {
     /// Record every tick from the start.
     #[arg(long)]
     pub record: bool,
+    /// Give the session a shared-memory channel for a haptic device bridge on this host
+    /// (its path is printed; `needlesim-bridge --channel PATH`).
+    #[arg(long)]
+    pub device_channel: bool,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,

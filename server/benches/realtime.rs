@@ -31,6 +31,7 @@ async fn run_case(ch: tonic::transport::Channel, n_observers: usize, secs: f64) 
             scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
             tick_rate_hz: 1000.0,
             record: false,
+            device_channel: false,
         })
         .await
         .unwrap()

@@ -67,6 +67,7 @@ pub fn frame_from_record(r: &TickRecord, target_names: &[String], missed_ticks: 
         node_displacement_m: vec![],
         missed_ticks,
         compute_us: r.compute_ns as f64 / 1e3,
+        stiffness: r.stiffness.to_vec(),
     }
 }
 
@@ -87,6 +88,7 @@ pub fn control_response(r: &TickRecord) -> pb::ControlResponse {
         n_tip: r.n_tip,
         pose_seq: r.pose_seq,
         client_time_ns: r.client_time_ns,
+        stiffness: r.stiffness.to_vec(),
     }
 }
 

@@ -58,12 +58,35 @@ impl ServerState {
         Arc::new(Self { sessions: RwLock::default(), limits, data_dir })
     }
 
+    /// Where device channels are created: tmpfs (/dev/shm) when there is one, else the data dir.
+    fn device_dir(&self) -> PathBuf {
+        let shm = std::path::Path::new("/dev/shm");
+        if shm.is_dir() { shm.to_path_buf() } else { self.data_dir.join("devices") }
+    }
+
     /// Starts a session and registers it.
     pub fn create_session(&self, scene: &crate::scene::Scene, tick_rate_hz: f64) -> Result<Arc<Session>, Status> {
+        self.create_session_with(scene, tick_rate_hz, false)
+    }
+
+    /// Starts a session, with a shared-memory device channel when `device_channel`, and registers it.
+    pub fn create_session_with(
+        &self,
+        scene: &crate::scene::Scene,
+        tick_rate_hz: f64,
+        device_channel: bool,
+    ) -> Result<Arc<Session>, Status> {
         if self.sessions.read().expect("sessions lock").len() >= self.limits.max_sessions {
             return Err(Status::resource_exhausted(format!("the server runs its limit of {} sessions", self.limits.max_sessions)));
         }
-        let s = Session::start(scene, tick_rate_hz).map_err(|e| Status::invalid_argument(format!("tick_rate_hz: {e}")))?;
+        let dir = device_channel.then(|| self.device_dir());
+        if let Some(d) = &dir {
+            std::fs::create_dir_all(d).map_err(|e| Status::internal(format!("cannot create {}: {e}", d.display())))?;
+        }
+        let s = Session::start(scene, tick_rate_hz, dir.as_deref()).map_err(|e| match e {
+            crate::session::SessionError::TickRate(_) => Status::invalid_argument(format!("tick_rate_hz: {e}")),
+            _ => Status::internal(e.to_string()),
+        })?;
         self.sessions.write().expect("sessions lock").insert(s.id.clone(), s.clone());
         tracing::info!(session = %s.id, scene = %s.scene_name, n_nodes = s.tissue.mesh().n_nodes(), tick_rate_hz, "session created");
         Ok(s)
@@ -127,6 +150,8 @@ fn session_info(s: &Session) -> pb::SessionInfo {
         n_observers: s.n_observers.load(Ordering::Relaxed) as u32,
         recording: s.recorder.lock().expect("recorder lock").as_ref().map(|r| r.info().name).unwrap_or_default(),
         target_names: s.target_names.clone(),
+        device_channel_path: s.device_channel_path.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
+        device_stale: s.counters.device_stale.load(Ordering::Relaxed) != 0,
     }
 }
 
@@ -163,7 +188,8 @@ impl pb::session_service_server::SessionService for Api {
             return Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")));
         }
         let state = self.state.clone();
-        let s = tokio::task::spawn_blocking(move || state.create_session(&scene, rate))
+        let device = r.device_channel;
+        let s = tokio::task::spawn_blocking(move || state.create_session_with(&scene, rate, device))
             .await
             .map_err(|e| Status::internal(format!("session task: {e}")))??;
         if r.record {

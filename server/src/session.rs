@@ -35,6 +35,11 @@ pub const MAX_RECORD_TARGETS: usize = 8;
 const RECORD_RING: usize = 2048;
 /// Capacity of the column request and delivery queues.
 const COLUMN_QUEUE: usize = 512;
+/// How often the real-time thread refreshes the stiffness Jacobian (six probe solves).
+pub const STIFFNESS_EVERY_TICKS: u64 = 10;
+/// Ticks without a fresh device pose after which the device counts as stale and the needle is
+/// held where it was (50 ms at 1 kHz).
+pub const DEVICE_STALE_TICKS: u64 = 50;
 
 /// One needle node in a tick record.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -81,6 +86,11 @@ pub struct TickRecord {
     /// The newest pose command this tick used.
     pub pose_seq: u64,
     pub client_time_ns: u64,
+    /// The local stiffness $\partial(F_x, F_y, \tau)/\partial(x, y, \theta)$, row-major, refreshed
+    /// every [`STIFFNESS_EVERY_TICKS`] ticks.
+    pub stiffness: [f64; 9],
+    /// A device channel exists and its bridge stopped sending poses.
+    pub device_stale: bool,
 }
 
 impl Default for TickRecord {
@@ -106,6 +116,8 @@ impl Default for TickRecord {
             lateness_ns: 0,
             pose_seq: 0,
             client_time_ns: 0,
+            stiffness: [0.0; 9],
+            device_stale: false,
         }
     }
 }
@@ -176,6 +188,12 @@ pub struct SessionCounters {
     pub column_misses: AtomicU64,
     pub clamped_ticks: AtomicU64,
     pub records_truncated: AtomicU64,
+    /// 1 while a device channel's bridge is stale (no fresh pose for [`DEVICE_STALE_TICKS`]).
+    pub device_stale: AtomicU64,
+    /// Times the device went stale.
+    pub device_stale_events: AtomicU64,
+    /// Fresh device poses taken.
+    pub device_poses: AtomicU64,
 }
 
 /// Percentile summary of the tick loop, kept by the fan-out thread.
@@ -215,6 +233,8 @@ pub struct Session {
     pub target_names: Vec<String>,
     pub created_unix_ms: u64,
     pub counters: Arc<SessionCounters>,
+    /// The shared-memory device channel, if the session has one.
+    pub device_channel_path: Option<std::path::PathBuf>,
     pose_in: Mutex<triple_buffer::Input<PoseCommand>>,
     client_in_control: AtomicBool,
     stop: Arc<AtomicBool>,
@@ -253,6 +273,8 @@ pub enum SessionError {
     Sim(#[from] SimError),
     #[error("cannot start a session thread: {0}")]
     Thread(std::io::Error),
+    #[error("cannot create the device channel: {0}")]
+    Device(#[from] needlesim_bridge::shm::ShmError),
 }
 
 fn random_token() -> String {
@@ -262,8 +284,9 @@ fn random_token() -> String {
 }
 
 impl Session {
-    /// Starts the threads of a session for `scene` at `tick_rate_hz`.
-    pub fn start(scene: &Scene, tick_rate_hz: f64) -> Result<Arc<Self>, SessionError> {
+    /// Starts the threads of a session for `scene` at `tick_rate_hz`, with a shared-memory device
+    /// channel in `device_dir` when given (file `needlesim-<session id>`, mode 0600).
+    pub fn start(scene: &Scene, tick_rate_hz: f64, device_dir: Option<&std::path::Path>) -> Result<Arc<Self>, SessionError> {
         if !(tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&tick_rate_hz)) {
             return Err(SessionError::TickRate(tick_rate_hz));
         }
@@ -272,6 +295,14 @@ impl Session {
         let mut sim = Simulation::new(scene.tissue.clone(), params)?;
         sim.reserve_cached_nodes(4 * sim.params().max_needle_nodes + 256);
         let id = random_token()[..12].to_owned();
+        let device = match device_dir {
+            Some(dir) => {
+                let path = dir.join(format!("needlesim-{id}"));
+                Some(needlesim_bridge::shm::DeviceChannel::create(&path)?)
+            }
+            None => None,
+        };
+        let device_channel_path = device.as_ref().map(|d| d.path().to_path_buf());
         let counters = Arc::new(SessionCounters::default());
         let stop = Arc::new(AtomicBool::new(false));
         let initial = PoseCommand { pose: sim.pose(), seq: 0, client_time_ns: 0 };
@@ -306,6 +337,9 @@ impl Session {
             stop: stop.clone(),
             record: Box::new(TickRecord::default()),
             rt_priority: rt_priority(),
+            device,
+            device_seen: false,
+            stiffness: [0.0; 9],
         };
         threads.push(std::thread::Builder::new().name(format!("rt-{id}")).spawn(move || rt.run()).map_err(SessionError::Thread)?);
         let worker = ColumnWorker {
@@ -342,6 +376,7 @@ impl Session {
             target_names: scene.target_names.clone(),
             created_unix_ms,
             counters,
+            device_channel_path,
             pose_in: Mutex::new(pose_in),
             client_in_control: AtomicBool::new(false),
             stop,
@@ -455,6 +490,11 @@ struct RtLoop {
     stop: Arc<AtomicBool>,
     record: Box<TickRecord>,
     rt_priority: i32,
+    /// The server end of the device channel, if any.
+    device: Option<needlesim_bridge::shm::ServerEnd>,
+    /// A device pose has been received at least once.
+    device_seen: bool,
+    stiffness: [f64; 9],
 }
 
 /// Asks the OS to schedule the calling thread with the real-time policy SCHED_FIFO at
@@ -535,6 +575,26 @@ impl RtLoop {
             *last_seq = cmd.seq;
             *last_client_time = cmd.client_time_ns;
         }
+        // A device on the shared-memory channel drives the needle while it sends poses; when it
+        // stops, the needle is held where it was and the device is marked stale.
+        let mut device_stale = false;
+        if let Some(dev) = self.device.as_mut() {
+            let sample = dev.read_pose_from_rt();
+            if sample.fresh()
+                && let Some(p) = sample.value
+            {
+                *pose = BasePose::new(p.x_m, p.y_m, p.theta_rad);
+                self.device_seen = true;
+                self.counters.device_poses.fetch_add(1, Ordering::Relaxed);
+            } else if self.device_seen && sample.reads_since_fresh > DEVICE_STALE_TICKS {
+                device_stale = true;
+                *pose = self.sim.pose();
+            }
+            let was = self.counters.device_stale.swap(device_stale as u64, Ordering::Relaxed);
+            if device_stale && was == 0 {
+                self.counters.device_stale_events.fetch_add(1, Ordering::Relaxed);
+            }
+        }
         let misses_before = self.sim.stats().column_misses;
         let stepped = match self.sim.step(*pose) {
             Ok(out) => {
@@ -553,6 +613,30 @@ impl RtLoop {
                 false
             }
         };
+        if stepped && self.counters.ticks.load(Ordering::Relaxed) % STIFFNESS_EVERY_TICKS == 0 {
+            match self.sim.stiffness_jacobian() {
+                Ok(j) => self.stiffness = [j[0][0], j[0][1], j[0][2], j[1][0], j[1][1], j[1][2], j[2][0], j[2][1], j[2][2]],
+                Err(e) => tracing::error!("stiffness: {e}"),
+            }
+        }
+        self.record.stiffness = self.stiffness;
+        self.record.device_stale = device_stale;
+        if let Some(dev) = self.device.as_mut() {
+            let r = &self.record;
+            dev.write_force_from_rt(&needlesim_bridge::shm::ServerForce {
+                t_ns: needlesim_bridge::shm::monotonic_ns(),
+                tick: r.tick,
+                force_n: r.force_n,
+                torque_nm: r.torque_nm,
+                stiffness: self.stiffness,
+                base: [r.base.x_m, r.base.y_m, r.base.theta_rad],
+                state: if device_stale {
+                    needlesim_bridge::shm::ServerForce::STATE_DEVICE_STALE
+                } else {
+                    needlesim_bridge::shm::ServerForce::STATE_OK
+                },
+            });
+        }
         let st = self.sim.stats();
         self.counters.column_misses.fetch_add(st.column_misses - misses_before, Ordering::Relaxed);
         self.counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);

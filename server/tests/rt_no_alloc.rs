@@ -1,13 +1,15 @@
 //! A session's real-time thread allocates nothing inside a tick once warmed up: a counting global
 //! allocator counts allocations made while `session::IN_TICK` is set, during a 3 s insertion at
-//! 1 kHz driven through the pose slot, with observers attached.
+//! 1 kHz driven through the shared-memory device channel, with observers attached; the
+//! stiffness Jacobian is refreshed inside ticks too.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
+use needlesim_bridge::shm::{DeviceChannel, DevicePose, monotonic_ns};
 use needlesim_core::{BasePose, MeshLimits};
-use needlesim_server::session::{IN_TICK, PoseCommand, Session, WARM_UP_TICKS};
+use needlesim_server::session::{IN_TICK, Session, WARM_UP_TICKS};
 
 struct Counting;
 
@@ -40,31 +42,48 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn real_time_ticks_allocate_nothing_after_warm_up() {
     let scene = needlesim_server::scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
-    let session = Session::start(&scene, 1000.0).unwrap();
+    // Driven through the shared-memory device channel, as a haptic device bridge drives it.
+    let dir = std::env::temp_dir().join(format!("needlesim-rt-alloc-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
+    let mut device = DeviceChannel::attach(session.device_channel_path.as_ref().unwrap()).unwrap();
     let mut latest = session.latest.clone();
     let mut all = session.all_ticks.subscribe();
     let secs = 3.0;
     let start = Instant::now();
-    let mut seq = 0;
+    let mut forces = 0;
     while start.elapsed().as_secs_f64() < secs + 0.3 {
         let t = start.elapsed().as_secs_f64().min(secs);
-        seq += 1;
-        let pose = BasePose::new(0.05, 0.205 - 0.05 * t / secs, -std::f64::consts::FRAC_PI_2);
-        session.write_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
+        let p = BasePose::new(0.05, 0.205 - 0.05 * t / secs, -std::f64::consts::FRAC_PI_2);
+        device
+            .write_pose_from_device(&DevicePose {
+                t_ns: monotonic_ns(),
+                x_m: p.x_m,
+                y_m: p.y_m,
+                theta_rad: p.theta_rad,
+                buttons: 0,
+                counter: 0,
+            })
+            .unwrap();
+        forces += device.read_force_from_device().fresh() as u64;
         while all.try_recv().is_ok() {}
         let _ = latest.borrow_and_update();
         std::thread::sleep(Duration::from_micros(500));
     }
     let ticks = session.counters.ticks.load(Ordering::Relaxed);
     let rec = session.latest_record();
+    drop(device);
     session.close();
+    let _ = std::fs::remove_dir_all(&dir);
     println!(
-        "{ticks} ticks, {} needle nodes at the end, {} allocations inside warm ticks",
+        "{ticks} ticks, {forces} fresh forces read by the device, {} needle nodes at the end, {} allocations inside warm ticks",
         rec.n_nodes,
         IN_TICK_ALLOCS.load(Ordering::Relaxed)
     );
     assert!(ticks > WARM_UP_TICKS + 2000, "the session ticked ({ticks})");
-    assert!(rec.n_nodes >= 5 && rec.force_axial_n < 0.0, "the needle went into the tissue");
+    assert!(forces > 1000, "the device read the server's forces");
+    assert!(rec.n_nodes >= 5 && rec.force_axial_n < 0.0, "the device drove the needle into the tissue");
+    assert!(rec.stiffness.iter().any(|v| *v != 0.0), "the stiffness is computed in ticks too");
     assert_eq!(session.counters.column_misses.load(Ordering::Relaxed), 0, "the worker delivered columns ahead of the tip");
     assert_eq!(IN_TICK_ALLOCS.load(Ordering::Relaxed), 0, "allocations inside real-time ticks");
 }

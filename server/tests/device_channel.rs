@@ -1,0 +1,78 @@
+//! A session with a shared-memory device channel: the device drives the needle and reads force,
+//! torque and stiffness; when the bridge goes away the server holds the needle and marks the
+//! device stale; a new bridge re-attaches and drives again.
+
+use std::sync::atomic::Ordering;
+use std::time::{Duration, Instant};
+
+use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ServerForce, monotonic_ns};
+use needlesim_core::MeshLimits;
+use needlesim_server::session::Session;
+
+fn drive(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64) -> Option<ServerForce> {
+    let start = Instant::now();
+    let mut last = None;
+    while start.elapsed().as_secs_f64() < secs {
+        let y = from_y + (to_y - from_y) * start.elapsed().as_secs_f64() / secs;
+        device
+            .write_pose_from_device(&DevicePose {
+                t_ns: monotonic_ns(),
+                x_m: 0.05,
+                y_m: y,
+                theta_rad: -std::f64::consts::FRAC_PI_2,
+                buttons: 0,
+                counter: 0,
+            })
+            .unwrap();
+        let f = device.read_force_from_device();
+        if f.fresh() {
+            last = f.value;
+        }
+        std::thread::sleep(Duration::from_micros(500));
+    }
+    last
+}
+
+#[test]
+fn device_drives_goes_stale_and_reattaches() {
+    let scene = needlesim_server::scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
+    let dir = std::env::temp_dir().join(format!("needlesim-device-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
+    let path = session.device_channel_path.clone().unwrap();
+    let mode = std::os::unix::fs::PermissionsExt::mode(&std::fs::metadata(&path).unwrap().permissions()) & 0o777;
+    assert_eq!(mode, 0o600, "the channel is readable only by its owner");
+
+    // The device inserts the needle 30 mm and reads the tissue's force back.
+    let mut device = DeviceChannel::attach(&path).unwrap();
+    let f = drive(&mut device, 0.205, 0.165, 2.0).expect("forces arrive");
+    assert_eq!(f.state, ServerForce::STATE_OK);
+    assert!((f.base[1] - 0.165).abs() < 0.002, "the server used the device's pose: {:?}", f.base);
+    let axial = -f.force_n[1]; // the needle points down: axial = -Fy
+    assert!(axial < -0.1, "the tissue resists the insertion: {f:?}");
+    // Lateral stiffness (x pose → Fx) restores: negative.
+    assert!(f.stiffness[0] < 0.0, "stiffness {:?}", f.stiffness);
+    let rec = session.latest_record();
+    assert!(!rec.device_stale);
+
+    // The bridge goes away without a word: the server holds the needle and marks the device stale.
+    drop(device);
+    std::thread::sleep(Duration::from_millis(300));
+    let held = session.latest_record();
+    assert!(held.device_stale, "the device is marked stale");
+    assert!((held.base.y_m - f.base[1]).abs() < 0.002, "the needle is held where the device left it: {:?}", held.base);
+    assert_eq!(session.counters.device_stale_events.load(Ordering::Relaxed), 1);
+    let t1 = held.tick;
+    std::thread::sleep(Duration::from_millis(100));
+    assert!(session.latest_record().tick > t1 + 50, "the session keeps ticking");
+
+    // A new bridge attaches and drives again.
+    let mut again = DeviceChannel::attach(&path).unwrap();
+    let f2 = drive(&mut again, 0.165, 0.17, 0.5).expect("forces arrive again");
+    assert_eq!(f2.state, ServerForce::STATE_OK);
+    assert!(!session.latest_record().device_stale);
+    assert!((session.latest_record().base.y_m - 0.17).abs() < 0.002);
+    drop(again);
+    session.close();
+    let _ = std::fs::remove_dir_all(&dir);
+}
