@@ -511,3 +511,30 @@ async fn issue_6_control_stream_ends_when_the_controller_is_done() {
     .await;
     assert!(ended.is_ok(), "the response stream did not end after the controller closed its side ({n} responses)");
 }
+
+/// SIGTERM shuts the server down cleanly: sessions close and their device channels are removed.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sigterm_closes_sessions_and_removes_device_channels() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let mut server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch);
+    let created = sessions
+        .create_session(pb::CreateSessionRequest {
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+            tick_rate_hz: 1000.0,
+            record: false,
+            device_channel: true,
+        })
+        .await
+        .unwrap()
+        .into_inner();
+    let path = std::path::PathBuf::from(created.session.unwrap().device_channel_path);
+    assert!(path.exists(), "the device channel {} exists", path.display());
+    let pid = server.child.id() as i32;
+    let o = std::process::Command::new("kill").args(["-TERM", &pid.to_string()]).output().unwrap();
+    assert!(o.status.success());
+    let status = tokio::task::spawn_blocking(move || server.child.wait().unwrap()).await.unwrap();
+    assert!(status.success(), "clean exit on SIGTERM: {status:?}");
+    assert!(!path.exists(), "the device channel {} was removed", path.display());
+}

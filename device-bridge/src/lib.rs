@@ -1,3 +1,6 @@
-//! The haptic device bridge library: the shared-memory channel to a session's real-time thread ([`shm`]).
+//! The haptic device bridge library: the shared-memory channel to a session's real-time thread ([`shm`]),
+//! the devices ([`device`]) and the safety layer that renders the server's force on them ([`render`]).
 
+pub mod device;
+pub mod render;
 pub mod shm;

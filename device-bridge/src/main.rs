@@ -1,10 +1,396 @@
-//! The haptic device bridge binary: a placeholder until the device loop arrives (issue 5, second part).
+//! `needlesim-bridge`: the device loop between a haptic device and a session's shared-memory channel.
+//!
+//! Every device period (tick k at `t0 + k·Δt`, drift-free; a late wake-up skips the periods it
+//! missed and counts them): read the device pose → `write_pose_from_device` →
+//! `read_force_from_device` → render (local model, coupling, watchdog, limits: `render.rs`) →
+//! `write_force` on the device. On every exit path (end of `--seconds`, Ctrl-C/SIGTERM, a device
+//! or channel error) a zero wrench is written to the device before it is closed.
+//!
+//! Latency figures in the report (µs, p50/p99, over the fresh forces seen):
+//! - `pose_to_force_us`: (time the bridge first saw a force) − (write time of the newest pose the
+//!   bridge had written at or before the force's `t_ns`), i.e. an upper bound on the device→server→device
+//!   round trip as the server echoes no pose counter today (the server may have used an older pose);
+//! - `force_age_us`: (time the bridge first saw a force) − its `t_ns` (the server → bridge part).
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, Result, bail};
+use clap::{Parser, ValueEnum};
+use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
+use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
+use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, monotonic_ns};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum DeviceKind {
+    /// Replay --trajectory; forces are recorded, nothing moves.
+    Scripted,
+    /// A simulated hand (mass, damping, PD toward --trajectory) that the rendered force pushes back.
+    Virtual,
+    /// A real device through a C plug-in (--plugin LIB.so, include/needlesim_device.h).
+    Plugin,
+}
+
+/// Runs a haptic device against a needlesim session's shared-memory device channel.
+#[derive(Debug, Parser)]
+#[command(name = "needlesim-bridge", version)]
+struct Cli {
+    /// The session's device channel file (created by the server).
+    #[arg(long, value_name = "PATH")]
+    channel: PathBuf,
+    #[arg(long, value_enum)]
+    device: DeviceKind,
+    /// Trajectory CSV (`t_s,x_m,y_m,theta_rad`) for the scripted and virtual devices.
+    #[arg(long, value_name = "CSV")]
+    trajectory: Option<PathBuf>,
+    /// Replay the trajectory in a loop instead of holding its last pose.
+    #[arg(long = "loop")]
+    looped: bool,
+    /// The plug-in shared library (--device plugin).
+    #[arg(long, value_name = "LIB.so")]
+    plugin: Option<PathBuf>,
+    /// The string passed to the plug-in's nsd_open.
+    #[arg(long, value_name = "STR", default_value = "")]
+    plugin_config: String,
+    /// Device rate (Hz).
+    #[arg(long, default_value_t = 1000.0)]
+    rate_hz: f64,
+    /// Stop after this many seconds (default: until Ctrl-C / SIGTERM).
+    #[arg(long, value_name = "S")]
+    seconds: Option<f64>,
+    /// Limit on |(Fx, Fy)| sent to the device (N).
+    #[arg(long, value_name = "F", default_value_t = 5.0)]
+    max_force_n: f64,
+    /// Limit on |τ| sent to the device (N·m).
+    #[arg(long, value_name = "T", default_value_t = 0.05)]
+    max_torque_nm: f64,
+    /// Device periods without a fresh server force before the ramp to zero starts.
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    watchdog_periods: u64,
+    /// Duration of the ramp to zero (and back) (ms).
+    #[arg(long, value_name = "MS", default_value_t = 50.0)]
+    ramp_ms: f64,
+    /// Virtual-coupling stiffness in x and y (N/m); 0 (with --coupling-k-rot 0) disables the coupling.
+    #[arg(long, value_name = "N_PER_M", default_value_t = 2000.0)]
+    coupling_k: f64,
+    /// Virtual-coupling stiffness in θ (N·m/rad).
+    #[arg(long, value_name = "NM_PER_RAD", default_value_t = 2.0)]
+    coupling_k_rot: f64,
+    /// Virtual-coupling damping in x and y (N·s/m).
+    #[arg(long, value_name = "NS_PER_M", default_value_t = 2.0)]
+    coupling_b: f64,
+    /// Virtual-coupling damping in θ (N·m·s/rad).
+    #[arg(long, value_name = "NMS_PER_RAD", default_value_t = 0.002)]
+    coupling_b_rot: f64,
+    /// Print the report as one JSON object on stdout (else a summary on stderr).
+    #[arg(long)]
+    json: bool,
+    /// Write a CSV row per period (t_s, pose, server force, rendered wrench, gain) to this file.
+    #[arg(long, value_name = "CSV")]
+    trace: Option<PathBuf>,
+}
+
+static STOP: AtomicBool = AtomicBool::new(false);
+
+extern "C" fn on_signal(_: libc::c_int) {
+    STOP.store(true, Ordering::Relaxed);
+}
+
+fn install_signal_handlers() {
+    for sig in [libc::SIGINT, libc::SIGTERM] {
+        // SAFETY: the handler only stores to an atomic (async-signal-safe).
+        unsafe { libc::signal(sig, on_signal as *const () as libc::sighandler_t) };
+    }
+}
+
+#[derive(Debug, Default)]
+struct Report {
+    device: String,
+    periods: u64,
+    missed_periods: u64,
+    fresh_forces: u64,
+    watchdog_periods: u64,
+    limited_periods: u64,
+    pose_to_force_ns: Vec<u64>,
+    force_age_ns: Vec<u64>,
+    last_counter: u64,
+    last_tick: Option<u64>,
+    max_rendered_force_n: f64,
+    final_pose: [f64; 3],
+    exit: String,
+}
+
+fn percentile_us(v: &mut [u64], p: f64) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_unstable();
+    let i = ((p * (v.len() - 1) as f64).round() as usize).min(v.len() - 1);
+    Some(v[i] as f64 / 1e3)
+}
+
+fn json_num(x: Option<f64>) -> String {
+    match x {
+        Some(v) if v.is_finite() => format!("{v}"),
+        _ => "null".into(),
+    }
+}
+
+fn json_str(s: &str) -> String {
+    let mut o = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            c if (c as u32) < 0x20 => o.push_str(&format!("\\u{:04x}", c as u32)),
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+    o
+}
+
+impl Report {
+    fn print(&mut self, json: bool) {
+        let p2f = [percentile_us(&mut self.pose_to_force_ns, 0.5), percentile_us(&mut self.pose_to_force_ns, 0.99)];
+        let age = [percentile_us(&mut self.force_age_ns, 0.5), percentile_us(&mut self.force_age_ns, 0.99)];
+        if json {
+            println!(
+                "{{\"device\":{},\"periods\":{},\"missed_periods\":{},\"fresh_forces\":{},\"watchdog_periods\":{},\"limited_periods\":{},\
+                 \"pose_counter\":{},\"last_server_tick\":{},\"pose_to_force_us\":{{\"p50\":{},\"p99\":{}}},\"force_age_us\":{{\"p50\":{},\"p99\":{}}},\
+                 \"max_rendered_force_n\":{},\"final_pose\":[{},{},{}],\"final_wrench\":[0,0,0],\"exit\":{}}}",
+                json_str(&self.device),
+                self.periods,
+                self.missed_periods,
+                self.fresh_forces,
+                self.watchdog_periods,
+                self.limited_periods,
+                self.last_counter,
+                self.last_tick.map_or("null".into(), |t| t.to_string()),
+                json_num(p2f[0]),
+                json_num(p2f[1]),
+                json_num(age[0]),
+                json_num(age[1]),
+                self.max_rendered_force_n,
+                self.final_pose[0],
+                self.final_pose[1],
+                self.final_pose[2],
+                json_str(&self.exit),
+            );
+        } else {
+            let f = |x: Option<f64>| x.map_or("-".into(), |v| format!("{v:.1}"));
+            eprintln!(
+                "needlesim-bridge: {} periods ({} missed), {} fresh forces, {} periods under the watchdog, {} limited; \
+                 pose→force p50 {} µs p99 {} µs, force age p50 {} µs p99 {} µs; exit: {}",
+                self.periods,
+                self.missed_periods,
+                self.fresh_forces,
+                self.watchdog_periods,
+                self.limited_periods,
+                f(p2f[0]),
+                f(p2f[1]),
+                f(age[0]),
+                f(age[1]),
+                self.exit
+            );
+        }
+    }
+}
+
+fn open_device(cli: &Cli) -> Result<Box<dyn Device>> {
+    let traj = || -> Result<Trajectory> {
+        let path = cli.trajectory.as_ref().with_context(|| format!("--device {:?} needs --trajectory CSV", cli.device))?;
+        Trajectory::load(path, cli.looped)
+    };
+    Ok(match cli.device {
+        DeviceKind::Scripted => Box::new(ScriptedDevice::new(traj()?)),
+        DeviceKind::Virtual => Box::new(VirtualOperator::new(traj()?, OperatorParams::default())),
+        DeviceKind::Plugin => {
+            let lib = cli.plugin.as_ref().context("--device plugin needs --plugin LIB.so")?;
+            Box::new(PluginDevice::open(lib, &cli.plugin_config)?)
+        }
+    })
+}
+
+fn run(cli: &Cli, mut channel: DeviceEnd, device: &mut dyn Device, report: &mut Report) -> Result<()> {
+    if !(cli.rate_hz.is_finite() && cli.rate_hz > 0.0) {
+        bail!("--rate-hz must be positive, got {}", cli.rate_hz);
+    }
+    let period_s = 1.0 / cli.rate_hz;
+    let params = RenderParams {
+        period_s,
+        max_force_n: cli.max_force_n,
+        max_torque_nm: cli.max_torque_nm,
+        watchdog_periods: cli.watchdog_periods,
+        ramp_s: cli.ramp_ms * 1e-3,
+        coupling_k: [cli.coupling_k, cli.coupling_k, cli.coupling_k_rot],
+        coupling_b: [cli.coupling_b, cli.coupling_b, cli.coupling_b_rot],
+    };
+    let mut renderer = Renderer::new(params);
+    let mut trace = match &cli.trace {
+        Some(p) => {
+            let f = std::fs::File::create(p).with_context(|| format!("--trace {}: cannot create", p.display()))?;
+            let mut w = std::io::BufWriter::new(f);
+            writeln!(w, "t_s,counter,x_m,y_m,theta_rad,fresh,tick,server_fx_n,server_fy_n,server_torque_nm,fx_n,fy_n,torque_nm,gain")?;
+            Some(w)
+        }
+        None => None,
+    };
+    let periods_total = cli.seconds.map(|s| (s * cli.rate_hz).round().max(0.0) as u64);
+    let cap = periods_total.unwrap_or(60_000).min(1 << 22) as usize;
+    report.pose_to_force_ns.reserve(cap);
+    report.force_age_ns.reserve(cap);
+    // (write time, counter) of the last poses, to find the newest one written at or before a force's t_ns.
+    const RING: usize = 1024;
+    let mut ring = [0u64; RING];
+    let mut ring_len = 0usize;
+
+    let dt = Duration::from_secs_f64(period_s);
+    let t0 = Instant::now();
+    let mut k: u64 = 0;
+    let mut stale_since: Option<u64> = None;
+    loop {
+        if STOP.load(Ordering::Relaxed) {
+            report.exit = "signal".into();
+            return Ok(());
+        }
+        // --seconds S ends the schedule at t0 + S: executed plus missed periods = S·rate.
+        if periods_total.is_some_and(|n| k >= n) {
+            report.exit = "done".into();
+            return Ok(());
+        }
+        // Drift-free schedule: period k starts at t0 + k·Δt.
+        let deadline = t0 + dt.mul_f64(k as f64);
+        let now = Instant::now();
+        if deadline > now {
+            std::thread::sleep(deadline - now);
+        } else {
+            let late = (now - deadline).as_secs_f64() / period_s;
+            if late >= 1.0 {
+                let skip = (late.floor() as u64).min(periods_total.map_or(u64::MAX, |n| n.saturating_sub(k)));
+                report.missed_periods += skip;
+                renderer.missed(skip);
+                k += skip;
+                if periods_total.is_some_and(|n| k >= n) {
+                    continue;
+                }
+            }
+        }
+        let t_s = k as f64 * period_s;
+        k += 1;
+        report.periods += 1;
+
+        let state = device.read_pose(t_s)?;
+        report.final_pose = state.pose();
+        let t_pose = monotonic_ns();
+        let pose =
+            DevicePose { t_ns: t_pose, x_m: state.x_m, y_m: state.y_m, theta_rad: state.theta_rad, buttons: state.buttons, counter: 0 };
+        if let Ok(c) = channel.write_pose_from_device(&pose) {
+            report.last_counter = c;
+            ring[ring_len % RING] = t_pose;
+            ring_len += 1;
+        }
+        let sample = channel.read_force_from_device();
+        let t_seen = monotonic_ns();
+        let fresh = match (sample.status, sample.value) {
+            (ReadStatus::Fresh, Some(f)) if f.state == ServerForce::STATE_OK || f.state == ServerForce::STATE_DEVICE_STALE => Some(f),
+            _ => None,
+        };
+        if let Some(f) = &fresh {
+            report.fresh_forces += 1;
+            report.last_tick = Some(f.tick);
+            report.force_age_ns.push(t_seen.saturating_sub(f.t_ns));
+            // Newest pose written at or before f.t_ns (the ring is in write order).
+            let n = ring_len.min(RING);
+            if let Some(tp) = (0..n).map(|i| ring[(ring_len - 1 - i) % RING]).find(|&tp| tp <= f.t_ns) {
+                report.pose_to_force_ns.push(t_seen.saturating_sub(tp));
+            }
+        }
+        let server = fresh.as_ref().map(ServerSample::from);
+        let out = renderer.update(state.pose(), server.as_ref());
+        if out.periods_since_fresh > cli.watchdog_periods {
+            report.watchdog_periods += 1;
+        }
+        report.limited_periods += out.limited as u64;
+        report.max_rendered_force_n = report.max_rendered_force_n.max(out.wrench[0].hypot(out.wrench[1]));
+        device.write_force(out.wrench)?;
+        if let Some(w) = trace.as_mut() {
+            let sv = sample.value.unwrap_or_default();
+            writeln!(
+                w,
+                "{t_s},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                report.last_counter,
+                state.x_m,
+                state.y_m,
+                state.theta_rad,
+                fresh.is_some() as u8,
+                sv.tick,
+                sv.force_n[0],
+                sv.force_n[1],
+                sv.torque_nm,
+                out.wrench[0],
+                out.wrench[1],
+                out.wrench[2],
+                out.gain
+            )?;
+        }
+        // A re-created or closed channel: let the watchdog ramp the force out, then stop.
+        if sample.status == ReadStatus::Stale || !channel.is_current() {
+            let since = *stale_since.get_or_insert(report.periods);
+            if out.wrench == [0.0; 3] || report.periods - since > cli.watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1 {
+                if let Some(w) = trace.as_mut() {
+                    w.flush()?;
+                }
+                bail!("device channel {}: closed or re-created by the server", cli.channel.display());
+            }
+        }
+    }
+}
 
 fn main() {
-    eprintln!(
-        "needlesim-bridge: not implemented yet. It will attach to a session's device channel \
-         (needlesim_bridge::shm::DeviceChannel::attach), write the device pose each device sample, \
-         and render the server's force (with its stiffness Jacobian between ticks)."
-    );
-    std::process::exit(2);
+    tracing_subscriber::fmt()
+        .with_writer(std::io::stderr)
+        .with_env_filter(tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "info".into()))
+        .init();
+    let cli = Cli::parse();
+    install_signal_handlers();
+    // The channel first: a missing or stale channel never touches the device.
+    let channel = match DeviceChannel::attach(&cli.channel) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("needlesim-bridge: {e}");
+            std::process::exit(1);
+        }
+    };
+    let mut device = match open_device(&cli) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("needlesim-bridge: {e:#}");
+            std::process::exit(1);
+        }
+    };
+    tracing::info!(device = device.name(), channel = %cli.channel.display(), rate_hz = cli.rate_hz, "starting");
+    let mut report = Report { device: device.name().to_string(), ..Default::default() };
+    let result = run(&cli, channel, device.as_mut(), &mut report);
+    // Never leave a haptic device pushing: zero first, whatever happened.
+    if let Err(e) = device.write_force([0.0; 3]) {
+        eprintln!("needlesim-bridge: writing the final zero force failed: {e:#}");
+    }
+    device.close();
+    let code = match &result {
+        Ok(()) => 0,
+        Err(e) => {
+            report.exit = format!("error: {e:#}");
+            1
+        }
+    };
+    if report.periods > 0 || cli.json {
+        report.print(cli.json);
+    }
+    if let Err(e) = result {
+        eprintln!("needlesim-bridge: {e:#}");
+    }
+    std::process::exit(code);
 }

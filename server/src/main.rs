@@ -283,7 +283,19 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     runtime.block_on(serve::serve(config, async {
-        let _ = tokio::signal::ctrl_c().await;
+        // Ctrl-C or SIGTERM: close every session (its device channel file is removed too).
+        let mut term = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()).ok();
+        tokio::select! {
+            _ = tokio::signal::ctrl_c() => {}
+            _ = async {
+                match term.as_mut() {
+                    Some(t) => {
+                        t.recv().await;
+                    }
+                    None => std::future::pending::<()>().await,
+                }
+            } => {}
+        }
         tracing::info!("shutting down");
     }))
 }

@@ -544,6 +544,7 @@ mod tests {
             node_displacement_m: (0..16).map(|i| 1e-5 * f64::from(i) * t).collect(),
             missed_ticks: 0,
             compute_us: 120.0 + (tick % 7) as f64,
+            stiffness: (0..9).map(|i| -10.0 * f64::from(i) - t).collect(),
         }
     }
 

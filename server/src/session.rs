@@ -613,7 +613,7 @@ impl RtLoop {
                 false
             }
         };
-        if stepped && self.counters.ticks.load(Ordering::Relaxed) % STIFFNESS_EVERY_TICKS == 0 {
+        if stepped && self.counters.ticks.load(Ordering::Relaxed).is_multiple_of(STIFFNESS_EVERY_TICKS) {
             match self.sim.stiffness_jacobian() {
                 Ok(j) => self.stiffness = [j[0][0], j[0][1], j[0][2], j[1][0], j[1][1], j[1][2], j[2][0], j[2][1], j[2][2]],
                 Err(e) => tracing::error!("stiffness: {e}"),

@@ -1,0 +1,533 @@
+//! The device backends and the real `needlesim-bridge` binary against a fake server loop written here
+//! (the test owns the channel's `ServerEnd` and writes forces at 1 kHz from a known linear stiffness).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, OnceLock};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use needlesim_bridge::device::{Device, PluginDevice};
+use needlesim_bridge::shm::{DeviceChannel, ServerEnd, ServerForce, monotonic_ns};
+
+const BIN: &str = env!("CARGO_BIN_EXE_needlesim-bridge");
+/// The fake tissue: w = J q (linear, so the bridge's local model is exact).
+const J: [f64; 9] = [-200.0, 10.0, 0.0, 5.0, -300.0, 0.0, 0.0, 0.0, -0.05];
+
+fn temp_dir(name: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!("needlesim-bridge-test-{}-{}-{name}", std::process::id(), N.fetch_add(1, Ordering::Relaxed)));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn env_wrench(q: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| (0..3).map(|j| J[3 * i + j] * q[j]).sum())
+}
+
+/// Compiles examples/plugin/example_device.c into a shared library (once per test binary).
+fn example_plugin() -> &'static Path {
+    static LIB: OnceLock<PathBuf> = OnceLock::new();
+    LIB.get_or_init(|| {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        // In the target's scratch dir, built under a private name and renamed into place (a process
+        // still using an older copy keeps its inode).
+        let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("libexample_device.so");
+        let building = out.with_extension(format!("so.{}", std::process::id()));
+        let target = if cfg!(target_arch = "aarch64") { "aarch64-unknown-linux-gnu" } else { "x86_64-unknown-linux-gnu" };
+        let compiler = cc::Build::new().target(target).host(target).opt_level(1).cargo_metadata(false).get_compiler();
+        let status = compiler
+            .to_command()
+            .args(["-shared", "-fPIC", "-Wall", "-Werror", "-I"])
+            .arg(root.join("include"))
+            .arg("-o")
+            .arg(&building)
+            .arg(root.join("examples/plugin/example_device.c"))
+            .status()
+            .expect("running the C compiler");
+        assert!(status.success(), "compiling the example plug-in failed");
+        std::fs::rename(&building, &out).unwrap();
+        out
+    })
+}
+
+/// A fake session: reads the pose every millisecond and writes w = J q at it, until `writing` is cleared.
+struct FakeServer {
+    writing: Arc<AtomicBool>,
+    quit: Arc<AtomicBool>,
+    handle: JoinHandle<(ServerEnd, ServerStats)>,
+}
+
+#[derive(Debug, Default)]
+struct ServerStats {
+    fresh_poses: u64,
+    last_counter: u64,
+    counters_increasing: bool,
+    ticks: u64,
+}
+
+impl FakeServer {
+    fn start(mut server: ServerEnd) -> Self {
+        let writing = Arc::new(AtomicBool::new(true));
+        let quit = Arc::new(AtomicBool::new(false));
+        let (w, q) = (writing.clone(), quit.clone());
+        let handle = std::thread::spawn(move || {
+            let mut st = ServerStats { counters_increasing: true, ..Default::default() };
+            let t0 = Instant::now();
+            let mut k = 0u64;
+            while !q.load(Ordering::Relaxed) {
+                k += 1;
+                let deadline = t0 + Duration::from_micros(1000 * k);
+                if let Some(d) = deadline.checked_duration_since(Instant::now()) {
+                    std::thread::sleep(d);
+                }
+                let s = server.read_pose_from_rt();
+                if s.fresh() {
+                    let c = s.value.unwrap().counter;
+                    st.counters_increasing &= c > st.last_counter;
+                    st.last_counter = c;
+                    st.fresh_poses += 1;
+                }
+                if let (Some(p), true) = (s.value, w.load(Ordering::Relaxed)) {
+                    let q = [p.x_m, p.y_m, p.theta_rad];
+                    let wr = env_wrench(q);
+                    st.ticks += 1;
+                    server.write_force_from_rt(&ServerForce {
+                        t_ns: monotonic_ns(),
+                        tick: st.ticks,
+                        force_n: [wr[0], wr[1]],
+                        torque_nm: wr[2],
+                        stiffness: J,
+                        base: q,
+                        state: ServerForce::STATE_OK,
+                    });
+                }
+            }
+            (server, st)
+        });
+        Self { writing, quit, handle }
+    }
+
+    fn stop(self) -> (ServerEnd, ServerStats) {
+        self.quit.store(true, Ordering::Relaxed);
+        self.handle.join().unwrap()
+    }
+}
+
+fn write_trajectory(dir: &Path) -> PathBuf {
+    let p = dir.join("traj.csv");
+    // 1.5 s ramp to (10 mm, −5 mm, 0.1 rad), then hold.
+    std::fs::write(&p, "t_s,x_m,y_m,theta_rad\n0,0,0,0\n1.5,0.01,-0.005,0.1\n3,0.01,-0.005,0.1\n").unwrap();
+    p
+}
+
+fn bridge(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).env("RUST_LOG", "warn").output().unwrap()
+}
+
+/// The `--json` report, as (key, raw value) lookups.
+fn json_field<'a>(json: &'a str, key: &str) -> &'a str {
+    let k = format!("\"{key}\":");
+    let start = json.find(&k).unwrap_or_else(|| panic!("no {key} in {json}")) + k.len();
+    let rest = &json[start..];
+    let end =
+        if rest.starts_with('[') || rest.starts_with('{') { rest.find([']', '}']).unwrap() + 1 } else { rest.find([',', '}']).unwrap() };
+    &rest[..end]
+}
+
+fn json_num(json: &str, key: &str) -> f64 {
+    json_field(json, key).parse().unwrap_or_else(|_| panic!("{key} not a number in {json}"))
+}
+
+struct TraceRow {
+    t_s: f64,
+    counter: u64,
+    q: [f64; 3],
+    fresh: bool,
+    wrench: [f64; 3],
+    gain: f64,
+}
+
+fn read_trace(path: &Path) -> Vec<TraceRow> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "t_s,counter,x_m,y_m,theta_rad,fresh,tick,server_fx_n,server_fy_n,server_torque_nm,fx_n,fy_n,torque_nm,gain"
+    );
+    lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            TraceRow {
+                t_s: v[0],
+                counter: v[1] as u64,
+                q: [v[2], v[3], v[4]],
+                fresh: v[5] == 1.0,
+                wrench: [v[10], v[11], v[12]],
+                gain: v[13],
+            }
+        })
+        .collect()
+}
+
+fn check_rate_and_counters(json: &str, rows: &[TraceRow], st: &ServerStats, seconds: f64) {
+    let periods = json_num(json, "periods");
+    let missed = json_num(json, "missed_periods");
+    let expect = seconds * 1000.0;
+    assert!((periods + missed - expect).abs() <= 2.0, "periods {periods} + missed {missed} vs {expect}: {json}");
+    assert!(missed <= 0.05 * expect, "too many missed periods: {json}");
+    assert!(json_num(json, "pose_counter") == periods, "{json}");
+    assert!(rows.windows(2).all(|w| w[1].counter == w[0].counter + 1 && w[1].t_s > w[0].t_s));
+    // Poses reach the server at ~1 kHz with advancing counters. Both sides sample the other's latest
+    // value once per ms on independent schedules: when their phases nearly coincide, jitter makes
+    // some samples see two updates and others none, so "fresh" counts can be well below 1 per ms.
+    assert!(st.counters_increasing);
+    assert!(st.last_counter + 5 >= periods as u64, "server's last counter {} of {periods}", st.last_counter);
+    assert!(st.fresh_poses as f64 >= 0.5 * expect, "server saw {} fresh poses in {seconds} s", st.fresh_poses);
+    assert!(json_num(json, "fresh_forces") >= 0.5 * expect, "{json}");
+    // Both loops at 1 kHz: a force is seen at the device period after the pose it answers (≈ 1 ms).
+    let p2f = json_field(json, "pose_to_force_us");
+    assert!(json_num(p2f, "p50") < 3000.0 && json_num(p2f, "p99") < 20_000.0, "{json}");
+    assert!(json_num(json_field(json, "force_age_us"), "p50") < 1500.0, "{json}");
+}
+
+#[test]
+fn example_plugin_through_the_backend() {
+    let lib = example_plugin();
+    let mut dev = PluginDevice::open(lib, "x0=0.01 y0=-0.02 th0=0.5 vx=0.1").unwrap();
+    assert_eq!(dev.name(), "plugin:libexample_device.so");
+    let s1 = dev.read_pose(0.0).unwrap();
+    std::thread::sleep(Duration::from_millis(20));
+    let s2 = dev.read_pose(0.0).unwrap();
+    assert!(s1.x_m >= 0.01 && s2.x_m > s1.x_m + 0.1 * 0.015 && s2.x_m < 0.01 + 0.1 * 1.0, "{s1:?} {s2:?}");
+    assert_eq!((s2.y_m, s2.theta_rad, s2.buttons), (-0.02, 0.5, 1));
+
+    dev.write_force([1.0, -2.0, 0.03]).unwrap();
+    // SAFETY: the example's extra export, `long nsd_example_last_force(void*, double[3])`.
+    let last = unsafe {
+        let f = dev
+            .library()
+            .get::<unsafe extern "C" fn(*mut std::ffi::c_void, *mut f64) -> std::ffi::c_long>(b"nsd_example_last_force\0")
+            .unwrap();
+        let mut out = [0.0; 3];
+        let n = f(dev.handle(), out.as_mut_ptr());
+        (out, n)
+    };
+    assert_eq!(last, ([1.0, -2.0, 0.03], 1));
+
+    let e = dev.write_force([f64::NAN, 0.0, 0.0]).unwrap_err().to_string();
+    assert!(e.contains("nsd_write_force returned 1: example device: NaN force"), "{e}");
+    dev.close();
+    assert!(dev.read_pose(0.0).is_err());
+
+    let e = PluginDevice::open(lib, "bogus").err().unwrap().to_string();
+    assert!(e.contains("nsd_open failed: example device: bad config entry 'bogus'"), "{e}");
+    let e = format!("{:#}", PluginDevice::open("/nonexistent/libnope.so", "").err().unwrap());
+    assert!(e.contains("plug-in /nonexistent/libnope.so: cannot load"), "{e}");
+}
+
+#[test]
+fn missing_channel_and_bad_arguments_are_clear_errors() {
+    let dir = temp_dir("errors");
+    let chan = dir.join("nope.shm");
+    let out = bridge(&["--channel", chan.to_str().unwrap(), "--device", "scripted", "--trajectory", "x.csv"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(&format!("device channel {}: no such file (has the server created the channel?)", chan.display())), "{err}");
+
+    let server = DeviceChannel::create(&chan).unwrap();
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,0,oops,0\n").unwrap();
+    let out = bridge(&["--channel", chan.to_str().unwrap(), "--device", "virtual", "--trajectory", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(&format!("{}:3: column 3 (`y_m`): `oops` is not a finite number", bad.display())), "{err}");
+    let out = bridge(&["--channel", chan.to_str().unwrap(), "--device", "plugin"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--device plugin needs --plugin LIB.so"));
+    drop(server);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn scripted_device_against_a_fake_server() {
+    let dir = temp_dir("scripted");
+    let chan = dir.join("session.shm");
+    let traj = write_trajectory(&dir);
+    let trace = dir.join("trace.csv");
+    let server = FakeServer::start(DeviceChannel::create(&chan).unwrap());
+    let out = bridge(&[
+        "--channel",
+        chan.to_str().unwrap(),
+        "--device",
+        "scripted",
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "--seconds",
+        "2",
+        "--coupling-k",
+        "0",
+        "--coupling-k-rot",
+        "0",
+        "--json",
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    let (_server, st) = server.stop();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json = String::from_utf8(out.stdout).unwrap();
+    eprintln!("{json}");
+    let rows = read_trace(&trace);
+    check_rate_and_counters(&json, &rows, &st, 2.0);
+    assert_eq!(json_field(&json, "device"), "\"scripted\"");
+    // The environment is linear, so the local model renders it exactly at the device's pose, fresh or not.
+    let full: Vec<_> = rows.iter().filter(|r| r.gain == 1.0).collect();
+    assert!(full.len() >= 1800, "{} rows at full gain", full.len());
+    for r in &full {
+        let w = env_wrench(r.q);
+        assert!(r.wrench.iter().zip(&w).all(|(a, b)| (a - b).abs() < 1e-9), "t {}: {:?} vs {w:?}", r.t_s, r.wrench);
+    }
+    // The ramp in at the start is linear (50 ms default).
+    assert!(rows.iter().filter(|r| r.gain > 0.0 && r.gain < 1.0).count() >= 40);
+    assert_eq!(json_field(&json, "final_wrench"), "[0,0,0]");
+    assert!(json_num(&json, "max_rendered_force_n") > 1.5);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn virtual_operator_is_pushed_back_by_the_rendered_tissue() {
+    let dir = temp_dir("virtual");
+    let chan = dir.join("session.shm");
+    let traj = write_trajectory(&dir);
+    let trace = dir.join("trace.csv");
+    let server = FakeServer::start(DeviceChannel::create(&chan).unwrap());
+    let out = bridge(&[
+        "--channel",
+        chan.to_str().unwrap(),
+        "--device",
+        "virtual",
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "--seconds",
+        "2.2",
+        "--json",
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    let (_server, st) = server.stop();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json = String::from_utf8(out.stdout).unwrap();
+    eprintln!("{json}");
+    let rows = read_trace(&trace);
+    check_rate_and_counters(&json, &rows, &st, 2.2);
+    // At rest the hand's PD (kp = 300 N/m) balances the tissue seen through the coupling
+    // (k_eff = k_t k_c / (k_t + k_c), k_c = 2000): x = kp x_ref / (kp + k_eff) (the off-diagonal
+    // terms of J are small; 3 % tolerance).
+    let k_eff = 200.0 * 2000.0 / 2200.0;
+    let expect = 300.0 * 0.01 / (300.0 + k_eff);
+    let x = rows.last().unwrap().q[0];
+    assert!((x - expect).abs() < 0.03 * expect, "x {x} vs {expect}");
+    // The rendered force opposes the displacement, and at rest equals the series-coupled tissue force.
+    let last = rows.last().unwrap();
+    assert!(last.wrench[0] < 0.0 && (last.wrench[0] + k_eff * x).abs() < 0.05 * k_eff * x, "{:?}", last.wrench);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs the bridge with the example plug-in; the fake server stops writing after `feed` (a SIGKILLed
+/// server: its forces stop, the channel stays). Returns (json, trace rows, recorded final force line).
+fn plugin_run(name: &str, seconds: f64, feed: Duration, extra: &[&str]) -> (String, Vec<TraceRow>, String, ServerStats) {
+    let dir = temp_dir(name);
+    let chan = dir.join("session.shm");
+    let trace = dir.join("trace.csv");
+    let record = dir.join("record.txt");
+    let server = FakeServer::start(DeviceChannel::create(&chan).unwrap());
+    let config = format!("x0=0.004 y0=-0.002 th0=0.05 vx=0.002 record={}", record.display());
+    let secs = seconds.to_string();
+    let mut args = vec![
+        "--channel",
+        chan.to_str().unwrap(),
+        "--device",
+        "plugin",
+        "--plugin",
+        example_plugin().to_str().unwrap(),
+        "--plugin-config",
+        &config,
+        "--seconds",
+        &secs,
+        "--json",
+        "--trace",
+        trace.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let child = Command::new(BIN).args(&args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    std::thread::sleep(feed);
+    server.writing.store(false, Ordering::Relaxed);
+    let out = child.wait_with_output().unwrap();
+    let (_server, st) = server.stop();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json = String::from_utf8(out.stdout).unwrap();
+    eprintln!("{json}");
+    let result = (json, read_trace(&trace), std::fs::read_to_string(&record).unwrap(), st);
+    let _ = std::fs::remove_dir_all(&dir);
+    result
+}
+
+#[test]
+fn watchdog_ramps_the_plugin_force_to_zero_when_the_server_stops() {
+    let (json, rows, record, _st) =
+        plugin_run("watchdog", 1.5, Duration::from_millis(700), &["--watchdog-periods", "20", "--ramp-ms", "100"]);
+    let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("some fresh forces").t_s;
+    assert!((0.4..1.0).contains(&last_fresh), "last fresh force at {last_fresh} s");
+    // Full force just before the server stopped.
+    let before = rows.iter().find(|r| r.t_s > last_fresh - 0.05).unwrap();
+    assert!(before.wrench[0].hypot(before.wrench[1]) > 0.5, "{:?}", before.wrench);
+    // Unchanged for the watchdog's 20 periods, then a linear ramp over 100 ms, then exactly zero.
+    for r in rows.iter().filter(|r| r.t_s > last_fresh) {
+        let n = ((r.t_s - last_fresh) * 1000.0).round();
+        let expect_gain = if n <= 20.0 { 1.0 } else { (1.0 - (n - 20.0) / 100.0).max(0.0) };
+        assert!((r.gain - expect_gain).abs() < 1e-9, "t {} (+{n} periods): gain {} vs {expect_gain}", r.t_s, r.gain);
+        if n >= 120.0 {
+            assert_eq!(r.wrench, [0.0; 3], "t {}", r.t_s);
+        }
+    }
+    assert!(json_num(&json, "watchdog_periods") > 500.0, "{json}");
+    // The device was left with a zero force (written at exit, after the last period).
+    let f: Vec<f64> = record.split_whitespace().map(|x| x.parse().unwrap()).collect();
+    assert_eq!(&f[..3], &[0.0, 0.0, 0.0]);
+    assert_eq!(f[3], rows.len() as f64 + 1.0, "one write per period plus the final zero");
+}
+
+#[test]
+fn exit_leaves_a_zero_force_on_the_device_even_under_full_force() {
+    // The server feeds until after the bridge exits: the last rendered wrench is not zero.
+    let (json, rows, record, _st) = plugin_run("exit", 0.8, Duration::from_millis(1500), &[]);
+    let last = rows.last().unwrap();
+    assert!(last.wrench[0].hypot(last.wrench[1]) > 0.5 && last.gain == 1.0, "{:?}", last.wrench);
+    let f: Vec<f64> = record.split_whitespace().map(|x| x.parse().unwrap()).collect();
+    assert_eq!(&f[..3], &[0.0, 0.0, 0.0]);
+    assert_eq!(json_field(&json, "exit"), "\"done\"");
+}
+
+#[test]
+fn sigterm_and_a_closed_channel_end_with_a_zero_force() {
+    for mode in ["sigterm", "close"] {
+        let dir = temp_dir(mode);
+        let chan = dir.join("session.shm");
+        let record = dir.join("record.txt");
+        let server = FakeServer::start(DeviceChannel::create(&chan).unwrap());
+        let config = format!("x0=0.004 y0=-0.002 record={}", record.display());
+        let child = Command::new(BIN)
+            .args(["--channel", chan.to_str().unwrap(), "--device", "plugin", "--plugin", example_plugin().to_str().unwrap()])
+            .args(["--plugin-config", &config, "--json"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(600));
+        let (server_end, _st) = server.stop();
+        let t = Instant::now();
+        if mode == "sigterm" {
+            // SAFETY: signalling our own child.
+            assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGTERM) }, 0);
+        } else {
+            drop(server_end); // marks the channel closed and removes the file
+        }
+        let out = child.wait_with_output().unwrap();
+        let elapsed = t.elapsed();
+        let json = String::from_utf8(out.stdout).unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        if mode == "sigterm" {
+            assert!(out.status.success(), "{stderr}");
+            assert_eq!(json_field(&json, "exit"), "\"signal\"");
+        } else {
+            // Ramped out by the watchdog (10 periods + 50 ms), then an error exit.
+            assert_eq!(out.status.code(), Some(1), "{stderr}");
+            assert!(stderr.contains("closed or re-created by the server"), "{stderr}");
+            assert!(elapsed < Duration::from_secs(2), "{elapsed:?}");
+        }
+        let f: Vec<f64> = std::fs::read_to_string(&record).unwrap().split_whitespace().map(|x| x.parse().unwrap()).collect();
+        assert_eq!(&f[..3], &[0.0, 0.0, 0.0], "{mode}");
+        assert!(f[3] > 100.0, "{mode}: {f:?}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// The bridge against the real server (a session with a device channel, the paper phantom's insertion
+/// replayed by the scripted device), then a SIGKILLed server: the rendered force ramps to zero.
+/// Needs the server and CLI binaries: `cargo build -p needlesim-server -p needlesim-client`, then
+/// `cargo test -p needlesim-bridge --test bridge -- --ignored`.
+#[test]
+#[ignore = "needs target/debug/needlesim-server and needlesim (cargo build -p needlesim-server -p needlesim-client)"]
+fn real_server_session_and_a_killed_server() {
+    let bin_dir = std::env::current_exe().unwrap().parent().unwrap().parent().unwrap().to_path_buf();
+    let (server_bin, cli_bin) = (bin_dir.join("needlesim-server"), bin_dir.join("needlesim"));
+    assert!(server_bin.exists() && cli_bin.exists(), "build {} and {} first", server_bin.display(), cli_bin.display());
+    let dir = temp_dir("real");
+    let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    let listen = format!("127.0.0.1:{port}");
+    /// Kills the server if an assertion fails before the test does.
+    struct KillOnDrop(std::process::Child);
+    impl Drop for KillOnDrop {
+        fn drop(&mut self) {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+    let mut server = Command::new(&server_bin)
+        .args(["serve", "--listen", &listen, "--default-scene", "none", "--rt-priority", "0", "--data-dir"])
+        .arg(dir.join("data"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .map(KillOnDrop)
+        .unwrap();
+    let t = Instant::now();
+    while std::net::TcpStream::connect(&listen).is_err() {
+        assert!(t.elapsed() < Duration::from_secs(20), "the server did not start listening on {listen}");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let url = format!("http://{listen}");
+    let created = Command::new(&cli_bin)
+        .args(["--server", &url, "sessions", "create", "--example", "paper-phantom", "--device-channel", "--json"])
+        .output()
+        .unwrap();
+    let created_json = String::from_utf8(created.stdout).unwrap();
+    assert!(created.status.success(), "{created_json} {}", String::from_utf8_lossy(&created.stderr));
+    let chan = json_field(&created_json, "device_channel_path").trim().trim_matches('"').to_owned();
+    assert!(Path::new(&chan).exists(), "{created_json}");
+    /// The SIGKILLed server leaves its channel file behind.
+    struct RemoveOnDrop(PathBuf);
+    impl Drop for RemoveOnDrop {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+    let _chan_file = RemoveOnDrop(PathBuf::from(&chan));
+
+    let traj = Path::new(env!("CARGO_MANIFEST_DIR")).join("../server/scenes/paper-phantom.csv");
+    let trace = dir.join("trace.csv");
+    let bridge = Command::new(BIN)
+        .args(["--channel", &chan, "--device", "scripted", "--trajectory", traj.to_str().unwrap(), "--seconds", "4", "--json"])
+        .args(["--max-force-n", "20", "--trace", trace.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(3000));
+    server.0.kill().unwrap(); // SIGKILL: no closing state, the channel file stays
+    server.0.wait().unwrap();
+    let out = bridge.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json = String::from_utf8(out.stdout).unwrap();
+    eprintln!("{json}");
+    let rows = read_trace(&trace);
+    assert!(json_num(&json, "fresh_forces") > 2000.0, "{json}");
+    assert!(json_num(&json, "max_rendered_force_n") > 0.0, "the needle met no tissue: {json}");
+    let last_fresh = rows.iter().rev().find(|r| r.fresh).unwrap().t_s;
+    assert!((2.5..3.5).contains(&last_fresh), "{last_fresh}");
+    // Default watchdog: 10 periods, then a 50 ms ramp.
+    for r in rows.iter().filter(|r| r.t_s > last_fresh + 0.061) {
+        assert_eq!(r.wrench, [0.0; 3], "t {}", r.t_s);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
