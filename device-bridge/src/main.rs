@@ -1,4 +1,8 @@
-//! `needlesim-bridge`: the device loop between a haptic device and a session's shared-memory channel.
+//! `needlesim-bridge`: the device loop between a haptic device and a session — its shared-memory
+//! channel (`--channel PATH`, same host) or its gRPC Control stream (`--server URL --session ID
+//! --token T`, the remote link of `remote.rs`: poses out through a bounded non-blocking queue,
+//! responses in through a latest-value slot; `--inject-rtt-ms N` adds a delay line). With the
+//! remote link `pose_to_force_us` is a true round trip (the server echoes the pose's client time).
 //!
 //! Every device period (tick k at `t0 + k·Δt`, drift-free; a late wake-up skips the periods it
 //! missed and counts them): read the device pose → `write_pose_from_device` →
@@ -13,13 +17,14 @@
 //! - `force_age_us`: (time the bridge first saw a force) − its `t_ns` (the server → bridge part).
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, ValueEnum};
 use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
+use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
 use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
 use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, monotonic_ns};
 
@@ -37,9 +42,31 @@ enum DeviceKind {
 #[derive(Debug, Parser)]
 #[command(name = "needlesim-bridge", version)]
 struct Cli {
-    /// The session's device channel file (created by the server).
-    #[arg(long, value_name = "PATH")]
-    channel: PathBuf,
+    /// SCHED_FIFO priority of the device loop (1..99; 0 = normal scheduling). Needs CAP_SYS_NICE
+    /// or root; without it the bridge says so and runs at normal priority.
+    #[arg(long, default_value_t = 40)]
+    rt_priority: i32,
+    /// The session's device channel file (created by the server), for a bridge on the server's host.
+    #[arg(long, value_name = "PATH", required_unless_present = "server", conflicts_with = "server")]
+    channel: Option<PathBuf>,
+    /// A remote link instead of --channel: the server's gRPC URL (`http://HOST:PORT`); poses go out
+    /// and forces come back over the session's Control stream.
+    #[arg(long, value_name = "URL", requires_all = ["session", "token"])]
+    server: Option<String>,
+    /// The session id (--server).
+    #[arg(long, value_name = "ID", requires = "server")]
+    session: Option<String>,
+    /// The session's controller token (--server), sent as `authorization: Bearer <token>`.
+    #[arg(long, value_name = "TOKEN", requires = "server")]
+    token: Option<String>,
+    /// Delay every pose going out by N/2 ms and every response coming in by N/2 ms (--server; a
+    /// delay line in the bridge, to test latency without a real network).
+    #[arg(long, value_name = "N", default_value_t = 0.0, requires = "server")]
+    inject_rtt_ms: f64,
+    /// How to render between server updates: the local linear model w_s + J (q − q_s) behind the
+    /// virtual coupling, or only the last received wrench (no J term, no coupling: the naive scheme).
+    #[arg(long, value_enum, default_value_t = RenderMode::LocalModel)]
+    render: RenderMode,
     #[arg(long, value_enum)]
     device: DeviceKind,
     /// Trajectory CSV (`t_s,x_m,y_m,theta_rad`) for the scripted and virtual devices.
@@ -66,9 +93,10 @@ struct Cli {
     /// Limit on |τ| sent to the device (N·m).
     #[arg(long, value_name = "T", default_value_t = 0.05)]
     max_torque_nm: f64,
-    /// Device periods without a fresh server force before the ramp to zero starts.
-    #[arg(long, value_name = "N", default_value_t = 10)]
-    watchdog_periods: u64,
+    /// Device periods without a fresh server force before the ramp to zero starts (default: 10 with
+    /// --channel; 50 with --server, where responses arrive every tick but with network jitter).
+    #[arg(long, value_name = "N")]
+    watchdog_periods: Option<u64>,
     /// Duration of the ramp to zero (and back) (ms).
     #[arg(long, value_name = "MS", default_value_t = 50.0)]
     ramp_ms: f64,
@@ -84,12 +112,38 @@ struct Cli {
     /// Virtual-coupling damping in θ (N·m·s/rad).
     #[arg(long, value_name = "NMS_PER_RAD", default_value_t = 0.002)]
     coupling_b_rot: f64,
+    /// Virtual operator (--device virtual): mass in x and y (kg).
+    #[arg(long, value_name = "KG")]
+    operator_mass: Option<f64>,
+    /// Virtual operator: damping in x and y (N·s/m).
+    #[arg(long, value_name = "NS_PER_M")]
+    operator_damping: Option<f64>,
+    /// Virtual operator: PD proportional gain (grip stiffness) in x and y (N/m).
+    #[arg(long, value_name = "N_PER_M")]
+    operator_kp: Option<f64>,
+    /// Virtual operator: PD derivative gain in x and y (N·s/m).
+    #[arg(long, value_name = "NS_PER_M")]
+    operator_kd: Option<f64>,
     /// Print the report as one JSON object on stdout (else a summary on stderr).
     #[arg(long)]
     json: bool,
     /// Write a CSV row per period (t_s, pose, server force, rendered wrench, gain) to this file.
     #[arg(long, value_name = "CSV")]
     trace: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum RenderMode {
+    /// w_s + J (q_d − q_s), virtual coupling, watchdog, limits.
+    LocalModel,
+    /// The last received wrench only (watchdog and limits still apply).
+    LastForce,
+}
+
+impl Cli {
+    fn watchdog_periods(&self) -> u64 {
+        self.watchdog_periods.unwrap_or(if self.server.is_some() { 50 } else { 10 })
+    }
 }
 
 static STOP: AtomicBool = AtomicBool::new(false);
@@ -120,6 +174,11 @@ struct Report {
     max_rendered_force_n: f64,
     final_pose: [f64; 3],
     exit: String,
+    link: String,
+    render: String,
+    inject_rtt_ms: f64,
+    dropped_poses: u64,
+    last_stiffness: Option<[f64; 9]>,
 }
 
 fn percentile_us(v: &mut [u64], p: f64) -> Option<f64> {
@@ -160,7 +219,8 @@ impl Report {
             println!(
                 "{{\"device\":{},\"periods\":{},\"missed_periods\":{},\"fresh_forces\":{},\"watchdog_periods\":{},\"limited_periods\":{},\
                  \"pose_counter\":{},\"last_server_tick\":{},\"pose_to_force_us\":{{\"p50\":{},\"p99\":{}}},\"force_age_us\":{{\"p50\":{},\"p99\":{}}},\
-                 \"max_rendered_force_n\":{},\"final_pose\":[{},{},{}],\"final_wrench\":[0,0,0],\"exit\":{}}}",
+                 \"max_rendered_force_n\":{},\"final_pose\":[{},{},{}],\"final_wrench\":[0,0,0],\"link\":{},\"render\":{},\"inject_rtt_ms\":{},\
+                 \"dropped_poses\":{},\"stiffness\":{},\"exit\":{}}}",
                 json_str(&self.device),
                 self.periods,
                 self.missed_periods,
@@ -177,6 +237,12 @@ impl Report {
                 self.final_pose[0],
                 self.final_pose[1],
                 self.final_pose[2],
+                json_str(&self.link),
+                json_str(&self.render),
+                self.inject_rtt_ms,
+                self.dropped_poses,
+                self.last_stiffness
+                    .map_or("null".into(), |j| format!("[{}]", j.iter().map(|v| json_num(Some(*v))).collect::<Vec<_>>().join(","))),
                 json_str(&self.exit),
             );
         } else {
@@ -195,6 +261,12 @@ impl Report {
                 f(age[1]),
                 self.exit
             );
+            if let Some(j) = self.last_stiffness {
+                eprintln!(
+                    "needlesim-bridge: last stiffness J = ∂(Fx,Fy,τ)/∂(x,y,θ): [{:.1} {:.1} {:.4}; {:.1} {:.1} {:.4}; {:.4} {:.4} {:.5}]",
+                    j[0], j[1], j[2], j[3], j[4], j[5], j[6], j[7], j[8]
+                );
+            }
         }
     }
 }
@@ -206,7 +278,24 @@ fn open_device(cli: &Cli) -> Result<Box<dyn Device>> {
     };
     Ok(match cli.device {
         DeviceKind::Scripted => Box::new(ScriptedDevice::new(traj()?)),
-        DeviceKind::Virtual => Box::new(VirtualOperator::new(traj()?, OperatorParams::default())),
+        DeviceKind::Virtual => {
+            let mut p = OperatorParams::default();
+            let set = |arr: &mut [f64; 3], v: Option<f64>, name: &str, positive: bool| -> Result<()> {
+                if let Some(v) = v {
+                    if !(v.is_finite() && if positive { v > 0.0 } else { v >= 0.0 }) {
+                        bail!("--{name} must be {}, got {v}", if positive { "positive" } else { "non-negative" });
+                    }
+                    arr[0] = v;
+                    arr[1] = v;
+                }
+                Ok(())
+            };
+            set(&mut p.mass, cli.operator_mass, "operator-mass", true)?;
+            set(&mut p.damping, cli.operator_damping, "operator-damping", false)?;
+            set(&mut p.kp, cli.operator_kp, "operator-kp", false)?;
+            set(&mut p.kd, cli.operator_kd, "operator-kd", false)?;
+            Box::new(VirtualOperator::new(traj()?, p))
+        }
         DeviceKind::Plugin => {
             let lib = cli.plugin.as_ref().context("--device plugin needs --plugin LIB.so")?;
             Box::new(PluginDevice::open(lib, &cli.plugin_config)?)
@@ -214,19 +303,40 @@ fn open_device(cli: &Cli) -> Result<Box<dyn Device>> {
     })
 }
 
-fn run(cli: &Cli, mut channel: DeviceEnd, device: &mut dyn Device, report: &mut Report) -> Result<()> {
+/// The link to the session: the shared-memory channel or the gRPC remote link.
+enum Link {
+    Shm(DeviceEnd),
+    Remote(RemoteLink),
+}
+
+/// What one period's exchange with the session gave.
+#[derive(Default)]
+struct Exchange {
+    /// A fresh, valid sample.
+    fresh: Option<ServerSample>,
+    tick: Option<u64>,
+    /// The last value seen (fresh or not), for the trace: tick, wrench.
+    last_tick: u64,
+    last_wrench: [f64; 3],
+    /// The link is gone (channel re-created/closed, remote stream failed).
+    lost: bool,
+}
+
+fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report) -> Result<()> {
     if !(cli.rate_hz.is_finite() && cli.rate_hz > 0.0) {
         bail!("--rate-hz must be positive, got {}", cli.rate_hz);
     }
     let period_s = 1.0 / cli.rate_hz;
+    let watchdog_periods = cli.watchdog_periods();
+    let last_force = cli.render == RenderMode::LastForce;
     let params = RenderParams {
         period_s,
         max_force_n: cli.max_force_n,
         max_torque_nm: cli.max_torque_nm,
-        watchdog_periods: cli.watchdog_periods,
+        watchdog_periods,
         ramp_s: cli.ramp_ms * 1e-3,
-        coupling_k: [cli.coupling_k, cli.coupling_k, cli.coupling_k_rot],
-        coupling_b: [cli.coupling_b, cli.coupling_b, cli.coupling_b_rot],
+        coupling_k: if last_force { [0.0; 3] } else { [cli.coupling_k, cli.coupling_k, cli.coupling_k_rot] },
+        coupling_b: if last_force { [0.0; 3] } else { [cli.coupling_b, cli.coupling_b, cli.coupling_b_rot] },
     };
     let mut renderer = Renderer::new(params);
     let mut trace = match &cli.trace {
@@ -246,7 +356,13 @@ fn run(cli: &Cli, mut channel: DeviceEnd, device: &mut dyn Device, report: &mut 
     const RING: usize = 1024;
     let mut ring = [0u64; RING];
     let mut ring_len = 0usize;
+    let mut remote_last = RemoteSample::default();
+    let mut last_echo_seq = 0u64;
 
+    match needlesim_bridge::rt::request_realtime_priority(cli.rt_priority) {
+        Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
+        Err(why) => tracing::warn!("the device loop runs without real-time priority ({why}); periods may be missed under load"),
+    }
     let dt = Duration::from_secs_f64(period_s);
     let t0 = Instant::now();
     let mut k: u64 = 0;
@@ -285,39 +401,102 @@ fn run(cli: &Cli, mut channel: DeviceEnd, device: &mut dyn Device, report: &mut 
         let state = device.read_pose(t_s)?;
         report.final_pose = state.pose();
         let t_pose = monotonic_ns();
-        let pose =
-            DevicePose { t_ns: t_pose, x_m: state.x_m, y_m: state.y_m, theta_rad: state.theta_rad, buttons: state.buttons, counter: 0 };
-        if let Ok(c) = channel.write_pose_from_device(&pose) {
-            report.last_counter = c;
-            ring[ring_len % RING] = t_pose;
-            ring_len += 1;
-        }
-        let sample = channel.read_force_from_device();
-        let t_seen = monotonic_ns();
-        let fresh = match (sample.status, sample.value) {
-            (ReadStatus::Fresh, Some(f)) if f.state == ServerForce::STATE_OK || f.state == ServerForce::STATE_DEVICE_STALE => Some(f),
-            _ => None,
-        };
-        if let Some(f) = &fresh {
-            report.fresh_forces += 1;
-            report.last_tick = Some(f.tick);
-            report.force_age_ns.push(t_seen.saturating_sub(f.t_ns));
-            // Newest pose written at or before f.t_ns (the ring is in write order).
-            let n = ring_len.min(RING);
-            if let Some(tp) = (0..n).map(|i| ring[(ring_len - 1 - i) % RING]).find(|&tp| tp <= f.t_ns) {
-                report.pose_to_force_ns.push(t_seen.saturating_sub(tp));
+        let ex = match link {
+            Link::Shm(channel) => {
+                let pose = DevicePose {
+                    t_ns: t_pose,
+                    x_m: state.x_m,
+                    y_m: state.y_m,
+                    theta_rad: state.theta_rad,
+                    buttons: state.buttons,
+                    counter: 0,
+                };
+                if let Ok(c) = channel.write_pose_from_device(&pose) {
+                    report.last_counter = c;
+                    ring[ring_len % RING] = t_pose;
+                    ring_len += 1;
+                }
+                let sample = channel.read_force_from_device();
+                let t_seen = monotonic_ns();
+                let fresh = match (sample.status, sample.value) {
+                    (ReadStatus::Fresh, Some(f)) if f.state == ServerForce::STATE_OK || f.state == ServerForce::STATE_DEVICE_STALE => {
+                        Some(f)
+                    }
+                    _ => None,
+                };
+                if let Some(f) = &fresh {
+                    report.force_age_ns.push(t_seen.saturating_sub(f.t_ns));
+                    // Newest pose written at or before f.t_ns (the ring is in write order).
+                    let n = ring_len.min(RING);
+                    if let Some(tp) = (0..n).map(|i| ring[(ring_len - 1 - i) % RING]).find(|&tp| tp <= f.t_ns) {
+                        report.pose_to_force_ns.push(t_seen.saturating_sub(tp));
+                    }
+                }
+                let sv = sample.value.unwrap_or_default();
+                Exchange {
+                    fresh: fresh.as_ref().map(ServerSample::from),
+                    tick: fresh.map(|f| f.tick),
+                    last_tick: sv.tick,
+                    last_wrench: [sv.force_n[0], sv.force_n[1], sv.torque_nm],
+                    lost: sample.status == ReadStatus::Stale || !channel.is_current(),
+                }
             }
+            Link::Remote(remote) => {
+                if let Some(c) = remote.send_pose(state.pose(), t_pose) {
+                    report.last_counter = c;
+                }
+                report.dropped_poses = remote.dropped_poses;
+                let fresh = remote.latest();
+                let t_seen = monotonic_ns();
+                if let Some(r) = &fresh {
+                    remote_last = *r;
+                    report.force_age_ns.push(t_seen.saturating_sub(r.t_published_ns));
+                    // The server echoes the newest pose its tick used: a true round trip.
+                    if r.pose_seq > last_echo_seq && r.client_time_ns > 0 {
+                        last_echo_seq = r.pose_seq;
+                        report.pose_to_force_ns.push(t_seen.saturating_sub(r.client_time_ns));
+                    }
+                    if report.last_stiffness.is_none() && r.sample.stiffness.iter().any(|&v| v != 0.0) {
+                        let j = r.sample.stiffness;
+                        tracing::info!(
+                            "first stiffness at the needle base: J = [{:.1} {:.1} {:.4}; {:.1} {:.1} {:.4}; {:.4} {:.4} {:.5}]",
+                            j[0],
+                            j[1],
+                            j[2],
+                            j[3],
+                            j[4],
+                            j[5],
+                            j[6],
+                            j[7],
+                            j[8]
+                        );
+                    }
+                    report.last_stiffness = Some(r.sample.stiffness);
+                }
+                Exchange {
+                    fresh: fresh.map(|r| r.sample),
+                    tick: fresh.map(|r| r.tick),
+                    last_tick: remote_last.tick,
+                    last_wrench: remote_last.sample.wrench,
+                    lost: remote.failure().is_some(),
+                }
+            }
+        };
+        if let Some(t) = ex.tick {
+            report.fresh_forces += 1;
+            report.last_tick = Some(t);
         }
-        let server = fresh.as_ref().map(ServerSample::from);
+        // The naive scheme: the last wrench as it came, no J term.
+        let server = ex.fresh.map(|s| if last_force { ServerSample { stiffness: [0.0; 9], ..s } } else { s });
         let out = renderer.update(state.pose(), server.as_ref());
-        if out.periods_since_fresh > cli.watchdog_periods {
+        // Counted once a first force arrived (before it the output is zero for want of data, not the watchdog).
+        if out.periods_since_fresh > watchdog_periods && report.fresh_forces > 0 {
             report.watchdog_periods += 1;
         }
         report.limited_periods += out.limited as u64;
         report.max_rendered_force_n = report.max_rendered_force_n.max(out.wrench[0].hypot(out.wrench[1]));
         device.write_force(out.wrench)?;
         if let Some(w) = trace.as_mut() {
-            let sv = sample.value.unwrap_or_default();
             writeln!(
                 w,
                 "{t_s},{},{},{},{},{},{},{},{},{},{},{},{},{}",
@@ -325,25 +504,33 @@ fn run(cli: &Cli, mut channel: DeviceEnd, device: &mut dyn Device, report: &mut 
                 state.x_m,
                 state.y_m,
                 state.theta_rad,
-                fresh.is_some() as u8,
-                sv.tick,
-                sv.force_n[0],
-                sv.force_n[1],
-                sv.torque_nm,
+                ex.fresh.is_some() as u8,
+                ex.last_tick,
+                ex.last_wrench[0],
+                ex.last_wrench[1],
+                ex.last_wrench[2],
                 out.wrench[0],
                 out.wrench[1],
                 out.wrench[2],
                 out.gain
             )?;
         }
-        // A re-created or closed channel: let the watchdog ramp the force out, then stop.
-        if sample.status == ReadStatus::Stale || !channel.is_current() {
+        // A re-created or closed channel, a failed remote link: let the watchdog ramp the force out, then stop.
+        if ex.lost {
             let since = *stale_since.get_or_insert(report.periods);
-            if out.wrench == [0.0; 3] || report.periods - since > cli.watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1 {
+            if out.wrench == [0.0; 3] || report.periods - since > watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1 {
                 if let Some(w) = trace.as_mut() {
                     w.flush()?;
                 }
-                bail!("device channel {}: closed or re-created by the server", cli.channel.display());
+                match link {
+                    Link::Shm(_) => {
+                        bail!(
+                            "device channel {}: closed or re-created by the server",
+                            cli.channel.as_deref().unwrap_or(Path::new("?")).display()
+                        )
+                    }
+                    Link::Remote(r) => bail!("remote link: {}", r.failure().unwrap_or_default()),
+                }
             }
         }
     }
@@ -356,11 +543,28 @@ fn main() {
         .init();
     let cli = Cli::parse();
     install_signal_handlers();
-    // The channel first: a missing or stale channel never touches the device.
-    let channel = match DeviceChannel::attach(&cli.channel) {
-        Ok(c) => c,
+    // The link first: a missing or stale channel, an unreachable server never touches the device.
+    let link = match (&cli.channel, &cli.server) {
+        (Some(path), _) => DeviceChannel::attach(path).map(Link::Shm).map_err(anyhow::Error::from),
+        (None, Some(url)) => {
+            if !(cli.inject_rtt_ms.is_finite() && cli.inject_rtt_ms >= 0.0) {
+                eprintln!("needlesim-bridge: --inject-rtt-ms must be non-negative, got {}", cli.inject_rtt_ms);
+                std::process::exit(2);
+            }
+            RemoteLink::connect(RemoteConfig {
+                url: url.clone(),
+                session_id: cli.session.clone().unwrap_or_default(),
+                token: cli.token.clone().unwrap_or_default(),
+                inject_rtt: Duration::from_secs_f64(cli.inject_rtt_ms * 1e-3),
+            })
+            .map(Link::Remote)
+        }
+        (None, None) => unreachable!("clap requires --channel or --server"),
+    };
+    let mut link = match link {
+        Ok(l) => l,
         Err(e) => {
-            eprintln!("needlesim-bridge: {e}");
+            eprintln!("needlesim-bridge: {e:#}");
             std::process::exit(1);
         }
     };
@@ -371,14 +575,27 @@ fn main() {
             std::process::exit(1);
         }
     };
-    tracing::info!(device = device.name(), channel = %cli.channel.display(), rate_hz = cli.rate_hz, "starting");
-    let mut report = Report { device: device.name().to_string(), ..Default::default() };
-    let result = run(&cli, channel, device.as_mut(), &mut report);
+    let (link_name, target) = match (&cli.channel, &cli.server) {
+        (Some(p), _) => ("shm", p.display().to_string()),
+        (None, s) => ("remote", s.clone().unwrap_or_default()),
+    };
+    tracing::info!(device = device.name(), link = link_name, to = %target, rate_hz = cli.rate_hz, render = ?cli.render, "starting");
+    let mut report = Report {
+        device: device.name().to_string(),
+        link: link_name.into(),
+        render: cli.render.to_possible_value().map_or(String::new(), |v| v.get_name().to_string()),
+        inject_rtt_ms: cli.inject_rtt_ms,
+        ..Default::default()
+    };
+    let result = run(&cli, &mut link, device.as_mut(), &mut report);
     // Never leave a haptic device pushing: zero first, whatever happened.
     if let Err(e) = device.write_force([0.0; 3]) {
         eprintln!("needlesim-bridge: writing the final zero force failed: {e:#}");
     }
     device.close();
+    if let Link::Remote(r) = &mut link {
+        r.close(Duration::from_millis(500));
+    }
     let code = match &result {
         Ok(()) => 0,
         Err(e) => {

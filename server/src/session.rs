@@ -497,26 +497,7 @@ struct RtLoop {
     stiffness: [f64; 9],
 }
 
-/// Asks the OS to schedule the calling thread with the real-time policy SCHED_FIFO at
-/// `priority` (1..99), so that other processes cannot preempt a tick. Needs CAP_SYS_NICE (or
-/// root, or an rtprio limit); without it the thread stays a normal one and this says why.
-pub fn request_realtime_priority(priority: i32) -> Result<(), String> {
-    if priority <= 0 {
-        return Err("real-time priority disabled (--rt-priority 0)".to_owned());
-    }
-    #[cfg(target_os = "linux")]
-    {
-        // SAFETY: pthread_self() is always valid for the calling thread, and `param` lives for
-        // the duration of the call.
-        let param = libc::sched_param { sched_priority: priority.min(99) };
-        let rc = unsafe { libc::pthread_setschedparam(libc::pthread_self(), libc::SCHED_FIFO, &param) };
-        if rc == 0 { Ok(()) } else { Err(format!("SCHED_FIFO priority {priority} refused: {}", std::io::Error::from_raw_os_error(rc))) }
-    }
-    #[cfg(not(target_os = "linux"))]
-    {
-        Err("real-time priority is only requested on Linux".to_owned())
-    }
-}
+pub use needlesim_bridge::rt::request_realtime_priority;
 
 impl RtLoop {
     fn run(mut self) {
@@ -570,7 +551,8 @@ impl RtLoop {
             }
         }
         let cmd = *self.pose_out.read();
-        if cmd.seq != *last_seq {
+        let client_pose = cmd.seq != *last_seq;
+        if client_pose {
             *pose = cmd.pose;
             *last_seq = cmd.seq;
             *last_client_time = cmd.client_time_ns;
@@ -587,8 +569,11 @@ impl RtLoop {
                 self.device_seen = true;
                 self.counters.device_poses.fetch_add(1, Ordering::Relaxed);
             } else if self.device_seen && sample.reads_since_fresh > DEVICE_STALE_TICKS {
+                // Hold the needle where the device left it, unless a client moves it.
                 device_stale = true;
-                *pose = self.sim.pose();
+                if !client_pose {
+                    *pose = self.sim.pose();
+                }
             }
             let was = self.counters.device_stale.swap(device_stale as u64, Ordering::Relaxed);
             if device_stale && was == 0 {

@@ -1,0 +1,32 @@
+//! Real-time scheduling for the threads that must not be preempted: a session's tick loop in the
+//! server and the device loop in the bridge.
+
+/// Asks the OS to schedule the calling thread with the real-time policy SCHED_FIFO at
+/// `priority` (1..99), so that other processes cannot preempt it. Needs CAP_SYS_NICE (or root,
+/// or an rtprio limit). Errors (nothing changes) when `priority` ≤ 0, when the OS refuses, and
+/// on systems other than Linux; the message says which.
+pub fn request_realtime_priority(priority: i32) -> Result<(), String> {
+    if priority <= 0 {
+        return Err("real-time priority disabled (priority 0)".to_owned());
+    }
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: pthread_self() is always valid for the calling thread, and `param` lives for
+        // the duration of the call.
+        let param = libc::sched_param { sched_priority: priority.min(99) };
+        let rc = unsafe { libc::pthread_setschedparam(libc::pthread_self(), libc::SCHED_FIFO, &param) };
+        if rc == 0 { Ok(()) } else { Err(format!("SCHED_FIFO priority {priority} refused: {}", std::io::Error::from_raw_os_error(rc))) }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        Err("real-time priority is only requested on Linux".to_owned())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn zero_priority_is_refused_with_a_reason() {
+        assert!(super::request_realtime_priority(0).unwrap_err().contains("disabled"));
+    }
+}
