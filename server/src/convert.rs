@@ -27,6 +27,11 @@ fn v2(a: [f64; 2]) -> Option<pb::Vec2> {
     Some(pb::Vec2 { x: a[0], y: a[1] })
 }
 
+/// The state of target `i` (named from `target_names`).
+fn target_state(target_names: &[String], i: usize, position_m: [f64; 2], distance_m: f64, hit: bool) -> pb::TargetState {
+    pb::TargetState { name: target_names.get(i).cloned().unwrap_or_default(), position_m: v2(position_m), distance_m, hit }
+}
+
 /// A tick record to a frame; `targets` names the targets, `missed` the ticks the receiver missed.
 pub fn frame_from_record(r: &TickRecord, target_names: &[String], missed_ticks: u64) -> pb::Frame {
     pb::Frame {
@@ -53,17 +58,7 @@ pub fn frame_from_record(r: &TickRecord, target_names: &[String], missed_ticks: 
                 force_n: v2(n.force_n),
             })
             .collect(),
-        targets: r
-            .targets()
-            .iter()
-            .enumerate()
-            .map(|(i, t)| pb::TargetState {
-                name: target_names.get(i).cloned().unwrap_or_default(),
-                position_m: v2(t.position_m),
-                distance_m: t.distance_m,
-                hit: t.hit,
-            })
-            .collect(),
+        targets: r.targets().iter().enumerate().map(|(i, t)| target_state(target_names, i, t.position_m, t.distance_m, t.hit)).collect(),
         node_displacement_m: vec![],
         missed_ticks,
         compute_us: r.compute_ns as f64 / 1e3,
@@ -106,17 +101,7 @@ pub fn series_row(o: &StepOutput, t0_s: f64, target_names: &[String]) -> pb::Ser
         n_stuck: o.n_stuck as u32,
         n_slipping: o.n_slipping as u32,
         n_tip: o.n_tip as u32,
-        targets: o
-            .targets
-            .iter()
-            .enumerate()
-            .map(|(i, t)| pb::TargetState {
-                name: target_names.get(i).cloned().unwrap_or_default(),
-                position_m: v2(t.position_m),
-                distance_m: t.distance_m,
-                hit: t.hit,
-            })
-            .collect(),
+        targets: o.targets.iter().enumerate().map(|(i, t)| target_state(target_names, i, t.position_m, t.distance_m, t.hit)).collect(),
     }
 }
 
@@ -213,16 +198,7 @@ fn uploaded_scene(u: &pb::UploadedScene, limits: &MeshLimits) -> Result<Scene> {
     if let Some(&n) = fixed.iter().find(|&&n| n >= m.n_nodes()) {
         bail!("scene.uploaded.fixed_nodes names node {n}, but the mesh has {} nodes", m.n_nodes());
     }
-    let mean_edge = {
-        let mut sum = 0.0;
-        for t in m.triangles() {
-            for k in 0..3 {
-                let (a, b) = (m.nodes_m()[t[k]], m.nodes_m()[t[(k + 1) % 3]]);
-                sum += (a[0] - b[0]).hypot(a[1] - b[1]);
-            }
-        }
-        sum / (3 * m.n_triangles()) as f64
-    };
+    let mean_edge = crate::scene::mean_edge_m(&m);
     let tissue = Arc::new(TissueModel::new(m, mats, &fixed).context("scene.uploaded (tissue model)")?);
     let d = RegionNeedleParams::default();
     let or = |v: f64, dflt: f64| if v == 0.0 { dflt } else { v };

@@ -331,7 +331,9 @@ fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Sc
     })
 }
 
-fn mean_edge_m(mesh: &Mesh) -> f64 {
+/// The mean edge length of a mesh's triangles (each shared edge counted twice), the scale of
+/// the default capture radius.
+pub(crate) fn mean_edge_m(mesh: &Mesh) -> f64 {
     let mut sum = 0.0;
     for t in mesh.triangles() {
         for k in 0..3 {
