@@ -134,13 +134,9 @@ fn main() {
     let server = rt.spawn(serve(config, async move {
         let _ = stop_rx.await;
     }));
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|t| t.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_owned()))
-        .unwrap_or_default();
     println!(
-        "machine: {cpu}, {} logical cores; server and clients in one process on loopback; {secs} s per case, first 1 s excluded from latency",
-        std::thread::available_parallelism().map_or(0, |n| n.get())
+        "machine: {}; server and clients in one process on loopback; {secs} s per case, first 1 s excluded from latency",
+        needlesim_server::bench::machine()
     );
     println!();
     println!(

@@ -182,6 +182,14 @@ fn build_setup(n: usize) -> Result<Setup> {
     Ok(Setup { mesh, mats, fixed, x, h })
 }
 
+/// The benchmark tissue of `n × n` nodes (the set-up above), factorised, and the parameters of
+/// its vertical needle: what every step-time benchmark of the crate starts from.
+pub fn grid_simulation(n: usize) -> Result<(Arc<TissueModel>, SimParams)> {
+    let s = build_setup(n)?;
+    let params = sim_params(&s);
+    Ok((Arc::new(TissueModel::new(s.mesh, s.mats, &s.fixed)?), params))
+}
+
 fn sim_params(s: &Setup) -> SimParams {
     SimParams {
         needle: NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }),
@@ -226,7 +234,8 @@ struct Row {
     skipped: Option<String>,
 }
 
-fn pct(sorted: &[f64], q: f64) -> f64 {
+/// The `q` quantile (0..=1) of sorted values, nearest rank; NaN when empty.
+pub fn pct(sorted: &[f64], q: f64) -> f64 {
     if sorted.is_empty() {
         return f64::NAN;
     }
