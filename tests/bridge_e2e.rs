@@ -10,10 +10,8 @@ use std::process::Stdio;
 use std::time::{Duration, Instant};
 
 use needlesim_proto::v1 as pb;
-use needlesim_tests::{ServerProcess, TempDir, bin, repo_root};
+use needlesim_tests::{ServerProcess, TempDir, bin, connect, repo_root, with_token};
 use tokio_stream::StreamExt;
-use tonic::Request;
-use tonic::metadata::MetadataValue;
 use tonic::transport::Channel;
 
 const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
@@ -38,16 +36,6 @@ impl Drop for RemoveOnDrop {
     fn drop(&mut self) {
         let _ = std::fs::remove_file(&self.0);
     }
-}
-
-async fn connect(server: &ServerProcess) -> Channel {
-    Channel::from_shared(server.url()).unwrap().connect().await.expect("connect to the server")
-}
-
-fn with_token<T>(msg: T, token: &str) -> Request<T> {
-    let mut r = Request::new(msg);
-    r.metadata_mut().insert("authorization", MetadataValue::try_from(format!("Bearer {token}")).unwrap());
-    r
 }
 
 /// A paper-phantom session at 1 kHz with a device channel.

@@ -13,10 +13,10 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use needlesim_proto::v1 as pb;
-use needlesim_tests::{ServerProcess, TempDir, python, repo_root, run, text};
+use needlesim_tests::{
+    ServerProcess, TempDir, connect as channel, create_example_session as create, python, repo_root, run, text, with_token,
+};
 use tokio_stream::StreamExt;
-use tonic::Request;
-use tonic::metadata::MetadataValue;
 use tonic::transport::Channel;
 
 /// The tests run one at a time: each runs a 1 kHz session, and the recording test counts ticks.
@@ -74,29 +74,6 @@ fn mcap_check(file: &Path, tolerate_truncation: bool) -> serde_json::Value {
     let (o, e) = text(&out);
     assert!(out.status.success(), "mcap_check.py {} failed:\n{o}\n{e}", file.display());
     serde_json::from_str(o.trim()).unwrap_or_else(|err| panic!("mcap_check.py printed no JSON ({err}):\n{o}\n{e}"))
-}
-
-async fn channel(server: &ServerProcess) -> Channel {
-    Channel::from_shared(server.url()).unwrap().connect().await.expect("connect to the server")
-}
-
-fn with_token<T>(msg: T, token: &str) -> Request<T> {
-    let mut r = Request::new(msg);
-    r.metadata_mut().insert("authorization", MetadataValue::try_from(format!("Bearer {token}")).unwrap());
-    r
-}
-
-async fn create(ch: &Channel, example: &str) -> pb::CreateSessionResponse {
-    let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-    c.create_session(pb::CreateSessionRequest {
-        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(example.into())) }),
-        tick_rate_hz: 1000.0,
-        record: false,
-        device_channel: false,
-    })
-    .await
-    .expect("create a session")
-    .into_inner()
 }
 
 /// The numbers of a line `PREFIX…` of the output, e.g. "simulate result: 201 rows, 2001 ticks".

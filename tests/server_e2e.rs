@@ -5,9 +5,8 @@
 use std::time::{Duration, Instant};
 
 use needlesim_proto::v1 as pb;
-use needlesim_tests::ServerProcess;
+use needlesim_tests::{ServerProcess, connect as channel, create_example_session as create, with_token};
 use tokio_stream::StreamExt;
-use tonic::metadata::MetadataValue;
 use tonic::transport::Channel;
 use tonic::{Code, Request};
 
@@ -16,29 +15,6 @@ const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
 /// The tests of this file each run a 1 kHz session; on a 2-core machine they take turns, so that
 /// one test's clients do not eat another's real-time budget.
 static ONE_AT_A_TIME: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
-
-async fn channel(server: &ServerProcess) -> Channel {
-    Channel::from_shared(server.url()).unwrap().connect().await.expect("connect to the server")
-}
-
-fn with_token<T>(msg: T, token: &str) -> Request<T> {
-    let mut r = Request::new(msg);
-    r.metadata_mut().insert("authorization", MetadataValue::try_from(format!("Bearer {token}")).unwrap());
-    r
-}
-
-async fn create(ch: &Channel, example: &str) -> pb::CreateSessionResponse {
-    let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-    c.create_session(pb::CreateSessionRequest {
-        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(example.into())) }),
-        tick_rate_hz: 1000.0,
-        record: false,
-        device_channel: false,
-    })
-    .await
-    .expect("create a session")
-    .into_inner()
-}
 
 /// Insertion poses of the paper phantom: tip from 5 mm above the top to 40 mm deep over `secs`.
 fn pose_at(t: f64, secs: f64) -> pb::Pose2 {

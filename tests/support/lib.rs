@@ -221,3 +221,30 @@ impl Drop for ServerProcess {
         let _ = self.child.wait();
     }
 }
+
+/// A gRPC channel to a running server.
+pub async fn connect(server: &ServerProcess) -> tonic::transport::Channel {
+    tonic::transport::Channel::from_shared(server.url()).unwrap().connect().await.expect("connect to the server")
+}
+
+/// A request carrying `token` as `authorization: Bearer <token>` metadata.
+pub fn with_token<T>(msg: T, token: &str) -> tonic::Request<T> {
+    let mut r = tonic::Request::new(msg);
+    r.metadata_mut().insert("authorization", tonic::metadata::MetadataValue::try_from(format!("Bearer {token}")).unwrap());
+    r
+}
+
+/// Creates a 1 kHz session from a shipped example (no recording, no device channel).
+pub async fn create_example_session(ch: &tonic::transport::Channel, example: &str) -> needlesim_proto::v1::CreateSessionResponse {
+    use needlesim_proto::v1 as pb;
+    let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    c.create_session(pb::CreateSessionRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(example.into())) }),
+        tick_rate_hz: 1000.0,
+        record: false,
+        device_channel: false,
+    })
+    .await
+    .expect("create a session")
+    .into_inner()
+}
