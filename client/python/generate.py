@@ -4,7 +4,7 @@
 usage: generate.py OUT_DIR
 
 Runs `python -m grpc_tools.protoc -I proto --python_out=OUT --grpc_python_out=OUT
-proto/needlesim/v1/needlesim.proto` from the repository root. The generated code is not committed:
+proto/needlesim/v1/*.proto` from the repository root (one module pair per file). The generated code is not committed:
 put OUT_DIR on PYTHONPATH (or pass it as `needlesim_client.py --stubs OUT_DIR`).
 """
 
@@ -13,7 +13,7 @@ import subprocess
 import sys
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-PROTO = os.path.join("needlesim", "v1", "needlesim.proto")
+PROTO_DIR = os.path.join("needlesim", "v1")
 
 
 def generate(out_dir: str) -> None:
@@ -29,7 +29,11 @@ def generate(out_dir: str) -> None:
             "proto",
             f"--python_out={out_dir}",
             f"--grpc_python_out={out_dir}",
-            os.path.join("proto", PROTO),
+            *sorted(
+                os.path.join("proto", PROTO_DIR, name)
+                for name in os.listdir(os.path.join(REPO, "proto", PROTO_DIR))
+                if name.endswith(".proto")
+            ),
         ],
         cwd=REPO,
         check=True,

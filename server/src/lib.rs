@@ -6,6 +6,7 @@ pub mod bench;
 pub mod convert;
 pub mod exchange;
 pub mod grpc;
+pub mod identify;
 pub mod recording;
 pub mod scene;
 pub mod serve;

@@ -76,6 +76,11 @@ struct ServeArgs {
 
 #[derive(Subcommand)]
 enum Command {
+    /// The measurement pipeline: marker tracking, E/ν identification, needle force distribution.
+    Identify {
+        #[command(subcommand)]
+        command: needlesim_server::identify::cli::IdentifyCommand,
+    },
     /// Start the gRPC server (the default when no command is given).
     Serve(ServeArgs),
     /// Print a summary of the paper-phantom insertion, offline.
@@ -139,6 +144,7 @@ fn main() -> ExitCode {
             run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json)
         }
         Some(Command::Summary) => summary(&limits),
+        Some(Command::Identify { command }) => needlesim_server::identify::cli::run(command),
         Some(Command::Serve(args)) => run_serve(args, &limits),
         None => run_serve(cli.serve, &limits),
     };
