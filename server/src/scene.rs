@@ -9,7 +9,8 @@ use needlesim_core::compliance::TissueModel;
 use needlesim_core::mesh::DiagonalPattern;
 use needlesim_core::sim::{SimParams, TargetParams};
 use needlesim_core::{
-    BasePose, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle,
+    BasePose, FlexibleNeedle, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams,
+    RigidNeedle,
 };
 use serde::Deserialize;
 
@@ -17,6 +18,7 @@ use serde::Deserialize;
 pub const EXAMPLES: &[(&str, &str, &str)] = &[
     ("paper-phantom", include_str!("../scenes/paper-phantom.toml"), include_str!("../scenes/paper-phantom.csv")),
     ("fig3-target", include_str!("../scenes/fig3-target.toml"), include_str!("../scenes/fig3-target.csv")),
+    ("fig4-steering", include_str!("../scenes/fig4-steering.toml"), include_str!("../scenes/fig4-steering.csv")),
 ];
 
 /// A scene as written in TOML.
@@ -150,6 +152,91 @@ pub struct NeedleSpec {
     pub capture_radius_m: Option<f64>,
     #[serde(default = "d_max_nodes")]
     pub max_nodes: usize,
+    /// `rigid` (default) or `flexible`.
+    #[serde(default)]
+    pub model: NeedleModelSpec,
+    /// Flexible needle: the gauge of a stainless steel needle (16, 17, 18, 20, 21, 22, 25;
+    /// default 17), setting its flexural rigidity.
+    pub gauge: Option<u32>,
+    /// Flexible needle: the flexural rigidity EI in N·m² (instead of a gauge).
+    pub flexural_rigidity_nm2: Option<f64>,
+    /// Flexible needle: links of the discrete beam (default: one per millimetre, 16..=400).
+    pub n_links: Option<usize>,
+    /// Flexible needle: bevel tip, lateral over axial tip force (default 0: symmetric tip).
+    pub bevel_force_ratio: Option<f64>,
+    /// Flexible needle: initial bevel side, +1 or -1 (towards the needle's +n or -n).
+    pub bevel_side: Option<f64>,
+}
+
+/// The needle model a scene chooses.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NeedleModelSpec {
+    #[default]
+    Rigid,
+    Flexible,
+}
+
+/// Regular-wall stainless steel needle gauges: (gauge, outer, inner diameter in m).
+const GAUGES: [(u32, f64, f64); 7] = [
+    (16, 1.651e-3, 1.194e-3),
+    (17, 1.473e-3, 1.067e-3),
+    (18, 1.270e-3, 0.838e-3),
+    (20, 0.908e-3, 0.603e-3),
+    (21, 0.819e-3, 0.514e-3),
+    (22, 0.718e-3, 0.413e-3),
+    (25, 0.515e-3, 0.260e-3),
+];
+
+/// Young's modulus of the stainless steel of the gauge table, Pa.
+const STEEL_E_PA: f64 = 193e9;
+
+impl NeedleSpec {
+    /// The needle's shape parameters; errors name the offending key.
+    pub fn shape(&self) -> Result<NeedleShape> {
+        let flexible_keys = [
+            ("gauge", self.gauge.is_some()),
+            ("flexural_rigidity_nm2", self.flexural_rigidity_nm2.is_some()),
+            ("n_links", self.n_links.is_some()),
+            ("bevel_force_ratio", self.bevel_force_ratio.is_some()),
+            ("bevel_side", self.bevel_side.is_some()),
+        ];
+        match self.model {
+            NeedleModelSpec::Rigid => {
+                if let Some((key, _)) = flexible_keys.iter().find(|(_, set)| *set) {
+                    bail!("needle.{key} needs needle.model = \"flexible\" (the needle is rigid)");
+                }
+                Ok(NeedleShape::Rigid(RigidNeedle { length_m: self.length_m }))
+            }
+            NeedleModelSpec::Flexible => {
+                let mut f = FlexibleNeedle::gauge17_steel(self.length_m);
+                if self.gauge.is_some() && self.flexural_rigidity_nm2.is_some() {
+                    bail!("needle: give either gauge or flexural_rigidity_nm2, not both");
+                }
+                if let Some(g) = self.gauge {
+                    let Some(&(_, od, id)) = GAUGES.iter().find(|(gg, _, _)| *gg == g) else {
+                        bail!("needle.gauge = {g} is not in the table (16, 17, 18, 20, 21, 22, 25); give flexural_rigidity_nm2 instead");
+                    };
+                    f.flexural_rigidity_nm2 = STEEL_E_PA * FlexibleNeedle::tube_second_moment_m4(od, id);
+                }
+                if let Some(ei) = self.flexural_rigidity_nm2 {
+                    f.flexural_rigidity_nm2 = ei;
+                }
+                if let Some(n) = self.n_links {
+                    f.n_links = n;
+                }
+                if let Some(b) = self.bevel_force_ratio {
+                    f.bevel_force_ratio = b;
+                }
+                if let Some(side) = self.bevel_side {
+                    f.bevel_side = side;
+                }
+                let shape = NeedleShape::Flexible(f);
+                shape.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
+                Ok(shape)
+            }
+        }
+    }
 }
 
 fn d_max_nodes() -> usize {
@@ -306,7 +393,7 @@ fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Sc
     let mean_edge = mean_edge_m(tissue.mesh());
     let n = &f.needle;
     let params = SimParams {
-        needle: NeedleShape::Rigid(RigidNeedle { length_m: n.length_m }),
+        needle: n.shape()?,
         initial_pose: BasePose::new(n.base[0], n.base[1], n.base[2]),
         capture_radius_m: n.capture_radius_m.unwrap_or(0.5 * mean_edge),
         max_needle_nodes: n.max_nodes,

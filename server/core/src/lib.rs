@@ -15,6 +15,7 @@
 #![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assembly;
+pub mod beam;
 pub mod compliance;
 pub mod factor;
 pub mod material;
@@ -27,10 +28,11 @@ pub mod spatial;
 pub mod statics;
 
 pub use assembly::MaterialMap;
+pub use beam::NeedleCurve;
 pub use compliance::{ColumnScratch, ComplianceCache, TissueError, TissueModel};
 pub use material::{Material, MaterialError, PlaneModel};
 pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};
 pub use mixed::{Condition, MixedError, MixedSolver};
-pub use needle::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle};
+pub use needle::{BasePose, FlexibleNeedle, NeedleShape, RegionNeedleParams, RigidNeedle};
 pub use sim::{NodeState, SimError, SimParams, SimStats, Simulation, StepOutput, TargetParams};
 pub use statics::{NodeCondition, StaticError, StaticProblem, StaticSolution};

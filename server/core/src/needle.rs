@@ -50,11 +50,53 @@ pub struct RigidNeedle {
     pub length_m: f64,
 }
 
-/// The needle's shape. Only the rigid needle exists today; a flexible one will be a variant, so
-/// the simulation asks this type, never the variant, for positions and frames.
+/// A flexible needle: an elastic beam clamped at the base pose (see [`crate::beam`]), optionally
+/// with a bevel tip.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlexibleNeedle {
+    /// Shaft length from base to tip.
+    pub length_m: f64,
+    /// Flexural rigidity $EI$, N·m².
+    pub flexural_rigidity_nm2: f64,
+    /// Number of rigid links of the discrete beam (its resolution).
+    pub n_links: usize,
+    /// Bevel tip: lateral over axial force of the tissue on the tip, $\beta$ (0: symmetric tip).
+    /// The tissue at the tip receives $-s_b \beta f_t\, n$ and the needle $+s_b \beta f_t\, n$,
+    /// with $f_t$ the axial force of the tip on the tissue and $s_b = \pm 1$ the bevel side.
+    pub bevel_force_ratio: f64,
+    /// Initial bevel side $s_b$: +1 towards the needle's $+n$, −1 towards $-n$.
+    pub bevel_side: f64,
+}
+
+impl FlexibleNeedle {
+    /// Second moment of area of a tube, $I = \pi (D^4 - d^4)/64$, m⁴.
+    pub fn tube_second_moment_m4(outer_diameter_m: f64, inner_diameter_m: f64) -> f64 {
+        std::f64::consts::PI * (outer_diameter_m.powi(4) - inner_diameter_m.powi(4)) / 64.0
+    }
+    /// $EI$ of a 17-gauge (1.473 mm outer, 1.067 mm inner diameter, regular wall) stainless
+    /// steel (E = 193 GPa) needle: ≈ 0.0318 N·m².
+    pub fn gauge17_steel_rigidity_nm2() -> f64 {
+        193e9 * Self::tube_second_moment_m4(1.473e-3, 1.067e-3)
+    }
+    /// A 17-gauge stainless steel needle of the given length with a symmetric tip, 1 mm links
+    /// (at least 16).
+    pub fn gauge17_steel(length_m: f64) -> Self {
+        Self {
+            length_m,
+            flexural_rigidity_nm2: Self::gauge17_steel_rigidity_nm2(),
+            n_links: ((length_m / 1e-3).round() as usize).clamp(16, 400),
+            bevel_force_ratio: 0.0,
+            bevel_side: 1.0,
+        }
+    }
+}
+
+/// The needle's shape parameters. The simulation asks this type for the undeformed geometry and
+/// keeps the deformed shape of a flexible needle itself ([`crate::beam::NeedleCurve`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NeedleShape {
     Rigid(RigidNeedle),
+    Flexible(FlexibleNeedle),
 }
 
 impl NeedleShape {
@@ -62,9 +104,17 @@ impl NeedleShape {
     pub fn tip_s_m(&self) -> f64 {
         match self {
             NeedleShape::Rigid(r) => r.length_m,
+            NeedleShape::Flexible(f) => f.length_m,
         }
     }
-    /// The point of the shaft at arc length `s_m`.
+    /// The flexible needle's parameters, if it is one.
+    pub fn flexible(&self) -> Option<&FlexibleNeedle> {
+        match self {
+            NeedleShape::Rigid(_) => None,
+            NeedleShape::Flexible(f) => Some(f),
+        }
+    }
+    /// The point of the undeformed (straight) shaft at arc length `s_m`.
     pub fn point_at(&self, base: &BasePose, s_m: f64) -> [f64; 2] {
         let t = base.axis();
         [base.x_m + s_m * t[0], base.y_m + s_m * t[1]]
@@ -86,12 +136,26 @@ impl NeedleShape {
     }
     /// Checks the shape's parameters.
     pub fn validate(&self) -> Result<(), String> {
-        match self {
-            NeedleShape::Rigid(r) if !(r.length_m.is_finite() && r.length_m > 0.0) => {
-                Err(format!("needle length {} m must be finite and > 0", r.length_m))
-            }
-            NeedleShape::Rigid(_) => Ok(()),
+        let length_m = self.tip_s_m();
+        if !(length_m.is_finite() && length_m > 0.0) {
+            return Err(format!("needle length {length_m} m must be finite and > 0"));
         }
+        if let NeedleShape::Flexible(f) = self {
+            let ei = f.flexural_rigidity_nm2;
+            if !(ei.is_finite() && ei > 0.0) {
+                return Err(format!("needle flexural_rigidity_nm2 = {ei} must be finite and > 0"));
+            }
+            if !(2..=4096).contains(&f.n_links) {
+                return Err(format!("needle n_links = {} must be in 2..=4096", f.n_links));
+            }
+            if !(f.bevel_force_ratio.is_finite() && f.bevel_force_ratio >= 0.0 && f.bevel_force_ratio <= 10.0) {
+                return Err(format!("needle bevel_force_ratio = {} must be finite and in [0, 10]", f.bevel_force_ratio));
+            }
+            if f.bevel_side != 1.0 && f.bevel_side != -1.0 {
+                return Err(format!("needle bevel_side = {} must be +1 or -1", f.bevel_side));
+            }
+        }
+        Ok(())
     }
 }
 

@@ -19,12 +19,20 @@
 //! 7. **Output**: force and torque on the needle base, $F = -\sum_i f_i$, $\tau = \sum_i (p_i - b)\times(-f_i)$,
 //!    node states, tip, targets.
 //!
+//! A flexible needle ([`crate::beam`]) changes stages 1, 2, 4, 6 and 7: frames follow the bent
+//! shape's local tangent, prescribed values put nodes on the bent shape, the tip captures along
+//! its own tangent, every solve of the working set includes the needle's lateral compliance (one
+//! small dense solve), and after the tick the shape is brought to equilibrium with the new
+//! forces. A bevel tip's node carries a lateral force $-s_b\beta f_t$ instead of a lateral
+//! displacement, so the tip cuts sideways and the needle curves towards its bevel side.
+//!
 //! The tissue factorisation is never touched: compliance columns come from the cache, computed
 //! ahead of time for the nodes the tip approaches ([`Simulation::prefetch_columns`]), and counted
 //! when a step has to compute one itself.
 
 use std::sync::Arc;
 
+use crate::beam::{CoupledNode, Coupling, NeedleCurve};
 use crate::compliance::{ColumnScratch, ComplianceCache, TissueError, TissueModel};
 use crate::mixed::{Condition, MixedError, MixedSolver};
 use crate::needle::{BasePose, NeedleShape, RegionNeedleParams};
@@ -141,6 +149,12 @@ pub struct StepOutput {
     /// Lateral component $n\cdot F$.
     pub force_lateral_n: f64,
     pub tip_m: [f64; 2],
+    /// Direction of the needle at the tip (the base angle for a rigid needle).
+    pub tip_angle_rad: f64,
+    /// The needle's shape: base, joints, tip (two points for a rigid needle).
+    pub shape_m: Vec<[f64; 2]>,
+    /// Bevel side $s_b$ (+1 towards the base frame's $+n$, −1 towards $-n$; 0 for a symmetric tip).
+    pub bevel_side: f64,
     /// Length of shaft between the most proximal needle node and the tip (0 outside the tissue).
     pub inserted_length_m: f64,
     pub n_stuck: usize,
@@ -172,6 +186,12 @@ pub struct SimStats {
     pub slip_to_stick: u64,
     /// Captures dropped because the working set was full.
     pub capacity_drops: u64,
+    /// Flexible needle: shape updates that did not converge within their iteration bound.
+    pub shape_unconverged: u64,
+    /// Bevel flips commanded.
+    pub bevel_flips: u64,
+    /// Extra solves of the working set on a settled needle shape (flexible needle).
+    pub shape_passes: u64,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -193,6 +213,49 @@ struct NeedleNode {
     /// Axial force at which a tip node is released.
     release_force_n: f64,
     region: usize,
+    /// Lateral offset from the shaft the node is held at (a bevel tip's node keeps the offset it
+    /// was cut at when punctured; 0 otherwise).
+    lat_offset_m: f64,
+    /// The lateral value that puts the node on the reference shape (flexible needle).
+    lateral_ref_m: f64,
+    /// The node's force at the end of the last tick (world), which the reference shape carries.
+    force_ref_n: [f64; 2],
+}
+
+impl NeedleNode {
+    /// The arc length the node's frame is attached to.
+    fn s_ref_m(&self, s_tip_m: f64) -> f64 {
+        match self.state {
+            NodeState::Stuck => self.anchor_s_m,
+            NodeState::Slipping => self.s_prev_m,
+            NodeState::Tip => s_tip_m,
+        }
+    }
+}
+
+/// A frame change smaller than this (rad) is not applied to a working node: the lateral
+/// direction is then off by at most this angle, a position error of this times the node's slip
+/// within one tick.
+const FRAME_TOL_RAD: f64 = 1e-7;
+
+/// Largest lateral distance (m) between a needle node and the settled needle shape left without
+/// another solve on the new shape (1 µm: a thousandth of a typical capture radius).
+const SHAPE_GAP_TOL_M: f64 = 1e-6;
+
+/// Bound on the shape passes (solve, settle) per tick.
+const SHAPE_PASSES: usize = 4;
+
+/// The flexible needle's state: its shape and the coupling of each solver to it.
+struct Flex {
+    curve: NeedleCurve,
+    coupling: Coupling,
+    probe_coupling: Coupling,
+    probe_curve: NeedleCurve,
+    nodes: Vec<CoupledNode>,
+    bevel_ratio: f64,
+    bevel_side: f64,
+    /// The solver update count and tick $G$ was computed for.
+    g_for: Option<(u64, u64)>,
 }
 
 #[derive(Debug, Clone)]
@@ -213,6 +276,31 @@ enum Change {
 }
 
 const NO_SLOT: usize = usize::MAX;
+
+/// A frame on the needle: coordinates $(s_0 + t\cdot(p - o),\ n\cdot(p - o))$ of a point $p$.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    origin: [f64; 2],
+    s0: f64,
+    t: [f64; 2],
+    n: [f64; 2],
+}
+
+impl Frame {
+    fn new(origin: [f64; 2], s0: f64, angle_rad: f64) -> Self {
+        let (sn, cs) = angle_rad.sin_cos();
+        Self { origin, s0, t: [cs, sn], n: [-sn, cs] }
+    }
+    /// The straight rigid needle's frame (the same arithmetic as [`NeedleShape::project`]).
+    fn rigid(pose: &BasePose) -> Self {
+        Self { origin: pose.position_m(), s0: 0.0, t: pose.axis(), n: pose.normal() }
+    }
+    fn coords(&self, p: [f64; 2]) -> (f64, f64) {
+        let d = [p[0] - self.origin[0], p[1] - self.origin[1]];
+        let s = self.t[0] * d[0] + self.t[1] * d[1];
+        (if self.s0 == 0.0 { s } else { self.s0 + s }, self.n[0] * d[0] + self.n[1] * d[1])
+    }
+}
 
 /// Bound on the friction-share sweeps per active-set iteration.
 const FRICTION_SWEEPS: usize = 6;
@@ -245,6 +333,7 @@ pub struct Simulation {
     candidates: Vec<usize>,
     captured: Vec<(usize, f64, f64)>,
     changes: Vec<(usize, Change)>,
+    flex: Option<Box<Flex>>,
     out: StepOutput,
     stats: SimStats,
     tick: u64,
@@ -276,6 +365,9 @@ impl Simulation {
         }
         if params.max_needle_nodes == 0 || params.max_needle_nodes > 4096 {
             return bad(format!("max_needle_nodes = {} must be in 1..=4096", params.max_needle_nodes));
+        }
+        if params.needle.flexible().is_some() && params.max_needle_nodes > 1024 {
+            return bad(format!("max_needle_nodes = {} must be ≤ 1024 with a flexible needle", params.max_needle_nodes));
         }
         if params.max_active_set_iterations == 0 {
             return bad("max_active_set_iterations must be ≥ 1".to_owned());
@@ -357,7 +449,29 @@ impl Simulation {
         cache.reserve(cap + 16);
         let col_scratch = model.column_scratch();
         let col_buf = vec![0.0; 2 * model.n_dofs()];
+        let flex = params.needle.flexible().map(|f| {
+            let curve = NeedleCurve::new(f, params.initial_pose, cap);
+            Box::new(Flex {
+                probe_curve: curve.clone(),
+                curve,
+                coupling: Coupling::new(cap),
+                probe_coupling: Coupling::new(cap),
+                nodes: Vec::with_capacity(cap),
+                bevel_ratio: f.bevel_force_ratio,
+                bevel_side: f.bevel_side,
+                g_for: None,
+            })
+        });
+        let n_shape = params.needle.flexible().map_or(2, |f| f.n_links + 1);
+        let mut shape_m = Vec::with_capacity(n_shape);
+        match &flex {
+            Some(fx) => shape_m.extend_from_slice(fx.curve.points_m()),
+            None => shape_m.extend_from_slice(&[params.initial_pose.position_m(), params.needle.tip_m(&params.initial_pose)]),
+        }
         let out = StepOutput {
+            shape_m,
+            tip_angle_rad: params.initial_pose.theta_rad,
+            bevel_side: flex.as_ref().map_or(0.0, |f| if f.bevel_ratio > 0.0 { f.bevel_side } else { 0.0 }),
             needle_nodes: Vec::with_capacity(cap),
             targets: Vec::with_capacity(targets.len()),
             approaching: Vec::with_capacity(256),
@@ -379,6 +493,7 @@ impl Simulation {
             candidates: Vec::with_capacity(1024),
             captured: Vec::with_capacity(64),
             changes: Vec::with_capacity(2 * cap),
+            flex,
             out,
             stats: SimStats::default(),
             tick: 0,
@@ -457,6 +572,94 @@ impl Simulation {
         self.cache.reserve(n_nodes);
     }
 
+    /// The bevel side $s_b$ (0 for a symmetric tip).
+    pub fn bevel_side(&self) -> f64 {
+        self.flex.as_ref().map_or(0.0, |f| if f.bevel_ratio > 0.0 { f.bevel_side } else { 0.0 })
+    }
+
+    /// Turns the needle 180° about its axis: the bevel faces the other side from the next step
+    /// on. Returns the new side (0 and no change for a symmetric tip or a rigid needle).
+    pub fn flip_bevel(&mut self) -> f64 {
+        if let Some(f) = self.flex.as_mut()
+            && f.bevel_ratio > 0.0
+        {
+            f.bevel_side = -f.bevel_side;
+            self.stats.bevel_flips += 1;
+        }
+        self.out.bevel_side = self.bevel_side();
+        self.out.bevel_side
+    }
+
+    /// The needle's current shape (joint positions base to tip), if it is flexible.
+    pub fn needle_curve(&self) -> Option<&NeedleCurve> {
+        self.flex.as_ref().map(|f| &f.curve)
+    }
+
+    fn tip_now(&self) -> [f64; 2] {
+        match &self.flex {
+            Some(f) => f.curve.tip_m(),
+            None => self.params.needle.tip_m(&self.pose),
+        }
+    }
+
+    /// The tip's frame: captures happen along the tip's own tangent.
+    fn tip_frame(&self) -> Frame {
+        match &self.flex {
+            Some(f) => Frame::new(f.curve.tip_m(), self.params.needle.tip_s_m(), f.curve.tip_angle_rad()),
+            None => Frame::rigid(&self.pose),
+        }
+    }
+
+    /// The frame of working slot `slot`: at its node's shaft point, along the solver's frame.
+    fn node_frame(&self, slot: usize) -> Frame {
+        match &self.flex {
+            Some(f) => {
+                let s_ref = self.nodes[slot].s_ref_m(self.params.needle.tip_s_m());
+                Frame::new(f.curve.point_at(s_ref), s_ref, self.solver.angle_rad(slot))
+            }
+            None => Frame::rigid(&self.pose),
+        }
+    }
+
+    /// Solves the working set: directly for a rigid needle, with the needle's lateral compliance
+    /// for a flexible one (recomputing $G$ when the slots, frames or shape changed).
+    fn solve_working_set(&mut self) {
+        let Some(fx) = self.flex.as_mut() else {
+            self.solver.solve();
+            return;
+        };
+        let s_tip = self.params.needle.tip_s_m();
+        fx.nodes.clear();
+        for nn in &self.nodes {
+            fx.nodes.push(CoupledNode { s_m: nn.s_ref_m(s_tip), lateral_ref_m: nn.lateral_ref_m, force_ref_world_n: nn.force_ref_n });
+        }
+        let st = self.solver.stats();
+        let version = (st.n_rotations + st.n_added + st.n_removed + st.n_rebuilds, self.tick);
+        if fx.g_for != Some(version) {
+            fx.coupling.update_compliance(&fx.curve, &self.solver, &fx.nodes);
+            fx.g_for = Some(version);
+        }
+        fx.coupling.solve(&mut self.solver, &fx.nodes);
+    }
+
+    /// A bevel tip's lateral force from the tip's current axial force; returns the change.
+    fn update_bevel_force(&mut self) -> f64 {
+        let Some(fx) = self.flex.as_ref() else { return 0.0 };
+        if fx.bevel_ratio == 0.0 {
+            return 0.0;
+        }
+        let (ratio, side) = (fx.bevel_ratio, fx.bevel_side);
+        let mut change: f64 = 0.0;
+        for slot in 0..self.nodes.len() {
+            if self.nodes[slot].state == NodeState::Tip && self.solver.condition(slot, 1) == Condition::Force {
+                let value = -side * ratio * self.solver.force_local(slot)[0].max(0.0);
+                change = change.max((value - self.solver.prescribed_value(slot, 1)).abs());
+                self.solver.set_value(slot, 1, value);
+            }
+        }
+        change
+    }
+
     /// Advances one tick towards the commanded base pose.
     pub fn step(&mut self, commanded: BasePose) -> Result<&StepOutput, SimError> {
         if !commanded.is_finite() {
@@ -468,19 +671,97 @@ impl Simulation {
                 theta_rad: commanded.theta_rad,
             });
         }
-        let prev_tip = self.params.needle.tip_m(&self.pose);
+        let prev_tip = self.tip_now();
         let clamped = self.apply_pose(commanded)?;
         self.set_prescribed_values();
         self.release_withdrawn()?;
         self.capture(prev_tip)?;
         self.update_friction(false, 0.0);
-        let (iterations, converged) = self.resolve_active_set()?;
+        let (mut iterations, mut converged) = self.resolve_active_set()?;
+        if self.flex.is_some() {
+            // The needle comes to equilibrium with the tick's forces; where that moves it off the
+            // linearised prediction by more than SHAPE_GAP_TOL_M, the tissue is solved again on
+            // the new shape (a bounded Picard iteration).
+            for pass in 1..=SHAPE_PASSES {
+                let gap = self.settle_shape();
+                if gap <= SHAPE_GAP_TOL_M || pass == SHAPE_PASSES {
+                    break;
+                }
+                self.refresh_frames()?;
+                self.set_prescribed_values();
+                let (it, conv) = self.resolve_active_set()?;
+                iterations += it;
+                converged &= conv;
+                self.stats.shape_passes += 1;
+            }
+        }
         self.write_output(iterations, converged, clamped);
         self.tick += 1;
         self.stats.ticks += 1;
         self.stats.clamped_ticks += clamped as u64;
         self.stats.unconverged_ticks += (!converged) as u64;
         Ok(&self.out)
+    }
+
+    /// Flexible needle: brings the shape to equilibrium with the working forces (the next
+    /// solve's reference shape) and returns how far the needle nodes lie off it laterally.
+    fn settle_shape(&mut self) -> f64 {
+        let s_tip = self.params.needle.tip_s_m();
+        // Each node's current shaft position.
+        for slot in 0..self.nodes.len() {
+            let nn = self.nodes[slot];
+            let s = match nn.state {
+                NodeState::Slipping => {
+                    let x = self.model.mesh().nodes_m()[nn.node_idx];
+                    self.node_frame(slot).coords(x).0 + self.solver.displacement_local(slot)[0]
+                }
+                _ => nn.s_ref_m(s_tip),
+            };
+            self.nodes[slot].s_work_m = s.min(s_tip);
+        }
+        let Some(fx) = self.flex.as_deref_mut() else { return 0.0 };
+        // The contact forces turn with the shaft (friction along it, pressure across it).
+        let nodes = &self.nodes;
+        let solver = &self.solver;
+        let loads = (0..nodes.len()).map(|k| {
+            let f = solver.force_local(k);
+            (nodes[k].s_work_m, [-f[0], -f[1]])
+        });
+        if !fx.curve.update_shape(loads, true) {
+            self.stats.shape_unconverged += 1;
+        }
+        fx.g_for = None;
+        // The settled shape carries these forces: the reference of the next coupled solve.
+        for slot in 0..self.nodes.len() {
+            self.nodes[slot].force_ref_n = self.solver.force_world(slot);
+        }
+        let mut gap: f64 = 0.0;
+        for (slot, nn) in self.nodes.iter().enumerate() {
+            if self.solver.condition(slot, 1) != Condition::Displacement {
+                continue;
+            }
+            let x = self.model.mesh().nodes_m()[nn.node_idx];
+            let u = self.solver.displacement_world(slot);
+            let s = nn.s_work_m;
+            let (_, lat) = fx.curve.frame_coords(s, fx.curve.tangent_angle_at(s), [x[0] + u[0], x[1] + u[1]]);
+            gap = gap.max((lat - nn.lat_offset_m).abs());
+        }
+        gap
+    }
+
+    /// Flexible needle: turns node frames to the shape's tangent where they differ by more than
+    /// [`FRAME_TOL_RAD`].
+    fn refresh_frames(&mut self) -> Result<(), SimError> {
+        let s_tip = self.params.needle.tip_s_m();
+        if let Some(fx) = self.flex.as_ref() {
+            for slot in 0..self.solver.n_nodes() {
+                let a = fx.curve.tangent_angle_at(self.nodes[slot].s_ref_m(s_tip));
+                if (a - self.solver.angle_rad(slot)).abs() > FRAME_TOL_RAD {
+                    self.solver.set_angle(slot, a)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Stage 1: clamps the pose change and rotates the node frames.
@@ -500,7 +781,10 @@ impl Simulation {
             pose.theta_rad = self.pose.theta_rad + self.params.max_base_step_rad.copysign(dth);
             clamped = true;
         }
-        if pose.theta_rad != self.pose.theta_rad {
+        if let Some(fx) = self.flex.as_mut() {
+            fx.curve.set_base(pose);
+            self.refresh_frames()?;
+        } else if pose.theta_rad != self.pose.theta_rad {
             for slot in 0..self.solver.n_nodes() {
                 let s = self.nodes[slot].s_prev_m;
                 let a = self.params.needle.frame_angle_at(&pose, s);
@@ -517,8 +801,12 @@ impl Simulation {
         for slot in 0..self.nodes.len() {
             let nn = self.nodes[slot];
             let x = self.model.mesh().nodes_m()[nn.node_idx];
-            let (s0, lat0) = self.params.needle.project(&self.pose, x);
-            self.solver.set_value(slot, 1, -lat0);
+            let (s0, lat0) = self.node_frame(slot).coords(x);
+            let lateral = nn.lat_offset_m - lat0;
+            self.nodes[slot].lateral_ref_m = lateral;
+            if self.solver.condition(slot, 1) == Condition::Displacement {
+                self.solver.set_value(slot, 1, lateral);
+            }
             match nn.state {
                 NodeState::Stuck => self.solver.set_value(slot, 0, nn.anchor_s_m - s0),
                 NodeState::Tip => self.solver.set_value(slot, 0, s_tip - s0),
@@ -586,10 +874,11 @@ impl Simulation {
     /// approaching from their reference positions shifted by $u_d$, at no per-node solve cost.
     fn capture(&mut self, prev_tip: [f64; 2]) -> Result<(), SimError> {
         let shape = self.params.needle;
-        let tip = shape.tip_m(&self.pose);
+        let tip = self.tip_now();
+        let tip_frame = self.tip_frame();
         let s_tip = shape.tip_s_m();
         let cap_r = self.params.capture_radius_m;
-        let (s_prev_tip, _) = shape.project(&self.pose, prev_tip);
+        let (s_prev_tip, _) = tip_frame.coords(prev_tip);
         let distal = (0..self.nodes.len()).max_by(|&a, &b| self.nodes[a].s_prev_m.total_cmp(&self.nodes[b].s_prev_m));
         let u_d = distal.map_or([0.0; 2], |k| self.u_world[k]);
         let q = [tip[0] - u_d[0], tip[1] - u_d[1]];
@@ -606,7 +895,7 @@ impl Simulation {
             }
             let x = self.model.mesh().nodes_m()[j];
             let u = self.node_displacement(j);
-            let (s, lat) = shape.project(&self.pose, [x[0] + u[0], x[1] + u[1]]);
+            let (s, lat) = tip_frame.coords([x[0] + u[0], x[1] + u[1]]);
             if lat.abs() <= cap_r && s <= s_tip && s >= s_prev_tip - cap_r && self.captured.len() < self.captured.capacity() {
                 self.captured.push((j, s, lat));
             }
@@ -615,7 +904,7 @@ impl Simulation {
         self.out.approaching.clear();
         let look = self.params.lookahead_m;
         if look > 0.0 {
-            let t = self.pose.axis();
+            let t = tip_frame.t;
             let centre = [q[0] + 0.5 * look * t[0], q[1] + 0.5 * look * t[1]];
             self.candidates.clear();
             self.grid.query_into(centre, 0.5 * look + 2.0 * cap_r, &mut self.candidates);
@@ -625,14 +914,14 @@ impl Simulation {
                     continue;
                 }
                 let x = self.model.mesh().nodes_m()[j];
-                let (s, lat) = shape.project(&self.pose, [x[0] + u_d[0], x[1] + u_d[1]]);
+                let (s, lat) = tip_frame.coords([x[0] + u_d[0], x[1] + u_d[1]]);
                 if lat.abs() <= 2.0 * cap_r && s > s_tip - cap_r && s <= s_tip + look {
                     self.out.approaching.push(j);
                 }
             }
             // Nearest first, so a bounded prefetch takes the most urgent.
             let nodes_m = self.model.mesh().nodes_m();
-            let key = |j: &usize| shape.project(&self.pose, [nodes_m[*j][0] + u_d[0], nodes_m[*j][1] + u_d[1]]).0;
+            let key = |j: &usize| tip_frame.coords([nodes_m[*j][0] + u_d[0], nodes_m[*j][1] + u_d[1]]).0;
             self.out.approaching.sort_unstable_by(|a, b| key(a).total_cmp(&key(b)));
         }
         if self.captured.is_empty() {
@@ -648,12 +937,30 @@ impl Simulation {
                 break;
             }
             self.ensure_columns(j)?;
-            let angle = shape.frame_angle_at(&self.pose, s);
+            let is_tip = !has_tip && k + 1 == n_cap;
+            let s_ref = if is_tip { s_tip } else { s };
+            let (angle, frame) = match &self.flex {
+                Some(fx) => {
+                    let a = fx.curve.tangent_angle_at(s_ref);
+                    (a, Frame::new(fx.curve.point_at(s_ref), s_ref, a))
+                }
+                None => (shape.frame_angle_at(&self.pose, s), Frame::rigid(&self.pose)),
+            };
+            // A flexible needle takes the node where it is (no lateral snap onto the shaft, which
+            // would pull the needle towards every node it passes); the rigid needle, as in the
+            // paper, puts it on the shaft.
+            let lat_offset_m = if self.flex.is_some() {
+                let u = self.node_displacement(j);
+                let xj = self.model.mesh().nodes_m()[j];
+                frame.coords([xj[0] + u[0], xj[1] + u[1]]).1
+            } else {
+                0.0
+            };
             let slot = self.solver.add_node(&self.cache, j, angle)?;
             let x = self.model.mesh().nodes_m()[j];
-            let (s0, lat0) = shape.project(&self.pose, x);
+            let (s0, lat0) = frame.coords(x);
             let region = self.node_region[j];
-            let is_tip = !has_tip && k + 1 == n_cap;
+            let bevel_tip = is_tip && self.flex.as_ref().is_some_and(|f| f.bevel_ratio > 0.0);
             let entering = self.is_boundary[j] || self.last_tip_region != Some(region);
             let rp = self.params.regions[region];
             let nn = NeedleNode {
@@ -667,8 +974,16 @@ impl Simulation {
                 slip_sign: 1.0,
                 release_force_n: if entering { rp.puncture_force_n } else { rp.cutting_force_n },
                 region,
+                lat_offset_m,
+                lateral_ref_m: lat_offset_m - lat0,
+                force_ref_n: [0.0; 2],
             };
-            self.solver.set_condition(slot, 1, Condition::Displacement, -lat0)?;
+            if bevel_tip {
+                // The bevel's tip node slides on the bevel face: its lateral force is prescribed.
+                self.solver.set_condition(slot, 1, Condition::Force, 0.0)?;
+            } else {
+                self.solver.set_condition(slot, 1, Condition::Displacement, lat_offset_m - lat0)?;
+            }
             if is_tip {
                 self.solver.set_condition(slot, 0, Condition::Displacement, s_tip - s0)?;
                 self.last_tip_region = Some(region);
@@ -691,12 +1006,13 @@ impl Simulation {
         let s_tip = self.params.needle.tip_s_m();
         self.order.clear();
         for slot in 0..self.nodes.len() {
+            let frame = self.node_frame(slot);
             let nn = &mut self.nodes[slot];
             nn.s_work_m = match nn.state {
                 NodeState::Stuck => nn.anchor_s_m,
                 NodeState::Slipping if current => {
                     let x = self.model.mesh().nodes_m()[nn.node_idx];
-                    self.params.needle.project(&self.pose, x).0 + self.solver.displacement_local(slot)[0]
+                    frame.coords(x).0 + self.solver.displacement_local(slot)[0]
                 }
                 NodeState::Slipping => nn.s_prev_m,
                 NodeState::Tip => continue,
@@ -735,7 +1051,6 @@ impl Simulation {
 
     /// Stage 6: the bounded stick/slip iteration. Returns (iterations, converged).
     fn resolve_active_set(&mut self) -> Result<(usize, bool), SimError> {
-        let shape = self.params.needle;
         // Slipping nodes just captured still need their force condition.
         for slot in 0..self.nodes.len() {
             let nn = self.nodes[slot];
@@ -745,24 +1060,26 @@ impl Simulation {
         }
         let max_iter = self.params.max_active_set_iterations;
         for iter in 1..=max_iter {
-            self.solver.solve();
+            self.solve_working_set();
             // Friction shares follow the slipping nodes' positions (a node sliding back lengthens
             // its tributary segment): a short fixed-point iteration, contracting when the friction
             // per length is small against the tissue stiffness.
             let total: f64 = self.nodes.iter().map(|n| n.friction_n).sum();
             let tol = FRICTION_TOL * total.max(1e-12);
             for _ in 0..FRICTION_SWEEPS {
-                if self.update_friction(true, tol) <= tol {
+                let friction_change = self.update_friction(true, tol);
+                let bevel_change = self.update_bevel_force();
+                if friction_change <= tol && bevel_change <= tol {
                     break;
                 }
-                self.solver.solve();
+                self.solve_working_set();
             }
             self.changes.clear();
             for slot in 0..self.nodes.len() {
                 let nn = self.nodes[slot];
                 let f = self.solver.force_local(slot);
                 let x = self.model.mesh().nodes_m()[nn.node_idx];
-                let (s0, _) = shape.project(&self.pose, x);
+                let (s0, _) = self.node_frame(slot).coords(x);
                 let s_now = s0 + self.solver.displacement_local(slot)[0];
                 let change = match nn.state {
                     NodeState::Tip if f[0] > nn.release_force_n => Some(Change::Puncture),
@@ -791,9 +1108,16 @@ impl Simulation {
             for k in 0..self.changes.len() {
                 let (slot, change) = self.changes[k];
                 let x = self.model.mesh().nodes_m()[self.nodes[slot].node_idx];
-                let (s0, _) = shape.project(&self.pose, x);
+                let (s0, lat0) = self.node_frame(slot).coords(x);
                 match change {
                     Change::Puncture => {
+                        if self.solver.condition(slot, 1) == Condition::Force {
+                            // A bevel tip's node stays at the lateral offset it was cut at.
+                            let un = self.solver.displacement_local(slot)[1];
+                            self.nodes[slot].lat_offset_m = un + lat0;
+                            self.nodes[slot].lateral_ref_m = un;
+                            self.solver.set_condition(slot, 1, Condition::Displacement, un)?;
+                        }
                         let nn = &mut self.nodes[slot];
                         nn.state = NodeState::Slipping;
                         nn.slip_sign = 1.0;
@@ -822,7 +1146,7 @@ impl Simulation {
             }
             if iter == max_iter {
                 // Leave a state whose solution matches its conditions.
-                self.solver.solve();
+                self.solve_working_set();
             }
         }
         Ok((max_iter, false))
@@ -843,11 +1167,13 @@ impl Simulation {
             let u = self.solver.displacement_world(slot);
             self.f_world[slot] = f;
             self.u_world[slot] = u;
+            let frame = self.node_frame(slot);
             let nn = &mut self.nodes[slot];
             let x = self.model.mesh().nodes_m()[nn.node_idx];
             let p = [x[0] + u[0], x[1] + u[1]];
-            let (s, _) = shape.project(&self.pose, p);
+            let (s, _) = frame.coords(p);
             nn.s_prev_m = s;
+            nn.force_ref_n = f;
             min_s = min_s.min(s);
             force[0] -= f[0];
             force[1] -= f[1];
@@ -859,7 +1185,18 @@ impl Simulation {
             }
             self.out.needle_nodes.push(NeedleNodeOut { node_idx: nn.node_idx, state: nn.state, position_m: p, force_n: f, s_m: s });
         }
-        let tip = shape.tip_m(&self.pose);
+        if let Some(fx) = self.flex.as_ref() {
+            self.out.shape_m.clear();
+            self.out.shape_m.extend_from_slice(fx.curve.points_m());
+            self.out.tip_angle_rad = fx.curve.tip_angle_rad();
+        } else {
+            self.out.shape_m.clear();
+            self.out.shape_m.push(b);
+            self.out.shape_m.push(shape.tip_m(&self.pose));
+            self.out.tip_angle_rad = self.pose.theta_rad;
+        }
+        let tip = self.tip_now();
+        self.out.bevel_side = self.bevel_side();
         self.out.targets.clear();
         for k in 0..self.targets.len() {
             let tg = self.targets[k].clone();
@@ -913,6 +1250,9 @@ impl Simulation {
     /// Solves the probe copy of the working set with the base at `pose`, the contact conditions
     /// (stuck, slipping, tip) and slipping forces held as they are. Allocates nothing.
     fn probe_wrench(&mut self, pose: &BasePose) -> Result<[f64; 3], SimError> {
+        if self.flex.is_some() {
+            return self.probe_wrench_flexible(pose);
+        }
         self.probe.copy_from(&self.solver);
         let shape = self.params.needle;
         let s_tip = shape.tip_s_m();
@@ -929,6 +1269,41 @@ impl Simulation {
             }
         }
         self.probe.solve();
+        Ok(self.wrench_of(&self.probe, pose))
+    }
+
+    /// [`Self::probe_wrench`] for a flexible needle: its shape moved rigidly with the base, the
+    /// frames following it, and the needle's compliance in the solve.
+    fn probe_wrench_flexible(&mut self, pose: &BasePose) -> Result<[f64; 3], SimError> {
+        self.probe.copy_from(&self.solver);
+        let s_tip = self.params.needle.tip_s_m();
+        let fx = self.flex.as_deref_mut().expect("called for a flexible needle");
+        fx.probe_curve.copy_from(&fx.curve);
+        fx.probe_curve.set_base(*pose);
+        fx.nodes.clear();
+        for slot in 0..self.nodes.len() {
+            let nn = self.nodes[slot];
+            let s_ref = nn.s_ref_m(s_tip);
+            let a = fx.probe_curve.tangent_angle_at(s_ref);
+            if (a - self.probe.angle_rad(slot)).abs() > FRAME_TOL_RAD {
+                self.probe.set_angle(slot, a)?;
+            }
+            let frame = Frame::new(fx.probe_curve.point_at(s_ref), s_ref, self.probe.angle_rad(slot));
+            let x = self.model.mesh().nodes_m()[nn.node_idx];
+            let (s0, lat0) = frame.coords(x);
+            let lateral = nn.lat_offset_m - lat0;
+            if self.probe.condition(slot, 1) == Condition::Displacement {
+                self.probe.set_value(slot, 1, lateral);
+            }
+            match nn.state {
+                NodeState::Stuck => self.probe.set_value(slot, 0, nn.anchor_s_m - s0),
+                NodeState::Tip => self.probe.set_value(slot, 0, s_tip - s0),
+                NodeState::Slipping => {}
+            }
+            fx.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_world_n: nn.force_ref_n });
+        }
+        fx.probe_coupling.update_compliance(&fx.probe_curve, &self.probe, &fx.nodes);
+        fx.probe_coupling.solve(&mut self.probe, &fx.nodes);
         Ok(self.wrench_of(&self.probe, pose))
     }
 

@@ -1,10 +1,11 @@
 //! A step allocates nothing once warmed up: a counting global allocator watches every
 //! allocation made inside `Simulation::step` during an insertion, a hold, a rotation and a
-//! withdrawal (compliance columns are prefetched between steps, as the server's worker does).
+//! withdrawal (compliance columns are prefetched between steps, as the server's worker does), for
+//! the rigid needle and for a flexible bevel-tip needle whose bevel is flipped half-way, with the
+//! device's stiffness Jacobian taken every 10 ticks as the real-time thread does.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::sim::{SimParams, Simulation};
@@ -14,13 +15,16 @@ use needlesim_core::{
 
 struct Counting;
 
-static COUNTING: AtomicBool = AtomicBool::new(false);
-static ALLOCS: AtomicU64 = AtomicU64::new(0);
+// Per thread: the tests run in parallel, and only the counting thread's allocations count.
+thread_local! {
+    static COUNTING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    static ALLOCS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCS.fetch_add(1, Ordering::Relaxed);
+        if COUNTING.with(|c| c.get()) {
+            ALLOCS.with(|a| a.set(a.get() + 1));
         }
         unsafe { System.alloc(layout) }
     }
@@ -28,8 +32,8 @@ unsafe impl GlobalAlloc for Counting {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCS.fetch_add(1, Ordering::Relaxed);
+        if COUNTING.with(|c| c.get()) {
+            ALLOCS.with(|a| a.set(a.get() + 1));
         }
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -40,6 +44,18 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn steps_allocate_nothing_after_warm_up() {
+    run_case(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }));
+}
+
+#[test]
+fn flexible_bevel_needle_steps_allocate_nothing_after_warm_up() {
+    let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
+    f.flexural_rigidity_nm2 *= 0.3;
+    f.bevel_force_ratio = 0.4;
+    run_case(NeedleShape::Flexible(f));
+}
+
+fn run_case(needle: NeedleShape) {
     let mesh = RectMeshParams::new(25, 25, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
     let mats = MaterialMap::per_region(
         &mesh,
@@ -52,7 +68,7 @@ fn steps_allocate_nothing_after_warm_up() {
     let a0 = -1.3f64;
     let base_at = |d: f64, a: f64| BasePose::new(0.04 + (d - 0.1) * a.cos(), 0.1 + (d - 0.1) * a.sin(), a);
     let params = SimParams {
-        needle: NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }),
+        needle,
         initial_pose: base_at(-0.005, a0),
         capture_radius_m: 0.0015,
         max_needle_nodes: 64,
@@ -72,12 +88,19 @@ fn steps_allocate_nothing_after_warm_up() {
     let mut steps_with_allocation = 0;
     let mut total = 0;
     for (k, p) in poses.iter().enumerate() {
-        ALLOCS.store(0, Ordering::Relaxed);
-        COUNTING.store(true, Ordering::Relaxed);
+        ALLOCS.with(|a| a.set(0));
+        COUNTING.with(|c| c.set(true));
+        if k == poses.len() / 2 {
+            sim.flip_bevel();
+        }
         let r = sim.step(*p).map(|o| o.needle_nodes.len());
-        COUNTING.store(false, Ordering::Relaxed);
+        let j = if k % 10 == 0 { Some(sim.stiffness_jacobian()) } else { None };
+        COUNTING.with(|c| c.set(false));
         r.unwrap();
-        let n = ALLOCS.load(Ordering::Relaxed);
+        if let Some(j) = j {
+            j.unwrap();
+        }
+        let n = ALLOCS.with(|a| a.get());
         // The first ticks size the per-step buffers; after that nothing may allocate.
         if k >= 10 && n > 0 {
             steps_with_allocation += 1;

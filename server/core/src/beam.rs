@@ -1,0 +1,537 @@
+//! The flexible needle: a geometrically exact discrete elastica clamped at the base pose, and its
+//! coupling to the tissue's working set.
+//!
+//! **Beam.** The shaft of length $L$ is a chain of $N$ rigid links of length $h = L/N$ joined by
+//! rotational springs (inextensible, bending only). Joint $k$ sits at the proximal end $x_k$ of
+//! link $k$; joint 0 is the clamp at the base. Under point forces $F_j$ applied at shaft points
+//! $p_j$ (arc lengths $s_j$), the moment at joint $k$ of the loads distal to it is
+//! $$M_k = \sum_{j:\,s_j \ge k h} (p_j - x_k) \times F_j,$$
+//! and the joint turns by $\Delta\psi_k = w_k M_k / EI$ ($w_0 = h/2$, $w_k = h$: the trapezoidal
+//! rule for $\psi' = M/EI$). Link $k$ points along $\psi_k = \theta + \sum_{m \le k} \Delta\psi_m$.
+//! Positions and moments are evaluated on the deformed shape, so large deflections and rotations
+//! are exact for the discrete model (it converges to Kirchhoff's elastica as $h \to 0$); the
+//! equilibrium is found by fixed-point iteration warm-started from the previous tick's shape.
+//!
+//! **Coupling.** Linearised about the current shape, the lateral deflection at shaft point $i$
+//! (direction $n_i$) from a lateral force at point $j$ (direction $n_j$) is the virtual-work
+//! compliance of the discrete beam
+//! $$G_{ij} = \frac{1}{EI}\sum_{k \le \min(m_i, m_j)} w_k\,\big((p_i - x_k)\times n_i\big)\big((p_j - x_k)\times n_j\big),$$
+//! ($m_i$ the link of point $i$), computed in $O(N + d^2)$ from prefix sums of $w_k$, $w_k x_k$ and
+//! $w_k x_k x_k^\top$. Each tissue node on the needle has its lateral displacement prescribed so
+//! that it lies on the needle: with $g$ the values that put it on the reference shape (the last
+//! equilibrium) and $f$ the lateral forces of the needle on the tissue,
+//! $$v = g - G_{NN}(f_N - f^{ref}_N) - G_{NK}(f_K - f^{ref}_K),\qquad f_N = A v + b,$$
+//! where $A$ is the lateral block of the working set's hybrid matrix, $b$ the lateral forces
+//! from everything else and $K$ the lateral DOFs with prescribed force (a bevel tip). Hence one
+//! dense solve $(I + G_{NN}A)\,v = g - G_{NN}(b - f^{ref}_N) - G_{NK}(f_K - f^{ref}_K)$ per solve
+//! of the working set, its LU reused while the working set's conditions do not change. A stiff
+//! needle ($G \to 0$) gives $v = g$: the rigid needle.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve};
+use faer::{Conj, MatMut, MatRef, Par};
+
+use crate::mixed::{Condition, MixedSolver};
+use crate::needle::{BasePose, FlexibleNeedle};
+
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// Largest number of fixed-point iterations of the shape update.
+const SHAPE_MAX_ITERATIONS: usize = 60;
+
+/// The deformed shape of a flexible needle and the scratch of its updates (all allocated up
+/// front; nothing allocates afterwards).
+#[derive(Debug, Clone)]
+pub struct NeedleCurve {
+    length_m: f64,
+    link_m: f64,
+    ei_nm2: f64,
+    base: BasePose,
+    /// Joint rotations $\Delta\psi_k$, k = 0..N.
+    joint_rad: Vec<f64>,
+    /// Absolute link directions $\psi_k$.
+    link_rad: Vec<f64>,
+    /// Joint positions $x_0 \dots x_N$ ($x_N$ is the tip).
+    pts: Vec<[f64; 2]>,
+    loads: Vec<(f64, [f64; 2])>,
+    new_joint: Vec<f64>,
+    /// Prefix sums for the compliance: $\sum w_k$, $\sum w_k r_k$, $\sum w_k r_k r_k^\top$ with
+    /// $r_k = x_k - b$.
+    p0: Vec<f64>,
+    p1: Vec<[f64; 2]>,
+    p2: Vec<[f64; 3]>,
+    /// Fixed-point iterations of the last shape update, and updates that hit the bound.
+    pub last_iterations: usize,
+    pub unconverged_updates: u64,
+}
+
+impl NeedleCurve {
+    /// A straight needle at `base` with room for `max_loads` point loads.
+    pub fn new(params: &FlexibleNeedle, base: BasePose, max_loads: usize) -> Self {
+        let n = params.n_links;
+        let mut c = Self {
+            length_m: params.length_m,
+            link_m: params.length_m / n as f64,
+            ei_nm2: params.flexural_rigidity_nm2,
+            base,
+            joint_rad: vec![0.0; n],
+            link_rad: vec![0.0; n],
+            pts: vec![[0.0; 2]; n + 1],
+            loads: Vec::with_capacity(max_loads),
+            new_joint: vec![0.0; n],
+            p0: vec![0.0; n],
+            p1: vec![[0.0; 2]; n],
+            p2: vec![[0.0; 3]; n],
+            last_iterations: 0,
+            unconverged_updates: 0,
+        };
+        c.rebuild_points();
+        c
+    }
+
+    /// Number of links.
+    pub fn n_links(&self) -> usize {
+        self.joint_rad.len()
+    }
+    /// The joint positions, base to tip.
+    pub fn points_m(&self) -> &[[f64; 2]] {
+        &self.pts
+    }
+    /// The base pose the shape hangs from.
+    pub fn base(&self) -> BasePose {
+        self.base
+    }
+
+    fn weight(&self, k: usize) -> f64 {
+        if k == 0 { 0.5 * self.link_m } else { self.link_m }
+    }
+
+    /// Joint positions and link directions from the joint rotations, and (`with_sums`) the
+    /// prefix sums of the compliance.
+    fn rebuild_points(&mut self) {
+        self.rebuild(true);
+    }
+
+    fn rebuild(&mut self, with_sums: bool) {
+        let mut psi = self.base.theta_rad;
+        let mut x = self.base.position_m();
+        self.pts[0] = x;
+        let n = self.joint_rad.len();
+        let mut s0 = 0.0;
+        let mut s1 = [0.0; 2];
+        let mut s2 = [0.0; 3];
+        for k in 0..n {
+            if with_sums {
+                let w = self.weight(k);
+                let r = [x[0] - self.base.x_m, x[1] - self.base.y_m];
+                s0 += w;
+                s1 = [s1[0] + w * r[0], s1[1] + w * r[1]];
+                s2 = [s2[0] + w * r[0] * r[0], s2[1] + w * r[0] * r[1], s2[2] + w * r[1] * r[1]];
+                self.p0[k] = s0;
+                self.p1[k] = s1;
+                self.p2[k] = s2;
+            }
+            psi += self.joint_rad[k];
+            self.link_rad[k] = psi;
+            let (sn, cs) = psi.sin_cos();
+            x = [x[0] + self.link_m * cs, x[1] + self.link_m * sn];
+            self.pts[k + 1] = x;
+        }
+    }
+
+    /// Makes this curve a copy of `other` without allocating (both made from the same needle).
+    pub fn copy_from(&mut self, other: &NeedleCurve) {
+        self.base = other.base;
+        self.joint_rad.copy_from_slice(&other.joint_rad);
+        self.link_rad.copy_from_slice(&other.link_rad);
+        self.pts.copy_from_slice(&other.pts);
+        self.p0.copy_from_slice(&other.p0);
+        self.p1.copy_from_slice(&other.p1);
+        self.p2.copy_from_slice(&other.p2);
+    }
+
+    /// Moves the clamp to `base`; the shape moves with it rigidly (the joint rotations stay).
+    pub fn set_base(&mut self, base: BasePose) {
+        self.base = base;
+        self.rebuild_points();
+    }
+
+    /// The link of arc length `s_m` (clamped to the shaft).
+    fn link_of(&self, s_m: f64) -> usize {
+        let n = self.joint_rad.len();
+        if s_m <= 0.0 {
+            return 0;
+        }
+        ((s_m / self.link_m) as usize).min(n - 1)
+    }
+
+    /// The shaft point at arc length `s_m`; beyond the ends the shape continues straight along
+    /// the end links (the tip's tangent ahead of the tip).
+    pub fn point_at(&self, s_m: f64) -> [f64; 2] {
+        let k = self.link_of(s_m);
+        let d = s_m - k as f64 * self.link_m;
+        let (sn, cs) = self.link_rad[k].sin_cos();
+        [self.pts[k][0] + d * cs, self.pts[k][1] + d * sn]
+    }
+
+    /// The tangent angle at arc length `s_m`: link directions interpolated linearly between link
+    /// midpoints (so node frames turn smoothly as nodes slide).
+    pub fn tangent_angle_at(&self, s_m: f64) -> f64 {
+        let n = self.joint_rad.len();
+        let u = s_m / self.link_m - 0.5;
+        if u <= 0.0 {
+            return self.link_rad[0];
+        }
+        let k = u as usize;
+        if k + 1 >= n {
+            return self.link_rad[n - 1];
+        }
+        let a = u - k as f64;
+        (1.0 - a) * self.link_rad[k] + a * self.link_rad[k + 1]
+    }
+
+    /// The tip position.
+    pub fn tip_m(&self) -> [f64; 2] {
+        self.pts[self.pts.len() - 1]
+    }
+    /// The tip's tangent angle.
+    pub fn tip_angle_rad(&self) -> f64 {
+        self.link_rad[self.link_rad.len() - 1]
+    }
+
+    /// Coordinates of `p_m` in the frame at arc length `s_ref_m` with angle `angle_rad`:
+    /// $(s_{ref} + t\cdot(p - c),\ n\cdot(p - c))$, $c$ the shaft point at $s_{ref}$.
+    pub fn frame_coords(&self, s_ref_m: f64, angle_rad: f64, p_m: [f64; 2]) -> (f64, f64) {
+        let c = self.point_at(s_ref_m);
+        let (sn, cs) = angle_rad.sin_cos();
+        let d = [p_m[0] - c[0], p_m[1] - c[1]];
+        (s_ref_m + cs * d[0] + sn * d[1], -sn * d[0] + cs * d[1])
+    }
+
+    /// The per-point terms of the compliance: $(r \times n,\ c = (n_y, -n_x),\ \text{link})$ with
+    /// $r = p - b$, so that the moment arm at joint $k$ is $r\times n - c\cdot(x_k - b)$.
+    fn compliance_terms(&self, s_m: f64, angle_rad: f64) -> (f64, [f64; 2], usize) {
+        let b = self.base.position_m();
+        let p = self.point_at(s_m);
+        let r = [p[0] - b[0], p[1] - b[1]];
+        let nrm = [-angle_rad.sin(), angle_rad.cos()];
+        (cross(r, nrm), [nrm[1], -nrm[0]], self.link_of(s_m))
+    }
+
+    fn compliance_from_terms(&self, ti: (f64, [f64; 2], usize), tj: (f64, [f64; 2], usize)) -> f64 {
+        let ((ai, ci, li), (aj, cj, lj)) = (ti, tj);
+        let k = li.min(lj);
+        let (s0, s1, s2) = (self.p0[k], self.p1[k], self.p2[k]);
+        let c1i = ci[0] * s1[0] + ci[1] * s1[1];
+        let c1j = cj[0] * s1[0] + cj[1] * s1[1];
+        let c2 = ci[0] * (s2[0] * cj[0] + s2[1] * cj[1]) + ci[1] * (s2[1] * cj[0] + s2[2] * cj[1]);
+        (ai * aj * s0 - ai * c1j - aj * c1i + c2) / self.ei_nm2
+    }
+
+    /// Lateral compliance between shaft point `i` (arc `s_i`, lateral direction angle of its frame
+    /// `a_i`) and point `j` ($G_{ij}$ above), m/N.
+    pub fn compliance(&self, s_i: f64, a_i: f64, s_j: f64, a_j: f64) -> f64 {
+        self.compliance_from_terms(self.compliance_terms(s_i, a_i), self.compliance_terms(s_j, a_j))
+    }
+
+    /// Finds the equilibrium shape under point forces on the needle `(s_m, force)`, warm-started
+    /// from the current shape. With `follower` the force is given in the local frame of the
+    /// shaft at $s$ (tangential, normal) and turns with it, as the tissue's contact forces do
+    /// (friction along the shaft, pressure across it, the cutting force along the tip); without,
+    /// it is a fixed world vector (a dead load). Returns whether it converged (no joint
+    /// turning by more than 1e-13 rad between iterates); the shape is left at the last iterate otherwise (counted).
+    pub fn update_shape(&mut self, loads: impl Iterator<Item = (f64, [f64; 2])>, follower: bool) -> bool {
+        self.loads.clear();
+        for (s, f) in loads {
+            if self.loads.len() < self.loads.capacity() {
+                self.loads.push((s.clamp(0.0, self.length_m), f));
+            }
+        }
+        self.loads.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let n = self.joint_rad.len();
+        // Converged when no joint turns by more than 1e-13 rad between iterates.
+        let tol = 1e-13;
+        let mut relax = 1.0;
+        let mut prev_change = f64::INFINITY;
+        for it in 1..=SHAPE_MAX_ITERATIONS {
+            // Suffix sums of the distal loads: F = Σ F_j, A = Σ (p_j - b) × F_j.
+            let b = self.base.position_m();
+            let mut fsum = [0.0; 2];
+            let mut asum = 0.0;
+            let mut j = self.loads.len();
+            for k in (0..n).rev() {
+                let start = k as f64 * self.link_m;
+                while j > 0 && (self.loads[j - 1].0 >= start || k == 0) {
+                    let (s, f_given) = self.loads[j - 1];
+                    let p = self.point_at(s);
+                    let f = if follower {
+                        let (sn, cs) = self.tangent_angle_at(s).sin_cos();
+                        [f_given[0] * cs - f_given[1] * sn, f_given[0] * sn + f_given[1] * cs]
+                    } else {
+                        f_given
+                    };
+                    fsum = [fsum[0] + f[0], fsum[1] + f[1]];
+                    asum += cross([p[0] - b[0], p[1] - b[1]], f);
+                    j -= 1;
+                }
+                let r = [self.pts[k][0] - b[0], self.pts[k][1] - b[1]];
+                let m = asum - cross(r, fsum);
+                self.new_joint[k] = self.weight(k) * m / self.ei_nm2;
+            }
+            let mut change: f64 = 0.0;
+            for k in 0..n {
+                let d = self.new_joint[k] - self.joint_rad[k];
+                change = change.max(d.abs());
+                self.joint_rad[k] += relax * d;
+            }
+            self.rebuild(false);
+            self.last_iterations = it;
+            if change <= tol {
+                self.rebuild_points();
+                return true;
+            }
+            if change > prev_change {
+                relax = (relax * 0.5).max(0.05);
+            }
+            prev_change = change;
+        }
+        self.rebuild_points();
+        self.unconverged_updates += 1;
+        false
+    }
+}
+
+/// The tissue–needle coupling of one working-set solver: the dense lateral system above, with
+/// its storage allocated once for `cap_nodes` working nodes.
+pub struct Coupling {
+    cap: usize,
+    /// Slots whose lateral displacement is prescribed (N) and with prescribed lateral force (K).
+    n_slots: Vec<usize>,
+    k_slots: Vec<usize>,
+    /// $G$ over all slots (row-major, stride `cap`).
+    g: Vec<f64>,
+    terms: Vec<(f64, [f64; 2], usize)>,
+    /// $I + G_{NN}A$, then its LU factors (column-major, leading dimension `cap`).
+    m: Vec<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    buf: MemBuffer,
+    rhs: Vec<f64>,
+    y_cur: Vec<f64>,
+    /// The (solver update count, shape version) the LU belongs to.
+    factored_for: Option<(u64, u64)>,
+    /// Bumped whenever G is recomputed.
+    shape_version: u64,
+    /// LU factorisations performed (diagnostics).
+    pub n_factorisations: u64,
+}
+
+/// One working node as the coupling sees it: its shaft position and frame, its reference
+/// lateral value $g$ and the reference lateral force (world) the reference shape was in
+/// equilibrium with.
+#[derive(Debug, Clone, Copy)]
+pub struct CoupledNode {
+    pub s_m: f64,
+    pub lateral_ref_m: f64,
+    pub force_ref_world_n: [f64; 2],
+}
+
+impl Coupling {
+    /// Storage for `cap_nodes` working nodes.
+    pub fn new(cap_nodes: usize) -> Self {
+        let cap = cap_nodes.max(1);
+        let req = lu_factor::lu_in_place_scratch::<usize, f64>(cap, cap, Par::Seq, Default::default())
+            .or(lu_solve::solve_in_place_scratch::<usize, f64>(cap, 1, Par::Seq));
+        Self {
+            cap,
+            n_slots: Vec::with_capacity(cap),
+            k_slots: Vec::with_capacity(cap),
+            g: vec![0.0; cap * cap],
+            terms: Vec::with_capacity(cap),
+            m: vec![0.0; cap * cap],
+            perm: vec![0; cap],
+            perm_inv: vec![0; cap],
+            buf: MemBuffer::new(req),
+            rhs: vec![0.0; cap],
+            y_cur: vec![0.0; cap],
+            factored_for: None,
+            shape_version: 0,
+            n_factorisations: 0,
+        }
+    }
+
+    /// Recomputes $G$ for the solver's slots on `curve` (call after the shape, the frames or the
+    /// slots changed). $O(d^2)$.
+    pub fn update_compliance(&mut self, curve: &NeedleCurve, solver: &MixedSolver, nodes: &[CoupledNode]) {
+        let d = solver.n_nodes();
+        self.terms.clear();
+        for (i, node) in nodes.iter().enumerate().take(d) {
+            self.terms.push(curve.compliance_terms(node.s_m, solver.angle_rad(i)));
+        }
+        for i in 0..d {
+            for j in i..d {
+                let g = curve.compliance_from_terms(self.terms[i], self.terms[j]);
+                self.g[i * self.cap + j] = g;
+                self.g[j * self.cap + i] = g;
+            }
+        }
+        self.shape_version += 1;
+    }
+
+    /// Takes $G$ from `other` (the needle and its frames moved rigidly leave $G$ unchanged).
+    pub fn copy_compliance_from(&mut self, other: &Coupling) {
+        self.g.copy_from_slice(&other.g);
+        self.shape_version += 1;
+    }
+
+    /// Solves the working set with the needle's lateral compliance: sets the lateral values of
+    /// the displacement-prescribed slots to $v$ and solves.
+    pub fn solve(&mut self, solver: &mut MixedSolver, nodes: &[CoupledNode]) {
+        let d = solver.n_nodes();
+        self.n_slots.clear();
+        self.k_slots.clear();
+        for slot in 0..d {
+            if solver.condition(slot, 1) == Condition::Displacement {
+                self.n_slots.push(slot);
+            } else {
+                self.k_slots.push(slot);
+            }
+        }
+        let nn = self.n_slots.len();
+        // b = y_N - A v at the current values.
+        solver.solve();
+        for (a, &si) in self.n_slots.iter().enumerate() {
+            let mut y = solver.force_local(si)[1];
+            for &sj in &self.n_slots {
+                y -= solver.hybrid(2 * si + 1, 2 * sj + 1) * solver.prescribed_value(sj, 1);
+            }
+            self.y_cur[a] = y;
+        }
+        let st = solver.stats();
+        let version = (st.n_pivots + st.n_rotations + st.n_added + st.n_removed + st.n_rebuilds, self.shape_version);
+        let cap = self.cap;
+        if self.factored_for != Some(version) {
+            // M = I + G_NN A, column-major.
+            for (a, &si) in self.n_slots.iter().enumerate() {
+                for (c, &sc) in self.n_slots.iter().enumerate() {
+                    let mut v = if a == c { 1.0 } else { 0.0 };
+                    for &sk in &self.n_slots {
+                        v += self.g[si * cap + sk] * solver.hybrid(2 * sk + 1, 2 * sc + 1);
+                    }
+                    self.m[c * cap + a] = v;
+                }
+            }
+            let mat = MatMut::from_column_major_slice_with_stride_mut(&mut self.m[..], nn, nn, cap);
+            let _ = lu_factor::lu_in_place(
+                mat,
+                &mut self.perm[..nn],
+                &mut self.perm_inv[..nn],
+                Par::Seq,
+                MemStack::new(&mut self.buf),
+                Default::default(),
+            );
+            self.factored_for = Some(version);
+            self.n_factorisations += 1;
+        }
+        // rhs = g - G_NN (b - f_ref_N) - G_NK (f_K - f_ref_K).
+        for (a, &si) in self.n_slots.iter().enumerate() {
+            let mut r = nodes[si].lateral_ref_m;
+            for (c, &sc) in self.n_slots.iter().enumerate() {
+                let fref = lateral_of(nodes[sc].force_ref_world_n, solver.angle_rad(sc));
+                r -= self.g[si * cap + sc] * (self.y_cur[c] - fref);
+            }
+            for &sk in &self.k_slots {
+                let fref = lateral_of(nodes[sk].force_ref_world_n, solver.angle_rad(sk));
+                r -= self.g[si * cap + sk] * (solver.prescribed_value(sk, 1) - fref);
+            }
+            self.rhs[a] = r;
+        }
+        if nn > 0 {
+            let lu = MatRef::from_column_major_slice_with_stride(&self.m[..], nn, nn, cap);
+            let perm = faer::perm::PermRef::new_checked(&self.perm[..nn], &self.perm_inv[..nn], nn);
+            let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs[..nn], nn, 1);
+            lu_solve::solve_in_place_with_conj(lu, lu, perm, Conj::No, rhs, Par::Seq, MemStack::new(&mut self.buf));
+        }
+        for (a, &si) in self.n_slots.iter().enumerate() {
+            solver.set_value(si, 1, self.rhs[a]);
+        }
+        solver.solve();
+    }
+}
+
+/// The lateral component of a world vector in the frame at `angle_rad`.
+fn lateral_of(v: [f64; 2], angle_rad: f64) -> f64 {
+    let (s, c) = angle_rad.sin_cos();
+    -s * v[0] + c * v[1]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn needle(ei: f64, n: usize) -> FlexibleNeedle {
+        FlexibleNeedle { length_m: 0.1, flexural_rigidity_nm2: ei, n_links: n, bevel_force_ratio: 0.0, bevel_side: 1.0 }
+    }
+
+    #[test]
+    fn small_tip_load_matches_cantilever_formula_and_compliance() {
+        // Tip deflection P L^3 / 3EI; the discrete beam converges at O(h^2).
+        let (ei, l, p) = (0.03, 0.1, 1e-4);
+        let mut errs = Vec::new();
+        for n in [20, 40, 80] {
+            let mut c = NeedleCurve::new(&needle(ei, n), BasePose::new(0.0, 0.0, 0.0), 8);
+            assert!(c.update_shape([(l, [0.0, p])].into_iter(), false));
+            let exact = p * l.powi(3) / (3.0 * ei);
+            errs.push((c.tip_m()[1] - exact).abs() / exact);
+            // The linearised compliance agrees with the (nearly linear) response.
+            let g = c.compliance(l, 0.0, l, 0.0);
+            assert!((g * p - c.tip_m()[1]).abs() < 1e-6 * exact, "n={n}");
+        }
+        assert!(errs[2] < 1e-3 && errs[1] / errs[2] > 3.5, "{errs:?}");
+        // A load at mid-length: w(L) = P a^2 (3L - a) / 6EI with a = L/2.
+        let mut c = NeedleCurve::new(&needle(ei, 80), BasePose::new(0.0, 0.0, 0.0), 8);
+        c.update_shape([(0.05, [0.0, p])].into_iter(), false);
+        let exact = p * 0.05f64.powi(2) * (3.0 * l - 0.05) / (6.0 * ei);
+        assert!((c.tip_m()[1] - exact).abs() < 2e-3 * exact);
+        // Symmetry of G for points on different links, and rotation invariance.
+        let g12 = c.compliance(0.03, 0.0, 0.08, 0.0);
+        let g21 = c.compliance(0.08, 0.0, 0.03, 0.0);
+        assert!((g12 - g21).abs() < 1e-15 * g12.abs().max(1.0));
+    }
+
+    #[test]
+    fn large_tip_load_matches_the_elastica() {
+        // Cantilever with a dead tip load perpendicular to the undeformed axis, P L^2 / EI = 1:
+        // tip deflection 0.30172 L and axial shortening 0.05643 L (Bisshopp & Drucker 1945).
+        let (ei, l) = (0.03, 0.1);
+        let p = ei / (l * l);
+        let mut c = NeedleCurve::new(&needle(ei, 200), BasePose::new(0.01, -0.02, 0.7), 8);
+        let (t, n) = (c.base().axis(), c.base().normal());
+        // Load stepping, as the simulation does tick by tick.
+        for step in 1..=20 {
+            let f = p * step as f64 / 20.0;
+            assert!(c.update_shape([(l, [f * n[0], f * n[1]])].into_iter(), false));
+        }
+        let tip = c.tip_m();
+        let d = [tip[0] - 0.01, tip[1] + 0.02];
+        let lateral = d[0] * n[0] + d[1] * n[1];
+        let axial = d[0] * t[0] + d[1] * t[1];
+        assert!((lateral / l - 0.30172).abs() < 5e-4, "lateral {}", lateral / l);
+        assert!((1.0 - axial / l - 0.05643).abs() < 5e-4, "shortening {}", 1.0 - axial / l);
+    }
+
+    #[test]
+    fn moving_the_base_moves_the_shape_rigidly() {
+        let mut c = NeedleCurve::new(&needle(0.03, 50), BasePose::new(0.0, 0.0, 0.0), 8);
+        c.update_shape([(0.1, [0.0, 0.5])].into_iter(), false);
+        let before = c.tip_m();
+        c.set_base(BasePose::new(0.01, 0.02, std::f64::consts::FRAC_PI_2));
+        let after = c.tip_m();
+        // Rotated by 90° about the base, then translated.
+        assert!((after[0] - (0.01 - before[1])).abs() < 1e-15 && (after[1] - (0.02 + before[0])).abs() < 1e-15);
+        let (s, lat) = c.frame_coords(0.1, c.tip_angle_rad(), after);
+        assert!((s - 0.1).abs() < 1e-15 && lat.abs() < 1e-15);
+    }
+}
