@@ -70,7 +70,9 @@ async fn insertion_at_1khz_with_50_observers_and_a_full_rate_logger() {
     let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
     let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
     let start = Instant::now();
-    tx.send(pb::ControlRequest { session_id: sid.clone(), base: Some(pose_at(0.0, secs)), client_time_ns: 0, seq: 1 }).await.unwrap();
+    tx.send(pb::ControlRequest { session_id: sid.clone(), base: Some(pose_at(0.0, secs)), client_time_ns: 0, seq: 1, flip_bevel: false })
+        .await
+        .unwrap();
     let mut responses =
         ctl.control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), &ctl_tok)).await.expect("control stream").into_inner();
     let sender = tokio::spawn(async move {
@@ -83,7 +85,8 @@ async fn insertion_at_1khz_with_50_observers_and_a_full_rate_logger() {
                 return seq;
             }
             seq += 1;
-            let m = pb::ControlRequest { session_id: String::new(), base: Some(pose_at(t, secs)), client_time_ns: 0, seq };
+            let m =
+                pb::ControlRequest { session_id: String::new(), base: Some(pose_at(t, secs)), client_time_ns: 0, seq, flip_bevel: false };
             if tx.send(m).await.is_err() {
                 return seq;
             }
@@ -473,6 +476,7 @@ async fn issue_6_control_stream_ends_when_the_controller_is_done() {
             base: Some(pb::Pose2 { x_m: 0.05, y_m: 0.205 - 1e-5 * k as f64, theta_rad: DOWN }),
             client_time_ns: 0,
             seq: k + 1,
+            flip_bevel: false,
         })
         .collect();
     let mut ctl = pb::control_service_client::ControlServiceClient::new(ch);

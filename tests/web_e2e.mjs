@@ -5,7 +5,8 @@
 //
 // Loads the page, creates a paper-phantom session in it, waits for frames, starts a recording,
 // drags the needle into the tissue with the mouse, checks that the inserted depth grows and the
-// tissue drawing changes, stops the recording and plays it back. Saves view-before.png,
+// tissue drawing changes, stops the recording and plays it back; then creates a bevel-tip session
+// and flips its bevel with the "Flip bevel" button. Saves view-before.png, bevel-flipped.png,
 // view-after.png, page.png and playback.png in OUT_DIR and prints a JSON summary.
 import { createRequire } from "node:module";
 import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from "node:fs";
@@ -104,9 +105,17 @@ try {
   await page.screenshot({ path: join(outDir, "playback.png") });
   if (!(playbackFrames > 10)) fail(`the recording played back ${playbackFrames} frames`);
   if (!(playbackDepth > depth0 + 0.005)) fail(`the played-back depth at the end is ${playbackDepth} m`);
+
+  // Issue 8: a bevel-tip session; the "Flip bevel" button turns the needle about its axis.
+  await page.selectOption("#example-select", "bevel-tip");
+  await page.click("#create");
+  await page.waitForFunction(() => document.body.dataset.bevelSide === "1", null, { timeout: 20000 });
+  await page.click("#flip-bevel");
+  await page.waitForFunction(() => document.body.dataset.bevelSide === "-1", null, { timeout: 10000 });
+  await view.screenshot({ path: join(outDir, "bevel-flipped.png") });
   if (errors.length) fail(`errors in the page: ${errors.join("; ")}`);
 
-  const summary = { session, frames, poses, depth0, depth1, playbackFrames, playbackDepth };
+  const summary = { session, frames, poses, depth0, depth1, playbackFrames, playbackDepth, bevelFlipped: true };
   writeFileSync(join(outDir, "summary.json"), JSON.stringify(summary, null, 2));
   console.log(JSON.stringify(summary));
 } catch (e) {

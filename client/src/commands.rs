@@ -42,6 +42,7 @@ pub async fn run(cli: Cli) -> Result<()> {
         (Command::Record(a), ..) => record(&conn, &a).await,
         (Command::Simulate(a), Some(scene), traj) => simulate(&conn, &a, scene, traj).await,
         (Command::Drive(a), _, Some(traj)) => drive(&conn, &a, traj).await,
+        (Command::Plan(a), ..) => crate::plan::plan(&conn, &a).await,
         _ => unreachable!("every command is handled above"),
     }
 }
@@ -524,9 +525,15 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
     let epoch = Instant::now();
     let now_ns = move || u64::try_from(epoch.elapsed().as_nanos()).unwrap_or(u64::MAX).max(1);
     let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
-    tx.send(pb::ControlRequest { session_id: id.clone(), base: Some(traj.pose_at(t0)), client_time_ns: now_ns(), seq: 1 })
-        .await
-        .map_err(|_| anyhow!("{what}: the request stream closed"))?;
+    tx.send(pb::ControlRequest {
+        session_id: id.clone(),
+        base: Some(traj.pose_at(t0)),
+        client_time_ns: now_ns(),
+        seq: 1,
+        flip_bevel: false,
+    })
+    .await
+    .map_err(|_| anyhow!("{what}: the request stream closed"))?;
     let mut ctl = pb::control_service_client::ControlServiceClient::new(c.channel.clone());
     let mut responses = ctl
         .control(c.request(tokio_stream::wrappers::ReceiverStream::new(rx))?)
@@ -555,7 +562,13 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
                 t0 + el
             };
             seq += 1;
-            let m = pb::ControlRequest { session_id: String::new(), base: Some(traj.pose_at(t)), client_time_ns: now_ns(), seq };
+            let m = pb::ControlRequest {
+                session_id: String::new(),
+                base: Some(traj.pose_at(t)),
+                client_time_ns: now_ns(),
+                seq,
+                flip_bevel: false,
+            };
             if tx.send(m).await.is_err() {
                 return (seq, false);
             }

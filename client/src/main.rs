@@ -2,6 +2,7 @@
 //! recordings, offline simulation).
 
 mod commands;
+mod plan;
 mod rpc;
 mod traj;
 mod view;
@@ -41,6 +42,9 @@ pub enum Command {
     Simulate(SimulateArgs),
     /// Drive a session's needle along a trajectory in real time (controller token).
     Drive(DriveArgs),
+    /// Plan an insertion on the server (PlanningService.Plan) that reaches a target despite the
+    /// tissue deformation; prints progress and the plan, optionally writes its trajectory.
+    Plan(PlanArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -163,6 +167,31 @@ pub struct DriveArgs {
     /// Repeat the trajectory until interrupted (Ctrl-C).
     #[arg(long = "loop")]
     pub repeat: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct PlanArgs {
+    /// A shipped example's name (fig3-target) or a scene TOML file.
+    #[arg(long, value_name = "NAME|FILE.toml")]
+    pub scene: String,
+    /// The target's name in the scene.
+    #[arg(long)]
+    pub target: String,
+    /// The allowed entry segment on the tissue surface, x1,y1,x2,y2 in metres (default: the scene's planning example).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_name = "X1,Y1,X2,Y2")]
+    pub entry: Option<Vec<f64>>,
+    /// The allowed needle angles min,max in degrees (base pose theta: base to tip, counter-clockwise from +x).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_name = "MIN,MAX")]
+    pub angles_deg: Option<Vec<f64>>,
+    /// The insertion speed in mm/s.
+    #[arg(long, value_name = "MM_PER_S")]
+    pub speed_mm_s: Option<f64>,
+    /// Write the plan's base trajectory (t_s,x_m,y_m,theta_rad), replayable by `simulate` and `drive`.
+    #[arg(long, value_name = "PLAN.csv")]
+    pub trajectory_out: Option<PathBuf>,
+    /// Print the result as one JSON object.
+    #[arg(long)]
+    pub json: bool,
 }
 
 fn main() {

@@ -52,7 +52,8 @@ extern "C" {
 int nsd_abi_version(void);
 /* Open the device; config is the bridge's --plugin-config string (never NULL, maybe ""). NULL on failure. */
 void* nsd_open(const char* config);
-/* The current pose of the device in the simulation plane; buttons: a bit per button (1 = pressed). */
+/* The current pose of the device in the simulation plane; buttons: a bit per button (1 = pressed).
+ * Button 0 (bit 1): each press turns the needle 180° about its axis (flips a bevel tip). */
 int nsd_read_pose(void* dev, double* x_m, double* y_m, double* theta_rad, uint32_t* buttons);
 /* Command this force (N) and torque (N·m) until the next call. */
 int nsd_write_force(void* dev, double fx_n, double fy_n, double torque_nm);

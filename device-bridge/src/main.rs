@@ -358,6 +358,7 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
     let mut ring_len = 0usize;
     let mut remote_last = RemoteSample::default();
     let mut last_echo_seq = 0u64;
+    let mut prev_buttons: Option<u32> = None;
 
     match needlesim_bridge::rt::request_realtime_priority(cli.rt_priority) {
         Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
@@ -400,6 +401,7 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
 
         let state = device.read_pose(t_s)?;
         report.final_pose = state.pose();
+        let buttons_before = prev_buttons.replace(state.buttons);
         let t_pose = monotonic_ns();
         let ex = match link {
             Link::Shm(channel) => {
@@ -442,6 +444,11 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                 }
             }
             Link::Remote(remote) => {
+                // Button 0 pressed (rising edge): flip the bevel (the shared-memory server sees
+                // the buttons itself).
+                if state.buttons & 1 != 0 && buttons_before.is_some_and(|b| b & 1 == 0) {
+                    remote.request_flip();
+                }
                 if let Some(c) = remote.send_pose(state.pose(), t_pose) {
                     report.last_counter = c;
                 }

@@ -30,6 +30,7 @@ struct PoseOut {
     pose: [f64; 3],
     client_time_ns: u64,
     seq: u64,
+    flip_bevel: bool,
 }
 
 /// The newest response, as the device loop sees it.
@@ -84,6 +85,8 @@ pub struct RemoteLink {
     last_counter: u64,
     /// Poses dropped because the queue was full.
     pub dropped_poses: u64,
+    /// A bevel flip waiting to go out with the next pose that is queued.
+    pending_flip: bool,
     runtime: Option<tokio::runtime::Runtime>,
 }
 
@@ -121,16 +124,22 @@ impl RemoteLink {
             }
             sh.ended.store(true, Ordering::Release);
         });
-        Ok(Self { poses: Some(tx), shared, seq: 0, last_counter: 0, dropped_poses: 0, runtime: Some(runtime) })
+        Ok(Self { poses: Some(tx), shared, seq: 0, last_counter: 0, dropped_poses: 0, pending_flip: false, runtime: Some(runtime) })
+    }
+
+    /// Asks for a bevel flip; it goes out with the next pose queued (none is lost to a full queue).
+    pub fn request_flip(&mut self) {
+        self.pending_flip = true;
     }
 
     /// Queues a pose (never blocks); returns its `seq`, or `None` if the queue was full or the link is down.
     pub fn send_pose(&mut self, pose: [f64; 3], client_time_ns: u64) -> Option<u64> {
         let tx = self.poses.as_ref()?;
         let seq = self.seq + 1;
-        match tx.try_send(PoseOut { pose, client_time_ns, seq }) {
+        match tx.try_send(PoseOut { pose, client_time_ns, seq, flip_bevel: self.pending_flip }) {
             Ok(()) => {
                 self.seq = seq;
+                self.pending_flip = false;
                 Some(seq)
             }
             Err(_) => {
@@ -237,6 +246,7 @@ async fn stream_task(
                         base: Some(pb::Pose2 { x_m: p.pose[0], y_m: p.pose[1], theta_rad: p.pose[2] }),
                         client_time_ns: p.client_time_ns,
                         seq: p.seq,
+                        flip_bevel: p.flip_bevel,
                     };
                     first = false;
                     if req_tx.send(m).await.is_err() {

@@ -1,11 +1,13 @@
 //! Step-time benchmark of the insertion model: a full insertion and withdrawal on N × N grids,
-//! reporting the per-tick compute time (p50, p99, max). Run: `cargo bench -p needlesim-server --bench step`.
+//! reporting the per-tick compute time (p50, p99, max), for the rigid needle, a flexible 17-gauge
+//! needle on the same path, and a flexible 22-gauge needle steered by a 5 mm lateral base step
+//! (the Fig. 4 path). Run: `cargo bench -p needlesim-server --bench step`.
 //! Optional argument: the grid sizes, e.g. `-- 19 50`.
 
 use std::time::Instant;
 
-use needlesim_core::BasePose;
 use needlesim_core::sim::Simulation;
+use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape};
 use needlesim_server::bench::{grid_simulation, machine, pct};
 
 fn main() {
@@ -17,47 +19,68 @@ fn main() {
     );
     println!();
     println!(
-        "| mesh | nodes | setup (factorise) s | columns computed | max needle nodes | ticks | step p50 µs | step p99 µs | step max µs | mean µs | misses |"
+        "| mesh | needle | nodes | setup (factorise) s | columns computed | max needle nodes | ticks | step p50 µs | step p99 µs | step max µs | mean µs | misses |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for n in sizes {
-        let t0 = Instant::now();
-        let (model, params) = grid_simulation(n).unwrap();
-        let setup_s = t0.elapsed().as_secs_f64();
-        let base = params.initial_pose;
-        let x = base.x_m;
-        let mut sim = Simulation::new(model.clone(), params).unwrap();
-        let mut poses = Vec::new();
-        let (y0, y1) = (0.205, 0.145);
-        let ticks = ((y0 - y1) / 0.01 * 1000.0) as usize;
-        for k in 1..=ticks {
-            poses.push(BasePose::new(x, y0 + (y1 - y0) * k as f64 / ticks as f64, base.theta_rad));
+        for needle in ["rigid", "flexible 17 G", "flexible 22 G, Fig. 4 path"] {
+            let t0 = Instant::now();
+            let (model, mut params) = grid_simulation(n).unwrap();
+            let setup_s = t0.elapsed().as_secs_f64();
+            let base = params.initial_pose;
+            let x = base.x_m;
+            let mut f = FlexibleNeedle::gauge17_steel(0.1);
+            let mut poses = Vec::new();
+            let (y0, y1) = (0.205, 0.145);
+            let ticks = ((y0 - y1) / 0.01 * 1000.0) as usize;
+            let fig4 = needle.contains("Fig. 4");
+            if fig4 {
+                // 22 G: EI scales with the tube's I (0.0687 × 17 G); 35 mm in, 5 mm sideways, 25 mm more.
+                f.flexural_rigidity_nm2 *= 0.0687;
+                let down = |from: f64, to: f64, x: f64, poses: &mut Vec<BasePose>| {
+                    let m = ((from - to) / 1e-5).round() as usize;
+                    poses.extend((1..=m).map(|k| BasePose::new(x, from + (to - from) * k as f64 / m as f64, base.theta_rad)));
+                };
+                down(y0, 0.165, x, &mut poses);
+                poses.extend((1..=50).map(|k| BasePose::new(x + 0.005 * k as f64 / 50.0, 0.165, base.theta_rad)));
+                down(0.165, y1, x + 0.005, &mut poses);
+                poses.extend(std::iter::repeat_n(*poses.last().unwrap(), 1000));
+                down(y1, y0, x + 0.005, &mut poses);
+            } else {
+                for k in 1..=ticks {
+                    poses.push(BasePose::new(x, y0 + (y1 - y0) * k as f64 / ticks as f64, base.theta_rad));
+                }
+                poses.extend(std::iter::repeat_n(*poses.last().unwrap(), 1000));
+                for k in 1..=ticks {
+                    poses.push(BasePose::new(x, y1 + (y0 - y1) * k as f64 / ticks as f64, base.theta_rad));
+                }
+            }
+            if needle != "rigid" {
+                params.needle = NeedleShape::Flexible(f);
+            }
+            let mut sim = Simulation::new(model.clone(), params).unwrap();
+            let mut times = Vec::with_capacity(poses.len());
+            let mut max_nodes = 0;
+            let mut prefetched = 0;
+            for p in &poses {
+                let t = Instant::now();
+                let o = sim.step(*p).unwrap();
+                times.push(t.elapsed().as_secs_f64() * 1e6);
+                max_nodes = max_nodes.max(o.needle_nodes.len());
+                prefetched += sim.prefetch_columns(64).unwrap();
+            }
+            let mean = times.iter().sum::<f64>() / times.len() as f64;
+            times.sort_by(f64::total_cmp);
+            println!(
+                "| {n}×{n} | {needle} | {} | {setup_s:.3} | {prefetched} | {max_nodes} | {} | {:.1} | {:.1} | {:.1} | {mean:.1} | {} |",
+                n * n,
+                times.len(),
+                pct(&times, 0.5),
+                pct(&times, 0.99),
+                pct(&times, 1.0),
+                sim.stats().column_misses
+            );
+            assert_eq!(model.cholesky().n_numeric_factorisations(), 1);
         }
-        poses.extend(std::iter::repeat_n(*poses.last().unwrap(), 1000));
-        for k in 1..=ticks {
-            poses.push(BasePose::new(x, y1 + (y0 - y1) * k as f64 / ticks as f64, base.theta_rad));
-        }
-        let mut times = Vec::with_capacity(poses.len());
-        let mut max_nodes = 0;
-        let mut prefetched = 0;
-        for p in &poses {
-            let t = Instant::now();
-            let o = sim.step(*p).unwrap();
-            times.push(t.elapsed().as_secs_f64() * 1e6);
-            max_nodes = max_nodes.max(o.needle_nodes.len());
-            prefetched += sim.prefetch_columns(64).unwrap();
-        }
-        let mean = times.iter().sum::<f64>() / times.len() as f64;
-        times.sort_by(f64::total_cmp);
-        println!(
-            "| {n}×{n} | {} | {setup_s:.3} | {prefetched} | {max_nodes} | {} | {:.1} | {:.1} | {:.1} | {mean:.1} | {} |",
-            n * n,
-            times.len(),
-            pct(&times, 0.5),
-            pct(&times, 0.99),
-            pct(&times, 1.0),
-            sim.stats().column_misses
-        );
-        assert_eq!(model.cholesky().n_numeric_factorisations(), 1);
     }
 }

@@ -63,6 +63,8 @@ pub fn frame_from_record(r: &TickRecord, target_names: &[String], missed_ticks: 
         missed_ticks,
         compute_us: r.compute_ns as f64 / 1e3,
         stiffness: r.stiffness.to_vec(),
+        needle_shape_m: r.shape().iter().filter_map(|p| v2(*p)).collect(),
+        bevel_side: r.bevel_side,
     }
 }
 
@@ -84,6 +86,8 @@ pub fn control_response(r: &TickRecord) -> pb::ControlResponse {
         pose_seq: r.pose_seq,
         client_time_ns: r.client_time_ns,
         stiffness: r.stiffness.to_vec(),
+        needle_shape_m: r.shape().iter().filter_map(|p| v2(*p)).collect(),
+        bevel_side: r.bevel_side,
     }
 }
 

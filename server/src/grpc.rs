@@ -264,6 +264,9 @@ impl pb::control_service_server::ControlService for Api {
             return Err(Status::permission_denied("driving a session needs its controller token (`authorization: Bearer <token>`)"));
         }
         let pose = check_pose(first.base.as_ref(), "base")?;
+        if first.flip_bevel {
+            s.request_bevel_flip_from_io();
+        }
         s.write_client_pose_from_io(PoseCommand { pose, seq: first.seq.max(1), client_time_ns: first.client_time_ns });
         let (tx, rx) = mpsc::channel(256);
         // When the controller closes its side, the response stream ends too.
@@ -277,8 +280,14 @@ impl pb::control_service_server::ControlService for Api {
             let mut seq = first.seq.max(1);
             loop {
                 match inbound.message().await {
+                    Ok(Some(m)) if m.flip_bevel && m.base.is_none() => {
+                        s_in.request_bevel_flip_from_io();
+                    }
                     Ok(Some(m)) => match check_pose(m.base.as_ref(), "base") {
                         Ok(pose) => {
+                            if m.flip_bevel {
+                                s_in.request_bevel_flip_from_io();
+                            }
                             seq = if m.seq > seq { m.seq } else { seq + 1 };
                             s_in.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: m.client_time_ns });
                         }
@@ -320,6 +329,18 @@ impl pb::control_service_server::ControlService for Api {
         let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
         s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
         Ok(Response::new(convert::control_response(&s.latest_record())))
+    }
+
+    async fn flip_bevel(&self, req: Request<pb::FlipBevelRequest>) -> Result<Response<pb::FlipBevelResponse>, Status> {
+        let s = self.state.session(&req.get_ref().session_id)?;
+        authorize(&req, &s, Role::Controller)?;
+        if !s.has_bevel {
+            return Err(Status::failed_precondition(format!(
+                "session {}: the needle has a symmetric tip (a rigid needle, or a flexible one without bevel_force_ratio); there is no bevel to flip",
+                s.id
+            )));
+        }
+        Ok(Response::new(pb::FlipBevelResponse { flips_requested: s.request_bevel_flip_from_io() }))
     }
 }
 

@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use needlesim_core::MeshLimits;
 
-use needlesim_server::{bench, exchange, grpc, scene, serve, simulate};
+use needlesim_server::{bench, exchange, grpc, plan, scene, serve, simulate};
 
 /// Counts heap bytes for `bench`'s peak-memory figures (a relaxed atomic add per allocation).
 #[global_allocator]
@@ -108,6 +108,8 @@ enum Command {
         #[arg(long)]
         dump_state: Option<PathBuf>,
     },
+    /// Plan an insertion that reaches a target despite the tissue deformation it causes.
+    Plan(PlanArgs),
     /// Step-time benchmark: ours (sparse columns on demand) vs a dense inverse vs a full solve per tick.
     Bench {
         /// Fewer sizes (19×19, 50×50, 100×100) and a faster script (50 mm/s, 0.2 s hold): about a minute at most.
@@ -128,6 +130,37 @@ enum Command {
     },
 }
 
+/// `plan`'s arguments; absent ones take the scene's planning example's values (server/scenes/fig3-plan.toml).
+#[derive(Args)]
+struct PlanArgs {
+    /// A scene TOML file, or a shipped example's name (fig3-target).
+    #[arg(long)]
+    scene: String,
+    /// The target's name in the scene.
+    #[arg(long)]
+    target: String,
+    /// The allowed entry segment on the tissue surface, x1,y1,x2,y2 in metres (default: the
+    /// scene's planning example, for fig3-target server/scenes/fig3-plan.toml).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_name = "X1,Y1,X2,Y2")]
+    entry: Option<Vec<f64>>,
+    /// The allowed needle angles min,max in degrees (base pose theta: base→tip, counter-clockwise
+    /// from +x; default: the planning example's when --entry is absent too, else any).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_name = "MIN,MAX")]
+    angles_deg: Option<Vec<f64>>,
+    /// The insertion speed in mm/s (default: the planning example's, else 10).
+    #[arg(long)]
+    speed_mm_s: Option<f64>,
+    /// Write the plan's base trajectory (t_s,x_m,y_m,theta_rad), replayable by `simulate`.
+    #[arg(long)]
+    trajectory_out: Option<PathBuf>,
+    /// Print the plan as one JSON object.
+    #[arg(long)]
+    json: bool,
+    /// Worker threads (0: one per core).
+    #[arg(long, default_value_t = 0)]
+    threads: usize,
+}
+
 fn main() -> ExitCode {
     tracing_subscriber::fmt()
         .with_writer(std::io::stderr)
@@ -143,6 +176,7 @@ fn main() -> ExitCode {
         Some(Command::Bench { quick, json, plot, sizes, no_scipy }) => {
             run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json)
         }
+        Some(Command::Plan(args)) => run_plan(&args, &limits),
         Some(Command::Summary) => summary(&limits),
         Some(Command::Identify { command }) => needlesim_server::identify::cli::run(command),
         Some(Command::Serve(args)) => run_serve(args, &limits),
@@ -222,6 +256,65 @@ fn run_simulate(
         let state = simulate::dump_state(&scene, &sim);
         std::fs::write(p, serde_json::to_string(&state)?).with_context(|| format!("cannot write {}", p.display()))?;
     }
+    Ok(())
+}
+
+fn run_plan(a: &PlanArgs, limits: &MeshLimits) -> Result<()> {
+    let entry_m = match a.entry.as_deref() {
+        None => None,
+        Some(&[x1, y1, x2, y2]) => Some([[x1, y1], [x2, y2]]),
+        Some(v) => anyhow::bail!("--entry takes 4 numbers x1,y1,x2,y2 (metres), found {}", v.len()),
+    };
+    let angles_deg = match a.angles_deg.as_deref() {
+        None => None,
+        Some(&[lo, hi]) => Some([lo, hi]),
+        Some(v) => anyhow::bail!("--angles-deg takes 2 numbers min,max (degrees), found {}", v.len()),
+    };
+    let scene = scene::load_scene(&a.scene, limits)?;
+    let req = plan::PlanRequest { target: a.target.clone(), entry_m, angles_deg, speed_m_s: a.speed_mm_s.map(|v| v * 1e-3) };
+    let opts = plan::PlanOptions { threads: a.threads, ..Default::default() };
+    let quiet = a.json;
+    let p = plan::plan(&scene, &req, &opts, |pr| {
+        if !quiet {
+            eprintln!(
+                "iteration {}: {} simulations, best predicted error {:.3} mm (straight aim {:.3} mm)",
+                pr.iteration,
+                pr.simulations,
+                pr.best_error_m * 1e3,
+                pr.straight_error_m * 1e3
+            );
+        }
+        std::ops::ControlFlow::Continue(())
+    })?;
+    if let Some(path) = &a.trajectory_out {
+        std::fs::write(path, p.trajectory_csv()).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string(&p)?);
+        return Ok(());
+    }
+    let line = |name: &str, i: &plan::Insertion| {
+        println!(
+            "{name:<9} entry ({:.2}, {:.2}) mm, angle {:.2}°, depth {:.2} mm: predicted tip–target error {:.3} mm",
+            i.entry_m[0] * 1e3,
+            i.entry_m[1] * 1e3,
+            i.angle_rad.to_degrees(),
+            i.depth_m * 1e3,
+            i.predicted_error_m * 1e3
+        );
+    };
+    println!("target '{}' (radius {:.2} mm) in scene {}", p.target, p.target_radius_m * 1e3, p.scene);
+    line("plan", &p.plan);
+    line("straight", &p.straight);
+    println!(
+        "{} ({} simulations, {} iterations, {:.2} s on {} threads){}",
+        if p.hits() { "the plan hits the target" } else { "the plan does not reach the target within its radius" },
+        p.simulations,
+        p.iterations,
+        p.wall_s,
+        p.threads,
+        a.trajectory_out.as_ref().map(|t| format!("; trajectory written to {}", t.display())).unwrap_or_default()
+    );
     Ok(())
 }
 

@@ -542,6 +542,8 @@ mod tests {
                 .collect(),
             targets: vec![TargetState { name: "lesion".into(), position_m: v(0.05, 0.0), distance_m: 0.05 - 0.01 * t, hit: false }],
             node_displacement_m: (0..16).map(|i| 1e-5 * f64::from(i) * t).collect(),
+            needle_shape_m: vec![Vec2 { x: 0.0, y: 0.1 }, Vec2 { x: 0.001 * t, y: 0.0 }],
+            bevel_side: if tick.is_multiple_of(2) { 1.0 } else { -1.0 },
             missed_ticks: 0,
             compute_us: 120.0 + (tick % 7) as f64,
             stiffness: (0..9).map(|i| -10.0 * f64::from(i) - t).collect(),

@@ -19,6 +19,7 @@ pub const EXAMPLES: &[(&str, &str, &str)] = &[
     ("paper-phantom", include_str!("../scenes/paper-phantom.toml"), include_str!("../scenes/paper-phantom.csv")),
     ("fig3-target", include_str!("../scenes/fig3-target.toml"), include_str!("../scenes/fig3-target.csv")),
     ("fig4-steering", include_str!("../scenes/fig4-steering.toml"), include_str!("../scenes/fig4-steering.csv")),
+    ("bevel-tip", include_str!("../scenes/bevel-tip.toml"), include_str!("../scenes/bevel-tip.csv")),
 ];
 
 /// A scene as written in TOML.

@@ -91,7 +91,15 @@ pub struct TickRecord {
     pub stiffness: [f64; 9],
     /// A device channel exists and its bridge stopped sending poses.
     pub device_stale: bool,
+    /// The needle's shape, base to tip, down-sampled to at most [`MAX_RECORD_SHAPE`] points.
+    pub n_shape: u8,
+    pub shape_m: [[f64; 2]; MAX_RECORD_SHAPE],
+    /// The bevel side (0: symmetric tip).
+    pub bevel_side: f64,
 }
+
+/// Points of the needle's shape kept in a record.
+pub const MAX_RECORD_SHAPE: usize = 33;
 
 impl Default for TickRecord {
     fn default() -> Self {
@@ -118,6 +126,9 @@ impl Default for TickRecord {
             client_time_ns: 0,
             stiffness: [0.0; 9],
             device_stale: false,
+            n_shape: 0,
+            shape_m: [[0.0; 2]; MAX_RECORD_SHAPE],
+            bevel_side: 0.0,
         }
     }
 }
@@ -150,6 +161,18 @@ impl TickRecord {
                 force_n: nn.force_n,
             };
         }
+        // The shape, evenly down-sampled (first and last points kept).
+        let n_pts = out.shape_m.len();
+        let kept = n_pts.min(MAX_RECORD_SHAPE);
+        self.n_shape = kept as u8;
+        for (k, r) in self.shape_m.iter_mut().take(kept).enumerate() {
+            let idx = if kept < 2 { 0 } else { (k * (n_pts - 1) + (kept - 1) / 2) / (kept - 1) };
+            *r = out.shape_m[idx.min(n_pts - 1)];
+        }
+        if kept >= 2 {
+            self.shape_m[kept - 1] = out.shape_m[n_pts - 1];
+        }
+        self.bevel_side = out.bevel_side;
         let m = out.targets.len().min(MAX_RECORD_TARGETS);
         self.n_targets = m as u8;
         for (r, t) in self.targets.iter_mut().zip(&out.targets[..m]) {
@@ -164,6 +187,10 @@ impl TickRecord {
     /// The targets of this record.
     pub fn targets(&self) -> &[TargetRecord] {
         &self.targets[..self.n_targets as usize]
+    }
+    /// The needle's shape of this record.
+    pub fn shape(&self) -> &[[f64; 2]] {
+        &self.shape_m[..self.n_shape as usize]
     }
 }
 
@@ -194,6 +221,10 @@ pub struct SessionCounters {
     pub device_stale_events: AtomicU64,
     /// Fresh device poses taken.
     pub device_poses: AtomicU64,
+    /// Bevel flips asked for (by clients and the device's button 0), and applied by the
+    /// real-time thread.
+    pub bevel_flips_requested: AtomicU64,
+    pub bevel_flips_applied: AtomicU64,
 }
 
 /// Percentile summary of the tick loop, kept by the fan-out thread.
@@ -235,6 +266,8 @@ pub struct Session {
     pub counters: Arc<SessionCounters>,
     /// The shared-memory device channel, if the session has one.
     pub device_channel_path: Option<std::path::PathBuf>,
+    /// The needle has a bevel tip (a flip changes something).
+    pub has_bevel: bool,
     pose_in: Mutex<triple_buffer::Input<PoseCommand>>,
     client_in_control: AtomicBool,
     stop: Arc<AtomicBool>,
@@ -293,6 +326,7 @@ impl Session {
         let mut params = scene.params.clone();
         params.tick_rate_hz = tick_rate_hz;
         let mut sim = Simulation::new(scene.tissue.clone(), params)?;
+        let has_bevel = sim.bevel_side() != 0.0;
         sim.reserve_cached_nodes(4 * sim.params().max_needle_nodes + 256);
         let id = random_token()[..12].to_owned();
         let device = match device_dir {
@@ -339,6 +373,7 @@ impl Session {
             rt_priority: rt_priority(),
             device,
             device_seen: false,
+            last_buttons: None,
             stiffness: [0.0; 9],
         };
         threads.push(std::thread::Builder::new().name(format!("rt-{id}")).spawn(move || rt.run()).map_err(SessionError::Thread)?);
@@ -377,6 +412,7 @@ impl Session {
             created_unix_ms,
             counters,
             device_channel_path,
+            has_bevel,
             pose_in: Mutex::new(pose_in),
             client_in_control: AtomicBool::new(false),
             stop,
@@ -396,6 +432,13 @@ impl Session {
     pub fn write_client_pose_from_io(&self, cmd: PoseCommand) {
         self.client_in_control.store(true, Ordering::Relaxed);
         self.write_pose_from_io(cmd);
+    }
+
+    /// Asks the real-time thread to turn the needle 180° about its axis at its next tick (no
+    /// request is lost: the thread applies every one it has not applied yet). Returns the number
+    /// of flips requested so far.
+    pub fn request_bevel_flip_from_io(&self) -> u64 {
+        self.counters.bevel_flips_requested.fetch_add(1, Ordering::Relaxed) + 1
     }
 
     /// Whether a client has sent a pose (a scripted demo stops then).
@@ -494,8 +537,14 @@ struct RtLoop {
     device: Option<needlesim_bridge::shm::ServerEnd>,
     /// A device pose has been received at least once.
     device_seen: bool,
+    /// The device's buttons at its previous fresh pose (None before the first).
+    last_buttons: Option<u32>,
     stiffness: [f64; 9],
 }
+
+/// The device button (bit of `DevicePose::buttons`) that turns the needle 180° about its axis,
+/// on each press (rising edge).
+pub const FLIP_BEVEL_BUTTON: u32 = 1;
 
 pub use needlesim_bridge::rt::request_realtime_priority;
 
@@ -566,6 +615,14 @@ impl RtLoop {
                 && let Some(p) = sample.value
             {
                 *pose = BasePose::new(p.x_m, p.y_m, p.theta_rad);
+                // Button 0 pressed (rising edge): flip the bevel.
+                if let Some(prev) = self.last_buttons
+                    && p.buttons & FLIP_BEVEL_BUTTON != 0
+                    && prev & FLIP_BEVEL_BUTTON == 0
+                {
+                    self.counters.bevel_flips_requested.fetch_add(1, Ordering::Relaxed);
+                }
+                self.last_buttons = Some(p.buttons);
                 self.device_seen = true;
                 self.counters.device_poses.fetch_add(1, Ordering::Relaxed);
             } else if self.device_seen && sample.reads_since_fresh > DEVICE_STALE_TICKS {
@@ -579,6 +636,15 @@ impl RtLoop {
             if device_stale && was == 0 {
                 self.counters.device_stale_events.fetch_add(1, Ordering::Relaxed);
             }
+        }
+        // Bevel flips asked for since the last tick (an even number cancels out).
+        let requested = self.counters.bevel_flips_requested.load(Ordering::Relaxed);
+        let applied = self.counters.bevel_flips_applied.load(Ordering::Relaxed);
+        if requested > applied {
+            if (requested - applied) % 2 == 1 {
+                self.sim.flip_bevel();
+            }
+            self.counters.bevel_flips_applied.store(requested, Ordering::Relaxed);
         }
         let misses_before = self.sim.stats().column_misses;
         let stepped = match self.sim.step(*pose) {

@@ -10,17 +10,23 @@ use needlesim_core::MeshLimits;
 use needlesim_server::session::Session;
 
 fn drive(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64) -> Option<ServerForce> {
+    drive_buttons(device, from_y, to_y, secs, |_| 0)
+}
+
+/// As `drive`, with the buttons a function of the elapsed fraction of `secs`.
+fn drive_buttons(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64, buttons: impl Fn(f64) -> u32) -> Option<ServerForce> {
     let start = Instant::now();
     let mut last = None;
     while start.elapsed().as_secs_f64() < secs {
-        let y = from_y + (to_y - from_y) * start.elapsed().as_secs_f64() / secs;
+        let a = start.elapsed().as_secs_f64() / secs;
+        let y = from_y + (to_y - from_y) * a;
         device
             .write_pose_from_device(&DevicePose {
                 t_ns: monotonic_ns(),
                 x_m: 0.05,
                 y_m: y,
                 theta_rad: -std::f64::consts::FRAC_PI_2,
-                buttons: 0,
+                buttons: buttons(a),
                 counter: 0,
             })
             .unwrap();
@@ -73,6 +79,38 @@ fn device_drives_goes_stale_and_reattaches() {
     assert!(!session.latest_record().device_stale);
     assert!((session.latest_record().base.y_m - 0.17).abs() < 0.002);
     drop(again);
+    session.close();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 8: the device's button 0 turns the needle 180° about its axis (each press, not each
+/// sample it is held down).
+#[test]
+fn issue_8_device_button_flips_the_bevel() {
+    let text = include_str!("../scenes/fig4-steering.toml").replace("gauge = 22", "gauge = 22\nbevel_force_ratio = 0.3");
+    let scene = needlesim_server::scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
+    let dir = std::env::temp_dir().join(format!("needlesim-device-bevel-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
+    assert!(session.has_bevel);
+    let mut device = DeviceChannel::attach(session.device_channel_path.clone().unwrap()).unwrap();
+    // Insert 10 mm with the button up, then press it (held for a while), release, press again.
+    drive(&mut device, 0.205, 0.195, 0.5).expect("forces arrive");
+    assert_eq!(session.latest_record().bevel_side, 1.0);
+    let one_press = |a: f64| u32::from((0.2..0.6).contains(&a));
+    drive_buttons(&mut device, 0.195, 0.19, 0.5, one_press);
+    std::thread::sleep(Duration::from_millis(20));
+    assert_eq!(session.counters.bevel_flips_requested.load(Ordering::Relaxed), 1, "one press, one flip");
+    assert_eq!(session.latest_record().bevel_side, -1.0);
+    drive_buttons(&mut device, 0.19, 0.185, 0.5, one_press);
+    std::thread::sleep(Duration::from_millis(20));
+    assert_eq!(session.counters.bevel_flips_applied.load(Ordering::Relaxed), 2);
+    assert_eq!(session.latest_record().bevel_side, 1.0);
+    let rec = session.latest_record();
+    assert_eq!(rec.shape().len(), needlesim_server::session::MAX_RECORD_SHAPE, "a flexible needle's shape is recorded");
+    let (first, last) = (rec.shape()[0], rec.shape()[rec.shape().len() - 1]);
+    assert!((first[1] - rec.base.y_m).abs() < 1e-12 && (last[1] - rec.tip_m[1]).abs() < 1e-12, "base to tip: {first:?} {last:?}");
+    drop(device);
     session.close();
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -265,17 +265,23 @@ function drawView(): void {
       ctx.font = "11px system-ui, sans-serif";
       ctx.fillText(`${t.name} ${t.hit ? "hit" : `${(t.distanceM * 1000).toFixed(1)} mm`}`, x + 10, y - 8);
     }
-    // The needle: from the base along theta for its length.
+    // The needle: its streamed shape (bent when flexible), or from the base along theta for its
+    // length (frames of older recordings carry no shape).
     if (f.base) {
       const b = f.base;
-      if (f.tipM) needleLength = Math.hypot(f.tipM.x - b.xM, f.tipM.y - b.yM) || needleLength;
-      const ex = b.xM + needleLength * Math.cos(b.thetaRad), ey = b.yM + needleLength * Math.sin(b.thetaRad);
       ctx.lineCap = "round";
+      ctx.lineJoin = "round";
       ctx.strokeStyle = "#333";
       ctx.lineWidth = 3;
       ctx.beginPath();
-      ctx.moveTo(...toPx(xf, b.xM, b.yM));
-      ctx.lineTo(...toPx(xf, ex, ey));
+      if (f.needleShapeM.length >= 2) {
+        f.needleShapeM.forEach((p, i) => (i === 0 ? ctx.moveTo(...toPx(xf, p.x, p.y)) : ctx.lineTo(...toPx(xf, p.x, p.y))));
+      } else {
+        if (f.tipM) needleLength = Math.hypot(f.tipM.x - b.xM, f.tipM.y - b.yM) || needleLength;
+        const ex = b.xM + needleLength * Math.cos(b.thetaRad), ey = b.yM + needleLength * Math.sin(b.thetaRad);
+        ctx.moveTo(...toPx(xf, b.xM, b.yM));
+        ctx.lineTo(...toPx(xf, ex, ey));
+      }
       ctx.stroke();
       const [bx, by] = toPx(xf, b.xM, b.yM);
       ctx.fillStyle = "#333";
@@ -469,7 +475,20 @@ function showFrame(f: Frame): void {
   }
   $("nodes").textContent = `${st}/${sl}/${tp}`;
   $("targets").textContent = f.targets.length ? f.targets.map((t) => `${t.name}: ${t.hit ? "hit" : "missed"}`).join(", ") : "none";
+  $("bevel").textContent = f.bevelSide === 0 ? "symmetric" : f.bevelSide > 0 ? "+n side" : "−n side";
+  document.body.dataset.bevelSide = String(f.bevelSide);
   dirty = true;
+}
+
+/** Turns the needle 180° about its axis (a bevel tip then faces the other side). */
+async function flipBevel(): Promise<void> {
+  if (!current) return status("watch a session first");
+  try {
+    const r = await control.flipBevel({ sessionId: current.id }, auth(current.token));
+    status(`bevel flip ${r.flipsRequested} requested`);
+  } catch (e) {
+    status(`FlipBevel: ${String(e)}`);
+  }
 }
 
 function render(): void {
@@ -808,6 +827,7 @@ $("connect").addEventListener("click", () => {
   void watch(id, tok);
 });
 $("create").addEventListener("click", () => void createFromExample());
+$("flip-bevel").addEventListener("click", () => void flipBevel());
 $("rec-refresh").addEventListener("click", () => void refreshRecordings());
 $("rec-start").addEventListener("click", () => void startStopRecording(true));
 $("rec-stop").addEventListener("click", () => void startStopRecording(false));

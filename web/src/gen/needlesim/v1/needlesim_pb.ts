@@ -23,7 +23,7 @@ import type { Message } from "@bufbuild/protobuf";
  * Describes the file needlesim/v1/needlesim.proto.
  */
 export const file_needlesim_v1_needlesim: GenFile = /*@__PURE__*/
-  fileDesc("ChxuZWVkbGVzaW0vdjEvbmVlZGxlc2ltLnByb3RvEgxuZWVkbGVzaW0udjEiNAoFUG9zZTISCwoDeF9tGAEgASgBEgsKA3lfbRgCIAEoARIRCgl0aGV0YV9yYWQYAyABKAEiHAoEVmVjMhIJCgF4GAEgASgBEgkKAXkYAiABKAEiYAoETWVzaBIRCglub2RlX3h5X20YASADKAESFgoOdHJpYW5nbGVfbm9kZXMYAiADKA0SFwoPdHJpYW5nbGVfcmVnaW9uGAMgAygNEhQKDHJlZ2lvbl9uYW1lcxgEIAMoCSLlAQoGUmVnaW9uEgwKBG5hbWUYASABKAkSGAoQeW91bmdfbW9kdWx1c19wYRgCIAEoARIVCg1wb2lzc29uX3JhdGlvGAMgASgBEhgKEGZyaWN0aW9uX25fcGVyX20YBCABKAESHQoVc3RhdGljX2ZyaWN0aW9uX3JhdGlvGAUgASgBEhYKDnRpcF9wZWFrX3JhdGlvGAYgASgBEhgKEHRpcF9wZWFrX3dpZHRoX20YByABKAESGAoQcHVuY3R1cmVfZm9yY2VfbhgIIAEoARIXCg9jdXR0aW5nX2ZvcmNlX24YCSABKAEiTgoGVGFyZ2V0EgwKBG5hbWUYASABKAkSJAoIY2VudGVyX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIQCghyYWRpdXNfbRgDIAEoASK5AgoNVXBsb2FkZWRTY2VuZRIMCgRuYW1lGAEgASgJEiAKBG1lc2gYAiABKAsyEi5uZWVkbGVzaW0udjEuTWVzaBIlCgdyZWdpb25zGAMgAygLMhQubmVlZGxlc2ltLnYxLlJlZ2lvbhITCgtmaXhlZF9ub2RlcxgEIAMoDRINCgVwbGFuZRgFIAEoCRITCgt0aGlja25lc3NfbRgGIAEoARIXCg9uZWVkbGVfbGVuZ3RoX20YByABKAESKAoLbmVlZGxlX2Jhc2UYCCABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISGAoQY2FwdHVyZV9yYWRpdXNfbRgJIAEoARIlCgd0YXJnZXRzGAogAygLMhQubmVlZGxlc2ltLnYxLlRhcmdldBIUCgx0aWNrX3JhdGVfaHoYCyABKAEicQoLU2NlbmVTb3VyY2USEQoHZXhhbXBsZRgBIAEoCUgAEhQKCnNjZW5lX3RvbWwYAiABKAlIABIvCgh1cGxvYWRlZBgDIAEoCzIbLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lSABCCAoGc291cmNlIn4KFENyZWF0ZVNlc3Npb25SZXF1ZXN0EigKBXNjZW5lGAEgASgLMhkubmVlZGxlc2ltLnYxLlNjZW5lU291cmNlEhQKDHRpY2tfcmF0ZV9oehgCIAEoARIOCgZyZWNvcmQYAyABKAgSFgoOZGV2aWNlX2NoYW5uZWwYBCABKAgidQoVQ3JlYXRlU2Vzc2lvblJlc3BvbnNlEioKB3Nlc3Npb24YASABKAsyGS5uZWVkbGVzaW0udjEuU2Vzc2lvbkluZm8SGAoQY29udHJvbGxlcl90b2tlbhgCIAEoCRIWCg5vYnNlcnZlcl90b2tlbhgDIAEoCSIVChNMaXN0U2Vzc2lvbnNSZXF1ZXN0IkMKFExpc3RTZXNzaW9uc1Jlc3BvbnNlEisKCHNlc3Npb25zGAEgAygLMhkubmVlZGxlc2ltLnYxLlNlc3Npb25JbmZvIicKEUdldFNlc3Npb25SZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkiKQoTQ2xvc2VTZXNzaW9uUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIhYKFENsb3NlU2Vzc2lvblJlc3BvbnNlIokCCgtTZXNzaW9uSW5mbxISCgpzZXNzaW9uX2lkGAEgASgJEhIKCnNjZW5lX25hbWUYAiABKAkSDwoHbl9ub2RlcxgDIAEoDRITCgtuX3RyaWFuZ2xlcxgEIAEoDRIUCgx0aWNrX3JhdGVfaHoYBSABKAESFwoPY3JlYXRlZF91bml4X21zGAYgASgEEgwKBHRpY2sYByABKAQSEwoLbl9vYnNlcnZlcnMYCCABKA0SEQoJcmVjb3JkaW5nGAkgASgJEhQKDHRhcmdldF9uYW1lcxgKIAMoCRIbChNkZXZpY2VfY2hhbm5lbF9wYXRoGAsgASgJEhQKDGRldmljZV9zdGFsZRgMIAEoCCLdAgoMU2Vzc2lvblN0YXRzEg0KBXRpY2tzGAEgASgEEhYKDmNvbXB1dGVfcDUwX3VzGAIgASgBEhYKDmNvbXB1dGVfcDk5X3VzGAMgASgBEhcKD2NvbXB1dGVfcDk5OV91cxgEIAEoARIWCg5jb21wdXRlX21heF91cxgFIAEoARIXCg9sYXRlbmVzc19wNTBfdXMYBiABKAESFwoPbGF0ZW5lc3NfcDk5X3VzGAcgASgBEhgKEGxhdGVuZXNzX3A5OTlfdXMYCCABKAESGAoQbWlzc2VkX2RlYWRsaW5lcxgJIAEoBBIYChBzdXBlcnNlZGVkX3Bvc2VzGAogASgEEhcKD2Ryb3BwZWRfcmVjb3JkcxgLIAEoBBIVCg1jb2x1bW5fbWlzc2VzGAwgASgEEhYKDnJlamVjdGVkX3Bvc2VzGA0gASgEEhUKDWNsYW1wZWRfdGlja3MYDiABKAQibAoOQ29udHJvbFJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhYKDmNsaWVudF90aW1lX25zGAMgASgEEgsKA3NlcRgEIAEoBCJHCg5TZXRQb3NlUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEiEKBGJhc2UYAiABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTIi6QIKD0NvbnRyb2xSZXNwb25zZRIMCgR0aWNrGAEgASgEEg4KBnRpbWVfcxgCIAEoARIjCgdmb3JjZV9uGAMgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJdG9ycXVlX25tGAQgASgBEhUKDWZvcmNlX2F4aWFsX24YBSABKAESFwoPZm9yY2VfbGF0ZXJhbF9uGAYgASgBEiEKBGJhc2UYByABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISIQoFdGlwX20YCCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIZChFpbnNlcnRlZF9sZW5ndGhfbRgJIAEoARIPCgduX3N0dWNrGAogASgNEhIKCm5fc2xpcHBpbmcYCyABKA0SDQoFbl90aXAYDCABKA0SEAoIcG9zZV9zZXEYDSABKAQSFgoOY2xpZW50X3RpbWVfbnMYDiABKAQSEQoJc3RpZmZuZXNzGA8gAygBIlQKDk9ic2VydmVSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkSDwoHcmF0ZV9oehgCIAEoARIdChVpbmNsdWRlX2Rpc3BsYWNlbWVudHMYAyABKAgijwEKCk5lZWRsZU5vZGUSDAoEbm9kZRgBIAEoDRImCgVzdGF0ZRgCIAEoDjIXLm5lZWRsZXNpbS52MS5Ob2RlU3RhdGUSJgoKcG9zaXRpb25fbRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEiMKB2ZvcmNlX24YBCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMiJkCgtUYXJnZXRTdGF0ZRIMCgRuYW1lGAEgASgJEiYKCnBvc2l0aW9uX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpkaXN0YW5jZV9tGAMgASgBEgsKA2hpdBgEIAEoCCKkAwoFRnJhbWUSDAoEdGljaxgBIAEoBBIOCgZ0aW1lX3MYAiABKAESIQoEYmFzZRgDIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIjCgdmb3JjZV9uGAQgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJdG9ycXVlX25tGAUgASgBEhUKDWZvcmNlX2F4aWFsX24YBiABKAESFwoPZm9yY2VfbGF0ZXJhbF9uGAcgASgBEiEKBXRpcF9tGAggASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCSABKAESLgoMbmVlZGxlX25vZGVzGAogAygLMhgubmVlZGxlc2ltLnYxLk5lZWRsZU5vZGUSKgoHdGFyZ2V0cxgLIAMoCzIZLm5lZWRsZXNpbS52MS5UYXJnZXRTdGF0ZRIbChNub2RlX2Rpc3BsYWNlbWVudF9tGAwgAygBEhQKDG1pc3NlZF90aWNrcxgNIAEoBBISCgpjb21wdXRlX3VzGA4gASgBEhEKCXN0aWZmbmVzcxgPIAMoASJCChBUcmFqZWN0b3J5U2FtcGxlEgsKA3RfcxgBIAEoARIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyIoEBCg9TaW11bGF0ZVJlcXVlc3QSKAoFc2NlbmUYASABKAsyGS5uZWVkbGVzaW0udjEuU2NlbmVTb3VyY2USMgoKdHJhamVjdG9yeRgCIAMoCzIeLm5lZWRsZXNpbS52MS5UcmFqZWN0b3J5U2FtcGxlEhAKCGRlY2ltYXRlGAMgASgNIjsKEFNpbXVsYXRlUHJvZ3Jlc3MSEgoKdGlja3NfZG9uZRgBIAEoBBITCgt0aWNrc190b3RhbBgCIAEoBCLBAgoJU2VyaWVzUm93EgsKA3RfcxgBIAEoARIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiMKB2ZvcmNlX24YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIRCgl0b3JxdWVfbm0YBCABKAESFQoNZm9yY2VfYXhpYWxfbhgFIAEoARIXCg9mb3JjZV9sYXRlcmFsX24YBiABKAESIQoFdGlwX20YByABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIZChFpbnNlcnRlZF9sZW5ndGhfbRgIIAEoARIPCgduX3N0dWNrGAkgASgNEhIKCm5fc2xpcHBpbmcYCiABKA0SDQoFbl90aXAYCyABKA0SKgoHdGFyZ2V0cxgMIAMoCzIZLm5lZWRsZXNpbS52MS5UYXJnZXRTdGF0ZSKeAQoOU2ltdWxhdGVSZXN1bHQSJQoEcm93cxgBIAMoCzIXLm5lZWRsZXNpbS52MS5TZXJpZXNSb3cSDQoFdGlja3MYAiABKAQSDgoGd2FsbF9zGAMgASgBEhMKC3N0ZXBfcDUwX3VzGAQgASgBEhMKC3N0ZXBfcDk5X3VzGAUgASgBEhwKFGZpbmFsX2Rpc3BsYWNlbWVudF9tGAYgAygBIn8KEFNpbXVsYXRlUmVzcG9uc2USMgoIcHJvZ3Jlc3MYASABKAsyHi5uZWVkbGVzaW0udjEuU2ltdWxhdGVQcm9ncmVzc0gAEi4KBnJlc3VsdBgCIAEoCzIcLm5lZWRsZXNpbS52MS5TaW11bGF0ZVJlc3VsdEgAQgcKBWV2ZW50IisKFVN0YXJ0UmVjb3JkaW5nUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIioKFFN0b3BSZWNvcmRpbmdSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkiaQoNUmVjb3JkaW5nSW5mbxIMCgRuYW1lGAEgASgJEhIKCnNlc3Npb25faWQYAiABKAkSEgoKc2l6ZV9ieXRlcxgDIAEoBBIQCghtZXNzYWdlcxgEIAEoBBIQCghmaW5pc2hlZBgFIAEoCCIXChVMaXN0UmVjb3JkaW5nc1JlcXVlc3QiSQoWTGlzdFJlY29yZGluZ3NSZXNwb25zZRIvCgpyZWNvcmRpbmdzGAEgAygLMhsubmVlZGxlc2ltLnYxLlJlY29yZGluZ0luZm8iKAoYRG93bmxvYWRSZWNvcmRpbmdSZXF1ZXN0EgwKBG5hbWUYASABKAkiLgoOUmVjb3JkaW5nQ2h1bmsSDAoEZGF0YRgBIAEoDBIOCgZvZmZzZXQYAiABKAQqagoJTm9kZVN0YXRlEhoKFk5PREVfU1RBVEVfVU5TUEVDSUZJRUQQABIUChBOT0RFX1NUQVRFX1NUVUNLEAESFwoTTk9ERV9TVEFURV9TTElQUElORxACEhIKDk5PREVfU1RBVEVfVElQEAMy6wMKDlNlc3Npb25TZXJ2aWNlElgKDUNyZWF0ZVNlc3Npb24SIi5uZWVkbGVzaW0udjEuQ3JlYXRlU2Vzc2lvblJlcXVlc3QaIy5uZWVkbGVzaW0udjEuQ3JlYXRlU2Vzc2lvblJlc3BvbnNlElUKDExpc3RTZXNzaW9ucxIhLm5lZWRsZXNpbS52MS5MaXN0U2Vzc2lvbnNSZXF1ZXN0GiIubmVlZGxlc2ltLnYxLkxpc3RTZXNzaW9uc1Jlc3BvbnNlEkgKCkdldFNlc3Npb24SHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaGS5uZWVkbGVzaW0udjEuU2Vzc2lvbkluZm8SPgoHR2V0TWVzaBIfLm5lZWRsZXNpbS52MS5HZXRTZXNzaW9uUmVxdWVzdBoSLm5lZWRsZXNpbS52MS5NZXNoEkcKCEdldFN0YXRzEh8ubmVlZGxlc2ltLnYxLkdldFNlc3Npb25SZXF1ZXN0GhoubmVlZGxlc2ltLnYxLlNlc3Npb25TdGF0cxJVCgxDbG9zZVNlc3Npb24SIS5uZWVkbGVzaW0udjEuQ2xvc2VTZXNzaW9uUmVxdWVzdBoiLm5lZWRsZXNpbS52MS5DbG9zZVNlc3Npb25SZXNwb25zZTKkAQoOQ29udHJvbFNlcnZpY2USSgoHQ29udHJvbBIcLm5lZWRsZXNpbS52MS5Db250cm9sUmVxdWVzdBodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UoATABEkYKB1NldFBvc2USHC5uZWVkbGVzaW0udjEuU2V0UG9zZVJlcXVlc3QaHS5uZWVkbGVzaW0udjEuQ29udHJvbFJlc3BvbnNlMlAKDk9ic2VydmVTZXJ2aWNlEj4KB09ic2VydmUSHC5uZWVkbGVzaW0udjEuT2JzZXJ2ZVJlcXVlc3QaEy5uZWVkbGVzaW0udjEuRnJhbWUwATJgChFTaW11bGF0aW9uU2VydmljZRJLCghTaW11bGF0ZRIdLm5lZWRsZXNpbS52MS5TaW11bGF0ZVJlcXVlc3QaHi5uZWVkbGVzaW0udjEuU2ltdWxhdGVSZXNwb25zZTABMvICChBSZWNvcmRpbmdTZXJ2aWNlElIKDlN0YXJ0UmVjb3JkaW5nEiMubmVlZGxlc2ltLnYxLlN0YXJ0UmVjb3JkaW5nUmVxdWVzdBobLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdJbmZvElAKDVN0b3BSZWNvcmRpbmcSIi5uZWVkbGVzaW0udjEuU3RvcFJlY29yZGluZ1JlcXVlc3QaGy5uZWVkbGVzaW0udjEuUmVjb3JkaW5nSW5mbxJbCg5MaXN0UmVjb3JkaW5ncxIjLm5lZWRsZXNpbS52MS5MaXN0UmVjb3JkaW5nc1JlcXVlc3QaJC5uZWVkbGVzaW0udjEuTGlzdFJlY29yZGluZ3NSZXNwb25zZRJbChFEb3dubG9hZFJlY29yZGluZxImLm5lZWRsZXNpbS52MS5Eb3dubG9hZFJlY29yZGluZ1JlcXVlc3QaHC5uZWVkbGVzaW0udjEuUmVjb3JkaW5nQ2h1bmswAWIGcHJvdG8z");
+  fileDesc("ChxuZWVkbGVzaW0vdjEvbmVlZGxlc2ltLnByb3RvEgxuZWVkbGVzaW0udjEiNAoFUG9zZTISCwoDeF9tGAEgASgBEgsKA3lfbRgCIAEoARIRCgl0aGV0YV9yYWQYAyABKAEiHAoEVmVjMhIJCgF4GAEgASgBEgkKAXkYAiABKAEiYAoETWVzaBIRCglub2RlX3h5X20YASADKAESFgoOdHJpYW5nbGVfbm9kZXMYAiADKA0SFwoPdHJpYW5nbGVfcmVnaW9uGAMgAygNEhQKDHJlZ2lvbl9uYW1lcxgEIAMoCSLlAQoGUmVnaW9uEgwKBG5hbWUYASABKAkSGAoQeW91bmdfbW9kdWx1c19wYRgCIAEoARIVCg1wb2lzc29uX3JhdGlvGAMgASgBEhgKEGZyaWN0aW9uX25fcGVyX20YBCABKAESHQoVc3RhdGljX2ZyaWN0aW9uX3JhdGlvGAUgASgBEhYKDnRpcF9wZWFrX3JhdGlvGAYgASgBEhgKEHRpcF9wZWFrX3dpZHRoX20YByABKAESGAoQcHVuY3R1cmVfZm9yY2VfbhgIIAEoARIXCg9jdXR0aW5nX2ZvcmNlX24YCSABKAEiTgoGVGFyZ2V0EgwKBG5hbWUYASABKAkSJAoIY2VudGVyX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIQCghyYWRpdXNfbRgDIAEoASK5AgoNVXBsb2FkZWRTY2VuZRIMCgRuYW1lGAEgASgJEiAKBG1lc2gYAiABKAsyEi5uZWVkbGVzaW0udjEuTWVzaBIlCgdyZWdpb25zGAMgAygLMhQubmVlZGxlc2ltLnYxLlJlZ2lvbhITCgtmaXhlZF9ub2RlcxgEIAMoDRINCgVwbGFuZRgFIAEoCRITCgt0aGlja25lc3NfbRgGIAEoARIXCg9uZWVkbGVfbGVuZ3RoX20YByABKAESKAoLbmVlZGxlX2Jhc2UYCCABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISGAoQY2FwdHVyZV9yYWRpdXNfbRgJIAEoARIlCgd0YXJnZXRzGAogAygLMhQubmVlZGxlc2ltLnYxLlRhcmdldBIUCgx0aWNrX3JhdGVfaHoYCyABKAEicQoLU2NlbmVTb3VyY2USEQoHZXhhbXBsZRgBIAEoCUgAEhQKCnNjZW5lX3RvbWwYAiABKAlIABIvCgh1cGxvYWRlZBgDIAEoCzIbLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lSABCCAoGc291cmNlIn4KFENyZWF0ZVNlc3Npb25SZXF1ZXN0EigKBXNjZW5lGAEgASgLMhkubmVlZGxlc2ltLnYxLlNjZW5lU291cmNlEhQKDHRpY2tfcmF0ZV9oehgCIAEoARIOCgZyZWNvcmQYAyABKAgSFgoOZGV2aWNlX2NoYW5uZWwYBCABKAgidQoVQ3JlYXRlU2Vzc2lvblJlc3BvbnNlEioKB3Nlc3Npb24YASABKAsyGS5uZWVkbGVzaW0udjEuU2Vzc2lvbkluZm8SGAoQY29udHJvbGxlcl90b2tlbhgCIAEoCRIWCg5vYnNlcnZlcl90b2tlbhgDIAEoCSIVChNMaXN0U2Vzc2lvbnNSZXF1ZXN0IkMKFExpc3RTZXNzaW9uc1Jlc3BvbnNlEisKCHNlc3Npb25zGAEgAygLMhkubmVlZGxlc2ltLnYxLlNlc3Npb25JbmZvIicKEUdldFNlc3Npb25SZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkiKQoTQ2xvc2VTZXNzaW9uUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIhYKFENsb3NlU2Vzc2lvblJlc3BvbnNlIokCCgtTZXNzaW9uSW5mbxISCgpzZXNzaW9uX2lkGAEgASgJEhIKCnNjZW5lX25hbWUYAiABKAkSDwoHbl9ub2RlcxgDIAEoDRITCgtuX3RyaWFuZ2xlcxgEIAEoDRIUCgx0aWNrX3JhdGVfaHoYBSABKAESFwoPY3JlYXRlZF91bml4X21zGAYgASgEEgwKBHRpY2sYByABKAQSEwoLbl9vYnNlcnZlcnMYCCABKA0SEQoJcmVjb3JkaW5nGAkgASgJEhQKDHRhcmdldF9uYW1lcxgKIAMoCRIbChNkZXZpY2VfY2hhbm5lbF9wYXRoGAsgASgJEhQKDGRldmljZV9zdGFsZRgMIAEoCCLdAgoMU2Vzc2lvblN0YXRzEg0KBXRpY2tzGAEgASgEEhYKDmNvbXB1dGVfcDUwX3VzGAIgASgBEhYKDmNvbXB1dGVfcDk5X3VzGAMgASgBEhcKD2NvbXB1dGVfcDk5OV91cxgEIAEoARIWCg5jb21wdXRlX21heF91cxgFIAEoARIXCg9sYXRlbmVzc19wNTBfdXMYBiABKAESFwoPbGF0ZW5lc3NfcDk5X3VzGAcgASgBEhgKEGxhdGVuZXNzX3A5OTlfdXMYCCABKAESGAoQbWlzc2VkX2RlYWRsaW5lcxgJIAEoBBIYChBzdXBlcnNlZGVkX3Bvc2VzGAogASgEEhcKD2Ryb3BwZWRfcmVjb3JkcxgLIAEoBBIVCg1jb2x1bW5fbWlzc2VzGAwgASgEEhYKDnJlamVjdGVkX3Bvc2VzGA0gASgEEhUKDWNsYW1wZWRfdGlja3MYDiABKAQiJgoQRmxpcEJldmVsUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIiwKEUZsaXBCZXZlbFJlc3BvbnNlEhcKD2ZsaXBzX3JlcXVlc3RlZBgBIAEoBCKAAQoOQ29udHJvbFJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhYKDmNsaWVudF90aW1lX25zGAMgASgEEgsKA3NlcRgEIAEoBBISCgpmbGlwX2JldmVsGAUgASgIIkcKDlNldFBvc2VSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkSIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMiKpAwoPQ29udHJvbFJlc3BvbnNlEgwKBHRpY2sYASABKAQSDgoGdGltZV9zGAIgASgBEiMKB2ZvcmNlX24YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIRCgl0b3JxdWVfbm0YBCABKAESFQoNZm9yY2VfYXhpYWxfbhgFIAEoARIXCg9mb3JjZV9sYXRlcmFsX24YBiABKAESIQoEYmFzZRgHIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIhCgV0aXBfbRgIIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhkKEWluc2VydGVkX2xlbmd0aF9tGAkgASgBEg8KB25fc3R1Y2sYCiABKA0SEgoKbl9zbGlwcGluZxgLIAEoDRINCgVuX3RpcBgMIAEoDRIQCghwb3NlX3NlcRgNIAEoBBIWCg5jbGllbnRfdGltZV9ucxgOIAEoBBIRCglzdGlmZm5lc3MYDyADKAESKgoObmVlZGxlX3NoYXBlX20YECADKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpiZXZlbF9zaWRlGBEgASgBIlQKDk9ic2VydmVSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkSDwoHcmF0ZV9oehgCIAEoARIdChVpbmNsdWRlX2Rpc3BsYWNlbWVudHMYAyABKAgijwEKCk5lZWRsZU5vZGUSDAoEbm9kZRgBIAEoDRImCgVzdGF0ZRgCIAEoDjIXLm5lZWRsZXNpbS52MS5Ob2RlU3RhdGUSJgoKcG9zaXRpb25fbRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEiMKB2ZvcmNlX24YBCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMiJkCgtUYXJnZXRTdGF0ZRIMCgRuYW1lGAEgASgJEiYKCnBvc2l0aW9uX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpkaXN0YW5jZV9tGAMgASgBEgsKA2hpdBgEIAEoCCLkAwoFRnJhbWUSDAoEdGljaxgBIAEoBBIOCgZ0aW1lX3MYAiABKAESIQoEYmFzZRgDIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIjCgdmb3JjZV9uGAQgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJdG9ycXVlX25tGAUgASgBEhUKDWZvcmNlX2F4aWFsX24YBiABKAESFwoPZm9yY2VfbGF0ZXJhbF9uGAcgASgBEiEKBXRpcF9tGAggASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCSABKAESLgoMbmVlZGxlX25vZGVzGAogAygLMhgubmVlZGxlc2ltLnYxLk5lZWRsZU5vZGUSKgoHdGFyZ2V0cxgLIAMoCzIZLm5lZWRsZXNpbS52MS5UYXJnZXRTdGF0ZRIbChNub2RlX2Rpc3BsYWNlbWVudF9tGAwgAygBEhQKDG1pc3NlZF90aWNrcxgNIAEoBBISCgpjb21wdXRlX3VzGA4gASgBEhEKCXN0aWZmbmVzcxgPIAMoARIqCg5uZWVkbGVfc2hhcGVfbRgQIAMoCzISLm5lZWRsZXNpbS52MS5WZWMyEhIKCmJldmVsX3NpZGUYESABKAEiQgoQVHJhamVjdG9yeVNhbXBsZRILCgN0X3MYASABKAESIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMiKBAQoPU2ltdWxhdGVSZXF1ZXN0EigKBXNjZW5lGAEgASgLMhkubmVlZGxlc2ltLnYxLlNjZW5lU291cmNlEjIKCnRyYWplY3RvcnkYAiADKAsyHi5uZWVkbGVzaW0udjEuVHJhamVjdG9yeVNhbXBsZRIQCghkZWNpbWF0ZRgDIAEoDSI7ChBTaW11bGF0ZVByb2dyZXNzEhIKCnRpY2tzX2RvbmUYASABKAQSEwoLdGlja3NfdG90YWwYAiABKAQiwQIKCVNlcmllc1JvdxILCgN0X3MYASABKAESIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIjCgdmb3JjZV9uGAMgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJdG9ycXVlX25tGAQgASgBEhUKDWZvcmNlX2F4aWFsX24YBSABKAESFwoPZm9yY2VfbGF0ZXJhbF9uGAYgASgBEiEKBXRpcF9tGAcgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCCABKAESDwoHbl9zdHVjaxgJIAEoDRISCgpuX3NsaXBwaW5nGAogASgNEg0KBW5fdGlwGAsgASgNEioKB3RhcmdldHMYDCADKAsyGS5uZWVkbGVzaW0udjEuVGFyZ2V0U3RhdGUingEKDlNpbXVsYXRlUmVzdWx0EiUKBHJvd3MYASADKAsyFy5uZWVkbGVzaW0udjEuU2VyaWVzUm93Eg0KBXRpY2tzGAIgASgEEg4KBndhbGxfcxgDIAEoARITCgtzdGVwX3A1MF91cxgEIAEoARITCgtzdGVwX3A5OV91cxgFIAEoARIcChRmaW5hbF9kaXNwbGFjZW1lbnRfbRgGIAMoASJ/ChBTaW11bGF0ZVJlc3BvbnNlEjIKCHByb2dyZXNzGAEgASgLMh4ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUHJvZ3Jlc3NIABIuCgZyZXN1bHQYAiABKAsyHC5uZWVkbGVzaW0udjEuU2ltdWxhdGVSZXN1bHRIAEIHCgVldmVudCIrChVTdGFydFJlY29yZGluZ1JlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSIqChRTdG9wUmVjb3JkaW5nUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJImkKDVJlY29yZGluZ0luZm8SDAoEbmFtZRgBIAEoCRISCgpzZXNzaW9uX2lkGAIgASgJEhIKCnNpemVfYnl0ZXMYAyABKAQSEAoIbWVzc2FnZXMYBCABKAQSEAoIZmluaXNoZWQYBSABKAgiFwoVTGlzdFJlY29yZGluZ3NSZXF1ZXN0IkkKFkxpc3RSZWNvcmRpbmdzUmVzcG9uc2USLwoKcmVjb3JkaW5ncxgBIAMoCzIbLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdJbmZvIigKGERvd25sb2FkUmVjb3JkaW5nUmVxdWVzdBIMCgRuYW1lGAEgASgJIi4KDlJlY29yZGluZ0NodW5rEgwKBGRhdGEYASABKAwSDgoGb2Zmc2V0GAIgASgEKmoKCU5vZGVTdGF0ZRIaChZOT0RFX1NUQVRFX1VOU1BFQ0lGSUVEEAASFAoQTk9ERV9TVEFURV9TVFVDSxABEhcKE05PREVfU1RBVEVfU0xJUFBJTkcQAhISCg5OT0RFX1NUQVRFX1RJUBADMusDCg5TZXNzaW9uU2VydmljZRJYCg1DcmVhdGVTZXNzaW9uEiIubmVlZGxlc2ltLnYxLkNyZWF0ZVNlc3Npb25SZXF1ZXN0GiMubmVlZGxlc2ltLnYxLkNyZWF0ZVNlc3Npb25SZXNwb25zZRJVCgxMaXN0U2Vzc2lvbnMSIS5uZWVkbGVzaW0udjEuTGlzdFNlc3Npb25zUmVxdWVzdBoiLm5lZWRsZXNpbS52MS5MaXN0U2Vzc2lvbnNSZXNwb25zZRJICgpHZXRTZXNzaW9uEh8ubmVlZGxlc2ltLnYxLkdldFNlc3Npb25SZXF1ZXN0GhkubmVlZGxlc2ltLnYxLlNlc3Npb25JbmZvEj4KB0dldE1lc2gSHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaEi5uZWVkbGVzaW0udjEuTWVzaBJHCghHZXRTdGF0cxIfLm5lZWRsZXNpbS52MS5HZXRTZXNzaW9uUmVxdWVzdBoaLm5lZWRsZXNpbS52MS5TZXNzaW9uU3RhdHMSVQoMQ2xvc2VTZXNzaW9uEiEubmVlZGxlc2ltLnYxLkNsb3NlU2Vzc2lvblJlcXVlc3QaIi5uZWVkbGVzaW0udjEuQ2xvc2VTZXNzaW9uUmVzcG9uc2Uy8gEKDkNvbnRyb2xTZXJ2aWNlEkoKB0NvbnRyb2wSHC5uZWVkbGVzaW0udjEuQ29udHJvbFJlcXVlc3QaHS5uZWVkbGVzaW0udjEuQ29udHJvbFJlc3BvbnNlKAEwARJGCgdTZXRQb3NlEhwubmVlZGxlc2ltLnYxLlNldFBvc2VSZXF1ZXN0Gh0ubmVlZGxlc2ltLnYxLkNvbnRyb2xSZXNwb25zZRJMCglGbGlwQmV2ZWwSHi5uZWVkbGVzaW0udjEuRmxpcEJldmVsUmVxdWVzdBofLm5lZWRsZXNpbS52MS5GbGlwQmV2ZWxSZXNwb25zZTJQCg5PYnNlcnZlU2VydmljZRI+CgdPYnNlcnZlEhwubmVlZGxlc2ltLnYxLk9ic2VydmVSZXF1ZXN0GhMubmVlZGxlc2ltLnYxLkZyYW1lMAEyYAoRU2ltdWxhdGlvblNlcnZpY2USSwoIU2ltdWxhdGUSHS5uZWVkbGVzaW0udjEuU2ltdWxhdGVSZXF1ZXN0Gh4ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUmVzcG9uc2UwATLyAgoQUmVjb3JkaW5nU2VydmljZRJSCg5TdGFydFJlY29yZGluZxIjLm5lZWRsZXNpbS52MS5TdGFydFJlY29yZGluZ1JlcXVlc3QaGy5uZWVkbGVzaW0udjEuUmVjb3JkaW5nSW5mbxJQCg1TdG9wUmVjb3JkaW5nEiIubmVlZGxlc2ltLnYxLlN0b3BSZWNvcmRpbmdSZXF1ZXN0GhsubmVlZGxlc2ltLnYxLlJlY29yZGluZ0luZm8SWwoOTGlzdFJlY29yZGluZ3MSIy5uZWVkbGVzaW0udjEuTGlzdFJlY29yZGluZ3NSZXF1ZXN0GiQubmVlZGxlc2ltLnYxLkxpc3RSZWNvcmRpbmdzUmVzcG9uc2USWwoRRG93bmxvYWRSZWNvcmRpbmcSJi5uZWVkbGVzaW0udjEuRG93bmxvYWRSZWNvcmRpbmdSZXF1ZXN0GhwubmVlZGxlc2ltLnYxLlJlY29yZGluZ0NodW5rMAFiBnByb3RvMw");
 
 /**
  * The pose of the needle base: position and the direction in which the shaft points.
@@ -644,6 +644,42 @@ export const SessionStatsSchema: GenMessage<SessionStats> = /*@__PURE__*/
   messageDesc(file_needlesim_v1_needlesim, 15);
 
 /**
+ * @generated from message needlesim.v1.FlipBevelRequest
+ */
+export type FlipBevelRequest = Message<"needlesim.v1.FlipBevelRequest"> & {
+  /**
+   * @generated from field: string session_id = 1;
+   */
+  sessionId: string;
+};
+
+/**
+ * Describes the message needlesim.v1.FlipBevelRequest.
+ * Use `create(FlipBevelRequestSchema)` to create a new message.
+ */
+export const FlipBevelRequestSchema: GenMessage<FlipBevelRequest> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 16);
+
+/**
+ * @generated from message needlesim.v1.FlipBevelResponse
+ */
+export type FlipBevelResponse = Message<"needlesim.v1.FlipBevelResponse"> & {
+  /**
+   * Flips requested over the session's life, this one included.
+   *
+   * @generated from field: uint64 flips_requested = 1;
+   */
+  flipsRequested: bigint;
+};
+
+/**
+ * Describes the message needlesim.v1.FlipBevelResponse.
+ * Use `create(FlipBevelResponseSchema)` to create a new message.
+ */
+export const FlipBevelResponseSchema: GenMessage<FlipBevelResponse> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 17);
+
+/**
  * @generated from message needlesim.v1.ControlRequest
  */
 export type ControlRequest = Message<"needlesim.v1.ControlRequest"> & {
@@ -668,6 +704,14 @@ export type ControlRequest = Message<"needlesim.v1.ControlRequest"> & {
    * @generated from field: uint64 seq = 4;
    */
   seq: bigint;
+
+  /**
+   * Turn the needle 180° about its axis (as FlipBevel); a message that only flips may leave
+   * `base` unset.
+   *
+   * @generated from field: bool flip_bevel = 5;
+   */
+  flipBevel: boolean;
 };
 
 /**
@@ -675,7 +719,7 @@ export type ControlRequest = Message<"needlesim.v1.ControlRequest"> & {
  * Use `create(ControlRequestSchema)` to create a new message.
  */
 export const ControlRequestSchema: GenMessage<ControlRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 16);
+  messageDesc(file_needlesim_v1_needlesim, 18);
 
 /**
  * @generated from message needlesim.v1.SetPoseRequest
@@ -697,7 +741,7 @@ export type SetPoseRequest = Message<"needlesim.v1.SetPoseRequest"> & {
  * Use `create(SetPoseRequestSchema)` to create a new message.
  */
 export const SetPoseRequestSchema: GenMessage<SetPoseRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 17);
+  messageDesc(file_needlesim_v1_needlesim, 19);
 
 /**
  * @generated from message needlesim.v1.ControlResponse
@@ -785,6 +829,20 @@ export type ControlResponse = Message<"needlesim.v1.ControlResponse"> & {
    * @generated from field: repeated double stiffness = 15;
    */
   stiffness: number[];
+
+  /**
+   * The needle's shape, base to tip (two points for a rigid needle; up to 33 for a flexible one).
+   *
+   * @generated from field: repeated needlesim.v1.Vec2 needle_shape_m = 16;
+   */
+  needleShapeM: Vec2[];
+
+  /**
+   * The side a bevel tip faces: +1 towards the base frame's +n, -1 towards -n, 0 symmetric tip.
+   *
+   * @generated from field: double bevel_side = 17;
+   */
+  bevelSide: number;
 };
 
 /**
@@ -792,7 +850,7 @@ export type ControlResponse = Message<"needlesim.v1.ControlResponse"> & {
  * Use `create(ControlResponseSchema)` to create a new message.
  */
 export const ControlResponseSchema: GenMessage<ControlResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 18);
+  messageDesc(file_needlesim_v1_needlesim, 20);
 
 /**
  * @generated from message needlesim.v1.ObserveRequest
@@ -823,7 +881,7 @@ export type ObserveRequest = Message<"needlesim.v1.ObserveRequest"> & {
  * Use `create(ObserveRequestSchema)` to create a new message.
  */
 export const ObserveRequestSchema: GenMessage<ObserveRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 19);
+  messageDesc(file_needlesim_v1_needlesim, 21);
 
 /**
  * @generated from message needlesim.v1.NeedleNode
@@ -857,7 +915,7 @@ export type NeedleNode = Message<"needlesim.v1.NeedleNode"> & {
  * Use `create(NeedleNodeSchema)` to create a new message.
  */
 export const NeedleNodeSchema: GenMessage<NeedleNode> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 20);
+  messageDesc(file_needlesim_v1_needlesim, 22);
 
 /**
  * @generated from message needlesim.v1.TargetState
@@ -889,7 +947,7 @@ export type TargetState = Message<"needlesim.v1.TargetState"> & {
  * Use `create(TargetStateSchema)` to create a new message.
  */
 export const TargetStateSchema: GenMessage<TargetState> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 21);
+  messageDesc(file_needlesim_v1_needlesim, 23);
 
 /**
  * @generated from message needlesim.v1.Frame
@@ -976,6 +1034,18 @@ export type Frame = Message<"needlesim.v1.Frame"> & {
    * @generated from field: repeated double stiffness = 15;
    */
   stiffness: number[];
+
+  /**
+   * As in ControlResponse.
+   *
+   * @generated from field: repeated needlesim.v1.Vec2 needle_shape_m = 16;
+   */
+  needleShapeM: Vec2[];
+
+  /**
+   * @generated from field: double bevel_side = 17;
+   */
+  bevelSide: number;
 };
 
 /**
@@ -983,7 +1053,7 @@ export type Frame = Message<"needlesim.v1.Frame"> & {
  * Use `create(FrameSchema)` to create a new message.
  */
 export const FrameSchema: GenMessage<Frame> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 22);
+  messageDesc(file_needlesim_v1_needlesim, 24);
 
 /**
  * @generated from message needlesim.v1.TrajectorySample
@@ -1005,7 +1075,7 @@ export type TrajectorySample = Message<"needlesim.v1.TrajectorySample"> & {
  * Use `create(TrajectorySampleSchema)` to create a new message.
  */
 export const TrajectorySampleSchema: GenMessage<TrajectorySample> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 23);
+  messageDesc(file_needlesim_v1_needlesim, 25);
 
 /**
  * @generated from message needlesim.v1.SimulateRequest
@@ -1036,7 +1106,7 @@ export type SimulateRequest = Message<"needlesim.v1.SimulateRequest"> & {
  * Use `create(SimulateRequestSchema)` to create a new message.
  */
 export const SimulateRequestSchema: GenMessage<SimulateRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 24);
+  messageDesc(file_needlesim_v1_needlesim, 26);
 
 /**
  * @generated from message needlesim.v1.SimulateProgress
@@ -1058,7 +1128,7 @@ export type SimulateProgress = Message<"needlesim.v1.SimulateProgress"> & {
  * Use `create(SimulateProgressSchema)` to create a new message.
  */
 export const SimulateProgressSchema: GenMessage<SimulateProgress> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 25);
+  messageDesc(file_needlesim_v1_needlesim, 27);
 
 /**
  * @generated from message needlesim.v1.SeriesRow
@@ -1130,7 +1200,7 @@ export type SeriesRow = Message<"needlesim.v1.SeriesRow"> & {
  * Use `create(SeriesRowSchema)` to create a new message.
  */
 export const SeriesRowSchema: GenMessage<SeriesRow> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 26);
+  messageDesc(file_needlesim_v1_needlesim, 28);
 
 /**
  * @generated from message needlesim.v1.SimulateResult
@@ -1174,7 +1244,7 @@ export type SimulateResult = Message<"needlesim.v1.SimulateResult"> & {
  * Use `create(SimulateResultSchema)` to create a new message.
  */
 export const SimulateResultSchema: GenMessage<SimulateResult> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 27);
+  messageDesc(file_needlesim_v1_needlesim, 29);
 
 /**
  * @generated from message needlesim.v1.SimulateResponse
@@ -1203,7 +1273,7 @@ export type SimulateResponse = Message<"needlesim.v1.SimulateResponse"> & {
  * Use `create(SimulateResponseSchema)` to create a new message.
  */
 export const SimulateResponseSchema: GenMessage<SimulateResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 28);
+  messageDesc(file_needlesim_v1_needlesim, 30);
 
 /**
  * @generated from message needlesim.v1.StartRecordingRequest
@@ -1220,7 +1290,7 @@ export type StartRecordingRequest = Message<"needlesim.v1.StartRecordingRequest"
  * Use `create(StartRecordingRequestSchema)` to create a new message.
  */
 export const StartRecordingRequestSchema: GenMessage<StartRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 29);
+  messageDesc(file_needlesim_v1_needlesim, 31);
 
 /**
  * @generated from message needlesim.v1.StopRecordingRequest
@@ -1237,7 +1307,7 @@ export type StopRecordingRequest = Message<"needlesim.v1.StopRecordingRequest"> 
  * Use `create(StopRecordingRequestSchema)` to create a new message.
  */
 export const StopRecordingRequestSchema: GenMessage<StopRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 30);
+  messageDesc(file_needlesim_v1_needlesim, 32);
 
 /**
  * @generated from message needlesim.v1.RecordingInfo
@@ -1274,7 +1344,7 @@ export type RecordingInfo = Message<"needlesim.v1.RecordingInfo"> & {
  * Use `create(RecordingInfoSchema)` to create a new message.
  */
 export const RecordingInfoSchema: GenMessage<RecordingInfo> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 31);
+  messageDesc(file_needlesim_v1_needlesim, 33);
 
 /**
  * @generated from message needlesim.v1.ListRecordingsRequest
@@ -1287,7 +1357,7 @@ export type ListRecordingsRequest = Message<"needlesim.v1.ListRecordingsRequest"
  * Use `create(ListRecordingsRequestSchema)` to create a new message.
  */
 export const ListRecordingsRequestSchema: GenMessage<ListRecordingsRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 32);
+  messageDesc(file_needlesim_v1_needlesim, 34);
 
 /**
  * @generated from message needlesim.v1.ListRecordingsResponse
@@ -1304,7 +1374,7 @@ export type ListRecordingsResponse = Message<"needlesim.v1.ListRecordingsRespons
  * Use `create(ListRecordingsResponseSchema)` to create a new message.
  */
 export const ListRecordingsResponseSchema: GenMessage<ListRecordingsResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 33);
+  messageDesc(file_needlesim_v1_needlesim, 35);
 
 /**
  * @generated from message needlesim.v1.DownloadRecordingRequest
@@ -1321,7 +1391,7 @@ export type DownloadRecordingRequest = Message<"needlesim.v1.DownloadRecordingRe
  * Use `create(DownloadRecordingRequestSchema)` to create a new message.
  */
 export const DownloadRecordingRequestSchema: GenMessage<DownloadRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 34);
+  messageDesc(file_needlesim_v1_needlesim, 36);
 
 /**
  * @generated from message needlesim.v1.RecordingChunk
@@ -1343,7 +1413,7 @@ export type RecordingChunk = Message<"needlesim.v1.RecordingChunk"> & {
  * Use `create(RecordingChunkSchema)` to create a new message.
  */
 export const RecordingChunkSchema: GenMessage<RecordingChunk> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 35);
+  messageDesc(file_needlesim_v1_needlesim, 37);
 
 /**
  * @generated from enum needlesim.v1.NodeState
@@ -1461,6 +1531,17 @@ export const ControlService: GenService<{
     methodKind: "unary";
     input: typeof SetPoseRequestSchema;
     output: typeof ControlResponseSchema;
+  },
+  /**
+   * Turns the needle 180° about its axis from the next tick on: a bevel tip then faces the other
+   * side. FAILED_PRECONDITION for a needle with a symmetric tip. Controller token.
+   *
+   * @generated from rpc needlesim.v1.ControlService.FlipBevel
+   */
+  flipBevel: {
+    methodKind: "unary";
+    input: typeof FlipBevelRequestSchema;
+    output: typeof FlipBevelResponseSchema;
   },
 }> = /*@__PURE__*/
   serviceDesc(file_needlesim_v1_needlesim, 1);

@@ -1,0 +1,219 @@
+//! The gRPC `IdentifyService` of `needlesim.v1`: marker tracking, E/ν identification and the needle
+//! force distribution, the same functions as `needlesim-server identify …`, streaming progress.
+//!
+//! Like `Simulate`, these calls touch no session and need no token. Each call parses and checks
+//! its inputs on a blocking worker before answering, so that bad input is the call's status
+//! (INVALID_ARGUMENT naming the request field: `tracks_csv`, `probe_log_csv`, `force_log_csv`,
+//! `scene`, `grid`, `trajectory_csv`, `frames`, …); a request over the size limits is
+//! RESOURCE_EXHAUSTED. The work runs on the blocking pool; progress goes through a bounded
+//! channel (progress messages are dropped, never waited for, when the client reads slowly; the
+//! final result is always delivered), and inconsistencies found by the fit itself (time stamps
+//! that do not overlap, no usable frame) end the stream with INVALID_ARGUMENT.
+
+use needlesim_proto::v1 as pb;
+use tokio::sync::mpsc;
+use tokio_stream::wrappers::ReceiverStream;
+use tonic::{Request, Response, Status};
+
+use crate::grpc::Api;
+use crate::identify::experiment::{ForceLog, ProbeLog};
+use crate::identify::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
+use crate::identify::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
+use crate::identify::tracks::MarkerTracks;
+
+type ProgressStream = std::pin::Pin<Box<dyn tokio_stream::Stream<Item = Result<pb::IdentifyProgress, Status>> + Send + 'static>>;
+
+/// Most images a Track call takes.
+pub const MAX_TRACK_FRAMES: usize = 20_000;
+/// Most CSV rows (marker tracks) a call takes.
+pub const MAX_TRACK_ROWS: usize = 5_000_000;
+
+fn invalid(field: &str) -> impl Fn(anyhow::Error) -> Status + '_ {
+    move |e| Status::invalid_argument(format!("{field}: {e:#}"))
+}
+
+fn parse_tracks(text: &str) -> Result<MarkerTracks, Status> {
+    let rows = text.lines().count();
+    if rows > MAX_TRACK_ROWS {
+        return Err(Status::resource_exhausted(format!("tracks_csv has {rows} lines, over the limit of {MAX_TRACK_ROWS}")));
+    }
+    MarkerTracks::from_csv(text).map_err(invalid("tracks_csv"))
+}
+
+/// A progress message.
+fn progress(done: usize, total: usize, stage: &str) -> pb::IdentifyProgress {
+    pb::IdentifyProgress { done: done as u32, total: total as u32, stage: stage.to_owned(), result: None }
+}
+
+/// Runs `work` on the blocking pool with a progress callback that never blocks; sends its result
+/// (or its error as INVALID_ARGUMENT) as the last stream item.
+fn spawn_work<F>(stage: &'static str, work: F) -> Response<ProgressStream>
+where
+    F: FnOnce(&mut dyn FnMut(usize, usize)) -> anyhow::Result<pb::identify_progress::Result> + Send + 'static,
+{
+    let (tx, rx) = mpsc::channel(16);
+    tokio::task::spawn_blocking(move || {
+        let mut report = |done: usize, total: usize| {
+            let _ = tx.try_send(Ok(progress(done, total, stage)));
+        };
+        let item = match work(&mut report) {
+            Ok(r) => Ok(pb::IdentifyProgress { stage: "done".to_owned(), result: Some(r), ..Default::default() }),
+            Err(e) => Err(Status::invalid_argument(format!("{e:#}"))),
+        };
+        let _ = tx.blocking_send(item);
+    });
+    Response::new(Box::pin(ReceiverStream::new(rx)))
+}
+
+/// The scene of a request and, when it has one, its TOML text (for the fitted scene).
+fn scene_of(src: Option<&pb::SceneSource>, limits: &needlesim_core::MeshLimits) -> Result<(crate::scene::Scene, Option<String>), Status> {
+    let scene = crate::convert::scene_from_pb(src, limits).map_err(|e| {
+        let msg = format!("{e:#}");
+        let msg = if msg.starts_with("scene") { msg } else { format!("scene: {msg}") };
+        if msg.contains("over the limit") { Status::resource_exhausted(msg) } else { Status::invalid_argument(msg) }
+    })?;
+    let text = match src.and_then(|s| s.source.as_ref()) {
+        Some(pb::scene_source::Source::Example(name)) => crate::scene::EXAMPLES.iter().find(|e| e.0 == name).map(|e| e.1.to_owned()),
+        Some(pb::scene_source::Source::SceneToml(t)) => Some(t.clone()),
+        _ => None,
+    };
+    Ok((scene, text))
+}
+
+async fn blocking<T: Send + 'static>(f: impl FnOnce() -> Result<T, Status> + Send + 'static) -> Result<T, Status> {
+    tokio::task::spawn_blocking(f).await.map_err(|e| Status::internal(format!("identify task: {e}")))?
+}
+
+#[tonic::async_trait]
+impl pb::identify_service_server::IdentifyService for Api {
+    type TrackStream = ProgressStream;
+    type ProbeStream = ProgressStream;
+    type NeedleStream = ProgressStream;
+
+    async fn track(&self, req: Request<pb::TrackRequest>) -> Result<Response<Self::TrackStream>, Status> {
+        use crate::identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
+        let r = req.into_inner();
+        if r.frames.is_empty() {
+            return Err(Status::invalid_argument("frames is empty"));
+        }
+        if r.frames.len() > MAX_TRACK_FRAMES {
+            return Err(Status::resource_exhausted(format!("frames has {} images, over the limit of {MAX_TRACK_FRAMES}", r.frames.len())));
+        }
+        let v2 = |v: &Option<pb::Vec2>| v.as_ref().map_or([0.0, 0.0], |v| [v.x, v.y]);
+        let scale = match (r.m_per_px > 0.0, r.spacing_m > 0.0) {
+            (true, false) => Scale::MetresPerPixel { m_per_px: r.m_per_px, origin_px: v2(&r.origin_px), origin_m: v2(&r.origin_m) },
+            (false, true) => Scale::MarkerSpacing { spacing_m: r.spacing_m, origin_m: v2(&r.origin_m) },
+            _ => return Err(Status::invalid_argument("m_per_px, spacing_m: give exactly one scale (a positive value)")),
+        };
+        let mut p = TrackParams::new(if r.bright { Polarity::Bright } else { Polarity::Dark }, scale);
+        p.expected_markers = (r.expected_markers > 0).then_some(r.expected_markers as usize);
+        p.validate().map_err(invalid("track parameters"))?;
+        Ok(spawn_work("track", move |report| {
+            let frames: Vec<(f64, &[u8])> = r.frames.iter().map(|f| (f.t_s, f.png.as_slice())).collect();
+            let tracks = track_png_bytes(&frames, &p, report).map_err(|e| anyhow::anyhow!("frames: {e:#}"))?;
+            Ok(pb::identify_progress::Result::Track(pb::TrackResult {
+                n_markers: tracks.n_markers as u32,
+                n_frames: tracks.n_frames() as u32,
+                n_filled: tracks.detected.iter().filter(|d| !**d).count() as u32,
+                tracks_csv: tracks.to_csv(),
+            }))
+        }))
+    }
+
+    async fn probe(&self, req: Request<pb::ProbeRequest>) -> Result<Response<Self::ProbeStream>, Status> {
+        let r = req.into_inner();
+        let limits = self.state.limits.mesh;
+        let (tracks, log, model) = blocking(move || {
+            let tracks = parse_tracks(&r.tracks_csv)?;
+            let log = ProbeLog::from_csv(&r.probe_log_csv).map_err(invalid("probe_log_csv"))?;
+            let model = match (&r.grid, &r.scene) {
+                (Some(g), None) => {
+                    let thickness_m = if r.thickness_m == 0.0 { 0.01 } else { r.thickness_m };
+                    if !(thickness_m.is_finite() && thickness_m > 0.0) {
+                        return Err(Status::invalid_argument(format!("thickness_m = {thickness_m} must be finite and > 0")));
+                    }
+                    let plane = match r.plane.as_str() {
+                        "" | "stress" => needlesim_core::PlaneModel::Stress { thickness_m },
+                        "strain" => needlesim_core::PlaneModel::Strain { thickness_m },
+                        m => return Err(Status::invalid_argument(format!("plane must be \"stress\" or \"strain\", found \"{m}\""))),
+                    };
+                    if (g.nx as usize).saturating_mul(g.ny as usize) > limits.max_nodes {
+                        return Err(Status::resource_exhausted(format!(
+                            "grid has {} × {} nodes, over the limit of {}",
+                            g.nx, g.ny, limits.max_nodes
+                        )));
+                    }
+                    grid_model(&tracks, g.nx as usize, g.ny as usize, g.width_m, g.height_m, plane).map_err(invalid("grid"))?
+                }
+                (None, Some(_)) => {
+                    let (scene, _) = scene_of(r.scene.as_ref(), &limits)?;
+                    let mesh = scene.tissue.mesh().clone();
+                    let p0: Vec<[f64; 2]> = (0..tracks.n_markers).map(|m| tracks.position_m(0, m)).collect();
+                    let marker_node = register_markers(&mesh, &p0, 0.25 * crate::scene::mean_edge_m(&mesh)).map_err(invalid("scene"))?;
+                    ProbeModel { plane: scene.tissue.materials().plane(), fixed_nodes: scene.fixed_nodes.clone(), marker_node, mesh }
+                }
+                _ => return Err(Status::invalid_argument("grid, scene: give exactly one model")),
+            };
+            Ok((tracks, log, model))
+        })
+        .await?;
+        let opts = ProbeFitOptions { probe_marker: r.probe_marker.map(|m| m as usize), ..Default::default() };
+        Ok(spawn_work("probe", move |report| {
+            let fit = fit_probe(&tracks, &log, &model, &opts, report)?;
+            Ok(pb::identify_progress::Result::Probe(pb::ProbeResult {
+                young_modulus_pa: fit.young_modulus_pa,
+                young_modulus_sigma_pa: fit.young_modulus_sigma_pa,
+                poisson_ratio: fit.poisson_ratio,
+                poisson_ratio_sigma: fit.poisson_ratio_sigma,
+                displacement_rms_m: fit.displacement_rms_m,
+                force_rms_n: fit.force_rms_n,
+                iterations: fit.iterations as u32,
+                probe_marker: fit.probe_marker as u32,
+                json: serde_json::to_string(&fit)?,
+            }))
+        }))
+    }
+
+    async fn needle(&self, req: Request<pb::NeedleRequest>) -> Result<Response<Self::NeedleStream>, Status> {
+        let r = req.into_inner();
+        let limits = self.state.limits.clone();
+        let (scene, scene_toml, tracks, log, traj) = blocking(move || {
+            let (scene, text) = scene_of(r.scene.as_ref(), &limits.mesh)?;
+            let traj = if r.trajectory_csv.trim().is_empty() {
+                let text = scene.example_trajectory.ok_or_else(|| {
+                    Status::invalid_argument("trajectory_csv is empty and the scene is not a shipped example with its own")
+                })?;
+                crate::scene::Trajectory::parse_csv(text).map_err(|e| Status::internal(format!("{e:#}")))?
+            } else {
+                crate::scene::Trajectory::parse_csv(&r.trajectory_csv).map_err(invalid("trajectory_csv"))?
+            };
+            let tracks = parse_tracks(&r.tracks_csv)?;
+            let log = ForceLog::from_csv(&r.force_log_csv).map_err(invalid("force_log_csv"))?;
+            Ok((scene, text, tracks, log, traj))
+        })
+        .await?;
+        if let Some(h) = r.tip_peak_ratio
+            && !(h.is_finite() && h >= 0.0)
+        {
+            return Err(Status::invalid_argument(format!("tip_peak_ratio = {h} must be finite and ≥ 0")));
+        }
+        let opts = NeedleFitOptions { tip_peak_ratio: r.tip_peak_ratio, ..Default::default() };
+        Ok(spawn_work("needle", move |report| {
+            let fit = fit_needle(&scene, &tracks, &log, &traj, &opts, report)?;
+            let fitted_scene_toml = match &scene_toml {
+                Some(t) => write_fitted_scene(t, &fit.region, &fit)?,
+                None => String::new(),
+            };
+            Ok(pb::identify_progress::Result::Needle(pb::NeedleResult {
+                friction_n_per_m: fit.friction_n_per_m,
+                friction_sigma_n_per_m: fit.friction_sigma_n_per_m,
+                tip_peak_ratio: fit.tip_peak_ratio,
+                tip_peak_width_m: fit.tip_peak_width_m,
+                peak_position_m: fit.peak_position_m,
+                base_force_rms_diff_n: fit.base_force_rms_diff_n,
+                fitted_scene_toml,
+                json: serde_json::to_string(&fit)?,
+            }))
+        }))
+    }
+}
