@@ -142,6 +142,8 @@ fn health_checks_through_grpc_health_v1() {
     let stubs = stubs();
     assert_eq!(client(&server, &stubs, &["health"]).trim(), "SERVING");
     assert_eq!(client(&server, &stubs, &["health", "needlesim.v1.SessionService"]).trim(), "SERVING");
+    assert_eq!(client(&server, &stubs, &["health", "needlesim.v1.PlanningService"]).trim(), "SERVING");
+    assert_eq!(client(&server, &stubs, &["health", "needlesim.v1.IdentifyService"]).trim(), "SERVING");
     assert_eq!(client(&server, &stubs, &["health", "needlesim.v1.NoSuchService"]).trim(), "NOT_FOUND");
 }
 

@@ -167,6 +167,8 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
     health_reporter.set_serving::<pb::observe_service_server::ObserveServiceServer<Api>>().await;
     health_reporter.set_serving::<pb::simulation_service_server::SimulationServiceServer<Api>>().await;
     health_reporter.set_serving::<pb::recording_service_server::RecordingServiceServer<Api>>().await;
+    health_reporter.set_serving::<pb::planning_service_server::PlanningServiceServer<Api>>().await;
+    health_reporter.set_serving::<pb::identify_service_server::IdentifyServiceServer<Api>>().await;
     let reflection_builder = || {
         tonic_reflection::server::Builder::configure()
             .register_encoded_file_descriptor_set(needlesim_proto::FILE_DESCRIPTOR_SET)
