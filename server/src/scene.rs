@@ -161,7 +161,7 @@ pub struct NeedleSpec {
     pub gauge: Option<u32>,
     /// Flexible needle: the flexural rigidity EI in N·m² (instead of a gauge).
     pub flexural_rigidity_nm2: Option<f64>,
-    /// Flexible needle: links of the discrete beam (default: one per millimetre, 16..=400).
+    /// Flexible needle: links of the discrete beam (default: one per 2 mm, at least 16).
     pub n_links: Option<usize>,
     /// Flexible needle: bevel tip, lateral over axial tip force (default 0: symmetric tip).
     pub bevel_force_ratio: Option<f64>,

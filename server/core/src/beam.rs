@@ -29,7 +29,7 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve};
-use faer::{Conj, MatMut, MatRef, Par};
+use faer::{Accum, Conj, MatMut, MatRef, Par};
 
 use crate::mixed::{Condition, MixedSolver};
 use crate::needle::{BasePose, FlexibleNeedle};
@@ -315,6 +315,11 @@ pub struct Coupling {
     terms: Vec<(f64, [f64; 2], usize)>,
     /// $I + G_{NN}A$, then its LU factors (column-major, leading dimension `cap`).
     m: Vec<f64>,
+    /// $G_{NN}$ and $A$ gathered (column-major, leading dimension `cap`) for the product.
+    g_nn: Vec<f64>,
+    a_nn: Vec<f64>,
+    /// Each slot's reference lateral force in its frame.
+    f_ref_lat: Vec<f64>,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
     buf: MemBuffer,
@@ -351,6 +356,9 @@ impl Coupling {
             g: vec![0.0; cap * cap],
             terms: Vec::with_capacity(cap),
             m: vec![0.0; cap * cap],
+            g_nn: vec![0.0; cap * cap],
+            a_nn: vec![0.0; cap * cap],
+            f_ref_lat: vec![0.0; cap],
             perm: vec![0; cap],
             perm_inv: vec![0; cap],
             buf: MemBuffer::new(req),
@@ -413,16 +421,22 @@ impl Coupling {
         let version = (st.n_pivots + st.n_rotations + st.n_added + st.n_removed + st.n_rebuilds, self.shape_version);
         let cap = self.cap;
         if self.factored_for != Some(version) {
-            // M = I + G_NN A, column-major.
-            for (a, &si) in self.n_slots.iter().enumerate() {
-                for (c, &sc) in self.n_slots.iter().enumerate() {
-                    let mut v = if a == c { 1.0 } else { 0.0 };
-                    for &sk in &self.n_slots {
-                        v += self.g[si * cap + sk] * solver.hybrid(2 * sk + 1, 2 * sc + 1);
-                    }
-                    self.m[c * cap + a] = v;
+            // M = I + G_NN A (column-major), the product by faer.
+            for (c, &sc) in self.n_slots.iter().enumerate() {
+                for (a, &sa) in self.n_slots.iter().enumerate() {
+                    self.g_nn[c * cap + a] = self.g[sa * cap + sc];
+                    self.a_nn[c * cap + a] = solver.hybrid(2 * sa + 1, 2 * sc + 1);
+                    self.m[c * cap + a] = if a == c { 1.0 } else { 0.0 };
                 }
             }
+            faer::linalg::matmul::matmul(
+                MatMut::from_column_major_slice_with_stride_mut(&mut self.m[..], nn, nn, cap),
+                Accum::Add,
+                MatRef::from_column_major_slice_with_stride(&self.g_nn[..], nn, nn, cap),
+                MatRef::from_column_major_slice_with_stride(&self.a_nn[..], nn, nn, cap),
+                1.0,
+                Par::Seq,
+            );
             let mat = MatMut::from_column_major_slice_with_stride_mut(&mut self.m[..], nn, nn, cap);
             let _ = lu_factor::lu_in_place(
                 mat,
@@ -436,15 +450,16 @@ impl Coupling {
             self.n_factorisations += 1;
         }
         // rhs = g - G_NN (b - f_ref_N) - G_NK (f_K - f_ref_K).
+        for slot in 0..d {
+            self.f_ref_lat[slot] = lateral_of(nodes[slot].force_ref_world_n, solver.angle_rad(slot));
+        }
         for (a, &si) in self.n_slots.iter().enumerate() {
             let mut r = nodes[si].lateral_ref_m;
             for (c, &sc) in self.n_slots.iter().enumerate() {
-                let fref = lateral_of(nodes[sc].force_ref_world_n, solver.angle_rad(sc));
-                r -= self.g[si * cap + sc] * (self.y_cur[c] - fref);
+                r -= self.g[si * cap + sc] * (self.y_cur[c] - self.f_ref_lat[sc]);
             }
             for &sk in &self.k_slots {
-                let fref = lateral_of(nodes[sk].force_ref_world_n, solver.angle_rad(sk));
-                r -= self.g[si * cap + sk] * (solver.prescribed_value(sk, 1) - fref);
+                r -= self.g[si * cap + sk] * (solver.prescribed_value(sk, 1) - self.f_ref_lat[sk]);
             }
             self.rhs[a] = r;
         }
