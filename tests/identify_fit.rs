@@ -34,6 +34,18 @@ fn f(v: &serde_json::Value, key: &str) -> f64 {
 }
 
 /// Base forces of a force log CSV.
+/// A CSV log (time in the first column, a header line) with every time shifted by `dt_s`.
+fn shift_times(path: &Path, dt_s: f64) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let mut out = vec![lines.next().unwrap().to_owned()];
+    for l in lines {
+        let (t, rest) = l.split_once(',').unwrap();
+        out.push(format!("{},{rest}", t.parse::<f64>().unwrap() + dt_s));
+    }
+    out.join("\n")
+}
+
 fn forces(path: &Path) -> Vec<(f64, [f64; 2])> {
     let text = std::fs::read_to_string(path).unwrap();
     text.lines()
@@ -218,19 +230,7 @@ fn inconsistent_inputs_are_errors_naming_the_problem() {
     assert!(e.contains("--grid 10,11 has 110 nodes but the tracks have 121 markers"), "{e}");
     // Force and image time stamps that do not overlap.
     let shifted = dir.join("late-log.csv");
-    let late: Vec<String> = std::fs::read_to_string(&log)
-        .unwrap()
-        .lines()
-        .enumerate()
-        .map(|(i, l)| {
-            if i == 0 {
-                return l.to_owned();
-            }
-            let (t, rest) = l.split_once(',').unwrap();
-            format!("{},{rest}", t.parse::<f64>().unwrap() + 100.0)
-        })
-        .collect();
-    std::fs::write(&shifted, late.join("\n")).unwrap();
+    std::fs::write(&shifted, shift_times(&log, 100.0)).unwrap();
     let e = identify_err(&["probe", "--tracks", p(&tracks), "--probe-log", p(&shifted), "--grid", "11,11,0.1,0.1"]);
     assert!(e.contains("probe log covers t = 100..102.5 s but frames cover 0..2.5 s"), "{e}");
     // Too few frames.
@@ -242,20 +242,8 @@ fn inconsistent_inputs_are_errors_naming_the_problem() {
     // The needle fit: a force log from another time, and tracks that miss mesh nodes.
     let nd = dir.join("needle");
     identify(&["synth", "needle", "--t-end-s", "1", "--frame-rate-hz", "10", "--out", p(&nd)]);
-    let force: Vec<String> = std::fs::read_to_string(nd.join("needle-force.csv"))
-        .unwrap()
-        .lines()
-        .enumerate()
-        .map(|(i, l)| {
-            if i == 0 {
-                return l.to_owned();
-            }
-            let (t, rest) = l.split_once(',').unwrap();
-            format!("{},{rest}", t.parse::<f64>().unwrap() + 50.0)
-        })
-        .collect();
     let late_force = dir.join("late-force.csv");
-    std::fs::write(&late_force, force.join("\n")).unwrap();
+    std::fs::write(&late_force, shift_times(&nd.join("needle-force.csv"), 50.0)).unwrap();
     let nt = nd.join("needle-tracks.csv");
     let e = identify_err(&["needle", "--tracks", p(&nt), "--force-log", p(&late_force), "--scene", "paper-phantom"]);
     assert!(e.contains("force log covers t = 50..51 s but frames cover 0..1 s"), "{e}");

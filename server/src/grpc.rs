@@ -174,15 +174,7 @@ pub struct Api {
 impl pb::session_service_server::SessionService for Api {
     async fn create_session(&self, req: Request<pb::CreateSessionRequest>) -> Result<Response<pb::CreateSessionResponse>, Status> {
         let r = req.into_inner();
-        let limits = self.state.limits.mesh;
-        let src = r.scene.clone();
-        let scene = tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
-            .await
-            .map_err(|e| Status::internal(format!("scene task: {e}")))?
-            .map_err(|e| {
-                let msg = format!("{e:#}");
-                if msg.contains("over the limit") { Status::resource_exhausted(msg) } else { Status::invalid_argument(msg) }
-            })?;
+        let scene = load_scene_from_pb(r.scene.clone(), self.state.limits.mesh).await?;
         let rate = if r.tick_rate_hz == 0.0 { scene.params.tick_rate_hz } else { r.tick_rate_hz };
         if !(rate.is_finite() && (500.0..=1000.0).contains(&rate)) {
             return Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")));
@@ -342,6 +334,21 @@ impl pb::control_service_server::ControlService for Api {
         }
         Ok(Response::new(pb::FlipBevelResponse { flips_requested: s.request_bevel_flip_from_io() }))
     }
+}
+
+/// Loads (parses, meshes, factorises) a scene off the async runtime; a scene over the mesh
+/// limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field.
+pub(crate) async fn load_scene_from_pb(
+    src: Option<pb::SceneSource>,
+    limits: needlesim_core::MeshLimits,
+) -> Result<crate::scene::Scene, Status> {
+    tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
+        .await
+        .map_err(|e| Status::internal(format!("scene task: {e}")))?
+        .map_err(|e| {
+            let msg = format!("{e:#}");
+            if msg.contains("over the limit") { Status::resource_exhausted(msg) } else { Status::invalid_argument(msg) }
+        })
 }
 
 /// Sets its flag when dropped (when the task holding it ends, however it ends).

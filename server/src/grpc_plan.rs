@@ -110,15 +110,7 @@ impl pb::planning_service_server::PlanningService for Api {
         let r = req.into_inner();
         let preq = plan_request_from_pb(&r)?;
         let slot = Slot::take()?;
-        let limits = self.state.limits.mesh;
-        let src = r.scene.clone();
-        let scene = tokio::task::spawn_blocking(move || crate::convert::scene_from_pb(src.as_ref(), &limits))
-            .await
-            .map_err(|e| Status::internal(format!("scene task: {e}")))?
-            .map_err(|e| {
-                let msg = format!("{e:#}");
-                if msg.contains("over the limit") { Status::resource_exhausted(msg) } else { Status::invalid_argument(msg) }
-            })?;
+        let scene = crate::grpc::load_scene_from_pb(r.scene.clone(), self.state.limits.mesh).await?;
         // Errors in the problem are statuses, not stream items: the planner's first output is a
         // validated problem or an error naming the field, so it is awaited before answering.
         let (tx, rx) = mpsc::channel(8);
