@@ -97,7 +97,7 @@ fn create(url: &str, example: &str) -> Created {
     let s = |k: &str| v[k].as_str().unwrap_or_else(|| panic!("no string `{k}` in {v}")).to_owned();
     let c = Created { id: s("session_id"), controller: s("controller_token"), observer: s("observer_token") };
     assert!(!c.id.is_empty() && !c.controller.is_empty() && !c.observer.is_empty() && c.controller != c.observer, "{v}");
-    assert_eq!(v["scene"], "paper-phantom");
+    assert_eq!(v["scene"], example);
     c
 }
 
@@ -176,6 +176,24 @@ fn sessions_create_list_close() {
     assert_fails(&args, &needlesim(&args), &["no session", &b.id]);
     run_ok(&["--server", &url, "--token", &ctl1, "sessions", "close", &id1]);
     assert!(listed_ids(&url).is_empty());
+}
+
+/// Issue 8: `needlesim flip-bevel` turns a bevel-tip needle; a symmetric one has nothing to flip.
+#[test]
+fn flip_bevel_command() {
+    let _turn = turn();
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let url = server.url();
+    let bevel = create(&url, "bevel-tip");
+    let out = run_ok(&["--server", &url, "--token", &bevel.controller, "flip-bevel", &bevel.id]);
+    assert!(out.contains("bevel flip 1 requested"), "{out}");
+    let out = run_ok(&["--server", &url, "--token", &bevel.controller, "flip-bevel", &bevel.id]);
+    assert!(out.contains("bevel flip 2 requested"), "{out}");
+    let args = ["--server", url.as_str(), "--token", bevel.observer.as_str(), "flip-bevel", bevel.id.as_str()];
+    assert_fails(&args, &needlesim(&args), &["controller token"]);
+    let rigid = create(&url, "paper-phantom");
+    let args = ["--server", url.as_str(), "--token", rigid.controller.as_str(), "flip-bevel", rigid.id.as_str()];
+    assert_fails(&args, &needlesim(&args), &["symmetric tip"]);
 }
 
 #[test]

@@ -43,6 +43,7 @@ pub async fn run(cli: Cli) -> Result<()> {
         (Command::Simulate(a), Some(scene), traj) => simulate(&conn, &a, scene, traj).await,
         (Command::Drive(a), _, Some(traj)) => drive(&conn, &a, traj).await,
         (Command::Plan(a), ..) => crate::plan::plan(&conn, &a).await,
+        (Command::FlipBevel { id }, ..) => flip_bevel(&conn, &id).await,
         _ => unreachable!("every command is handled above"),
     }
 }
@@ -171,6 +172,16 @@ async fn sessions_close(c: &Conn, id: &str) -> Result<()> {
         .await
         .map_err(|s| c.status_error(&format!("closing session {id}"), Role::Controller, Some(id), &s))?;
     out_line(&format!("closed session {id}"))
+}
+
+async fn flip_bevel(c: &Conn, id: &str) -> Result<()> {
+    check_id(id)?;
+    let r = pb::control_service_client::ControlServiceClient::new(c.channel.clone())
+        .flip_bevel(c.request(pb::FlipBevelRequest { session_id: id.to_owned() })?)
+        .await
+        .map_err(|s| c.status_error(&format!("flipping the bevel of session {id}"), Role::Controller, Some(id), &s))?
+        .into_inner();
+    out_line(&format!("bevel flip {} requested for session {id}", r.flips_requested))
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -45,6 +45,12 @@ pub enum Command {
     /// Plan an insertion on the server (PlanningService.Plan) that reaches a target despite the
     /// tissue deformation; prints progress and the plan, optionally writes its trajectory.
     Plan(PlanArgs),
+    /// Turn a session's needle 180° about its axis: a bevel tip then faces the other side
+    /// (controller token).
+    FlipBevel {
+        /// The session id.
+        id: String,
+    },
 }
 
 #[derive(Debug, Subcommand)]
@@ -67,7 +73,7 @@ pub enum SessionsCmd {
 #[derive(Debug, Args, Clone)]
 #[group(required = true, multiple = false)]
 pub struct SceneArgs {
-    /// A shipped example scene: paper-phantom, fig3-target.
+    /// A shipped example scene: paper-phantom, fig3-target, fig4-steering, bevel-tip.
     #[arg(long, value_name = "NAME")]
     pub example: Option<String>,
     /// A scene file in the TOML format of the README (it cannot reference mesh files).
