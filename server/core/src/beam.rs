@@ -333,14 +333,14 @@ pub struct Coupling {
     pub n_factorisations: u64,
 }
 
-/// One working node as the coupling sees it: its shaft position and frame, its reference
-/// lateral value $g$ and the reference lateral force (world) the reference shape was in
-/// equilibrium with.
+/// One working node as the coupling sees it: its shaft position, its reference lateral value $g$
+/// and the lateral force (in its frame: the contact forces are follower loads, so they turn
+/// with the needle) the reference shape was in equilibrium with.
 #[derive(Debug, Clone, Copy)]
 pub struct CoupledNode {
     pub s_m: f64,
     pub lateral_ref_m: f64,
-    pub force_ref_world_n: [f64; 2],
+    pub force_ref_lateral_n: f64,
 }
 
 impl Coupling {
@@ -451,7 +451,7 @@ impl Coupling {
         }
         // rhs = g - G_NN (b - f_ref_N) - G_NK (f_K - f_ref_K).
         for slot in 0..d {
-            self.f_ref_lat[slot] = lateral_of(nodes[slot].force_ref_world_n, solver.angle_rad(slot));
+            self.f_ref_lat[slot] = nodes[slot].force_ref_lateral_n;
         }
         for (a, &si) in self.n_slots.iter().enumerate() {
             let mut r = nodes[si].lateral_ref_m;
@@ -474,12 +474,6 @@ impl Coupling {
         }
         solver.solve();
     }
-}
-
-/// The lateral component of a world vector in the frame at `angle_rad`.
-fn lateral_of(v: [f64; 2], angle_rad: f64) -> f64 {
-    let (s, c) = angle_rad.sin_cos();
-    -s * v[0] + c * v[1]
 }
 
 #[cfg(test)]

@@ -218,8 +218,8 @@ struct NeedleNode {
     lat_offset_m: f64,
     /// The lateral value that puts the node on the reference shape (flexible needle).
     lateral_ref_m: f64,
-    /// The node's force at the end of the last tick (world), which the reference shape carries.
-    force_ref_n: [f64; 2],
+    /// The node's lateral force (in its frame) the reference shape carries.
+    force_ref_lateral_n: f64,
 }
 
 impl NeedleNode {
@@ -633,7 +633,11 @@ impl Simulation {
         let s_tip = self.params.needle.tip_s_m();
         fx.nodes.clear();
         for nn in &self.nodes {
-            fx.nodes.push(CoupledNode { s_m: nn.s_ref_m(s_tip), lateral_ref_m: nn.lateral_ref_m, force_ref_world_n: nn.force_ref_n });
+            fx.nodes.push(CoupledNode {
+                s_m: nn.s_ref_m(s_tip),
+                lateral_ref_m: nn.lateral_ref_m,
+                force_ref_lateral_n: nn.force_ref_lateral_n,
+            });
         }
         let st = self.solver.stats();
         let version = (st.n_rotations + st.n_added + st.n_removed + st.n_rebuilds, self.tick);
@@ -735,7 +739,7 @@ impl Simulation {
         fx.g_for = None;
         // The settled shape carries these forces: the reference of the next coupled solve.
         for slot in 0..self.nodes.len() {
-            self.nodes[slot].force_ref_n = self.solver.force_world(slot);
+            self.nodes[slot].force_ref_lateral_n = self.solver.force_local(slot)[1];
         }
         let mut gap: f64 = 0.0;
         for (slot, nn) in self.nodes.iter().enumerate() {
@@ -985,7 +989,7 @@ impl Simulation {
                 region,
                 lat_offset_m,
                 lateral_ref_m: lat_offset_m - lat0,
-                force_ref_n: [0.0; 2],
+                force_ref_lateral_n: 0.0,
             };
             if bevel_tip {
                 // The bevel's tip node slides on the bevel face: its lateral force is prescribed.
@@ -1182,7 +1186,7 @@ impl Simulation {
             let p = [x[0] + u[0], x[1] + u[1]];
             let (s, _) = frame.coords(p);
             nn.s_prev_m = s;
-            nn.force_ref_n = f;
+            nn.force_ref_lateral_n = self.solver.force_local(slot)[1];
             min_s = min_s.min(s);
             force[0] -= f[0];
             force[1] -= f[1];
@@ -1309,7 +1313,7 @@ impl Simulation {
                 NodeState::Tip => self.probe.set_value(slot, 0, s_tip - s0),
                 NodeState::Slipping => {}
             }
-            fx.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_world_n: nn.force_ref_n });
+            fx.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_lateral_n: nn.force_ref_lateral_n });
         }
         fx.probe_coupling.update_compliance(&fx.probe_curve, &self.probe, &fx.nodes);
         fx.probe_coupling.solve(&mut self.probe, &fx.nodes);

@@ -297,7 +297,46 @@ fn invalid_parameters_are_named() {
 /// no condition changes), and computing it leaves the simulation untouched.
 #[test]
 fn stiffness_jacobian_predicts_small_moves() {
+    jacobian_case(None, 1e-6, Some(2e-3));
+}
+
+/// The same for a flexible 22-gauge needle: the Jacobian includes the needle's compliance (it is
+/// softer across the needle than the rigid one's) and is symmetric, as an elastic system's must
+/// be. It is the linear coupling's Jacobian, without the geometric stiffness of the axial loads
+/// (a step brings that in by settling the shape, see ARCHITECTURE.md): small translations are
+/// predicted to 1e-3 of their change (measured 3.3e-4), a rotation of the base only to about 20 %
+/// (measured 19 % on this 22-gauge needle under 0.4 N of axial load), which is not asserted.
+#[test]
+fn flexible_stiffness_jacobian_predicts_small_moves() {
+    let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
+    f.flexural_rigidity_nm2 *= 0.0687;
+    let j_flex = jacobian_case(Some(NeedleShape::Flexible(f)), 1e-3, None);
+    let j_rigid = jacobian_case(None, 1e-6, Some(2e-3));
+    // Symmetric to the accuracy of the rotation column (a central difference, h = 1 mrad):
+    // measured 1.7e-5. (With the reference forces held in world axes it was 25 % asymmetric.)
+    for i in 0..3 {
+        for k in 0..3 {
+            let scale = j_flex[i][k].abs().max(j_flex[k][i].abs());
+            assert!((j_flex[i][k] - j_flex[k][i]).abs() <= 1e-4 * scale, "J is symmetric: {j_flex:?}");
+        }
+    }
+    let n = BasePose::new(0.0, 0.0, -1.25).normal();
+    let lat = |j: [[f64; 3]; 3]| n[0] * (j[0][0] * n[0] + j[0][1] * n[1]) + n[1] * (j[1][0] * n[0] + j[1][1] * n[1]);
+    println!("lateral stiffness: rigid {:.1} N/m, flexible 22 G {:.1} N/m", lat(j_rigid), lat(j_flex));
+    assert!(lat(j_flex) < 0.0 && lat(j_flex) > 0.9 * lat(j_rigid), "the flexible needle is softer sideways");
+}
+
+/// Runs the held insertion with `needle` (rigid when None), checks J against small moves to
+/// `tol_translation` (and `tol_rotation`, when given) of the change, and returns J.
+fn jacobian_case(needle: Option<NeedleShape>, tol_translation: f64, tol_rotation: Option<f64>) -> [[f64; 3]; 3] {
     let model = phantom(25);
+    let params = |r: RegionNeedleParams, b: BasePose| {
+        let mut p = params(r, b);
+        if let Some(n) = needle {
+            p.needle = n;
+        }
+        p
+    };
     let a0 = -1.25f64;
     let base_at = |d: f64, a: f64| BasePose::new(0.04 + (d - 0.1) * a.cos(), 0.1 + (d - 0.1) * a.sin(), a);
     let mut poses: Vec<BasePose> = (1..=3500).map(|k| base_at(-0.005 + 0.04 * k as f64 / 3500.0, a0)).collect();
@@ -322,7 +361,10 @@ fn stiffness_jacobian_predicts_small_moves() {
     // Translations: the held problem is linear in them.
     // (move, tolerance relative to the change): translations are exact; the rotation column is
     // a central difference and the move itself has second-order terms.
-    for (k, dq, tol) in [(0, [2e-6, 0.0, 0.0], 1e-6), (1, [0.0, -3e-6, 0.0], 1e-6), (2, [0.0, 0.0, 2e-4], 2e-3)] {
+    let moves =
+        [(0, [2e-6, 0.0, 0.0], Some(tol_translation)), (1, [0.0, -3e-6, 0.0], Some(tol_translation)), (2, [0.0, 0.0, 2e-4], tol_rotation)];
+    for (k, dq, tol) in moves {
+        let Some(tol) = tol else { continue };
         let mut sim = Simulation::new(model.clone(), params(RegionNeedleParams::default(), base_at(-0.005, a0))).unwrap();
         let mut poses: Vec<BasePose> = (1..=3500).map(|k| base_at(-0.005 + 0.04 * k as f64 / 3500.0, a0)).collect();
         poses.extend(std::iter::repeat_n(*poses.last().unwrap(), 300));
@@ -344,4 +386,5 @@ fn stiffness_jacobian_predicts_small_moves() {
     let n = a.pose().normal();
     let lateral_stiffness = n[0] * (j[0][0] * n[0] + j[0][1] * n[1]) + n[1] * (j[1][0] * n[0] + j[1][1] * n[1]);
     assert!(lateral_stiffness < 0.0, "a lateral push meets a restoring force: {lateral_stiffness}");
+    j
 }
