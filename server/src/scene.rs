@@ -393,6 +393,17 @@ fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Sc
     let tissue = Arc::new(TissueModel::new(mesh, mats, &fixed).with_context(|| format!("tissue ({n_fixed} fixed nodes)"))?);
     let mean_edge = mean_edge_m(tissue.mesh());
     let n = &f.needle;
+    if n.model == NeedleModelSpec::Flexible
+        && let Some(r) = n.capture_radius_m
+        && r < 0.45 * mean_edge
+    {
+        // A curved path runs between node columns: with a smaller radius the tip can pass
+        // between nodes without cutting any.
+        tracing::warn!(
+            "needle.capture_radius_m = {r} m is less than half the mean edge length ({:.4} m): a flexible needle's curved path may pass between nodes",
+            0.5 * mean_edge
+        );
+    }
     let params = SimParams {
         needle: n.shape()?,
         initial_pose: BasePose::new(n.base[0], n.base[1], n.base[2]),
