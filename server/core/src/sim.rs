@@ -814,17 +814,8 @@ impl Simulation {
         for slot in 0..self.nodes.len() {
             let nn = self.nodes[slot];
             let x = self.model.mesh().nodes_m()[nn.node_idx];
-            let (s0, lat0) = self.node_frame(slot).coords(x);
-            let lateral = nn.lat_offset_m - lat0;
-            self.nodes[slot].lateral_ref_m = lateral;
-            if self.solver.condition(slot, 1) == Condition::Displacement {
-                self.solver.set_value(slot, 1, lateral);
-            }
-            match nn.state {
-                NodeState::Stuck => self.solver.set_value(slot, 0, nn.anchor_s_m - s0),
-                NodeState::Tip => self.solver.set_value(slot, 0, s_tip - s0),
-                NodeState::Slipping => {}
-            }
+            let frame = self.node_frame(slot);
+            self.nodes[slot].lateral_ref_m = prescribe(&mut self.solver, slot, &nn, frame, x, s_tip);
         }
     }
 
@@ -1273,13 +1264,7 @@ impl Simulation {
             let nn = self.nodes[slot];
             self.probe.set_angle(slot, shape.frame_angle_at(pose, nn.s_prev_m))?;
             let x = self.model.mesh().nodes_m()[nn.node_idx];
-            let (s0, lat0) = shape.project(pose, x);
-            self.probe.set_value(slot, 1, -lat0);
-            match nn.state {
-                NodeState::Stuck => self.probe.set_value(slot, 0, nn.anchor_s_m - s0),
-                NodeState::Tip => self.probe.set_value(slot, 0, s_tip - s0),
-                NodeState::Slipping => {}
-            }
+            prescribe(&mut self.probe, slot, &nn, Frame::rigid(pose), x, s_tip);
         }
         self.probe.solve();
         Ok(self.wrench_of(&self.probe, pose))
@@ -1303,16 +1288,7 @@ impl Simulation {
             }
             let frame = Frame::new(fx.probe_curve.point_at(s_ref), s_ref, self.probe.angle_rad(slot));
             let x = self.model.mesh().nodes_m()[nn.node_idx];
-            let (s0, lat0) = frame.coords(x);
-            let lateral = nn.lat_offset_m - lat0;
-            if self.probe.condition(slot, 1) == Condition::Displacement {
-                self.probe.set_value(slot, 1, lateral);
-            }
-            match nn.state {
-                NodeState::Stuck => self.probe.set_value(slot, 0, nn.anchor_s_m - s0),
-                NodeState::Tip => self.probe.set_value(slot, 0, s_tip - s0),
-                NodeState::Slipping => {}
-            }
+            let lateral = prescribe(&mut self.probe, slot, &nn, frame, x, s_tip);
             fx.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_lateral_n: nn.force_ref_lateral_n });
         }
         fx.probe_coupling.update_compliance(&fx.probe_curve, &self.probe, &fx.nodes);
@@ -1401,6 +1377,24 @@ pub struct StateSnapshot {
     pub conditions: Vec<LocalCondition>,
     pub loads_n: Vec<(usize, [f64; 2])>,
     pub needle_nodes: Vec<NeedleNodeOut>,
+}
+
+/// Sets the prescribed values of working slot `slot` in `solver` from the node's reference
+/// position `x_m` seen in `frame`: across the shaft (when that DOF is displacement-prescribed)
+/// the value that puts the node at its lateral offset from the needle, along it the anchor of a
+/// stuck node or the tip's arc length for the node the tip carries. Returns the lateral value.
+fn prescribe(solver: &mut MixedSolver, slot: usize, nn: &NeedleNode, frame: Frame, x_m: [f64; 2], s_tip_m: f64) -> f64 {
+    let (s0, lat0) = frame.coords(x_m);
+    let lateral = nn.lat_offset_m - lat0;
+    if solver.condition(slot, 1) == Condition::Displacement {
+        solver.set_value(slot, 1, lateral);
+    }
+    match nn.state {
+        NodeState::Stuck => solver.set_value(slot, 0, nn.anchor_s_m - s0),
+        NodeState::Tip => solver.set_value(slot, 0, s_tip_m - s0),
+        NodeState::Slipping => {}
+    }
+    lateral
 }
 
 /// The triangle containing `p` and its barycentric coordinates (a setup-time scan).
