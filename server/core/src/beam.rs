@@ -17,7 +17,12 @@
 //! compliance of the discrete beam
 //! $$G_{ij} = \frac{1}{EI}\sum_{k \le \min(m_i, m_j)} w_k\,\big((p_i - x_k)\times n_i\big)\big((p_j - x_k)\times n_j\big),$$
 //! ($m_i$ the link of point $i$), computed in $O(N + d^2)$ from prefix sums of $w_k$, $w_k x_k$ and
-//! $w_k x_k x_k^\top$. Each tissue node on the needle has its lateral displacement prescribed so
+//! $w_k x_k x_k^\top$. The loads the shape carries add their geometric stiffness: with
+//! $S_i = \sum_{j:\,m_j \ge i} F_j$ the load beyond joint $i$ (follower loads, turning with their
+//! link), $\partial M_k/\partial\beta_i = [i > k]\,(x_i - x_k)\cdot S_i$, a strictly upper triangular
+//! $T$; the tangent compliance is $G = B^\top (I - C T)^{-1} C B$ with $B_{kj} = [k \le m_j](p_j - x_k)\times n_j$,
+//! $C = \mathrm{diag}(w_k/EI)$, and the triangular solve takes $O(N)$ per column with suffix sums,
+//! so $G$ costs $O(N d + d^2)$. Each tissue node on the needle has its lateral displacement prescribed so
 //! that it lies on the needle: with $g$ the values that put it on the reference shape (the last
 //! equilibrium) and $f$ the lateral forces of the needle on the tissue,
 //! $$v = g - G_{NN}(f_N - f^{ref}_N) - G_{NK}(f_K - f^{ref}_K),\qquad f_N = A v + b,$$
@@ -62,6 +67,16 @@ pub struct NeedleCurve {
     p0: Vec<f64>,
     p1: Vec<[f64; 2]>,
     p2: Vec<[f64; 3]>,
+    /// Scratch of the tangent compliance: the load beyond each joint, a column of joint
+    /// rotations and its prefix sums.
+    beyond: Vec<[f64; 2]>,
+    col: Vec<f64>,
+    q0: Vec<f64>,
+    q1: Vec<[f64; 2]>,
+    point_terms: Vec<(f64, [f64; 2], usize)>,
+    /// Joint positions relative to the base and joint compliances $w_k/EI$ (scratch).
+    rel: Vec<[f64; 2]>,
+    joint_c: Vec<f64>,
     /// Fixed-point iterations of the last shape update, and updates that hit the bound.
     pub last_iterations: usize,
     pub unconverged_updates: u64,
@@ -84,6 +99,13 @@ impl NeedleCurve {
             p0: vec![0.0; n],
             p1: vec![[0.0; 2]; n],
             p2: vec![[0.0; 3]; n],
+            beyond: vec![[0.0; 2]; n],
+            col: vec![0.0; n],
+            q0: vec![0.0; n],
+            q1: vec![[0.0; 2]; n],
+            point_terms: Vec::with_capacity(max_loads),
+            rel: vec![[0.0; 2]; n],
+            joint_c: vec![0.0; n],
             last_iterations: 0,
             unconverged_updates: 0,
         };
@@ -150,6 +172,72 @@ impl NeedleCurve {
         self.p0.copy_from_slice(&other.p0);
         self.p1.copy_from_slice(&other.p1);
         self.p2.copy_from_slice(&other.p2);
+    }
+
+    /// The tangent lateral compliance (see the module docs) between the shaft points
+    /// `points[i] = (s_m, frame angle)`, with the needle carrying `loads[j] = (s_m, force on the
+    /// needle in the frame of that point: along, across)`; written row-major into `out` with
+    /// row stride `stride`. $O(N d + d^2)$, no allocation. With no loads it equals
+    /// [`Self::compliance`].
+    pub fn tangent_compliance_into(&mut self, points: &[(f64, f64)], loads: &[(f64, [f64; 2])], out: &mut [f64], stride: usize) {
+        let n = self.joint_rad.len();
+        // The load beyond each joint (world), follower loads turned into world axes.
+        for v in self.beyond.iter_mut() {
+            *v = [0.0; 2];
+        }
+        for (k, &(s, f_local)) in loads.iter().enumerate() {
+            let (sn, cs) = points[k].1.sin_cos();
+            let f = [f_local[0] * cs - f_local[1] * sn, f_local[0] * sn + f_local[1] * cs];
+            let m = self.link_of(s);
+            self.beyond[m] = [self.beyond[m][0] + f[0], self.beyond[m][1] + f[1]];
+        }
+        for k in (0..n.saturating_sub(1)).rev() {
+            self.beyond[k] = [self.beyond[k][0] + self.beyond[k + 1][0], self.beyond[k][1] + self.beyond[k + 1][1]];
+        }
+        self.point_terms.clear();
+        for &(s, a) in points {
+            let t = self.compliance_terms(s, a);
+            if self.point_terms.len() < self.point_terms.capacity() {
+                self.point_terms.push(t);
+            }
+        }
+        let b = self.base.position_m();
+        for k in 0..n {
+            self.rel[k] = [self.pts[k][0] - b[0], self.pts[k][1] - b[1]];
+            self.joint_c[k] = self.weight(k) / self.ei_nm2;
+        }
+        let m_max = self.point_terms.iter().map(|t| t.2).max().unwrap_or(0);
+        for j in 0..self.point_terms.len() {
+            let (aj, cj, mj) = self.point_terms[j];
+            // Back substitution of (I - C T) beta = C B e_j from joint m_j down (beyond it both
+            // the right-hand side and the solution vanish):
+            // beta_k = rhs_k + c_k (sum_{i>k} (r_i . S_i) beta_i - r_k . sum_{i>k} S_i beta_i).
+            let (mut acc_s, mut acc_v) = (0.0, [0.0; 2]);
+            for k in (0..=mj).rev() {
+                let (rk, ck) = (self.rel[k], self.joint_c[k]);
+                let rhs = ck * (aj - (cj[0] * rk[0] + cj[1] * rk[1]));
+                let beta = rhs + ck * (acc_s - (rk[0] * acc_v[0] + rk[1] * acc_v[1]));
+                self.col[k] = beta;
+                let sk = self.beyond[k];
+                acc_s += (rk[0] * sk[0] + rk[1] * sk[1]) * beta;
+                acc_v = [acc_v[0] + sk[0] * beta, acc_v[1] + sk[1] * beta];
+            }
+            // Lateral displacement of point i: sum_{k <= m_i} (a_i - c_i . r_k) beta_k.
+            let (mut q0, mut q1) = (0.0, [0.0; 2]);
+            for k in 0..=m_max {
+                let rk = self.rel[k];
+                if k > mj {
+                    self.col[k] = 0.0;
+                }
+                q0 += self.col[k];
+                q1 = [q1[0] + rk[0] * self.col[k], q1[1] + rk[1] * self.col[k]];
+                self.q0[k] = q0;
+                self.q1[k] = q1;
+            }
+            for (i, &(ai, ci, mi)) in self.point_terms.iter().enumerate() {
+                out[i * stride + j] = ai * self.q0[mi] - (ci[0] * self.q1[mi][0] + ci[1] * self.q1[mi][1]);
+            }
+        }
     }
 
     /// Moves the clamp to `base`; the shape moves with it rigidly (the joint rotations stay).
@@ -267,7 +355,7 @@ impl NeedleCurve {
                     let (s, f_given) = self.loads[j - 1];
                     let p = self.point_at(s);
                     let f = if follower {
-                        let (sn, cs) = self.tangent_angle_at(s).sin_cos();
+                        let (sn, cs) = self.link_rad[self.link_of(s)].sin_cos();
                         [f_given[0] * cs - f_given[1] * sn, f_given[0] * sn + f_given[1] * cs]
                     } else {
                         f_given
@@ -312,7 +400,8 @@ pub struct Coupling {
     k_slots: Vec<usize>,
     /// $G$ over all slots (row-major, stride `cap`).
     g: Vec<f64>,
-    terms: Vec<(f64, [f64; 2], usize)>,
+    points: Vec<(f64, f64)>,
+    loads: Vec<(f64, [f64; 2])>,
     /// $I + G_{NN}A$, then its LU factors (column-major, leading dimension `cap`).
     m: Vec<f64>,
     /// $G_{NN}$ and $A$ gathered (column-major, leading dimension `cap`) for the product.
@@ -334,13 +423,13 @@ pub struct Coupling {
 }
 
 /// One working node as the coupling sees it: its shaft position, its reference lateral value $g$
-/// and the lateral force (in its frame: the contact forces are follower loads, so they turn
-/// with the needle) the reference shape was in equilibrium with.
+/// and the force on the tissue (in its frame, along and across: the contact forces are follower
+/// loads, so they turn with the needle) the reference shape was in equilibrium with.
 #[derive(Debug, Clone, Copy)]
 pub struct CoupledNode {
     pub s_m: f64,
     pub lateral_ref_m: f64,
-    pub force_ref_lateral_n: f64,
+    pub force_ref_local_n: [f64; 2],
 }
 
 impl Coupling {
@@ -354,7 +443,8 @@ impl Coupling {
             n_slots: Vec::with_capacity(cap),
             k_slots: Vec::with_capacity(cap),
             g: vec![0.0; cap * cap],
-            terms: Vec::with_capacity(cap),
+            points: Vec::with_capacity(cap),
+            loads: Vec::with_capacity(cap),
             m: vec![0.0; cap * cap],
             g_nn: vec![0.0; cap * cap],
             a_nn: vec![0.0; cap * cap],
@@ -372,25 +462,16 @@ impl Coupling {
 
     /// Recomputes $G$ for the solver's slots on `curve` (call after the shape, the frames or the
     /// slots changed). $O(d^2)$.
-    pub fn update_compliance(&mut self, curve: &NeedleCurve, solver: &MixedSolver, nodes: &[CoupledNode]) {
-        let d = solver.n_nodes();
-        self.terms.clear();
+    pub fn update_compliance(&mut self, curve: &mut NeedleCurve, solver: &MixedSolver, nodes: &[CoupledNode]) {
+        let d = solver.n_nodes().min(nodes.len());
+        self.points.clear();
+        self.loads.clear();
         for (i, node) in nodes.iter().enumerate().take(d) {
-            self.terms.push(curve.compliance_terms(node.s_m, solver.angle_rad(i)));
+            self.points.push((node.s_m, solver.angle_rad(i)));
+            // The needle carries the opposite of the force on the tissue.
+            self.loads.push((node.s_m, [-node.force_ref_local_n[0], -node.force_ref_local_n[1]]));
         }
-        for i in 0..d {
-            for j in i..d {
-                let g = curve.compliance_from_terms(self.terms[i], self.terms[j]);
-                self.g[i * self.cap + j] = g;
-                self.g[j * self.cap + i] = g;
-            }
-        }
-        self.shape_version += 1;
-    }
-
-    /// Takes $G$ from `other` (the needle and its frames moved rigidly leave $G$ unchanged).
-    pub fn copy_compliance_from(&mut self, other: &Coupling) {
-        self.g.copy_from_slice(&other.g);
+        curve.tangent_compliance_into(&self.points, &self.loads, &mut self.g, self.cap);
         self.shape_version += 1;
     }
 
@@ -451,7 +532,7 @@ impl Coupling {
         }
         // rhs = g - G_NN (b - f_ref_N) - G_NK (f_K - f_ref_K).
         for slot in 0..d {
-            self.f_ref_lat[slot] = nodes[slot].force_ref_lateral_n;
+            self.f_ref_lat[slot] = nodes[slot].force_ref_local_n[1];
         }
         for (a, &si) in self.n_slots.iter().enumerate() {
             let mut r = nodes[si].lateral_ref_m;
@@ -529,6 +610,56 @@ mod tests {
         let axial = d[0] * t[0] + d[1] * t[1];
         assert!((lateral / l - 0.30172).abs() < 5e-4, "lateral {}", lateral / l);
         assert!((1.0 - axial / l - 0.05643).abs() < 5e-4, "shortening {}", 1.0 - axial / l);
+    }
+
+    /// The tangent compliance is the derivative of the settled shape: a small extra lateral
+    /// load at point j moves point i by G_ij times it, with 0.4 N of axial follower load on a thin
+    /// needle (where the geometric stiffness changes G by tens of per cent).
+    #[test]
+    fn tangent_compliance_matches_finite_differences_of_the_shape() {
+        let ei = 0.0022;
+        let pts = [(0.04, 0.0), (0.07, 0.0), (0.1, 0.0)];
+        let base_loads = [(0.04, [-0.1, 0.02]), (0.07, [-0.1, -0.01]), (0.1, [-0.2, 0.03])];
+        let settle = |extra: Option<(usize, f64)>| {
+            let mut c = NeedleCurve::new(&needle(ei, 50), BasePose::new(0.0, 0.0, 0.0), 8);
+            for step in 1..=10 {
+                let a = step as f64 / 10.0;
+                let loads = base_loads.iter().enumerate().map(|(k, &(s, f))| {
+                    let add = extra.filter(|e| e.0 == k).map_or(0.0, |e| e.1);
+                    (s, [a * f[0], a * f[1] + add])
+                });
+                assert!(c.update_shape(loads, true));
+            }
+            c
+        };
+        let mut c0 = settle(None);
+        // Frames along the settled shape, loads in those frames.
+        let points: Vec<(f64, f64)> = pts.iter().map(|&(s, _)| (s, c0.link_rad[c0.link_of(s)])).collect();
+        let mut g = [0.0; 9];
+        c0.tangent_compliance_into(&points, &base_loads, &mut g, 3);
+        let mut g_plain = [0.0; 9];
+        for i in 0..3 {
+            for j in 0..3 {
+                g_plain[i * 3 + j] = c0.compliance(points[i].0, points[i].1, points[j].0, points[j].1);
+            }
+        }
+        let eps = 1e-5;
+        for j in 0..3 {
+            let c1 = settle(Some((j, eps)));
+            for i in 0..3 {
+                let (p0, p1) = (c0.point_at(points[i].0), c1.point_at(points[i].0));
+                let nrm = [-points[i].1.sin(), points[i].1.cos()];
+                let fd = ((p1[0] - p0[0]) * nrm[0] + (p1[1] - p0[1]) * nrm[1]) / eps;
+                let (gt, gp) = (g[i * 3 + j], g_plain[i * 3 + j]);
+                println!("G[{i}][{j}]: tangent {gt:.6e}, plain {gp:.6e}, finite difference {fd:.6e}");
+                assert!(
+                    (gt - fd).abs() < 2e-3 * fd.abs().max(1e-3 * g[8].abs()),
+                    "G[{i}][{j}]: tangent {gt:.6e}, plain {gp:.6e}, finite difference {fd:.6e}"
+                );
+            }
+        }
+        // The axial load matters here: the plain compliance is off by more than 5 %.
+        assert!((g_plain[8] - g[8]).abs() > 0.05 * g[8].abs(), "plain {} tangent {}", g_plain[8], g[8]);
     }
 
     #[test]

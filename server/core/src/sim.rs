@@ -218,8 +218,8 @@ struct NeedleNode {
     lat_offset_m: f64,
     /// The lateral value that puts the node on the reference shape (flexible needle).
     lateral_ref_m: f64,
-    /// The node's lateral force (in its frame) the reference shape carries.
-    force_ref_lateral_n: f64,
+    /// The node's force on the tissue (in its frame) the reference shape carries.
+    force_ref_local_n: [f64; 2],
 }
 
 impl NeedleNode {
@@ -235,10 +235,11 @@ impl NeedleNode {
 
 /// A frame change from the needle's bending smaller than this (rad) is not applied to a working
 /// node (each one costs an $O(d^2)$ update): the lateral direction is then off by at most this
-/// angle, a position error of this times the node's slip within one tick (0.1 nm at 10 mm/s and
+/// angle, a position error of this times the node's slip within one tick (1 nm at 10 mm/s and
 /// 1 kHz), never accumulated because the values are recomputed in the node's frame every tick.
-/// Rotations of the base are applied exactly, as for the rigid needle.
-const FRAME_TOL_RAD: f64 = 1e-5;
+/// Rotations of the base are applied exactly, as for the rigid needle. (At 1e-5 rad a bending
+/// needle turned ~19 frames a tick on the Fig. 4 path, 100 × 100: twice the step time.)
+const FRAME_TOL_RAD: f64 = 1e-4;
 
 /// Largest lateral distance (m) between a needle node and the settled needle shape left without
 /// another solve on the new shape (1 µm: a thousandth of a typical capture radius).
@@ -454,7 +455,8 @@ impl Simulation {
         let flex = params.needle.flexible().map(|f| {
             let curve = NeedleCurve::new(f, params.initial_pose, cap);
             Box::new(Flex {
-                probe_curve: curve.clone(),
+                // Built, not cloned: a clone's scratch vectors have no spare capacity.
+                probe_curve: NeedleCurve::new(f, params.initial_pose, cap),
                 curve,
                 coupling: Coupling::new(cap),
                 probe_coupling: Coupling::new(cap),
@@ -633,16 +635,12 @@ impl Simulation {
         let s_tip = self.params.needle.tip_s_m();
         fx.nodes.clear();
         for nn in &self.nodes {
-            fx.nodes.push(CoupledNode {
-                s_m: nn.s_ref_m(s_tip),
-                lateral_ref_m: nn.lateral_ref_m,
-                force_ref_lateral_n: nn.force_ref_lateral_n,
-            });
+            fx.nodes.push(CoupledNode { s_m: nn.s_ref_m(s_tip), lateral_ref_m: nn.lateral_ref_m, force_ref_local_n: nn.force_ref_local_n });
         }
         let st = self.solver.stats();
         let version = (st.n_rotations + st.n_added + st.n_removed + st.n_rebuilds, self.tick);
         if fx.g_for != Some(version) {
-            fx.coupling.update_compliance(&fx.curve, &self.solver, &fx.nodes);
+            fx.coupling.update_compliance(&mut fx.curve, &self.solver, &fx.nodes);
             fx.g_for = Some(version);
         }
         fx.coupling.solve(&mut self.solver, &fx.nodes);
@@ -739,7 +737,7 @@ impl Simulation {
         fx.g_for = None;
         // The settled shape carries these forces: the reference of the next coupled solve.
         for slot in 0..self.nodes.len() {
-            self.nodes[slot].force_ref_lateral_n = self.solver.force_local(slot)[1];
+            self.nodes[slot].force_ref_local_n = self.solver.force_local(slot);
         }
         let mut gap: f64 = 0.0;
         for (slot, nn) in self.nodes.iter().enumerate() {
@@ -980,7 +978,7 @@ impl Simulation {
                 region,
                 lat_offset_m,
                 lateral_ref_m: lat_offset_m - lat0,
-                force_ref_lateral_n: 0.0,
+                force_ref_local_n: [0.0; 2],
             };
             if bevel_tip {
                 // The bevel's tip node slides on the bevel face: its lateral force is prescribed.
@@ -1177,7 +1175,7 @@ impl Simulation {
             let p = [x[0] + u[0], x[1] + u[1]];
             let (s, _) = frame.coords(p);
             nn.s_prev_m = s;
-            nn.force_ref_lateral_n = self.solver.force_local(slot)[1];
+            nn.force_ref_local_n = self.solver.force_local(slot);
             min_s = min_s.min(s);
             force[0] -= f[0];
             force[1] -= f[1];
@@ -1289,9 +1287,9 @@ impl Simulation {
             let frame = Frame::new(fx.probe_curve.point_at(s_ref), s_ref, self.probe.angle_rad(slot));
             let x = self.model.mesh().nodes_m()[nn.node_idx];
             let lateral = prescribe(&mut self.probe, slot, &nn, frame, x, s_tip);
-            fx.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_lateral_n: nn.force_ref_lateral_n });
+            fx.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_local_n: nn.force_ref_local_n });
         }
-        fx.probe_coupling.update_compliance(&fx.probe_curve, &self.probe, &fx.nodes);
+        fx.probe_coupling.update_compliance(&mut fx.probe_curve, &self.probe, &fx.nodes);
         fx.probe_coupling.solve(&mut self.probe, &fx.nodes);
         Ok(self.wrench_of(&self.probe, pose))
     }

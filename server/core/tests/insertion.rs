@@ -300,26 +300,17 @@ fn stiffness_jacobian_predicts_small_moves() {
     jacobian_case(None, 1e-6, Some(2e-3));
 }
 
-/// The same for a flexible 22-gauge needle: the Jacobian includes the needle's compliance (it is
-/// softer across the needle than the rigid one's) and is symmetric, as an elastic system's must
-/// be. It is the linear coupling's Jacobian, without the geometric stiffness of the axial loads
-/// (a step brings that in by settling the shape, see ARCHITECTURE.md): small translations are
-/// predicted to 1e-3 of their change (measured 3.3e-4), a rotation of the base only to about 20 %
-/// (measured 19 % on this 22-gauge needle under 0.4 N of axial load), which is not asserted.
+/// The same for a flexible 22-gauge needle: the Jacobian includes the needle's compliance and
+/// the geometric stiffness of the loads it carries (it is softer across the needle than the
+/// rigid one's), so a step — which also settles the shape — follows it for translations and
+/// rotations alike. (The contact forces are follower loads, not conservative: J need not be
+/// symmetric, and is not, by about 1 %.)
 #[test]
 fn flexible_stiffness_jacobian_predicts_small_moves() {
     let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
     f.flexural_rigidity_nm2 *= 0.0687;
-    let j_flex = jacobian_case(Some(NeedleShape::Flexible(f)), 1e-3, None);
+    let j_flex = jacobian_case(Some(NeedleShape::Flexible(f)), 1e-3, Some(2e-3));
     let j_rigid = jacobian_case(None, 1e-6, Some(2e-3));
-    // Symmetric to the accuracy of the rotation column (a central difference, h = 1 mrad):
-    // measured 1.7e-5. (With the reference forces held in world axes it was 25 % asymmetric.)
-    for i in 0..3 {
-        for k in 0..3 {
-            let scale = j_flex[i][k].abs().max(j_flex[k][i].abs());
-            assert!((j_flex[i][k] - j_flex[k][i]).abs() <= 1e-4 * scale, "J is symmetric: {j_flex:?}");
-        }
-    }
     let n = BasePose::new(0.0, 0.0, -1.25).normal();
     let lat = |j: [[f64; 3]; 3]| n[0] * (j[0][0] * n[0] + j[0][1] * n[1]) + n[1] * (j[1][0] * n[0] + j[1][1] * n[1]);
     println!("lateral stiffness: rigid {:.1} N/m, flexible 22 G {:.1} N/m", lat(j_rigid), lat(j_flex));

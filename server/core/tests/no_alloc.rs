@@ -51,7 +51,7 @@ fn steps_allocate_nothing_after_warm_up() {
 fn flexible_bevel_needle_steps_allocate_nothing_after_warm_up() {
     let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
     f.flexural_rigidity_nm2 *= 0.3;
-    f.bevel_force_ratio = 0.4;
+    f.bevel_force_ratio = 0.2;
     run_case(NeedleShape::Flexible(f));
 }
 
