@@ -34,6 +34,13 @@ fn f(v: &serde_json::Value, key: &str) -> f64 {
 }
 
 /// Base forces of a force log CSV.
+/// `identify probe` on the probe-tracks.csv and probe-log.csv that `identify synth probe` wrote
+/// into `dir`, against the phantom model `model` (`--grid …` or `--scene …`).
+fn fit_probe(dir: &Path, model: &[&str]) -> serde_json::Value {
+    let (tracks, log) = (dir.join("probe-tracks.csv"), dir.join("probe-log.csv"));
+    identify(&[&["probe", "--tracks", p(&tracks), "--probe-log", p(&log)][..], model].concat())
+}
+
 /// A CSV log (time in the first column, a header line) with every time shifted by `dt_s`.
 fn shift_times(path: &Path, dt_s: f64) -> String {
     let text = std::fs::read_to_string(path).unwrap();
@@ -62,8 +69,7 @@ fn probing_with_one_percent_noise_recovers_e_within_2_percent_and_nu_within_0_02
     let dir = TempDir::new("identify-probe");
     let synth = identify(&["synth", "probe", "--young-modulus-pa", "25000", "--poisson-ratio", "0.42", "--out", p(dir.path())]);
     let grid = synth["grid_arg"].as_str().unwrap().to_owned();
-    let fit =
-        identify(&["probe", "--tracks", p(&dir.join("probe-tracks.csv")), "--probe-log", p(&dir.join("probe-log.csv")), "--grid", &grid]);
+    let fit = fit_probe(dir.path(), &["--grid", &grid]);
     let (e, se, nu, snu) =
         (f(&fit, "young_modulus_pa"), f(&fit, "young_modulus_sigma_pa"), f(&fit, "poisson_ratio"), f(&fit, "poisson_ratio_sigma"));
     eprintln!("E = {e:.1} ± {se:.1} Pa (truth 25000), ν = {nu:.4} ± {snu:.4} (truth 0.42), {fit}");
@@ -77,15 +83,7 @@ fn probing_with_one_percent_noise_recovers_e_within_2_percent_and_nu_within_0_02
     let noisy = dir.join("noisy");
     let args = ["synth", "probe", "--young-modulus-pa", "25000", "--poisson-ratio", "0.42", "--marker-noise-px", "0.25"];
     identify(&[&args[..], &["--out", p(&noisy)]].concat());
-    let fit = identify(&[
-        "probe",
-        "--tracks",
-        p(&noisy.join("probe-tracks.csv")),
-        "--probe-log",
-        p(&noisy.join("probe-log.csv")),
-        "--grid",
-        &grid,
-    ]);
+    let fit = fit_probe(&noisy, &["--grid", &grid]);
     let (e, nu, snu) = (f(&fit, "young_modulus_pa"), f(&fit, "poisson_ratio"), f(&fit, "poisson_ratio_sigma"));
     eprintln!("1 % marker noise: E = {e:.1} Pa (truth 25000), ν = {nu:.4} ± {snu:.4} (truth 0.42)");
     assert!((e / 25e3 - 1.0).abs() < 0.02 && (nu - 0.42).abs() < 0.02, "{fit}");
@@ -93,15 +91,7 @@ fn probing_with_one_percent_noise_recovers_e_within_2_percent_and_nu_within_0_02
     // the model keeps the phantom's resolution, the markers are a subset of its nodes.
     let sparse = dir.join("sparse");
     identify(&["synth", "probe", "--nx", "19", "--ny", "19", "--marker-stride", "3", "--out", p(&sparse)]);
-    let fit = identify(&[
-        "probe",
-        "--tracks",
-        p(&sparse.join("probe-tracks.csv")),
-        "--probe-log",
-        p(&sparse.join("probe-log.csv")),
-        "--scene",
-        "paper-phantom",
-    ]);
+    let fit = fit_probe(&sparse, &["--scene", "paper-phantom"]);
     let (e, nu) = (f(&fit, "young_modulus_pa"), f(&fit, "poisson_ratio"));
     eprintln!("49 markers on the paper-phantom mesh: E = {e:.1} Pa (truth 30000), ν = {nu:.4} (truth 0.45)");
     assert!((e / 30e3 - 1.0).abs() < 0.02 && (nu - 0.45).abs() < 0.02, "{fit}");
