@@ -3,28 +3,13 @@
 //! the path towards its bevel side and a 180° flip reverses the curvature, and the needle nodes
 //! lie on the bent shape.
 
-use std::sync::Arc;
+mod common;
 
-use needlesim_core::compliance::TissueModel;
+use common::phantom;
 use needlesim_core::sim::{SimParams, Simulation, StepOutput};
-use needlesim_core::{
-    BasePose, FlexibleNeedle, Material, MaterialMap, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle,
-};
+use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape, RegionNeedleParams, RigidNeedle};
 
 const FRAC_PI_2: f64 = std::f64::consts::FRAC_PI_2;
-
-/// The paper's phantom: 0.1 m square, n × n nodes, PVC-like, fixed along the bottom.
-fn phantom(n: usize) -> Arc<TissueModel> {
-    let mesh = RectMeshParams::new(n, n, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-    let mats = MaterialMap::per_region(
-        &mesh,
-        &[Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 }],
-        PlaneModel::Stress { thickness_m: 0.01 },
-    )
-    .unwrap();
-    let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
-    Arc::new(TissueModel::new(mesh, mats, &fixed).unwrap())
-}
 
 fn params(needle: NeedleShape) -> SimParams {
     SimParams {

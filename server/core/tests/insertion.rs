@@ -2,29 +2,13 @@
 //! re-insertion, frames of a rotating needle against a fresh static solve, bad poses, and the
 //! guarantee that no step refactorises the stiffness.
 
-use std::sync::Arc;
+mod common;
 
-use needlesim_core::compliance::TissueModel;
+use common::phantom;
 use needlesim_core::sim::{SimParams, Simulation, StepOutput, TargetParams};
-use needlesim_core::{
-    BasePose, Material, MaterialMap, MeshLimits, NeedleShape, NodeCondition, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle,
-    StaticProblem,
-};
+use needlesim_core::{BasePose, NeedleShape, NodeCondition, RegionNeedleParams, RigidNeedle, StaticProblem};
 
 const FRAC_PI_2: f64 = std::f64::consts::FRAC_PI_2;
-
-/// The paper's phantom: 0.1 m square, 19 × 19 nodes, PVC-like, fixed along the bottom.
-fn phantom(n: usize) -> Arc<TissueModel> {
-    let mesh = RectMeshParams::new(n, n, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-    let mats = MaterialMap::per_region(
-        &mesh,
-        &[Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 }],
-        PlaneModel::Stress { thickness_m: 0.01 },
-    )
-    .unwrap();
-    let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
-    Arc::new(TissueModel::new(mesh, mats, &fixed).unwrap())
-}
 
 fn params(region: RegionNeedleParams, base: BasePose) -> SimParams {
     SimParams {

@@ -4,14 +4,12 @@
 //! the rigid needle and for a flexible bevel-tip needle whose bevel is flipped half-way, with the
 //! device's stiffness Jacobian taken every 10 ticks as the real-time thread does.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::Arc;
+mod common;
 
-use needlesim_core::compliance::TissueModel;
+use std::alloc::{GlobalAlloc, Layout, System};
+
 use needlesim_core::sim::{SimParams, Simulation};
-use needlesim_core::{
-    BasePose, Material, MaterialMap, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams, RigidNeedle,
-};
+use needlesim_core::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle};
 
 struct Counting;
 
@@ -56,15 +54,7 @@ fn flexible_bevel_needle_steps_allocate_nothing_after_warm_up() {
 }
 
 fn run_case(needle: NeedleShape) {
-    let mesh = RectMeshParams::new(25, 25, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-    let mats = MaterialMap::per_region(
-        &mesh,
-        &[Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 }],
-        PlaneModel::Stress { thickness_m: 0.01 },
-    )
-    .unwrap();
-    let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
-    let model = Arc::new(TissueModel::new(mesh, mats, &fixed).unwrap());
+    let model = common::phantom(25);
     let a0 = -1.3f64;
     let base_at = |d: f64, a: f64| BasePose::new(0.04 + (d - 0.1) * a.cos(), 0.1 + (d - 0.1) * a.sin(), a);
     let params = SimParams {
