@@ -162,7 +162,7 @@ fn page_drives_the_needle_in_headless_chromium() {
     let web = web_dir();
     let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", web.to_str().unwrap()]);
     let shots = repo_root().join("target/web-screenshots");
-    for f in ["view-before.png", "view-after.png", "page.png", "playback.png", "summary.json"] {
+    for f in ["view-before.png", "view-after.png", "plots.png", "page.png", "playback.png", "summary.json"] {
         let _ = std::fs::remove_file(shots.join(f));
     }
     let out = run(Command::new("node")
@@ -180,12 +180,17 @@ fn page_drives_the_needle_in_headless_chromium() {
     assert!(f("poses") >= 1.0, "no pose was sent: {summary}");
     assert!(f("depth1") > f("depth0") + 0.01, "the drag did not insert the needle: {summary}");
     assert!(f("playbackFrames") > 10.0, "the recording did not play back: {summary}");
+    assert_eq!(summary["plotsChanged"], true, "the force plots did not change as the needle advanced: {summary}");
 
     let read = |name: &str| std::fs::read(shots.join(name)).unwrap_or_else(|e| panic!("no screenshot {name}: {e}"));
     let (before, after) = (read("view-before.png"), read("view-after.png"));
-    for (name, png) in
-        [("view-before.png", &before), ("view-after.png", &after), ("page.png", &read("page.png")), ("playback.png", &read("playback.png"))]
-    {
+    for (name, png) in [
+        ("view-before.png", &before),
+        ("view-after.png", &after),
+        ("plots.png", &read("plots.png")),
+        ("page.png", &read("page.png")),
+        ("playback.png", &read("playback.png")),
+    ] {
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 5000, "{name} is not a real screenshot ({} bytes)", png.len());
     }
     assert_ne!(before, after, "the tissue view did not change as the needle advanced");
