@@ -2,7 +2,11 @@
 //! the real server works in headless Chromium (tests/web_e2e.mjs: create a session, see frames,
 //! drive the needle with the mouse, see the depth and the drawing change, play a recording back).
 //!
-//! Needs Node with `npm ci` done in web/ (playwright-core, esbuild, buf, protoc-gen-es) and
+//! The sources type-check: `tsc --noEmit` (strict, web/tsconfig.json) passes, and rejects a type
+//! error (so the check really covers web/src/); the plots' force histories pass their unit tests
+//! (web/test/history.test.mjs under `node --test`).
+//!
+//! Needs Node with `npm ci` done in web/ (playwright-core, esbuild, buf, protoc-gen-es, typescript) and
 //! Debian's Chromium at /usr/bin/chromium (or `NEEDLESIM_CHROMIUM`): tests/run installs both.
 
 use std::path::{Path, PathBuf};
@@ -17,7 +21,7 @@ fn web_dir() -> PathBuf {
 fn require_node_modules() {
     let nm = web_dir().join("node_modules");
     assert!(
-        nm.join(".bin/esbuild").exists() && nm.join("playwright-core").is_dir(),
+        nm.join(".bin/esbuild").exists() && nm.join(".bin/tsc").exists() && nm.join("playwright-core").is_dir(),
         "{} is missing or incomplete: run `npm ci` in web/ (tests/run does it)",
         nm.display()
     );
@@ -63,7 +67,7 @@ fn committed_assets_are_what_the_sources_build_to() {
     // A copy of web/ without its generated code and build, beside a copy of proto/.
     copy_tree(&repo_root().join("proto/needlesim"), &tmp.join("proto/needlesim"));
     std::fs::create_dir_all(&copy).unwrap();
-    for f in ["build.sh", "buf.gen.yaml", "package.json", "package-lock.json", "index.html"] {
+    for f in ["build.sh", "buf.gen.yaml", "package.json", "package-lock.json", "index.html", "tsconfig.json"] {
         std::fs::copy(web.join(f), copy.join(f)).unwrap_or_else(|e| panic!("cannot copy web/{f}: {e}"));
     }
     copy_tree(&web.join("src"), &copy.join("src"));
@@ -87,6 +91,66 @@ fn committed_assets_are_what_the_sources_build_to() {
     }
 }
 
+/// Runs `tsc --noEmit -p tsconfig.json` in `dir` (a web/ or a copy of it).
+fn type_check(dir: &Path) -> std::process::Output {
+    run(Command::new(web_dir().join("node_modules/.bin/tsc")).args(["--noEmit", "-p", "tsconfig.json"]).current_dir(dir))
+}
+
+#[test]
+fn sources_type_check_strictly() {
+    require_node_modules();
+    let web = web_dir();
+    let config = std::fs::read_to_string(web.join("tsconfig.json")).expect("web/tsconfig.json");
+    assert!(config.contains("\"strict\": true"), "web/tsconfig.json does not set \"strict\": true:\n{config}");
+    let out = type_check(&web);
+    let (so, se) = text(&out);
+    assert!(out.status.success(), "tsc --noEmit found type errors in web/src:\n{so}\n{se}");
+
+    // The same check on a copy of web/ with one type error added must fail and name it.
+    let tmp = TempDir::new("web-tsc");
+    let copy = tmp.join("web");
+    std::fs::create_dir_all(&copy).unwrap();
+    std::fs::copy(web.join("tsconfig.json"), copy.join("tsconfig.json")).unwrap();
+    copy_tree(&web.join("src"), &copy.join("src"));
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(web.join("node_modules"), copy.join("node_modules")).unwrap();
+    std::fs::write(
+        copy.join("src/type_error_probe.ts"),
+        "//! Not a number.\nimport type { Frame } from \"./gen/needlesim/v1/needlesim_pb\";\nexport const depthM = (f: Frame): number => f.targets;\n",
+    )
+    .unwrap();
+    let out = type_check(&copy);
+    let (so, se) = text(&out);
+    assert!(!out.status.success(), "tsc --noEmit accepted a type error in src/type_error_probe.ts:\n{so}\n{se}");
+    assert!(so.contains("type_error_probe.ts"), "tsc did not name the file with the type error:\n{so}\n{se}");
+}
+
+/// The plots' data, bundled by esbuild and tested under `node --test` by web/test/*.test.mjs:
+/// web/src/history.ts (the bounded ring against time, the thinned trace against depth) and
+/// web/src/ranges.ts (value ranges, zeros of both axes aligned).
+#[test]
+fn plot_data_stays_bounded_ordered_and_ranged() {
+    require_node_modules();
+    let web = web_dir();
+    let tmp = TempDir::new("web-unit");
+    let out = run(Command::new(web.join("node_modules/.bin/esbuild"))
+        .args([web.join("src/history.ts"), web.join("src/ranges.ts")])
+        .args(["--bundle", "--format=esm", "--platform=neutral", "--log-level=warning", "--out-extension:.js=.mjs"])
+        .arg(format!("--outdir={}", tmp.join("").display())));
+    let (so, se) = text(&out);
+    assert!(out.status.success(), "esbuild could not bundle web/src/history.ts and ranges.ts:\n{so}\n{se}");
+    let mut tests = Vec::new();
+    for name in ["history.test.mjs", "ranges.test.mjs"] {
+        std::fs::copy(web.join("test").join(name), tmp.join(name)).unwrap_or_else(|e| panic!("web/test/{name}: {e}"));
+        tests.push(tmp.join(name));
+    }
+    let out = run(Command::new("node").arg("--test").args(&tests));
+    let (so, se) = text(&out);
+    println!("{so}");
+    assert!(out.status.success(), "web/test/*.test.mjs failed:\n{so}\n{se}");
+    assert!(so.contains("# pass 8") && so.contains("# fail 0"), "web/test/*.test.mjs did not run their 8 tests:\n{so}");
+}
+
 #[test]
 fn page_drives_the_needle_in_headless_chromium() {
     require_node_modules();
@@ -98,7 +162,7 @@ fn page_drives_the_needle_in_headless_chromium() {
     let web = web_dir();
     let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", web.to_str().unwrap()]);
     let shots = repo_root().join("target/web-screenshots");
-    for f in ["view-before.png", "view-after.png", "page.png", "playback.png", "summary.json"] {
+    for f in ["view-before.png", "view-after.png", "plots.png", "page.png", "playback.png", "summary.json"] {
         let _ = std::fs::remove_file(shots.join(f));
     }
     let out = run(Command::new("node")
@@ -116,12 +180,17 @@ fn page_drives_the_needle_in_headless_chromium() {
     assert!(f("poses") >= 1.0, "no pose was sent: {summary}");
     assert!(f("depth1") > f("depth0") + 0.01, "the drag did not insert the needle: {summary}");
     assert!(f("playbackFrames") > 10.0, "the recording did not play back: {summary}");
+    assert_eq!(summary["plotsChanged"], true, "the force plots did not change as the needle advanced: {summary}");
 
     let read = |name: &str| std::fs::read(shots.join(name)).unwrap_or_else(|e| panic!("no screenshot {name}: {e}"));
     let (before, after) = (read("view-before.png"), read("view-after.png"));
-    for (name, png) in
-        [("view-before.png", &before), ("view-after.png", &after), ("page.png", &read("page.png")), ("playback.png", &read("playback.png"))]
-    {
+    for (name, png) in [
+        ("view-before.png", &before),
+        ("view-after.png", &after),
+        ("plots.png", &read("plots.png")),
+        ("page.png", &read("page.png")),
+        ("playback.png", &read("playback.png")),
+    ] {
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 5000, "{name} is not a real screenshot ({} bytes)", png.len());
     }
     assert_ne!(before, after, "the tissue view did not change as the needle advanced");

@@ -5,9 +5,10 @@
 //
 // Loads the page, creates a paper-phantom session in it, waits for frames, starts a recording,
 // drags the needle into the tissue with the mouse, checks that the inserted depth grows and the
-// tissue drawing changes, stops the recording and plays it back; then creates a bevel-tip session
-// and flips its bevel with the "Flip bevel" button. Saves view-before.png, bevel-flipped.png,
-// view-after.png, page.png and playback.png in OUT_DIR and prints a JSON summary.
+// tissue drawing and both force plots (uPlot: series named in their legends, its CSS applied)
+// change, stops the recording and plays it back; then creates a bevel-tip session and flips its
+// bevel with the "Flip bevel" button. Saves view-before.png, bevel-flipped.png, view-after.png,
+// plots.png, page.png and playback.png in OUT_DIR and prints a JSON summary.
 import { createRequire } from "node:module";
 import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -63,6 +64,28 @@ try {
   const view = page.locator("#view");
   await page.waitForTimeout(300);
   const before = await view.screenshot({ path: join(outDir, "view-before.png") });
+  // The force plots (uPlot, its CSS bundled into dist/app.css): both charts name their series.
+  const plots = await page.evaluate(() =>
+    ["plot-time", "plot-depth"].map((id) => {
+      const el = document.getElementById(id);
+      const over = el.querySelector(".u-over");
+      return {
+        id,
+        canvases: el.querySelectorAll("canvas").length,
+        series: [...el.querySelectorAll(".u-legend .u-label")].map((l) => l.textContent),
+        cssLoaded: over !== null && getComputedStyle(over).position === "absolute",
+      };
+    }),
+  );
+  for (const p of plots) {
+    if (p.canvases < 1) fail(`#${p.id} holds no chart canvas`);
+    if (!p.cssLoaded) fail(`#${p.id}: uPlot's CSS is not applied (dist/app.css)`);
+    const want = ["axial (N)", "lateral (N)", "torque (mN·m)"];
+    if (JSON.stringify(p.series) !== JSON.stringify(want)) fail(`#${p.id} legend ${JSON.stringify(p.series)}, not ${JSON.stringify(want)}`);
+  }
+  const plotTime = page.locator("#plot-time");
+  const plotDepth = page.locator("#plot-depth");
+  const [timeBefore, depthBefore] = [await plotTime.screenshot(), await plotDepth.screenshot()];
 
   await page.click("#rec-start");
   await page.waitForFunction(() => /recording to/.test(document.getElementById("status").textContent), null, { timeout: 10000 });
@@ -89,6 +112,9 @@ try {
   const after = await view.screenshot({ path: join(outDir, "view-after.png") });
   await page.screenshot({ path: join(outDir, "page.png") });
   if (before.equals(after)) fail("the tissue view did not change as the needle advanced");
+  await page.locator("#side").screenshot({ path: join(outDir, "plots.png") });
+  if (timeBefore.equals(await plotTime.screenshot())) fail("the force–time plot did not change as the needle advanced");
+  if (depthBefore.equals(await plotDepth.screenshot())) fail("the force–depth plot did not change as the needle advanced");
 
   // Stop the recording and play it back from the MCAP file, parsed in the page.
   await page.click("#rec-stop");
@@ -115,7 +141,7 @@ try {
   await view.screenshot({ path: join(outDir, "bevel-flipped.png") });
   if (errors.length) fail(`errors in the page: ${errors.join("; ")}`);
 
-  const summary = { session, frames, poses, depth0, depth1, playbackFrames, playbackDepth, bevelFlipped: true };
+  const summary = { session, frames, poses, depth0, depth1, playbackFrames, playbackDepth, bevelFlipped: true, plotsChanged: true };
   writeFileSync(join(outDir, "summary.json"), JSON.stringify(summary, null, 2));
   console.log(JSON.stringify(summary));
 } catch (e) {

@@ -1,0 +1,118 @@
+//! Driving the needle from the tissue view: a drag inserts / withdraws along the needle (Alt: moves
+//! the base freely, Shift: rotates), the wheel rotates; poses go out by unary SetPose, at most one
+//! per 10 ms and two in flight, only the newest pending one kept. And the bevel flip.
+import { create } from "@bufbuild/protobuf";
+import { Pose2Schema } from "./gen/needlesim/v1/needlesim_pb";
+import { auth, control } from "./api";
+import { publish, status } from "./dom";
+import { type Pose, state } from "./state";
+import { toWorld, viewTransform } from "./view";
+
+/** The pose to start from: the last commanded one, else the shown frame's base. */
+function currentPose(): Pose | null {
+  const d = state.driving;
+  if (d.commanded) return { ...d.commanded };
+  const b = state.frame?.base;
+  return b ? { xM: b.xM, yM: b.yM, thetaRad: b.thetaRad } : null;
+}
+
+function command(p: Pose): void {
+  const d = state.driving;
+  d.posesCommanded++;
+  publish("posesCommanded", d.posesCommanded);
+  publish("inFlight", d.inFlight);
+  d.commanded = p;
+  d.pending = p;
+  pump();
+}
+
+/** Sends the pending pose when the rate and the in-flight limit allow (else retries later). */
+function pump(): void {
+  const d = state.driving;
+  const session = state.session;
+  if (!d.pending || !session || d.inFlight >= 2) return;
+  const now = performance.now();
+  if (now - d.lastSentMs < 10) {
+    setTimeout(pump, 10 - (now - d.lastSentMs));
+    return;
+  }
+  const p = d.pending;
+  d.pending = null;
+  d.lastSentMs = now;
+  d.inFlight++;
+  control
+    .setPose({ sessionId: session.id, base: create(Pose2Schema, { xM: p.xM, yM: p.yM, thetaRad: p.thetaRad }) }, auth(session.token))
+    .then(() => {
+      d.posesAcked++;
+      publish("poses", d.posesAcked);
+    })
+    .catch((e: unknown) => status(`SetPose: ${String(e)}`))
+    .finally(() => {
+      d.inFlight--;
+      pump();
+    });
+}
+
+/** Lets the mouse drive the needle on this canvas (the tissue view). */
+export function installDriving(view: HTMLCanvasElement): void {
+  const eventWorld = (ev: MouseEvent): [number, number] => {
+    const r = view.getBoundingClientRect();
+    const px = ((ev.clientX - r.left) * view.width) / r.width;
+    const py = ((ev.clientY - r.top) * view.height) / r.height;
+    return toWorld(viewTransform(view, state), px, py);
+  };
+
+  view.addEventListener("mousedown", (ev) => {
+    if (state.mode !== "live") return;
+    const start = currentPose();
+    if (!start) return;
+    const [wxM, wyM] = eventWorld(ev);
+    state.driving.drag = { start, wxM, wyM, clientX: ev.clientX, free: ev.altKey, rotate: ev.shiftKey };
+    ev.preventDefault();
+  });
+
+  window.addEventListener("mousemove", (ev) => {
+    const drag = state.driving.drag;
+    if (!drag) return;
+    const [wx, wy] = eventWorld(ev);
+    const dx = wx - drag.wxM, dy = wy - drag.wyM;
+    const s = drag.start;
+    if (drag.rotate) {
+      command({ ...s, thetaRad: s.thetaRad + (ev.clientX - drag.clientX) * 0.005 });
+    } else if (drag.free) {
+      command({ ...s, xM: s.xM + dx, yM: s.yM + dy });
+    } else {
+      const c = Math.cos(s.thetaRad), sn = Math.sin(s.thetaRad);
+      const along = dx * c + dy * sn;
+      command({ ...s, xM: s.xM + along * c, yM: s.yM + along * sn });
+    }
+  });
+
+  window.addEventListener("mouseup", () => {
+    state.driving.drag = null;
+  });
+
+  view.addEventListener(
+    "wheel",
+    (ev) => {
+      if (state.mode !== "live") return;
+      const p = currentPose();
+      if (!p) return;
+      ev.preventDefault();
+      command({ ...p, thetaRad: p.thetaRad - Math.sign(ev.deltaY) * 0.01 });
+    },
+    { passive: false },
+  );
+}
+
+/** Turns the needle 180° about its axis (a bevel tip then faces the other side). */
+export async function flipBevel(): Promise<void> {
+  const session = state.session;
+  if (!session) return status("watch a session first");
+  try {
+    const r = await control.flipBevel({ sessionId: session.id }, auth(session.token));
+    status(`bevel flip ${r.flipsRequested} requested`);
+  } catch (e) {
+    status(`FlipBevel: ${String(e)}`);
+  }
+}

@@ -1,0 +1,73 @@
+//! The needlesim web viewer: a gRPC-web client of needlesim-server (connect-web), served by the
+//! server itself. Draws the deformed mesh coloured by strain, the needle and targets, plots forces
+//! against time and depth (uPlot), drives the needle with the mouse (unary SetPose) and plays back
+//! MCAP recordings downloaded from the server. This entry wires the page's controls to the modules
+//! and runs the draw loop.
+import "uplot/dist/uPlot.min.css";
+import "./style.css";
+import { tokens } from "./api";
+import { $, publish } from "./dom";
+import { flipBevel, installDriving } from "./driving";
+import { sampleOf } from "./history";
+import { ForcePlots } from "./plots";
+import { loadRecording, refreshRecordings, sliderMoved, startStopRecording, stopPlaying, togglePlay } from "./recordings";
+import { createFromExample, refreshSessions, selectedSessionChanged, watch, watchSelected } from "./sessions";
+import { state } from "./state";
+import { drawView } from "./view";
+
+/** The live time plot's window (s). */
+const LIVE_WINDOW_S = 20;
+const PLOT_WIDTH_PX = 500;
+const PLOT_HEIGHT_PX = 220;
+
+const view = $("view", HTMLCanvasElement);
+const plots = new ForcePlots($("plot-time"), $("plot-depth"), PLOT_WIDTH_PX, PLOT_HEIGHT_PX);
+
+/** Draws what changed, once per animation frame: the tissue view and the plots. */
+function render(): void {
+  if (state.dirty) {
+    state.dirty = false;
+    drawView(view, state);
+    const pb = state.playback;
+    if (state.mode === "playback" && pb.history) {
+      plots.show(pb.history, null, state.frame ? sampleOf(state.frame) : null);
+    } else {
+      plots.show(state.history, LIVE_WINDOW_S, null);
+    }
+  }
+  requestAnimationFrame(render);
+}
+
+installDriving(view);
+$("refresh-sessions").addEventListener("click", () => void refreshSessions());
+$("session-select").addEventListener("change", selectedSessionChanged);
+$("connect").addEventListener("click", watchSelected);
+$("create").addEventListener("click", () => void createFromExample());
+$("flip-bevel").addEventListener("click", () => void flipBevel());
+$("rec-refresh").addEventListener("click", () => void refreshRecordings());
+$("rec-start").addEventListener("click", () => void startStopRecording(true));
+$("rec-stop").addEventListener("click", () => void startStopRecording(false));
+$("rec-load").addEventListener("click", () => void loadRecording());
+$("live").addEventListener("click", () => {
+  stopPlaying();
+  if (state.session) void watch(state.session.id, state.session.token);
+});
+$("slider").addEventListener("input", sliderMoved);
+$("play").addEventListener("click", togglePlay);
+
+async function main(): Promise<void> {
+  requestAnimationFrame(render);
+  const params = new URLSearchParams(window.location.search);
+  const sid = params.get("session");
+  const tok = params.get("token");
+  if (sid && tok) tokens.set(sid, tok);
+  await refreshSessions(sid ?? undefined);
+  void refreshRecordings();
+  publish("ready", "1");
+  if (sid && tok) {
+    $("token", HTMLInputElement).value = tok;
+    await watch(sid, tok);
+  }
+}
+
+void main();
