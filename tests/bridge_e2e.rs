@@ -538,10 +538,24 @@ async fn issue_13_a_changed_channel_file_spares_the_server_and_ends_the_bridge_a
         }
         let (held1, st1) = (frame(&ch, &s).await, get_stats(&ch, &s).await);
         let (other1, other_info1) = (get_stats(&ch, &other).await, get_session(&ch, &other).await);
-        tokio::time::sleep(Duration::from_millis(500)).await;
-        let (held2, st2) = (frame(&ch, &s).await, get_stats(&ch, &s).await);
-        let (other2, other_info2) = (get_stats(&ch, &other).await, get_session(&ch, &other).await);
-        assert!(st2.ticks > st1.ticks + 100, "[{kind}] the session stopped ticking: {} → {}", st1.ticks, st2.ticks);
+        // Both sessions tick on (polled: no rate is asserted on this loaded machine).
+        let t0 = Instant::now();
+        let (st2, other2) = loop {
+            tokio::time::sleep(Duration::from_millis(100)).await;
+            let (st2, other2) = (get_stats(&ch, &s).await, get_stats(&ch, &other).await);
+            if st2.ticks > st1.ticks + 100 && other2.ticks > other1.ticks + 100 {
+                break (st2, other2);
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(20),
+                "[{kind}] stopped ticking: {} → {}, other {} → {}",
+                st1.ticks,
+                st2.ticks,
+                other1.ticks,
+                other2.ticks
+            );
+        };
+        let (held2, other_info2) = (frame(&ch, &s).await, get_session(&ch, &other).await);
         assert!(held2.tick > held1.tick, "[{kind}] frames stopped: {} → {}", held1.tick, held2.tick);
         assert_eq!(held1.base, held2.base, "[{kind}] the needle moved without a device");
         assert!(held2.inserted_length_m > 0.005, "[{kind}] the needle was not held in: {} m", held2.inserted_length_m);
@@ -549,6 +563,7 @@ async fn issue_13_a_changed_channel_file_spares_the_server_and_ends_the_bridge_a
         assert!(info.device_stale && info.device_channel_broken, "[{kind}] {info:?}");
         // The bystander is untouched: ticking, its channel intact.
         assert!(other2.ticks > other1.ticks + 100, "[{kind}] the other session stopped ticking: {} → {}", other1.ticks, other2.ticks);
+        assert!(st2.ticks > st1.ticks + 100);
         assert!(!other_info1.device_channel_broken && !other_info2.device_channel_broken, "[{kind}] {other_info2:?}");
         assert!(other.channel_path.is_file(), "[{kind}] the other session's channel file went away");
 

@@ -153,13 +153,16 @@ fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
         assert!(held.device_stale, "[{kind}] the device is marked stale");
         assert_eq!(session.counters.device_stale.load(Ordering::Relaxed), 1, "[{kind}]");
         assert!((held.base.y_m - 0.185).abs() < 0.002, "[{kind}] the needle is held where the device left it: {:?}", held.base);
+        // Both sessions tick on (polled: no rate is asserted on this loaded machine).
         let (t1, b1) = (held.tick, bystander.latest_record().tick);
-        std::thread::sleep(Duration::from_millis(300));
+        let t0 = Instant::now();
+        while session.latest_record().tick <= t1 + 100 || bystander.latest_record().tick <= b1 + 100 {
+            assert!(t0.elapsed() < Duration::from_secs(20), "[{kind}] a session stopped ticking");
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let later = session.latest_record();
-        assert!(later.tick > t1 + 100, "[{kind}] the session keeps ticking: {t1} → {}", later.tick);
         assert_eq!(later.base, held.base, "[{kind}] the needle moved without a device");
         assert!(later.device_stale, "[{kind}]");
-        assert!(bystander.latest_record().tick > b1 + 100, "[{kind}] the other session keeps ticking");
         assert_eq!(bystander.counters.device_channel_broken.load(Ordering::Relaxed), 0, "[{kind}]");
         let other_path = bystander.device_channel_path.clone().unwrap();
         let mut other_device = DeviceChannel::attach(&other_path).expect("the other session's channel still attaches");
