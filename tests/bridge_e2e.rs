@@ -2,6 +2,8 @@
 //! session's shared-memory device channel — the scripted, virtual-operator and C plug-in devices at
 //! 1 kHz, a SIGKILLed server (the rendered force goes to zero within the watchdog time) and a
 //! SIGKILLed bridge (the session stays healthy, holds the needle, and a new bridge re-attaches).
+//! Issue 13: the live channel file truncated, shrunk, garbage-filled, deleted or replaced while a
+//! bridge drives: the server and its other sessions keep ticking, the bridge exits with a zero force.
 //!
 //! Run with `--nocapture` to see the latency and missed-period figures of each backend.
 
@@ -26,6 +28,7 @@ const MISSED_BUDGET: f64 = 0.02;
 
 struct Session {
     id: String,
+    controller_token: String,
     observer_token: String,
     channel_path: PathBuf,
 }
@@ -56,7 +59,7 @@ async fn create_device_session(ch: &Channel) -> Session {
     let channel_path = PathBuf::from(&info.device_channel_path);
     assert!(channel_path.is_file(), "the channel file {} does not exist", channel_path.display());
     assert!(!info.device_stale, "a fresh session's device is not stale before any bridge attached: {info:?}");
-    Session { id: info.session_id, observer_token: created.observer_token, channel_path }
+    Session { id: info.session_id, controller_token: created.controller_token, observer_token: created.observer_token, channel_path }
 }
 
 async fn get_session(ch: &Channel, s: &Session) -> pb::SessionInfo {
@@ -432,4 +435,149 @@ async fn a_sigkilled_bridge_leaves_the_session_healthy_and_reattachable() {
     );
     let stats_end = get_stats(&ch, &s).await;
     assert_eq!(stats_end.dropped_records, 0, "{stats_end:?}");
+}
+
+/// Issue 13: a session's live channel file is changed by another process while a real bridge drives
+/// the plug-in device into the tissue: truncated to 0 (this killed the whole server, and the bridge
+/// before it could zero its device, with SIGBUS), shrunk to half, garbage-filled, deleted, replaced.
+/// Each time the server process survives; the affected session keeps ticking with its device stale
+/// and its channel broken, holding the needle; another session with its own channel is untouched;
+/// the bridge exits with status 1 naming the cause, a zero force left on the device.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_13_a_changed_channel_file_spares_the_server_and_ends_the_bridge_at_zero_force() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let dir = TempDir::new("bridge-e2e-broken-channel");
+    let mut server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = connect(&server).await;
+    let lib = example_plugin(&dir);
+    // The bystander: a session with its own device channel, which nobody touches.
+    let other = create_device_session(&ch).await;
+    let _other_file = RemoveOnDrop(other.channel_path.clone());
+    // (kind, the causes the bridge may name: a truncation is found by the next access to the
+    // mapping, or by the watcher's size check if that runs first.)
+    let cases: [(&str, &[&str]); 5] = [
+        ("truncate", &["was truncated under the mapping", "is now 0 bytes"]),
+        ("shrink", &["is now 256 bytes, expected 512"]),
+        ("garbage", &["header was overwritten"]),
+        ("delete", &["was deleted"]),
+        ("replace", &["was replaced by another file"]),
+    ];
+    for (kind, causes) in cases {
+        let s = create_device_session(&ch).await;
+        let _chan_file = RemoveOnDrop(s.channel_path.clone());
+        let (trace, record) = (dir.join(&format!("trace-{kind}.csv")), dir.join(&format!("record-{kind}.txt")));
+        // 5 mm/s downwards from 5 mm above the top.
+        let config = format!("x0=0.05 y0=0.205 th0={DOWN} vy=-0.005 record={}", record.display());
+        let bridge = spawn_bridge(
+            &s.channel_path,
+            &[
+                "--device",
+                "plugin",
+                "--plugin",
+                lib.to_str().unwrap(),
+                "--plugin-config",
+                &config,
+                "--seconds",
+                "120",
+                "--trace",
+                trace.to_str().unwrap(),
+            ],
+        );
+        // Driving: the needle is in and the tissue pushes back.
+        let t0 = Instant::now();
+        loop {
+            let f = frame(&ch, &s).await;
+            if f.inserted_length_m > 0.005 {
+                break;
+            }
+            assert!(t0.elapsed() < Duration::from_secs(60), "[{kind}] the bridge did not insert the needle: {} m", f.inserted_length_m);
+            tokio::time::sleep(Duration::from_millis(100)).await;
+        }
+        assert!(!get_session(&ch, &s).await.device_stale, "[{kind}] stale while the bridge drives");
+
+        let file = || std::fs::OpenOptions::new().write(true).open(&s.channel_path).unwrap();
+        match kind {
+            "truncate" => file().set_len(0).unwrap(),
+            "shrink" => file().set_len(256).unwrap(),
+            "garbage" => std::os::unix::fs::FileExt::write_all_at(&file(), &[0x5A; 512], 0).unwrap(),
+            "delete" => std::fs::remove_file(&s.channel_path).unwrap(),
+            "replace" => {
+                // A copy of the live bytes (a valid-looking header) renamed over the path.
+                let tmp = s.channel_path.with_extension("replacement"); // same file system: rename works
+                std::fs::copy(&s.channel_path, &tmp).unwrap();
+                std::fs::rename(&tmp, &s.channel_path).unwrap();
+            }
+            _ => unreachable!(),
+        }
+
+        // The bridge stops on its own, long before --seconds 120, with a zero force on the device.
+        let (code, report, stderr) = finish_bridge(bridge).await;
+        println!("[{kind}] bridge: exit {code:?}, {}", report["exit"]);
+        assert_eq!(code, Some(1), "[{kind}] {report} {stderr}");
+        let exit = report["exit"].as_str().unwrap_or_default();
+        assert!(exit.contains("is broken") && causes.iter().any(|c| exit.contains(c)), "[{kind}] {report}");
+        let rows = read_trace(&trace);
+        let pushing = rows.iter().map(|r| r.wrench[0].hypot(r.wrench[1])).fold(0.0, f64::max);
+        assert!(pushing > 0.0, "[{kind}] no force was rendered before the change: the zero below proves nothing");
+        let (last, writes) = read_record(&record);
+        assert_eq!(last, [0.0; 3], "[{kind}] the plug-in was left pushing");
+        assert_eq!(writes, rows.len() as u64 + 1, "[{kind}] one write per period plus the final zero");
+
+        // The server process is alive.
+        assert!(server.child.try_wait().unwrap().is_none(), "[{kind}] the server died: {}", server.stderr.lock().unwrap());
+        // The affected session: marked broken and stale (the server's own checks), still ticking,
+        // the needle held where the device left it.
+        let t0 = Instant::now();
+        loop {
+            let info = get_session(&ch, &s).await;
+            if info.device_channel_broken && info.device_stale {
+                break;
+            }
+            assert!(t0.elapsed() < Duration::from_secs(10), "[{kind}] the session did not mark its channel broken: {info:?}");
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        }
+        let (held1, st1) = (frame(&ch, &s).await, get_stats(&ch, &s).await);
+        let (other1, other_info1) = (get_stats(&ch, &other).await, get_session(&ch, &other).await);
+        // Both sessions tick on (polled: no rate is asserted on this loaded machine).
+        let t0 = Instant::now();
+        let (st2, other2) = loop {
+            tokio::time::sleep(Duration::from_millis(100)).await;
+            let (st2, other2) = (get_stats(&ch, &s).await, get_stats(&ch, &other).await);
+            if st2.ticks > st1.ticks + 100 && other2.ticks > other1.ticks + 100 {
+                break (st2, other2);
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(20),
+                "[{kind}] stopped ticking: {} → {}, other {} → {}",
+                st1.ticks,
+                st2.ticks,
+                other1.ticks,
+                other2.ticks
+            );
+        };
+        let (held2, other_info2) = (frame(&ch, &s).await, get_session(&ch, &other).await);
+        assert!(held2.tick > held1.tick, "[{kind}] frames stopped: {} → {}", held1.tick, held2.tick);
+        assert_eq!(held1.base, held2.base, "[{kind}] the needle moved without a device");
+        assert!(held2.inserted_length_m > 0.005, "[{kind}] the needle was not held in: {} m", held2.inserted_length_m);
+        let info = get_session(&ch, &s).await;
+        assert!(info.device_stale && info.device_channel_broken, "[{kind}] {info:?}");
+        // The bystander is untouched: ticking, its channel intact.
+        assert!(other2.ticks > other1.ticks + 100, "[{kind}] the other session stopped ticking: {} → {}", other1.ticks, other2.ticks);
+        assert!(st2.ticks > st1.ticks + 100);
+        assert!(!other_info1.device_channel_broken && !other_info2.device_channel_broken, "[{kind}] {other_info2:?}");
+        assert!(other.channel_path.is_file(), "[{kind}] the other session's channel file went away");
+
+        // Closing the broken session works, and removes the file only if it is still the session's own.
+        pb::session_service_client::SessionServiceClient::new(ch.clone())
+            .close_session(with_token(pb::CloseSessionRequest { session_id: s.id.clone() }, &s.controller_token))
+            .await
+            .unwrap_or_else(|e| panic!("[{kind}] closing the session: {e}"));
+        match kind {
+            "replace" => assert!(s.channel_path.is_file(), "[{kind}] the server removed a file that is not its own"),
+            _ => assert!(!s.channel_path.exists(), "[{kind}] the server left its broken channel file behind"),
+        }
+    }
+    assert!(server.child.try_wait().unwrap().is_none(), "the server died: {}", server.stderr.lock().unwrap());
+    let log = server.stderr.lock().unwrap().clone();
+    assert!(log.contains("device channel broken"), "the server did not log the broken channels: {log}");
 }

@@ -8,7 +8,11 @@
 //! missed and counts them): read the device pose → `write_pose_from_device` →
 //! `read_force_from_device` → render (local model, coupling, watchdog, limits: `render.rs`) →
 //! `write_force` on the device. On every exit path (end of `--seconds`, Ctrl-C/SIGTERM, a device
-//! or channel error) a zero wrench is written to the device before it is closed.
+//! or channel error) a zero wrench is written to the device before it is closed. A channel whose
+//! file was truncated, resized, overwritten, deleted or replaced (`shm.rs`: the access never
+//! faults; a watcher thread checks the file every 100 ms) is lost like a closed one: the watchdog
+//! ramps the force out, the zero wrench is written, and the bridge exits with status 1 and a
+//! message naming the cause.
 //!
 //! Latency figures in the report (µs, p50/p99, over the fresh forces seen):
 //! - `pose_to_force_us`: (time the bridge first saw a force) − (write time of the newest pose the
@@ -26,7 +30,7 @@ use clap::{Parser, ValueEnum};
 use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
 use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
 use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
-use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, monotonic_ns};
+use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum DeviceKind {
@@ -440,7 +444,7 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                     tick: fresh.map(|f| f.tick),
                     last_tick: sv.tick,
                     last_wrench: [sv.force_n[0], sv.force_n[1], sv.torque_nm],
-                    lost: sample.status == ReadStatus::Stale || !channel.is_current(),
+                    lost: matches!(sample.status, ReadStatus::Stale | ReadStatus::Broken) || !channel.is_current(),
                 }
             }
             Link::Remote(remote) => {
@@ -530,11 +534,12 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                     w.flush()?;
                 }
                 match link {
-                    Link::Shm(_) => {
-                        bail!(
-                            "device channel {}: closed or re-created by the server",
-                            cli.channel.as_deref().unwrap_or(Path::new("?")).display()
-                        )
+                    Link::Shm(channel) => {
+                        let path = cli.channel.as_deref().unwrap_or(Path::new("?")).display();
+                        match channel.broken() {
+                            Some(why) if !channel.closed_or_recreated() => bail!("device channel {path} is broken: {why}"),
+                            _ => bail!("device channel {path}: closed or re-created by the server"),
+                        }
                     }
                     Link::Remote(r) => bail!("remote link: {}", r.failure().unwrap_or_default()),
                 }
@@ -575,6 +580,20 @@ fn main() {
             std::process::exit(1);
         }
     };
+    // A changed channel file that never faults (deleted, replaced, resized) is found by a watcher
+    // thread (system calls stay out of the device loop); the loop sees it as a broken channel.
+    if let Link::Shm(channel) = &link {
+        let watch = channel.watch();
+        let spawned = std::thread::Builder::new().name("channel-watch".into()).spawn(move || {
+            while !STOP.load(Ordering::Relaxed) && watch.check_file().is_ok() {
+                std::thread::sleep(WATCH_PERIOD);
+            }
+        });
+        if let Err(e) = spawned {
+            eprintln!("needlesim-bridge: cannot start the channel watcher thread: {e}");
+            std::process::exit(1);
+        }
+    }
     let mut device = match open_device(&cli) {
         Ok(d) => d,
         Err(e) => {

@@ -62,15 +62,58 @@
 //!
 //! A writer that died mid-write leaves the sequence odd; the next writer continues from that odd
 //! value (it does not add another 1), so the slot recovers.
+//!
+//! # A channel whose file changes under it (issue 13)
+//!
+//! The file lives in a world-visible directory (/dev/shm), so anything running as the same user
+//! can truncate, shrink, grow, overwrite, delete or replace it while both processes have it
+//! mapped. A truncated file makes the next access to its mapped page raise `SIGBUS`, which by
+//! default kills the whole server (every session) and the bridge before it can zero its device.
+//! Neither end may ever fault, whatever happens to the file; a broken channel is reported as
+//! [`Broken`] ([`ReadStatus::Broken`], [`ServerEnd::broken`], [`DeviceEnd::broken`]) and stays
+//! broken for the life of the end.
+//!
+//! - **Faults are contained.** A process-wide `SIGBUS` handler (`sigaction`, `SA_SIGINFO`,
+//!   installed once on the first create/attach) looks the faulting address (`si_addr`) up in a
+//!   lock-free registry of this process's channel mappings (a fixed static array of
+//!   [`MAX_MAPPINGS`] slots of atomics: start, length, faulted). If it lies in one, the handler maps
+//!   anonymous zero pages over that mapping (`mmap(MAP_FIXED | MAP_PRIVATE | MAP_ANONYMOUS)`, a
+//!   plain system call, async-signal-safe in practice), sets the slot's faulted flag and returns:
+//!   the faulting access is retried on the zero page and completes. A fault anywhere else is
+//!   passed to the previous handler (Rust's stack-overflow handler, which resets the default and
+//!   lets the access fault again) or, with none, the default action is restored so genuine bugs
+//!   still kill the process with `SIGBUS`. The technique is the one Wayland compositors use for
+//!   clients' `wl_shm` pools (weston, wlroots). A mapping is registered before its first access and
+//!   unregistered before it is unmapped. Checking the file size before each access alone would
+//!   not do: a truncation between the check and the access still faults. (Sealing the memory
+//!   against shrinking, `memfd` + `F_SEAL_SHRINK`, would avoid the fault altogether, but a sealable
+//!   memfd has no path a bridge can open; the channel is a named file by design.)
+//! - **Every access validates.** Each read and write first checks, with a few relaxed loads, the
+//!   faulted flag, the broken state and the header (magic, version, size; on the server end also
+//!   its own generation). A garbage-filled header is noticed at the next access.
+//! - **The file is watched.** What does not fault or touch the header (a deleted file, another
+//!   file renamed over the path, a file shrunk within its first page or grown) is found by
+//!   [`ChannelWatch::check_file`]: the path still names the mapped inode (`stat` vs. the held
+//!   descriptor's dev/ino) and the held descriptor's file is still [`CHANNEL_SIZE`] bytes. It
+//!   makes system calls, so it runs on a non-real-time thread every [`WATCH_PERIOD`] (the server's
+//!   per-session watcher, the bridge's watcher thread); it publishes through an atomic that the
+//!   real-time side reads.
+//! - **Neither end trusts a broken channel.** The server end stops taking poses and writing
+//!   forces (the session marks its device stale and holds the needle); the device end reports
+//!   itself not current, so the bridge ramps its force to zero, writes a zero wrench and exits with
+//!   an error naming the cause. Dropping a broken server end removes the file only if the path
+//!   still names the file it created.
 
 use std::fs::{File, OpenOptions};
 use std::io;
 use std::mem::{offset_of, size_of};
 use std::os::unix::fs::{MetadataExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU32, AtomicU64, Ordering, fence};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, AtomicUsize, Ordering, fence};
+use std::time::Duration;
 
-use memmap2::MmapRaw;
+use memmap2::{MmapOptions, MmapRaw};
 
 /// The 8 magic bytes at offset 0.
 pub const MAGIC: [u8; 8] = *b"NDLSIMv1";
@@ -80,6 +123,10 @@ pub const LAYOUT_VERSION: u32 = 1;
 pub const CHANNEL_SIZE: u64 = size_of::<Layout>() as u64;
 /// How many times a read retries while the writer is mid-write before giving up (≈ a few µs).
 pub const READ_RETRIES: u32 = 64;
+/// Channel mappings one process can hold at once (slots of the `SIGBUS` registry; the handler scans them all).
+pub const MAX_MAPPINGS: usize = 1024;
+/// How often a watcher should call [`ChannelWatch::check_file`].
+pub const WATCH_PERIOD: Duration = Duration::from_millis(100);
 
 /// What went wrong creating or attaching a channel. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
@@ -117,12 +164,65 @@ pub enum ShmError {
     /// `attach`: another live process is attached as the bridge; two writers would break the pose seqlock.
     #[error("device channel {path}: already attached by live pid {pid} (only one bridge per channel)")]
     AlreadyAttached { path: PathBuf, pid: u32 },
+    /// `create`/`attach`: this process already holds [`MAX_MAPPINGS`] channel mappings (the `SIGBUS` registry is full).
+    #[error("device channel {path}: this process already maps {max} channels", max = MAX_MAPPINGS)]
+    TooManyChannels { path: PathBuf },
+    /// `create`/`attach`: the file changed under the new mapping while it was being set up (e.g. truncated).
+    #[error("device channel {path}: {cause}")]
+    Broken { path: PathBuf, cause: Broken },
 }
 
-/// The channel is stale: the server re-created it (new generation) or closed it. Re-attach.
+/// The channel is stale (the server re-created it, with a new generation, or closed it: re-attach)
+/// or broken (see [`DeviceEnd::broken`]: give up).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
-#[error("device channel is stale (re-created or closed by the server): re-attach")]
+#[error("device channel is stale (re-created or closed by the server) or broken")]
 pub struct Stale;
+
+/// Why a channel is broken: its file was changed by someone else. Once broken, an end stays broken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum Broken {
+    /// An access to the mapping raised `SIGBUS` (the file was truncated below the page touched);
+    /// the mapping now holds anonymous zeros.
+    #[error("its file was truncated under the mapping (an access faulted)")]
+    Faulted,
+    /// [`ChannelWatch::check_file`]: the mapped file is no longer [`CHANNEL_SIZE`] bytes (truncated, shrunk or grown).
+    #[error("its file is now {found_bytes} bytes, expected {expected} (truncated or resized)", expected = CHANNEL_SIZE)]
+    Resized { found_bytes: u64 },
+    /// [`ChannelWatch::check_file`]: no file at the path any more (deleted).
+    #[error("its file was deleted")]
+    Deleted,
+    /// [`ChannelWatch::check_file`]: the path names another file now (renamed over, or deleted and re-created).
+    #[error("its file was replaced by another file at the same path")]
+    Replaced,
+    /// Any access: the header's magic, version or size field is not this layout's (overwritten with
+    /// garbage); on the server end also: the generation is not its own (re-initialised by someone else).
+    #[error("its header was overwritten (garbage in magic, version, size or generation)")]
+    BadHeader,
+}
+
+impl Broken {
+    /// As stored in an `AtomicU64`: the cause in the low byte, a resized file's length above it. Never 0.
+    fn encode(self) -> u64 {
+        match self {
+            Broken::Faulted => 1,
+            Broken::Resized { found_bytes } => 2 | (found_bytes.min(u64::MAX >> 8) << 8),
+            Broken::Deleted => 3,
+            Broken::Replaced => 4,
+            Broken::BadHeader => 5,
+        }
+    }
+
+    fn decode(code: u64) -> Option<Broken> {
+        Some(match code & 0xff {
+            0 => return None,
+            1 => Broken::Faulted,
+            2 => Broken::Resized { found_bytes: code >> 8 },
+            3 => Broken::Deleted,
+            4 => Broken::Replaced,
+            _ => Broken::BadHeader,
+        })
+    }
+}
 
 /// The device's pose, written by the bridge once per device sample.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -174,6 +274,8 @@ pub enum ReadStatus {
     Contended,
     /// ([`DeviceEnd`] only) the server re-created or closed the channel: re-attach.
     Stale,
+    /// The channel is broken ([`Broken`]): nothing was read; `value` is the last good one.
+    Broken,
 }
 
 /// The result of a read: the last good value and whether it is new.
@@ -355,21 +457,278 @@ impl ServerForce {
     }
 }
 
+// ---------------------------------------------------------------------------------------------
+// SIGBUS containment (see the module docs)
+
+/// One registered mapping: `start == 0` marks a free slot.
+struct FaultSlot {
+    start: AtomicUsize,
+    len: AtomicUsize,
+    faulted: AtomicBool,
+}
+
+#[allow(clippy::declare_interior_mutable_const)] // each array element is its own slot
+const FREE_SLOT: FaultSlot = FaultSlot { start: AtomicUsize::new(0), len: AtomicUsize::new(0), faulted: AtomicBool::new(false) };
+static REGISTRY: [FaultSlot; MAX_MAPPINGS] = [FREE_SLOT; MAX_MAPPINGS];
+
+/// The `SIGBUS` action found when the handler was installed, to chain to for faults not ours.
+struct PrevAction(std::cell::UnsafeCell<std::mem::MaybeUninit<libc::sigaction>>);
+// SAFETY: written once, before PREV_READY is set (release) and before our handler is installed;
+// only read after PREV_READY was seen set (acquire).
+unsafe impl Sync for PrevAction {}
+static PREV: PrevAction = PrevAction(std::cell::UnsafeCell::new(std::mem::MaybeUninit::uninit()));
+static PREV_READY: AtomicBool = AtomicBool::new(false);
+static INSTALLED: std::sync::OnceLock<Result<(), i32>> = std::sync::OnceLock::new();
+
+fn page_size() -> usize {
+    // SAFETY: sysconf has no preconditions.
+    let p = unsafe { libc::sysconf(libc::_SC_PAGESIZE) };
+    if p > 0 { p as usize } else { 4096 }
+}
+
+/// Installs the process-wide `SIGBUS` handler once; the result of that one attempt (an errno on failure).
+fn install_sigbus_handler() -> Result<(), i32> {
+    *INSTALLED.get_or_init(|| {
+        // SAFETY: plain sigaction calls with valid pointers; PREV is written before PREV_READY and
+        // before our handler can run.
+        unsafe {
+            let mut old: libc::sigaction = std::mem::zeroed();
+            if libc::sigaction(libc::SIGBUS, std::ptr::null(), &mut old) != 0 {
+                return Err(io::Error::last_os_error().raw_os_error().unwrap_or(0));
+            }
+            (*PREV.0.get()).write(old);
+            PREV_READY.store(true, Ordering::Release);
+            let mut sa: libc::sigaction = std::mem::zeroed();
+            sa.sa_sigaction = on_sigbus as *const () as libc::sighandler_t;
+            sa.sa_flags = libc::SA_SIGINFO | libc::SA_ONSTACK | libc::SA_RESTART;
+            libc::sigemptyset(&mut sa.sa_mask);
+            if libc::sigaction(libc::SIGBUS, &sa, std::ptr::null_mut()) != 0 {
+                return Err(io::Error::last_os_error().raw_os_error().unwrap_or(0));
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The `SIGBUS` handler: async-signal-safe (atomics, `mmap`, `sigaction`, `raise`; errno preserved).
+extern "C" fn on_sigbus(sig: libc::c_int, info: *mut libc::siginfo_t, ctx: *mut libc::c_void) {
+    // SAFETY: errno is thread-local; info is the kernel's siginfo for this signal.
+    unsafe {
+        let errno = *libc::__errno_location();
+        // Only a fault raised by the kernel (si_code > 0) carries an address; a SIGBUS sent by kill
+        // (si_code <= 0) is never ours.
+        if !info.is_null() && (*info).si_code > 0 {
+            let addr = (*info).si_addr() as usize;
+            for slot in &REGISTRY {
+                let start = slot.start.load(Ordering::Acquire);
+                if start == 0 {
+                    continue;
+                }
+                let len = slot.len.load(Ordering::Acquire);
+                if addr >= start && addr - start < len {
+                    let p = libc::mmap(
+                        start as *mut libc::c_void,
+                        len,
+                        libc::PROT_READ | libc::PROT_WRITE,
+                        libc::MAP_FIXED | libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                        -1,
+                        0,
+                    );
+                    if p as usize == start {
+                        slot.faulted.store(true, Ordering::Release);
+                        *libc::__errno_location() = errno;
+                        return; // the access is retried on the zero page
+                    }
+                    break;
+                }
+            }
+        }
+        *libc::__errno_location() = errno;
+        chain_sigbus(sig, info, ctx);
+    }
+}
+
+/// A fault that is not ours: the previous handler, or the default action (the process dies of `SIGBUS`).
+unsafe fn chain_sigbus(sig: libc::c_int, info: *mut libc::siginfo_t, ctx: *mut libc::c_void) {
+    // SAFETY: PREV was fully written before PREV_READY was set; the previous handler is called as
+    // the kernel would have called it.
+    unsafe {
+        if PREV_READY.load(Ordering::Acquire) {
+            let prev = (*PREV.0.get()).assume_init_ref();
+            let h = prev.sa_sigaction;
+            if h != libc::SIG_DFL && h != libc::SIG_IGN {
+                if prev.sa_flags & libc::SA_SIGINFO != 0 {
+                    let f: extern "C" fn(libc::c_int, *mut libc::siginfo_t, *mut libc::c_void) = std::mem::transmute(h);
+                    f(sig, info, ctx);
+                } else {
+                    let f: extern "C" fn(libc::c_int) = std::mem::transmute(h);
+                    f(sig);
+                }
+                return;
+            }
+        }
+        let mut dfl: libc::sigaction = std::mem::zeroed();
+        dfl.sa_sigaction = libc::SIG_DFL;
+        libc::sigemptyset(&mut dfl.sa_mask);
+        libc::sigaction(sig, &dfl, std::ptr::null_mut());
+        if info.is_null() || (*info).si_code <= 0 {
+            libc::raise(sig); // sent, not a fault: deliver it again under the default action
+        }
+        // A fault: returning re-executes the access, which faults again and kills the process.
+    }
+}
+
+/// Registers `[start, start + len)` for the handler; the slot index, or `None` if the registry is full.
+fn register_mapping(start: usize, len: usize) -> Option<usize> {
+    for (i, slot) in REGISTRY.iter().enumerate() {
+        if slot.start.load(Ordering::Relaxed) == 0 && slot.start.compare_exchange(0, start, Ordering::AcqRel, Ordering::Relaxed).is_ok() {
+            slot.faulted.store(false, Ordering::Relaxed);
+            slot.len.store(len, Ordering::Release);
+            return Some(i);
+        }
+    }
+    None
+}
+
+fn unregister_mapping(i: usize) {
+    let slot = &REGISTRY[i];
+    slot.len.store(0, Ordering::Release);
+    slot.faulted.store(false, Ordering::Relaxed);
+    slot.start.store(0, Ordering::Release);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The mapping
+
+/// What the ends and their watchers share about one mapped file.
+struct Shared {
+    /// 0 while intact, else [`Broken::encode`] of the first cause found.
+    broken: AtomicU64,
+    /// Set by the server end's drop before it removes the file: a watcher then reports nothing.
+    closing: AtomicBool,
+    /// The descriptor the file was mapped from, held for `fstat`.
+    file: File,
+    path: PathBuf,
+    /// (dev, ino) of the mapped file.
+    file_id: (u64, u64),
+}
+
+impl Shared {
+    /// Records `cause` unless a cause is already recorded; returns the recorded one.
+    fn set_broken(&self, cause: Broken) -> Broken {
+        match self.broken.compare_exchange(0, cause.encode(), Ordering::AcqRel, Ordering::Acquire) {
+            Ok(_) => cause,
+            Err(code) => Broken::decode(code).unwrap_or(cause),
+        }
+    }
+
+    fn broken(&self) -> Option<Broken> {
+        Broken::decode(self.broken.load(Ordering::Acquire))
+    }
+}
+
+/// A handle on a channel's file for a non-real-time watcher thread: see [`ChannelWatch::check_file`].
+#[derive(Clone)]
+pub struct ChannelWatch {
+    shared: Arc<Shared>,
+}
+
+impl ChannelWatch {
+    /// Checks the file behind the mapping and marks the channel broken if it changed: the path no
+    /// longer exists ([`Broken::Deleted`]), names another file ([`Broken::Replaced`]), or the
+    /// mapped file is not [`CHANNEL_SIZE`] bytes ([`Broken::Resized`]). Returns the channel's
+    /// broken cause, this one or one found earlier (by an access: [`Broken::Faulted`],
+    /// [`Broken::BadHeader`]). `Ok` once the server end is closing (it removes the file itself).
+    /// Makes system calls (`lstat`, `fstat`): call it from a non-real-time thread, every
+    /// [`WATCH_PERIOD`] or so. A `stat` failing for another reason than a missing file is ignored.
+    pub fn check_file(&self) -> Result<(), Broken> {
+        let sh = &self.shared;
+        if let Some(b) = sh.broken() {
+            return Err(b);
+        }
+        if sh.closing.load(Ordering::Acquire) {
+            return Ok(());
+        }
+        let cause = match std::fs::symlink_metadata(&sh.path) {
+            Err(e) if e.kind() == io::ErrorKind::NotFound => Some(Broken::Deleted),
+            Ok(meta) if (meta.dev(), meta.ino()) != sh.file_id => Some(Broken::Replaced),
+            _ => match sh.file.metadata() {
+                Ok(meta) if meta.len() != CHANNEL_SIZE => Some(Broken::Resized { found_bytes: meta.len() }),
+                _ => None,
+            },
+        };
+        // The server end may have started closing (and removed the file) during the checks.
+        match cause {
+            Some(c) if !sh.closing.load(Ordering::Acquire) => Err(sh.set_broken(c)),
+            _ => Ok(()),
+        }
+    }
+
+    /// The cause, if the channel was found broken (by an access or by [`Self::check_file`]).
+    pub fn broken(&self) -> Option<Broken> {
+        self.shared.broken()
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.shared.path
+    }
+}
+
 /// The mapping plus what a reader remembers about one slot.
 struct Mapped {
     map: MmapRaw,
-    path: PathBuf,
+    shared: Arc<Shared>,
+    /// This mapping's slot in the `SIGBUS` registry.
+    slot: usize,
     generation: u64,
-    /// (dev, ino) of the mapped file, to remove only our own file on drop.
-    file_id: (u64, u64),
 }
 
 impl Mapped {
     fn layout(&self) -> &Layout {
-        // SAFETY: the mapping is CHANNEL_SIZE bytes (checked before mapping), page-aligned (so
-        // aligned for Layout), lives as long as self, and Layout consists only of atomics, which
-        // are valid for any bit pattern and may be shared with other processes.
+        // SAFETY: the mapping is CHANNEL_SIZE bytes, page-aligned (so aligned for Layout), lives as
+        // long as self, and Layout consists only of atomics, which are valid for any bit pattern and
+        // may be shared with other processes. If the file shrinks under it, an access faults and the
+        // SIGBUS handler maps zero pages over it (the memory stays valid; see the module docs).
         unsafe { &*(self.map.as_ptr() as *const Layout) }
+    }
+
+    /// True once an access to this mapping faulted (it now holds anonymous zeros).
+    fn faulted(&self) -> bool {
+        REGISTRY[self.slot].faulted.load(Ordering::Acquire)
+    }
+
+    /// The header's magic, version and size are this layout's.
+    fn header_valid(&self) -> bool {
+        let h = &self.layout().header;
+        h.magic.load(Ordering::Relaxed) == u64::from_le_bytes(MAGIC)
+            && h.version.load(Ordering::Relaxed) == LAYOUT_VERSION
+            && h.total_size.load(Ordering::Relaxed) == CHANNEL_SIZE
+    }
+
+    /// The cheap check before every access (a few loads, no system call): a recorded cause, a
+    /// fault, a header that is not this layout's, and (`own_generation`, the server end) a
+    /// generation that is not this end's.
+    fn check(&self, own_generation: bool) -> Result<(), Broken> {
+        if let Some(b) = self.shared.broken() {
+            return Err(b);
+        }
+        if self.faulted() {
+            return Err(self.shared.set_broken(Broken::Faulted));
+        }
+        if !self.header_valid() || (own_generation && self.layout().header.generation.load(Ordering::Acquire) != self.generation) {
+            // A fault during the loads above (zeros) is the better cause.
+            let cause = if self.faulted() { Broken::Faulted } else { Broken::BadHeader };
+            return Err(self.shared.set_broken(cause));
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Mapped {
+    fn drop(&mut self) {
+        // Before `map` is unmapped (fields drop after this): the handler must never map over an
+        // address range that may by now belong to something else.
+        unregister_mapping(self.slot);
     }
 }
 
@@ -378,6 +737,14 @@ struct ReaderState<T> {
     last_seq: u64,
     last: Option<T>,
     reads_since_fresh: u64,
+}
+
+impl<T: Copy> ReaderState<T> {
+    /// The sample of a read that did not happen: the channel is broken.
+    fn broken(&mut self) -> Sample<T> {
+        self.reads_since_fresh = self.reads_since_fresh.saturating_add(1);
+        Sample { value: self.last, status: ReadStatus::Broken, reads_since_fresh: self.reads_since_fresh }
+    }
 }
 
 fn read_slot<T: Copy, const N: usize>(slot: &Slot<N>, generation: u64, st: &mut ReaderState<T>, decode: fn(&[u64; N]) -> T) -> Sample<T> {
@@ -439,7 +806,7 @@ impl DeviceChannel {
         // An existing file keeps its mode on open: force 0600.
         file.set_permissions(std::fs::Permissions::from_mode(0o600)).map_err(io_err(path, "fchmod"))?;
         file.set_len(CHANNEL_SIZE).map_err(io_err(path, "set_len"))?;
-        let mapped = map(&file, path)?;
+        let mapped = map(file, path)?;
         let l = mapped.layout();
         let previous = l.header.generation.swap(0, Ordering::AcqRel);
         l.header.closed.store(0, Ordering::Relaxed);
@@ -453,7 +820,13 @@ impl DeviceChannel {
         l.force.reset();
         let generation = random_generation(previous);
         l.header.generation.store(generation, Ordering::Release);
-        Ok(ServerEnd { m: Mapped { generation, ..mapped }, pose: ReaderState::default() })
+        let mut mapped = mapped;
+        mapped.generation = generation;
+        // Truncated while being initialised: the stores above went to zero pages.
+        if mapped.faulted() {
+            return Err(ShmError::Broken { path: path.to_path_buf(), cause: Broken::Faulted });
+        }
+        Ok(ServerEnd { m: mapped, pose: ReaderState::default() })
     }
 
     /// Bridge side: open the channel the server created at `path`. Errors, in the order checked:
@@ -473,11 +846,14 @@ impl DeviceChannel {
         if len != CHANNEL_SIZE {
             return Err(ShmError::WrongSize { path: path.to_path_buf(), found: len, expected: CHANNEL_SIZE });
         }
-        let mapped = map(&file, path)?;
+        let mut mapped = map(file, path)?;
         let h = &mapped.layout().header;
         let p = || path.to_path_buf();
         let generation = h.generation.load(Ordering::Acquire);
         let magic = h.magic.load(Ordering::Relaxed).to_le_bytes();
+        if mapped.faulted() {
+            return Err(ShmError::Broken { path: p(), cause: Broken::Faulted });
+        }
         // A file created but not yet initialised is all zeros (magic included).
         if generation == 0 && (magic == MAGIC || magic == [0; 8]) {
             return Err(ShmError::NotInitialised { path: p() });
@@ -513,14 +889,32 @@ impl DeviceChannel {
             RawRead::Ok(_, g) if g == generation => buf[5],
             _ => 0,
         };
-        Ok(DeviceEnd { m: Mapped { generation, ..mapped }, counter, force: ReaderState::default() })
+        mapped.generation = generation;
+        if mapped.faulted() {
+            return Err(ShmError::Broken { path: p(), cause: Broken::Faulted });
+        }
+        Ok(DeviceEnd { m: mapped, counter, force: ReaderState::default() })
     }
 }
 
-fn map(file: &File, path: &Path) -> Result<Mapped, ShmError> {
+/// Maps [`CHANNEL_SIZE`] bytes of `file` shared and registers the mapping with the `SIGBUS`
+/// handler before anything touches it; keeps `file` for [`ChannelWatch::check_file`].
+fn map(file: File, path: &Path) -> Result<Mapped, ShmError> {
     let meta = file.metadata().map_err(io_err(path, "fstat"))?;
-    let map = MmapRaw::map_raw(file).map_err(io_err(path, "mmap"))?;
-    Ok(Mapped { map, path: path.to_path_buf(), generation: 0, file_id: (meta.dev(), meta.ino()) })
+    if let Err(errno) = install_sigbus_handler() {
+        return Err(ShmError::Io { path: path.to_path_buf(), op: "sigaction(SIGBUS)", source: io::Error::from_raw_os_error(errno) });
+    }
+    let map = MmapOptions::new().len(CHANNEL_SIZE as usize).map_raw(&file).map_err(io_err(path, "mmap"))?;
+    let len = (CHANNEL_SIZE as usize).div_ceil(page_size()) * page_size();
+    let slot = register_mapping(map.as_ptr() as usize, len).ok_or_else(|| ShmError::TooManyChannels { path: path.to_path_buf() })?;
+    let shared = Arc::new(Shared {
+        broken: AtomicU64::new(0),
+        closing: AtomicBool::new(false),
+        file,
+        path: path.to_path_buf(),
+        file_id: (meta.dev(), meta.ino()),
+    });
+    Ok(Mapped { map, shared, slot, generation: 0 })
 }
 
 /// The server's end: the session's real-time thread writes forces and reads poses.
@@ -532,19 +926,40 @@ pub struct ServerEnd {
 
 impl ServerEnd {
     /// Publish a force (single writer: this end). Never blocks; a few relaxed stores and fences.
+    /// Nothing is written once the channel is broken.
     pub fn write_force_from_rt(&mut self, force: &ServerForce) {
-        self.m.layout().force.write(self.m.generation, &force.encode());
+        if self.m.check(true).is_ok() {
+            self.m.layout().force.write(self.m.generation, &force.encode());
+        }
     }
 
-    /// The latest pose, fresh if the bridge wrote one since the previous call.
+    /// The latest pose, fresh if the bridge wrote one since the previous call;
+    /// [`ReadStatus::Broken`] (nothing read) once the channel is broken.
     pub fn read_pose_from_rt(&mut self) -> Sample<DevicePose> {
+        if self.m.check(true).is_err() {
+            return self.pose.broken();
+        }
         read_slot(&self.m.layout().pose, self.m.generation, &mut self.pose, DevicePose::decode)
     }
 
-    /// The bridge is alive: a pose arrived within the last `max_stale_reads` calls of
-    /// [`Self::read_pose_from_rt`] and the attached pid (if any is recorded) exists.
+    /// Why the channel is broken, if it is (checked now, cheaply; deletion, replacement and resizing
+    /// are found by a [`ChannelWatch`]). Real-time safe.
+    pub fn broken(&self) -> Option<Broken> {
+        self.m.check(true).err()
+    }
+
+    /// A handle for a non-real-time thread to watch the file with ([`ChannelWatch::check_file`]).
+    pub fn watch(&self) -> ChannelWatch {
+        ChannelWatch { shared: self.m.shared.clone() }
+    }
+
+    /// The bridge is alive: the channel is not broken, a pose arrived within the last
+    /// `max_stale_reads` calls of [`Self::read_pose_from_rt`] and the attached pid (if any is recorded) exists.
     pub fn device_alive(&self, max_stale_reads: u64) -> bool {
-        self.pose.last.is_some() && self.pose.reads_since_fresh <= max_stale_reads && self.attacher_pid().is_none_or(pid_alive)
+        self.broken().is_none()
+            && self.pose.last.is_some()
+            && self.pose.reads_since_fresh <= max_stale_reads
+            && self.attacher_pid().is_none_or(pid_alive)
     }
 
     /// The pid of the attached bridge, if one is attached (it may have died since: see [`pid_alive`]).
@@ -557,31 +972,38 @@ impl ServerEnd {
     }
 
     pub fn path(&self) -> &Path {
-        &self.m.path
+        &self.m.shared.path
     }
 }
 
 impl Drop for ServerEnd {
     fn drop(&mut self) {
+        self.m.shared.closing.store(true, Ordering::Release);
         let l = self.m.layout();
-        if l.header.generation.load(Ordering::Acquire) != self.m.generation {
+        let valid = self.m.header_valid();
+        let generation = l.header.generation.load(Ordering::Acquire);
+        if valid && generation != self.m.generation {
             return; // someone re-created the channel in this file: it is no longer ours
         }
-        let mut buf = [0u64; FORCE_WORDS];
-        let mut f = match l.force.read(&mut buf) {
-            RawRead::Ok(s, g) if s != 0 && g == self.m.generation => ServerForce::decode(&buf),
-            _ => ServerForce::default(),
-        };
-        f.t_ns = monotonic_ns();
-        f.state = ServerForce::STATE_CLOSING;
-        self.write_force_from_rt(&f);
-        let l = self.m.layout();
-        l.header.closed.store(1, Ordering::Release);
-        // Remove the file only if the path still names our file.
-        if let Ok(meta) = std::fs::symlink_metadata(&self.m.path)
-            && (meta.dev(), meta.ino()) == self.m.file_id
+        // Tell a bridge we are closing, if the mapping still shows our channel (a deleted or
+        // replaced file is still shared with a bridge that has it mapped).
+        if valid && !self.m.faulted() {
+            let mut buf = [0u64; FORCE_WORDS];
+            let mut f = match l.force.read(&mut buf) {
+                RawRead::Ok(s, g) if s != 0 && g == self.m.generation => ServerForce::decode(&buf),
+                _ => ServerForce::default(),
+            };
+            f.t_ns = monotonic_ns();
+            f.state = ServerForce::STATE_CLOSING;
+            l.force.write(self.m.generation, &f.encode());
+            l.header.closed.store(1, Ordering::Release);
+        }
+        // Remove the file (ours, even if truncated or overwritten) only if the path still names it.
+        let sh = &self.m.shared;
+        if let Ok(meta) = std::fs::symlink_metadata(&sh.path)
+            && (meta.dev(), meta.ino()) == sh.file_id
         {
-            let _ = std::fs::remove_file(&self.m.path);
+            let _ = std::fs::remove_file(&sh.path);
         }
     }
 }
@@ -595,7 +1017,8 @@ pub struct DeviceEnd {
 
 impl DeviceEnd {
     /// Publish a pose (single writer: this end); stamps and returns the next counter (the caller's
-    /// `counter` is ignored). `Err(Stale)` if the channel was re-created or closed: re-attach.
+    /// `counter` is ignored). `Err(Stale)` if the channel was re-created or closed (re-attach) or
+    /// is broken ([`Self::broken`]); nothing is written then.
     pub fn write_pose_from_device(&mut self, pose: &DevicePose) -> Result<u64, Stale> {
         if !self.is_current() {
             return Err(Stale);
@@ -611,19 +1034,43 @@ impl DeviceEnd {
     }
 
     /// The latest force, fresh if the server wrote one since the previous call;
-    /// [`ReadStatus::Stale`] (value: the last good one) once the channel was re-created or closed.
+    /// [`ReadStatus::Stale`] (value: the last good one) once the channel was re-created or closed;
+    /// [`ReadStatus::Broken`] (nothing read) once it is broken.
     pub fn read_force_from_device(&mut self) -> Sample<ServerForce> {
+        if self.m.check(false).is_err() {
+            return self.force.broken();
+        }
         let mut s = read_slot(&self.m.layout().force, self.m.generation, &mut self.force, ServerForce::decode);
-        if !self.is_current() {
+        if self.m.check(false).is_err() {
+            s.status = ReadStatus::Broken;
+        } else if !self.is_current() {
             s.status = ReadStatus::Stale;
         }
         s
     }
 
-    /// True while the channel is the one attached to: same generation, not closed.
+    /// True while the channel is the one attached to: same generation, not closed, not broken.
     pub fn is_current(&self) -> bool {
         let h = &self.m.layout().header;
-        h.generation.load(Ordering::Acquire) == self.m.generation && h.closed.load(Ordering::Acquire) == 0
+        self.m.check(false).is_ok() && h.generation.load(Ordering::Acquire) == self.m.generation && h.closed.load(Ordering::Acquire) == 0
+    }
+
+    /// The server closed the channel (state closing written, header closed) or re-created it: the
+    /// normal ends of a channel, as opposed to [`Self::broken`].
+    pub fn closed_or_recreated(&self) -> bool {
+        let h = &self.m.layout().header;
+        self.m.header_valid() && (h.generation.load(Ordering::Acquire) != self.m.generation || h.closed.load(Ordering::Acquire) != 0)
+    }
+
+    /// Why the channel is broken, if it is (checked now, cheaply; deletion, replacement and
+    /// resizing are found by a [`ChannelWatch`]).
+    pub fn broken(&self) -> Option<Broken> {
+        self.m.check(false).err()
+    }
+
+    /// A handle for a non-real-time thread to watch the file with ([`ChannelWatch::check_file`]).
+    pub fn watch(&self) -> ChannelWatch {
+        ChannelWatch { shared: self.m.shared.clone() }
     }
 
     /// The server is alive: the channel is current, a force arrived within the last
@@ -644,7 +1091,7 @@ impl DeviceEnd {
     }
 
     pub fn path(&self) -> &Path {
-        &self.m.path
+        &self.m.shared.path
     }
 }
 
@@ -652,7 +1099,7 @@ impl Drop for DeviceEnd {
     fn drop(&mut self) {
         // Detach, so that another bridge may attach; a no-op if someone else has taken over or the
         // channel was re-created (this process may have re-attached to the new generation).
-        if self.m.layout().header.generation.load(Ordering::Acquire) != self.m.generation {
+        if self.m.faulted() || self.m.layout().header.generation.load(Ordering::Acquire) != self.m.generation {
             return;
         }
         let _ = self.m.layout().header.attacher_pid.compare_exchange(std::process::id(), 0, Ordering::AcqRel, Ordering::Relaxed);
@@ -911,5 +1358,178 @@ mod tests {
         let pid = child.id();
         child.wait().unwrap();
         assert!(!pid_alive(pid));
+    }
+
+    /// The changes to a live channel's file of issue 13.
+    #[derive(Debug, Clone, Copy)]
+    enum Mutation {
+        TruncateToZero,
+        ShrinkToHalf,
+        Grow,
+        GarbageFill,
+        Delete,
+        /// A copy of the channel's bytes (a valid-looking header) renamed over the path.
+        Replace,
+    }
+
+    const MUTATIONS: [Mutation; 6] =
+        [Mutation::TruncateToZero, Mutation::ShrinkToHalf, Mutation::Grow, Mutation::GarbageFill, Mutation::Delete, Mutation::Replace];
+
+    fn mutate(path: &Path, m: Mutation) {
+        let open = || OpenOptions::new().write(true).open(path).unwrap();
+        match m {
+            Mutation::TruncateToZero => open().set_len(0).unwrap(),
+            Mutation::ShrinkToHalf => open().set_len(CHANNEL_SIZE / 2).unwrap(),
+            Mutation::Grow => open().set_len(1 << 20).unwrap(),
+            Mutation::GarbageFill => {
+                // Same length, same inode: every byte overwritten (splitmix64 noise).
+                let mut z = 0x1234_5678_9abc_def0u64;
+                let bytes: Vec<u8> = (0..CHANNEL_SIZE / 8)
+                    .flat_map(|_| {
+                        z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+                        let mut x = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+                        x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+                        (x ^ (x >> 31)).to_le_bytes()
+                    })
+                    .collect();
+                open().write_all_at(&bytes, 0).unwrap();
+            }
+            Mutation::Delete => std::fs::remove_file(path).unwrap(),
+            Mutation::Replace => {
+                let tmp = path.with_extension("replacement");
+                std::fs::copy(path, &tmp).unwrap();
+                std::fs::rename(&tmp, path).unwrap();
+            }
+        }
+    }
+
+    fn expected(m: Mutation) -> Broken {
+        match m {
+            Mutation::TruncateToZero => Broken::Faulted,
+            Mutation::ShrinkToHalf => Broken::Resized { found_bytes: CHANNEL_SIZE / 2 },
+            Mutation::Grow => Broken::Resized { found_bytes: 1 << 20 },
+            Mutation::GarbageFill => Broken::BadHeader,
+            Mutation::Delete => Broken::Deleted,
+            Mutation::Replace => Broken::Replaced,
+        }
+    }
+
+    fn pose(x_m: f64) -> DevicePose {
+        DevicePose { t_ns: monotonic_ns(), x_m, y_m: 0.1, theta_rad: 0.2, buttons: 0, counter: 0 }
+    }
+
+    /// Every change to a live channel's file: neither end faults (this test process survives the
+    /// truncation, which killed it with SIGBUS before), both report the channel broken with the
+    /// cause, reads keep the last good value, writes are refused or harmless, and dropping the ends
+    /// removes the file only while the path still names it.
+    #[test]
+    fn issue_13_every_change_to_the_file_breaks_both_ends_without_a_fault() {
+        for m in MUTATIONS {
+            let path = temp_path(&format!("mutate-{m:?}"));
+            let mut server = DeviceChannel::create(&path).unwrap();
+            let mut device = DeviceChannel::attach(&path).unwrap();
+            let (server_watch, device_watch) = (server.watch(), device.watch());
+            device.write_pose_from_device(&pose(1.0)).unwrap();
+            assert!(server.read_pose_from_rt().fresh(), "{m:?}");
+            server.write_force_from_rt(&force(1));
+            assert!(device.read_force_from_device().fresh(), "{m:?}");
+            assert_eq!((server_watch.check_file(), device_watch.check_file()), (Ok(()), Ok(())), "{m:?}");
+
+            mutate(&path, m);
+
+            // Accesses first (a truncation faults on them), then the watchers (the rest).
+            let s = server.read_pose_from_rt();
+            server.write_force_from_rt(&force(2));
+            let w = device.write_pose_from_device(&pose(2.0));
+            let f = device.read_force_from_device();
+            let _ = (server_watch.check_file(), device_watch.check_file());
+            let want = expected(m);
+            assert_eq!(server.broken(), Some(want), "{m:?}");
+            assert_eq!(device.broken(), Some(want), "{m:?}");
+            assert_eq!(server_watch.check_file(), Err(want), "{m:?}");
+            assert_eq!(device_watch.check_file(), Err(want), "{m:?}");
+            if matches!(m, Mutation::TruncateToZero | Mutation::GarbageFill) {
+                // Found by the accesses themselves, no watcher needed.
+                assert_eq!(s.status, ReadStatus::Broken, "{m:?}");
+                assert_eq!(f.status, ReadStatus::Broken, "{m:?}");
+                assert_eq!(w, Err(Stale), "{m:?}");
+            }
+            // From now on: broken, nothing read, the last good values kept.
+            let s = server.read_pose_from_rt();
+            assert_eq!(s.status, ReadStatus::Broken, "{m:?}");
+            assert_eq!(s.value.map(|p| p.x_m), Some(1.0), "{m:?}");
+            assert!(!server.device_alive(u64::MAX), "{m:?}");
+            server.write_force_from_rt(&force(3));
+            let f = device.read_force_from_device();
+            assert_eq!(f.status, ReadStatus::Broken, "{m:?}");
+            // The accesses found truncation and garbage at once; the others only the watcher (a
+            // shrink within the first page, a grown, deleted or replaced file still share memory).
+            // (A shrink to 256 bytes zeroed the force slot's tail of the page: the next write
+            // restarted the sequence at 2, the sequence already accepted, so it was not fresh.)
+            let last_tick = if matches!(m, Mutation::TruncateToZero | Mutation::GarbageFill | Mutation::ShrinkToHalf) { 1 } else { 2 };
+            assert_eq!(f.value.map(|f| f.tick), Some(last_tick), "{m:?}");
+            assert!(!device.is_current() && !device.server_alive(u64::MAX), "{m:?}");
+            assert!(!device.closed_or_recreated(), "{m:?}: broken is not the normal end of a channel");
+            assert_eq!(device.write_pose_from_device(&pose(3.0)), Err(Stale), "{m:?}");
+
+            drop(device);
+            drop(server);
+            match m {
+                // The replacement is someone else's file: it stays.
+                Mutation::Replace => {
+                    assert!(path.exists(), "{m:?}");
+                    std::fs::remove_file(&path).unwrap();
+                }
+                // Our own file, whatever was done to it, is removed.
+                _ => assert!(!path.exists(), "{m:?}: the server end left its broken file behind"),
+            }
+            // A watcher that outlives the ends keeps its verdict.
+            assert_eq!(server_watch.check_file(), Err(want), "{m:?}");
+        }
+    }
+
+    #[test]
+    fn issue_13_a_normal_close_is_not_reported_broken() {
+        let path = temp_path("close-watch");
+        let server = DeviceChannel::create(&path).unwrap();
+        let device = DeviceChannel::attach(&path).unwrap();
+        let (server_watch, device_watch) = (server.watch(), device.watch());
+        drop(server); // closes and removes the file
+        assert!(!path.exists());
+        assert_eq!(server_watch.check_file(), Ok(()), "the server end's own close is no breakage");
+        assert!(device.closed_or_recreated());
+        assert!(!device.is_current());
+        // The bridge's watcher sees the file gone: broken too, but the bridge reports the close first.
+        assert_eq!(device_watch.check_file(), Err(Broken::Deleted));
+    }
+
+    #[test]
+    fn issue_13_a_file_truncated_while_attaching_or_creating_is_an_error_not_a_fault() {
+        let path = temp_path("truncated-attach");
+        let server = DeviceChannel::create(&path).unwrap();
+        // A mapping of a zero-length file (as if truncated between attach's size check and its
+        // reads): the header reads fault, and attach reports it.
+        let file = OpenOptions::new().read(true).write(true).open(&path).unwrap();
+        file.set_len(0).unwrap();
+        let mapped = map(file, &path).unwrap();
+        assert_eq!(mapped.check(false), Err(Broken::Faulted));
+        assert!(mapped.faulted());
+        assert_eq!(mapped.layout().header.magic.load(Ordering::Relaxed), 0, "the mapping now reads zeros");
+        drop(mapped);
+        let e = DeviceChannel::attach(&path).err().unwrap();
+        assert!(matches!(e, ShmError::WrongSize { found: 0, .. }), "{e}");
+        drop(server);
+    }
+
+    #[test]
+    fn issue_13_the_registry_is_reused_after_drop() {
+        // More channels over time than registry slots, never more than a few at once.
+        for i in 0..(MAX_MAPPINGS + 16) {
+            let path = temp_path("registry");
+            let server = DeviceChannel::create(&path).unwrap();
+            assert!(server.broken().is_none(), "channel {i}");
+        }
+        let slots_in_use = REGISTRY.iter().filter(|s| s.start.load(Ordering::Relaxed) != 0).count();
+        assert!(slots_in_use < 64, "{slots_in_use} registry slots still in use after every channel was dropped");
     }
 }

@@ -531,3 +531,81 @@ fn real_server_session_and_a_killed_server() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 13: every change to the live channel file while the bridge drives the plug-in (which
+/// records the last force it was sent). The bridge neither dies of SIGBUS (truncation) nor runs on
+/// with a channel nobody can reach (deletion, replacement): it ramps the force out, leaves a zero
+/// force on the device, and exits with status 1 and a message naming the cause. The fake server
+/// (this process) survives every change too.
+#[test]
+fn issue_13_a_broken_channel_ends_the_bridge_with_a_zero_force() {
+    // (kind, the causes the bridge may name: a truncation is found by the next access, or, if the
+    // watcher thread runs first, by the size check.)
+    let cases: [(&str, &[&str]); 6] = [
+        ("truncate", &["was truncated under the mapping", "is now 0 bytes, expected 512"]),
+        ("shrink", &["is now 256 bytes, expected 512"]),
+        ("grow", &["is now 1048576 bytes, expected 512"]),
+        ("garbage", &["header was overwritten"]),
+        ("delete", &["was deleted"]),
+        ("replace", &["was replaced by another file"]),
+    ];
+    for (kind, causes) in cases {
+        let dir = temp_dir(&format!("broken-{kind}"));
+        let chan = dir.join("session.shm");
+        let record = dir.join("record.txt");
+        let trace = dir.join("trace.csv");
+        let server = FakeServer::start(DeviceChannel::create(&chan).unwrap());
+        // Off the origin and moving: the fake tissue pushes back (w = J q ≠ 0).
+        let config = format!("x0=0.004 y0=-0.002 th0=0.05 vx=0.002 record={}", record.display());
+        let child = Command::new(BIN)
+            .args(["--channel", chan.to_str().unwrap(), "--device", "plugin", "--plugin", example_plugin().to_str().unwrap()])
+            .args(["--plugin-config", &config, "--seconds", "30", "--json", "--trace", trace.to_str().unwrap()])
+            .env("RUST_LOG", "warn")
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Wait until the bridge renders a force from the fake server.
+        let t0 = Instant::now();
+        while !std::fs::read_to_string(&trace).is_ok_and(|t| t.lines().count() > 500) {
+            assert!(t0.elapsed() < Duration::from_secs(30), "{kind}: the bridge did not start tracing");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        let file = || std::fs::OpenOptions::new().write(true).open(&chan).unwrap();
+        match kind {
+            "truncate" => file().set_len(0).unwrap(),
+            "shrink" => file().set_len(256).unwrap(),
+            "grow" => file().set_len(1 << 20).unwrap(),
+            "garbage" => std::os::unix::fs::FileExt::write_all_at(&file(), &[0xA5; 512], 0).unwrap(),
+            "delete" => std::fs::remove_file(&chan).unwrap(),
+            "replace" => {
+                let tmp = dir.join("replacement");
+                std::fs::copy(&chan, &tmp).unwrap();
+                std::fs::rename(&tmp, &chan).unwrap();
+            }
+            _ => unreachable!(),
+        }
+        let broken_at = Instant::now();
+        let out = child.wait_with_output().unwrap();
+        let exited_after = broken_at.elapsed();
+        let (_server_end, st) = server.stop();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let json = String::from_utf8(out.stdout).unwrap();
+        println!("{kind}: the bridge exited {exited_after:?} after the change: {}", stderr.trim());
+        assert_eq!(out.status.code(), Some(1), "{kind}: {:?} {stderr}", out.status);
+        assert!(stderr.contains("is broken") && causes.iter().any(|c| stderr.contains(c)), "{kind}: {stderr}");
+        // (The exit string may hold commas, which json_field does not parse: the report's tail.)
+        let exit = &json[json.find("\"exit\":").expect("an exit field")..];
+        assert!(exit.contains("is broken") && causes.iter().any(|c| exit.contains(c)), "{kind}: {json}");
+        // Well before --seconds 30: the bridge noticed.
+        assert!(exited_after < Duration::from_secs(20), "{kind}: {exited_after:?}");
+        let rows = read_trace(&trace);
+        let pushing = rows.iter().map(|r| r.wrench[0].hypot(r.wrench[1])).fold(0.0, f64::max);
+        assert!(pushing > 0.1, "{kind}: no force was rendered before the change ({pushing} N): the zero below proves nothing");
+        let f: Vec<f64> = std::fs::read_to_string(&record).unwrap().split_whitespace().map(|x| x.parse().unwrap()).collect();
+        assert_eq!(&f[..3], &[0.0, 0.0, 0.0], "{kind}: the device was left pushing");
+        assert_eq!(f[3], rows.len() as f64 + 1.0, "{kind}: one write per period plus the final zero");
+        assert!(st.ticks > 500, "{kind}: {st:?}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

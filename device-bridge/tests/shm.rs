@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use needlesim_bridge::shm::{DeviceChannel, ServerForce, monotonic_ns};
+use needlesim_bridge::shm::{Broken, DeviceChannel, ReadStatus, ServerForce, monotonic_ns};
 
 fn temp_path(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("needlesim-shm-it-{}-{name}", std::process::id()))
@@ -114,4 +114,55 @@ fn bridge_notices_a_recreated_channel_across_processes() {
     assert!(status.success());
     assert!(!server.read_pose_from_rt().fresh());
     assert_eq!(server.attacher_pid(), None);
+}
+
+/// Issue 13: truncating the channel file under both processes killed them with SIGBUS. Now the
+/// server end (this test process) keeps running and reports the channel broken, and the probe on
+/// the other end exits on its own with its "broken" status (3), not by a signal.
+#[test]
+fn issue_13_a_truncated_channel_kills_neither_process() {
+    use std::os::unix::process::ExitStatusExt;
+    let path = temp_path("truncate");
+    let mut server = DeviceChannel::create(&path).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shm-probe")).args(["echo", path.to_str().unwrap()]).spawn().unwrap();
+    wait_attached(&server, child.id());
+    // A few echoed ticks: both ends are live on the mapping.
+    let t0 = Instant::now();
+    for tick in 1..=50u64 {
+        server.write_force_from_rt(&ServerForce { tick, t_ns: monotonic_ns(), ..Default::default() });
+        while !(server.read_pose_from_rt().value.is_some_and(|p| p.x_m == tick as f64)) {
+            assert!(t0.elapsed() < Duration::from_secs(30), "no echo of tick {tick}");
+            std::hint::spin_loop();
+        }
+    }
+    std::fs::OpenOptions::new().write(true).open(&path).unwrap().set_len(0).unwrap();
+    // The server end keeps going through the fault: writes and reads are harmless.
+    for tick in 51..=100u64 {
+        server.write_force_from_rt(&ServerForce { tick, t_ns: monotonic_ns(), ..Default::default() });
+        let s = server.read_pose_from_rt();
+        assert_eq!(s.status, ReadStatus::Broken, "tick {tick}");
+    }
+    assert_eq!(server.broken(), Some(Broken::Faulted));
+    let status = child.wait().unwrap();
+    assert_eq!(status.signal(), None, "the probe was killed by signal {:?}", status.signal());
+    assert_eq!(status.code(), Some(3), "the probe did not report a broken channel: {status}");
+    drop(server);
+    assert!(!path.exists(), "the server end removes its truncated file");
+}
+
+/// The SIGBUS handler only takes faults on channel mappings: a fault on any other mapping (a
+/// genuine bug) still kills the process with SIGBUS.
+#[test]
+fn issue_13_a_fault_outside_any_channel_still_kills_the_process() {
+    use std::os::unix::process::ExitStatusExt;
+    let path = temp_path("foreign");
+    let scratch = temp_path("foreign-scratch");
+    let _server = DeviceChannel::create(&path).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_shm-probe"))
+        .args(["foreign-sigbus", path.to_str().unwrap(), scratch.to_str().unwrap()])
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_file(&scratch);
+    assert_eq!(out.status.signal(), Some(libc::SIGBUS), "{:?}: {}", out.status, String::from_utf8_lossy(&out.stderr));
 }

@@ -152,6 +152,7 @@ fn session_info(s: &Session) -> pb::SessionInfo {
         target_names: s.target_names.clone(),
         device_channel_path: s.device_channel_path.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
         device_stale: s.counters.device_stale.load(Ordering::Relaxed) != 0,
+        device_channel_broken: s.counters.device_channel_broken.load(Ordering::Relaxed) != 0,
     }
 }
 

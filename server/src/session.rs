@@ -221,6 +221,9 @@ pub struct SessionCounters {
     pub device_stale_events: AtomicU64,
     /// Fresh device poses taken.
     pub device_poses: AtomicU64,
+    /// 1 once the device channel is broken (its file was truncated, resized, overwritten, deleted
+    /// or replaced: `needlesim_bridge::shm::Broken`): the device stays stale for the rest of the session.
+    pub device_channel_broken: AtomicU64,
     /// Bevel flips asked for (by clients and the device's button 0), and applied by the
     /// real-time thread.
     pub bevel_flips_requested: AtomicU64,
@@ -337,6 +340,7 @@ impl Session {
             None => None,
         };
         let device_channel_path = device.as_ref().map(|d| d.path().to_path_buf());
+        let device_watch = device.as_ref().map(|d| d.watch());
         let counters = Arc::new(SessionCounters::default());
         let stop = Arc::new(AtomicBool::new(false));
         let initial = PoseCommand { pose: sim.pose(), seq: 0, client_time_ns: 0 };
@@ -377,6 +381,11 @@ impl Session {
             stiffness: [0.0; 9],
         };
         threads.push(std::thread::Builder::new().name(format!("rt-{id}")).spawn(move || rt.run()).map_err(SessionError::Thread)?);
+        if let Some(watch) = device_watch {
+            let stop = stop.clone();
+            let spawned = std::thread::Builder::new().name(format!("dev-{id}")).spawn(move || watch_device_channel(watch, stop));
+            threads.push(spawned.map_err(SessionError::Thread)?);
+        }
         let worker = ColumnWorker {
             tissue: scene.tissue.clone(),
             req_rx,
@@ -542,6 +551,30 @@ struct RtLoop {
     stiffness: [f64; 9],
 }
 
+/// The session's device-channel watcher (a non-real-time thread): checks the channel's file every
+/// [`needlesim_bridge::shm::WATCH_PERIOD`] (deleted, replaced, resized: system calls the real-time
+/// thread does not make), which the real-time thread then sees as a broken channel; logs the cause
+/// once, whoever found it.
+fn watch_device_channel(watch: needlesim_bridge::shm::ChannelWatch, stop: Arc<AtomicBool>) {
+    const STEP: Duration = Duration::from_millis(10);
+    let mut since_check = Duration::ZERO;
+    while !stop.load(Ordering::Relaxed) {
+        std::thread::sleep(STEP);
+        since_check += STEP;
+        if since_check < needlesim_bridge::shm::WATCH_PERIOD {
+            continue;
+        }
+        since_check = Duration::ZERO;
+        if let Err(why) = watch.check_file() {
+            tracing::warn!(
+                channel = %watch.path().display(),
+                "device channel broken: {why}; the device is stale for the rest of the session (the needle is held, other clients may still drive it)"
+            );
+            return;
+        }
+    }
+}
+
 /// The device button (bit of `DevicePose::buttons`) that turns the needle 180° about its axis,
 /// on each press (rising edge).
 pub const FLIP_BEVEL_BUTTON: u32 = 1;
@@ -611,7 +644,15 @@ impl RtLoop {
         let mut device_stale = false;
         if let Some(dev) = self.device.as_mut() {
             let sample = dev.read_pose_from_rt();
-            if sample.fresh()
+            if sample.status == needlesim_bridge::shm::ReadStatus::Broken {
+                // The channel's file was changed under it: no device can reach this session any
+                // more. Stale for good; hold the needle unless a client moves it.
+                self.counters.device_channel_broken.store(1, Ordering::Relaxed);
+                device_stale = true;
+                if !client_pose {
+                    *pose = self.sim.pose();
+                }
+            } else if sample.fresh()
                 && let Some(p) = sample.value
             {
                 *pose = BasePose::new(p.x_m, p.y_m, p.theta_rad);

@@ -114,3 +114,65 @@ fn issue_8_device_button_flips_the_bevel() {
     session.close();
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 13: the live channel file of a driven session is truncated (the server's next access
+/// faulted with SIGBUS and killed the process, every session with it) or deleted (found by the
+/// session's watcher thread). The session keeps ticking with its device stale and its channel
+/// broken, holding the needle where the device left it; another session is untouched.
+#[test]
+fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
+    use needlesim_bridge::shm::{Broken, ReadStatus};
+    let scene = needlesim_server::scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
+    let dir = std::env::temp_dir().join(format!("needlesim-device-broken-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (kind, cause) in [("truncate", Broken::Faulted), ("delete", Broken::Deleted)] {
+        let bystander = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
+        let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
+        let path = session.device_channel_path.clone().unwrap();
+        let mut device = DeviceChannel::attach(&path).unwrap();
+        let f = drive(&mut device, 0.205, 0.185, 1.0).expect("forces arrive");
+        assert_eq!(f.state, ServerForce::STATE_OK, "[{kind}]");
+        match kind {
+            "truncate" => std::fs::OpenOptions::new().write(true).open(&path).unwrap().set_len(0).unwrap(),
+            _ => std::fs::remove_file(&path).unwrap(),
+        }
+        let t0 = Instant::now();
+        while session.counters.device_channel_broken.load(Ordering::Relaxed) == 0 {
+            assert!(t0.elapsed() < Duration::from_secs(10), "[{kind}] the session did not mark its channel broken");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        // The device end sees it too (the truncation on its next access, the deletion by its watcher).
+        let _ = device.read_force_from_device();
+        let _ = device.watch().check_file();
+        assert_eq!(device.broken(), Some(cause), "[{kind}]");
+        assert_eq!(device.read_force_from_device().status, ReadStatus::Broken, "[{kind}]");
+        assert!(device.write_pose_from_device(&DevicePose { y_m: 0.15, ..Default::default() }).is_err(), "[{kind}]");
+
+        std::thread::sleep(Duration::from_millis(100));
+        let held = session.latest_record();
+        assert!(held.device_stale, "[{kind}] the device is marked stale");
+        assert_eq!(session.counters.device_stale.load(Ordering::Relaxed), 1, "[{kind}]");
+        assert!((held.base.y_m - 0.185).abs() < 0.002, "[{kind}] the needle is held where the device left it: {:?}", held.base);
+        // Both sessions tick on (polled: no rate is asserted on this loaded machine).
+        let (t1, b1) = (held.tick, bystander.latest_record().tick);
+        let t0 = Instant::now();
+        while session.latest_record().tick <= t1 + 100 || bystander.latest_record().tick <= b1 + 100 {
+            assert!(t0.elapsed() < Duration::from_secs(20), "[{kind}] a session stopped ticking");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        let later = session.latest_record();
+        assert_eq!(later.base, held.base, "[{kind}] the needle moved without a device");
+        assert!(later.device_stale, "[{kind}]");
+        assert_eq!(bystander.counters.device_channel_broken.load(Ordering::Relaxed), 0, "[{kind}]");
+        let other_path = bystander.device_channel_path.clone().unwrap();
+        let mut other_device = DeviceChannel::attach(&other_path).expect("the other session's channel still attaches");
+        assert!(other_device.is_current() && other_device.broken().is_none(), "[{kind}]");
+        drive(&mut other_device, 0.205, 0.2, 0.2).expect("the other session's channel still carries forces");
+
+        drop((device, other_device));
+        session.close();
+        bystander.close();
+        assert!(!path.exists() && !other_path.exists(), "[{kind}] the channel files are removed at close");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
