@@ -119,8 +119,9 @@ pub struct PlanOptions {
     pub hold_s: f64,
     /// Set from outside to abandon the planning (e.g. the gRPC client went away).
     pub cancel: Option<Arc<AtomicBool>>,
-    /// Most ticks one simulated insertion may take (default 10 million, the server's default
-    /// `max_simulate_ticks`): a very slow speed is rejected rather than simulated for hours.
+    /// Most ticks one simulated insertion may take (default 10 million for the offline command;
+    /// the server passes its `--max-simulate-ticks`): a very slow speed is rejected rather than
+    /// simulated for hours.
     pub max_ticks_per_simulation: u64,
 }
 
