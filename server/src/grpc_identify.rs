@@ -158,7 +158,10 @@ impl pb::identify_service_server::IdentifyService for Api {
                         "" | "stress" => needlesim_core::PlaneModel::Stress { thickness_m },
                         "strain" => needlesim_core::PlaneModel::Strain { thickness_m },
                         m => {
-                            return Err(Status::invalid_argument(format!("plane must be \"stress\" or \"strain\", found \"{}\"", quote(m))));
+                            return Err(Status::invalid_argument(format!(
+                                "plane must be \"stress\" or \"strain\", found \"{}\"",
+                                quote(m)
+                            )));
                         }
                     };
                     if (g.nx as usize).saturating_mul(g.ny as usize) > limits.mesh.max_nodes {

@@ -782,6 +782,18 @@ mod tests {
     }
 
     #[test]
+    fn issue_13_an_image_over_the_pixel_limit_is_refused_from_its_header() {
+        let mut buf = std::io::Cursor::new(Vec::new());
+        GrayImage::new(100, 80).write_to(&mut buf, image::ImageFormat::Png).unwrap();
+        let png = buf.into_inner();
+        let p = TrackParams { max_image_pixels: 7999, ..params() };
+        let e = track_png_bytes(&[(0.0, &png)], &p, &mut |_, _| {}).unwrap_err();
+        let size = e.downcast_ref::<SizeLimit>().unwrap_or_else(|| panic!("not a size limit: {e:#}"));
+        assert_eq!((size.amount, size.limit), (8000, 7999));
+        assert!(e.to_string().contains("frame 0 (100 × 80 pixels)"), "{e}");
+    }
+
+    #[test]
     fn issue_9_detected_centroids_within_a_tenth_of_a_pixel_rms_with_noise() {
         let mut rng = SmallRng::seed_from_u64(9);
         for (noise, blur, polarity) in [(3.0, 1.0, Polarity::Dark), (5.0, 1.0, Polarity::Dark), (4.0, 1.5, Polarity::Bright)] {
