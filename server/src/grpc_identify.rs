@@ -33,7 +33,7 @@ pub const MAX_TRACK_FRAMES: usize = 20_000;
 pub const MAX_TRACK_ROWS: usize = 5_000_000;
 
 fn invalid(field: &str) -> impl Fn(anyhow::Error) -> Status + '_ {
-    move |e| Status::invalid_argument(format!("{field}: {e:#}"))
+    move |e| ApiError::invalid(field, format!("{e:#}")).into()
 }
 
 fn parse_tracks(text: &str) -> Result<MarkerTracks, Status> {

@@ -19,7 +19,7 @@ use tonic::{Request, Response, Status};
 use crate::grpc::Api;
 use crate::jobs::JobKind;
 use crate::plan::{self, PlanOptions, PlanRequest};
-use crate::status::status_of;
+use crate::status::{ApiError, status_of};
 
 fn vec2(v: [f64; 2]) -> pb::Vec2 {
     pb::Vec2 { x: v[0], y: v[1] }
@@ -155,7 +155,7 @@ impl pb::planning_service_server::PlanningService for Api {
                 Err(_) if cancel.load(Ordering::Relaxed) => tracing::info!("planning cancelled: the client went away"),
                 Err(e) => {
                     let msg = format!("{e:#}");
-                    let status = if is_input_error(&msg) { Status::invalid_argument(msg) } else { Status::internal(msg) };
+                    let status = if is_input_error(&msg) { status_of("", &e) } else { ApiError::Internal(msg).into() };
                     let _ = tx.blocking_send(Err(status));
                 }
             }
