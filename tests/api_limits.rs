@@ -83,6 +83,8 @@ async fn issue_13_simulate_and_track_stay_within_a_memory_budget() {
         "25000000",
         "--max-offline-jobs",
         "2",
+        "--max-session-memory-mb",
+        "256",
     ]);
     let ch = channel(&server).await;
     let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch.clone());

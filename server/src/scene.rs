@@ -694,13 +694,13 @@ mod tests {
         let server = SceneLimits { mesh: MeshLimits::default(), max_session_bytes: 1280 << 20 };
         let base = include_str!("../scenes/paper-phantom.toml");
         let huge = base.replace("nx = 19", "nx = 31").replace("ny = 19", "ny = 31000");
-        let e = parse_scene(&huge, Path::new("."), &server).err().unwrap();
+        let e = parse_scene(&huge, Path::new("."), server).err().unwrap();
         let size = e.chain().find_map(|c| c.downcast_ref::<SizeLimit>()).unwrap_or_else(|| panic!("not a size limit: {e:#}"));
         assert_eq!((size.amount, size.limit), (estimated_session_bytes(961_000, 128).div_ceil(1 << 20), 1280));
         // The benchmark's largest grid fits, and the offline commands have no memory bound.
         assert!(estimated_session_bytes(160_000, 128) <= server.max_session_bytes);
         let big = base.replace("nx = 19", "nx = 400").replace("ny = 19", "ny = 400");
-        assert_eq!(parse_scene(&big, Path::new("."), &server).unwrap().tissue.mesh().n_nodes(), 160_000);
+        assert_eq!(parse_scene(&big, Path::new("."), server).unwrap().tissue.mesh().n_nodes(), 160_000);
         // The estimate bounds the measured figures: 2.6 GB at 31 × 31000 when built (issue 13);
         // 377 MiB of model and factor at 400 × 400 (BENCHMARKS.md).
         assert!(estimated_session_bytes(961_000, 0) > 2_600_000_000);
