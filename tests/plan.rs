@@ -154,8 +154,8 @@ async fn planning_service_streams_progress_and_a_plan_that_hits() {
     let mut stream = sim.simulate(sreq).await.expect("Simulate starts").into_inner();
     let mut rows = Vec::new();
     while let Some(m) = stream.next().await {
-        if let Some(pb::simulate_response::Event::Result(res)) = m.expect("simulate message").event {
-            rows = res.rows;
+        if let Some(pb::simulate_response::Event::Series(chunk)) = m.expect("simulate message").event {
+            rows.extend(chunk.rows);
         }
     }
     let end = rows.last().expect("rows").targets[0].distance_m;

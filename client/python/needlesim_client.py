@@ -285,21 +285,28 @@ class NeedlesimClient:
         scene: an UploadedScene, a SceneSource or a shipped example's name. trajectory:
         [(t_s, x_m, y_m, theta_rad), ...] of the needle base (empty: the example's own). Calls
         on_progress(ticks_done, ticks_total) as progress arrives; returns the SimulateResult
-        (.rows: one SeriesRow every `decimate` ticks)."""
+        (.rows: one SeriesRow every `decimate` ticks, gathered from the `series` chunks the
+        server streams before the result)."""
         req = pb.SimulateRequest(
             scene=_scene_source(scene),
             trajectory=[pb.TrajectorySample(t_s=t, base=pb.Pose2(x_m=x, y_m=y, theta_rad=th)) for (t, x, y, th) in trajectory],
             decimate=decimate,
         )
         result = None
+        rows = []
         for ev in self.simulation.Simulate(req, timeout=timeout):
             kind = ev.WhichOneof("event")
             if kind == "progress" and on_progress is not None:
                 on_progress(ev.progress.ticks_done, ev.progress.ticks_total)
+            elif kind == "series":
+                rows.extend(ev.series.rows)
             elif kind == "result":
                 result = ev.result
         if result is None:
             raise RuntimeError("the Simulate stream ended without a result")
+        rows.extend(result.rows)
+        del result.rows[:]
+        result.rows.extend(rows)
         return result
 
     # -- recordings -------------------------------------------------------------------------

@@ -459,6 +459,8 @@ async fn simulate(c: &Conn, a: &SimulateArgs, (scene, what): (pb::SceneSource, S
         indicatif::ProgressBar::hidden()
     };
     let mut result = None;
+    // The time series arrives in chunks before the result.
+    let mut rows = Vec::new();
     while let Some(ev) = stream.next().await {
         let ev = ev.map_err(|s| {
             bar.finish_and_clear();
@@ -469,12 +471,15 @@ async fn simulate(c: &Conn, a: &SimulateArgs, (scene, what): (pb::SceneSource, S
                 bar.set_length(p.ticks_total);
                 bar.set_position(p.ticks_done);
             }
+            Some(pb::simulate_response::Event::Series(chunk)) => rows.extend(chunk.rows),
             Some(pb::simulate_response::Event::Result(r)) => result = Some(r),
             None => {}
         }
     }
     bar.finish_and_clear();
-    let r = result.ok_or_else(|| anyhow!("{what}: the server ended the stream without a result"))?;
+    let mut r = result.ok_or_else(|| anyhow!("{what}: the server ended the stream without a result"))?;
+    rows.append(&mut r.rows);
+    r.rows = rows;
     let names: Vec<String> = r.rows.first().map(|row| row.targets.iter().map(|t| t.name.clone()).collect()).unwrap_or_default();
     let mut text = String::new();
     match a.format {

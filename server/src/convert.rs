@@ -8,10 +8,14 @@ use std::sync::Arc;
 use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::sim::{SimParams, StepOutput, TargetParams};
-use needlesim_core::{BasePose, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RegionNeedleParams, RigidNeedle};
+use needlesim_core::{BasePose, Material, MaterialMap, Mesh, NeedleShape, PlaneModel, RegionNeedleParams, RigidNeedle};
 use needlesim_proto::v1 as pb;
 
-use crate::scene::{Scene, Trajectory};
+use crate::scene::{Scene, SceneLimits, Trajectory};
+use crate::status::quote;
+
+/// The needle working-set capacity of an uploaded scene.
+const UPLOADED_MAX_NEEDLE_NODES: usize = 128;
 use crate::session::TickRecord;
 
 /// A proto pose to a core pose (finite-ness is checked by the caller or the simulation).
@@ -143,13 +147,13 @@ pub fn trajectory_from_pb(samples: &[pb::TrajectorySample]) -> Result<Trajectory
 
 /// A scene from its source. Examples and TOML go through the scene loader; uploaded scenes are
 /// checked field by field.
-pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &MeshLimits) -> Result<Scene> {
+pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Result<Scene> {
     let src = src.and_then(|s| s.source.as_ref()).context("scene: one of example, scene_toml or uploaded is required")?;
     match src {
         pb::scene_source::Source::Example(name) => {
             if !crate::scene::EXAMPLES.iter().any(|e| e.0 == name) {
                 let names: Vec<&str> = crate::scene::EXAMPLES.iter().map(|e| e.0).collect();
-                bail!("scene.example: '{name}' is not a shipped example ({})", names.join(", "));
+                bail!("scene.example: '{}' is not a shipped example ({})", quote(name), names.join(", "));
             }
             crate::scene::load_scene(name, limits)
         }
@@ -160,7 +164,8 @@ pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &MeshLimits) -> Resu
     }
 }
 
-fn uploaded_scene(u: &pb::UploadedScene, limits: &MeshLimits) -> Result<Scene> {
+fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<Scene> {
+    let limits = &scene_limits.mesh;
     let mesh = u.mesh.as_ref().context("scene.uploaded.mesh is missing")?;
     if mesh.node_xy_m.len() % 2 != 0 {
         bail!("scene.uploaded.mesh.node_xy_m has {} values: it must hold x, y pairs", mesh.node_xy_m.len());
@@ -170,7 +175,8 @@ fn uploaded_scene(u: &pb::UploadedScene, limits: &MeshLimits) -> Result<Scene> {
     }
     let n_nodes = mesh.node_xy_m.len() / 2;
     if n_nodes > limits.max_nodes {
-        bail!("scene.uploaded.mesh has {n_nodes} nodes, over the limit of {}", limits.max_nodes);
+        let e = needlesim_core::MeshError::TooManyNodes { n_nodes, max_nodes: limits.max_nodes };
+        return Err(anyhow::Error::new(e).context("scene.uploaded.mesh"));
     }
     let n_tri = mesh.triangle_nodes.len() / 3;
     let region_of_tri: Vec<usize> = if mesh.triangle_region.is_empty() {
@@ -193,7 +199,7 @@ fn uploaded_scene(u: &pb::UploadedScene, limits: &MeshLimits) -> Result<Scene> {
     let plane = match u.plane.as_str() {
         "" | "stress" => PlaneModel::Stress { thickness_m: if u.thickness_m == 0.0 { 0.01 } else { u.thickness_m } },
         "strain" => PlaneModel::Strain { thickness_m: if u.thickness_m == 0.0 { 1.0 } else { u.thickness_m } },
-        p => bail!("scene.uploaded.plane must be \"stress\" or \"strain\", found \"{p}\""),
+        p => bail!("scene.uploaded.plane must be \"stress\" or \"strain\", found \"{}\"", quote(p)),
     };
     let materials: Vec<Material> =
         u.regions.iter().map(|r| Material { young_modulus_pa: r.young_modulus_pa, poisson_ratio: r.poisson_ratio }).collect();
@@ -203,15 +209,19 @@ fn uploaded_scene(u: &pb::UploadedScene, limits: &MeshLimits) -> Result<Scene> {
         bail!("scene.uploaded.fixed_nodes names node {n}, but the mesh has {} nodes", m.n_nodes());
     }
     let mean_edge = crate::scene::mean_edge_m(&m);
+    crate::scene::check_session_memory(m.n_nodes(), UPLOADED_MAX_NEEDLE_NODES, scene_limits).context("scene.uploaded.mesh")?;
     let tissue = Arc::new(TissueModel::new(m, mats, &fixed).context("scene.uploaded (tissue model)")?);
     let d = RegionNeedleParams::default();
     let or = |v: f64, dflt: f64| if v == 0.0 { dflt } else { v };
     let base = u.needle_base.as_ref().context("scene.uploaded.needle_base is missing")?;
+    if !pose_from_pb(base).is_finite() {
+        bail!("scene.uploaded.needle_base ({}, {}, {}) is not finite", base.x_m, base.y_m, base.theta_rad);
+    }
     let params = SimParams {
         needle: NeedleShape::Rigid(RigidNeedle { length_m: or(u.needle_length_m, 0.1) }),
         initial_pose: pose_from_pb(base),
         capture_radius_m: or(u.capture_radius_m, 0.5 * mean_edge),
-        max_needle_nodes: 128,
+        max_needle_nodes: UPLOADED_MAX_NEEDLE_NODES,
         regions: u
             .regions
             .iter()

@@ -18,7 +18,9 @@ use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status, Streaming};
 
 use crate::convert;
+use crate::jobs::{JobKind, JobLimiter};
 use crate::session::{PoseCommand, Session};
+use crate::status::{ApiError, SizeLimit, quote, status_of};
 
 type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send + 'static>>;
 
@@ -30,8 +32,23 @@ pub struct ServerLimits {
     pub mesh: MeshLimits,
     /// Largest trajectory accepted by Simulate, in samples.
     pub max_trajectory_samples: usize,
-    /// Longest offline simulation, in ticks.
+    /// Longest offline simulation, in ticks (one Simulate call; each simulation of a plan).
     pub max_simulate_ticks: u64,
+    /// Largest estimated memory of a scene's session (`scene::estimated_session_bytes`), bytes.
+    pub max_session_bytes: u64,
+    /// Offline calls (Simulate, Plan, every Identify call) running at once.
+    pub max_offline_jobs: usize,
+    /// Plans running at once (each also takes an offline slot).
+    pub max_plans: usize,
+    /// Largest image a Track call decodes, in pixels (width × height, read from the header).
+    pub max_image_pixels: u64,
+}
+
+impl ServerLimits {
+    /// What a scene loaded for a client may cost.
+    pub fn scene(&self) -> crate::scene::SceneLimits {
+        crate::scene::SceneLimits { mesh: self.mesh, max_session_bytes: self.max_session_bytes }
+    }
 }
 
 impl Default for ServerLimits {
@@ -41,7 +58,11 @@ impl Default for ServerLimits {
             max_observers_per_session: 256,
             mesh: MeshLimits { max_nodes: 250_000, max_triangles: 500_000 },
             max_trajectory_samples: 1_000_000,
-            max_simulate_ticks: 10_000_000,
+            max_simulate_ticks: 1_000_000,
+            max_session_bytes: 1280 << 20,
+            max_offline_jobs: 4,
+            max_plans: 2,
+            max_image_pixels: 40_000_000,
         }
     }
 }
@@ -51,11 +72,14 @@ pub struct ServerState {
     pub sessions: RwLock<HashMap<String, Arc<Session>>>,
     pub limits: ServerLimits,
     pub data_dir: PathBuf,
+    /// Permits of the offline calls (Simulate, Plan, Identify).
+    pub jobs: Arc<JobLimiter>,
 }
 
 impl ServerState {
     pub fn new(limits: ServerLimits, data_dir: PathBuf) -> Arc<Self> {
-        Arc::new(Self { sessions: RwLock::default(), limits, data_dir })
+        let jobs = JobLimiter::new(limits.max_offline_jobs, limits.max_plans);
+        Arc::new(Self { sessions: RwLock::default(), limits, data_dir, jobs })
     }
 
     /// Where device channels are created: tmpfs (/dev/shm) when there is one, else the data dir.
@@ -83,10 +107,7 @@ impl ServerState {
         if let Some(d) = &dir {
             std::fs::create_dir_all(d).map_err(|e| Status::internal(format!("cannot create {}: {e}", d.display())))?;
         }
-        let s = Session::start(scene, tick_rate_hz, dir.as_deref()).map_err(|e| match e {
-            crate::session::SessionError::TickRate(_) => Status::invalid_argument(format!("tick_rate_hz: {e}")),
-            _ => Status::internal(e.to_string()),
-        })?;
+        let s = Session::start(scene, tick_rate_hz, dir.as_deref()).map_err(|e| Status::from(ApiError::from(e)))?;
         self.sessions.write().expect("sessions lock").insert(s.id.clone(), s.clone());
         tracing::info!(session = %s.id, scene = %s.scene_name, n_nodes = s.tissue.mesh().n_nodes(), tick_rate_hz, "session created");
         Ok(s)
@@ -96,7 +117,12 @@ impl ServerState {
         if id.is_empty() {
             return Err(Status::invalid_argument("session_id is empty"));
         }
-        self.sessions.read().expect("sessions lock").get(id).cloned().ok_or_else(|| Status::not_found(format!("no session '{id}'")))
+        self.sessions
+            .read()
+            .expect("sessions lock")
+            .get(id)
+            .cloned()
+            .ok_or_else(|| Status::not_found(format!("no session '{}'", quote(id))))
     }
 
     /// Closes every session (server shutdown).
@@ -175,7 +201,7 @@ pub struct Api {
 impl pb::session_service_server::SessionService for Api {
     async fn create_session(&self, req: Request<pb::CreateSessionRequest>) -> Result<Response<pb::CreateSessionResponse>, Status> {
         let r = req.into_inner();
-        let scene = load_scene_from_pb(r.scene.clone(), self.state.limits.mesh).await?;
+        let scene = load_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
         let rate = if r.tick_rate_hz == 0.0 { scene.params.tick_rate_hz } else { r.tick_rate_hz };
         if !(rate.is_finite() && (500.0..=1000.0).contains(&rate)) {
             return Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")));
@@ -318,7 +344,9 @@ impl pb::control_service_server::ControlService for Api {
     async fn set_pose(&self, req: Request<pb::SetPoseRequest>) -> Result<Response<pb::ControlResponse>, Status> {
         let s = self.state.session(&req.get_ref().session_id)?;
         authorize(&req, &s, Role::Controller)?;
-        let pose = check_pose(req.get_ref().base.as_ref(), "base")?;
+        let pose = check_pose(req.get_ref().base.as_ref(), "base").inspect_err(|_| {
+            s.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+        })?;
         let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
         s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
         Ok(Response::new(convert::control_response(&s.latest_record())))
@@ -337,19 +365,17 @@ impl pb::control_service_server::ControlService for Api {
     }
 }
 
-/// Loads (parses, meshes, factorises) a scene off the async runtime; a scene over the mesh
-/// limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field.
+/// Loads (parses, meshes, factorises) a scene off the async runtime; a scene over the mesh or
+/// memory limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field
+/// (`status::ApiError::from_chain`).
 pub(crate) async fn load_scene_from_pb(
     src: Option<pb::SceneSource>,
-    limits: needlesim_core::MeshLimits,
+    limits: crate::scene::SceneLimits,
 ) -> Result<crate::scene::Scene, Status> {
     tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
         .await
         .map_err(|e| Status::internal(format!("scene task: {e}")))?
-        .map_err(|e| {
-            let msg = format!("{e:#}");
-            if msg.contains("over the limit") { Status::resource_exhausted(msg) } else { Status::invalid_argument(msg) }
-        })
+        .map_err(|e| status_of("scene", &e))
 }
 
 /// Sets its flag when dropped (when the task holding it ends, however it ends).
@@ -464,32 +490,41 @@ impl pb::simulation_service_server::SimulationService for Api {
     async fn simulate(&self, req: Request<pb::SimulateRequest>) -> Result<Response<Self::SimulateStream>, Status> {
         let r = req.into_inner();
         if r.trajectory.len() > self.state.limits.max_trajectory_samples {
-            return Err(Status::resource_exhausted(format!(
-                "trajectory has {} samples, over the limit of {}",
-                r.trajectory.len(),
-                self.state.limits.max_trajectory_samples
-            )));
+            return Err(ApiError::from(SizeLimit {
+                what: "trajectory".to_owned(),
+                amount: r.trajectory.len() as u64,
+                limit: self.state.limits.max_trajectory_samples as u64,
+                unit: "samples",
+                hint: String::new(),
+            })
+            .into());
         }
+        // Held by the worker until it ends; refused at once when the server is busy.
+        let permit = self.state.jobs.try_start(JobKind::Simulate)?;
         let limits = self.state.limits.clone();
         let (tx, rx) = mpsc::channel(16);
         // Parse and validate before answering, so that errors are statuses, not stream items.
         let (scene, traj) = tokio::task::spawn_blocking(move || -> Result<_, Status> {
-            let scene = convert::scene_from_pb(r.scene.as_ref(), &limits.mesh).map_err(|e| Status::invalid_argument(format!("{e:#}")))?;
+            let scene = convert::scene_from_pb(r.scene.as_ref(), &limits.scene()).map_err(|e| status_of("scene", &e))?;
             let traj = if r.trajectory.is_empty() {
                 let text = scene
                     .example_trajectory
                     .ok_or_else(|| Status::invalid_argument("trajectory is empty and the scene is not a shipped example with its own"))?;
                 crate::scene::Trajectory::parse_csv(text).map_err(|e| Status::internal(format!("{e:#}")))?
             } else {
-                convert::trajectory_from_pb(&r.trajectory).map_err(|e| Status::invalid_argument(format!("{e:#}")))?
+                convert::trajectory_from_pb(&r.trajectory).map_err(|e| status_of("trajectory", &e))?
             };
             let (t0, t1) = traj.span_s();
             let ticks = ((t1 - t0) * scene.params.tick_rate_hz).round() as u64;
             if ticks > limits.max_simulate_ticks {
-                return Err(Status::resource_exhausted(format!(
-                    "the trajectory needs {ticks} ticks, over the limit of {}",
-                    limits.max_simulate_ticks
-                )));
+                return Err(ApiError::from(SizeLimit {
+                    what: format!("the trajectory ({:.3} s at {} Hz)", t1 - t0, scene.params.tick_rate_hz),
+                    amount: ticks,
+                    limit: limits.max_simulate_ticks,
+                    unit: "ticks",
+                    hint: " (server flag --max-simulate-ticks)".to_owned(),
+                })
+                .into());
             }
             Ok((scene, traj))
         })
@@ -498,21 +533,30 @@ impl pb::simulation_service_server::SimulationService for Api {
         let decimate = r.decimate.max(1) as u64;
         // A worker thread of the blocking pool: never a session's real-time thread.
         tokio::task::spawn_blocking(move || {
-            let result = run_offline(&scene, &traj, decimate, &tx);
-            if let Err(e) = result {
-                let _ = tx.blocking_send(Err(Status::internal(format!("{e:#}"))));
+            let _permit = permit;
+            if let Err(e) = run_offline(&scene, &traj, decimate, &tx) {
+                let _ = tx.blocking_send(Err(ApiError::from(&e).into()));
             }
         });
         Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
     }
 }
 
+/// Rows of the time series per `SeriesChunk` message (about 200 bytes each without targets).
+pub const SERIES_CHUNK_ROWS: usize = 1000;
+
+/// Runs an offline simulation, streaming progress, the time series in chunks of at most
+/// [`SERIES_CHUNK_ROWS`] rows, then the result. Memory is bounded by one chunk and the channel,
+/// whatever the length: step times go into a histogram, not a list. Ends early, without error,
+/// when the client goes away.
 fn run_offline(
     scene: &crate::scene::Scene,
     traj: &crate::scene::Trajectory,
     decimate: u64,
     tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
-) -> anyhow::Result<()> {
+) -> Result<(), needlesim_core::SimError> {
+    use pb::simulate_response::Event;
+    let send = |event: Event| tx.blocking_send(Ok(pb::SimulateResponse { event: Some(event) })).is_ok();
     let started = std::time::Instant::now();
     let mut params = scene.params.clone();
     params.initial_pose = traj.samples[0].1;
@@ -520,39 +564,41 @@ fn run_offline(
     let rate = sim.params().tick_rate_hz;
     let (t0, t1) = traj.span_s();
     let n_ticks = ((t1 - t0) * rate).round() as u64;
-    let mut rows = Vec::new();
-    let mut times = Vec::with_capacity(n_ticks as usize + 1);
+    let mut chunk = Vec::with_capacity(SERIES_CHUNK_ROWS);
+    let mut step_ns = hdrhistogram::Histogram::<u64>::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds");
     let progress_every = (n_ticks / 20).max(1);
     for k in 0..=n_ticks {
+        if tx.is_closed() {
+            return Ok(()); // the client went away
+        }
         let t = std::time::Instant::now();
         let out = sim.step(traj.pose_at(t0 + k as f64 / rate))?;
-        times.push(t.elapsed().as_secs_f64());
+        step_ns.saturating_record((t.elapsed().as_nanos() as u64).max(1));
         if k % decimate == 0 || k == n_ticks {
-            rows.push(convert::series_row(out, t0, &scene.target_names));
-        }
-        sim.prefetch_columns(8)?;
-        if k % progress_every == 0 {
-            let p = pb::SimulateResponse {
-                event: Some(pb::simulate_response::Event::Progress(pb::SimulateProgress { ticks_done: k, ticks_total: n_ticks })),
-            };
-            if tx.blocking_send(Ok(p)).is_err() {
-                return Ok(()); // the client went away
+            chunk.push(convert::series_row(out, t0, &scene.target_names));
+            if chunk.len() == SERIES_CHUNK_ROWS && !send(Event::Series(pb::SeriesChunk { rows: std::mem::take(&mut chunk) })) {
+                return Ok(());
             }
         }
+        sim.prefetch_columns(8)?;
+        if k % progress_every == 0 && !send(Event::Progress(pb::SimulateProgress { ticks_done: k, ticks_total: n_ticks })) {
+            return Ok(());
+        }
     }
-    times.sort_by(f64::total_cmp);
-    let pct = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize] * 1e6;
+    if !chunk.is_empty() && !send(Event::Series(pb::SeriesChunk { rows: chunk })) {
+        return Ok(());
+    }
     let mut u = vec![0.0; scene.tissue.n_dofs()];
     sim.displacement_field_into(&mut u);
     let result = pb::SimulateResult {
-        rows,
+        rows: vec![],
         ticks: sim.stats().ticks,
         wall_s: started.elapsed().as_secs_f64(),
-        step_p50_us: pct(0.5),
-        step_p99_us: pct(0.99),
+        step_p50_us: step_ns.value_at_quantile(0.5) as f64 * 1e-3,
+        step_p99_us: step_ns.value_at_quantile(0.99) as f64 * 1e-3,
         final_displacement_m: u,
     };
-    let _ = tx.blocking_send(Ok(pb::SimulateResponse { event: Some(pb::simulate_response::Event::Result(result)) }));
+    send(Event::Result(result));
     Ok(())
 }
 
@@ -618,14 +664,7 @@ impl pb::recording_service_server::RecordingService for Api {
     ) -> Result<Response<Self::DownloadRecordingStream>, Status> {
         let name = req.get_ref().name.clone();
         let dir = self.state.data_dir.join("recordings");
-        let file = crate::recording::open_recording(&dir, &name).map_err(|e| {
-            let msg = e.to_string();
-            if msg.contains("not found") || msg.contains("No such file") {
-                Status::not_found(msg)
-            } else {
-                Status::invalid_argument(format!("name: {msg}"))
-            }
-        })?;
+        let file = crate::recording::open_recording(&dir, &name).map_err(|e| Status::from(ApiError::from(&e)))?;
         let (tx, rx) = mpsc::channel(8);
         tokio::task::spawn_blocking(move || {
             use std::io::Read;

@@ -4,8 +4,10 @@
 //! Like `Simulate`, these calls touch no session and need no token. Each call parses and checks
 //! its inputs on a blocking worker before answering, so that bad input is the call's status
 //! (INVALID_ARGUMENT naming the request field: `tracks_csv`, `probe_log_csv`, `force_log_csv`,
-//! `scene`, `grid`, `trajectory_csv`, `frames`, …); a request over the size limits is
-//! RESOURCE_EXHAUSTED. The work runs on the blocking pool; progress goes through a bounded
+//! `scene`, `grid`, `trajectory_csv`, `frames`, …); a request over the size limits (frames, rows,
+//! image pixels read from each PNG header before any decoding, the scene's mesh and memory) is
+//! RESOURCE_EXHAUSTED, and so is a call when the server already runs its limit of offline jobs
+//! (`--max-offline-jobs`, shared with Simulate and Plan; jobs.rs). The work runs on the blocking pool; progress goes through a bounded
 //! channel (progress messages are dropped, never waited for, when the client reads slowly; the
 //! final result is always delivered), and inconsistencies found by the fit itself (time stamps
 //! that do not overlap, no usable frame) end the stream with INVALID_ARGUMENT.
@@ -20,6 +22,8 @@ use crate::identify::experiment::{ForceLog, ProbeLog};
 use crate::identify::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
 use crate::identify::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
 use crate::identify::tracks::MarkerTracks;
+use crate::jobs::{JobKind, JobPermit};
+use crate::status::{ApiError, SizeLimit, quote, status_of};
 
 type ProgressStream = std::pin::Pin<Box<dyn tokio_stream::Stream<Item = Result<pb::IdentifyProgress, Status>> + Send + 'static>>;
 
@@ -29,7 +33,7 @@ pub const MAX_TRACK_FRAMES: usize = 20_000;
 pub const MAX_TRACK_ROWS: usize = 5_000_000;
 
 fn invalid(field: &str) -> impl Fn(anyhow::Error) -> Status + '_ {
-    move |e| Status::invalid_argument(format!("{field}: {e:#}"))
+    move |e| ApiError::invalid(field, format!("{e:#}")).into()
 }
 
 fn parse_tracks(text: &str) -> Result<MarkerTracks, Status> {
@@ -45,20 +49,22 @@ fn progress(done: usize, total: usize, stage: &str) -> pb::IdentifyProgress {
     pb::IdentifyProgress { done: done as u32, total: total as u32, stage: stage.to_owned(), result: None }
 }
 
-/// Runs `work` on the blocking pool with a progress callback that never blocks; sends its result
-/// (or its error as INVALID_ARGUMENT) as the last stream item.
-fn spawn_work<F>(stage: &'static str, work: F) -> Response<ProgressStream>
+/// Runs `work` on the blocking pool, holding `permit` until it ends, with a progress callback
+/// that never blocks; sends its result (or its error's status: RESOURCE_EXHAUSTED for a size
+/// limit, else INVALID_ARGUMENT) as the last stream item.
+fn spawn_work<F>(stage: &'static str, permit: JobPermit, work: F) -> Response<ProgressStream>
 where
     F: FnOnce(&mut dyn FnMut(usize, usize)) -> anyhow::Result<pb::identify_progress::Result> + Send + 'static,
 {
     let (tx, rx) = mpsc::channel(16);
     tokio::task::spawn_blocking(move || {
+        let _permit = permit;
         let mut report = |done: usize, total: usize| {
             let _ = tx.try_send(Ok(progress(done, total, stage)));
         };
         let item = match work(&mut report) {
             Ok(r) => Ok(pb::IdentifyProgress { stage: "done".to_owned(), result: Some(r), ..Default::default() }),
-            Err(e) => Err(Status::invalid_argument(format!("{e:#}"))),
+            Err(e) => Err(status_of("", &e)),
         };
         let _ = tx.blocking_send(item);
     });
@@ -66,12 +72,8 @@ where
 }
 
 /// The scene of a request and, when it has one, its TOML text (for the fitted scene).
-fn scene_of(src: Option<&pb::SceneSource>, limits: &needlesim_core::MeshLimits) -> Result<(crate::scene::Scene, Option<String>), Status> {
-    let scene = crate::convert::scene_from_pb(src, limits).map_err(|e| {
-        let msg = format!("{e:#}");
-        let msg = if msg.starts_with("scene") { msg } else { format!("scene: {msg}") };
-        if msg.contains("over the limit") { Status::resource_exhausted(msg) } else { Status::invalid_argument(msg) }
-    })?;
+fn scene_of(src: Option<&pb::SceneSource>, limits: &crate::scene::SceneLimits) -> Result<(crate::scene::Scene, Option<String>), Status> {
+    let scene = crate::convert::scene_from_pb(src, limits).map_err(|e| status_of("scene", &e))?;
     let text = match src.and_then(|s| s.source.as_ref()) {
         Some(pb::scene_source::Source::Example(name)) => crate::scene::EXAMPLES.iter().find(|e| e.0 == name).map(|e| e.1.to_owned()),
         Some(pb::scene_source::Source::SceneToml(t)) => Some(t.clone()),
@@ -99,6 +101,24 @@ impl pb::identify_service_server::IdentifyService for Api {
         if r.frames.len() > MAX_TRACK_FRAMES {
             return Err(Status::resource_exhausted(format!("frames has {} images, over the limit of {MAX_TRACK_FRAMES}", r.frames.len())));
         }
+        // Every image's size from its header, before anything is decoded.
+        let max_pixels = self.state.limits.max_image_pixels;
+        for (k, f) in r.frames.iter().enumerate() {
+            let header = image::ImageReader::with_format(std::io::Cursor::new(&f.png), image::ImageFormat::Png).into_dimensions();
+            let (w, h) = header.map_err(|e| ApiError::invalid(format!("frames[{k}].png"), format!("not a PNG image: {e}")))?;
+            let pixels = u64::from(w) * u64::from(h);
+            if pixels > max_pixels {
+                return Err(ApiError::from(SizeLimit {
+                    what: format!("frames[{k}].png ({w} × {h} pixels)"),
+                    amount: pixels,
+                    limit: max_pixels,
+                    unit: "pixels",
+                    hint: " (server flag --max-image-pixels)".to_owned(),
+                })
+                .into());
+            }
+        }
+        let permit = self.state.jobs.try_start(JobKind::Identify)?;
         let v2 = |v: &Option<pb::Vec2>| v.as_ref().map_or([0.0, 0.0], |v| [v.x, v.y]);
         let scale = match (r.m_per_px > 0.0, r.spacing_m > 0.0) {
             (true, false) => Scale::MetresPerPixel { m_per_px: r.m_per_px, origin_px: v2(&r.origin_px), origin_m: v2(&r.origin_m) },
@@ -107,8 +127,9 @@ impl pb::identify_service_server::IdentifyService for Api {
         };
         let mut p = TrackParams::new(if r.bright { Polarity::Bright } else { Polarity::Dark }, scale);
         p.expected_markers = (r.expected_markers > 0).then_some(r.expected_markers as usize);
+        p.max_image_pixels = max_pixels;
         p.validate().map_err(invalid("track parameters"))?;
-        Ok(spawn_work("track", move |report| {
+        Ok(spawn_work("track", permit, move |report| {
             let frames: Vec<(f64, &[u8])> = r.frames.iter().map(|f| (f.t_s, f.png.as_slice())).collect();
             let tracks = track_png_bytes(&frames, &p, report).map_err(|e| anyhow::anyhow!("frames: {e:#}"))?;
             Ok(pb::identify_progress::Result::Track(pb::TrackResult {
@@ -122,7 +143,8 @@ impl pb::identify_service_server::IdentifyService for Api {
 
     async fn probe(&self, req: Request<pb::ProbeRequest>) -> Result<Response<Self::ProbeStream>, Status> {
         let r = req.into_inner();
-        let limits = self.state.limits.mesh;
+        let permit = self.state.jobs.try_start(JobKind::Identify)?;
+        let limits = self.state.limits.scene();
         let (tracks, log, model) = blocking(move || {
             let tracks = parse_tracks(&r.tracks_csv)?;
             let log = ProbeLog::from_csv(&r.probe_log_csv).map_err(invalid("probe_log_csv"))?;
@@ -135,14 +157,21 @@ impl pb::identify_service_server::IdentifyService for Api {
                     let plane = match r.plane.as_str() {
                         "" | "stress" => needlesim_core::PlaneModel::Stress { thickness_m },
                         "strain" => needlesim_core::PlaneModel::Strain { thickness_m },
-                        m => return Err(Status::invalid_argument(format!("plane must be \"stress\" or \"strain\", found \"{m}\""))),
+                        m => {
+                            return Err(Status::invalid_argument(format!(
+                                "plane must be \"stress\" or \"strain\", found \"{}\"",
+                                quote(m)
+                            )));
+                        }
                     };
-                    if (g.nx as usize).saturating_mul(g.ny as usize) > limits.max_nodes {
+                    if (g.nx as usize).saturating_mul(g.ny as usize) > limits.mesh.max_nodes {
                         return Err(Status::resource_exhausted(format!(
                             "grid has {} × {} nodes, over the limit of {}",
-                            g.nx, g.ny, limits.max_nodes
+                            g.nx, g.ny, limits.mesh.max_nodes
                         )));
                     }
+                    crate::scene::check_session_memory((g.nx as usize).saturating_mul(g.ny as usize), 0, &limits)
+                        .map_err(|e| Status::from(ApiError::from(e)))?;
                     grid_model(&tracks, g.nx as usize, g.ny as usize, g.width_m, g.height_m, plane).map_err(invalid("grid"))?
                 }
                 (None, Some(_)) => {
@@ -158,7 +187,7 @@ impl pb::identify_service_server::IdentifyService for Api {
         })
         .await?;
         let opts = ProbeFitOptions { probe_marker: r.probe_marker.map(|m| m as usize), ..Default::default() };
-        Ok(spawn_work("probe", move |report| {
+        Ok(spawn_work("probe", permit, move |report| {
             let fit = fit_probe(&tracks, &log, &model, &opts, report)?;
             Ok(pb::identify_progress::Result::Probe(pb::ProbeResult {
                 young_modulus_pa: fit.young_modulus_pa,
@@ -176,9 +205,10 @@ impl pb::identify_service_server::IdentifyService for Api {
 
     async fn needle(&self, req: Request<pb::NeedleRequest>) -> Result<Response<Self::NeedleStream>, Status> {
         let r = req.into_inner();
+        let permit = self.state.jobs.try_start(JobKind::Identify)?;
         let limits = self.state.limits.clone();
         let (scene, scene_toml, tracks, log, traj) = blocking(move || {
-            let (scene, text) = scene_of(r.scene.as_ref(), &limits.mesh)?;
+            let (scene, text) = scene_of(r.scene.as_ref(), &limits.scene())?;
             let traj = if r.trajectory_csv.trim().is_empty() {
                 let text = scene.example_trajectory.ok_or_else(|| {
                     Status::invalid_argument("trajectory_csv is empty and the scene is not a shipped example with its own")
@@ -198,7 +228,7 @@ impl pb::identify_service_server::IdentifyService for Api {
             return Err(Status::invalid_argument(format!("tip_peak_ratio = {h} must be finite and ≥ 0")));
         }
         let opts = NeedleFitOptions { tip_peak_ratio: r.tip_peak_ratio, ..Default::default() };
-        Ok(spawn_work("needle", move |report| {
+        Ok(spawn_work("needle", permit, move |report| {
             let fit = fit_needle(&scene, &tracks, &log, &traj, &opts, report)?;
             let fitted_scene_toml = match &scene_toml {
                 Some(t) => write_fitted_scene(t, &fit.region, &fit)?,

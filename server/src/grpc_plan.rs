@@ -4,12 +4,12 @@
 //!
 //! Conventions follow `Simulate` (grpc.rs): no token (no session is involved), the request is
 //! validated before the stream starts so that bad input is an INVALID_ARGUMENT status naming the
-//! field, and size limits are RESOURCE_EXHAUSTED. At most [`MAX_CONCURRENT_PLANS`] plans run at
-//! once, since each uses every core.
+//! field, and size limits are RESOURCE_EXHAUSTED. At most `--max-plans` plans run at once, since
+//! each uses every core; each also takes one of the `--max-offline-jobs` slots (jobs.rs).
 
 use std::ops::ControlFlow;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use needlesim_proto::v1 as pb;
 use tokio::sync::mpsc;
@@ -17,32 +17,9 @@ use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
 use crate::grpc::Api;
+use crate::jobs::JobKind;
 use crate::plan::{self, PlanOptions, PlanRequest};
-
-/// Plans running at once on one server.
-pub const MAX_CONCURRENT_PLANS: usize = 2;
-
-static RUNNING: AtomicUsize = AtomicUsize::new(0);
-
-/// Holds one of the [`MAX_CONCURRENT_PLANS`] slots until dropped.
-struct Slot;
-
-impl Slot {
-    fn take() -> Result<Self, Status> {
-        let prev = RUNNING.fetch_add(1, Ordering::AcqRel);
-        if prev >= MAX_CONCURRENT_PLANS {
-            RUNNING.fetch_sub(1, Ordering::AcqRel);
-            return Err(Status::resource_exhausted(format!("the server already runs its limit of {MAX_CONCURRENT_PLANS} plans")));
-        }
-        Ok(Slot)
-    }
-}
-
-impl Drop for Slot {
-    fn drop(&mut self) {
-        RUNNING.fetch_sub(1, Ordering::AcqRel);
-    }
-}
+use crate::status::{ApiError, status_of};
 
 fn vec2(v: [f64; 2]) -> pb::Vec2 {
     pb::Vec2 { x: v[0], y: v[1] }
@@ -109,8 +86,8 @@ impl pb::planning_service_server::PlanningService for Api {
     async fn plan(&self, req: Request<pb::PlanRequest>) -> Result<Response<Self::PlanStream>, Status> {
         let r = req.into_inner();
         let preq = plan_request_from_pb(&r)?;
-        let slot = Slot::take()?;
-        let scene = crate::grpc::load_scene_from_pb(r.scene.clone(), self.state.limits.mesh).await?;
+        let slot = self.state.jobs.try_start(JobKind::Plan)?;
+        let scene = crate::grpc::load_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
         // Errors in the problem are statuses, not stream items: the planner's first output is a
         // validated problem or an error naming the field, so it is awaited before answering.
         let (tx, rx) = mpsc::channel(8);
@@ -136,8 +113,7 @@ impl pb::planning_service_server::PlanningService for Api {
             let _done = done;
             let mut first_tx = Some(first_tx);
             if let Err(e) = plan::validate_request(&scene, &preq, &opts) {
-                let msg = format!("{e:#}");
-                let status = if msg.contains("over the limit") { Status::resource_exhausted(msg) } else { Status::invalid_argument(msg) };
+                let status = status_of("", &e);
                 if let Some(f) = first_tx.take() {
                     let _ = f.send(Err(status));
                 }
@@ -179,7 +155,7 @@ impl pb::planning_service_server::PlanningService for Api {
                 Err(_) if cancel.load(Ordering::Relaxed) => tracing::info!("planning cancelled: the client went away"),
                 Err(e) => {
                     let msg = format!("{e:#}");
-                    let status = if is_input_error(&msg) { Status::invalid_argument(msg) } else { Status::internal(msg) };
+                    let status = if is_input_error(&msg) { status_of("", &e) } else { ApiError::Internal(msg).into() };
                     let _ = tx.blocking_send(Err(status));
                 }
             }

@@ -61,6 +61,24 @@ struct ServeArgs {
     /// Largest gRPC message accepted, in bytes.
     #[arg(long, default_value_t = 64 << 20)]
     max_message_bytes: usize,
+    /// Largest estimated memory of one session's scene, MiB (mesh, factor and the compliance
+    /// columns of a full needle; README "Limits and security"). Also bounds the scenes of
+    /// Simulate, Plan and Identify calls.
+    #[arg(long, default_value_t = grpc::ServerLimits::default().max_session_bytes >> 20)]
+    max_session_memory_mb: u64,
+    /// Longest Simulate call (and each simulation of a plan), in ticks.
+    #[arg(long, default_value_t = grpc::ServerLimits::default().max_simulate_ticks)]
+    max_simulate_ticks: u64,
+    /// Offline calls (Simulate, Plan, every Identify call) running at once; more are refused with
+    /// RESOURCE_EXHAUSTED.
+    #[arg(long, default_value_t = grpc::ServerLimits::default().max_offline_jobs)]
+    max_offline_jobs: usize,
+    /// Plans running at once (each also takes an offline job slot).
+    #[arg(long, default_value_t = grpc::ServerLimits::default().max_plans)]
+    max_plans: usize,
+    /// Largest image a Track call decodes, in pixels (width × height from the PNG header).
+    #[arg(long, default_value_t = grpc::ServerLimits::default().max_image_pixels)]
+    max_image_pixels: u64,
     /// The example scene of the default session ("none" for no default session).
     #[arg(long, default_value = "paper-phantom")]
     default_scene: String,
@@ -374,6 +392,11 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
             max_sessions: args.max_sessions,
             max_observers_per_session: args.max_observers,
             mesh: *limits,
+            max_session_bytes: args.max_session_memory_mb.saturating_mul(1 << 20),
+            max_simulate_ticks: args.max_simulate_ticks,
+            max_offline_jobs: args.max_offline_jobs,
+            max_plans: args.max_plans,
+            max_image_pixels: args.max_image_pixels,
             ..Default::default()
         },
         max_message_bytes: args.max_message_bytes,

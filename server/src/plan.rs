@@ -119,8 +119,9 @@ pub struct PlanOptions {
     pub hold_s: f64,
     /// Set from outside to abandon the planning (e.g. the gRPC client went away).
     pub cancel: Option<Arc<AtomicBool>>,
-    /// Most ticks one simulated insertion may take (default 10 million, the server's default
-    /// `max_simulate_ticks`): a very slow speed is rejected rather than simulated for hours.
+    /// Most ticks one simulated insertion may take (default 10 million for the offline command;
+    /// the server passes its `--max-simulate-ticks`): a very slow speed is rejected rather than
+    /// simulated for hours.
     pub max_ticks_per_simulation: u64,
 }
 
@@ -310,7 +311,7 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
         if names.is_empty() {
             bail!("target: scene '{}' has no targets (a scene lists them as [[targets]])", scene.name);
         }
-        bail!("target: no target named '{}' in scene '{}' (targets: {})", req.target, scene.name, names.join(", "));
+        bail!("target: no target named '{}' in scene '{}' (targets: {})", crate::status::quote(&req.target), scene.name, names.join(", "));
     };
     let tg = &targets[target_idx];
     let seg = match (req.entry_m, &defaults) {
@@ -618,11 +619,14 @@ pub fn validate_request(scene: &Scene, req: &PlanRequest, opts: &PlanOptions) ->
 fn check_ticks(scene: &Scene, p: &Problem, opts: &PlanOptions) -> Result<()> {
     let ticks = ((opts.start_outside_m + p.length) / p.speed * scene.params.tick_rate_hz).ceil();
     if ticks > opts.max_ticks_per_simulation as f64 {
-        bail!(
-            "speed_mm_s = {}: a simulated insertion may take {ticks:.0} ticks, over the limit of {}",
-            p.speed * 1e3,
-            opts.max_ticks_per_simulation
-        );
+        let e = crate::status::SizeLimit {
+            what: "a simulated insertion at this speed".to_owned(),
+            amount: ticks as u64,
+            limit: opts.max_ticks_per_simulation,
+            unit: "ticks",
+            hint: String::new(),
+        };
+        return Err(anyhow::Error::new(e).context(format!("speed_mm_s = {}", p.speed * 1e3)));
     }
     Ok(())
 }

@@ -14,6 +14,8 @@ use needlesim_core::{
 };
 use serde::Deserialize;
 
+use crate::status::SizeLimit;
+
 /// The shipped examples: (name, scene TOML, trajectory CSV).
 pub const EXAMPLES: &[(&str, &str, &str)] = &[
     ("paper-phantom", include_str!("../scenes/paper-phantom.toml"), include_str!("../scenes/paper-phantom.csv")),
@@ -301,8 +303,73 @@ pub struct Scene {
     pub example_trajectory: Option<&'static str>,
 }
 
+/// What a scene may cost: the mesh's node and triangle counts and the memory a session of it
+/// would hold ([`estimated_session_bytes`]). A scene over either is refused before its model is
+/// factorised, with a [`SizeLimit`] (RESOURCE_EXHAUSTED) or `MeshError::TooMany*` in the chain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneLimits {
+    pub mesh: MeshLimits,
+    /// Largest [`estimated_session_bytes`] of a scene, bytes.
+    pub max_session_bytes: u64,
+}
+
+impl From<&MeshLimits> for SceneLimits {
+    /// The mesh limits only (offline commands on the user's own machine): no memory bound.
+    fn from(mesh: &MeshLimits) -> Self {
+        Self { mesh: *mesh, max_session_bytes: u64::MAX }
+    }
+}
+
+impl From<&SceneLimits> for SceneLimits {
+    fn from(l: &SceneLimits) -> Self {
+        *l
+    }
+}
+
+/// Bytes per mesh node of the model, before the factor's fill: coordinates, triangles, the
+/// assembled stiffness (about 18 non-zeros per row of 2 rows), the symbolic analysis and the
+/// per-node vectors of the model and the simulation.
+pub const MODEL_BYTES_PER_NODE: u64 = 1024;
+/// Bytes per node and per doubling of the node count of the sparse Cholesky factor (nested
+/// dissection on a 2D mesh fills O(n log n)).
+pub const FACTOR_BYTES_PER_NODE_LOG2: u64 = 128;
+/// Bytes per mesh node of the compliance columns cached for one needle node: two columns of
+/// 2 doubles per mesh node.
+pub const COLUMN_BYTES_PER_NODE: u64 = 2 * 2 * 8;
+
+/// The memory a session of a scene with `n_nodes` mesh nodes and a needle of up to
+/// `max_needle_nodes` working nodes is estimated to hold, in bytes:
+/// `n × (MODEL_BYTES_PER_NODE + FACTOR_BYTES_PER_NODE_LOG2 × ⌈log2 n⌉) + n × COLUMN_BYTES_PER_NODE
+/// × max_needle_nodes` (the model and its factor, plus the compliance columns of a full working
+/// set). Calibrated as an upper bound: a 400 × 400 grid measures 377 MiB of model and factor
+/// (BENCHMARKS.md) against 508 MiB estimated, a 31 × 31000 grid 2.6 GB against 3.4 GB.
+pub fn estimated_session_bytes(n_nodes: usize, max_needle_nodes: usize) -> u64 {
+    let n = n_nodes as u64;
+    let log2_n = u64::from(64 - n.max(2).saturating_sub(1).leading_zeros());
+    let model = n.saturating_mul(MODEL_BYTES_PER_NODE + FACTOR_BYTES_PER_NODE_LOG2 * log2_n);
+    let columns = n.saturating_mul(COLUMN_BYTES_PER_NODE).saturating_mul(max_needle_nodes as u64);
+    model.saturating_add(columns)
+}
+
+/// Refuses a scene whose [`estimated_session_bytes`] is over `limits.max_session_bytes`.
+pub fn check_session_memory(n_nodes: usize, max_needle_nodes: usize, limits: &SceneLimits) -> Result<(), SizeLimit> {
+    let estimate = estimated_session_bytes(n_nodes, max_needle_nodes);
+    if estimate <= limits.max_session_bytes {
+        return Ok(());
+    }
+    const MIB: u64 = 1 << 20;
+    Err(SizeLimit {
+        what: format!("the estimated memory of a session of this scene ({n_nodes} mesh nodes, up to {max_needle_nodes} needle nodes)"),
+        amount: estimate.div_ceil(MIB),
+        limit: limits.max_session_bytes / MIB,
+        unit: "MiB",
+        hint: " (server flag --max-session-memory-mb)".to_owned(),
+    })
+}
+
 /// Reads a scene: a path to a TOML file, or the name of a shipped example.
-pub fn load_scene(spec: &str, limits: &MeshLimits) -> Result<Scene> {
+pub fn load_scene(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene> {
+    let limits = &limits.into();
     if let Some((name, toml_text, csv)) = EXAMPLES.iter().find(|e| e.0 == spec) {
         let mut scene = parse_scene(toml_text, Path::new("server/scenes"), limits).with_context(|| format!("example scene {name}"))?;
         scene.example_trajectory = Some(csv);
@@ -318,21 +385,68 @@ pub fn load_scene(spec: &str, limits: &MeshLimits) -> Result<Scene> {
 }
 
 /// Parses scene TOML; `base_dir` resolves relative mesh files.
-pub fn parse_scene(text: &str, base_dir: &Path, limits: &MeshLimits) -> Result<Scene> {
-    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", e.to_string().trim_end()))?;
-    build_scene(&file, base_dir, limits)
+pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) -> Result<Scene> {
+    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", crate::status::clip(e.to_string().trim_end(), 512)))?;
+    build_scene(&file, base_dir, &limits.into())
 }
 
-fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Scene> {
+/// Checks the scalar values of a scene that cost nothing to check, before the mesh is built
+/// and factorised; errors name the key.
+fn check_scalars(f: &SceneFile) -> Result<()> {
+    let n = &f.needle;
+    if !n.base.iter().all(|v| v.is_finite()) {
+        bail!("needle.base = {:?} must be three finite numbers [x_m, y_m, theta_rad]", n.base);
+    }
+    if !(n.length_m.is_finite() && n.length_m > 0.0) {
+        bail!("needle.length_m = {} must be finite and > 0", n.length_m);
+    }
+    if let Some(r) = n.capture_radius_m
+        && !(r.is_finite() && r > 0.0)
+    {
+        bail!("needle.capture_radius_m = {r} must be finite and > 0");
+    }
+    if !(1..=MAX_NEEDLE_NODES).contains(&n.max_nodes) {
+        bail!("needle.max_nodes = {} must be in 1..={MAX_NEEDLE_NODES}", n.max_nodes);
+    }
+    let l = &f.limits;
+    for (key, v) in [("limits.max_base_step_m", l.max_base_step_m), ("limits.max_base_step_rad", l.max_base_step_rad)] {
+        if !(v.is_finite() && v > 0.0) {
+            bail!("{key} = {v} must be finite and > 0");
+        }
+    }
+    if !(l.lookahead_m.is_finite() && l.lookahead_m >= 0.0) {
+        bail!("limits.lookahead_m = {} must be finite and ≥ 0", l.lookahead_m);
+    }
+    if !(1..=MAX_ACTIVE_SET_ITERATIONS).contains(&l.max_active_set_iterations) {
+        bail!("limits.max_active_set_iterations = {} must be in 1..={MAX_ACTIVE_SET_ITERATIONS}", l.max_active_set_iterations);
+    }
+    if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
+        bail!("tick_rate_hz = {} must be between 100 and 10000", f.tick_rate_hz);
+    }
+    Ok(())
+}
+
+/// Most needle nodes a scene may ask for (`needle.max_nodes`), as the core allows.
+pub const MAX_NEEDLE_NODES: usize = 4096;
+/// Most active-set iterations per tick a scene may ask for (`limits.max_active_set_iterations`).
+pub const MAX_ACTIVE_SET_ITERATIONS: usize = 1000;
+
+fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Result<Scene> {
+    let limits = &scene_limits.mesh;
     if f.regions.is_empty() {
         bail!("regions: at least one region is needed");
     }
+    check_scalars(f)?;
     let mut mesh = match &f.mesh {
         MeshSpec::Grid { nx, ny, width_m, height_m, origin_m, pattern } => {
             let pattern = match pattern {
                 PatternSpec::Alternate => DiagonalPattern::Alternate,
                 PatternSpec::Right => DiagonalPattern::Right,
             };
+            // Refused before the mesh is built when the node count alone is over the budget.
+            if nx.saturating_mul(*ny) <= limits.max_nodes {
+                check_session_memory(nx.saturating_mul(*ny), f.needle.max_nodes, scene_limits).context("mesh")?;
+            }
             let m = RectMeshParams { nx: *nx, ny: *ny, width_m: *width_m, height_m: *height_m, origin_m: *origin_m, pattern }
                 .build(limits)
                 .context("mesh")?;
@@ -388,6 +502,7 @@ fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Sc
         bail!("fixed_nodes: node {n} does not exist (the mesh has {} nodes)", mesh.n_nodes());
     }
     let n_fixed = fixed.len();
+    check_session_memory(mesh.n_nodes(), f.needle.max_nodes, scene_limits).context("mesh")?;
     // Keep the boundary sets on the mesh (the fixed set gets a name for later reference).
     mesh.set_boundary_set("fixed", fixed.clone()).context("fixed")?;
     let tissue = Arc::new(TissueModel::new(mesh, mats, &fixed).with_context(|| format!("tissue ({n_fixed} fixed nodes)"))?);
@@ -417,9 +532,8 @@ fn build_scene(f: &SceneFile, base_dir: &Path, limits: &MeshLimits) -> Result<Sc
         max_active_set_iterations: f.limits.max_active_set_iterations,
         lookahead_m: f.limits.lookahead_m,
     };
-    if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
-        bail!("tick_rate_hz = {} must be between 100 and 10000", f.tick_rate_hz);
-    }
+    // Whatever else the core finds wrong with the parameters (a target outside the mesh, …).
+    needlesim_core::Simulation::new(tissue.clone(), params.clone())?;
     Ok(Scene {
         name: f.name.clone().unwrap_or_else(|| "scene".to_owned()),
         tissue,
@@ -576,6 +690,24 @@ mod tests {
     }
 
     #[test]
+    fn issue_13_session_memory_estimate_refuses_a_31_by_31000_grid_and_fits_400_by_400() {
+        let server = SceneLimits { mesh: MeshLimits::default(), max_session_bytes: 1280 << 20 };
+        let base = include_str!("../scenes/paper-phantom.toml");
+        let huge = base.replace("nx = 19", "nx = 31").replace("ny = 19", "ny = 31000");
+        let e = parse_scene(&huge, Path::new("."), server).err().unwrap();
+        let size = e.chain().find_map(|c| c.downcast_ref::<SizeLimit>()).unwrap_or_else(|| panic!("not a size limit: {e:#}"));
+        assert_eq!((size.amount, size.limit), (estimated_session_bytes(961_000, 128).div_ceil(1 << 20), 1280));
+        // The benchmark's largest grid fits, and the offline commands have no memory bound.
+        assert!(estimated_session_bytes(160_000, 128) <= server.max_session_bytes);
+        let big = base.replace("nx = 19", "nx = 400").replace("ny = 19", "ny = 400");
+        assert_eq!(parse_scene(&big, Path::new("."), server).unwrap().tissue.mesh().n_nodes(), 160_000);
+        // The estimate bounds the measured figures: 2.6 GB at 31 × 31000 when built (issue 13);
+        // 377 MiB of model and factor at 400 × 400 (BENCHMARKS.md).
+        assert!(estimated_session_bytes(961_000, 0) > 2_600_000_000);
+        assert!(estimated_session_bytes(160_000, 0) > 377 << 20);
+    }
+
+    #[test]
     fn scene_errors_name_the_field() {
         let base = include_str!("../scenes/paper-phantom.toml");
         let lim = MeshLimits::default();
@@ -585,10 +717,8 @@ mod tests {
         assert!(format!("{e:#}").contains("no boundary set 'floor'"), "{e:#}");
         let e = parse_scene(&base.replace("length_m = ", "lenght_m = "), Path::new("."), &lim).err().unwrap();
         assert!(format!("{e:#}").contains("lenght_m"), "{e:#}");
-        let e = parse_scene(&base.replace("friction_n_per_m = 10", "friction_n_per_m = -3"), Path::new("."), &lim);
-        // Needle parameters are checked when the simulation is built.
-        let s = e.unwrap();
-        let err = needlesim_core::Simulation::new(s.tissue, s.params).err().unwrap();
-        assert!(err.to_string().contains("friction_n_per_m = -3"), "{err}");
+        // Needle parameters are checked by the core's simulation, when the scene is loaded.
+        let e = parse_scene(&base.replace("friction_n_per_m = 10", "friction_n_per_m = -3"), Path::new("."), &lim).err().unwrap();
+        assert!(format!("{e:#}").contains("friction_n_per_m = -3"), "{e:#}");
     }
 }

@@ -74,6 +74,20 @@ fn metrics_text(state: &ServerState) -> String {
     let n_sessions: Gauge<f64, std::sync::atomic::AtomicU64> = Gauge::default();
     n_sessions.set(sessions.len() as f64);
     registry.register("sessions", "Sessions running", n_sessions);
+    let jobs = [
+        ("offline_jobs_running", "Offline calls (Simulate, Plan, Identify) running", state.jobs.running() as f64),
+        ("offline_jobs_peak", "The most offline calls that ever ran at once", state.jobs.peak() as f64),
+        (
+            "offline_jobs_rejected",
+            "Offline calls refused: the server ran its limit (--max-offline-jobs, --max-plans)",
+            state.jobs.rejected() as f64,
+        ),
+    ];
+    for (name, help, v) in jobs {
+        let g: Gauge<f64, std::sync::atomic::AtomicU64> = Gauge::default();
+        g.set(v);
+        registry.register(name, help, g);
+    }
     for (name, help, fam) in gauges {
         registry.register(name, help, fam);
     }
@@ -114,6 +128,18 @@ fn static_or_unimplemented(
     }
 }
 
+/// tonic answers a request message over `--max-message-bytes` with OUT_OF_RANGE; the API promises
+/// RESOURCE_EXHAUSTED for size limits, so a trailers-only answer with OUT_OF_RANGE (which no
+/// service of ours gives) becomes RESOURCE_EXHAUSTED.
+fn size_limit_status(mut resp: axum::response::Response) -> axum::response::Response {
+    let out_of_range = (tonic::Code::OutOfRange as i32).to_string();
+    if resp.headers().get("grpc-status").is_some_and(|v| v.as_bytes() == out_of_range.as_bytes()) {
+        let exhausted = (tonic::Code::ResourceExhausted as i32).to_string();
+        resp.headers_mut().insert("grpc-status", axum::http::HeaderValue::from_str(&exhausted).expect("digits"));
+    }
+    resp
+}
+
 /// Plays `traj` on `session` in a loop (poses every 2 ms, interpolated) until a client sends a
 /// pose or the session closes.
 async fn play_demo(session: Arc<crate::session::Session>, traj: crate::scene::Trajectory) {
@@ -142,7 +168,7 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
     let state = ServerState::new(config.limits.clone(), config.data_dir.clone());
     let mut demo_session = None;
     if let Some(name) = &config.default_scene {
-        let scene = crate::scene::load_scene(name, &config.limits.mesh)?;
+        let scene = crate::scene::load_scene(name, config.limits.scene())?;
         let rate = scene.params.tick_rate_hz;
         let s = state.create_session(&scene, rate).map_err(|e| anyhow::anyhow!("default session: {}", e.message()))?;
         tracing::info!(
@@ -196,7 +222,8 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
         .into_axum_router()
         .route_layer(tonic_web::GrpcWebLayer::new())
         .route("/metrics", axum::routing::get(move || std::future::ready(metrics_text(&metrics_state))))
-        .fallback(static_or_unimplemented(config.web_dir.clone()));
+        .fallback(static_or_unimplemented(config.web_dir.clone()))
+        .layer(tower::util::MapResponseLayer::new(size_limit_status));
     let mut server = tonic::transport::Server::builder().accept_http1(true);
     if let Some((cert, key)) = &config.tls {
         let cert = std::fs::read(cert).with_context(|| format!("cannot read the TLS certificate {}", cert.display()))?;

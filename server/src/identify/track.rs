@@ -30,6 +30,8 @@
 use anyhow::{Context, Result, bail};
 use image::{DynamicImage, GrayImage};
 
+use crate::status::SizeLimit;
+
 use super::tracks::MarkerTracks;
 
 /// Whether the markers are darker or brighter than the background.
@@ -76,7 +78,14 @@ pub struct TrackParams {
     pub max_missing_frames: usize,
     /// Pixels to metres.
     pub scale: Scale,
+    /// Largest image decoded, pixels (width × height, read from the PNG header before any pixel
+    /// is decoded); a larger one is a [`SizeLimit`] error.
+    pub max_image_pixels: u64,
 }
+
+/// The default of [`TrackParams::max_image_pixels`]: 25 megapixels (a 6000 × 4000 camera image;
+/// decoding and tracking hold about 9 bytes per pixel).
+pub const DEFAULT_MAX_IMAGE_PIXELS: u64 = 25_000_000;
 
 impl TrackParams {
     /// Defaults for dots a few pixels across: automatic threshold, areas 4–5000 px, jumps up to
@@ -91,6 +100,7 @@ impl TrackParams {
             expected_markers: None,
             max_missing_frames: 2,
             scale,
+            max_image_pixels: DEFAULT_MAX_IMAGE_PIXELS,
         }
     }
 
@@ -503,8 +513,26 @@ impl Tracker {
     /// `max_missing_frames` consecutive frames. After an error the tracker is unchanged.
     pub fn push_png(&mut self, t_s: f64, png: &[u8]) -> Result<()> {
         let k = self.times.len();
-        let img = image::load_from_memory_with_format(png, image::ImageFormat::Png)
-            .with_context(|| format!("frame {k}: not a decodable PNG image"))?;
+        let reader = || image::ImageReader::with_format(std::io::Cursor::new(png), image::ImageFormat::Png);
+        let (w, h) = reader().into_dimensions().with_context(|| format!("frame {k}: not a decodable PNG image"))?;
+        let pixels = u64::from(w) * u64::from(h);
+        if pixels > self.p.max_image_pixels {
+            return Err(anyhow::Error::new(SizeLimit {
+                what: format!("frame {k} ({w} × {h} pixels)"),
+                amount: pixels,
+                limit: self.p.max_image_pixels,
+                unit: "pixels",
+                hint: " (server flag --max-image-pixels)".to_owned(),
+            }));
+        }
+        // The decoder holds to the header's size: at most 8 bytes per pixel (16-bit RGBA).
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(w);
+        limits.max_image_height = Some(h);
+        limits.max_alloc = Some(pixels.saturating_mul(8).saturating_add(1 << 20));
+        let mut decoder = reader();
+        decoder.limits(limits);
+        let img = decoder.decode().with_context(|| format!("frame {k}: not a decodable PNG image"))?;
         self.push_plane(t_s, Plane::from_dynamic(&img, self.p.polarity))
     }
 
@@ -751,6 +779,18 @@ mod tests {
         let s: f64 =
             found.iter().map(|f| truth.iter().map(|t| (f[0] - t[0]).powi(2) + (f[1] - t[1]).powi(2)).fold(f64::INFINITY, f64::min)).sum();
         (s / found.len() as f64).sqrt()
+    }
+
+    #[test]
+    fn issue_13_an_image_over_the_pixel_limit_is_refused_from_its_header() {
+        let mut buf = std::io::Cursor::new(Vec::new());
+        GrayImage::new(100, 80).write_to(&mut buf, image::ImageFormat::Png).unwrap();
+        let png = buf.into_inner();
+        let p = TrackParams { max_image_pixels: 7999, ..params() };
+        let e = track_png_bytes(&[(0.0, &png)], &p, &mut |_, _| {}).unwrap_err();
+        let size = e.downcast_ref::<SizeLimit>().unwrap_or_else(|| panic!("not a size limit: {e:#}"));
+        assert_eq!((size.amount, size.limit), (8000, 7999));
+        assert!(e.to_string().contains("frame 0 (100 × 80 pixels)"), "{e}");
     }
 
     #[test]

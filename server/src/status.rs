@@ -1,0 +1,225 @@
+//! The one mapping from the server's typed errors to gRPC statuses: every bad value the client
+//! sent is INVALID_ARGUMENT naming the field, an unknown id NOT_FOUND, a size or concurrency
+//! limit RESOURCE_EXHAUSTED; messages quote at most a short prefix of what the client sent
+//! ([`quote`]) and are never longer than [`MAX_MESSAGE_CHARS`].
+//!
+//! Domain errors reach the services either typed (`SessionError`, `RecordingError`, the core's
+//! `SimError`/`MeshError`/`TissueError`/`MaterialError`, `MshError`, [`SizeLimit`]) or wrapped in
+//! an `anyhow::Error` chain (scene loading, trajectories, identify); [`ApiError::from_chain`] finds
+//! the typed cause in the chain by downcasting, never by matching text.
+
+use needlesim_core::mesh::MeshError;
+use needlesim_core::msh::MshError;
+use needlesim_core::sim::SimError;
+use tonic::Status;
+
+use crate::recording::RecordingError;
+use crate::session::SessionError;
+
+/// Characters of client input a message quotes before cutting it with "…".
+pub const MAX_QUOTE_CHARS: usize = 64;
+/// The longest status message, in characters (gRPC metadata must stay small).
+pub const MAX_MESSAGE_CHARS: usize = 1024;
+
+/// At most [`MAX_QUOTE_CHARS`] characters of `s`, with "…" when cut.
+pub fn quote(s: &str) -> String {
+    clip(s, MAX_QUOTE_CHARS)
+}
+
+/// At most `n` characters of `s`, with "…" appended when cut.
+pub fn clip(s: &str, n: usize) -> String {
+    match s.char_indices().nth(n) {
+        None => s.to_owned(),
+        Some((i, _)) => format!("{}…", &s[..i]),
+    }
+}
+
+/// A request over a size limit of the server: the typed cause of RESOURCE_EXHAUSTED, also inside
+/// `anyhow` chains (scene loading).
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{what} is {amount} {unit}, over the limit of {limit} {unit}{hint}")]
+pub struct SizeLimit {
+    /// What is too large, e.g. "the scene's estimated memory".
+    pub what: String,
+    pub amount: u64,
+    pub limit: u64,
+    /// The unit of `amount` and `limit`, e.g. "MiB", "ticks", "pixels".
+    pub unit: &'static str,
+    /// Appended to the message, e.g. " (flag --max-session-memory-mb)".
+    pub hint: String,
+}
+
+/// An error of a call, by the status it answers.
+#[derive(Debug, Clone)]
+pub enum ApiError {
+    /// A value the client sent is wrong; `field` names it (it leads the message).
+    InvalidArgument { field: String, message: String },
+    /// The session, recording or other named thing does not exist.
+    NotFound(String),
+    /// A size, memory or concurrency limit of the server.
+    ResourceExhausted(String),
+    /// The state of the session forbids the call.
+    FailedPrecondition(String),
+    /// A missing or wrong token.
+    PermissionDenied(String),
+    /// The server cannot serve the call now (shutting down).
+    Unavailable(String),
+    /// The server's fault.
+    Internal(String),
+}
+
+impl ApiError {
+    /// INVALID_ARGUMENT for `field`.
+    pub fn invalid(field: impl Into<String>, message: impl std::fmt::Display) -> Self {
+        Self::InvalidArgument { field: field.into(), message: message.to_string() }
+    }
+
+    /// The status of an error chain whose outermost context names the field (as scene loading
+    /// and the converters write them): RESOURCE_EXHAUSTED when a cause is a size limit
+    /// ([`SizeLimit`], a mesh over its node or triangle count), INTERNAL when the cause is the
+    /// server's (a failed solve of a valid model, a thread that could not start), else
+    /// INVALID_ARGUMENT naming `field` (unless the message already starts with it).
+    pub fn from_chain(field: &str, e: &anyhow::Error) -> Self {
+        let msg = format!("{e:#}");
+        for cause in e.chain() {
+            if cause.downcast_ref::<SizeLimit>().is_some() {
+                return Self::ResourceExhausted(msg);
+            }
+            if let Some(m) = cause.downcast_ref::<MeshError>()
+                && mesh_is_size_limit(m)
+            {
+                return Self::ResourceExhausted(msg);
+            }
+            if let Some(MshError::Mesh(m)) = cause.downcast_ref::<MshError>()
+                && mesh_is_size_limit(m)
+            {
+                return Self::ResourceExhausted(msg);
+            }
+            if let Some(s) = cause.downcast_ref::<SessionError>() {
+                return match Self::from(s) {
+                    Self::InvalidArgument { .. } => Self::invalid_with_prefix(field, msg),
+                    other => other,
+                };
+            }
+        }
+        Self::invalid_with_prefix(field, msg)
+    }
+
+    /// INVALID_ARGUMENT for `field`, or for the field the message starts with when `field` is
+    /// empty.
+    fn invalid_with_prefix(field: &str, msg: String) -> Self {
+        let field = if field.is_empty() { msg.split([':', ' ', '=']).next().unwrap_or_default() } else { field };
+        Self::InvalidArgument { field: field.to_owned(), message: msg }
+    }
+}
+
+/// Whether a mesh error is a size limit (RESOURCE_EXHAUSTED) rather than a bad mesh.
+pub fn mesh_is_size_limit(e: &MeshError) -> bool {
+    matches!(e, MeshError::TooManyNodes { .. } | MeshError::TooManyTriangles { .. })
+}
+
+impl From<&SimError> for ApiError {
+    fn from(e: &SimError) -> Self {
+        match e {
+            // Anything else the core finds wrong with the parameters or the pose names it.
+            SimError::InvalidParams(_) | SimError::NonFinitePose { .. } => ApiError::invalid("scene", e),
+            _ => ApiError::Internal(e.to_string()),
+        }
+    }
+}
+
+impl From<&SessionError> for ApiError {
+    fn from(e: &SessionError) -> Self {
+        match e {
+            SessionError::TickRate(_) => ApiError::invalid("tick_rate_hz", e),
+            SessionError::Sim(s) => ApiError::from(s),
+            _ => ApiError::Internal(e.to_string()),
+        }
+    }
+}
+
+impl From<SessionError> for ApiError {
+    fn from(e: SessionError) -> Self {
+        ApiError::from(&e)
+    }
+}
+
+impl From<&RecordingError> for ApiError {
+    fn from(e: &RecordingError) -> Self {
+        match e {
+            RecordingError::NotFound { name } => ApiError::NotFound(format!("no recording '{}'", quote(name))),
+            RecordingError::InvalidName { name, reason } => ApiError::invalid("name", format!("'{}': {reason}", quote(name))),
+            _ => ApiError::Internal(e.to_string()),
+        }
+    }
+}
+
+impl From<SizeLimit> for ApiError {
+    fn from(e: SizeLimit) -> Self {
+        ApiError::ResourceExhausted(e.to_string())
+    }
+}
+
+impl From<ApiError> for Status {
+    fn from(e: ApiError) -> Self {
+        let m = |s: String| clip(&s, MAX_MESSAGE_CHARS);
+        match e {
+            ApiError::InvalidArgument { field, message } => Status::invalid_argument(m(if message.starts_with(&field) {
+                message
+            } else if message.is_empty() {
+                quote(&field)
+            } else {
+                format!("{}: {message}", quote(&field))
+            })),
+            ApiError::NotFound(s) => Status::not_found(m(s)),
+            ApiError::ResourceExhausted(s) => Status::resource_exhausted(m(s)),
+            ApiError::FailedPrecondition(s) => Status::failed_precondition(m(s)),
+            ApiError::PermissionDenied(s) => Status::permission_denied(m(s)),
+            ApiError::Unavailable(s) => Status::unavailable(m(s)),
+            ApiError::Internal(s) => Status::internal(m(s)),
+        }
+    }
+}
+
+/// The status of an error chain (see [`ApiError::from_chain`]).
+pub fn status_of(field: &str, e: &anyhow::Error) -> Status {
+    ApiError::from_chain(field, e).into()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quote_cuts_long_input_at_a_char_boundary() {
+        assert_eq!(quote("abc"), "abc");
+        let long = "é".repeat(100_000);
+        let q = quote(&long);
+        assert_eq!(q.chars().count(), MAX_QUOTE_CHARS + 1);
+        assert!(q.ends_with('…'));
+    }
+
+    #[test]
+    fn chains_map_by_type_not_text() {
+        let size = anyhow::Error::new(MeshError::TooManyNodes { n_nodes: 10, max_nodes: 5 }).context("mesh");
+        assert_eq!(Status::from(ApiError::from_chain("scene", &size)).code(), tonic::Code::ResourceExhausted);
+        let bad = anyhow::Error::new(MeshError::Empty).context("mesh");
+        let st = Status::from(ApiError::from_chain("scene", &bad));
+        assert_eq!(st.code(), tonic::Code::InvalidArgument);
+        assert!(st.message().starts_with("scene: mesh: "), "{}", st.message());
+        // The words of a size error in a message are not a size error.
+        let text = anyhow::anyhow!("name 'over the limit' is not a region");
+        assert_eq!(Status::from(ApiError::from_chain("scene", &text)).code(), tonic::Code::InvalidArgument);
+        let lim = SizeLimit { what: "x".into(), amount: 2, limit: 1, unit: "MiB", hint: String::new() };
+        let wrapped = anyhow::Error::new(lim).context("scene.scene_toml");
+        assert_eq!(Status::from(ApiError::from_chain("scene", &wrapped)).code(), tonic::Code::ResourceExhausted);
+        let sim = anyhow::Error::new(SessionError::Sim(SimError::InvalidParams("max_base_step_m = -1".into())));
+        assert_eq!(Status::from(ApiError::from_chain("scene", &sim)).code(), tonic::Code::InvalidArgument);
+    }
+
+    #[test]
+    fn messages_are_bounded() {
+        let st = Status::from(ApiError::Internal("x".repeat(1 << 20)));
+        assert!(st.message().chars().count() <= MAX_MESSAGE_CHARS + 1);
+    }
+}
