@@ -703,25 +703,24 @@ enum RecordingAccess {
     Admin,
     /// A session's token: the recordings whose owner lists its digest.
     Token(String),
+    /// No token: no recording.
+    Nothing,
 }
 
 impl RecordingAccess {
-    fn of<T>(state: &ServerState, req: &Request<T>) -> Result<Self, Status> {
-        let tok = token_of(req).ok_or_else(|| {
-            Status::permission_denied(
-                "missing token: recordings need the observer or controller token of the session that made them (or the admin token), \
-                 as `authorization: Bearer <token>` metadata",
-            )
-        })?;
-        Ok(match &state.admin_token_sha256 {
-            Some(admin) if crate::access::digest_matches(&tok, admin) => Self::Admin,
-            _ => Self::Token(tok),
-        })
+    /// The access of a request's token; a request without one opens nothing.
+    fn of<T>(state: &ServerState, req: &Request<T>) -> Self {
+        match (token_of(req), &state.admin_token_sha256) {
+            (Some(tok), Some(admin)) if crate::access::digest_matches(&tok, admin) => Self::Admin,
+            (Some(tok), _) => Self::Token(tok),
+            (None, _) => Self::Nothing,
+        }
     }
 
     fn opens(&self, owner: Option<&crate::recording::RecordingOwner>) -> bool {
         match self {
             Self::Admin => true,
+            Self::Nothing => false,
             Self::Token(tok) => {
                 owner.is_some_and(|o| o.token_sha256.iter().fold(false, |any, d| any | crate::access::digest_matches(tok, d)))
             }
@@ -756,7 +755,7 @@ impl pb::recording_service_server::RecordingService for Api {
     }
 
     async fn list_recordings(&self, req: Request<pb::ListRecordingsRequest>) -> Result<Response<pb::ListRecordingsResponse>, Status> {
-        let access = RecordingAccess::of(&self.state, &req)?;
+        let access = RecordingAccess::of(&self.state, &req);
         let dir = self.state.data_dir.join("recordings");
         let list = tokio::task::spawn_blocking(move || {
             let mut list = crate::recording::list_recordings(&dir);
@@ -772,7 +771,7 @@ impl pb::recording_service_server::RecordingService for Api {
         &self,
         req: Request<pb::DownloadRecordingRequest>,
     ) -> Result<Response<Self::DownloadRecordingStream>, Status> {
-        let access = RecordingAccess::of(&self.state, &req)?;
+        let access = RecordingAccess::of(&self.state, &req);
         let name = req.get_ref().name.clone();
         let dir = self.state.data_dir.join("recordings");
         // Never follows a link and never waits for a FIFO; blocking file I/O off the runtime.
@@ -786,6 +785,10 @@ impl pb::recording_service_server::RecordingService for Api {
             let owner = crate::recording::read_owner(&dir, &name);
             if !access.opens(owner.as_ref()) {
                 return Err(Status::permission_denied(match owner {
+                    _ if matches!(access, RecordingAccess::Nothing) => format!(
+                        "missing token: recording {name:?} opens with the observer or controller token of the session that made it \
+                         (or the admin token), as `authorization: Bearer <token>` metadata"
+                    ),
                     Some(o) => format!(
                         "recording {name:?} belongs to session {}: it opens with that session's observer or controller token, or the admin token",
                         o.session_id

@@ -695,7 +695,8 @@ view.addEventListener(
 
 async function refreshRecordings(): Promise<void> {
   try {
-    const res = await recordings.listRecordings({});
+    // A recording opens with the token of the session that made it: list those of the session watched.
+    const res = await recordings.listRecordings({}, current ? auth(current.token) : {});
     recSelect.replaceChildren(
       ...res.recordings.map((r) => {
         const o = document.createElement("option");
@@ -749,7 +750,7 @@ async function loadRecording(): Promise<void> {
     status(`downloading ${name}…`);
     const parts: Uint8Array[] = [];
     let total = 0;
-    for await (const chunk of recordings.downloadRecording({ name })) {
+    for await (const chunk of recordings.downloadRecording({ name }, current ? auth(current.token) : {})) {
       parts.push(chunk.data);
       total += chunk.data.length;
     }
