@@ -229,6 +229,29 @@ async fn issue_13_recordings_open_with_their_sessions_tokens_only() {
     let owner = std::fs::read_to_string(server.data_dir.join("recordings").join(format!("{}.owner", rec_a.name))).unwrap();
     assert!(!owner.contains(&a.controller_token) && !owner.contains(&a.observer_token), "{owner}");
     close(&ch, &b).await;
+    // After a restart (same data directory, no admin token), the closed sessions' tokens still
+    // open their recordings, and only theirs.
+    drop(ch);
+    let server = server.restart(&["--default-scene", "none"]);
+    let mut rec = pb::recording_service_client::RecordingServiceClient::new(channel(&server).await);
+    let names = |tok: &str| {
+        let mut rec = rec.clone();
+        let req = with_token(pb::ListRecordingsRequest {}, tok);
+        async move { rec.list_recordings(req).await.unwrap().into_inner().recordings.into_iter().map(|i| i.name).collect::<Vec<_>>() }
+    };
+    assert_eq!(names(&a.observer_token).await, vec![rec_a.name.clone()]);
+    assert_eq!(names(&b.controller_token).await, vec![rec_b.name.clone()]);
+    assert_eq!(names(admin).await, Vec::<String>::new(), "the admin token is not configured any more");
+    let mut chunks = rec
+        .download_recording(with_token(pb::DownloadRecordingRequest { name: rec_a.name.clone() }, &a.controller_token))
+        .await
+        .unwrap()
+        .into_inner();
+    let mut bytes = Vec::new();
+    while let Some(c) = chunks.next().await {
+        bytes.extend(c.unwrap().data);
+    }
+    assert_eq!(bytes, from_disk);
 }
 
 /// Regression (issue 13): a symbolic link in the recordings folder was served (a link to a file
@@ -380,6 +403,22 @@ async fn issue_13_take_over_revokes_the_controller() {
     let req = pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose(0.19)), client_id: "cli".into(), take_over: false };
     let e = ctl.set_pose(with_token(req, &tok)).await.unwrap_err();
     assert_eq!(e.code(), Code::FailedPrecondition, "{e:?}");
+    // The CLI: `needlesim drive` is refused while another client drives; `--take-over` drives.
+    let (_tx4, _resp4) = open_control(&ch, &tok, control_request(&sid, 0.2, 1, true)).await.unwrap();
+    let dir = TempDir::new("take-over");
+    let traj = dir.join("traj.csv");
+    std::fs::write(&traj, format!("t_s,x_m,y_m,theta_rad\n0,0.05,0.2,{DOWN}\n0.2,0.05,0.199,{DOWN}\n")).unwrap();
+    let drive = |extra: &[&str]| {
+        let mut cmd = std::process::Command::new(needlesim_tests::bin("needlesim"));
+        cmd.args(["--server", &server.url(), "--token", &tok, "drive", &sid, "--trajectory", traj.to_str().unwrap()]).args(extra);
+        needlesim_tests::run(&mut cmd)
+    };
+    let refused = drive(&[]);
+    let (_, err) = needlesim_tests::text(&refused);
+    assert!(!refused.status.success() && err.contains("take_over"), "drive while another client drives: {err}");
+    let took = drive(&["--take-over"]);
+    let (out, err) = needlesim_tests::text(&took);
+    assert!(took.status.success(), "drive --take-over:\n{out}\n{err}");
     close(&ch, &created).await;
 }
 

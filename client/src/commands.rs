@@ -542,7 +542,7 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
         client_time_ns: now_ns(),
         seq: 1,
         flip_bevel: false,
-        take_over: false,
+        take_over: a.take_over,
     })
     .await
     .map_err(|_| anyhow!("{what}: the request stream closed"))?;
