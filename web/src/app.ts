@@ -69,6 +69,9 @@ interface Sample {
 }
 
 let current: { id: string; token: string } | null = null;
+/** This tab's id for SetPose: the server lets one controller drive at a time, and this tab's
+ * poses share one control lease (another tab or client is refused while this one drives). */
+const TAB_ID = `web-${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
 let mesh: MeshGeom | null = null;
 let frame: Frame | null = null;
 let frames = 0;
@@ -628,7 +631,7 @@ function pump(): void {
   inFlight++;
   const { id, token } = current;
   control
-    .setPose({ sessionId: id, base: create(Pose2Schema, { xM: p.x, yM: p.y, thetaRad: p.theta }) }, auth(token))
+    .setPose({ sessionId: id, base: create(Pose2Schema, { xM: p.x, yM: p.y, thetaRad: p.theta }), clientId: TAB_ID }, auth(token))
     .then(() => {
       posesSent++;
       document.body.dataset.poses = String(posesSent);
