@@ -93,7 +93,10 @@ async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
     for k in 1..=40 {
         let pose = pb::Pose2 { x_m: 0.05 + 2e-5 * k as f64, y_m: 0.205 - 5e-4 * k as f64, theta_rad: -std::f64::consts::FRAC_PI_2 };
         control
-            .set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose) }, &created.controller_token))
+            .set_pose(with_token(
+                pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose), client_id: String::new(), take_over: false },
+                &created.controller_token,
+            ))
             .await
             .unwrap();
         tokio::time::sleep(std::time::Duration::from_millis(10)).await;
@@ -124,8 +127,19 @@ async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
     // A Control message that only flips (no pose).
     let (tx, rx) = tokio::sync::mpsc::channel(4);
     let pose = pb::Pose2 { x_m: 0.0508, y_m: 0.185, theta_rad: -std::f64::consts::FRAC_PI_2 };
-    tx.send(pb::ControlRequest { session_id: sid.clone(), base: Some(pose), client_time_ns: 0, seq: 1, flip_bevel: false }).await.unwrap();
-    tx.send(pb::ControlRequest { session_id: String::new(), base: None, client_time_ns: 0, seq: 0, flip_bevel: true }).await.unwrap();
+    tx.send(pb::ControlRequest {
+        session_id: sid.clone(),
+        base: Some(pose),
+        client_time_ns: 0,
+        seq: 1,
+        flip_bevel: false,
+        take_over: false,
+    })
+    .await
+    .unwrap();
+    tx.send(pb::ControlRequest { session_id: String::new(), base: None, client_time_ns: 0, seq: 0, flip_bevel: true, take_over: false })
+        .await
+        .unwrap();
     let mut responses =
         control.control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), &created.controller_token)).await.unwrap().into_inner();
     let mut flipped_back = false;

@@ -254,9 +254,12 @@ fn a_killed_python_client_leaves_the_session_healthy() {
         assert!(ticks.windows(2).all(|w| w[0] < w[1]), "frames out of order");
         let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
         let pose = pb::Pose2 { x_m: 0.05, y_m: 0.2, theta_rad: -std::f64::consts::FRAC_PI_2 };
-        ctl.set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose) }, &ctl_tok))
-            .await
-            .expect("a new controller");
+        ctl.set_pose(with_token(
+            pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose), client_id: String::new(), take_over: false },
+            &ctl_tok,
+        ))
+        .await
+        .expect("a new controller");
     });
 }
 

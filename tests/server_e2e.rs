@@ -70,9 +70,16 @@ async fn insertion_at_1khz_with_50_observers_and_a_full_rate_logger() {
     let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
     let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
     let start = Instant::now();
-    tx.send(pb::ControlRequest { session_id: sid.clone(), base: Some(pose_at(0.0, secs)), client_time_ns: 0, seq: 1, flip_bevel: false })
-        .await
-        .unwrap();
+    tx.send(pb::ControlRequest {
+        session_id: sid.clone(),
+        base: Some(pose_at(0.0, secs)),
+        client_time_ns: 0,
+        seq: 1,
+        flip_bevel: false,
+        take_over: false,
+    })
+    .await
+    .unwrap();
     let mut responses =
         ctl.control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), &ctl_tok)).await.expect("control stream").into_inner();
     let sender = tokio::spawn(async move {
@@ -85,8 +92,14 @@ async fn insertion_at_1khz_with_50_observers_and_a_full_rate_logger() {
                 return seq;
             }
             seq += 1;
-            let m =
-                pb::ControlRequest { session_id: String::new(), base: Some(pose_at(t, secs)), client_time_ns: 0, seq, flip_bevel: false };
+            let m = pb::ControlRequest {
+                session_id: String::new(),
+                base: Some(pose_at(t, secs)),
+                client_time_ns: 0,
+                seq,
+                flip_bevel: false,
+                take_over: false,
+            };
             if tx.send(m).await.is_err() {
                 return seq;
             }
@@ -254,17 +267,28 @@ async fn bad_requests_get_the_right_status() {
     assert_eq!(e.code(), Code::NotFound);
     let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
     let pose = Some(pb::Pose2 { x_m: 0.05, y_m: 0.2, theta_rad: DOWN });
-    let e = control.set_pose(pb::SetPoseRequest { session_id: sid.clone(), base: pose }).await.unwrap_err();
+    let e = control
+        .set_pose(pb::SetPoseRequest { session_id: sid.clone(), base: pose, client_id: String::new(), take_over: false })
+        .await
+        .unwrap_err();
     assert_eq!(e.code(), Code::PermissionDenied);
     let e = control
-        .set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: pose }, &created.observer_token))
+        .set_pose(with_token(
+            pb::SetPoseRequest { session_id: sid.clone(), base: pose, client_id: String::new(), take_over: false },
+            &created.observer_token,
+        ))
         .await
         .unwrap_err();
     assert_eq!(e.code(), Code::PermissionDenied, "an observer token cannot drive");
     // NaN poses are refused, naming the field; the session goes on.
     let e = control
         .set_pose(with_token(
-            pb::SetPoseRequest { session_id: sid.clone(), base: Some(pb::Pose2 { x_m: f64::NAN, y_m: 0.2, theta_rad: 0.0 }) },
+            pb::SetPoseRequest {
+                session_id: sid.clone(),
+                base: Some(pb::Pose2 { x_m: f64::NAN, y_m: 0.2, theta_rad: 0.0 }),
+                client_id: String::new(),
+                take_over: false,
+            },
             &created.controller_token,
         ))
         .await
@@ -272,7 +296,10 @@ async fn bad_requests_get_the_right_status() {
     assert_eq!(e.code(), Code::InvalidArgument);
     assert!(e.message().contains("base"), "{}", e.message());
     let ok = control
-        .set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: pose }, &created.controller_token))
+        .set_pose(with_token(
+            pb::SetPoseRequest { session_id: sid.clone(), base: pose, client_id: String::new(), take_over: false },
+            &created.controller_token,
+        ))
         .await
         .unwrap()
         .into_inner();
@@ -450,7 +477,13 @@ async fn demo_plays_until_a_client_takes_control() {
     // A client takes control: the base goes where the client puts it and stays there.
     let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
     let hold = pb::Pose2 { x_m: 0.05, y_m: 0.21, theta_rad: DOWN };
-    control.set_pose(with_token(pb::SetPoseRequest { session_id: sid.clone(), base: Some(hold) }, &token)).await.unwrap();
+    control
+        .set_pose(with_token(
+            pb::SetPoseRequest { session_id: sid.clone(), base: Some(hold), client_id: String::new(), take_over: false },
+            &token,
+        ))
+        .await
+        .unwrap();
     tokio::time::sleep(Duration::from_millis(500)).await;
     let mut later = Vec::new();
     while later.len() < 25 {
@@ -477,6 +510,7 @@ async fn issue_6_control_stream_ends_when_the_controller_is_done() {
             client_time_ns: 0,
             seq: k + 1,
             flip_bevel: false,
+            take_over: false,
         })
         .collect();
     let mut ctl = pb::control_service_client::ControlServiceClient::new(ch);

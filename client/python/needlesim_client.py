@@ -318,14 +318,19 @@ class NeedlesimClient:
         """Finishes the recording of a session; returns its RecordingInfo (name, messages, ...)."""
         return self.recordings.StopRecording(pb.StopRecordingRequest(session_id=session_id), metadata=self._md(session_id, "controller", token), timeout=60)
 
-    def list_recordings(self):
-        return list(self.recordings.ListRecordings(pb.ListRecordingsRequest(), timeout=10).recordings)
+    def list_recordings(self, session_id: str, token: Optional[str] = None):
+        """The recordings of a session (which may have closed since): its observer or controller
+        token, or `token` (the server's admin token lists them all)."""
+        md = self._md(session_id, "observer", token)
+        return list(self.recordings.ListRecordings(pb.ListRecordingsRequest(), metadata=md, timeout=10).recordings)
 
-    def download_recording(self, name: str, path: str) -> int:
-        """Downloads the MCAP file `name` into path; returns its size in bytes."""
+    def download_recording(self, name: str, path: str, session_id: str, token: Optional[str] = None) -> int:
+        """Downloads the MCAP file `name` of session `session_id` into path (with that session's
+        observer or controller token, or `token`); returns its size in bytes."""
+        md = self._md(session_id, "observer", token)
         size = 0
         with open(path, "wb") as f:
-            for chunk in self.recordings.DownloadRecording(pb.DownloadRecordingRequest(name=name), timeout=120):
+            for chunk in self.recordings.DownloadRecording(pb.DownloadRecordingRequest(name=name), metadata=md, timeout=120):
                 if chunk.offset != size:
                     raise RuntimeError(f"recording chunk at offset {chunk.offset}, expected {size}")
                 f.write(chunk.data)
@@ -453,7 +458,7 @@ def record(client: NeedlesimClient, seconds: float, out: str) -> int:
         time.sleep(0.005)
     info = client.stop_recording(s.session_id)
     stats = client.stats(s.session_id)
-    size = client.download_recording(info.name, out)
+    size = client.download_recording(info.name, out, s.session_id)
     client.close_session(s.session_id)
     print(
         json.dumps(

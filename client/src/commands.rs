@@ -547,6 +547,7 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
         client_time_ns: now_ns(),
         seq: 1,
         flip_bevel: false,
+        take_over: a.take_over,
     })
     .await
     .map_err(|_| anyhow!("{what}: the request stream closed"))?;
@@ -584,6 +585,7 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
                 client_time_ns: now_ns(),
                 seq,
                 flip_bevel: false,
+                take_over: false,
             };
             if tx.send(m).await.is_err() {
                 return (seq, false);

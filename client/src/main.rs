@@ -173,6 +173,10 @@ pub struct DriveArgs {
     /// Repeat the trajectory until interrupted (Ctrl-C).
     #[arg(long = "loop")]
     pub repeat: bool,
+    /// Take control from whoever drives the session now (one controller at a time: without
+    /// this, driving a session someone else drives is refused).
+    #[arg(long)]
+    pub take_over: bool,
 }
 
 #[derive(Debug, Args)]

@@ -246,7 +246,7 @@ async fn stream_task(
                         base: Some(pb::Pose2 { x_m: p.pose[0], y_m: p.pose[1], theta_rad: p.pose[2] }),
                         client_time_ns: p.client_time_ns,
                         seq: p.seq,
-                        flip_bevel: p.flip_bevel,
+                        flip_bevel: p.flip_bevel, take_over: false,
                     };
                     first = false;
                     if req_tx.send(m).await.is_err() {

@@ -54,9 +54,16 @@ async fn run_case(ch: tonic::transport::Channel, n_observers: usize, secs: f64) 
     let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
     let epoch = Instant::now();
     let pose = move |t: f64| pb::Pose2 { x_m: 0.05, y_m: 0.205 - 0.04 * (t / secs).min(1.0), theta_rad: -std::f64::consts::FRAC_PI_2 };
-    tx.send(pb::ControlRequest { session_id: sid.clone(), base: Some(pose(0.0)), client_time_ns: 1, seq: 1, flip_bevel: false })
-        .await
-        .unwrap();
+    tx.send(pb::ControlRequest {
+        session_id: sid.clone(),
+        base: Some(pose(0.0)),
+        client_time_ns: 1,
+        seq: 1,
+        flip_bevel: false,
+        take_over: false,
+    })
+    .await
+    .unwrap();
     let mut responses = pb::control_service_client::ControlServiceClient::new(ch.clone())
         .control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), &ctl))
         .await
@@ -75,6 +82,7 @@ async fn run_case(ch: tonic::transport::Channel, n_observers: usize, secs: f64) 
                 client_time_ns: t.as_nanos() as u64,
                 seq,
                 flip_bevel: false,
+                take_over: false,
             };
             if tx.send(m).await.is_err() {
                 break;
@@ -131,6 +139,7 @@ fn main() {
         max_message_bytes: 4 << 20,
         default_scene: None,
         demo: false,
+        admin_token: None,
     };
     let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
     let (stop_tx, stop_rx) = tokio::sync::oneshot::channel::<()>();

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::pin::Pin;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, RwLock};
 use std::time::Duration;
 
@@ -70,16 +70,59 @@ impl Default for ServerLimits {
 /// State shared by the services.
 pub struct ServerState {
     pub sessions: RwLock<HashMap<String, Arc<Session>>>,
+    /// Sessions being started: reserved under the `sessions` write lock, so that `sessions` plus
+    /// these never exceed `max_sessions`.
+    pending_sessions: Arc<AtomicUsize>,
     pub limits: ServerLimits,
     pub data_dir: PathBuf,
     /// Permits of the offline calls (Simulate, Plan, Identify).
     pub jobs: Arc<JobLimiter>,
+    /// The SHA-256 of the admin token (`serve --admin-token-file`), which opens every recording.
+    admin_token_sha256: Option<crate::access::TokenDigest>,
+}
+
+/// A place among the `max_sessions` sessions, held while a session starts; given back when
+/// dropped unless the session was registered.
+pub struct SessionSlot {
+    pending: Arc<AtomicUsize>,
+    armed: bool,
+}
+
+impl Drop for SessionSlot {
+    fn drop(&mut self) {
+        if self.armed {
+            self.pending.fetch_sub(1, Ordering::AcqRel);
+        }
+    }
 }
 
 impl ServerState {
     pub fn new(limits: ServerLimits, data_dir: PathBuf) -> Arc<Self> {
+        Self::with_admin_token(limits, data_dir, None)
+    }
+
+    /// A state whose `admin_token` (if any) opens every recording; only its digest is kept.
+    pub fn with_admin_token(limits: ServerLimits, data_dir: PathBuf, admin_token: Option<&str>) -> Arc<Self> {
         let jobs = JobLimiter::new(limits.max_offline_jobs, limits.max_plans);
-        Arc::new(Self { sessions: RwLock::default(), limits, data_dir, jobs })
+        Arc::new(Self {
+            sessions: RwLock::default(),
+            pending_sessions: Arc::default(),
+            limits,
+            data_dir,
+            admin_token_sha256: admin_token.map(crate::access::token_digest),
+            jobs,
+        })
+    }
+
+    /// Reserves a place for a new session, checking the limit and reserving in one step (under
+    /// the sessions lock): concurrent creates never exceed `max_sessions`.
+    pub fn reserve_session_slot(&self) -> Result<SessionSlot, Status> {
+        let sessions = self.sessions.write().expect("sessions lock");
+        if sessions.len() + self.pending_sessions.load(Ordering::Acquire) >= self.limits.max_sessions {
+            return Err(Status::resource_exhausted(format!("the server runs its limit of {} sessions", self.limits.max_sessions)));
+        }
+        self.pending_sessions.fetch_add(1, Ordering::AcqRel);
+        Ok(SessionSlot { pending: self.pending_sessions.clone(), armed: true })
     }
 
     /// Where device channels are created: tmpfs (/dev/shm) when there is one, else the data dir.
@@ -100,15 +143,31 @@ impl ServerState {
         tick_rate_hz: f64,
         device_channel: bool,
     ) -> Result<Arc<Session>, Status> {
-        if self.sessions.read().expect("sessions lock").len() >= self.limits.max_sessions {
-            return Err(Status::resource_exhausted(format!("the server runs its limit of {} sessions", self.limits.max_sessions)));
-        }
+        let slot = self.reserve_session_slot()?;
+        self.create_session_in(slot, scene, tick_rate_hz, device_channel)
+    }
+
+    /// Starts a session in a reserved `slot`, with a shared-memory device channel when
+    /// `device_channel`, and registers it.
+    pub fn create_session_in(
+        &self,
+        mut slot: SessionSlot,
+        scene: &crate::scene::Scene,
+        tick_rate_hz: f64,
+        device_channel: bool,
+    ) -> Result<Arc<Session>, Status> {
         let dir = device_channel.then(|| self.device_dir());
         if let Some(d) = &dir {
             std::fs::create_dir_all(d).map_err(|e| Status::internal(format!("cannot create {}: {e}", d.display())))?;
         }
         let s = Session::start(scene, tick_rate_hz, dir.as_deref()).map_err(|e| Status::from(ApiError::from(e)))?;
-        self.sessions.write().expect("sessions lock").insert(s.id.clone(), s.clone());
+        {
+            // Registered and unreserved in one step.
+            let mut sessions = self.sessions.write().expect("sessions lock");
+            sessions.insert(s.id.clone(), s.clone());
+            slot.armed = false;
+            self.pending_sessions.fetch_sub(1, Ordering::AcqRel);
+        }
         tracing::info!(session = %s.id, scene = %s.scene_name, n_nodes = s.tissue.mesh().n_nodes(), tick_rate_hz, "session created");
         Ok(s)
     }
@@ -150,9 +209,12 @@ fn authorize<T>(req: &Request<T>, s: &Session, role: Role) -> Result<(), Status>
     let Some(tok) = token_of(req) else {
         return Err(Status::permission_denied("missing token: send `authorization: Bearer <token>` metadata"));
     };
+    // Constant time, and both compared (no short cut that would tell which one matched).
+    let is_controller = crate::access::token_matches(&tok, &s.controller_token);
+    let is_observer = crate::access::token_matches(&tok, &s.observer_token);
     let ok = match role {
-        Role::Controller => tok == s.controller_token,
-        Role::Observer => tok == s.observer_token || tok == s.controller_token,
+        Role::Controller => is_controller,
+        Role::Observer => is_observer | is_controller,
     };
     if ok {
         Ok(())
@@ -201,6 +263,9 @@ pub struct Api {
 impl pb::session_service_server::SessionService for Api {
     async fn create_session(&self, req: Request<pb::CreateSessionRequest>) -> Result<Response<pb::CreateSessionResponse>, Status> {
         let r = req.into_inner();
+        // The limit is checked and a place reserved first, in one step: a create over the limit
+        // costs nothing, and concurrent creates never exceed it.
+        let slot = self.state.reserve_session_slot()?;
         let scene = load_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
         let rate = if r.tick_rate_hz == 0.0 { scene.params.tick_rate_hz } else { r.tick_rate_hz };
         if !(rate.is_finite() && (500.0..=1000.0).contains(&rate)) {
@@ -208,7 +273,7 @@ impl pb::session_service_server::SessionService for Api {
         }
         let state = self.state.clone();
         let device = r.device_channel;
-        let s = tokio::task::spawn_blocking(move || state.create_session_with(&scene, rate, device))
+        let s = tokio::task::spawn_blocking(move || state.create_session_in(slot, &scene, rate, device))
             .await
             .map_err(|e| Status::internal(format!("session task: {e}")))??;
         if r.record {
@@ -275,22 +340,31 @@ impl pb::control_service_server::ControlService for Api {
 
     async fn control(&self, req: Request<Streaming<pb::ControlRequest>>) -> Result<Response<Self::ControlStream>, Status> {
         let token = token_of(&req);
+        let client = client_address(&req);
         let mut inbound = req.into_inner();
         let first =
             inbound.message().await?.ok_or_else(|| Status::invalid_argument("the control stream ended before its first message"))?;
         let s = self.state.session(&first.session_id)?;
-        if token.as_deref() != Some(s.controller_token.as_str()) {
+        if !token.as_deref().is_some_and(|t| crate::access::token_matches(t, &s.controller_token)) {
             return Err(Status::permission_denied("driving a session needs its controller token (`authorization: Bearer <token>`)"));
         }
         let pose = check_pose(first.base.as_ref(), "base")?;
-        if first.flip_bevel {
-            s.request_bevel_flip_from_io();
+        // One controller at a time: this stream holds the session's control lease until it ends.
+        let mut lease = s.control.acquire_stream(&client, first.take_over).await.map_err(|busy| control_refused(&s, busy))?;
+        if first.take_over {
+            tracing::info!(session = %s.id, %client, "a Control stream took control over");
         }
-        s.write_client_pose_from_io(PoseCommand { pose, seq: first.seq.max(1), client_time_ns: first.client_time_ns });
+        lease.write_if_held(|| {
+            if first.flip_bevel {
+                s.request_bevel_flip_from_io();
+            }
+            s.write_client_pose_from_io(PoseCommand { pose, seq: first.seq.max(1), client_time_ns: first.client_time_ns });
+        });
         let (tx, rx) = mpsc::channel(256);
         // When the controller closes its side, the response stream ends too.
         let client_done = Arc::new(std::sync::atomic::AtomicBool::new(false));
-        // Poses in: latest value wins; a malformed message ends the stream with its reason.
+        // Poses in: latest value wins; a malformed message ends the stream with its reason, and so
+        // does a take-over by another client.
         let s_in = s.clone();
         let tx_err = tx.clone();
         let done_in = client_done.clone();
@@ -298,17 +372,28 @@ impl pb::control_service_server::ControlService for Api {
             let _done = SetOnDrop(done_in);
             let mut seq = first.seq.max(1);
             loop {
-                match inbound.message().await {
-                    Ok(Some(m)) if m.flip_bevel && m.base.is_none() => {
-                        s_in.request_bevel_flip_from_io();
+                let msg = tokio::select! {
+                    m = inbound.message() => m,
+                    () = lease.revoked() => {
+                        let _ = tx_err.send(Err(Status::aborted(format!(
+                            "control of session {} was taken over by another client", s_in.id
+                        )))).await;
+                        return;
                     }
+                };
+                let held = match msg {
+                    Ok(Some(m)) if m.flip_bevel && m.base.is_none() => lease.write_if_held(|| {
+                        s_in.request_bevel_flip_from_io();
+                    }),
                     Ok(Some(m)) => match check_pose(m.base.as_ref(), "base") {
                         Ok(pose) => {
-                            if m.flip_bevel {
-                                s_in.request_bevel_flip_from_io();
-                            }
                             seq = if m.seq > seq { m.seq } else { seq + 1 };
-                            s_in.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: m.client_time_ns });
+                            lease.write_if_held(|| {
+                                if m.flip_bevel {
+                                    s_in.request_bevel_flip_from_io();
+                                }
+                                s_in.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: m.client_time_ns });
+                            })
                         }
                         Err(e) => {
                             s_in.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
@@ -317,6 +402,12 @@ impl pb::control_service_server::ControlService for Api {
                         }
                     },
                     Ok(None) | Err(_) => return,
+                };
+                if !held {
+                    // Taken over between the message and its write: the pose was not used.
+                    let _ =
+                        tx_err.send(Err(Status::aborted(format!("control of session {} was taken over by another client", s_in.id)))).await;
+                    return;
                 }
             }
         });
@@ -347,8 +438,17 @@ impl pb::control_service_server::ControlService for Api {
         let pose = check_pose(req.get_ref().base.as_ref(), "base").inspect_err(|_| {
             s.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
         })?;
-        let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
-        s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
+        let r = req.get_ref();
+        let client = if r.client_id.is_empty() { client_address(&req) } else { format!("id:{}", r.client_id) };
+        // One controller at a time: refused while a Control stream or another SetPose client
+        // holds the lease, unless it takes over.
+        s.control
+            .with_unary(&client, r.take_over, || {
+                let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
+                s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
+            })
+            .await
+            .map_err(|busy| control_refused(&s, busy))?;
         Ok(Response::new(convert::control_response(&s.latest_record())))
     }
 
@@ -363,6 +463,17 @@ impl pb::control_service_server::ControlService for Api {
         }
         Ok(Response::new(pb::FlipBevelResponse { flips_requested: s.request_bevel_flip_from_io() }))
     }
+}
+
+/// Who sends a request, for the control lease: its IP address (the port changes with each
+/// connection a browser opens), or "unknown".
+fn client_address<T>(req: &Request<T>) -> String {
+    req.remote_addr().map_or_else(|| "unknown".to_owned(), |a| format!("ip:{}", a.ip()))
+}
+
+/// FAILED_PRECONDITION for a request refused by the session's control lease.
+fn control_refused(s: &Session, busy: crate::control_lease::Busy) -> Status {
+    Status::failed_precondition(format!("session {}: {busy}; one controller at a time (set `take_over` to take control from it)", s.id))
 }
 
 /// Loads (parses, meshes, factorises) a scene off the async runtime; a scene over the mesh or
@@ -416,13 +527,14 @@ impl pb::observe_service_server::ObserveService for Api {
                 r.rate_hz, s.tick_rate_hz
             )));
         }
-        if s.n_observers.load(Ordering::Relaxed) as usize >= self.state.limits.max_observers_per_session {
+        // Checked and counted in one step: concurrent observers never exceed the limit.
+        let max = self.state.limits.max_observers_per_session as u64;
+        if s.n_observers.fetch_update(Ordering::AcqRel, Ordering::Acquire, |n| (n < max).then_some(n + 1)).is_err() {
             return Err(Status::resource_exhausted(format!(
                 "session {} has its limit of {} observers",
                 s.id, self.state.limits.max_observers_per_session
             )));
         }
-        s.n_observers.fetch_add(1, Ordering::Relaxed);
         if r.include_displacements {
             s.field_subscribers.fetch_add(1, Ordering::Relaxed);
         }
@@ -609,6 +721,15 @@ fn start_recording(state: &ServerState, s: &Arc<Session>) -> Result<pb::Recordin
     }
     let dir = state.data_dir.join("recordings");
     let rec = crate::recording::Recorder::start(&dir, &s.id).map_err(|e| Status::internal(format!("cannot start the recording: {e}")))?;
+    // The recording belongs to this session: its tokens (their digests) open it, also later.
+    let owner = crate::recording::RecordingOwner {
+        session_id: s.id.clone(),
+        token_sha256: vec![crate::access::token_digest(&s.controller_token), crate::access::token_digest(&s.observer_token)],
+    };
+    if let Err(e) = crate::recording::write_owner(&dir, &rec.info().name, &owner) {
+        drop(rec);
+        return Err(Status::internal(format!("cannot start the recording: {e}")));
+    }
     let info = recording_info(&rec.info());
     *slot = Some(rec);
     Ok(info)
@@ -621,6 +742,37 @@ fn recording_info(i: &crate::recording::RecordingInfo) -> pb::RecordingInfo {
         size_bytes: i.size_bytes,
         messages: i.messages,
         finished: i.finished,
+    }
+}
+
+/// What a request's token opens among the recordings.
+enum RecordingAccess {
+    /// The admin token: every recording.
+    Admin,
+    /// A session's token: the recordings whose owner lists its digest.
+    Token(String),
+    /// No token: no recording.
+    Nothing,
+}
+
+impl RecordingAccess {
+    /// The access of a request's token; a request without one opens nothing.
+    fn of<T>(state: &ServerState, req: &Request<T>) -> Self {
+        match (token_of(req), &state.admin_token_sha256) {
+            (Some(tok), Some(admin)) if crate::access::digest_matches(&tok, admin) => Self::Admin,
+            (Some(tok), _) => Self::Token(tok),
+            (None, _) => Self::Nothing,
+        }
+    }
+
+    fn opens(&self, owner: Option<&crate::recording::RecordingOwner>) -> bool {
+        match self {
+            Self::Admin => true,
+            Self::Nothing => false,
+            Self::Token(tok) => {
+                owner.is_some_and(|o| o.token_sha256.iter().fold(false, |any, d| any | crate::access::digest_matches(tok, d)))
+            }
+        }
     }
 }
 
@@ -650,11 +802,16 @@ impl pb::recording_service_server::RecordingService for Api {
         Ok(Response::new(recording_info(&info)))
     }
 
-    async fn list_recordings(&self, _req: Request<pb::ListRecordingsRequest>) -> Result<Response<pb::ListRecordingsResponse>, Status> {
+    async fn list_recordings(&self, req: Request<pb::ListRecordingsRequest>) -> Result<Response<pb::ListRecordingsResponse>, Status> {
+        let access = RecordingAccess::of(&self.state, &req);
         let dir = self.state.data_dir.join("recordings");
-        let list = tokio::task::spawn_blocking(move || crate::recording::list_recordings(&dir))
-            .await
-            .map_err(|e| Status::internal(format!("list task: {e}")))?;
+        let list = tokio::task::spawn_blocking(move || {
+            let mut list = crate::recording::list_recordings(&dir);
+            list.retain(|r| access.opens(crate::recording::read_owner(&dir, &r.name).as_ref()));
+            list
+        })
+        .await
+        .map_err(|e| Status::internal(format!("list task: {e}")))?;
         Ok(Response::new(pb::ListRecordingsResponse { recordings: list.iter().map(recording_info).collect() }))
     }
 
@@ -662,9 +819,30 @@ impl pb::recording_service_server::RecordingService for Api {
         &self,
         req: Request<pb::DownloadRecordingRequest>,
     ) -> Result<Response<Self::DownloadRecordingStream>, Status> {
+        let access = RecordingAccess::of(&self.state, &req);
         let name = req.get_ref().name.clone();
         let dir = self.state.data_dir.join("recordings");
-        let file = crate::recording::open_recording(&dir, &name).map_err(|e| Status::from(ApiError::from(&e)))?;
+        // Never follows a link and never waits for a FIFO; blocking file I/O off the runtime.
+        let file = tokio::task::spawn_blocking(move || {
+            let file = crate::recording::open_recording(&dir, &name).map_err(|e| Status::from(ApiError::from(&e)))?;
+            let owner = crate::recording::read_owner(&dir, &name);
+            if !access.opens(owner.as_ref()) {
+                return Err(Status::permission_denied(match owner {
+                    _ if matches!(access, RecordingAccess::Nothing) => format!(
+                        "missing token: recording {name:?} opens with the observer or controller token of the session that made it \
+                         (or the admin token), as `authorization: Bearer <token>` metadata"
+                    ),
+                    Some(o) => format!(
+                        "recording {name:?} belongs to session {}: it opens with that session's observer or controller token, or the admin token",
+                        o.session_id
+                    ),
+                    None => format!("recording {name:?} has no owner file: it opens with the admin token only"),
+                }));
+            }
+            Ok(file)
+        })
+        .await
+        .map_err(|e| Status::internal(format!("download task: {e}")))??;
         let (tx, rx) = mpsc::channel(8);
         tokio::task::spawn_blocking(move || {
             use std::io::Read;

@@ -2,7 +2,9 @@
 //! the offline commands (solve, simulate, bench), and the real-time server (sessions, gRPC
 //! services, recordings), shared by the `needlesim-server` binary and the tests.
 
+pub mod access;
 pub mod bench;
+pub mod control_lease;
 pub mod convert;
 pub mod exchange;
 pub mod grpc;

@@ -86,6 +86,10 @@ struct ServeArgs {
     /// URL to open.
     #[arg(long)]
     demo: bool,
+    /// A file holding the admin token (one line, at least 16 characters), which lists and
+    /// downloads every recording. Without it, a recording opens only with its session's tokens.
+    #[arg(long, value_name = "FILE")]
+    admin_token_file: Option<PathBuf>,
     /// SCHED_FIFO priority of the sessions' real-time threads (1..99; 0 = normal scheduling).
     /// Needs CAP_SYS_NICE or root; without it the server says so and runs at normal priority.
     #[arg(long, default_value_t = 40)]
@@ -381,6 +385,20 @@ fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
     Ok(())
 }
 
+/// The admin token in `path`: its first line, trimmed, of at least 16 characters.
+fn read_admin_token(path: &std::path::Path) -> Result<String> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("--admin-token-file: cannot read {}", path.display()))?;
+    let token = text.lines().next().unwrap_or("").trim().to_owned();
+    if token.len() < 16 {
+        anyhow::bail!(
+            "--admin-token-file {}: the token on its first line has {} characters; at least 16 are needed",
+            path.display(),
+            token.len()
+        );
+    }
+    Ok(token)
+}
+
 fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
     needlesim_server::session::set_rt_priority(args.rt_priority);
     let config = serve::ServeConfig {
@@ -402,6 +420,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         max_message_bytes: args.max_message_bytes,
         default_scene: (args.default_scene != "none").then_some(args.default_scene),
         demo: args.demo,
+        admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     runtime.block_on(serve::serve(config, async {

@@ -9,6 +9,11 @@
 //! that a killed server leaves a file that the streaming readers can read up to its last chunk.
 //! [`Recorder::finish`] (or dropping the recorder) drains the queue and writes the summary and
 //! footer.
+//!
+//! A recording belongs to the session that made it: [`write_owner`] keeps the session id and the
+//! SHA-256 digests of its tokens (never the tokens) next to it, in `<name>.owner`, which outlives
+//! the session and the server. Files are opened without following symbolic links and only when
+//! they are regular files (a FIFO never blocks a reader).
 
 use std::collections::BTreeMap;
 use std::fmt;
@@ -66,6 +71,11 @@ pub enum RecordingError {
     NotFound { name: String },
     /// [`open_recording`]: the recording exists but could not be opened.
     Open { name: String, source: io::Error },
+    /// [`open_recording`]: the name is a symbolic link, a FIFO, a directory or another file that
+    /// is not a regular file: not a recording.
+    NotRegularFile { name: String },
+    /// [`write_owner`]: the owner file could not be written.
+    WriteOwner { path: PathBuf, source: io::Error },
 }
 
 impl fmt::Display for RecordingError {
@@ -82,6 +92,8 @@ impl fmt::Display for RecordingError {
             Self::InvalidName { name, reason } => write!(f, "invalid recording name {name:?}: {reason}"),
             Self::NotFound { name } => write!(f, "no recording named {name:?}"),
             Self::Open { name, source } => write!(f, "cannot open the recording {name:?}: {source}"),
+            Self::NotRegularFile { name } => write!(f, "no recording named {name:?} (it is not a regular file)"),
+            Self::WriteOwner { path, source } => write!(f, "cannot write the recording's owner file {}: {source}", path.display()),
         }
     }
 }
@@ -89,10 +101,17 @@ impl fmt::Display for RecordingError {
 impl std::error::Error for RecordingError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
-            Self::CreateDir { source, .. } | Self::CreateFile { source, .. } | Self::Open { source, .. } => Some(source),
+            Self::CreateDir { source, .. }
+            | Self::CreateFile { source, .. }
+            | Self::Open { source, .. }
+            | Self::WriteOwner { source, .. } => Some(source),
             Self::SpawnThread(e) => Some(e),
             Self::Mcap(e) => Some(e),
-            Self::InvalidSessionId { .. } | Self::WriterPanicked | Self::InvalidName { .. } | Self::NotFound { .. } => None,
+            Self::InvalidSessionId { .. }
+            | Self::WriterPanicked
+            | Self::InvalidName { .. }
+            | Self::NotFound { .. }
+            | Self::NotRegularFile { .. } => None,
         }
     }
 }
@@ -449,7 +468,10 @@ fn session_id_of(name: &str) -> String {
 /// Whether the file ends with the MCAP magic, i.e. was finished.
 fn ends_with_magic(path: &Path) -> bool {
     let read_tail = || -> io::Result<bool> {
-        let mut file = File::open(path)?;
+        let mut file = open_regular(path).map_err(|e| match e {
+            OpenRegularError::Io(e) => e,
+            other => io::Error::other(format!("{other:?}")),
+        })?;
         let len = file.metadata()?.len();
         let magic_len = mcap::MAGIC.len() as u64;
         if len < 2 * magic_len {
@@ -505,13 +527,105 @@ pub fn open_recording(dir: &Path, name: &str) -> Result<File, RecordingError> {
     if !name.ends_with(".mcap") || name.len() <= ".mcap".len() {
         return invalid("it does not end in .mcap");
     }
-    let path = dir.join(name);
-    match File::open(&path) {
-        Ok(file) if file.metadata().map(|m| m.is_file()).unwrap_or(false) => Ok(file),
-        Ok(_) => Err(RecordingError::NotFound { name: name.to_owned() }),
-        Err(e) if e.kind() == io::ErrorKind::NotFound => Err(RecordingError::NotFound { name: name.to_owned() }),
-        Err(source) => Err(RecordingError::Open { name: name.to_owned(), source }),
+    match open_regular(&dir.join(name)) {
+        Ok(file) => Ok(file),
+        Err(OpenRegularError::NotFound) => Err(RecordingError::NotFound { name: name.to_owned() }),
+        Err(OpenRegularError::NotRegular) => Err(RecordingError::NotRegularFile { name: name.to_owned() }),
+        Err(OpenRegularError::Io(source)) => Err(RecordingError::Open { name: name.to_owned(), source }),
     }
+}
+
+/// Why [`open_regular`] did not open a file.
+#[derive(Debug)]
+enum OpenRegularError {
+    /// There is no such file.
+    NotFound,
+    /// It is a symbolic link, FIFO, socket, device or directory.
+    NotRegular,
+    /// Any other error of `open` or `fstat`.
+    Io(io::Error),
+}
+
+/// Opens `path` for reading only if it is a regular file: never following a symbolic link
+/// (`O_NOFOLLOW`) and never waiting for a FIFO's writer (`O_NONBLOCK`, which changes nothing for
+/// a regular file), then checking the opened file itself (`fstat`).
+fn open_regular(path: &Path) -> Result<File, OpenRegularError> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let file = match OpenOptions::new().read(true).custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK).open(path) {
+        Ok(f) => f,
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Err(OpenRegularError::NotFound),
+        // O_NOFOLLOW on a symbolic link.
+        Err(e) if e.raw_os_error() == Some(libc::ELOOP) => return Err(OpenRegularError::NotRegular),
+        Err(e) => return Err(OpenRegularError::Io(e)),
+    };
+    match file.metadata() {
+        Ok(m) if m.is_file() => Ok(file),
+        Ok(_) => Err(OpenRegularError::NotRegular),
+        Err(e) => Err(OpenRegularError::Io(e)),
+    }
+}
+
+/// The file name extension of a recording's owner file, after the recording's own name.
+pub const OWNER_EXTENSION: &str = "owner";
+/// Largest owner file read.
+const OWNER_MAX_BYTES: u64 = 4096;
+
+/// Whom a recording belongs to: the session that made it and the SHA-256 digests of the tokens
+/// that open it (the session's controller and observer tokens).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RecordingOwner {
+    pub session_id: String,
+    pub token_sha256: Vec<crate::access::TokenDigest>,
+}
+
+fn owner_path(dir: &Path, name: &str) -> PathBuf {
+    dir.join(format!("{name}.{OWNER_EXTENSION}"))
+}
+
+/// Writes the owner file of the recording `name` in `dir` (`<name>.owner`: a `session_id` line
+/// and one `token_sha256` line per token digest), replacing a stale one but never following a
+/// symbolic link.
+pub fn write_owner(dir: &Path, name: &str, owner: &RecordingOwner) -> Result<(), RecordingError> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let path = owner_path(dir, name);
+    let mut text = format!("session_id {}\n", owner.session_id);
+    for d in &owner.token_sha256 {
+        text.push_str(&format!("token_sha256 {}\n", crate::access::to_hex(d)));
+    }
+    let write = || -> io::Result<()> {
+        let mut f = OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .mode(0o600)
+            .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
+            .open(&path)?;
+        if !f.metadata()?.is_file() {
+            return Err(io::Error::other("not a regular file"));
+        }
+        f.write_all(text.as_bytes())?;
+        f.sync_all()
+    };
+    write().map_err(|source| RecordingError::WriteOwner { path: path.clone(), source })
+}
+
+/// The owner of the recording `name` in `dir`, or `None` when it has no (readable, well-formed)
+/// owner file: such a recording opens with the admin token only.
+pub fn read_owner(dir: &Path, name: &str) -> Option<RecordingOwner> {
+    let path = owner_path(dir, name);
+    let file = open_regular(&path).ok()?;
+    let mut text = String::new();
+    file.take(OWNER_MAX_BYTES).read_to_string(&mut text).ok()?;
+    let mut session_id = None;
+    let mut token_sha256 = Vec::new();
+    for line in text.lines() {
+        match line.split_once(' ') {
+            Some(("session_id", id)) => session_id = Some(id.to_owned()),
+            Some(("token_sha256", hex)) => token_sha256.push(crate::access::digest_from_hex(hex)?),
+            _ => return None,
+        }
+    }
+    Some(RecordingOwner { session_id: session_id?, token_sha256 })
 }
 
 #[cfg(test)]
@@ -708,6 +822,37 @@ mod tests {
         assert!(e.to_string().contains("missing.mcap"));
         assert!(matches!(Recorder::start(&dir, "../evil"), Err(RecordingError::InvalidSessionId { .. })));
         assert!(list_recordings(&dir.join("nowhere")).is_empty());
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Regression (issue 13): a symbolic link in the recordings folder was followed, and a FIFO
+    /// blocked the reader until a writer came. Neither is a recording now, and neither blocks.
+    #[test]
+    fn issue_13_links_and_fifos_are_not_recordings() {
+        let dir = temp_dir("links");
+        fs::create_dir_all(&dir).unwrap();
+        let secret = dir.join("secret.txt");
+        fs::write(&secret, "secret").unwrap();
+        std::os::unix::fs::symlink(&secret, dir.join("link.mcap")).unwrap();
+        let fifo = std::ffi::CString::new(dir.join("fifo.mcap").into_os_string().into_encoded_bytes()).unwrap();
+        // SAFETY: a valid NUL-terminated path.
+        assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0, "mkfifo");
+        let e = open_recording(&dir, "link.mcap").unwrap_err();
+        assert!(matches!(e, RecordingError::NotRegularFile { .. }), "{e:?}");
+        // On a thread with a timeout: the old code blocked here forever.
+        let d = dir.clone();
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || tx.send(format!("{:?}", open_recording(&d, "fifo.mcap"))).unwrap());
+        let got = rx.recv_timeout(Duration::from_secs(10)).expect("opening a FIFO does not block");
+        assert!(got.contains("NotRegularFile"), "{got}");
+        assert!(list_recordings(&dir).is_empty(), "{:?}", list_recordings(&dir));
+        // Owner files: round trip; a link is not read.
+        let owner = RecordingOwner { session_id: "s1".into(), token_sha256: vec![crate::access::token_digest("t")] };
+        write_owner(&dir, "a.mcap", &owner).unwrap();
+        assert_eq!(read_owner(&dir, "a.mcap"), Some(owner.clone()));
+        std::os::unix::fs::symlink(dir.join("a.mcap.owner"), dir.join("b.mcap.owner")).unwrap();
+        assert_eq!(read_owner(&dir, "b.mcap"), None);
+        assert!(write_owner(&dir, "b.mcap", &owner).is_err(), "writing through a link");
         fs::remove_dir_all(&dir).unwrap();
     }
 

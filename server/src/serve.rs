@@ -28,6 +28,8 @@ pub struct ServeConfig {
     pub default_scene: Option<String>,
     /// Play the default scene's example trajectory in a loop until a client takes control.
     pub demo: bool,
+    /// The admin token, which opens every recording (only its SHA-256 is kept).
+    pub admin_token: Option<String>,
 }
 
 /// Prometheus text exposition of every session's counters and percentiles.
@@ -165,16 +167,18 @@ async fn play_demo(session: Arc<crate::session::Session>, traj: crate::scene::Tr
 /// Runs the server until `shutdown` resolves. Prints `listening on ADDR` once bound.
 pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Output = ()> + Send + 'static) -> Result<()> {
     std::fs::create_dir_all(&config.data_dir).with_context(|| format!("cannot create the data directory {}", config.data_dir.display()))?;
-    let state = ServerState::new(config.limits.clone(), config.data_dir.clone());
+    let state = ServerState::with_admin_token(config.limits.clone(), config.data_dir.clone(), config.admin_token.as_deref());
     let mut demo_session = None;
+    let mut default_session = None;
     if let Some(name) = &config.default_scene {
         let scene = crate::scene::load_scene(name, config.limits.scene())?;
         let rate = scene.params.tick_rate_hz;
         let s = state.create_session(&scene, rate).map_err(|e| anyhow::anyhow!("default session: {}", e.message()))?;
+        // Tokens are never logged: their fingerprints are; the tokens go to the terminal once.
         tracing::info!(
             session = %s.id,
-            controller_token = %s.controller_token,
-            observer_token = %s.observer_token,
+            controller_token_sha256 = %crate::access::fingerprint(&s.controller_token),
+            observer_token_sha256 = %crate::access::fingerprint(&s.observer_token),
             "default session '{}' at {} Hz",
             s.scene_name,
             rate
@@ -184,6 +188,7 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
             tokio::spawn(play_demo(s.clone(), traj));
             demo_session = Some(s.clone());
         }
+        default_session = Some(s);
     }
     let api = Api { state: state.clone() };
     let max = config.max_message_bytes;
@@ -243,7 +248,11 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
             s.id, s.controller_token
         );
     }
+    if let (Some(s), None) = (&default_session, &demo_session) {
+        println!("default session {}: controller token {}, observer token {}", s.id, s.controller_token, s.observer_token);
+    }
     drop(demo_session);
+    drop(default_session);
     let result =
         server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(TcpListenerStream::new(listener), shutdown).await;
     let closing = state.clone();

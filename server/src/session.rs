@@ -273,6 +273,8 @@ pub struct Session {
     pub has_bevel: bool,
     pose_in: Mutex<triple_buffer::Input<PoseCommand>>,
     client_in_control: AtomicBool,
+    /// Who may drive the session over gRPC now: one controller at a time (IO side only).
+    pub control: Arc<crate::control_lease::ControlLease>,
     stop: Arc<AtomicBool>,
     /// Every tick record, for full-rate observers (lagging receivers learn how many they missed).
     pub all_ticks: tokio::sync::broadcast::Sender<Arc<TickRecord>>,
@@ -424,6 +426,7 @@ impl Session {
             has_bevel,
             pose_in: Mutex::new(pose_in),
             client_in_control: AtomicBool::new(false),
+            control: crate::control_lease::ControlLease::new(),
             stop,
             all_ticks: all_tx,
             latest: latest_rx,
@@ -632,8 +635,10 @@ impl RtLoop {
                 drop(spare);
             }
         }
-        let cmd = *self.pose_out.read();
-        let client_pose = cmd.seq != *last_seq;
+        // A pose written since the last tick is new, whatever its seq (a controller that takes
+        // over may start counting again from where its predecessor was).
+        let client_pose = self.pose_out.update();
+        let cmd = *self.pose_out.output_buffer();
         if client_pose {
             *pose = cmd.pose;
             *last_seq = cmd.seq;

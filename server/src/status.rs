@@ -147,7 +147,9 @@ impl From<SessionError> for ApiError {
 impl From<&RecordingError> for ApiError {
     fn from(e: &RecordingError) -> Self {
         match e {
-            RecordingError::NotFound { name } => ApiError::NotFound(format!("no recording '{}'", quote(name))),
+            RecordingError::NotFound { name } | RecordingError::NotRegularFile { name } => {
+                ApiError::NotFound(format!("no recording '{}'", quote(name)))
+            }
             RecordingError::InvalidName { name, reason } => ApiError::invalid("name", format!("'{}': {reason}", quote(name))),
             _ => ApiError::Internal(e.to_string()),
         }

@@ -158,8 +158,12 @@ impl ServerProcess {
     /// Starts the server with `extra` arguments after `serve --listen 127.0.0.1:0 --data-dir …`
     /// and waits until it prints its address.
     pub fn start(extra: &[&str]) -> Self {
+        Self::start_in(TempDir::new("server"), extra)
+    }
+
+    /// As [`ServerProcess::start`], with `data_dir` as the data directory.
+    pub fn start_in(data_dir: TempDir, extra: &[&str]) -> Self {
         use std::io::{BufRead, BufReader};
-        let data_dir = TempDir::new("server");
         let mut child = Command::new(bin("needlesim-server"))
             .args(["serve", "--listen", "127.0.0.1:0", "--data-dir"])
             .arg(data_dir.path())
@@ -207,6 +211,14 @@ impl ServerProcess {
                 panic!("the server did not start: {}", stderr.lock().unwrap());
             }
         }
+    }
+
+    /// Kills the server and starts another on the same data directory with `extra` arguments.
+    pub fn restart(mut self, extra: &[&str]) -> Self {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        let data_dir = std::mem::replace(&mut self.data_dir, TempDir::new("server-placeholder"));
+        Self::start_in(data_dir, extra)
     }
 
     /// `http://ADDR`.

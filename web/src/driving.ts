@@ -9,6 +9,10 @@ import { type Pose, state } from "./state";
 import { toWorld, viewTransform } from "./view";
 
 /** The pose to start from: the last commanded one, else the shown frame's base. */
+/** This tab's id for SetPose: the server lets one controller drive at a time, and this tab's
+ * poses share one control lease (another tab or client is refused while this one drives). */
+const TAB_ID = `web-${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
+
 function currentPose(): Pose | null {
   const d = state.driving;
   if (d.commanded) return { ...d.commanded };
@@ -41,7 +45,7 @@ function pump(): void {
   d.lastSentMs = now;
   d.inFlight++;
   control
-    .setPose({ sessionId: session.id, base: create(Pose2Schema, { xM: p.xM, yM: p.yM, thetaRad: p.thetaRad }) }, auth(session.token))
+    .setPose({ sessionId: session.id, base: create(Pose2Schema, { xM: p.xM, yM: p.yM, thetaRad: p.thetaRad }), clientId: TAB_ID }, auth(session.token))
     .then(() => {
       d.posesAcked++;
       publish("poses", d.posesAcked);

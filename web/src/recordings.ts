@@ -20,7 +20,8 @@ const slider = (): HTMLInputElement => $("slider", HTMLInputElement);
 
 export async function refreshRecordings(): Promise<void> {
   try {
-    const res = await recordings.listRecordings({});
+    // A recording opens with the token of the session that made it: list those of the session watched.
+    const res = await recordings.listRecordings({}, state.session ? auth(state.session.token) : {});
     recSelect().replaceChildren(
       ...res.recordings.map((r) => {
         const o = document.createElement("option");
@@ -77,7 +78,7 @@ export async function loadRecording(): Promise<void> {
     status(`downloading ${name}…`);
     const parts: Uint8Array[] = [];
     let total = 0;
-    for await (const chunk of recordings.downloadRecording({ name })) {
+    for await (const chunk of recordings.downloadRecording({ name }, state.session ? auth(state.session.token) : {})) {
       parts.push(chunk.data);
       total += chunk.data.length;
     }
