@@ -319,7 +319,8 @@ async fn issue_13_missing_recording_is_not_found_and_set_pose_rejections_are_cou
     assert_eq!(e.code(), Code::NotFound, "{}", e.message());
     let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
     for x_m in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        let bad = pb::SetPoseRequest { session_id: sid.clone(), base: Some(pb::Pose2 { x_m, y_m: 0.2, theta_rad: DOWN }) };
+        let bad =
+            pb::SetPoseRequest { session_id: sid.clone(), base: Some(pb::Pose2 { x_m, y_m: 0.2, theta_rad: DOWN }), ..Default::default() };
         let e = control.set_pose(with_token(bad, &created.controller_token)).await.unwrap_err();
         assert_eq!(e.code(), Code::InvalidArgument);
     }

@@ -112,7 +112,7 @@ async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
 
     // FlipBevel: the next ticks have the bevel on the other side.
     let r = control
-        .flip_bevel(with_token(pb::FlipBevelRequest { session_id: sid.clone() }, &created.controller_token))
+        .flip_bevel(with_token(pb::FlipBevelRequest { session_id: sid.clone(), ..Default::default() }, &created.controller_token))
         .await
         .unwrap()
         .into_inner();
@@ -121,7 +121,10 @@ async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
     let later = frame_where(&mut obs, |g| g.tick > f.tick + 50).await.unwrap();
     assert_eq!(later.bevel_side, -1.0, "and stays flipped");
     // An observer may not flip.
-    let e = control.flip_bevel(with_token(pb::FlipBevelRequest { session_id: sid.clone() }, &created.observer_token)).await.unwrap_err();
+    let e = control
+        .flip_bevel(with_token(pb::FlipBevelRequest { session_id: sid.clone(), ..Default::default() }, &created.observer_token))
+        .await
+        .unwrap_err();
     assert_eq!(e.code(), tonic::Code::PermissionDenied);
 
     // A Control message that only flips (no pose).
@@ -152,12 +155,31 @@ async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
         }
     }
     assert!(flipped_back, "the Control message flipped the bevel back");
+    // Issue 13, one controller at a time: while the stream drives, a FlipBevel from another client
+    // is refused (a flip is driving) unless it takes over, which ends the stream.
+    let flip = |take_over: bool| pb::FlipBevelRequest { session_id: sid.clone(), client_id: "other".into(), take_over };
+    let e = control.flip_bevel(with_token(flip(false), &created.controller_token)).await.unwrap_err();
+    assert_eq!(e.code(), tonic::Code::FailedPrecondition, "{e:?}");
+    assert!(e.message().contains("take_over"), "{}", e.message());
+    let r = control.flip_bevel(with_token(flip(true), &created.controller_token)).await.expect("a flip that takes over").into_inner();
+    assert_eq!(r.flips_requested, 3);
+    let ended = loop {
+        match responses.message().await {
+            Ok(Some(_)) => continue,
+            Ok(None) => break None,
+            Err(s) => break Some(s),
+        }
+    };
+    assert_eq!(ended.map(|s| s.code()), Some(tonic::Code::Aborted), "the revoked stream ends with ABORTED");
     drop(tx);
 
     // A rigid needle has nothing to flip.
     let rigid = create_example_session(&ch, "paper-phantom").await;
     let rid = rigid.session.unwrap().session_id;
-    let e = control.flip_bevel(with_token(pb::FlipBevelRequest { session_id: rid }, &rigid.controller_token)).await.unwrap_err();
+    let e = control
+        .flip_bevel(with_token(pb::FlipBevelRequest { session_id: rid, ..Default::default() }, &rigid.controller_token))
+        .await
+        .unwrap_err();
     assert_eq!(e.code(), tonic::Code::FailedPrecondition);
     assert!(e.message().contains("symmetric tip"), "{}", e.message());
 }

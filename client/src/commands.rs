@@ -177,7 +177,7 @@ async fn sessions_close(c: &Conn, id: &str) -> Result<()> {
 async fn flip_bevel(c: &Conn, id: &str) -> Result<()> {
     check_id(id)?;
     let r = pb::control_service_client::ControlServiceClient::new(c.channel.clone())
-        .flip_bevel(c.request(pb::FlipBevelRequest { session_id: id.to_owned() })?)
+        .flip_bevel(c.request(pb::FlipBevelRequest { session_id: id.to_owned(), ..Default::default() })?)
         .await
         .map_err(|s| c.status_error(&format!("flipping the bevel of session {id}"), Role::Controller, Some(id), &s))?
         .into_inner();

@@ -461,7 +461,15 @@ impl pb::control_service_server::ControlService for Api {
                 s.id
             )));
         }
-        Ok(Response::new(pb::FlipBevelResponse { flips_requested: s.request_bevel_flip_from_io() }))
+        let r = req.get_ref();
+        let client = if r.client_id.is_empty() { client_address(&req) } else { format!("id:{}", r.client_id) };
+        // A flip is driving: one controller at a time, as for SetPose.
+        let flips_requested = s
+            .control
+            .with_unary(&client, r.take_over, || s.request_bevel_flip_from_io())
+            .await
+            .map_err(|busy| control_refused(&s, busy))?;
+        Ok(Response::new(pb::FlipBevelResponse { flips_requested }))
     }
 }
 

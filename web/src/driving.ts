@@ -114,7 +114,7 @@ export async function flipBevel(): Promise<void> {
   const session = state.session;
   if (!session) return status("watch a session first");
   try {
-    const r = await control.flipBevel({ sessionId: session.id }, auth(session.token));
+    const r = await control.flipBevel({ sessionId: session.id, clientId: TAB_ID }, auth(session.token));
     status(`bevel flip ${r.flipsRequested} requested`);
   } catch (e) {
     status(`FlipBevel: ${String(e)}`);
