@@ -52,6 +52,7 @@ fn metrics_text(state: &ServerState) -> String {
         ("superseded_poses", "Poses replaced before a tick used them", Family::default()),
         ("observers", "Observers attached", Family::default()),
         ("column_misses", "Compliance columns computed inside a tick", Family::default()),
+        ("faults", "Simulation faults (a diverged or failed step; the session then holds with zero force)", Family::default()),
     ];
     for s in sessions.values() {
         let st = s.stats();
@@ -66,6 +67,7 @@ fn metrics_text(state: &ServerState) -> String {
             st.superseded_poses as f64,
             s.n_observers.load(Ordering::Relaxed) as f64,
             st.column_misses as f64,
+            st.faults as f64,
         ];
         for ((_, _, fam), v) in gauges.iter_mut().zip(values) {
             fam.get_or_create(&labels).set(v);
