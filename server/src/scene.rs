@@ -565,7 +565,15 @@ impl Trajectory {
         // skips them); newlines are counted once, from the previous record on.
         let (mut counted_byte, mut counted_line) = (0usize, 1u64);
         let mut line_at = |byte: u64| {
-            let byte = (byte as usize).min(text.len());
+            // A record's position can be that of comment or blank lines before it: skip them.
+            let mut byte = (byte as usize).min(text.len());
+            loop {
+                match text.as_bytes().get(byte) {
+                    Some(b'#') => byte = text[byte..].find('\n').map_or(text.len(), |i| byte + i + 1),
+                    Some(b'\n' | b'\r') => byte += 1,
+                    _ => break,
+                }
+            }
             if byte > counted_byte {
                 counted_line += text.as_bytes()[counted_byte..byte].iter().filter(|&&b| b == b'\n').count() as u64;
                 counted_byte = byte;
