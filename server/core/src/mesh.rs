@@ -324,7 +324,16 @@ impl Mesh {
                             continue; // tested in another cell
                         }
                         let (ta, tb) = (self.triangles[a as usize], self.triangles[b as usize]);
-                        if triangles_overlap(ta.map(|n| self.nodes_m[n]), tb.map(|n| self.nodes_m[n])) {
+                        let overlap = match shared_edge(ta, tb) {
+                            // Neighbours across an edge overlap exactly when their third vertices
+                            // lie on the same side of it (both triangles have non-zero area).
+                            Some((p, q, ra, rb)) => {
+                                let side = |r: usize| orient(self.nodes_m[p], self.nodes_m[q], self.nodes_m[r]);
+                                side(ra) * side(rb) > 0.0
+                            }
+                            None => triangles_overlap(ta.map(|n| self.nodes_m[n]), tb.map(|n| self.nodes_m[n])),
+                        };
+                        if overlap {
                             let (first_idx, second_idx) = ((a as usize).min(b as usize), (a as usize).max(b as usize));
                             return Err(MeshError::OverlappingTriangles {
                                 first_idx,
@@ -411,6 +420,23 @@ impl Mesh {
 
 fn dist_sq(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)
+}
+
+/// Twice the signed area of $(p, q, r)$: positive when $r$ lies left of $p \to q$.
+fn orient(p: [f64; 2], q: [f64; 2], r: [f64; 2]) -> f64 {
+    (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+}
+
+/// If triangles `a` and `b` share exactly two nodes: those two and the third node of each.
+fn shared_edge(a: [usize; 3], b: [usize; 3]) -> Option<(usize, usize, usize, usize)> {
+    let in_b = a.map(|n| b.contains(&n));
+    let k = in_b.iter().position(|s| !*s)?;
+    if in_b.iter().filter(|s| **s).count() != 2 {
+        return None;
+    }
+    let (p, q) = (a[(k + 1) % 3], a[(k + 2) % 3]);
+    let rb = *b.iter().find(|n| **n != p && **n != q)?;
+    Some((p, q, a[k], rb))
 }
 
 /// Whether the interiors of two (non-degenerate) triangles intersect, by the separating-axis
