@@ -199,3 +199,26 @@ fn issue_2_repeated_working_node_is_rejected() {
     assert!(!o.status.success());
     assert!(err.contains(&format!("working_nodes lists node {first} twice")), "{err}");
 }
+
+/// Issue 13: a node repeated instead of shared (the two triangles of the square are cut apart).
+#[test]
+fn issue_13_duplicate_nodes_are_rejected() {
+    let mut sc = square();
+    sc["nodes"] = json!([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [1.0, 1.0]]);
+    sc["triangles"] = json!([[0, 1, 2], [0, 4, 3]]);
+    assert_rejected("duplicate_node", &sc, &["nodes 2 and 4 coincide at (1, 1)"]);
+}
+
+/// Issue 13: the same triangle twice (in another order).
+#[test]
+fn issue_13_duplicate_triangles_are_rejected() {
+    let sc = with(square(), "triangles", json!([[0, 1, 2], [0, 2, 3], [2, 0, 1]]));
+    assert_rejected("duplicate_triangle", &sc, &["triangles 0 and 2 have the same nodes [0, 1, 2]"]);
+}
+
+/// Issue 13: triangles whose interiors overlap (the square's two diagonals both used).
+#[test]
+fn issue_13_overlapping_triangles_are_rejected() {
+    let sc = with(square(), "triangles", json!([[0, 1, 2], [0, 2, 3], [0, 1, 3]]));
+    assert_rejected("overlap", &sc, &["triangles 0 (nodes [0, 1, 2]) and 2 (nodes [0, 1, 3]) overlap"]);
+}

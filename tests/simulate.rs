@@ -211,3 +211,152 @@ fn bad_trajectories_and_scenes_get_clear_errors() {
     let (_, err) = text(&o);
     assert!(!o.status.success() && err.contains("missing field") && err.contains("regions"), "{err}");
 }
+
+/// Runs `needlesim-server simulate ARGS`, killing it after `secs` (a hang is a failure);
+/// returns whether it succeeded, and its stderr.
+fn simulate_within(args: &[&str], secs: u64) -> (bool, String) {
+    use std::io::Read;
+    let mut child = Command::new(bin("needlesim-server"))
+        .arg("simulate")
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the server starts");
+    let mut err_pipe = child.stderr.take().unwrap();
+    let reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = err_pipe.read_to_string(&mut s);
+        s
+    });
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(secs);
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("simulate {args:?} did not finish within {secs} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let err = reader.join().unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    (status.success(), err)
+}
+
+/// The `error: ` line of a failed run's stderr.
+fn error_line(err: &str) -> &str {
+    err.lines().find(|l| l.starts_with("error: ")).unwrap_or_else(|| panic!("no `error: ` line in:\n{err}"))
+}
+
+/// Issue 13: bad scene values are rejected when the scene is loaded, naming the TOML key.
+#[test]
+fn issue_13_bad_scene_values_name_the_key() {
+    let dir = TempDir::new("badvalues");
+    let base = std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/paper-phantom.toml")).unwrap();
+    let base_line = "base = [0.05, 0.205, -1.5707963267948966]";
+    assert!(base.contains(base_line) && base.contains("[needle]"));
+    let traj = dir.join("traj.csv");
+    write_traj(&traj, &[(0.0, 0.05, 0.205, -FRAC_PI_2), (0.1, 0.05, 0.2, -FRAC_PI_2)]);
+    let cases = [
+        (
+            "nan_base",
+            base.replace(base_line, "base = [nan, 0.205, -1.5707963267948966]"),
+            "needle.base = [NaN, 0.205, -1.5707963267948966]: must be finite",
+        ),
+        (
+            "negative_step",
+            base.replace("[needle]", "[limits]\nmax_base_step_m = -1\n\n[needle]"),
+            "limits.max_base_step_m = -1: must be finite and > 0",
+        ),
+        (
+            "zero_iterations",
+            base.replace("[needle]", "[limits]\nmax_active_set_iterations = 0\n\n[needle]"),
+            "limits.max_active_set_iterations = 0: must be in 1..=10000",
+        ),
+        ("zero_nodes", base.replace(base_line, &format!("max_nodes = 0\n{base_line}")), "needle.max_nodes = 0: must be in 1..=4096"),
+        (
+            "huge_nodes",
+            base.replace(base_line, &format!("max_nodes = 1000000000\n{base_line}")),
+            "needle.max_nodes = 1000000000: must be in 1..=4096",
+        ),
+    ];
+    for (name, toml, want) in cases {
+        let path = dir.join(&format!("{name}.toml"));
+        std::fs::write(&path, toml).unwrap();
+        let (ok, err) =
+            simulate_within(&["--scene", path.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "-o", "/dev/null"], 60);
+        assert!(!ok, "{name}: accepted");
+        assert!(error_line(&err).contains(want), "{name}: {err}");
+    }
+}
+
+/// Issue 13: a trajectory ending past the tick limit is an error naming its line, at once
+/// (1e12 s used to abort allocating 8 TB; 1e300 s wrapped the tick count and looped forever).
+#[test]
+fn issue_13_trajectory_end_times_past_the_tick_limit_name_the_line() {
+    let dir = TempDir::new("longtraj");
+    for (name, end, comment) in [("t1e12", "1e12", ""), ("t1e300", "1e300", "# a comment line\n")] {
+        let path = dir.join(&format!("{name}.csv"));
+        std::fs::write(&path, format!("t_s,x_m,y_m,theta_rad\n0,0.05,0.205,-1.57\n{comment}{end},0.05,0.1,-1.57\n")).unwrap();
+        let (ok, err) = simulate_within(&["--scene", "paper-phantom", "--trajectory", path.to_str().unwrap(), "-o", "/dev/null"], 30);
+        assert!(!ok, "{name}: accepted");
+        let line = error_line(&err);
+        let want_line = if comment.is_empty() { "trajectory line 3:" } else { "trajectory line 4:" };
+        assert!(line.contains(want_line) && line.contains("over the limit of 1000000 ticks"), "{name}: {line}");
+    }
+    // --max-ticks sets the limit: 2 s at 1 kHz is 2000 ticks.
+    let short = dir.join("short.csv");
+    write_traj(&short, &[(0.0, 0.05, 0.205, -FRAC_PI_2), (2.0, 0.05, 0.2, -FRAC_PI_2)]);
+    let args = ["--scene", "paper-phantom", "--trajectory", short.to_str().unwrap(), "-o", "/dev/null", "--max-ticks"];
+    let (ok, err) = simulate_within(&[&args[..], &["1999"]].concat(), 60);
+    assert!(!ok && error_line(&err).contains("trajectory line 3: t_s = 2e0 ends 2e0 s after the first sample, 2e3 ticks"), "{err}");
+    let (ok, err) = simulate_within(&[&args[..], &["2000"]].concat(), 60);
+    assert!(ok, "{err}");
+}
+
+/// Issue 13: a flexible needle with 1e4 N/m friction diverges (5e10 N, then NaN). The run stops
+/// with an error naming the tick, exits non-zero and writes no time series.
+#[test]
+fn issue_13_a_diverging_offline_run_stops_naming_the_tick() {
+    let dir = TempDir::new("diverge");
+    let scene = std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/fig4-steering.toml")).unwrap();
+    assert!(scene.contains("friction_n_per_m = 10\n"));
+    let path = dir.join("friction.toml");
+    std::fs::write(&path, scene.replace("friction_n_per_m = 10\n", "friction_n_per_m = 1e4\n")).unwrap();
+    let traj = needlesim_tests::repo_root().join("server/scenes/fig4-steering.csv");
+    let out = dir.join("series.csv");
+    let (ok, err) =
+        simulate_within(&["--scene", path.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "-o", out.to_str().unwrap()], 300);
+    assert!(!ok, "the diverging run exited 0: {err}");
+    let line = error_line(&err);
+    let tick: u64 = line
+        .split("tick ")
+        .nth(1)
+        .and_then(|r| r.split(':').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no tick named: {line}"));
+    assert!(line.contains("the solve diverged") && line.contains("is not within the bound"), "{line}");
+    assert!(tick > 1000 && tick < 9051, "tick {tick}: {line}");
+    assert!(!out.exists(), "a time series with diverged rows was written");
+}
+
+/// Issue 13: meshes a conforming mesher cannot produce are rejected, naming what is wrong: two
+/// regions of one name in a Gmsh file (its physical names).
+#[test]
+fn issue_13_duplicate_region_names_in_a_gmsh_file_are_rejected() {
+    let dir = TempDir::new("dupregion");
+    let msh = std::fs::read_to_string(needlesim_tests::repo_root().join("server/core/testdata/inclusion_v22.msh")).unwrap();
+    assert!(msh.contains("2 2 \"inclusion\""));
+    std::fs::write(dir.join("dup.msh"), msh.replace("2 2 \"inclusion\"", "2 2 \"tissue\"")).unwrap();
+    let scene = "[mesh]\ntype = \"msh\"\nfile = \"dup.msh\"\n\n[[regions]]\nname = \"tissue\"\nyoung_modulus_pa = 30e3\npoisson_ratio = 0.45\n\n[needle]\nlength_m = 0.1\nbase = [0.05, 0.205, -1.5707963267948966]\n";
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene).unwrap();
+    let traj = dir.join("traj.csv");
+    write_traj(&traj, &[(0.0, 0.05, 0.205, -FRAC_PI_2), (0.1, 0.05, 0.2, -FRAC_PI_2)]);
+    let (ok, err) = simulate_within(&["--scene", path.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "-o", "/dev/null"], 60);
+    assert!(!ok);
+    assert!(error_line(&err).contains("regions 0 and 1 are both named 'tissue'"), "{err}");
+}

@@ -69,6 +69,8 @@ pub fn frame_from_record(r: &TickRecord, target_names: &[String], missed_ticks: 
         stiffness: r.stiffness.to_vec(),
         needle_shape_m: r.shape().iter().filter_map(|p| v2(*p)).collect(),
         bevel_side: r.bevel_side,
+        faulted: r.fault.is_some(),
+        fault: r.fault.map(|f| f.message()).unwrap_or_default(),
     }
 }
 
@@ -92,6 +94,8 @@ pub fn control_response(r: &TickRecord) -> pb::ControlResponse {
         stiffness: r.stiffness.to_vec(),
         needle_shape_m: r.shape().iter().filter_map(|p| v2(*p)).collect(),
         bevel_side: r.bevel_side,
+        faulted: r.fault.is_some(),
+        fault: r.fault.map(|f| f.message()).unwrap_or_default(),
     }
 }
 
@@ -142,7 +146,7 @@ pub fn trajectory_from_pb(samples: &[pb::TrajectorySample]) -> Result<Trajectory
     if out.is_empty() {
         bail!("trajectory is empty");
     }
-    Ok(Trajectory { samples: out })
+    Ok(Trajectory::from_samples(out))
 }
 
 /// A scene from its source. Examples and TOML go through the scene loader; uploaded scenes are

@@ -58,7 +58,7 @@ impl Default for ServerLimits {
             max_observers_per_session: 256,
             mesh: MeshLimits { max_nodes: 250_000, max_triangles: 500_000 },
             max_trajectory_samples: 1_000_000,
-            max_simulate_ticks: 1_000_000,
+            max_simulate_ticks: crate::simulate::DEFAULT_MAX_TICKS,
             max_session_bytes: 1280 << 20,
             max_offline_jobs: 4,
             max_plans: 2,
@@ -322,6 +322,8 @@ impl pb::session_service_server::SessionService for Api {
             column_misses: st.column_misses,
             rejected_poses: st.rejected_poses,
             clamped_ticks: st.clamped_ticks,
+            faulted: st.fault.is_some(),
+            fault: st.fault.unwrap_or_default(),
         }))
     }
 

@@ -129,6 +129,10 @@ enum Command {
         /// Write the final state as a static problem in the validation exchange format.
         #[arg(long)]
         dump_state: Option<PathBuf>,
+        /// The longest run, in ticks (the server's Simulate limit by default): a trajectory
+        /// lasting longer is an error naming its last line.
+        #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS)]
+        max_ticks: u64,
     },
     /// Plan an insertion that reaches a target despite the tissue deformation it causes.
     Plan(PlanArgs),
@@ -192,8 +196,8 @@ fn main() -> ExitCode {
     let limits = MeshLimits { max_nodes: cli.limits.max_nodes, max_triangles: cli.limits.max_triangles };
     let result = match cli.command {
         Some(Command::Solve { scenario, output }) => solve(&scenario, output.as_deref(), &limits),
-        Some(Command::Simulate { scene, trajectory, output, dump_state }) => {
-            run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), &limits)
+        Some(Command::Simulate { scene, trajectory, output, dump_state, max_ticks }) => {
+            run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits)
         }
         Some(Command::Bench { quick, json, plot, sizes, no_scipy }) => {
             run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json)
@@ -239,6 +243,7 @@ fn run_simulate(
     trajectory: Option<&std::path::Path>,
     output: Option<&std::path::Path>,
     dump: Option<&std::path::Path>,
+    max_ticks: u64,
     limits: &MeshLimits,
 ) -> Result<()> {
     let scene = scene::load_scene(scene_spec, limits)?;
@@ -252,7 +257,7 @@ fn run_simulate(
     };
     let mut csv = String::new();
     let t0 = std::time::Instant::now();
-    let (sim, summary) = simulate::run(&scene, &traj, Some(&mut csv))?;
+    let (sim, summary) = simulate::run(&scene, &traj, max_ticks, Some(&mut csv))?;
     let mut times = summary.step_times_s.clone();
     times.sort_by(f64::total_cmp);
     let pct = |q: f64| times.get(((times.len() as f64 - 1.0) * q).round() as usize).copied().unwrap_or(0.0) * 1e6;
@@ -345,7 +350,7 @@ fn summary(limits: &MeshLimits) -> Result<()> {
     let scene = scene::load_scene("paper-phantom", limits)?;
     let traj = scene::Trajectory::parse_csv(scene.example_trajectory.expect("a shipped example has a trajectory"))?;
     let mut csv = String::new();
-    let (sim, summary) = simulate::run(&scene, &traj, Some(&mut csv))?;
+    let (sim, summary) = simulate::run(&scene, &traj, simulate::DEFAULT_MAX_TICKS, Some(&mut csv))?;
     println!(
         "needlesim: {} ({} nodes), {} ticks at {} Hz",
         scene.name,

@@ -134,7 +134,7 @@ impl Default for PlanOptions {
             start_outside_m: 0.005,
             hold_s: 0.2,
             cancel: None,
-            max_ticks_per_simulation: 10_000_000,
+            max_ticks_per_simulation: crate::simulate::DEFAULT_MAX_TICKS,
         }
     }
 }
@@ -211,7 +211,7 @@ impl Plan {
 
     /// The trajectory as the scene module's type.
     pub fn trajectory(&self) -> Trajectory {
-        Trajectory { samples: self.trajectory.iter().map(|&[t, x, y, th]| (t, BasePose::new(x, y, th))).collect() }
+        Trajectory::from_samples(self.trajectory.iter().map(|&[t, x, y, th]| (t, BasePose::new(x, y, th))).collect())
     }
 }
 
@@ -474,7 +474,7 @@ fn evaluate(scene: &Scene, p: &Problem, opts: &PlanOptions, u: f64, line: Line, 
     let start = base_at(-outside);
     let end = base_at(max_depth);
     let span = (outside + max_depth) / p.speed;
-    let traj = Trajectory { samples: vec![(0.0, start), (span, end)] };
+    let traj = Trajectory::from_samples(vec![(0.0, start), (span, end)]);
     let mut params = scene.params.clone();
     params.initial_pose = start;
     let mut sim = Simulation::new(scene.tissue.clone(), params).context("simulation")?;

@@ -661,6 +661,8 @@ mod tests {
             missed_ticks: 0,
             compute_us: 120.0 + (tick % 7) as f64,
             stiffness: (0..9).map(|i| -10.0 * f64::from(i) - t).collect(),
+            faulted: false,
+            fault: String::new(),
         }
     }
 

@@ -390,53 +390,79 @@ pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) 
     build_scene(&file, base_dir, &limits.into())
 }
 
-/// Checks the scalar values of a scene that cost nothing to check, before the mesh is built
-/// and factorised; errors name the key.
-fn check_scalars(f: &SceneFile) -> Result<()> {
-    let n = &f.needle;
-    if !n.base.iter().all(|v| v.is_finite()) {
-        bail!("needle.base = {:?} must be three finite numbers [x_m, y_m, theta_rad]", n.base);
+/// Checks every number of the scene that the mesh and material checks do not, before anything
+/// is built; each error names the key as written in the TOML and its allowed range.
+fn check_values(f: &SceneFile) -> Result<()> {
+    use needlesim_core::sim::param_limits::{MAX_ACTIVE_SET_ITERATIONS, MAX_NEEDLE_NODES, MAX_NEEDLE_NODES_FLEXIBLE};
+    if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
+        bail!("tick_rate_hz = {}: must be between 100 and 10000", f.tick_rate_hz);
     }
+    let n = &f.needle;
     if !(n.length_m.is_finite() && n.length_m > 0.0) {
-        bail!("needle.length_m = {} must be finite and > 0", n.length_m);
+        bail!("needle.length_m = {}: must be finite and > 0", n.length_m);
+    }
+    if !n.base.iter().all(|v| v.is_finite()) {
+        bail!("needle.base = [{}, {}, {}]: must be finite", n.base[0], n.base[1], n.base[2]);
     }
     if let Some(r) = n.capture_radius_m
         && !(r.is_finite() && r > 0.0)
     {
-        bail!("needle.capture_radius_m = {r} must be finite and > 0");
+        bail!("needle.capture_radius_m = {r}: must be finite and > 0");
     }
-    if !(1..=MAX_NEEDLE_NODES).contains(&n.max_nodes) {
-        bail!("needle.max_nodes = {} must be in 1..={MAX_NEEDLE_NODES}", n.max_nodes);
+    let max_nodes = if n.model == NeedleModelSpec::Flexible { MAX_NEEDLE_NODES_FLEXIBLE } else { MAX_NEEDLE_NODES };
+    if !(1..=max_nodes).contains(&n.max_nodes) {
+        bail!("needle.max_nodes = {}: must be in 1..={max_nodes}", n.max_nodes);
     }
-    let l = &f.limits;
-    for (key, v) in [("limits.max_base_step_m", l.max_base_step_m), ("limits.max_base_step_rad", l.max_base_step_rad)] {
-        if !(v.is_finite() && v > 0.0) {
-            bail!("{key} = {v} must be finite and > 0");
+    for (k, r) in f.regions.iter().enumerate() {
+        if let Some(first) = f.regions[..k].iter().position(|o| o.name == r.name) {
+            bail!("regions[{k}]: the name '{}' is already used by regions[{first}]; region names must be unique", r.name);
+        }
+        let checks = [
+            ("friction_n_per_m", r.friction_n_per_m, r.friction_n_per_m >= 0.0, "finite and ≥ 0"),
+            ("static_friction_ratio", r.static_friction_ratio, r.static_friction_ratio >= 1.0, "finite and ≥ 1"),
+            ("tip_peak_ratio", r.tip_peak_ratio, r.tip_peak_ratio >= 0.0, "finite and ≥ 0"),
+            ("tip_peak_width_m", r.tip_peak_width_m, r.tip_peak_width_m > 0.0, "finite and > 0"),
+            ("puncture_force_n", r.puncture_force_n, r.puncture_force_n >= 0.0, "finite and ≥ 0"),
+            ("cutting_force_n", r.cutting_force_n, r.cutting_force_n >= 0.0, "finite and ≥ 0"),
+        ];
+        for (key, v, ok, rule) in checks {
+            if !(v.is_finite() && ok) {
+                bail!("regions[{k}] ('{}').{key} = {v}: must be {rule}", r.name);
+            }
         }
     }
-    if !(l.lookahead_m.is_finite() && l.lookahead_m >= 0.0) {
-        bail!("limits.lookahead_m = {} must be finite and ≥ 0", l.lookahead_m);
+    for (k, t) in f.targets.iter().enumerate() {
+        if let Some(first) = f.targets[..k].iter().position(|o| o.name == t.name) {
+            bail!("targets[{k}]: the name '{}' is already used by targets[{first}]; target names must be unique", t.name);
+        }
+        if !t.center_m.iter().all(|v| v.is_finite()) {
+            bail!("targets[{k}] ('{}').center_m = [{}, {}]: must be finite", t.name, t.center_m[0], t.center_m[1]);
+        }
+        if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
+            bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, t.radius_m);
+        }
+    }
+    let l = &f.limits;
+    for (key, v) in [("max_base_step_m", l.max_base_step_m), ("max_base_step_rad", l.max_base_step_rad)] {
+        if !(v.is_finite() && v > 0.0) {
+            bail!("limits.{key} = {v}: must be finite and > 0");
+        }
     }
     if !(1..=MAX_ACTIVE_SET_ITERATIONS).contains(&l.max_active_set_iterations) {
-        bail!("limits.max_active_set_iterations = {} must be in 1..={MAX_ACTIVE_SET_ITERATIONS}", l.max_active_set_iterations);
+        bail!("limits.max_active_set_iterations = {}: must be in 1..={MAX_ACTIVE_SET_ITERATIONS}", l.max_active_set_iterations);
     }
-    if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
-        bail!("tick_rate_hz = {} must be between 100 and 10000", f.tick_rate_hz);
+    if !(l.lookahead_m.is_finite() && l.lookahead_m >= 0.0) {
+        bail!("limits.lookahead_m = {}: must be finite and ≥ 0", l.lookahead_m);
     }
     Ok(())
 }
-
-/// Most needle nodes a scene may ask for (`needle.max_nodes`), as the core allows.
-pub const MAX_NEEDLE_NODES: usize = 4096;
-/// Most active-set iterations per tick a scene may ask for (`limits.max_active_set_iterations`).
-pub const MAX_ACTIVE_SET_ITERATIONS: usize = 1000;
 
 fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Result<Scene> {
     let limits = &scene_limits.mesh;
     if f.regions.is_empty() {
         bail!("regions: at least one region is needed");
     }
-    check_scalars(f)?;
+    check_values(f)?;
     let mut mesh = match &f.mesh {
         MeshSpec::Grid { nx, ny, width_m, height_m, origin_m, pattern } => {
             let pattern = match pattern {
@@ -532,8 +558,9 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
         max_active_set_iterations: f.limits.max_active_set_iterations,
         lookahead_m: f.limits.lookahead_m,
     };
-    // Whatever else the core finds wrong with the parameters (a target outside the mesh, …).
-    needlesim_core::Simulation::new(tissue.clone(), params.clone())?;
+    // Everything else the simulation checks (the needle's shape; a target outside the mesh, …):
+    // a scene that loads makes a simulation.
+    needlesim_core::Simulation::new(tissue.clone(), params.clone()).context("needle")?;
     Ok(Scene {
         name: f.name.clone().unwrap_or_else(|| "scene".to_owned()),
         tissue,
@@ -584,6 +611,8 @@ fn assign_disc_regions(mesh: Mesh, regions: &[RegionSpec], limits: &MeshLimits) 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
     pub samples: Vec<(f64, BasePose)>,
+    /// The line of the last sample in the CSV it was read from (None when not read from text).
+    pub end_line: Option<u64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -604,12 +633,41 @@ impl Trajectory {
             bail!("trajectory: the header must be t_s,x_m,y_m,theta_rad, found {}", headers.iter().collect::<Vec<_>>().join(","));
         }
         let mut samples: Vec<(f64, BasePose)> = Vec::new();
-        for rec in rdr.deserialize::<TrajRow>() {
-            let row = rec.map_err(|e| {
-                let line = e.position().map_or(0, |p| p.line());
-                anyhow::anyhow!("trajectory line {line}: {}", csv_kind(&e))
-            })?;
-            let line = samples.len() + 2;
+        let mut end_line = 0;
+        let mut record = csv::StringRecord::new();
+        // Line numbers from byte offsets, counting comment lines too (the reader's own count
+        // skips them); newlines are counted once, from the previous record on.
+        let (mut counted_byte, mut counted_line) = (0usize, 1u64);
+        let mut line_at = |byte: u64| {
+            // A record's position can be that of comment or blank lines before it: skip them.
+            let mut byte = (byte as usize).min(text.len());
+            loop {
+                match text.as_bytes().get(byte) {
+                    Some(b'#') => byte = text[byte..].find('\n').map_or(text.len(), |i| byte + i + 1),
+                    Some(b'\n' | b'\r') => byte += 1,
+                    _ => break,
+                }
+            }
+            if byte > counted_byte {
+                counted_line += text.as_bytes()[counted_byte..byte].iter().filter(|&&b| b == b'\n').count() as u64;
+                counted_byte = byte;
+            }
+            counted_line
+        };
+        loop {
+            let more = match rdr.read_record(&mut record) {
+                Ok(more) => more,
+                Err(e) => {
+                    let line = e.position().map_or(0, |p| line_at(p.byte()));
+                    bail!("trajectory line {line}: {}", csv_kind(&e));
+                }
+            };
+            if !more {
+                break;
+            }
+            let line = record.position().map_or(0, |p| line_at(p.byte()));
+            let row: TrajRow =
+                record.deserialize(Some(&headers)).map_err(|e| anyhow::anyhow!("trajectory line {line}: {}", csv_kind(&e)))?;
             for (name, v) in [("t_s", row.t_s), ("x_m", row.x_m), ("y_m", row.y_m), ("theta_rad", row.theta_rad)] {
                 if !v.is_finite() {
                     bail!("trajectory row {} (line {line}): {name} is {v}, not a finite number", samples.len() + 1);
@@ -621,11 +679,36 @@ impl Trajectory {
                 bail!("trajectory line {line}: t_s = {} does not increase (previous {t_prev})", row.t_s);
             }
             samples.push((row.t_s, BasePose::new(row.x_m, row.y_m, row.theta_rad)));
+            end_line = line;
         }
         if samples.is_empty() {
             bail!("trajectory: no samples");
         }
-        Ok(Self { samples })
+        Ok(Self { samples, end_line: Some(end_line) })
+    }
+
+    /// A trajectory from samples not read from text.
+    pub fn from_samples(samples: Vec<(f64, BasePose)>) -> Self {
+        Self { samples, end_line: None }
+    }
+
+    /// The number of ticks from the first to the last sample at `rate_hz`, if at most
+    /// `max_ticks`; otherwise an error naming the last sample's line. Computed in floating point
+    /// and compared before any conversion, so no end time overflows the count.
+    pub fn tick_count(&self, rate_hz: f64, max_ticks: u64) -> Result<u64> {
+        let (t0, t1) = self.span_s();
+        let ticks = ((t1 - t0) * rate_hz).round();
+        if ticks.is_nan() || ticks > max_ticks as f64 {
+            let at = match self.end_line {
+                Some(l) => format!("trajectory line {l}"),
+                None => format!("trajectory[{}]", self.samples.len() - 1),
+            };
+            bail!(
+                "{at}: t_s = {t1:e} ends {:e} s after the first sample, {ticks:e} ticks at {rate_hz} Hz: over the limit of {max_ticks} ticks (--max-ticks)",
+                t1 - t0
+            );
+        }
+        Ok(ticks as u64)
     }
 
     /// The pose at time `t_s`, linearly interpolated (held constant beyond the ends).
@@ -717,8 +800,53 @@ mod tests {
         assert!(format!("{e:#}").contains("no boundary set 'floor'"), "{e:#}");
         let e = parse_scene(&base.replace("length_m = ", "lenght_m = "), Path::new("."), &lim).err().unwrap();
         assert!(format!("{e:#}").contains("lenght_m"), "{e:#}");
-        // Needle parameters are checked by the core's simulation, when the scene is loaded.
         let e = parse_scene(&base.replace("friction_n_per_m = 10", "friction_n_per_m = -3"), Path::new("."), &lim).err().unwrap();
-        assert!(format!("{e:#}").contains("friction_n_per_m = -3"), "{e:#}");
+        assert!(format!("{e:#}").contains("regions[0] ('tissue').friction_n_per_m = -3: must be finite and ≥ 0"), "{e:#}");
+    }
+
+    /// The scene with `old` replaced by `new` (which must occur), parsed; the error's text.
+    fn scene_error(old: &str, new: &str) -> String {
+        let base = include_str!("../scenes/paper-phantom.toml");
+        assert!(base.contains(old), "{old}");
+        let e = parse_scene(&base.replace(old, new), Path::new("."), &MeshLimits::default()).err().expect("the scene must be rejected");
+        format!("{e:#}")
+    }
+
+    #[test]
+    fn issue_13_bad_scene_values_name_the_field() {
+        let base_line = "base = [0.05, 0.205, -1.5707963267948966]";
+        let cases = [
+            (base_line, "base = [nan, 0.205, -1.5707963267948966]", "needle.base = [NaN, 0.205, -1.5707963267948966]: must be finite"),
+            (base_line, "base = [0.05, inf, 0.0]", "needle.base = [0.05, inf, 0]: must be finite"),
+            ("[needle]", "[limits]\nmax_base_step_m = -1\n\n[needle]", "limits.max_base_step_m = -1: must be finite and > 0"),
+            (
+                "[needle]",
+                "[limits]\nmax_active_set_iterations = 0\n\n[needle]",
+                "limits.max_active_set_iterations = 0: must be in 1..=10000",
+            ),
+            ("[needle]", "[limits]\nlookahead_m = nan\n\n[needle]", "limits.lookahead_m = NaN: must be finite and ≥ 0"),
+            (base_line, "max_nodes = 0\nbase = [0.05, 0.205, 0]", "needle.max_nodes = 0: must be in 1..=4096"),
+            (base_line, "max_nodes = 1000000000\nbase = [0.05, 0.205, 0]", "needle.max_nodes = 1000000000: must be in 1..=4096"),
+            (base_line, "capture_radius_m = -0.001\nbase = [0.05, 0.205, 0]", "needle.capture_radius_m = -0.001: must be finite and > 0"),
+            ("length_m = 0.1", "length_m = inf", "needle.length_m = inf: must be finite and > 0"),
+            ("radius_m = 0.002", "radius_m = nan", "targets[0] ('centre').radius_m = NaN: must be finite and ≥ 0"),
+            ("tick_rate_hz = 1000", "tick_rate_hz = 1e9", "tick_rate_hz = 1000000000: must be between 100 and 10000"),
+            ("puncture_force_n = 0.3", "puncture_force_n = -0.3", "regions[0] ('tissue').puncture_force_n = -0.3: must be finite and ≥ 0"),
+        ];
+        for (old, new, want) in cases {
+            let e = scene_error(old, new);
+            assert!(e.contains(want), "{new}: {e}");
+        }
+        // A flexible needle's working set is bounded tighter.
+        let e = scene_error(base_line, "model = \"flexible\"\nmax_nodes = 2000\nbase = [0.05, 0.205, 0]");
+        assert!(e.contains("needle.max_nodes = 2000: must be in 1..=1024"), "{e}");
+        // Two regions or targets of one name.
+        let e = scene_error(
+            "[needle]",
+            "[[regions]]\nname = \"tissue\"\nyoung_modulus_pa = 1e4\npoisson_ratio = 0.3\ndisc = { center_m = [0.05, 0.05], radius_m = 0.01 }\n\n[needle]",
+        );
+        assert!(e.contains("regions[1]: the name 'tissue' is already used by regions[0]"), "{e}");
+        let e = scene_error("[[targets]]", "[[targets]]\nname = \"centre\"\ncenter_m = [0.05, 0.06]\n\n[[targets]]");
+        assert!(e.contains("targets[1]: the name 'centre' is already used by targets[0]"), "{e}");
     }
 }

@@ -54,6 +54,14 @@ fn metrics_text(state: &ServerState) -> String {
         ("superseded_poses", "Poses replaced before a tick used them", Family::default()),
         ("observers", "Observers attached", Family::default()),
         ("column_misses", "Compliance columns computed inside a tick", Family::default()),
+        ("faults", "Simulation faults (a diverged or failed step; the session then holds with zero force)", Family::default()),
+        ("rejected_poses", "Poses rejected (not finite), from Control, SetPose and the device", Family::default()),
+        ("device_stale", "1 while a device channel's bridge sends no fresh poses (the needle is held)", Family::default()),
+        (
+            "device_channel_broken",
+            "1 once the device channel's file was changed under it (truncated, deleted, replaced, garbage)",
+            Family::default(),
+        ),
     ];
     for s in sessions.values() {
         let st = s.stats();
@@ -68,6 +76,10 @@ fn metrics_text(state: &ServerState) -> String {
             st.superseded_poses as f64,
             s.n_observers.load(Ordering::Relaxed) as f64,
             st.column_misses as f64,
+            st.faults as f64,
+            st.rejected_poses as f64,
+            s.counters.device_stale.load(Ordering::Relaxed) as f64,
+            s.counters.device_channel_broken.load(Ordering::Relaxed) as f64,
         ];
         for ((_, _, fam), v) in gauges.iter_mut().zip(values) {
             fam.get_or_create(&labels).set(v);

@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 
 use needlesim_core::BasePose;
 use needlesim_core::compliance::TissueModel;
-use needlesim_core::sim::{NodeState, SimError, Simulation, StepOutput};
+use needlesim_core::sim::{Divergence, NodeState, SimError, Simulation, StepOutput};
 
 use crate::scene::Scene;
 
@@ -96,6 +96,52 @@ pub struct TickRecord {
     pub shape_m: [[f64; 2]; MAX_RECORD_SHAPE],
     /// The bevel side (0: symmetric tip).
     pub bevel_side: f64,
+    /// The session faulted at this record's tick: the simulation failed, the force is zero and
+    /// the needle is held; no record follows.
+    pub fault: Option<SessionFault>,
+}
+
+/// Why a live session stopped stepping: plain data (a code and numbers), written by the
+/// real-time thread without allocating and put into words by [`SessionFault::message`] off it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SessionFault {
+    /// The tick whose step failed.
+    pub tick: u64,
+    /// A [`Divergence`] code (1..), or one of the `FAULT_*` codes for other solver errors.
+    pub code: u8,
+    /// The diverged quantity's value and bound (0 for other errors).
+    pub value: f64,
+    pub bound: f64,
+}
+
+/// Fault code: the tissue model failed (computing a compliance column).
+pub const FAULT_TISSUE: u8 = 101;
+/// Fault code: the working-set solver failed.
+pub const FAULT_SOLVER: u8 = 102;
+/// Fault code: any other simulation error.
+pub const FAULT_OTHER: u8 = 103;
+
+impl SessionFault {
+    /// The fault of a failed step at `tick` (not for a rejected pose, which is no fault).
+    pub fn of(e: &SimError, tick: u64) -> Self {
+        match *e {
+            SimError::Diverged { tick, what, value, bound } => Self { tick, code: what.code(), value, bound },
+            SimError::Tissue(_) => Self { tick, code: FAULT_TISSUE, value: 0.0, bound: 0.0 },
+            SimError::Mixed(_) => Self { tick, code: FAULT_SOLVER, value: 0.0, bound: 0.0 },
+            _ => Self { tick, code: FAULT_OTHER, value: 0.0, bound: 0.0 },
+        }
+    }
+
+    /// The fault in words (allocates: for the IO side).
+    pub fn message(&self) -> String {
+        let what = match Divergence::from_code(self.code) {
+            Some(what) => return SimError::Diverged { tick: self.tick, what, value: self.value, bound: self.bound }.to_string(),
+            None if self.code == FAULT_TISSUE => "the tissue model failed (a compliance column)",
+            None if self.code == FAULT_SOLVER => "the working-set solver failed",
+            None => "the simulation failed",
+        };
+        format!("tick {}: {what}", self.tick)
+    }
 }
 
 /// Points of the needle's shape kept in a record.
@@ -129,6 +175,7 @@ impl Default for TickRecord {
             n_shape: 0,
             shape_m: [[0.0; 2]; MAX_RECORD_SHAPE],
             bevel_side: 0.0,
+            fault: None,
         }
     }
 }
@@ -228,6 +275,35 @@ pub struct SessionCounters {
     /// real-time thread.
     pub bevel_flips_requested: AtomicU64,
     pub bevel_flips_applied: AtomicU64,
+    /// Faults of the simulation (0 or 1: a faulted session stops stepping for good).
+    pub faults: AtomicU64,
+    /// The fault ([`SessionFault`]): its code (0: none; written last, with release ordering),
+    /// tick, and value and bound as `f64` bits.
+    pub fault_code: AtomicU64,
+    pub fault_tick: AtomicU64,
+    pub fault_value_bits: AtomicU64,
+    pub fault_bound_bits: AtomicU64,
+}
+
+impl SessionCounters {
+    /// The fault, if the session has one.
+    pub fn fault(&self) -> Option<SessionFault> {
+        let code = self.fault_code.load(Ordering::Acquire);
+        (code != 0).then(|| SessionFault {
+            tick: self.fault_tick.load(Ordering::Relaxed),
+            code: code as u8,
+            value: f64::from_bits(self.fault_value_bits.load(Ordering::Relaxed)),
+            bound: f64::from_bits(self.fault_bound_bits.load(Ordering::Relaxed)),
+        })
+    }
+
+    fn set_fault_from_rt(&self, f: &SessionFault) {
+        self.fault_tick.store(f.tick, Ordering::Relaxed);
+        self.fault_value_bits.store(f.value.to_bits(), Ordering::Relaxed);
+        self.fault_bound_bits.store(f.bound.to_bits(), Ordering::Relaxed);
+        self.fault_code.store(f.code as u64, Ordering::Release);
+        self.faults.fetch_add(1, Ordering::Relaxed);
+    }
 }
 
 /// Percentile summary of the tick loop, kept by the fan-out thread.
@@ -242,6 +318,9 @@ pub struct StatsSnapshot {
     pub column_misses: u64,
     pub rejected_poses: u64,
     pub clamped_ticks: u64,
+    /// Faults (0 or 1) and the fault, in words.
+    pub faults: u64,
+    pub fault: Option<String>,
 }
 
 struct Histograms {
@@ -381,6 +460,7 @@ impl Session {
             device_seen: false,
             last_buttons: None,
             stiffness: [0.0; 9],
+            fault: None,
         };
         threads.push(std::thread::Builder::new().name(format!("rt-{id}")).spawn(move || rt.run()).map_err(SessionError::Thread)?);
         if let Some(watch) = device_watch {
@@ -491,6 +571,8 @@ impl Session {
             column_misses: c.column_misses.load(Ordering::Relaxed),
             rejected_poses: c.rejected_poses.load(Ordering::Relaxed),
             clamped_ticks: c.clamped_ticks.load(Ordering::Relaxed),
+            faults: c.faults.load(Ordering::Relaxed),
+            fault: c.fault().map(|f| f.message()),
         }
     }
 
@@ -552,6 +634,8 @@ struct RtLoop {
     /// The device's buttons at its previous fresh pose (None before the first).
     last_buttons: Option<u32>,
     stiffness: [f64; 9],
+    /// Set when a step failed: no more steps, zero force, the needle held.
+    fault: Option<SessionFault>,
 }
 
 /// The session's device-channel watcher (a non-real-time thread): checks the channel's file every
@@ -693,21 +777,41 @@ impl RtLoop {
             self.counters.bevel_flips_applied.store(requested, Ordering::Relaxed);
         }
         let misses_before = self.sim.stats().column_misses;
-        let stepped = match self.sim.step(*pose) {
-            Ok(out) => {
-                self.record.fill(out);
-                true
-            }
-            Err(SimError::NonFinitePose { .. }) => {
-                self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
-                *pose = self.sim.pose();
-                false
-            }
-            Err(e) => {
-                // A failing model cannot go on pushing: hold the last pose.
-                tracing::error!("session step failed: {e}");
-                *pose = self.sim.pose();
-                false
+        // A faulted session steps no more; the tick that faulted publishes one record saying so.
+        let mut just_faulted = false;
+        let stepped = if self.fault.is_some() {
+            *pose = self.sim.pose();
+            false
+        } else {
+            match self.sim.step(*pose) {
+                Ok(out) => {
+                    self.record.fill(out);
+                    true
+                }
+                Err(SimError::NonFinitePose { .. }) => {
+                    self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+                    *pose = self.sim.pose();
+                    false
+                }
+                Err(e) => {
+                    // A failing model cannot go on pushing: zero force, hold the last pose, and
+                    // tell the others (the message is put into words off this thread).
+                    let fault = SessionFault::of(&e, self.sim.stats().ticks);
+                    self.counters.set_fault_from_rt(&fault);
+                    self.fault = Some(fault);
+                    let r = &mut *self.record;
+                    r.tick = fault.tick;
+                    r.time_s = fault.tick as f64 / self.sim.params().tick_rate_hz;
+                    r.force_n = [0.0; 2];
+                    r.torque_nm = 0.0;
+                    r.force_axial_n = 0.0;
+                    r.force_lateral_n = 0.0;
+                    r.fault = Some(fault);
+                    self.stiffness = [0.0; 9];
+                    *pose = self.sim.pose();
+                    just_faulted = true;
+                    false
+                }
             }
         };
         if stepped && self.counters.ticks.load(Ordering::Relaxed).is_multiple_of(STIFFNESS_EVERY_TICKS) {
@@ -761,7 +865,7 @@ impl RtLoop {
         self.record.lateness_ns = lateness.as_nanos() as u64;
         self.record.compute_ns = t0.elapsed().as_nanos() as u64;
         // A tick that did not step publishes nothing (observers never see a tick twice).
-        if stepped && self.rec_tx.push(*self.record).is_err() {
+        if (stepped || just_faulted) && self.rec_tx.push(*self.record).is_err() {
             self.counters.dropped_records.fetch_add(1, Ordering::Relaxed);
         }
         self.counters.ticks.fetch_add(1, Ordering::Relaxed);

@@ -9,6 +9,10 @@ use needlesim_core::sim::{SimError, Simulation, StateSnapshot};
 use crate::exchange::{Load, PrescribedLocal, Scenario};
 use crate::scene::{Scene, Trajectory};
 
+/// The longest offline simulation, in ticks, by default: the server's Simulate limit and the
+/// `simulate` command's `--max-ticks` (10⁶ ticks: 1000 s at 1 kHz, 8 MB of step times).
+pub const DEFAULT_MAX_TICKS: u64 = 1_000_000;
+
 /// What a run produced besides the CSV.
 #[derive(Debug, Clone, Default)]
 pub struct RunSummary {
@@ -35,13 +39,15 @@ pub fn csv_header(target_names: &[String]) -> String {
 /// Runs `traj` through a new simulation of `scene`, ticking at the scene's rate from the
 /// trajectory's first to its last time. Each tick's row is appended to `csv` (when given).
 /// Columns for the nodes the tip approaches are computed between steps, as a worker would.
-pub fn run(scene: &Scene, traj: &Trajectory, mut csv: Option<&mut String>) -> Result<(Simulation, RunSummary)> {
+/// A trajectory longer than `max_ticks` is an error naming its last line; a step that diverges
+/// ([`SimError::Diverged`]) stops the run with an error naming the tick and time.
+pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mut String>) -> Result<(Simulation, RunSummary)> {
     let mut params = scene.params.clone();
     params.initial_pose = traj.samples[0].1;
+    let rate = params.tick_rate_hz;
+    let (t0, _) = traj.span_s();
+    let n_ticks = traj.tick_count(rate, max_ticks)?;
     let mut sim = Simulation::new(scene.tissue.clone(), params).context("simulation")?;
-    let rate = sim.params().tick_rate_hz;
-    let (t0, t1) = traj.span_s();
-    let n_ticks = ((t1 - t0) * rate).round() as u64;
     let mut summary = RunSummary { step_times_s: Vec::with_capacity(n_ticks as usize + 1), ..Default::default() };
     if let Some(c) = csv.as_deref_mut() {
         c.push_str(&csv_header(&scene.target_names));
@@ -58,7 +64,9 @@ pub fn run(scene: &Scene, traj: &Trajectory, mut csv: Option<&mut String>) -> Re
                 tracing::warn!("{e}");
                 continue;
             }
-            Err(e) => return Err(e).with_context(|| format!("step at t = {t:.4} s")),
+            // A diverged step names its tick itself.
+            Err(e @ SimError::Diverged { .. }) => return Err(e).with_context(|| format!("the run stopped at t = {t:.4} s")),
+            Err(e) => return Err(e).with_context(|| format!("the run stopped at tick {k} (t = {t:.4} s)")),
         };
         summary.step_times_s.push(started.elapsed().as_secs_f64());
         match (out.clamped, clamp_run_start) {

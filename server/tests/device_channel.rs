@@ -176,3 +176,77 @@ fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 13: a diverging solve (a flexible needle with 1e4 N/m friction, driven by the device
+/// along Fig. 4's path, four times faster) faults the session: the device then reads zero force,
+/// torque and stiffness every tick, and the session no longer steps.
+#[test]
+fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
+    let text = include_str!("../scenes/fig4-steering.toml").replace("friction_n_per_m = 10\n", "friction_n_per_m = 1e4\n");
+    let scene = needlesim_server::scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
+    let dir = std::env::temp_dir().join(format!("needlesim-device-fault-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let pose_at = |t: f64| {
+        if t < 1.0 {
+            (0.05, 0.205 - 0.04 * t)
+        } else if t < 1.0125 {
+            (0.05 + 0.005 * (t - 1.0) / 0.0125, 0.165)
+        } else {
+            (0.055, 0.165 - 0.05 * ((t - 1.0125) / 1.25).min(1.0))
+        }
+    };
+    let write = |device: &mut DeviceEnd, (x_m, y_m): (f64, f64)| {
+        let p = DevicePose { t_ns: monotonic_ns(), x_m, y_m, theta_rad: -std::f64::consts::FRAC_PI_2, buttons: 0, counter: 0 };
+        device.write_pose_from_device(&p).unwrap();
+    };
+    // Where a sticky needle diverges depends chaotically on the path's pace: each attempt is a
+    // fresh session driven at another pace.
+    let mut attempt = None;
+    for pace in [1.0, 1.5, 0.75, 0.875, 0.5, 1.25, 0.6] {
+        let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
+        let mut device = DeviceChannel::attach(session.device_channel_path.clone().unwrap()).unwrap();
+        let start = Instant::now();
+        while session.counters.fault().is_none() && start.elapsed().as_secs_f64() < 2.6 / pace {
+            write(&mut device, pose_at(start.elapsed().as_secs_f64() * pace));
+            let f = device.read_force_from_device();
+            if let Some(f) = f.value.filter(|_| f.fresh() && session.counters.fault().is_none()) {
+                // Large forces are the model's answer to a needle that drags the tissue along;
+                // what must never reach the device is a force past the divergence bound, or NaN.
+                let bound = 176_272.640_687_119_3; // DivergenceBounds::force_n of this scene
+                assert!(f.force_n[0].hypot(f.force_n[1]) <= bound, "a diverged force reached the device: {f:?}");
+            }
+            std::thread::sleep(Duration::from_micros(500));
+        }
+        if session.counters.fault().is_some() {
+            attempt = Some((session, device));
+            break;
+        }
+        drop(device);
+        session.close();
+    }
+    let (session, mut device) = attempt.expect("a session faulted");
+    let fault = session.counters.fault().expect("the session faulted");
+    assert_eq!(session.counters.faults.load(Ordering::Relaxed), 1);
+    assert!(fault.message().contains("the solve diverged"), "{}", fault.message());
+    // The device keeps getting fresh wrenches, all zero, wherever it moves.
+    let mut fresh = 0;
+    for k in 0..200 {
+        write(&mut device, (0.05, 0.2 - 1e-4 * k as f64));
+        let f = device.read_force_from_device();
+        if let (true, Some(f)) = (f.fresh(), f.value) {
+            fresh += 1;
+            assert_eq!((f.force_n, f.torque_nm), ([0.0; 2], 0.0), "zero force after the fault: {f:?}");
+            assert_eq!(f.stiffness, [0.0; 9], "zero stiffness after the fault");
+        }
+        std::thread::sleep(Duration::from_micros(500));
+    }
+    assert!(fresh > 20, "the device kept hearing from the server ({fresh} fresh wrenches)");
+    let rec = session.latest_record();
+    // (Compared as text: a NaN value is not equal to itself.)
+    let last = (rec.tick, rec.fault.map(|f| f.message()));
+    assert_eq!(last, (fault.tick, Some(fault.message())), "the faulted record is the last one: no step after the fault");
+    assert_eq!(session.stats().fault, Some(fault.message()));
+    drop(device);
+    session.close();
+    let _ = std::fs::remove_dir_all(&dir);
+}

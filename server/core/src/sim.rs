@@ -70,6 +70,58 @@ pub struct SimParams {
     pub lookahead_m: f64,
 }
 
+impl SimParams {
+    /// Checks every value that does not need the mesh (ranges, finiteness, capacities); the
+    /// message names the field and its allowed range. [`Simulation::new`] calls it first.
+    pub fn validate(&self) -> Result<(), SimError> {
+        use param_limits::*;
+        let bad = |m: String| Err(SimError::InvalidParams(m));
+        self.needle.validate().map_err(SimError::InvalidParams)?;
+        if !self.initial_pose.is_finite() {
+            let p = self.initial_pose;
+            return bad(format!("initial_pose = ({}, {}, {}) must be finite", p.x_m, p.y_m, p.theta_rad));
+        }
+        let positive = [
+            ("capture_radius_m", self.capture_radius_m),
+            ("tick_rate_hz", self.tick_rate_hz),
+            ("max_base_step_m", self.max_base_step_m),
+            ("max_base_step_rad", self.max_base_step_rad),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{name} = {v} must be finite and > 0"));
+            }
+        }
+        if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
+            return bad(format!("lookahead_m = {} must be finite and ≥ 0", self.lookahead_m));
+        }
+        if self.max_needle_nodes == 0 || self.max_needle_nodes > MAX_NEEDLE_NODES {
+            return bad(format!("max_needle_nodes = {} must be in 1..={MAX_NEEDLE_NODES}", self.max_needle_nodes));
+        }
+        if self.needle.flexible().is_some() && self.max_needle_nodes > MAX_NEEDLE_NODES_FLEXIBLE {
+            return bad(format!(
+                "max_needle_nodes = {} must be ≤ {MAX_NEEDLE_NODES_FLEXIBLE} with a flexible needle",
+                self.max_needle_nodes
+            ));
+        }
+        if !(1..=MAX_ACTIVE_SET_ITERATIONS).contains(&self.max_active_set_iterations) {
+            return bad(format!(
+                "max_active_set_iterations = {} must be in 1..={MAX_ACTIVE_SET_ITERATIONS}",
+                self.max_active_set_iterations
+            ));
+        }
+        for t in &self.targets {
+            if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
+                return bad(format!("target '{}': radius_m = {} must be finite and ≥ 0", t.name, t.radius_m));
+            }
+            if !(t.center_m[0].is_finite() && t.center_m[1].is_finite()) {
+                return bad(format!("target '{}': center_m {:?} is not finite", t.name, t.center_m));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The contact state of a needle node (the paper's Fig. 5a).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NodeState {
@@ -107,6 +159,140 @@ pub enum SimError {
     /// The working-set solver failed.
     #[error(transparent)]
     Mixed(#[from] MixedError),
+    /// A step's result is not finite or exceeds a physical bound derived from the scene
+    /// ([`DivergenceBounds`]): the solve diverged. The step's output is not written (the last
+    /// good one stays in [`Simulation::output`]) and every later step returns this error again:
+    /// the simulation is faulted for good.
+    #[error("tick {tick}: the solve diverged: {what} = {value:.3e} {unit} is not within the bound {bound:.3e} {unit}", unit = what.unit())]
+    Diverged { tick: u64, what: Divergence, value: f64, bound: f64 },
+}
+
+/// Which quantity of a step diverged (see [`SimError::Diverged`]). `Copy` and coded as a small
+/// integer, so a real-time thread can store it in an atomic and name it later.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Divergence {
+    /// The magnitude of the force of the tissue on the needle base, $|F|$.
+    Force = 1,
+    /// The torque of the tissue on the needle about the base, $|\tau|$.
+    Torque = 2,
+    /// The magnitude of one needle node's force on the tissue.
+    NodeForce = 3,
+    /// The magnitude of one needle node's displacement.
+    Displacement = 4,
+    /// The length of shaft in the tissue.
+    InsertedLength = 5,
+    /// A point of the needle's shape (a joint of a flexible needle, or its tip) is not finite,
+    /// or lies farther from the base than the needle is long.
+    NeedleShape = 6,
+}
+
+impl Divergence {
+    /// The quantity's name, as in messages.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Divergence::Force => "|force|",
+            Divergence::Torque => "|torque|",
+            Divergence::NodeForce => "|needle node force|",
+            Divergence::Displacement => "|needle node displacement|",
+            Divergence::InsertedLength => "inserted length",
+            Divergence::NeedleShape => "needle shape distance from the base",
+        }
+    }
+    /// The unit of the value and the bound.
+    pub fn unit(&self) -> &'static str {
+        match self {
+            Divergence::Force | Divergence::NodeForce => "N",
+            Divergence::Torque => "N·m",
+            Divergence::Displacement | Divergence::InsertedLength | Divergence::NeedleShape => "m",
+        }
+    }
+    /// The code stored by a real-time thread (never 0, which means "no fault").
+    pub fn code(&self) -> u8 {
+        *self as u8
+    }
+    /// The quantity of a code from [`Divergence::code`].
+    pub fn from_code(code: u8) -> Option<Self> {
+        Some(match code {
+            1 => Divergence::Force,
+            2 => Divergence::Torque,
+            3 => Divergence::NodeForce,
+            4 => Divergence::Displacement,
+            5 => Divergence::InsertedLength,
+            6 => Divergence::NeedleShape,
+            _ => return None,
+        })
+    }
+}
+
+impl std::fmt::Display for Divergence {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Physical bounds on a step's results, derived from the scene when the simulation is built;
+/// a step beyond any of them has diverged ([`SimError::Diverged`]). Deliberately generous (a
+/// factor $\kappa = 100$ over what the scene could produce), so that they only catch a runaway
+/// solve, never a hard but valid insertion.
+///
+/// With $E_{max}$ the stiffest region's Young's modulus, $t$ the slice thickness, $D$ the mesh's
+/// bounding-box diagonal, $L$ the needle length, $r_c$ the capture radius, $q_{0,r}$, $h_r$,
+/// $\rho_r$ region $r$'s friction per length, tip peak and static ratio, $P_r$, $C_r$ its
+/// puncture and cutting forces and $\beta$ the bevel force ratio:
+/// - force: $F_{max} = \kappa\,(1 + \beta)\,\big[E_{max}\,t\,(D + L) + L \max_r q_{0,r}(1 + h_r)\rho_r + \max_r \max(P_r, C_r)\big]$
+///   — the first term is the force that strains the whole tissue section by one (an elastic
+///   force beyond it means displacements larger than the tissue), the others every friction
+///   and cutting force the needle can carry; it bounds both the base force and each node's force;
+/// - torque: $\tau_{max} = F_{max}\,(L + D)$;
+/// - displacement of a needle node: $u_{max} = \kappa\,(D + L)$;
+/// - inserted length: $\ell_{max} = 1.5\,L + 10\,r_c$ (it can exceed $L$ only by nodes slipping
+///   off behind the base);
+/// - needle shape: every point within $1.01\,L$ of the base (the beam is inextensible).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DivergenceBounds {
+    pub force_n: f64,
+    pub torque_nm: f64,
+    pub displacement_m: f64,
+    pub inserted_length_m: f64,
+    pub shape_radius_m: f64,
+}
+
+impl DivergenceBounds {
+    /// The margin $\kappa$ over the scene's physical scales.
+    pub const FACTOR: f64 = 100.0;
+
+    /// The bounds of `params` in `model` (formulas above).
+    pub fn of(model: &TissueModel, params: &SimParams) -> Self {
+        let mats = model.materials();
+        let e_max = mats.material_of_tri().iter().map(|m| m.young_modulus_pa).fold(0.0, f64::max);
+        let t = mats.plane().thickness_m();
+        let (lo, hi) = model.mesh().bounding_box_m();
+        let d = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+        let l = params.needle.tip_s_m();
+        let friction =
+            params.regions.iter().map(|r| r.friction_n_per_m * (1.0 + r.tip_peak_ratio) * r.static_friction_ratio).fold(0.0, f64::max);
+        let cut = params.regions.iter().map(|r| r.puncture_force_n.max(r.cutting_force_n)).fold(0.0, f64::max);
+        let beta = params.needle.flexible().map_or(0.0, |f| f.bevel_force_ratio);
+        let force_n = Self::FACTOR * (1.0 + beta) * (e_max * t * (d + l) + l * friction + cut);
+        Self {
+            force_n,
+            torque_nm: force_n * (l + d),
+            displacement_m: Self::FACTOR * (d + l),
+            inserted_length_m: 1.5 * l + 10.0 * params.capture_radius_m,
+            shape_radius_m: 1.01 * l,
+        }
+    }
+}
+
+/// Limits on the parameters that size per-step storage or bound a tick's work.
+pub mod param_limits {
+    /// Largest working-set capacity (the hybrid matrix is its square: 4096² × 8 B = 134 MB).
+    pub const MAX_NEEDLE_NODES: usize = 4096;
+    /// Largest working-set capacity with a flexible needle (its coupling is dense too).
+    pub const MAX_NEEDLE_NODES_FLEXIBLE: usize = 1024;
+    /// Largest bound on the stick/slip iterations of one tick.
+    pub const MAX_ACTIVE_SET_ITERATIONS: usize = 10_000;
 }
 
 /// One needle node in a step's output.
@@ -340,6 +526,9 @@ pub struct Simulation {
     out: StepOutput,
     stats: SimStats,
     tick: u64,
+    bounds: DivergenceBounds,
+    /// Set by the first diverged step: (tick, quantity, value, bound); every later step fails.
+    diverged: Option<(u64, Divergence, f64, f64)>,
 }
 
 impl Simulation {
@@ -348,33 +537,7 @@ impl Simulation {
     pub fn new(model: Arc<TissueModel>, params: SimParams) -> Result<Self, SimError> {
         let mesh = model.mesh();
         let bad = |m: String| Err(SimError::InvalidParams(m));
-        params.needle.validate().map_err(SimError::InvalidParams)?;
-        if !params.initial_pose.is_finite() {
-            return bad(format!("initial_pose {:?} is not finite", params.initial_pose));
-        }
-        let positive = [
-            ("capture_radius_m", params.capture_radius_m),
-            ("tick_rate_hz", params.tick_rate_hz),
-            ("max_base_step_m", params.max_base_step_m),
-            ("max_base_step_rad", params.max_base_step_rad),
-        ];
-        for (name, v) in positive {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{name} = {v} must be finite and > 0"));
-            }
-        }
-        if !(params.lookahead_m.is_finite() && params.lookahead_m >= 0.0) {
-            return bad(format!("lookahead_m = {} must be finite and ≥ 0", params.lookahead_m));
-        }
-        if params.max_needle_nodes == 0 || params.max_needle_nodes > 4096 {
-            return bad(format!("max_needle_nodes = {} must be in 1..=4096", params.max_needle_nodes));
-        }
-        if params.needle.flexible().is_some() && params.max_needle_nodes > 1024 {
-            return bad(format!("max_needle_nodes = {} must be ≤ 1024 with a flexible needle", params.max_needle_nodes));
-        }
-        if params.max_active_set_iterations == 0 {
-            return bad("max_active_set_iterations must be ≥ 1".to_owned());
-        }
+        params.validate()?;
         if params.regions.len() != mesh.region_names().len() {
             return bad(format!(
                 "the mesh has {} region(s) ({}) but needle parameters were given for {}",
@@ -388,12 +551,6 @@ impl Simulation {
         }
         let mut targets = Vec::with_capacity(params.targets.len());
         for t in &params.targets {
-            if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
-                return bad(format!("target '{}': radius_m = {} must be finite and ≥ 0", t.name, t.radius_m));
-            }
-            if !(t.center_m[0].is_finite() && t.center_m[1].is_finite()) {
-                return bad(format!("target '{}': center_m {:?} is not finite", t.name, t.center_m));
-            }
             let (nodes, bary) = locate(mesh, t.center_m)
                 .ok_or_else(|| SimError::InvalidParams(format!("target '{}' at {:?} lies outside the mesh", t.name, t.center_m)))?;
             targets.push(LocatedTarget { nodes, bary, radius_m: t.radius_m, hit: false });
@@ -484,7 +641,10 @@ impl Simulation {
             converged: true,
             ..Default::default()
         };
+        let bounds = DivergenceBounds::of(&model, &params);
         Ok(Self {
+            bounds,
+            diverged: None,
             solver: MixedSolver::with_capacity(cap),
             probe: MixedSolver::with_capacity(cap),
             pose: params.initial_pose,
@@ -664,8 +824,20 @@ impl Simulation {
         change
     }
 
+    /// The bounds a step's results are checked against.
+    pub fn divergence_bounds(&self) -> DivergenceBounds {
+        self.bounds
+    }
+
     /// Advances one tick towards the commanded base pose.
+    ///
+    /// Fails with [`SimError::Diverged`] when the results are not finite or exceed
+    /// [`DivergenceBounds`]; the output is then not written, and every later step fails the
+    /// same way (checked in $O(d)$, plus the shape's joints for a flexible needle).
     pub fn step(&mut self, commanded: BasePose) -> Result<&StepOutput, SimError> {
+        if let Some((tick, what, value, bound)) = self.diverged {
+            return Err(SimError::Diverged { tick, what, value, bound });
+        }
         if !commanded.is_finite() {
             self.stats.rejected_poses += 1;
             return Err(SimError::NonFinitePose {
@@ -698,6 +870,10 @@ impl Simulation {
                 converged &= conv;
                 self.stats.shape_passes += 1;
             }
+        }
+        if let Err((what, value, bound)) = self.check_divergence() {
+            self.diverged = Some((self.tick, what, value, bound));
+            return Err(SimError::Diverged { tick: self.tick, what, value, bound });
         }
         self.write_output(iterations, converged, clamped);
         self.tick += 1;
@@ -1155,6 +1331,42 @@ impl Simulation {
     }
 
     /// Stage 7: forces, torque, node states, targets.
+    /// Checks the solved state against [`DivergenceBounds`] before it is written out: every
+    /// needle node's force and displacement, the base force and torque, the inserted length and
+    /// the needle's shape. Returns the first quantity out of bounds, its value and its bound.
+    fn check_divergence(&self) -> Result<(), (Divergence, f64, f64)> {
+        let bd = &self.bounds;
+        let check = |what: Divergence, value: f64, bound: f64| if value <= bound { Ok(()) } else { Err((what, value, bound)) };
+        let b = self.pose.position_m();
+        let mut force = [0.0; 2];
+        let mut torque = 0.0;
+        let mut min_s = f64::INFINITY;
+        for slot in 0..self.nodes.len() {
+            let f = self.solver.force_world(slot);
+            let u = self.solver.displacement_world(slot);
+            check(Divergence::NodeForce, f[0].hypot(f[1]), bd.force_n)?;
+            check(Divergence::Displacement, u[0].hypot(u[1]), bd.displacement_m)?;
+            let x = self.model.mesh().nodes_m()[self.nodes[slot].node_idx];
+            let p = [x[0] + u[0], x[1] + u[1]];
+            min_s = min_s.min(self.node_frame(slot).coords(p).0);
+            force[0] -= f[0];
+            force[1] -= f[1];
+            torque += (p[0] - b[0]) * (-f[1]) - (p[1] - b[1]) * (-f[0]);
+        }
+        check(Divergence::Force, force[0].hypot(force[1]), bd.force_n)?;
+        check(Divergence::Torque, torque.abs(), bd.torque_nm)?;
+        if !self.nodes.is_empty() {
+            check(Divergence::InsertedLength, self.params.needle.tip_s_m() - min_s, bd.inserted_length_m)?;
+        }
+        let dist = |p: [f64; 2]| (p[0] - b[0]).hypot(p[1] - b[1]);
+        if let Some(fx) = self.flex.as_ref() {
+            for &p in fx.curve.points_m() {
+                check(Divergence::NeedleShape, dist(p), bd.shape_radius_m)?;
+            }
+        }
+        check(Divergence::NeedleShape, dist(self.tip_now()), bd.shape_radius_m)
+    }
+
     fn write_output(&mut self, iterations: usize, converged: bool, clamped: bool) {
         let shape = self.params.needle;
         let b = self.pose.position_m();

@@ -104,3 +104,76 @@ fn run_case(needle: NeedleShape) {
     assert_eq!(st.column_misses, 0);
     assert_eq!(steps_with_allocation, 0, "{total} allocations inside steps after warm-up");
 }
+
+/// Issue 13: the divergence checks run in every step without allocating; a flexible 22-gauge
+/// needle with 1e4 N/m friction (Fig. 4's steering path) diverges, and that step — and every
+/// one after it, which fails the same way — allocates nothing and leaves the last good output.
+#[test]
+fn issue_13_a_diverging_step_is_caught_without_allocating() {
+    use needlesim_core::sim::{Divergence, SimError};
+    let model = common::phantom(19);
+    let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
+    f.flexural_rigidity_nm2 = 193e9 * needlesim_core::FlexibleNeedle::tube_second_moment_m4(0.718e-3, 0.413e-3);
+    let down = -std::f64::consts::FRAC_PI_2;
+    let params = SimParams {
+        needle: NeedleShape::Flexible(f),
+        initial_pose: BasePose::new(0.05, 0.205, down),
+        // Half the mean edge length (diagonals included), as the scene loader sets it.
+        capture_radius_m: 0.5 * (2.0 + std::f64::consts::SQRT_2) / 3.0 * 0.1 / 18.0,
+        max_needle_nodes: 128,
+        regions: vec![RegionNeedleParams { friction_n_per_m: 1e4, ..Default::default() }],
+        targets: vec![],
+        tick_rate_hz: 1000.0,
+        max_base_step_m: 0.002,
+        max_base_step_rad: 0.05,
+        max_active_set_iterations: 12,
+        lookahead_m: 0.01,
+    };
+    let mut sim = Simulation::new(model, params).unwrap();
+    // Fig. 4's path, four times faster: down 40 mm, 5 mm sideways, down 50 mm.
+    let mut poses: Vec<BasePose> = (0..=1000).map(|k| BasePose::new(0.05, 0.205 - 0.04 * k as f64 / 1000.0, down)).collect();
+    poses.extend((0..=12).map(|k| BasePose::new(0.05 + 0.005 * k as f64 / 12.0, 0.165, down)));
+    poses.extend((0..=1250).map(|k| BasePose::new(0.055, 0.165 - 0.05 * k as f64 / 1250.0, down)));
+    // Then out and in again, twice.
+    for _ in 0..2 {
+        poses.extend((0..=1000).map(|k| BasePose::new(0.055, 0.115 + 0.06 * k as f64 / 1000.0, down)));
+        poses.extend((0..=1000).map(|k| BasePose::new(0.055, 0.175 - 0.06 * k as f64 / 1000.0, down)));
+    }
+    let mut diverged = None;
+    for (k, p) in poses.iter().enumerate() {
+        let last_good = (sim.output().tick, sim.output().force_n);
+        let misses = sim.stats().column_misses;
+        ALLOCS.with(|a| a.set(0));
+        COUNTING.with(|c| c.set(true));
+        let r = sim.step(*p).map(|o| o.force_n);
+        COUNTING.with(|c| c.set(false));
+        let n = ALLOCS.with(|a| a.get());
+        match r {
+            Ok(force_n) => {
+                assert!(force_n[0].hypot(force_n[1]) <= sim.divergence_bounds().force_n);
+                // A column the prefetch did not deliver is the one allowed allocation.
+                assert!(k < 10 || n == 0 || sim.stats().column_misses > misses, "tick {k}: {n} allocations in a step");
+            }
+            Err(e @ SimError::Diverged { .. }) => {
+                assert_eq!(n, 0, "the diverged step allocated {n} times");
+                assert_eq!((sim.output().tick, sim.output().force_n), last_good, "the diverged state was written out");
+                diverged = Some(e);
+                break;
+            }
+            Err(e) => panic!("tick {k}: {e}"),
+        }
+        sim.prefetch_columns(16).unwrap();
+    }
+    let Some(SimError::Diverged { tick, what, value, bound }) = diverged.clone() else { panic!("the run never diverged") };
+    assert!(value.is_nan() || value > bound, "{what:?} = {value} within {bound}");
+    assert!(matches!(what, Divergence::InsertedLength | Divergence::NodeForce | Divergence::Force | Divergence::Displacement), "{what:?}");
+    assert!(tick > 1000, "diverged at tick {tick}");
+    // Faulted for good: every later step returns the same error, allocating nothing.
+    for _ in 0..3 {
+        COUNTING.with(|c| c.set(true));
+        let again = sim.step(BasePose::new(0.05, 0.2, down)).map(|_| ()).unwrap_err();
+        COUNTING.with(|c| c.set(false));
+        assert_eq!(again.to_string(), diverged.as_ref().unwrap().to_string()); // NaN ≠ NaN: compare the text
+    }
+    assert_eq!(ALLOCS.with(|a| a.get()), 0);
+}
