@@ -1,5 +1,5 @@
 // The web viewer end to end in headless Chromium (Debian's /usr/bin/chromium, driven over CDP by
-// playwright-core from web/node_modules; never a downloaded browser). Run by tests/web.rs:
+// playwright-core from web/node_modules; never a downloaded browser). Run by tests/it/web.rs:
 //
 //   node tests/web_e2e.mjs http://127.0.0.1:PORT OUT_DIR
 //

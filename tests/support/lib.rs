@@ -4,6 +4,14 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicU64, Ordering};
 
+/// The turn of the tests that run or time a 1 kHz session (a server session, a bridge, a browser
+/// driving a session). All the integration tests run in one process (tests/it/), two at a time on a
+/// 2-core machine; two such tests at once would eat each other's real-time budget, so each holds
+/// this lock for its whole run: `REALTIME.lock().await` in async tests, `REALTIME.blocking_lock()`
+/// in synchronous ones (outside any runtime). A tokio mutex is never poisoned: a test that fails
+/// while holding it releases it as it unwinds.
+pub static REALTIME: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
+
 /// The workspace root (the parent of this crate's directory).
 pub fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("tests/ has a parent").to_path_buf()

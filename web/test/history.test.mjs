@@ -1,4 +1,4 @@
-// Unit tests of web/src/history.ts (the plots' bounded force histories), run by tests/web.rs with
+// Unit tests of web/src/history.ts (the plots' bounded force histories), run by tests/it/web.rs with
 // `node --test` after esbuild has bundled src/history.ts to ./history.mjs beside this file.
 import { test } from "node:test";
 import assert from "node:assert/strict";

@@ -1,4 +1,4 @@
-// Unit tests of web/src/ranges.ts (the force plots' value ranges), run by tests/web.rs with
+// Unit tests of web/src/ranges.ts (the force plots' value ranges), run by tests/it/web.rs with
 // `node --test` after esbuild has bundled src/ranges.ts to ./ranges.mjs beside this file.
 import { test } from "node:test";
 import assert from "node:assert/strict";

@@ -9,7 +9,6 @@
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use needlesim_proto::v1 as pb;
@@ -19,11 +18,10 @@ use needlesim_tests::{
 use tokio_stream::StreamExt;
 use tonic::transport::Channel;
 
-/// The tests run one at a time: each runs a 1 kHz session, and the recording test counts ticks.
-static SERIAL: Mutex<()> = Mutex::new(());
-
-fn serial() -> std::sync::MutexGuard<'static, ()> {
-    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+/// The tests run one at a time (with every real-time test of tests/it/): each runs a 1 kHz session,
+/// and the recording test counts ticks.
+fn serial() -> tokio::sync::MutexGuard<'static, ()> {
+    needlesim_tests::REALTIME.blocking_lock()
 }
 
 /// Runs the async part of a test on its own runtime (the serial guard is held outside it).

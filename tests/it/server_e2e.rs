@@ -12,9 +12,9 @@ use tonic::{Code, Request};
 
 const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
 
-/// The tests of this file each run a 1 kHz session; on a 2-core machine they take turns, so that
-/// one test's clients do not eat another's real-time budget.
-static ONE_AT_A_TIME: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
+// The tests of this file each run a 1 kHz session; on a 2-core machine they take turns (with every
+// real-time test of tests/it/), so that one test's clients do not eat another's real-time budget.
+use needlesim_tests::REALTIME as ONE_AT_A_TIME;
 
 /// Insertion poses of the paper phantom: tip from 5 mm above the top to 40 mm deep over `secs`.
 fn pose_at(t: f64, secs: f64) -> pb::Pose2 {

@@ -13,8 +13,9 @@ use tonic::transport::Channel;
 
 const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
 
-/// The tests of this file run sessions; on a 2-core machine they take turns.
-static ONE_AT_A_TIME: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
+// The tests of this file run sessions; on a 2-core machine they take turns (with every real-time
+// test of tests/it/).
+use needlesim_tests::REALTIME as ONE_AT_A_TIME;
 
 fn create_request(record: bool) -> pb::CreateSessionRequest {
     pb::CreateSessionRequest {

@@ -62,6 +62,7 @@ async fn frame_where(obs: &mut tonic::Streaming<pb::Frame>, pred: impl Fn(&pb::F
 
 #[tokio::test]
 async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
+    let _turn = needlesim_tests::REALTIME.lock().await;
     let server = ServerProcess::start(&[]);
     let ch = connect(&server).await;
     let toml = std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/fig4-steering.toml"))

@@ -11,10 +11,11 @@ use tokio_stream::StreamExt;
 use tonic::Code;
 
 const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
-const PHANTOM: &str = include_str!("../server/scenes/paper-phantom.toml");
+const PHANTOM: &str = include_str!("../../server/scenes/paper-phantom.toml");
 
-/// The tests of this file start servers that compute hard; on a 2-core machine they take turns.
-static ONE_AT_A_TIME: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
+// The tests of this file start servers that compute hard; on a 2-core machine they take turns
+// (with every real-time test of tests/it/).
+use needlesim_tests::REALTIME as ONE_AT_A_TIME;
 
 fn example(name: &str) -> Option<pb::SceneSource> {
     Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(name.into())) })

@@ -153,6 +153,7 @@ fn plot_data_stays_bounded_ordered_and_ranged() {
 
 #[test]
 fn page_drives_the_needle_in_headless_chromium() {
+    let _turn = needlesim_tests::REALTIME.blocking_lock();
     require_node_modules();
     let chromium = std::env::var("NEEDLESIM_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".to_owned());
     assert!(

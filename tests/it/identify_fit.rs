@@ -210,8 +210,8 @@ fn inconsistent_inputs_are_errors_naming_the_problem() {
     // A mesh that does not cover the markers: a 0.1 m phantom (markers 10 mm apart) against a
     // 0.05 m wide grid scene with the same spacing.
     let small = dir.join("small.toml");
-    let scene =
-        include_str!("../server/scenes/paper-phantom.toml").replace("nx = 19\nny = 19\nwidth_m = 0.1", "nx = 6\nny = 11\nwidth_m = 0.05");
+    let scene = include_str!("../../server/scenes/paper-phantom.toml")
+        .replace("nx = 19\nny = 19\nwidth_m = 0.1", "nx = 6\nny = 11\nwidth_m = 0.05");
     std::fs::write(&small, scene).unwrap();
     let e = identify_err(&[&base[..], &["--scene", p(&small)]].concat());
     assert!(e.contains("mesh does not cover marker 6 at (0.0"), "{e}");

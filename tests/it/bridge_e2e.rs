@@ -18,9 +18,10 @@ use tonic::transport::Channel;
 
 const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
 
-/// Every test here runs a 1 kHz server session and a 1 kHz bridge; on a 2-core machine two such
-/// pairs at once would eat each other's real-time budget, so the tests take turns.
-static ONE_AT_A_TIME: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
+// Every test here runs a 1 kHz server session and a 1 kHz bridge; on a 2-core machine two such
+// pairs at once would eat each other's real-time budget, so the tests take turns (with every
+// real-time test of tests/it/).
+use needlesim_tests::REALTIME as ONE_AT_A_TIME;
 
 /// The device period budget: fewer than 2 % of the scheduled periods may be missed (a late wake-up
 /// of more than one period) on a loaded 2-core machine.

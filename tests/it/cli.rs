@@ -10,11 +10,10 @@ use std::time::{Duration, Instant};
 use needlesim_tests::{ServerProcess, TempDir, bin, text};
 use serde_json::Value;
 
-/// The tests that run a 1 kHz session take turns (2-core machines).
-static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-fn turn() -> std::sync::MutexGuard<'static, ()> {
-    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
+/// The tests that run a 1 kHz session take turns (2-core machines), with every real-time test of
+/// tests/it/.
+fn turn() -> tokio::sync::MutexGuard<'static, ()> {
+    needlesim_tests::REALTIME.blocking_lock()
 }
 
 /// Runs `needlesim ARGS` (without the NEEDLESIM_* environment unless `env` sets it), killing it

@@ -1,0 +1,21 @@
+//! The integration tests, one test binary (as ripgrep does) so that tokio, tonic and the rest are
+//! linked once rather than once per file: each file of tests/it/ is a module, its tests are named
+//! `MODULE::TEST` (`cargo test -p needlesim-tests server_e2e::`); the helpers are the crate's
+//! library, tests/support/lib.rs. All tests share one process: the ones that run or time a 1 kHz
+//! session take turns through [`needlesim_tests::REALTIME`].
+
+mod access_e2e;
+mod api_limits;
+mod bench;
+mod bridge_e2e;
+mod cli;
+mod cli_errors;
+mod flexible_e2e;
+mod identify_fit;
+mod identify_track;
+mod plan;
+mod python_client;
+mod server_e2e;
+mod simulate;
+mod validation;
+mod web;
