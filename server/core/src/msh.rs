@@ -522,8 +522,8 @@ mod tests {
         assert!(e.to_string().contains("over the limit of 100"), "{e}");
     }
 
-    /// Found by the fuzzer (issue 13): a later block announcing usize::MAX entries overflowed the
-    /// running count (a panic in debug builds) instead of being an error.
+    /// Found while writing the fuzzing harness (issue 13): a later block announcing usize::MAX
+    /// entries overflowed the running count (a panic in debug builds) instead of being an error.
     #[test]
     fn issue_13_huge_block_counts_are_errors() {
         let (lim, max) = (MeshLimits::default(), usize::MAX);
