@@ -256,23 +256,30 @@ impl Target {
     }
 }
 
-/// Runs every target, one case of each in turn on this thread, for `budget`; returns the
+/// How long [`run_for`] fuzzes one parser before moving to the next.
+const SLICE: Duration = Duration::from_millis(200);
+
+/// Runs every target in turn on this thread, an equal share of `budget` each; returns the
 /// failures (each with its seed) and the counts.
 pub fn run_for(targets: &[Target], budget: Duration) -> (Vec<String>, Vec<Stats>) {
     let base = base_seed();
     let start = Instant::now();
     let mut stats = vec![Stats::default(); targets.len()];
     let mut failures = Vec::new();
-    let mut i = 0u64;
     let mut next_report = Duration::from_secs(60);
+    let mut next_case = vec![0u64; targets.len()];
     while start.elapsed() < budget {
-        for (t, s) in targets.iter().zip(&mut stats) {
-            if let Err(e) = t.run_case(case_seed(base, t.name, i), s) {
-                eprintln!("FAILURE {e}");
-                failures.push(e);
+        // Equal time, not equal counts: each parser in turn for a slice of SLICE.
+        for ((t, s), i) in targets.iter().zip(&mut stats).zip(&mut next_case) {
+            let slice = Instant::now();
+            while slice.elapsed() < SLICE {
+                if let Err(e) = t.run_case(case_seed(base, t.name, *i), s) {
+                    eprintln!("FAILURE {e}");
+                    failures.push(e);
+                }
+                *i += 1;
             }
         }
-        i += 1;
         if start.elapsed() >= next_report {
             next_report += Duration::from_secs(60);
             let counts: Vec<String> = targets.iter().zip(&stats).map(|(t, s)| format!("{} {}", t.name, s.cases)).collect();
