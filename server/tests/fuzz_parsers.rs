@@ -191,7 +191,7 @@ fn msh_target() -> Target {
         generate: Some(generate_msh),
         mutate: None,
         check: check_msh,
-        cases: 400,
+        cases: 1000,
     }
 }
 
@@ -354,7 +354,7 @@ fn scene_target() -> Target {
         generate: Some(generate_scene),
         mutate: None,
         check: check_scene,
-        cases: 300,
+        cases: 500,
     }
 }
 
@@ -397,7 +397,7 @@ fn traj_dict() -> Vec<Vec<u8>> {
 }
 
 fn traj_target(name: &'static str, check: fn(&[u8]) -> Verdict) -> Target {
-    Target { name, seeds: traj_seeds(), dict: traj_dict(), generate: Some(generate_traj), mutate: None, check, cases: 500 }
+    Target { name, seeds: traj_seeds(), dict: traj_dict(), generate: Some(generate_traj), mutate: None, check, cases: 1000 }
 }
 
 fn check_times_and_poses(t: &[f64], poses: &[f64]) -> Verdict {
@@ -479,7 +479,7 @@ fn exchange_target() -> Target {
         generate: None,
         mutate: None,
         check: check_exchange,
-        cases: 200,
+        cases: 400,
     }
 }
 
@@ -529,7 +529,7 @@ fn tracks_target() -> Target {
         generate: Some(generate_tracks),
         mutate: None,
         check: check_tracks,
-        cases: 500,
+        cases: 1000,
     }
 }
 
@@ -650,7 +650,7 @@ fn png_target() -> Target {
         generate: None,
         mutate: Some(mutate_png),
         check: check_png,
-        cases: 200,
+        cases: 300,
     }
 }
 

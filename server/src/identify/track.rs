@@ -28,9 +28,14 @@
 //! `x_m = origin_m.x + (x_px − origin_px.x)·s` and `y_m = origin_m.y − (y_px − origin_px.y)·s`.
 
 use anyhow::{Context, Result, bail};
-use image::{DynamicImage, GrayImage};
+use image::{DynamicImage, GrayImage, ImageDecoder};
 
 use super::tracks::MarkerTracks;
+
+/// The largest PNG frame [`Tracker::push_png`] decodes, in pixels (25 megapixels, e.g. 5000 ×
+/// 5000): detection holds a few copies of a frame as 32-bit floats, so this bounds its memory
+/// whatever size a (possibly tiny, highly compressed) file's header announces.
+pub const MAX_FRAME_PIXELS: u64 = 25_000_000;
 
 /// Whether the markers are darker or brighter than the background.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -495,7 +500,8 @@ impl Tracker {
 
     /// Decodes a PNG (8- or 16-bit, gray or colour: colour is converted to luma) and tracks it.
     ///
-    /// Errors (each names the frame): bytes that are not a decodable PNG; a time stamp that is not
+    /// Errors (each names the frame): bytes that are not a decodable PNG; an image of more than
+    /// [`MAX_FRAME_PIXELS`] pixels; a time stamp that is not
     /// finite or not after the previous frame's; an image whose size differs from frame 0's; in
     /// frame 0, no markers found or a count other than `expected_markers`; more than
     /// [`MAX_BLOBS`] blobs in any frame; later, fewer than half
@@ -503,8 +509,15 @@ impl Tracker {
     /// `max_missing_frames` consecutive frames. After an error the tracker is unchanged.
     pub fn push_png(&mut self, t_s: f64, png: &[u8]) -> Result<()> {
         let k = self.times.len();
-        let img = image::load_from_memory_with_format(png, image::ImageFormat::Png)
+        let decoder = image::ImageReader::with_format(std::io::Cursor::new(png), image::ImageFormat::Png)
+            .into_decoder()
             .with_context(|| format!("frame {k}: not a decodable PNG image"))?;
+        // The header's size, checked before the decoder allocates for it.
+        let (w, h) = decoder.dimensions();
+        if u64::from(w) * u64::from(h) > MAX_FRAME_PIXELS {
+            bail!("frame {k}: the image is {w}×{h} pixels, over the limit of {MAX_FRAME_PIXELS} pixels");
+        }
+        let img = DynamicImage::from_decoder(decoder).with_context(|| format!("frame {k}: not a decodable PNG image"))?;
         self.push_plane(t_s, Plane::from_dynamic(&img, self.p.polarity))
     }
 
@@ -732,6 +745,23 @@ mod tests {
 
     fn params() -> TrackParams {
         TrackParams::new(Polarity::Dark, Scale::MetresPerPixel { m_per_px: 1e-4, origin_px: [0.0, 0.0], origin_m: [0.0, 0.0] })
+    }
+
+    /// Issue 13: a small PNG whose header announces 65535 × 1000 pixels is rejected from its
+    /// header, before the decoder allocates half a gigabyte for it.
+    #[test]
+    fn issue_13_png_announcing_a_huge_frame_is_rejected_before_decoding() {
+        let mut png = std::io::Cursor::new(Vec::new());
+        GrayImage::new(8, 8).write_to(&mut png, image::ImageFormat::Png).unwrap();
+        let mut png = png.into_inner();
+        // IHDR: bytes 8..12 length, 12..16 "IHDR", 16..20 width, 20..24 height, 29..33 CRC.
+        assert_eq!(&png[12..16], b"IHDR");
+        png[16..20].copy_from_slice(&65_535u32.to_be_bytes());
+        png[20..24].copy_from_slice(&1_000u32.to_be_bytes());
+        let crc = crc32fast::hash(&png[12..29]);
+        png[29..33].copy_from_slice(&crc.to_be_bytes());
+        let e = Tracker::new(params()).unwrap().push_png(0.0, &png).unwrap_err().to_string();
+        assert_eq!(e, "frame 0: the image is 65535×1000 pixels, over the limit of 25000000 pixels");
     }
 
     /// A `cols × rows` grid with spacing `sp` px starting at `(x0, y0)`, jittered by up to ±0.5 px.

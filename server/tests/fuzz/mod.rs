@@ -346,40 +346,58 @@ const MAX_INPUT_BYTES: usize = 2 << 20;
 /// Bytes that mean something to some parser.
 const SPECIAL_BYTES: &[u8] = b"\0\n\r\t ,;#$\"'[]{}=:.-+eE\\\xff\xc3";
 
-fn lines(data: &[u8]) -> Vec<(usize, usize)> {
-    let mut out = Vec::new();
-    let mut start = 0;
-    for (i, &b) in data.iter().enumerate() {
-        if b == b'\n' {
-            out.push((start, i + 1));
-            start = i + 1;
-        }
+// The helpers below look around one position rather than scanning the whole input: the seeds
+// run to half a megabyte, and this code runs unoptimised under `cargo test`.
+
+/// The line holding byte `pos` (with its newline), if there is any data.
+fn line_at(data: &[u8], pos: usize) -> Option<(usize, usize)> {
+    if data.is_empty() {
+        return None;
     }
-    if start < data.len() {
-        out.push((start, data.len()));
-    }
-    out
+    let pos = pos.min(data.len() - 1);
+    let a = data[..pos].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let b = data[pos..].iter().position(|&b| b == b'\n').map_or(data.len(), |i| pos + i + 1);
+    Some((a, b))
 }
 
-/// Byte ranges of numeric-looking tokens (a run of digits, signs, dots and exponents with a digit).
-fn numbers(data: &[u8]) -> Vec<(usize, usize)> {
-    let is_num = |b: u8| b.is_ascii_digit() || matches!(b, b'.' | b'-' | b'+' | b'e' | b'E');
-    let mut out = Vec::new();
-    let mut i = 0;
+/// A random line.
+fn random_line(rng: &mut SmallRng, data: &[u8]) -> Option<(usize, usize)> {
+    if data.is_empty() { None } else { line_at(data, rng.random_range(0..data.len())) }
+}
+
+fn is_num(b: u8) -> bool {
+    b.is_ascii_digit() || matches!(b, b'.' | b'-' | b'+' | b'e' | b'E')
+}
+
+/// The first numeric-looking token (a run of digits, signs, dots and exponents with a digit)
+/// that starts at or after `from`.
+fn number_from(data: &[u8], from: usize) -> Option<(usize, usize)> {
+    let mut i = from;
     while i < data.len() {
-        if is_num(data[i]) {
-            let s = i;
-            while i < data.len() && is_num(data[i]) {
-                i += 1;
+        if is_num(data[i]) && (i == from || !is_num(data[i - 1])) {
+            let e = data[i..].iter().position(|&b| !is_num(b)).map_or(data.len(), |k| i + k);
+            if data[i..e].iter().any(u8::is_ascii_digit) {
+                return Some((i, e));
             }
-            if data[s..i].iter().any(u8::is_ascii_digit) {
-                out.push((s, i));
-            }
+            i = e;
         } else {
             i += 1;
         }
     }
-    out
+    None
+}
+
+/// A numeric token after a random position (wrapping around to the start).
+fn random_number(rng: &mut SmallRng, data: &[u8]) -> Option<(usize, usize)> {
+    let from = rng.random_range(0..=data.len());
+    let from = data[..from].iter().rposition(|&b| !is_num(b)).map_or(0, |i| i + 1);
+    number_from(data, from).or_else(|| number_from(data, 0))
+}
+
+/// The first occurrence of `token` at or after `from` (wrapping around to the start).
+fn find_from(data: &[u8], token: &[u8], from: usize) -> Option<usize> {
+    let find = |s: usize| data[s..].windows(token.len()).position(|w| w == token).map(|i| s + i);
+    find(from.min(data.len())).or_else(|| find(0))
 }
 
 fn pick<'a, T>(rng: &mut SmallRng, v: &'a [T]) -> Option<&'a T> {
@@ -407,10 +425,6 @@ fn number_for(rng: &mut SmallRng, old: &[u8]) -> Vec<u8> {
             if w.fract() == 0.0 && w.abs() < 1e15 { format!("{}", w as i64) } else { format!("{w}") }.into_bytes()
         }
     }
-}
-
-fn find_all(data: &[u8], token: &[u8]) -> Vec<usize> {
-    data.windows(token.len()).enumerate().filter(|(_, w)| *w == token).map(|(i, _)| i).collect()
 }
 
 /// Applies one random generic mutation to `data`.
@@ -446,31 +460,36 @@ pub fn mutate(rng: &mut SmallRng, data: &mut Vec<u8>, seeds: &[Vec<u8>], dict: &
         }
         5..=7 => {
             // A numeric field replaced (the most productive mutation for these formats).
-            if let Some(&(a, b)) = pick(rng, &numbers(data)) {
+            if let Some((a, b)) = random_number(rng, data) {
                 let new = number_for(rng, &data[a..b]);
                 data.splice(a..b, new);
             }
         }
         8 => {
-            if let Some(&(a, b)) = pick(rng, &lines(data)) {
+            if let Some((a, b)) = random_line(rng, data) {
                 data.drain(a..b);
             }
         }
         14 | 15 => {
             // One of the first numbers after a dictionary token (a section marker, a key): the
             // counts and header fields that uniform picks among thousands of values rarely hit.
-            let anchors: Vec<usize> = dict.iter().filter(|t| t.len() > 2).flat_map(|t| find_all(data, t)).collect();
-            if let Some(&at) = pick(rng, &anchors) {
-                let nums = numbers(&data[at..]);
-                if let Some(&(a, b)) = nums.get(rng.random_range(0..5)) {
-                    let new = number_for(rng, &data[at + a..at + b]);
-                    data.splice(at + a..at + b, new);
+            let anchors: Vec<&Vec<u8>> = dict.iter().filter(|t| t.len() > 2).collect();
+            if let Some(token) = pick(rng, &anchors)
+                && let Some(at) = find_from(data, token, pos(rng))
+            {
+                let mut num = number_from(data, at);
+                for _ in 0..rng.random_range(0..5) {
+                    num = num.and_then(|(_, b)| number_from(data, b));
+                }
+                if let Some((a, b)) = num {
+                    let new = number_for(rng, &data[a..b]);
+                    data.splice(a..b, new);
                 }
             }
         }
         9 => {
             // A line repeated, sometimes many times (counts that disagree, huge inputs).
-            if let Some(&(a, b)) = pick(rng, &lines(data)) {
+            if let Some((a, b)) = random_line(rng, data) {
                 let most = (MAX_INPUT_BYTES.saturating_sub(len) / (b - a)).max(1);
                 let times = if rng.random_bool(0.1) { rng.random_range(1..2000).min(most) } else { 1 };
                 let chunk = data[a..b].repeat(times);
@@ -478,8 +497,7 @@ pub fn mutate(rng: &mut SmallRng, data: &mut Vec<u8>, seeds: &[Vec<u8>], dict: &
             }
         }
         10 => {
-            let ls = lines(data);
-            if let (Some(&(a, b)), Some(&(c, d))) = (pick(rng, &ls), pick(rng, &ls))
+            if let (Some((a, b)), Some((c, d))) = (random_line(rng, data), random_line(rng, data))
                 && b <= c
             {
                 let (x, y) = (data[a..b].to_vec(), data[c..d].to_vec());
@@ -490,9 +508,9 @@ pub fn mutate(rng: &mut SmallRng, data: &mut Vec<u8>, seeds: &[Vec<u8>], dict: &
         11 => {
             // A line of another seed spliced in.
             if let Some(other) = pick(rng, seeds)
-                && let Some(&(a, b)) = pick(rng, &lines(other))
+                && let Some((a, b)) = random_line(rng, other)
             {
-                let at = lines(data).get(rng.random_range(0..=lines(data).len())).map_or(len, |l| l.0);
+                let at = random_line(rng, data).map_or(len, |l| l.0);
                 data.splice(at..at, other[a..b].iter().copied());
             }
         }
