@@ -1,8 +1,9 @@
 //! Fuzzing harness for every parser of an input file (issue 13): Gmsh MSH, scene TOML, the three
 //! trajectory CSV readers (server, client, device bridge), the validation exchange JSON,
-//! marker-track CSV and PNG frames. Each case mutates a real seed file or generates an input from
-//! a grammar, runs the parser in-process, and asserts: no panic, no hang, at most
-//! `fuzz::MEMORY_CAP_BYTES` held at once, and either a valid result or an error with a message.
+//! marker-track CSV, the identification probe and force logs (CSV) and PNG frames. Each case
+//! mutates a real seed file or generates an input from a grammar, runs the parser in-process, and
+//! asserts: no panic, no hang, at most `fuzz::MEMORY_CAP_BYTES` held at once, and either a valid
+//! result or an error with a message.
 //!
 //! `cargo test` runs a bounded, seeded number of cases per parser. The long run is on demand:
 //!
@@ -30,6 +31,7 @@ use std::time::Duration;
 use fuzz::{Target, Verdict, verdict};
 use needlesim_core::MeshLimits;
 use needlesim_server::exchange::{Scenario, solve_scenario};
+use needlesim_server::identify::experiment::{ForceLog, ProbeLog};
 use needlesim_server::identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
 use needlesim_server::identify::tracks::MarkerTracks;
 use rand::Rng;
@@ -363,6 +365,7 @@ fn scene_target() -> Target {
 
 fn traj_seeds() -> Vec<Vec<u8>> {
     let mut seeds = files(&repo().join("server/scenes"), "csv");
+    seeds.push(std::fs::read(repo().join("server/identify-example/insertion.csv")).unwrap());
     seeds.push(b"t_s,x_m,y_m,theta_rad\n# a comment\n0, 0, 1, 0\n\n2,2 ,3,1\n".to_vec());
     seeds
 }
@@ -534,6 +537,46 @@ fn tracks_target() -> Target {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Identification logs: probe log and needle force log CSV (one numeric-CSV reader)
+
+fn check_logs(input: &[u8]) -> Verdict {
+    let text = fuzz::text(input);
+    verdict(ProbeLog::from_csv(&text), |log| {
+        let flat: Vec<f64> = log.disp_m.iter().chain(&log.force_n).flatten().copied().collect();
+        if log.times_s.is_empty() || !strictly_increasing(&log.times_s) || !finite(&log.times_s) || !finite(&flat) {
+            return Err(format!("accepted a probe log whose times are {:?}", log.times_s));
+        }
+        match ProbeLog::from_csv(&log.to_csv()) {
+            Ok(back) if back == *log => Ok(()),
+            other => Err(format!("accepted a probe log that does not read back from its CSV: {other:?}")),
+        }
+    })?;
+    verdict(ForceLog::from_csv(&text), |log| {
+        let flat: Vec<f64> = log.force_n.iter().flatten().chain(&log.depth_m).copied().collect();
+        if log.times_s.is_empty() || !strictly_increasing(&log.times_s) || !finite(&log.times_s) || !finite(&flat) {
+            return Err(format!("accepted a force log whose times are {:?}", log.times_s));
+        }
+        match ForceLog::from_csv(&log.to_csv()) {
+            Ok(back) if back == *log => Ok(()),
+            other => Err(format!("accepted a force log that does not read back from its CSV: {other:?}")),
+        }
+    })
+}
+
+fn logs_target() -> Target {
+    let dir = repo().join("server/identify-example");
+    Target {
+        name: "identify-logs",
+        seeds: ["probe-log.csv", "needle-force.csv"].iter().map(|f| std::fs::read(dir.join(f)).unwrap()).collect(),
+        dict: dict(&["t_s,probe_disp_x_m,probe_disp_y_m,force_x_n,force_y_n\n", "t_s,force_x_n,force_y_n,depth_m\n", ",", "#", "\n"]),
+        generate: None,
+        mutate: None,
+        check: check_logs,
+        cases: 1000,
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // PNG frames
 
 /// A phantom frame: 3 × 3 dark dots of radius 3 px on a lit background, offset by `shift_px`.
@@ -666,6 +709,7 @@ fn all_targets() -> Vec<Target> {
         traj_target("trajectory-bridge", check_traj_bridge),
         exchange_target(),
         tracks_target(),
+        logs_target(),
         png_target(),
     ]
 }
@@ -703,6 +747,11 @@ fn issue_13_fuzz_exchange_json() {
 #[test]
 fn issue_13_fuzz_marker_tracks_csv() {
     tracks_target().run_bounded();
+}
+
+#[test]
+fn issue_13_fuzz_identify_logs_csv() {
+    logs_target().run_bounded();
 }
 
 #[test]
