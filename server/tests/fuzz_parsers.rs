@@ -403,8 +403,11 @@ fn traj_target(name: &'static str, check: fn(&[u8]) -> Verdict) -> Target {
     Target { name, seeds: traj_seeds(), dict: traj_dict(), generate: Some(generate_traj), mutate: None, check, cases: 1000 }
 }
 
-fn check_times_and_poses(t: &[f64], poses: &[f64]) -> Verdict {
-    if t.is_empty() || !strictly_increasing(t) || !finite(t) || !finite(poses) {
+/// A trajectory the parser accepted: samples at strictly increasing finite times, finite poses.
+fn valid_samples<P>(samples: &[(f64, P)], pose: fn(&P) -> [f64; 3]) -> Verdict {
+    let t: Vec<f64> = samples.iter().map(|s| s.0).collect();
+    let poses: Vec<f64> = samples.iter().flat_map(|(_, p)| pose(p)).collect();
+    if t.is_empty() || !strictly_increasing(&t) || !finite(&t) || !finite(&poses) {
         return Err(format!("accepted a trajectory of {} samples whose times are {t:?}", t.len()));
     }
     Ok(())
@@ -412,18 +415,12 @@ fn check_times_and_poses(t: &[f64], poses: &[f64]) -> Verdict {
 
 fn check_traj_server(input: &[u8]) -> Verdict {
     verdict(needlesim_server::scene::Trajectory::parse_csv(&fuzz::text(input)), |tr| {
-        let t: Vec<f64> = tr.samples.iter().map(|s| s.0).collect();
-        let poses: Vec<f64> = tr.samples.iter().flat_map(|(_, p)| [p.x_m, p.y_m, p.theta_rad]).collect();
-        check_times_and_poses(&t, &poses)
+        valid_samples(&tr.samples, |p| [p.x_m, p.y_m, p.theta_rad])
     })
 }
 
 fn check_traj_client(input: &[u8]) -> Verdict {
-    verdict(client_traj::Trajectory::parse(&fuzz::text(input)), |tr| {
-        let t: Vec<f64> = tr.samples.iter().map(|s| s.0).collect();
-        let poses: Vec<f64> = tr.samples.iter().flat_map(|(_, p)| [p.x_m, p.y_m, p.theta_rad]).collect();
-        check_times_and_poses(&t, &poses)
-    })
+    verdict(client_traj::Trajectory::parse(&fuzz::text(input)), |tr| valid_samples(&tr.samples, |p| [p.x_m, p.y_m, p.theta_rad]))
 }
 
 fn check_traj_bridge(input: &[u8]) -> Verdict {
@@ -539,27 +536,27 @@ fn tracks_target() -> Target {
 // ---------------------------------------------------------------------------------------------
 // Identification logs: probe log and needle force log CSV (one numeric-CSV reader)
 
+/// A log the parser accepted: strictly increasing finite times, finite values, and the CSV it
+/// writes reads back the same.
+fn valid_log<L: PartialEq + std::fmt::Debug>(log: &L, times_s: &[f64], values: Vec<f64>, back: anyhow::Result<L>) -> Verdict {
+    if times_s.is_empty() || !strictly_increasing(times_s) || !finite(times_s) || !finite(&values) {
+        return Err(format!("accepted a log whose times are {times_s:?}"));
+    }
+    match back {
+        Ok(back) if back == *log => Ok(()),
+        other => Err(format!("accepted a log that does not read back from its CSV: {other:?}")),
+    }
+}
+
 fn check_logs(input: &[u8]) -> Verdict {
     let text = fuzz::text(input);
     verdict(ProbeLog::from_csv(&text), |log| {
-        let flat: Vec<f64> = log.disp_m.iter().chain(&log.force_n).flatten().copied().collect();
-        if log.times_s.is_empty() || !strictly_increasing(&log.times_s) || !finite(&log.times_s) || !finite(&flat) {
-            return Err(format!("accepted a probe log whose times are {:?}", log.times_s));
-        }
-        match ProbeLog::from_csv(&log.to_csv()) {
-            Ok(back) if back == *log => Ok(()),
-            other => Err(format!("accepted a probe log that does not read back from its CSV: {other:?}")),
-        }
+        let values = log.disp_m.iter().chain(&log.force_n).flatten().copied().collect();
+        valid_log(log, &log.times_s, values, ProbeLog::from_csv(&log.to_csv()))
     })?;
     verdict(ForceLog::from_csv(&text), |log| {
-        let flat: Vec<f64> = log.force_n.iter().flatten().chain(&log.depth_m).copied().collect();
-        if log.times_s.is_empty() || !strictly_increasing(&log.times_s) || !finite(&log.times_s) || !finite(&flat) {
-            return Err(format!("accepted a force log whose times are {:?}", log.times_s));
-        }
-        match ForceLog::from_csv(&log.to_csv()) {
-            Ok(back) if back == *log => Ok(()),
-            other => Err(format!("accepted a force log that does not read back from its CSV: {other:?}")),
-        }
+        let values = log.force_n.iter().flatten().chain(&log.depth_m).copied().collect();
+        valid_log(log, &log.times_s, values, ForceLog::from_csv(&log.to_csv()))
     })
 }
 
