@@ -317,7 +317,8 @@ fn check_scene(input: &[u8]) -> Verdict {
         if scene.params.regions.len() != scene.tissue.mesh().region_names().len() {
             return Err("accepted a scene whose needle parameters do not match its regions".into());
         }
-        Ok(())
+        // What a session then does with it: a simulation, or an error naming the bad parameter.
+        verdict(needlesim_core::Simulation::new(scene.tissue.clone(), scene.params.clone()), |_| Ok(()))
     })
 }
 
