@@ -501,9 +501,9 @@ impl Tracker {
     /// Decodes a PNG (8- or 16-bit, gray or colour: colour is converted to luma) and tracks it.
     ///
     /// Errors (each names the frame): bytes that are not a decodable PNG; an image of more than
-    /// [`MAX_FRAME_PIXELS`] pixels; a time stamp that is not
-    /// finite or not after the previous frame's; an image whose size differs from frame 0's; in
-    /// frame 0, no markers found or a count other than `expected_markers`; more than
+    /// [`MAX_FRAME_PIXELS`] pixels (checked from the header, before decoding); a time stamp that
+    /// is not finite or not after the previous frame's; an image whose size differs from frame
+    /// 0's; in frame 0, no markers found or a count other than `expected_markers`; more than
     /// [`MAX_BLOBS`] blobs in any frame; later, fewer than half
     /// the markers found near their predictions, or a marker missing for more than
     /// `max_missing_frames` consecutive frames. After an error the tracker is unchanged.
