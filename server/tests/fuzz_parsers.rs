@@ -449,7 +449,12 @@ fn check_exchange(input: &[u8]) -> Verdict {
     verdict(parsed, |r| {
         let flat: Vec<f64> = r.displacements.iter().flatten().copied().collect();
         if r.displacements.len() != r.n_nodes || !finite(&flat) {
-            return Err(format!("accepted a scenario whose solution has {} displacements for {} nodes", r.displacements.len(), r.n_nodes));
+            return Err(format!(
+                "accepted a scenario whose solution has {} displacements for {} nodes, finite: {}",
+                r.displacements.len(),
+                r.n_nodes,
+                finite(&flat)
+            ));
         }
         Ok(())
     })
