@@ -264,7 +264,7 @@ pub fn solve_scenario(sc: &Scenario, limits: &MeshLimits) -> Result<ScenarioResu
         Some(w) if !w.is_empty() => Some(compliance_block(sc, w, mesh.clone(), materials.clone())?),
         _ => None,
     };
-    Ok(ScenarioResult {
+    let result = ScenarioResult {
         name: sc.name.clone().unwrap_or_default(),
         n_nodes: mesh.n_nodes(),
         n_triangles: mesh.n_triangles(),
@@ -283,7 +283,39 @@ pub fn solve_scenario(sc: &Scenario, limits: &MeshLimits) -> Result<ScenarioResu
         strain_energy: sol.strain_energy_j,
         element_stresses_sxx_syy_sxy,
         compliance,
-    })
+    };
+    if let Some(what) = first_non_finite(&result) {
+        bail!(
+            "{what} is not finite: a prescribed displacement, a load or a material value is too large for the solve \
+             (it overflows the range of f64)"
+        );
+    }
+    Ok(result)
+}
+
+/// The first value of a result that is not finite, named (inputs near the range of f64, such as a
+/// prescribed displacement of 1e308 m, overflow in the solve).
+fn first_non_finite(r: &ScenarioResult) -> Option<String> {
+    let all_finite = |v: &[Option<f64>]| v.iter().flatten().all(|x| x.is_finite());
+    if let Some(i) = r.displacements.iter().position(|d| !all_finite(&[Some(d[0]), Some(d[1])])) {
+        return Some(format!("the displacement of node {i}"));
+    }
+    if let Some(x) = r.reactions.iter().find(|x| !all_finite(&[x.rx, x.ry])) {
+        return Some(format!("the reaction at node {}", x.node));
+    }
+    if let Some(x) = r.reactions_local.iter().find(|x| !all_finite(&[x.rt, x.rn])) {
+        return Some(format!("the local reaction at node {}", x.node));
+    }
+    if !r.strain_energy.is_finite() {
+        return Some("the strain energy".to_owned());
+    }
+    if let Some(i) = r.element_stresses_sxx_syy_sxy.iter().flatten().position(|s| !s.iter().all(|x| x.is_finite())) {
+        return Some(format!("the stress of triangle {i}"));
+    }
+    if r.compliance.iter().flat_map(|c| c.matrix.iter().flatten()).any(|x| !x.is_finite()) {
+        return Some("the compliance block".to_owned());
+    }
+    None
 }
 
 /// $C = K_{ff}^{-1}$ restricted to the working nodes, where only `fixed_nodes` are removed.
@@ -311,4 +343,24 @@ fn compliance_block(sc: &Scenario, working: &[i64], mesh: Mesh, materials: Mater
         dof_order: "[ux(w0), uy(w0), ux(w1), uy(w1), ...]".to_owned(),
         matrix: c.chunks(d).map(<[f64]>::to_vec).collect(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by the fuzzer (issue 13): a prescribed displacement of 1e308 m solved to NaN and
+    /// infinite values, returned as a result (written as nulls) instead of an error.
+    #[test]
+    fn issue_13_an_overflowing_solve_is_an_error() {
+        let text = r#"{"nodes": [[0, 0], [1, 0], [1, 1], [0, 1]], "triangles": [[0, 1, 2], [0, 2, 3]], "E": 1000, "nu": 0.3,
+            "fixed_nodes": [0, 1], "prescribed": [{"node": 2, "uy": 1e308}]}"#;
+        let sc: Scenario = serde_json::from_str(text).unwrap();
+        let e = solve_scenario(&sc, &MeshLimits::default()).unwrap_err().to_string();
+        assert!(e.contains("is not finite") && e.contains("too large"), "{e}");
+        // The same problem with a displacement in range solves.
+        let sc: Scenario = serde_json::from_str(&text.replace("1e308", "1e-3")).unwrap();
+        let r = solve_scenario(&sc, &MeshLimits::default()).unwrap();
+        assert!(first_non_finite(&r).is_none() && r.max_abs_displacement >= 1e-3);
+    }
 }

@@ -62,7 +62,7 @@ impl Default for ServerLimits {
             max_session_bytes: 1280 << 20,
             max_offline_jobs: 4,
             max_plans: 2,
-            max_image_pixels: 40_000_000,
+            max_image_pixels: crate::identify::track::DEFAULT_MAX_IMAGE_PIXELS,
         }
     }
 }

@@ -275,7 +275,7 @@ fn read_nodes_v4(c: &mut Cursor<'_>, raw: &mut Raw, limits: &MeshLimits) -> Resu
         if parametric != 0 {
             return Err(syntax(c.line, "parametric node coordinates are not supported"));
         }
-        if raw.nodes.len() + n > n_nodes {
+        if n > n_nodes - raw.nodes.len() {
             return Err(syntax(c.line, format!("node blocks hold more nodes than the {n_nodes} announced")));
         }
         let mut tags = Vec::with_capacity(n);
@@ -353,10 +353,10 @@ fn read_elements_v4(
         let tag = c.i64("entity tag")?;
         let etype = c.usize("element type")?;
         let n = c.usize("number of elements in block")?;
-        seen += n;
-        if seen > n_elements {
+        if n > n_elements - seen {
             return Err(syntax(c.line, format!("element blocks hold more elements than the {n_elements} announced")));
         }
+        seen += n;
         let phys = entity_phys.get(&(dim, tag)).cloned().unwrap_or_default();
         for _ in 0..n {
             c.begin_line("an element")?;
@@ -520,5 +520,21 @@ mod tests {
         let small = MeshLimits { max_nodes: 100, max_triangles: 100 };
         let e = parse_msh(V41, &small).unwrap_err();
         assert!(e.to_string().contains("over the limit of 100"), "{e}");
+    }
+
+    /// Found while writing the fuzzing harness (issue 13): a later block announcing usize::MAX
+    /// entries overflowed the running count (a panic in debug builds) instead of being an error.
+    #[test]
+    fn issue_13_huge_block_counts_are_errors() {
+        let (lim, max) = (MeshLimits::default(), usize::MAX);
+        let nodes = format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n2 3 1 3\n2 1 0 1\n1\n0 0 0\n2 1 0 {max}\n$EndNodes\n");
+        let e = parse_msh(&nodes, &lim).unwrap_err();
+        assert_eq!(e.to_string(), "MSH line 9: node blocks hold more nodes than the 3 announced");
+        let elements = format!(
+            "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n\
+             $Elements\n2 2 1 2\n2 1 2 1\n1 1 2 3\n2 1 2 {max}\n$EndElements\n"
+        );
+        let e = parse_msh(&elements, &lim).unwrap_err();
+        assert_eq!(e.to_string(), "MSH line 18: element blocks hold more elements than the 2 announced");
     }
 }

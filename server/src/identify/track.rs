@@ -505,9 +505,10 @@ impl Tracker {
 
     /// Decodes a PNG (8- or 16-bit, gray or colour: colour is converted to luma) and tracks it.
     ///
-    /// Errors (each names the frame): bytes that are not a decodable PNG; a time stamp that is not
-    /// finite or not after the previous frame's; an image whose size differs from frame 0's; in
-    /// frame 0, no markers found or a count other than `expected_markers`; more than
+    /// Errors (each names the frame): bytes that are not a decodable PNG; an image of more than
+    /// `max_image_pixels` pixels (a [`SizeLimit`], checked from the header before decoding); a time stamp that
+    /// is not finite or not after the previous frame's; an image whose size differs from frame
+    /// 0's; in frame 0, no markers found or a count other than `expected_markers`; more than
     /// [`MAX_BLOBS`] blobs in any frame; later, fewer than half
     /// the markers found near their predictions, or a marker missing for more than
     /// `max_missing_frames` consecutive frames. After an error the tracker is unchanged.
@@ -760,6 +761,25 @@ mod tests {
 
     fn params() -> TrackParams {
         TrackParams::new(Polarity::Dark, Scale::MetresPerPixel { m_per_px: 1e-4, origin_px: [0.0, 0.0], origin_m: [0.0, 0.0] })
+    }
+
+    /// Issue 13: a small PNG whose header announces 65535 × 1000 pixels is rejected from its
+    /// header, before the decoder allocates half a gigabyte for it.
+    #[test]
+    fn issue_13_png_announcing_a_huge_frame_is_rejected_before_decoding() {
+        let mut png = std::io::Cursor::new(Vec::new());
+        GrayImage::new(8, 8).write_to(&mut png, image::ImageFormat::Png).unwrap();
+        let mut png = png.into_inner();
+        // IHDR: bytes 8..12 length, 12..16 "IHDR", 16..20 width, 20..24 height, 29..33 CRC.
+        assert_eq!(&png[12..16], b"IHDR");
+        png[16..20].copy_from_slice(&65_535u32.to_be_bytes());
+        png[20..24].copy_from_slice(&1_000u32.to_be_bytes());
+        let crc = crc32fast::hash(&png[12..29]);
+        png[29..33].copy_from_slice(&crc.to_be_bytes());
+        let e = Tracker::new(params()).unwrap().push_png(0.0, &png).unwrap_err();
+        let size = e.downcast_ref::<SizeLimit>().unwrap_or_else(|| panic!("not a size limit: {e:#}"));
+        assert_eq!((size.amount, size.limit), (65_535_000, DEFAULT_MAX_IMAGE_PIXELS), "{e:#}");
+        assert!(e.to_string().starts_with("frame 0 (65535 × 1000 pixels)"), "{e:#}");
     }
 
     /// A `cols × rows` grid with spacing `sp` px starting at `(x0, y0)`, jittered by up to ±0.5 px.

@@ -91,7 +91,7 @@ impl MarkerTracks {
                 }
                 out.times_s.push(t);
                 markers_in_frame = 0;
-            } else if frame + 1 != out.times_s.len() {
+            } else if frame.checked_add(1) != Some(out.times_s.len()) {
                 bail!(
                     "marker tracks line {ln}: frame {frame} out of order (expected {} or {})",
                     out.times_s.len().saturating_sub(1),
@@ -148,5 +148,14 @@ mod tests {
         assert!(e.contains("last frame has 1 markers"), "{e}");
         let bad = t.to_csv().replace("0.5,1,", "0.5,2,");
         assert!(MarkerTracks::from_csv(&bad).unwrap_err().to_string().contains("marker 2 out of order"));
+    }
+
+    /// Found by the fuzzer (issue 13): a frame index of usize::MAX overflowed `frame + 1` (a panic
+    /// in debug builds) instead of being reported out of order.
+    #[test]
+    fn issue_13_huge_frame_index_is_an_error() {
+        let text = "frame,t_s,marker,x_px,y_px,x_m,y_m,detected\n0,0,0,1,1,0,0,1\n18446744073709551615,0.1,0,1,1,0,0,1\n";
+        let e = MarkerTracks::from_csv(text).unwrap_err().to_string();
+        assert_eq!(e, "marker tracks line 3: frame 18446744073709551615 out of order (expected 0 or 1)");
     }
 }
