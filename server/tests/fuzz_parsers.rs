@@ -11,7 +11,8 @@
 //! NEEDLESIM_FUZZ_SECONDS=1800 cargo test -p needlesim-server --test fuzz_parsers -- --ignored --nocapture
 //! ```
 //!
-//! runs every parser in turn on one thread for that long and prints the cases per parser. See
+//! runs every parser in turn on one thread, that long each (`NEEDLESIM_FUZZ_TARGETS=msh,png` picks
+//! some), and prints the cases per parser. See
 //! `fuzz/mod.rs` for the other variables (base seed, case count, replay of one case).
 //!
 //! Meshes are read with smaller [`MeshLimits`] than the default (a million nodes): a valid scene of
@@ -762,15 +763,24 @@ fn issue_13_fuzz_png_frames() {
     png_target().run_bounded();
 }
 
-/// The long run, on demand: every parser in turn on this one thread for
-/// `NEEDLESIM_FUZZ_SECONDS` (default 1800), printing the cases per parser.
+/// The long run, on demand: every parser (or those named in `NEEDLESIM_FUZZ_TARGETS`, comma
+/// separated) in turn on this one thread, `NEEDLESIM_FUZZ_SECONDS` (default 1800) each, printing
+/// the cases per parser. Several processes with disjoint target lists use several cores.
 #[test]
 #[ignore = "long fuzzing run: NEEDLESIM_FUZZ_SECONDS=1800 cargo test -p needlesim-server --test fuzz_parsers -- --ignored --nocapture"]
 fn fuzz_all_parsers_for_a_while() {
-    let seconds = std::env::var("NEEDLESIM_FUZZ_SECONDS").map_or(1800, |s| s.parse().expect("NEEDLESIM_FUZZ_SECONDS: seconds"));
-    let targets = all_targets();
-    let (failures, stats) = fuzz::run_for(&targets, Duration::from_secs(seconds));
-    println!("fuzzing for {seconds} s, base seed {:#x}:", fuzz::base_seed());
+    let seconds: u64 = std::env::var("NEEDLESIM_FUZZ_SECONDS").map_or(1800, |s| s.parse().expect("NEEDLESIM_FUZZ_SECONDS: seconds"));
+    let mut targets = all_targets();
+    if let Ok(names) = std::env::var("NEEDLESIM_FUZZ_TARGETS") {
+        let wanted: Vec<&str> = names.split(',').map(str::trim).collect();
+        let known: Vec<&str> = targets.iter().map(|t| t.name).collect();
+        assert!(wanted.iter().all(|w| known.contains(w)), "NEEDLESIM_FUZZ_TARGETS: {names}; the parsers are {}", known.join(","));
+        targets.retain(|t| wanted.contains(&t.name));
+    }
+    // Each parser gets `seconds` of the one thread: the run takes seconds × parsers.
+    let total = seconds * targets.len() as u64;
+    let (failures, stats) = fuzz::run_for(&targets, Duration::from_secs(total));
+    println!("fuzzing {} parser(s) for {seconds} s each ({total} s in all), base seed {:#x}:", targets.len(), fuzz::base_seed());
     for (t, s) in targets.iter().zip(&stats) {
         println!(
             "  {:<18} {:>9} cases, {:>8} accepted, peak {:>7.1} MB, slowest {:?}",

@@ -11,7 +11,8 @@
 //! Environment:
 //! - `NEEDLESIM_FUZZ_CASES`: cases per parser in a bounded run (default: each target's own count).
 //! - `NEEDLESIM_FUZZ_SEED`: the base seed (default [`DEFAULT_SEED`]).
-//! - `NEEDLESIM_FUZZ_SECONDS`: the time budget of the on-demand run (the ignored test).
+//! - `NEEDLESIM_FUZZ_SECONDS`: the time each parser gets in the on-demand run (the ignored test);
+//!   `NEEDLESIM_FUZZ_TARGETS`: which parsers it runs (comma separated; default all).
 //! - `NEEDLESIM_FUZZ_REPLAY=parser:seed`: runs only that case of that parser and prints its input.
 
 use std::alloc::{GlobalAlloc, Layout, System};
