@@ -55,6 +55,7 @@ fn metrics_text(state: &ServerState) -> String {
         ("observers", "Observers attached", Family::default()),
         ("column_misses", "Compliance columns computed inside a tick", Family::default()),
         ("faults", "Simulation faults (a diverged or failed step; the session then holds with zero force)", Family::default()),
+        ("step_errors", "Steps that failed other than by diverging (held and retried; 100 in a row fault the session)", Family::default()),
         ("rejected_poses", "Poses rejected (not finite), from Control, SetPose and the device", Family::default()),
         ("device_stale", "1 while a device channel's bridge sends no fresh poses (the needle is held)", Family::default()),
         (
@@ -77,6 +78,7 @@ fn metrics_text(state: &ServerState) -> String {
             s.n_observers.load(Ordering::Relaxed) as f64,
             st.column_misses as f64,
             st.faults as f64,
+            s.counters.step_errors.load(Ordering::Relaxed) as f64,
             st.rejected_poses as f64,
             s.counters.device_stale.load(Ordering::Relaxed) as f64,
             s.counters.device_channel_broken.load(Ordering::Relaxed) as f64,

@@ -144,6 +144,10 @@ impl SessionFault {
     }
 }
 
+/// Step failures in a row (other than a divergence, which faults at once) after which a live
+/// session faults: 0.1 s at 1 kHz.
+pub const MAX_CONSECUTIVE_STEP_ERRORS: u32 = 100;
+
 /// Points of the needle's shape kept in a record.
 pub const MAX_RECORD_SHAPE: usize = 33;
 
@@ -275,6 +279,9 @@ pub struct SessionCounters {
     /// real-time thread.
     pub bevel_flips_requested: AtomicU64,
     pub bevel_flips_applied: AtomicU64,
+    /// Steps that failed other than by diverging (the solver or a compliance column): the tick
+    /// held its pose and published nothing; [`MAX_CONSECUTIVE_STEP_ERRORS`] in a row fault.
+    pub step_errors: AtomicU64,
     /// Faults of the simulation (0 or 1: a faulted session stops stepping for good).
     pub faults: AtomicU64,
     /// The fault ([`SessionFault`]): its code (0: none; written last, with release ordering),
@@ -461,6 +468,7 @@ impl Session {
             last_buttons: None,
             stiffness: [0.0; 9],
             fault: None,
+            consecutive_step_errors: 0,
         };
         threads.push(std::thread::Builder::new().name(format!("rt-{id}")).spawn(move || rt.run()).map_err(SessionError::Thread)?);
         if let Some(watch) = device_watch {
@@ -636,6 +644,8 @@ struct RtLoop {
     stiffness: [f64; 9],
     /// Set when a step failed: no more steps, zero force, the needle held.
     fault: Option<SessionFault>,
+    /// Step failures (other than a divergence) in a row; [`MAX_CONSECUTIVE_STEP_ERRORS`] fault.
+    consecutive_step_errors: u32,
 }
 
 /// The session's device-channel watcher (a non-real-time thread): checks the channel's file every
@@ -786,6 +796,7 @@ impl RtLoop {
             match self.sim.step(*pose) {
                 Ok(out) => {
                     self.record.fill(out);
+                    self.consecutive_step_errors = 0;
                     true
                 }
                 Err(SimError::NonFinitePose { .. }) => {
@@ -793,9 +804,22 @@ impl RtLoop {
                     *pose = self.sim.pose();
                     false
                 }
+                Err(e) if !matches!(e, SimError::Diverged { .. }) && self.consecutive_step_errors + 1 < MAX_CONSECUTIVE_STEP_ERRORS => {
+                    // Another failure of the step (the solver or a compliance column) may pass
+                    // with the next pose: hold the last pose, publish nothing, count it; only a
+                    // run of them faults the session.
+                    self.consecutive_step_errors += 1;
+                    self.counters.step_errors.fetch_add(1, Ordering::Relaxed);
+                    *pose = self.sim.pose();
+                    false
+                }
                 Err(e) => {
-                    // A failing model cannot go on pushing: zero force, hold the last pose, and
-                    // tell the others (the message is put into words off this thread).
+                    // A diverged solve (or a failure that persists) cannot go on pushing: zero
+                    // force, hold the last pose, and tell the others (the message is put into
+                    // words off this thread).
+                    if !matches!(e, SimError::Diverged { .. }) {
+                        self.counters.step_errors.fetch_add(1, Ordering::Relaxed);
+                    }
                     let fault = SessionFault::of(&e, self.sim.stats().ticks);
                     self.counters.set_fault_from_rt(&fault);
                     self.fault = Some(fault);
@@ -807,6 +831,7 @@ impl RtLoop {
                     r.force_axial_n = 0.0;
                     r.force_lateral_n = 0.0;
                     r.fault = Some(fault);
+                    r.base = self.sim.pose();
                     self.stiffness = [0.0; 9];
                     *pose = self.sim.pose();
                     just_faulted = true;

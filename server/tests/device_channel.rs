@@ -63,14 +63,23 @@ fn device_drives_goes_stale_and_reattaches() {
 
     // The bridge goes away without a word: the server holds the needle and marks the device stale.
     drop(device);
-    std::thread::sleep(Duration::from_millis(300));
+    // Polled, not a fixed sleep: this machine may stall for longer than the stale timeout.
+    let t0 = Instant::now();
+    while !session.latest_record().device_stale {
+        assert!(t0.elapsed() < Duration::from_secs(10), "the device is marked stale");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    std::thread::sleep(Duration::from_millis(100));
     let held = session.latest_record();
     assert!(held.device_stale, "the device is marked stale");
     assert!((held.base.y_m - f.base[1]).abs() < 0.002, "the needle is held where the device left it: {:?}", held.base);
     assert_eq!(session.counters.device_stale_events.load(Ordering::Relaxed), 1);
     let t1 = held.tick;
-    std::thread::sleep(Duration::from_millis(100));
-    assert!(session.latest_record().tick > t1 + 50, "the session keeps ticking");
+    let t0 = Instant::now();
+    while session.latest_record().tick <= t1 + 50 {
+        assert!(t0.elapsed() < Duration::from_secs(10), "the session keeps ticking");
+        std::thread::sleep(Duration::from_millis(10));
+    }
 
     // A new bridge attaches and drives again.
     let mut again = DeviceChannel::attach(&path).unwrap();

@@ -104,7 +104,7 @@ async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
     }
     // A frame from after the insertion.
     let f = frame_where(&mut obs, |f| f.base.is_some_and(|b| b.y_m < 0.1851)).await.expect("the needle was inserted");
-    assert_eq!(f.bevel_side, 1.0);
+    assert_eq!(f.bevel_side, 1.0, "faulted {} {:?}, tick {}", f.faulted, f.fault, f.tick);
     assert_eq!(f.needle_shape_m.len(), 33, "a flexible needle's shape: 33 points");
     let (first, last) = (f.needle_shape_m[0], f.needle_shape_m[32]);
     let base = f.base.unwrap();
