@@ -25,6 +25,9 @@ export function showFrame(f: Frame): void {
   $("targets").textContent = f.targets.length ? f.targets.map((t) => `${t.name}: ${t.hit ? "hit" : "missed"}`).join(", ") : "none";
   $("bevel").textContent = f.bevelSide === 0 ? "symmetric" : f.bevelSide > 0 ? "+n side" : "−n side";
   publish("bevelSide", f.bevelSide);
+  // A faulted session (its solve diverged) holds the needle with zero force: say so.
+  publish("fault", f.faulted ? f.fault : "");
+  if (f.faulted) $("status").textContent = `session faulted: ${f.fault}`;
   state.dirty = true;
 }
 
