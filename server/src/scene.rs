@@ -384,8 +384,18 @@ pub fn load_scene(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene> {
     parse_scene(&text, path.parent().unwrap_or(Path::new(".")), limits).with_context(|| format!("scene {}", path.display()))
 }
 
+/// Most `[` and `{` a scene's TOML may hold, wherever they stand. The TOML parser recurses once
+/// per open bracket on some of its error paths, so the count bounds its stack depth: a scene
+/// needs a few per region and target, and 1024 recursions fit a 2 MiB thread stack even in a
+/// debug build (about 0.9 kB a level).
+pub const MAX_TOML_BRACKETS: usize = 1024;
+
 /// Parses scene TOML; `base_dir` resolves relative mesh files.
 pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) -> Result<Scene> {
+    let brackets = text.bytes().filter(|b| matches!(b, b'[' | b'{')).count();
+    if brackets > MAX_TOML_BRACKETS {
+        bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
+    }
     let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", crate::status::clip(e.to_string().trim_end(), 512)))?;
     build_scene(&file, base_dir, &limits.into())
 }
@@ -769,6 +779,37 @@ mod tests {
             let s = load_scene(name, &MeshLimits::default()).unwrap();
             assert!(s.tissue.mesh().n_nodes() > 100);
             Trajectory::parse_csv(csv).unwrap();
+        }
+    }
+
+    /// Issue 13, found by the long fuzzing run: a mutated scene made the TOML parser recurse
+    /// (`on_inline_table_open`, on an error path) until the 2 MiB test thread's stack overflowed,
+    /// which aborts the process — the server, in a CreateSession. The exact input was not kept
+    /// (an abort prints no case); the count of brackets bounds that recursion whatever the path.
+    /// This test runs on a 2 MiB stack, as tokio's blocking threads have: within the limit the
+    /// parser stays within it, past it the scene is refused before parsing.
+    #[test]
+    fn issue_13_bracket_count_bounds_the_toml_parsers_recursion() {
+        let base = include_str!("../scenes/paper-phantom.toml");
+        let run = |text: String| {
+            std::thread::Builder::new()
+                .stack_size(2 << 20)
+                .spawn(move || parse_scene(&text, Path::new("."), &MeshLimits::default()).err().map(|e| format!("{e:#}")))
+                .unwrap()
+                .join()
+                .expect("the scene thread ends")
+        };
+        for open in ["{a", "{a=", "{a={", "[{a=", "{"] {
+            let e = run(format!("{base}\nx = {}\n", open.repeat(MAX_TOML_BRACKETS))).expect("refused");
+            assert!(e.contains("over the limit of 1024"), "{open}: {e}");
+        }
+        // Just under the limit, nested as deep as it allows: an error from the parser, not an
+        // overflow.
+        let n = MAX_TOML_BRACKETS - base.bytes().filter(|b| matches!(b, b'[' | b'{')).count();
+        for open in ["{a", "{a=", "[{a="] {
+            let per = open.matches(['[', '{']).count();
+            let e = run(format!("{base}\nx = {}\n", open.repeat(n / per))).expect("a TOML error");
+            assert!(e.contains("TOML parse error"), "{open}: {e}");
         }
     }
 
