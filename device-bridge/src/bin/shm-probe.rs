@@ -41,12 +41,14 @@ fn main() {
         }
         "echo" => loop {
             let f = device.read_force_from_device();
-            if f.status == ReadStatus::Stale {
-                break;
-            }
-            if f.status == ReadStatus::Broken {
+            // A broken channel may first show as stale or as a refused write (a truncation
+            // between this read and the write): whichever way the loop ends, broken is exit 3.
+            if f.status == ReadStatus::Broken || (f.status == ReadStatus::Stale && device.broken().is_some()) {
                 eprintln!("shm-probe: channel broken: {}", device.broken().map_or("?".into(), |b| b.to_string()));
                 std::process::exit(3);
+            }
+            if f.status == ReadStatus::Stale {
+                break;
             }
             if let Some(force) = f.value {
                 if force.state == ServerForce::STATE_CLOSING {
@@ -55,6 +57,10 @@ fn main() {
                 if f.fresh() {
                     let pose = DevicePose { t_ns: monotonic_ns(), x_m: force.tick as f64, ..Default::default() };
                     if device.write_pose_from_device(&pose).is_err() {
+                        if let Some(b) = device.broken() {
+                            eprintln!("shm-probe: channel broken: {b}");
+                            std::process::exit(3);
+                        }
                         break;
                     }
                 }
