@@ -5,27 +5,11 @@
 
 mod common;
 
-use common::phantom;
-use needlesim_core::sim::{SimParams, Simulation, StepOutput};
-use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape, RegionNeedleParams, RigidNeedle};
+use common::{phantom, phantom_params as params};
+use needlesim_core::sim::{Simulation, StepOutput};
+use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape, RigidNeedle};
 
 const FRAC_PI_2: f64 = std::f64::consts::FRAC_PI_2;
-
-fn params(needle: NeedleShape) -> SimParams {
-    SimParams {
-        needle,
-        initial_pose: BasePose::new(0.05, 0.205, -FRAC_PI_2),
-        capture_radius_m: 0.0015,
-        max_needle_nodes: 64,
-        regions: vec![RegionNeedleParams::default()],
-        targets: vec![],
-        tick_rate_hz: 1000.0,
-        max_base_step_m: 0.002,
-        max_base_step_rad: 0.05,
-        max_active_set_iterations: 12,
-        lookahead_m: 0.01,
-    }
-}
 
 fn flexible(ei_scale: f64, bevel: f64) -> NeedleShape {
     let mut f = FlexibleNeedle::gauge17_steel(0.1);

@@ -116,18 +116,11 @@ fn issue_13_a_diverging_step_is_caught_without_allocating() {
     f.flexural_rigidity_nm2 = 193e9 * needlesim_core::FlexibleNeedle::tube_second_moment_m4(0.718e-3, 0.413e-3);
     let down = -std::f64::consts::FRAC_PI_2;
     let params = SimParams {
-        needle: NeedleShape::Flexible(f),
-        initial_pose: BasePose::new(0.05, 0.205, down),
         // Half the mean edge length (diagonals included), as the scene loader sets it.
         capture_radius_m: 0.5 * (2.0 + std::f64::consts::SQRT_2) / 3.0 * 0.1 / 18.0,
         max_needle_nodes: 128,
         regions: vec![RegionNeedleParams { friction_n_per_m: 1e4, ..Default::default() }],
-        targets: vec![],
-        tick_rate_hz: 1000.0,
-        max_base_step_m: 0.002,
-        max_base_step_rad: 0.05,
-        max_active_set_iterations: 12,
-        lookahead_m: 0.01,
+        ..common::phantom_params(NeedleShape::Flexible(f))
     };
     let mut sim = Simulation::new(model, params).unwrap();
     // Fig. 4's path, four times faster: down 40 mm, 5 mm sideways, down 50 mm.
