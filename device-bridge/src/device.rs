@@ -36,11 +36,11 @@ pub trait Device {
 // ---------------------------------------------------------------------------------------------
 // Trajectory
 
-/// A trajectory CSV (`t_s,x_m,y_m,theta_rad`, strictly increasing finite times), linearly interpolated.
+/// A trajectory CSV (`t_s,x_m,y_m,theta_rad`, parsed by needlesim-trajectory), linearly
+/// interpolated, optionally replayed in a loop.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
-    t: Vec<f64>,
-    q: Vec<[f64; 3]>,
+    inner: needlesim_trajectory::Trajectory,
     /// Replay from the start after the end (else hold the last pose).
     pub looped: bool,
 }
@@ -53,69 +53,26 @@ impl Trajectory {
         Self::parse(&text, &path.display().to_string(), looped)
     }
 
-    /// Parses CSV text; `name` is used in error messages (`name:line: ...`).
+    /// Parses CSV text; `name` leads error messages (`name: trajectory line N: …`).
     pub fn parse(text: &str, name: &str, looped: bool) -> Result<Self> {
-        let mut rdr = csv::ReaderBuilder::new().has_headers(true).trim(csv::Trim::All).from_reader(text.as_bytes());
-        let header = rdr.headers().with_context(|| format!("{name}:1: cannot read the header"))?.clone();
-        let want = ["t_s", "x_m", "y_m", "theta_rad"];
-        if header.iter().collect::<Vec<_>>() != want {
-            bail!("{name}:1: header must be `t_s,x_m,y_m,theta_rad`, found `{}`", header.iter().collect::<Vec<_>>().join(","));
-        }
-        let (mut t, mut q) = (Vec::new(), Vec::new());
-        for rec in rdr.records() {
-            let rec = rec.map_err(|e| {
-                let line = e.position().map_or(0, |p| p.line());
-                anyhow!("{name}:{line}: {e}")
-            })?;
-            let line = rec.position().map_or(0, |p| p.line());
-            if rec.len() != 4 {
-                bail!("{name}:{line}: expected 4 fields, found {}", rec.len());
-            }
-            let mut v = [0.0; 4];
-            for (i, field) in rec.iter().enumerate() {
-                v[i] = field
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite())
-                    .ok_or_else(|| anyhow!("{name}:{line}: column {} (`{}`): `{field}` is not a finite number", i + 1, want[i]))?;
-            }
-            if let Some(&prev) = t.last()
-                && v[0] <= prev
-            {
-                bail!("{name}:{line}: t_s {} is not after the previous row's {prev}", v[0]);
-            }
-            t.push(v[0]);
-            q.push([v[1], v[2], v[3]]);
-        }
-        if t.is_empty() {
-            bail!("{name}: no rows after the header");
-        }
-        Ok(Self { t, q, looped })
+        let inner = needlesim_trajectory::Trajectory::parse_csv(text).map_err(|e| anyhow!("{name}: {e}"))?;
+        Ok(Self { inner, looped })
     }
 
     /// Duration from the first to the last row (s).
     pub fn duration_s(&self) -> f64 {
-        self.t[self.t.len() - 1] - self.t[0]
+        self.inner.duration_s()
     }
 
     /// Pose and velocity (slope of the segment) at time `t_s` (before the start: the first pose, at rest).
     pub fn sample(&self, t_s: f64) -> ([f64; 3], [f64; 3]) {
-        let (t0, d) = (self.t[0], self.duration_s());
+        let (t0, d) = (self.inner.span_s().0, self.duration_s());
         let mut t = t_s;
         if self.looped && d > 0.0 && t > t0 + d {
             t = t0 + (t - t0).rem_euclid(d);
         }
-        if t <= t0 || self.t.len() == 1 {
-            return (self.q[0], [0.0; 3]);
-        }
-        if t >= self.t[self.t.len() - 1] {
-            return (self.q[self.q.len() - 1], [0.0; 3]);
-        }
-        let i = self.t.partition_point(|&ti| ti <= t) - 1;
-        let (ta, tb) = (self.t[i], self.t[i + 1]);
-        let s = (t - ta) / (tb - ta);
-        let (a, b) = (self.q[i], self.q[i + 1]);
-        (std::array::from_fn(|k| a[k] + s * (b[k] - a[k])), std::array::from_fn(|k| (b[k] - a[k]) / (tb - ta)))
+        let (q, v) = self.inner.pose_and_velocity_at(t);
+        ([q.x_m, q.y_m, q.theta_rad], [v.x_m, v.y_m, v.theta_rad])
     }
 }
 
@@ -405,18 +362,14 @@ mod tests {
     #[test]
     fn trajectory_errors_name_file_and_line() {
         let e = |text: &str| Trajectory::parse(text, "traj.csv", false).unwrap_err().to_string();
-        assert_eq!(e("t,x,y,th\n0,0,0,0\n"), "traj.csv:1: header must be `t_s,x_m,y_m,theta_rad`, found `t,x,y,th`");
-        assert_eq!(e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,abc,0,0\n"), "traj.csv:3: column 2 (`x_m`): `abc` is not a finite number");
-        assert_eq!(e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n0,1,0,0\n"), "traj.csv:3: t_s 0 is not after the previous row's 0");
+        assert_eq!(e("t,x,y,th\n0,0,0,0\n"), "traj.csv: trajectory line 1: the header must be t_s,x_m,y_m,theta_rad, found t,x,y,th");
+        assert!(e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,abc,0,0\n").starts_with("traj.csv: trajectory line 3: column x_m"));
+        assert_eq!(e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n0,1,0,0\n"), "traj.csv: trajectory line 3: t_s = 0 does not increase (previous 0)");
         assert!(
-            e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,0,0\n").starts_with("traj.csv:3: "),
+            e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,0,0\n").starts_with("traj.csv: trajectory line 3: "),
             "{}",
             e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,0,0\n")
         );
-        assert_eq!(e("t_s,x_m,y_m,theta_rad\n"), "traj.csv: no rows after the header");
-        assert_eq!(e("t_s,x_m,y_m,theta_rad\n0,NaN,0,0\n"), "traj.csv:2: column 2 (`x_m`): `NaN` is not a finite number");
-        let missing = Trajectory::load("/nonexistent/traj.csv", false).unwrap_err();
-        assert!(format!("{missing:#}").contains("/nonexistent/traj.csv"), "{missing:#}");
     }
 
     #[test]

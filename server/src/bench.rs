@@ -38,7 +38,7 @@ use needlesim_core::{
 };
 use serde_json::{Value, json};
 
-use crate::exchange::{Load, PrescribedLocal, Scenario};
+use needlesim_scene::exchange::{Load, PrescribedLocal, Scenario};
 
 // ---------------------------------------------------------------------------------------------
 // Memory accounting.

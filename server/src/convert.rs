@@ -11,8 +11,8 @@ use needlesim_core::sim::{SimParams, StepOutput, TargetParams};
 use needlesim_core::{BasePose, Material, MaterialMap, Mesh, NeedleShape, PlaneModel, RegionNeedleParams, RigidNeedle};
 use needlesim_proto::v1 as pb;
 
-use crate::scene::{Scene, SceneLimits, Trajectory};
 use crate::status::quote;
+use needlesim_scene::{Scene, SceneLimits, Trajectory};
 
 /// The needle working-set capacity of an uploaded scene.
 const UPLOADED_MAX_NEEDLE_NODES: usize = 128;
@@ -129,7 +129,7 @@ pub fn mesh_to_pb(m: &Mesh) -> pb::Mesh {
 
 /// A trajectory from samples (errors name the sample).
 pub fn trajectory_from_pb(samples: &[pb::TrajectorySample]) -> Result<Trajectory> {
-    let mut out: Vec<(f64, BasePose)> = Vec::with_capacity(samples.len());
+    let mut out: Vec<(f64, needlesim_scene::Pose2)> = Vec::with_capacity(samples.len());
     for (i, s) in samples.iter().enumerate() {
         let base = s.base.as_ref().with_context(|| format!("trajectory[{i}].base is missing"))?;
         let p = pose_from_pb(base);
@@ -141,7 +141,7 @@ pub fn trajectory_from_pb(samples: &[pb::TrajectorySample]) -> Result<Trajectory
         {
             bail!("trajectory[{i}].t_s = {} does not increase (previous {t_prev})", s.t_s);
         }
-        out.push((s.t_s, p));
+        out.push((s.t_s, needlesim_scene::pose2(p)));
     }
     if out.is_empty() {
         bail!("trajectory is empty");
@@ -155,14 +155,14 @@ pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Res
     let src = src.and_then(|s| s.source.as_ref()).context("scene: one of example, scene_toml or uploaded is required")?;
     match src {
         pb::scene_source::Source::Example(name) => {
-            if !crate::scene::EXAMPLES.iter().any(|e| e.0 == name) {
-                let names: Vec<&str> = crate::scene::EXAMPLES.iter().map(|e| e.0).collect();
+            if !needlesim_scene::EXAMPLES.iter().any(|e| e.0 == name) {
+                let names: Vec<&str> = needlesim_scene::EXAMPLES.iter().map(|e| e.0).collect();
                 bail!("scene.example: '{}' is not a shipped example ({})", quote(name), names.join(", "));
             }
-            crate::scene::load_scene(name, limits)
+            needlesim_scene::load_scene(name, limits)
         }
         pb::scene_source::Source::SceneToml(text) => {
-            crate::scene::parse_scene(text, std::path::Path::new("/nonexistent"), limits).context("scene.scene_toml")
+            needlesim_scene::parse_scene(text, std::path::Path::new("/nonexistent"), limits).context("scene.scene_toml")
         }
         pb::scene_source::Source::Uploaded(u) => uploaded_scene(u, limits),
     }
@@ -212,8 +212,8 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
     if let Some(&n) = fixed.iter().find(|&&n| n >= m.n_nodes()) {
         bail!("scene.uploaded.fixed_nodes names node {n}, but the mesh has {} nodes", m.n_nodes());
     }
-    let mean_edge = crate::scene::mean_edge_m(&m);
-    crate::scene::check_session_memory(m.n_nodes(), UPLOADED_MAX_NEEDLE_NODES, scene_limits).context("scene.uploaded.mesh")?;
+    let mean_edge = needlesim_scene::mean_edge_m(&m);
+    needlesim_scene::check_session_memory(m.n_nodes(), UPLOADED_MAX_NEEDLE_NODES, scene_limits).context("scene.uploaded.mesh")?;
     let tissue = Arc::new(TissueModel::new(m, mats, &fixed).context("scene.uploaded (tissue model)")?);
     let d = RegionNeedleParams::default();
     let or = |v: f64, dflt: f64| if v == 0.0 { dflt } else { v };

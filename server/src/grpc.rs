@@ -46,8 +46,8 @@ pub struct ServerLimits {
 
 impl ServerLimits {
     /// What a scene loaded for a client may cost.
-    pub fn scene(&self) -> crate::scene::SceneLimits {
-        crate::scene::SceneLimits { mesh: self.mesh, max_session_bytes: self.max_session_bytes }
+    pub fn scene(&self) -> needlesim_scene::SceneLimits {
+        needlesim_scene::SceneLimits { mesh: self.mesh, max_session_bytes: self.max_session_bytes }
     }
 }
 
@@ -132,14 +132,14 @@ impl ServerState {
     }
 
     /// Starts a session and registers it.
-    pub fn create_session(&self, scene: &crate::scene::Scene, tick_rate_hz: f64) -> Result<Arc<Session>, Status> {
+    pub fn create_session(&self, scene: &needlesim_scene::Scene, tick_rate_hz: f64) -> Result<Arc<Session>, Status> {
         self.create_session_with(scene, tick_rate_hz, false)
     }
 
     /// Starts a session, with a shared-memory device channel when `device_channel`, and registers it.
     pub fn create_session_with(
         &self,
-        scene: &crate::scene::Scene,
+        scene: &needlesim_scene::Scene,
         tick_rate_hz: f64,
         device_channel: bool,
     ) -> Result<Arc<Session>, Status> {
@@ -152,7 +152,7 @@ impl ServerState {
     pub fn create_session_in(
         &self,
         mut slot: SessionSlot,
-        scene: &crate::scene::Scene,
+        scene: &needlesim_scene::Scene,
         tick_rate_hz: f64,
         device_channel: bool,
     ) -> Result<Arc<Session>, Status> {
@@ -491,8 +491,8 @@ fn control_refused(s: &Session, busy: crate::control_lease::Busy) -> Status {
 /// (`status::ApiError::from_chain`).
 pub(crate) async fn load_scene_from_pb(
     src: Option<pb::SceneSource>,
-    limits: crate::scene::SceneLimits,
-) -> Result<crate::scene::Scene, Status> {
+    limits: needlesim_scene::SceneLimits,
+) -> Result<needlesim_scene::Scene, Status> {
     tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
         .await
         .map_err(|e| Status::internal(format!("scene task: {e}")))?
@@ -632,7 +632,7 @@ impl pb::simulation_service_server::SimulationService for Api {
                 let text = scene
                     .example_trajectory
                     .ok_or_else(|| Status::invalid_argument("trajectory is empty and the scene is not a shipped example with its own"))?;
-                crate::scene::Trajectory::parse_csv(text).map_err(|e| Status::internal(format!("{e:#}")))?
+                needlesim_scene::Trajectory::parse_csv(text).map_err(|e| Status::internal(format!("{e:#}")))?
             } else {
                 convert::trajectory_from_pb(&r.trajectory).map_err(|e| status_of("trajectory", &e))?
             };
@@ -672,8 +672,8 @@ pub const SERIES_CHUNK_ROWS: usize = 1000;
 /// whatever the length: step times go into a histogram, not a list. Ends early, without error,
 /// when the client goes away.
 fn run_offline(
-    scene: &crate::scene::Scene,
-    traj: &crate::scene::Trajectory,
+    scene: &needlesim_scene::Scene,
+    traj: &needlesim_scene::Trajectory,
     decimate: u64,
     tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
 ) -> Result<(), needlesim_core::SimError> {
@@ -681,7 +681,7 @@ fn run_offline(
     let send = |event: Event| tx.blocking_send(Ok(pb::SimulateResponse { event: Some(event) })).is_ok();
     let started = std::time::Instant::now();
     let mut params = scene.params.clone();
-    params.initial_pose = traj.samples[0].1;
+    params.initial_pose = needlesim_scene::base_pose(traj.samples[0].1);
     let mut sim = needlesim_core::Simulation::new(scene.tissue.clone(), params)?;
     let rate = sim.params().tick_rate_hz;
     let (t0, t1) = traj.span_s();
@@ -694,7 +694,7 @@ fn run_offline(
             return Ok(()); // the client went away
         }
         let t = std::time::Instant::now();
-        let out = sim.step(traj.pose_at(t0 + k as f64 / rate))?;
+        let out = sim.step(needlesim_scene::base_pose(traj.pose_at(t0 + k as f64 / rate)))?;
         step_ns.saturating_record((t.elapsed().as_nanos() as u64).max(1));
         if k % decimate == 0 || k == n_ticks {
             chunk.push(convert::series_row(out, t0, &scene.target_names));

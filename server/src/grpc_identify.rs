@@ -72,10 +72,13 @@ where
 }
 
 /// The scene of a request and, when it has one, its TOML text (for the fitted scene).
-fn scene_of(src: Option<&pb::SceneSource>, limits: &crate::scene::SceneLimits) -> Result<(crate::scene::Scene, Option<String>), Status> {
+fn scene_of(
+    src: Option<&pb::SceneSource>,
+    limits: &needlesim_scene::SceneLimits,
+) -> Result<(needlesim_scene::Scene, Option<String>), Status> {
     let scene = crate::convert::scene_from_pb(src, limits).map_err(|e| status_of("scene", &e))?;
     let text = match src.and_then(|s| s.source.as_ref()) {
-        Some(pb::scene_source::Source::Example(name)) => crate::scene::EXAMPLES.iter().find(|e| e.0 == name).map(|e| e.1.to_owned()),
+        Some(pb::scene_source::Source::Example(name)) => needlesim_scene::EXAMPLES.iter().find(|e| e.0 == name).map(|e| e.1.to_owned()),
         Some(pb::scene_source::Source::SceneToml(t)) => Some(t.clone()),
         _ => None,
     };
@@ -170,7 +173,7 @@ impl pb::identify_service_server::IdentifyService for Api {
                             g.nx, g.ny, limits.mesh.max_nodes
                         )));
                     }
-                    crate::scene::check_session_memory((g.nx as usize).saturating_mul(g.ny as usize), 0, &limits)
+                    needlesim_scene::check_session_memory((g.nx as usize).saturating_mul(g.ny as usize), 0, &limits)
                         .map_err(|e| Status::from(ApiError::from(e)))?;
                     grid_model(&tracks, g.nx as usize, g.ny as usize, g.width_m, g.height_m, plane).map_err(invalid("grid"))?
                 }
@@ -178,7 +181,7 @@ impl pb::identify_service_server::IdentifyService for Api {
                     let (scene, _) = scene_of(r.scene.as_ref(), &limits)?;
                     let mesh = scene.tissue.mesh().clone();
                     let p0: Vec<[f64; 2]> = (0..tracks.n_markers).map(|m| tracks.position_m(0, m)).collect();
-                    let marker_node = register_markers(&mesh, &p0, 0.25 * crate::scene::mean_edge_m(&mesh)).map_err(invalid("scene"))?;
+                    let marker_node = register_markers(&mesh, &p0, 0.25 * needlesim_scene::mean_edge_m(&mesh)).map_err(invalid("scene"))?;
                     ProbeModel { plane: scene.tissue.materials().plane(), fixed_nodes: scene.fixed_nodes.clone(), marker_node, mesh }
                 }
                 _ => return Err(Status::invalid_argument("grid, scene: give exactly one model")),
@@ -213,9 +216,9 @@ impl pb::identify_service_server::IdentifyService for Api {
                 let text = scene.example_trajectory.ok_or_else(|| {
                     Status::invalid_argument("trajectory_csv is empty and the scene is not a shipped example with its own")
                 })?;
-                crate::scene::Trajectory::parse_csv(text).map_err(|e| Status::internal(format!("{e:#}")))?
+                needlesim_scene::Trajectory::parse_csv(text).map_err(|e| Status::internal(format!("{e:#}")))?
             } else {
-                crate::scene::Trajectory::parse_csv(&r.trajectory_csv).map_err(invalid("trajectory_csv"))?
+                needlesim_scene::Trajectory::parse_csv(&r.trajectory_csv).map_err(anyhow::Error::new).map_err(invalid("trajectory_csv"))?
             };
             let tracks = parse_tracks(&r.tracks_csv)?;
             let log = ForceLog::from_csv(&r.force_log_csv).map_err(invalid("force_log_csv"))?;

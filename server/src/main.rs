@@ -7,7 +7,8 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use needlesim_core::MeshLimits;
 
-use needlesim_server::{bench, exchange, grpc, plan, scene, serve, simulate};
+use needlesim_scene::{self as scene, exchange};
+use needlesim_server::{bench, grpc, plan, serve, simulate};
 
 /// Counts heap bytes for `bench`'s peak-memory figures (a relaxed atomic add per allocation).
 #[global_allocator]

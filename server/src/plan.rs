@@ -59,7 +59,7 @@ use needlesim_core::BasePose;
 use needlesim_core::sim::Simulation;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::{Scene, Trajectory};
+use needlesim_scene::{Scene, Trajectory};
 
 /// The shipped planning examples: (name, TOML). Each names its scene and gives the defaults of
 /// `needlesim-server plan` for it.
@@ -211,7 +211,7 @@ impl Plan {
 
     /// The trajectory as the scene module's type.
     pub fn trajectory(&self) -> Trajectory {
-        Trajectory::from_samples(self.trajectory.iter().map(|&[t, x, y, th]| (t, BasePose::new(x, y, th))).collect())
+        Trajectory::from_samples(self.trajectory.iter().map(|&[t, x, y, th]| (t, needlesim_scene::Pose2::new(x, y, th))).collect())
     }
 }
 
@@ -474,7 +474,7 @@ fn evaluate(scene: &Scene, p: &Problem, opts: &PlanOptions, u: f64, line: Line, 
     let start = base_at(-outside);
     let end = base_at(max_depth);
     let span = (outside + max_depth) / p.speed;
-    let traj = Trajectory::from_samples(vec![(0.0, start), (span, end)]);
+    let traj = Trajectory::from_samples(vec![(0.0, needlesim_scene::pose2(start)), (span, needlesim_scene::pose2(end))]);
     let mut params = scene.params.clone();
     params.initial_pose = start;
     let mut sim = Simulation::new(scene.tissue.clone(), params).context("simulation")?;
@@ -489,7 +489,7 @@ fn evaluate(scene: &Scene, p: &Problem, opts: &PlanOptions, u: f64, line: Line, 
             bail!("planning cancelled");
         }
         let tk = k as f64 / rate;
-        let pose = traj.pose_at(tk);
+        let pose = needlesim_scene::base_pose(traj.pose_at(tk));
         let out = sim.step(pose).with_context(|| format!("step at t = {tk:.4} s"))?;
         let tip = out.tip_m;
         let tg = out.targets.get(p.target_idx).context("the simulation reports no such target")?;
@@ -517,7 +517,7 @@ fn evaluate(scene: &Scene, p: &Problem, opts: &PlanOptions, u: f64, line: Line, 
         target,
         t_closest_s,
         start,
-        at_closest: traj.pose_at(t_closest_s),
+        at_closest: needlesim_scene::base_pose(traj.pose_at(t_closest_s)),
     })
 }
 
@@ -723,7 +723,7 @@ mod tests {
     use needlesim_core::MeshLimits;
 
     fn fig3() -> Scene {
-        crate::scene::load_scene("fig3-target", &MeshLimits::default()).unwrap()
+        needlesim_scene::load_scene("fig3-target", &MeshLimits::default()).unwrap()
     }
 
     #[test]
@@ -791,7 +791,7 @@ mod tests {
     #[test]
     fn an_unreachable_target_is_an_error() {
         let text = include_str!("../scenes/fig3-target.toml").replace("length_m = 0.1", "length_m = 0.03");
-        let scene = crate::scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
+        let scene = needlesim_scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
         let e = plan(&scene, &PlanRequest { target: "biopsy".into(), ..Default::default() }, &PlanOptions::default(), |_| {
             ControlFlow::Continue(())
         })

@@ -158,7 +158,7 @@ fn size_limit_status(mut resp: axum::response::Response) -> axum::response::Resp
 
 /// Plays `traj` on `session` in a loop (poses every 2 ms, interpolated) until a client sends a
 /// pose or the session closes.
-async fn play_demo(session: Arc<crate::session::Session>, traj: crate::scene::Trajectory) {
+async fn play_demo(session: Arc<crate::session::Session>, traj: needlesim_scene::Trajectory) {
     let (t0, t1) = traj.span_s();
     let mut interval = tokio::time::interval(std::time::Duration::from_millis(2));
     let start = tokio::time::Instant::now();
@@ -174,7 +174,11 @@ async fn play_demo(session: Arc<crate::session::Session>, traj: crate::scene::Tr
         }
         let t = t0 + start.elapsed().as_secs_f64() % (t1 - t0).max(1e-3);
         seq += 1;
-        session.write_pose_from_io(crate::session::PoseCommand { pose: traj.pose_at(t), seq, client_time_ns: 0 });
+        session.write_pose_from_io(crate::session::PoseCommand {
+            pose: needlesim_scene::base_pose(traj.pose_at(t)),
+            seq,
+            client_time_ns: 0,
+        });
     }
 }
 
@@ -185,7 +189,7 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
     let mut demo_session = None;
     let mut default_session = None;
     if let Some(name) = &config.default_scene {
-        let scene = crate::scene::load_scene(name, config.limits.scene())?;
+        let scene = needlesim_scene::load_scene(name, config.limits.scene())?;
         let rate = scene.params.tick_rate_hz;
         let s = state.create_session(&scene, rate).map_err(|e| anyhow::anyhow!("default session: {}", e.message()))?;
         // Tokens are never logged: their fingerprints are; the tokens go to the terminal once.
@@ -198,7 +202,7 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
             rate
         );
         if config.demo {
-            let traj = crate::scene::Trajectory::parse_csv(scene.example_trajectory.context("--demo needs a shipped example scene")?)?;
+            let traj = needlesim_scene::Trajectory::parse_csv(scene.example_trajectory.context("--demo needs a shipped example scene")?)?;
             tokio::spawn(play_demo(s.clone(), traj));
             demo_session = Some(s.clone());
         }

@@ -25,7 +25,7 @@ use needlesim_core::BasePose;
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::sim::{Divergence, NodeState, SimError, Simulation, StepOutput};
 
-use crate::scene::Scene;
+use needlesim_scene::Scene;
 
 /// Needle nodes carried by one tick record (a simulation may have more; they are counted).
 pub const MAX_RECORD_NODES: usize = 128;

@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 use anyhow::{Context, Result};
 use needlesim_core::sim::{SimError, Simulation, StateSnapshot};
 
-use crate::exchange::{Load, PrescribedLocal, Scenario};
-use crate::scene::{Scene, Trajectory};
+use needlesim_scene::exchange::{Load, PrescribedLocal, Scenario};
+use needlesim_scene::{Scene, Trajectory};
 
 /// The longest offline simulation, in ticks, by default: the server's Simulate limit and the
 /// `simulate` command's `--max-ticks` (10⁶ ticks: 1000 s at 1 kHz, 8 MB of step times).
@@ -43,7 +43,7 @@ pub fn csv_header(target_names: &[String]) -> String {
 /// ([`SimError::Diverged`]) stops the run with an error naming the tick and time.
 pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mut String>) -> Result<(Simulation, RunSummary)> {
     let mut params = scene.params.clone();
-    params.initial_pose = traj.samples[0].1;
+    params.initial_pose = needlesim_scene::base_pose(traj.samples[0].1);
     let rate = params.tick_rate_hz;
     let (t0, _) = traj.span_s();
     let n_ticks = traj.tick_count(rate, max_ticks)?;
@@ -56,7 +56,7 @@ pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mu
     let mut clamp_run_start: Option<u64> = None;
     for k in 0..=n_ticks {
         let t = t0 + k as f64 / rate;
-        let pose = traj.pose_at(t);
+        let pose = needlesim_scene::base_pose(traj.pose_at(t));
         let started = std::time::Instant::now();
         let out = match sim.step(pose) {
             Ok(o) => o,

@@ -16,38 +16,10 @@ use tonic::Status;
 use crate::recording::RecordingError;
 use crate::session::SessionError;
 
-/// Characters of client input a message quotes before cutting it with "…".
-pub const MAX_QUOTE_CHARS: usize = 64;
+pub use needlesim_scene::limit::{MAX_QUOTE_CHARS, SizeLimit, clip, quote};
+
 /// The longest status message, in characters (gRPC metadata must stay small).
 pub const MAX_MESSAGE_CHARS: usize = 1024;
-
-/// At most [`MAX_QUOTE_CHARS`] characters of `s`, with "…" when cut.
-pub fn quote(s: &str) -> String {
-    clip(s, MAX_QUOTE_CHARS)
-}
-
-/// At most `n` characters of `s`, with "…" appended when cut.
-pub fn clip(s: &str, n: usize) -> String {
-    match s.char_indices().nth(n) {
-        None => s.to_owned(),
-        Some((i, _)) => format!("{}…", &s[..i]),
-    }
-}
-
-/// A request over a size limit of the server: the typed cause of RESOURCE_EXHAUSTED, also inside
-/// `anyhow` chains (scene loading).
-#[derive(Debug, Clone, thiserror::Error)]
-#[error("{what} is {amount} {unit}, over the limit of {limit} {unit}{hint}")]
-pub struct SizeLimit {
-    /// What is too large, e.g. "the scene's estimated memory".
-    pub what: String,
-    pub amount: u64,
-    pub limit: u64,
-    /// The unit of `amount` and `limit`, e.g. "MiB", "ticks", "pixels".
-    pub unit: &'static str,
-    /// Appended to the message, e.g. " (flag --max-session-memory-mb)".
-    pub hint: String,
-}
 
 /// An error of a call, by the status it answers.
 #[derive(Debug, Clone)]

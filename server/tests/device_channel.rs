@@ -41,7 +41,7 @@ fn drive_buttons(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64, butt
 
 #[test]
 fn device_drives_goes_stale_and_reattaches() {
-    let scene = needlesim_server::scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
+    let scene = needlesim_scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
     let dir = std::env::temp_dir().join(format!("needlesim-device-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
@@ -97,7 +97,7 @@ fn device_drives_goes_stale_and_reattaches() {
 #[test]
 fn issue_8_device_button_flips_the_bevel() {
     let text = include_str!("../scenes/fig4-steering.toml").replace("gauge = 22", "gauge = 22\nbevel_force_ratio = 0.3");
-    let scene = needlesim_server::scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
+    let scene = needlesim_scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
     let dir = std::env::temp_dir().join(format!("needlesim-device-bevel-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
@@ -131,7 +131,7 @@ fn issue_8_device_button_flips_the_bevel() {
 #[test]
 fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
     use needlesim_bridge::shm::{Broken, ReadStatus};
-    let scene = needlesim_server::scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
+    let scene = needlesim_scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
     let dir = std::env::temp_dir().join(format!("needlesim-device-broken-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for (kind, cause) in [("truncate", Broken::Faulted), ("delete", Broken::Deleted)] {
@@ -192,7 +192,7 @@ fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
 #[test]
 fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
     let text = include_str!("../scenes/fig4-steering.toml").replace("friction_n_per_m = 10\n", "friction_n_per_m = 1e4\n");
-    let scene = needlesim_server::scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
+    let scene = needlesim_scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
     let dir = std::env::temp_dir().join(format!("needlesim-device-fault-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let pose_at = |t: f64| {

@@ -21,17 +21,13 @@
 
 mod fuzz;
 
-#[path = "../../client/src/traj.rs"]
-#[allow(dead_code)]
-mod client_traj;
-
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Duration;
 
 use fuzz::{Target, Verdict, verdict};
 use needlesim_core::MeshLimits;
-use needlesim_server::exchange::{Scenario, solve_scenario};
+use needlesim_scene::exchange::{Scenario, solve_scenario};
 use needlesim_server::identify::experiment::{ForceLog, ProbeLog};
 use needlesim_server::identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
 use needlesim_server::identify::tracks::MarkerTracks;
@@ -310,7 +306,7 @@ fn generate_scene(rng: &mut SmallRng) -> Vec<u8> {
 }
 
 fn check_scene(input: &[u8]) -> Verdict {
-    verdict(needlesim_server::scene::parse_scene(&fuzz::text(input), &scene_base_dir(), &SOLVE_LIMITS), |scene| {
+    verdict(needlesim_scene::parse_scene(&fuzz::text(input), &scene_base_dir(), &SOLVE_LIMITS), |scene| {
         let n = scene.tissue.mesh().n_nodes();
         if n == 0 || scene.fixed_nodes.iter().any(|&i| i >= n) {
             return Err(format!("accepted a scene of {n} nodes with fixed nodes {:?}", scene.fixed_nodes));
@@ -415,23 +411,15 @@ fn valid_samples<P>(samples: &[(f64, P)], pose: fn(&P) -> [f64; 3]) -> Verdict {
     Ok(())
 }
 
-fn check_traj_server(input: &[u8]) -> Verdict {
-    verdict(needlesim_server::scene::Trajectory::parse_csv(&fuzz::text(input)), |tr| {
-        valid_samples(&tr.samples, |p| [p.x_m, p.y_m, p.theta_rad])
-    })
-}
-
-fn check_traj_client(input: &[u8]) -> Verdict {
-    verdict(client_traj::Trajectory::parse(&fuzz::text(input)), |tr| valid_samples(&tr.samples, |p| [p.x_m, p.y_m, p.theta_rad]))
-}
-
-fn check_traj_bridge(input: &[u8]) -> Verdict {
-    verdict(needlesim_bridge::device::Trajectory::parse(&fuzz::text(input), "fuzz.csv", false), |tr| {
-        // The fields are private: sample the trajectory at and around its ends instead.
-        let d = tr.duration_s();
-        let (q, v) = tr.sample(0.5 * d);
-        if !(d.is_finite() && d >= 0.0 && finite(&q) && q.iter().chain(&v).all(|x| !x.is_nan())) {
-            return Err(format!("accepted a trajectory of duration {d} s sampling to {q:?}, {v:?}"));
+/// The one trajectory parser (needlesim-trajectory), which the scene, the CLI and the device
+/// bridge all use.
+fn check_traj(input: &[u8]) -> Verdict {
+    verdict(needlesim_trajectory::Trajectory::parse_csv(&fuzz::text(input)), |tr| {
+        valid_samples(&tr.samples, |p| [p.x_m, p.y_m, p.theta_rad])?;
+        let (t0, t1) = tr.span_s();
+        let (q, v) = tr.pose_and_velocity_at(0.5 * (t0 + t1));
+        if !(finite(&[q.x_m, q.y_m, q.theta_rad]) && [v.x_m, v.y_m, v.theta_rad].iter().all(|x| !x.is_nan())) {
+            return Err(format!("accepted a trajectory sampling to {q:?}, {v:?}"));
         }
         Ok(())
     })
@@ -708,9 +696,7 @@ fn all_targets() -> Vec<Target> {
     vec![
         msh_target(),
         scene_target(),
-        traj_target("trajectory-server", check_traj_server),
-        traj_target("trajectory-client", check_traj_client),
-        traj_target("trajectory-bridge", check_traj_bridge),
+        traj_target("trajectory", check_traj),
         exchange_target(),
         tracks_target(),
         logs_target(),
@@ -729,18 +715,8 @@ fn issue_13_fuzz_scene_toml() {
 }
 
 #[test]
-fn issue_13_fuzz_trajectory_csv_server() {
-    traj_target("trajectory-server", check_traj_server).run_bounded();
-}
-
-#[test]
-fn issue_13_fuzz_trajectory_csv_client() {
-    traj_target("trajectory-client", check_traj_client).run_bounded();
-}
-
-#[test]
-fn issue_13_fuzz_trajectory_csv_bridge() {
-    traj_target("trajectory-bridge", check_traj_bridge).run_bounded();
+fn issue_13_fuzz_trajectory_csv() {
+    traj_target("trajectory", check_traj).run_bounded();
 }
 
 #[test]

@@ -41,7 +41,7 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn real_time_ticks_allocate_nothing_after_warm_up() {
-    let scene = needlesim_server::scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
+    let scene = needlesim_scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
     // Driven through the shared-memory device channel, as a haptic device bridge drives it.
     let dir = std::env::temp_dir().join(format!("needlesim-rt-alloc-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

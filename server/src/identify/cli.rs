@@ -335,10 +335,10 @@ fn run_probe(a: ProbeArgs) -> anyhow::Result<()> {
     let model = match (&a.grid, &a.scene) {
         (Some((nx, ny, w, h)), _) => grid_model(&tracks, *nx, *ny, *w, *h, plane_of(&a.plane, a.thickness_m)?)?,
         (None, Some(spec)) => {
-            let scene = crate::scene::load_scene(spec, &needlesim_core::MeshLimits::default())?;
+            let scene = needlesim_scene::load_scene(spec, &needlesim_core::MeshLimits::default())?;
             let mesh = scene.tissue.mesh().clone();
             let p0: Vec<[f64; 2]> = (0..tracks.n_markers).map(|m| tracks.position_m(0, m)).collect();
-            let marker_node = register_markers(&mesh, &p0, 0.25 * crate::scene::mean_edge_m(&mesh))?;
+            let marker_node = register_markers(&mesh, &p0, 0.25 * needlesim_scene::mean_edge_m(&mesh))?;
             ProbeModel { plane: scene.tissue.materials().plane(), fixed_nodes: scene.fixed_nodes.clone(), marker_node, mesh }
         }
         (None, None) => anyhow::bail!("give --grid or --scene"),
@@ -388,7 +388,7 @@ pub struct NeedleArgs {
 
 /// The base scene's TOML text: the file, or the shipped example's.
 fn scene_text(spec: &str) -> anyhow::Result<String> {
-    if let Some(e) = crate::scene::EXAMPLES.iter().find(|e| e.0 == spec) {
+    if let Some(e) = needlesim_scene::EXAMPLES.iter().find(|e| e.0 == spec) {
         return Ok(e.1.to_owned());
     }
     read_text(std::path::Path::new(spec))
@@ -397,10 +397,10 @@ fn scene_text(spec: &str) -> anyhow::Result<String> {
 fn run_needle(a: NeedleArgs) -> anyhow::Result<()> {
     use super::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
     use anyhow::Context;
-    let scene = crate::scene::load_scene(&a.scene, &needlesim_core::MeshLimits::default())?;
+    let scene = needlesim_scene::load_scene(&a.scene, &needlesim_core::MeshLimits::default())?;
     let traj = match (&a.trajectory, scene.example_trajectory) {
-        (Some(p), _) => crate::scene::Trajectory::parse_csv(&read_text(p)?).with_context(|| p.display().to_string())?,
-        (None, Some(text)) => crate::scene::Trajectory::parse_csv(text)?,
+        (Some(p), _) => needlesim_scene::Trajectory::parse_csv(&read_text(p)?).with_context(|| p.display().to_string())?,
+        (None, Some(text)) => needlesim_scene::Trajectory::parse_csv(text)?,
         (None, None) => anyhow::bail!("--trajectory is needed: the scene is not a shipped example with its own"),
     };
     let tracks = read_tracks(&a.tracks)?;
@@ -421,7 +421,7 @@ fn run_needle(a: NeedleArgs) -> anyhow::Result<()> {
     if let Some(out) = &a.scene_out {
         let text = write_fitted_scene(&scene_text(&a.scene)?, &fit.region, &fit)?;
         // The written scene must load (a relative mesh file must still resolve from its directory).
-        crate::scene::parse_scene(&text, out.parent().unwrap_or(std::path::Path::new(".")), &needlesim_core::MeshLimits::default())
+        needlesim_scene::parse_scene(&text, out.parent().unwrap_or(std::path::Path::new(".")), &needlesim_core::MeshLimits::default())
             .context("the fitted scene does not load")?;
         std::fs::write(out, text).with_context(|| format!("cannot write {}", out.display()))?;
     }
@@ -576,10 +576,10 @@ fn run_synth(cmd: SynthCommand) -> anyhow::Result<()> {
             );
         }
         SynthCommand::Needle(a) => {
-            let scene = crate::scene::load_scene(&a.scene, &needlesim_core::MeshLimits::default())?;
+            let scene = needlesim_scene::load_scene(&a.scene, &needlesim_core::MeshLimits::default())?;
             let traj = match (&a.trajectory, scene.example_trajectory) {
-                (Some(p), _) => crate::scene::Trajectory::parse_csv(&read_text(p)?).with_context(|| p.display().to_string())?,
-                (None, Some(text)) => crate::scene::Trajectory::parse_csv(text)?,
+                (Some(p), _) => needlesim_scene::Trajectory::parse_csv(&read_text(p)?).with_context(|| p.display().to_string())?,
+                (None, Some(text)) => needlesim_scene::Trajectory::parse_csv(text)?,
                 (None, None) => anyhow::bail!("--trajectory is needed: the scene is not a shipped example with its own"),
             };
             let p = NeedleSynthParams {

@@ -27,7 +27,7 @@ use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
 use super::tracks::MarkerTracks;
-use crate::scene::{Scene, Trajectory};
+use needlesim_scene::{Scene, Trajectory};
 
 /// Seeded Gaussian noise (Box–Muller on a small fast generator).
 pub struct Noise {
@@ -398,7 +398,7 @@ pub fn synth_needle(scene: &Scene, traj: &Trajectory, p: &NeedleSynthParams) -> 
         t1 = t1.min(te);
     }
     let mut params = scene.params.clone();
-    params.initial_pose = traj.samples[0].1;
+    params.initial_pose = needlesim_scene::base_pose(traj.samples[0].1);
     let mut sim = Simulation::new(scene.tissue.clone(), params).context("simulation")?;
     let rate = sim.params().tick_rate_hz;
     let n_ticks = ((t1 - t0) * rate).round() as u64;
@@ -410,7 +410,7 @@ pub fn synth_needle(scene: &Scene, traj: &Trajectory, p: &NeedleSynthParams) -> 
     let mut log = ForceLog::default();
     for k in 0..=n_ticks {
         let t = k as f64 / rate;
-        let out = sim.step(traj.pose_at(t0 + t)).with_context(|| format!("step at t = {:.4} s", t0 + t))?;
+        let out = sim.step(needlesim_scene::base_pose(traj.pose_at(t0 + t))).with_context(|| format!("step at t = {:.4} s", t0 + t))?;
         let (force, depth) = (out.force_n, out.inserted_length_m);
         sim.prefetch_columns(8).context("columns")?;
         // A sample is due when its time is within half a tick of this tick.

@@ -36,7 +36,7 @@ use serde::Serialize;
 use super::experiment::{ForceLog, interp};
 use super::probe::register_markers;
 use super::tracks::MarkerTracks;
-use crate::scene::{Scene, Trajectory};
+use needlesim_scene::{Scene, Trajectory};
 
 /// Fit options.
 #[derive(Debug, Clone, Default)]
@@ -166,7 +166,7 @@ pub fn fit_needle(
     if nf < 2 {
         bail!("the marker tracks have {nf} frame(s): the fit needs at least 2 (the reference frame 0 and a loaded one)");
     }
-    let edge = crate::scene::mean_edge_m(mesh);
+    let edge = needlesim_scene::mean_edge_m(mesh);
     if tracks.n_markers != n {
         bail!(
             "the tracks have {} markers for {n} mesh nodes: the nodal forces f = K u need the displacement of every node (a marker on each)",
@@ -204,7 +204,7 @@ pub fn fit_needle(
         if t < a || t > b {
             continue;
         }
-        let pose = traj.pose_at(t);
+        let pose = needlesim_scene::base_pose(traj.pose_at(t));
         let (pp, pm) = (traj.pose_at(t + 1e-3), traj.pose_at(t - 1e-3));
         let ax = pose.axis();
         let v_axial = ((pp.x_m - pm.x_m) * ax[0] + (pp.y_m - pm.y_m) * ax[1]) / 2e-3;
@@ -298,7 +298,7 @@ pub fn fit_needle(
         let shape_of = |o: &Obs| (o.seg[1] - o.seg[0]) + h * peak_term(w, o.seg[0], o.seg[1]);
         let (num, den) = obs.iter().fold((0.0, 0.0), |acc, o| (acc.0 + shape_of(o) * o.a, acc.1 + shape_of(o) * shape_of(o)));
         let fl = interp(&log.times_s, &log.force_n, *t);
-        let pose = traj.pose_at(*t);
+        let pose = needlesim_scene::base_pose(traj.pose_at(*t));
         let ax = pose.axis();
         let base_axial = -(fl[0] * ax[0] + fl[1] * ax[1]);
         diff2 += (sum - base_axial).powi(2);
@@ -417,7 +417,7 @@ mod tests {
 
     #[test]
     fn recovers_friction_and_peak_from_a_synthetic_insertion() {
-        let scene = crate::scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
+        let scene = needlesim_scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
         let traj = Trajectory::parse_csv(scene.example_trajectory.unwrap()).unwrap();
         let p = NeedleSynthParams { t_end_s: Some(4.0), ..Default::default() };
         let ex = synth_needle(&scene, &traj, &p).unwrap();

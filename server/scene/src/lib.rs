@@ -1,5 +1,10 @@
-//! Scene files (TOML, edited by users) and their conversion to the core's tissue model and
-//! simulation parameters. Shipped examples live in server/scenes and are embedded in the binary.
+//! needlesim-scene: the file formats of the solver's inputs. Scene files (TOML, edited by users)
+//! and their conversion to the core's tissue model and simulation parameters; the exchange format
+//! of the validation suite ([`exchange`]); base trajectories ([`Trajectory`], from
+//! needlesim-trajectory). Shipped examples live in server/scenes and are embedded in the binary.
+
+pub mod exchange;
+pub mod limit;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -14,14 +19,15 @@ use needlesim_core::{
 };
 use serde::Deserialize;
 
-use crate::status::SizeLimit;
+pub use limit::SizeLimit;
+pub use needlesim_trajectory::{Pose2, Trajectory, TrajectoryError};
 
 /// The shipped examples: (name, scene TOML, trajectory CSV).
 pub const EXAMPLES: &[(&str, &str, &str)] = &[
-    ("paper-phantom", include_str!("../scenes/paper-phantom.toml"), include_str!("../scenes/paper-phantom.csv")),
-    ("fig3-target", include_str!("../scenes/fig3-target.toml"), include_str!("../scenes/fig3-target.csv")),
-    ("fig4-steering", include_str!("../scenes/fig4-steering.toml"), include_str!("../scenes/fig4-steering.csv")),
-    ("bevel-tip", include_str!("../scenes/bevel-tip.toml"), include_str!("../scenes/bevel-tip.csv")),
+    ("paper-phantom", include_str!("../../scenes/paper-phantom.toml"), include_str!("../../scenes/paper-phantom.csv")),
+    ("fig3-target", include_str!("../../scenes/fig3-target.toml"), include_str!("../../scenes/fig3-target.csv")),
+    ("fig4-steering", include_str!("../../scenes/fig4-steering.toml"), include_str!("../../scenes/fig4-steering.csv")),
+    ("bevel-tip", include_str!("../../scenes/bevel-tip.toml"), include_str!("../../scenes/bevel-tip.csv")),
 ];
 
 /// A scene as written in TOML.
@@ -396,7 +402,7 @@ pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) 
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
     }
-    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", crate::status::clip(e.to_string().trim_end(), 512)))?;
+    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
     build_scene(&file, base_dir, &limits.into())
 }
 
@@ -583,7 +589,7 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
 
 /// The mean edge length of a mesh's triangles (each shared edge counted twice), the scale of
 /// the default capture radius.
-pub(crate) fn mean_edge_m(mesh: &Mesh) -> f64 {
+pub fn mean_edge_m(mesh: &Mesh) -> f64 {
     let mut sum = 0.0;
     for t in mesh.triangles() {
         for k in 0..3 {
@@ -617,161 +623,19 @@ fn assign_disc_regions(mesh: Mesh, regions: &[RegionSpec], limits: &MeshLimits) 
     Ok(Mesh::with_regions(mesh.nodes_m().to_vec(), mesh.triangles().to_vec(), region_of_tri, names, mesh.boundary_sets().clone(), limits)?)
 }
 
-/// A base trajectory: samples of `t_s,x_m,y_m,theta_rad`, strictly increasing in time.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Trajectory {
-    pub samples: Vec<(f64, BasePose)>,
-    /// The line of the last sample in the CSV it was read from (None when not read from text).
-    pub end_line: Option<u64>,
+/// The core's base pose of a trajectory's pose.
+pub fn base_pose(p: Pose2) -> BasePose {
+    BasePose::new(p.x_m, p.y_m, p.theta_rad)
 }
 
-#[derive(Debug, Deserialize)]
-struct TrajRow {
-    t_s: f64,
-    x_m: f64,
-    y_m: f64,
-    theta_rad: f64,
-}
-
-impl Trajectory {
-    /// Parses the CSV; errors name the line and the column.
-    pub fn parse_csv(text: &str) -> Result<Self> {
-        let mut rdr = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
-        let headers = rdr.headers().context("trajectory: cannot read the header")?.clone();
-        let expect = ["t_s", "x_m", "y_m", "theta_rad"];
-        if headers.iter().collect::<Vec<_>>() != expect {
-            bail!("trajectory: the header must be t_s,x_m,y_m,theta_rad, found {}", headers.iter().collect::<Vec<_>>().join(","));
-        }
-        let mut samples: Vec<(f64, BasePose)> = Vec::new();
-        let mut end_line = 0;
-        let mut record = csv::StringRecord::new();
-        // Line numbers from byte offsets, counting comment lines too (the reader's own count
-        // skips them); newlines are counted once, from the previous record on.
-        let (mut counted_byte, mut counted_line) = (0usize, 1u64);
-        let mut line_at = |byte: u64| {
-            // A record's position can be that of comment or blank lines before it: skip them.
-            let mut byte = (byte as usize).min(text.len());
-            loop {
-                match text.as_bytes().get(byte) {
-                    Some(b'#') => byte = text[byte..].find('\n').map_or(text.len(), |i| byte + i + 1),
-                    Some(b'\n' | b'\r') => byte += 1,
-                    _ => break,
-                }
-            }
-            if byte > counted_byte {
-                counted_line += text.as_bytes()[counted_byte..byte].iter().filter(|&&b| b == b'\n').count() as u64;
-                counted_byte = byte;
-            }
-            counted_line
-        };
-        loop {
-            let more = match rdr.read_record(&mut record) {
-                Ok(more) => more,
-                Err(e) => {
-                    let line = e.position().map_or(0, |p| line_at(p.byte()));
-                    bail!("trajectory line {line}: {}", csv_kind(&e));
-                }
-            };
-            if !more {
-                break;
-            }
-            let line = record.position().map_or(0, |p| line_at(p.byte()));
-            let row: TrajRow =
-                record.deserialize(Some(&headers)).map_err(|e| anyhow::anyhow!("trajectory line {line}: {}", csv_kind(&e)))?;
-            for (name, v) in [("t_s", row.t_s), ("x_m", row.x_m), ("y_m", row.y_m), ("theta_rad", row.theta_rad)] {
-                if !v.is_finite() {
-                    bail!("trajectory row {} (line {line}): {name} is {v}, not a finite number", samples.len() + 1);
-                }
-            }
-            if let Some(&(t_prev, _)) = samples.last()
-                && row.t_s <= t_prev
-            {
-                bail!("trajectory line {line}: t_s = {} does not increase (previous {t_prev})", row.t_s);
-            }
-            samples.push((row.t_s, BasePose::new(row.x_m, row.y_m, row.theta_rad)));
-            end_line = line;
-        }
-        if samples.is_empty() {
-            bail!("trajectory: no samples");
-        }
-        Ok(Self { samples, end_line: Some(end_line) })
-    }
-
-    /// A trajectory from samples not read from text.
-    pub fn from_samples(samples: Vec<(f64, BasePose)>) -> Self {
-        Self { samples, end_line: None }
-    }
-
-    /// The number of ticks from the first to the last sample at `rate_hz`, if at most
-    /// `max_ticks`; otherwise an error naming the last sample's line. Computed in floating point
-    /// and compared before any conversion, so no end time overflows the count.
-    pub fn tick_count(&self, rate_hz: f64, max_ticks: u64) -> Result<u64> {
-        let (t0, t1) = self.span_s();
-        let ticks = ((t1 - t0) * rate_hz).round();
-        if ticks.is_nan() || ticks > max_ticks as f64 {
-            let at = match self.end_line {
-                Some(l) => format!("trajectory line {l}"),
-                None => format!("trajectory[{}]", self.samples.len() - 1),
-            };
-            bail!(
-                "{at}: t_s = {t1:e} ends {:e} s after the first sample, {ticks:e} ticks at {rate_hz} Hz: over the limit of {max_ticks} ticks (--max-ticks)",
-                t1 - t0
-            );
-        }
-        Ok(ticks as u64)
-    }
-
-    /// The pose at time `t_s`, linearly interpolated (held constant beyond the ends).
-    pub fn pose_at(&self, t_s: f64) -> BasePose {
-        let s = &self.samples;
-        if t_s <= s[0].0 {
-            return s[0].1;
-        }
-        let k = s.partition_point(|(t, _)| *t <= t_s);
-        if k >= s.len() {
-            return s[s.len() - 1].1;
-        }
-        let (t0, a) = s[k - 1];
-        let (t1, b) = s[k];
-        let w = (t_s - t0) / (t1 - t0);
-        BasePose::new(a.x_m + w * (b.x_m - a.x_m), a.y_m + w * (b.y_m - a.y_m), a.theta_rad + w * (b.theta_rad - a.theta_rad))
-    }
-
-    /// Start and end time.
-    pub fn span_s(&self) -> (f64, f64) {
-        (self.samples[0].0, self.samples[self.samples.len() - 1].0)
-    }
-}
-
-fn csv_kind(e: &csv::Error) -> String {
-    match e.kind() {
-        csv::ErrorKind::Deserialize { err, .. } => {
-            let field = err.field().map(|f| ["t_s", "x_m", "y_m", "theta_rad"].get(f as usize).copied().unwrap_or("?")).unwrap_or("?");
-            format!("column {field}: {}", err.kind())
-        }
-        csv::ErrorKind::UnequalLengths { expected_len, len, .. } => format!("{len} fields where the header has {expected_len}"),
-        _ => e.to_string(),
-    }
+/// A trajectory's pose of the core's base pose.
+pub fn pose2(p: BasePose) -> Pose2 {
+    Pose2::new(p.x_m, p.y_m, p.theta_rad)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn trajectory_interpolates_and_rejects_bad_rows() {
-        let t = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,1,2,0.5\n").unwrap();
-        assert_eq!(t.pose_at(0.5), BasePose::new(0.5, 1.0, 0.25));
-        assert_eq!(t.pose_at(7.0), BasePose::new(1.0, 2.0, 0.5));
-        let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,NaN,2,0\n").unwrap_err();
-        assert!(e.to_string().contains("(line 3): x_m is NaN"), "{e}");
-        let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,0,0\n0,1,2,0\n").unwrap_err();
-        assert!(e.to_string().contains("line 3: t_s = 0 does not increase"), "{e}");
-        let e = Trajectory::parse_csv("t,x,y\n0,0,0\n").unwrap_err();
-        assert!(e.to_string().contains("header must be t_s,x_m,y_m,theta_rad"), "{e}");
-        let e = Trajectory::parse_csv("t_s,x_m,y_m,theta_rad\n0,0,abc,0\n").unwrap_err();
-        assert!(e.to_string().contains("line 2: column y_m"), "{e}");
-    }
 
     #[test]
     fn shipped_examples_load() {
@@ -790,7 +654,7 @@ mod tests {
     /// parser stays within it, past it the scene is refused before parsing.
     #[test]
     fn issue_13_bracket_count_bounds_the_toml_parsers_recursion() {
-        let base = include_str!("../scenes/paper-phantom.toml");
+        let base = include_str!("../../scenes/paper-phantom.toml");
         let run = |text: String| {
             std::thread::Builder::new()
                 .stack_size(2 << 20)
@@ -816,7 +680,7 @@ mod tests {
     #[test]
     fn issue_13_session_memory_estimate_refuses_a_31_by_31000_grid_and_fits_400_by_400() {
         let server = SceneLimits { mesh: MeshLimits::default(), max_session_bytes: 1280 << 20 };
-        let base = include_str!("../scenes/paper-phantom.toml");
+        let base = include_str!("../../scenes/paper-phantom.toml");
         let huge = base.replace("nx = 19", "nx = 31").replace("ny = 19", "ny = 31000");
         let e = parse_scene(&huge, Path::new("."), server).err().unwrap();
         let size = e.chain().find_map(|c| c.downcast_ref::<SizeLimit>()).unwrap_or_else(|| panic!("not a size limit: {e:#}"));
@@ -833,7 +697,7 @@ mod tests {
 
     #[test]
     fn scene_errors_name_the_field() {
-        let base = include_str!("../scenes/paper-phantom.toml");
+        let base = include_str!("../../scenes/paper-phantom.toml");
         let lim = MeshLimits::default();
         let e = parse_scene(&base.replace("young_modulus_pa = 30e3", "young_modulus_pa = -1"), Path::new("."), &lim).err().unwrap();
         assert!(format!("{e:#}").contains("Young's modulus E = -1"), "{e:#}");
@@ -847,7 +711,7 @@ mod tests {
 
     /// The scene with `old` replaced by `new` (which must occur), parsed; the error's text.
     fn scene_error(old: &str, new: &str) -> String {
-        let base = include_str!("../scenes/paper-phantom.toml");
+        let base = include_str!("../../scenes/paper-phantom.toml");
         assert!(base.contains(old), "{old}");
         let e = parse_scene(&base.replace(old, new), Path::new("."), &MeshLimits::default()).err().expect("the scene must be rejected");
         format!("{e:#}")

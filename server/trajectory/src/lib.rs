@@ -1,0 +1,280 @@
+//! Base trajectories: the `t_s,x_m,y_m,theta_rad` CSV that scenes, the CLI (`needlesim simulate`)
+//! and the device bridge's scripted devices read, parsed in one place with errors that name the
+//! line and the column.
+//!
+//! A trajectory is a list of samples $(t_k, x_k, y_k, \theta_k)$, strictly increasing in time;
+//! between samples the pose is interpolated linearly,
+//! $q(t) = q_k + \frac{t - t_k}{t_{k+1} - t_k}(q_{k+1} - q_k)$, and held constant beyond the ends.
+
+use serde::Deserialize;
+
+/// The column names, in order, of the CSV header.
+pub const HEADER: [&str; 4] = ["t_s", "x_m", "y_m", "theta_rad"];
+
+/// A planar base pose: position (m) and the needle's angle to the +y axis (rad).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pose2 {
+    pub x_m: f64,
+    pub y_m: f64,
+    pub theta_rad: f64,
+}
+
+impl Pose2 {
+    pub fn new(x_m: f64, y_m: f64, theta_rad: f64) -> Self {
+        Self { x_m, y_m, theta_rad }
+    }
+
+    /// `self + w (other − self)`, component by component.
+    fn lerp(self, other: Self, w: f64) -> Self {
+        Self::new(
+            self.x_m + w * (other.x_m - self.x_m),
+            self.y_m + w * (other.y_m - self.y_m),
+            self.theta_rad + w * (other.theta_rad - self.theta_rad),
+        )
+    }
+}
+
+/// Why a trajectory was refused; each names where.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TrajectoryError {
+    /// The first line is not `t_s,x_m,y_m,theta_rad` (or cannot be read).
+    #[error("trajectory line 1: the header must be t_s,x_m,y_m,theta_rad, found {found}")]
+    Header { found: String },
+    /// A row cannot be read: a field that is not a number, a wrong number of fields, bad UTF-8.
+    #[error("trajectory line {line}: {message}")]
+    Row { line: u64, message: String },
+    /// A value is NaN or infinite; `row` counts samples from 1.
+    #[error("trajectory row {row} (line {line}): {column} is {value}, not a finite number")]
+    NonFinite { row: usize, line: u64, column: &'static str, value: f64 },
+    /// A time does not increase over the previous row's.
+    #[error("trajectory line {line}: t_s = {t_s} does not increase (previous {previous_s})")]
+    NotIncreasing { line: u64, t_s: f64, previous_s: f64 },
+    /// Nothing after the header.
+    #[error("trajectory: no samples")]
+    Empty,
+    /// The trajectory lasts more ticks than allowed ([`Trajectory::tick_count`]).
+    #[error(
+        "{at}: t_s = {end_s:e} ends {span_s:e} s after the first sample, {ticks:e} ticks at {rate_hz} Hz: over the limit of {max_ticks} ticks (--max-ticks)"
+    )]
+    TooLong { at: String, end_s: f64, span_s: f64, ticks: f64, rate_hz: f64, max_ticks: u64 },
+}
+
+/// A base trajectory: samples of `t_s,x_m,y_m,theta_rad`, strictly increasing in time, at least one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trajectory {
+    pub samples: Vec<(f64, Pose2)>,
+    /// The line of the last sample in the CSV it was read from (None when not read from text).
+    pub end_line: Option<u64>,
+}
+
+#[derive(Debug, Deserialize)]
+struct Row {
+    t_s: f64,
+    x_m: f64,
+    y_m: f64,
+    theta_rad: f64,
+}
+
+impl Trajectory {
+    /// Parses the CSV text: a header, then rows; `#` starts a comment line and fields are
+    /// trimmed. Errors name the line (comment and blank lines counted) and the column.
+    pub fn parse_csv(text: &str) -> Result<Self, TrajectoryError> {
+        let mut rdr = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
+        let headers =
+            rdr.headers().map_err(|e| TrajectoryError::Header { found: format!("an unreadable line ({})", csv_kind(&e)) })?.clone();
+        if headers.iter().ne(HEADER) {
+            return Err(TrajectoryError::Header { found: headers.iter().collect::<Vec<_>>().join(",") });
+        }
+        let mut samples: Vec<(f64, Pose2)> = Vec::new();
+        let mut end_line = 0;
+        let mut record = csv::StringRecord::new();
+        // Line numbers from byte offsets, counting comment lines too (the reader's own count
+        // skips them); newlines are counted once, from the previous record on.
+        let (mut counted_byte, mut counted_line) = (0usize, 1u64);
+        let mut line_at = |byte: u64| {
+            // A record's position can be that of comment or blank lines before it: skip them.
+            let mut byte = (byte as usize).min(text.len());
+            loop {
+                match text.as_bytes().get(byte) {
+                    Some(b'#') => byte = text[byte..].find('\n').map_or(text.len(), |i| byte + i + 1),
+                    Some(b'\n' | b'\r') => byte += 1,
+                    _ => break,
+                }
+            }
+            if byte > counted_byte {
+                counted_line += text.as_bytes()[counted_byte..byte].iter().filter(|&&b| b == b'\n').count() as u64;
+                counted_byte = byte;
+            }
+            counted_line
+        };
+        loop {
+            let more = match rdr.read_record(&mut record) {
+                Ok(more) => more,
+                Err(e) => {
+                    let line = e.position().map_or(0, |p| line_at(p.byte()));
+                    return Err(TrajectoryError::Row { line, message: csv_kind(&e) });
+                }
+            };
+            if !more {
+                break;
+            }
+            let line = record.position().map_or(0, |p| line_at(p.byte()));
+            let row: Row = record.deserialize(Some(&headers)).map_err(|e| {
+                // Name the value as written, too: "column y_m: `oops` is not a number (…)".
+                let value = match e.kind() {
+                    csv::ErrorKind::Deserialize { err, .. } => err.field().and_then(|f| record.get(f as usize)),
+                    _ => None,
+                };
+                let message = match value {
+                    Some(v) => format!("{}: `{}` is not a number", csv_kind(&e), clip(v, 32)),
+                    None => csv_kind(&e),
+                };
+                TrajectoryError::Row { line, message }
+            })?;
+            for (column, value) in HEADER.into_iter().zip([row.t_s, row.x_m, row.y_m, row.theta_rad]) {
+                if !value.is_finite() {
+                    return Err(TrajectoryError::NonFinite { row: samples.len() + 1, line, column, value });
+                }
+            }
+            if let Some(&(previous_s, _)) = samples.last()
+                && row.t_s <= previous_s
+            {
+                return Err(TrajectoryError::NotIncreasing { line, t_s: row.t_s, previous_s });
+            }
+            samples.push((row.t_s, Pose2::new(row.x_m, row.y_m, row.theta_rad)));
+            end_line = line;
+        }
+        if samples.is_empty() {
+            return Err(TrajectoryError::Empty);
+        }
+        Ok(Self { samples, end_line: Some(end_line) })
+    }
+
+    /// A trajectory from samples not read from text (at least one, times increasing: the
+    /// caller's to ensure).
+    pub fn from_samples(samples: Vec<(f64, Pose2)>) -> Self {
+        Self { samples, end_line: None }
+    }
+
+    /// The number of ticks from the first to the last sample at `rate_hz`, if at most
+    /// `max_ticks`; otherwise an error naming the last sample's line. Computed in floating point
+    /// and compared before any conversion, so no end time overflows the count.
+    pub fn tick_count(&self, rate_hz: f64, max_ticks: u64) -> Result<u64, TrajectoryError> {
+        let (t0, t1) = self.span_s();
+        let ticks = ((t1 - t0) * rate_hz).round();
+        if ticks.is_nan() || ticks > max_ticks as f64 {
+            let at = match self.end_line {
+                Some(l) => format!("trajectory line {l}"),
+                None => format!("trajectory[{}]", self.samples.len() - 1),
+            };
+            return Err(TrajectoryError::TooLong { at, end_s: t1, span_s: t1 - t0, ticks, rate_hz, max_ticks });
+        }
+        Ok(ticks as u64)
+    }
+
+    /// The pose at time `t_s`, linearly interpolated (held constant beyond the ends).
+    pub fn pose_at(&self, t_s: f64) -> Pose2 {
+        self.pose_and_velocity_at(t_s).0
+    }
+
+    /// The pose at `t_s` and its rate of change (the slope of the segment, per second: m/s, m/s,
+    /// rad/s), zero before the first and after the last sample.
+    pub fn pose_and_velocity_at(&self, t_s: f64) -> (Pose2, Pose2) {
+        let s = &self.samples;
+        if t_s <= s[0].0 {
+            return (s[0].1, Pose2::default());
+        }
+        let k = s.partition_point(|(t, _)| *t <= t_s);
+        if k >= s.len() {
+            return (s[s.len() - 1].1, Pose2::default());
+        }
+        let ((t0, a), (t1, b)) = (s[k - 1], s[k]);
+        let dt = t1 - t0;
+        let rate = Pose2::new((b.x_m - a.x_m) / dt, (b.y_m - a.y_m) / dt, (b.theta_rad - a.theta_rad) / dt);
+        (a.lerp(b, (t_s - t0) / dt), rate)
+    }
+
+    /// Start and end time (s).
+    pub fn span_s(&self) -> (f64, f64) {
+        (self.samples[0].0, self.samples[self.samples.len() - 1].0)
+    }
+
+    /// Time from the first to the last sample (s).
+    pub fn duration_s(&self) -> f64 {
+        let (t0, t1) = self.span_s();
+        t1 - t0
+    }
+}
+
+/// At most `n` characters of `s`, with "…" when cut (a client's text quoted in a message).
+fn clip(s: &str, n: usize) -> String {
+    match s.char_indices().nth(n) {
+        None => s.to_owned(),
+        Some((i, _)) => format!("{}…", &s[..i]),
+    }
+}
+
+/// A csv error as a short message naming the column.
+fn csv_kind(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::Deserialize { err, .. } => {
+            let field = err.field().and_then(|f| HEADER.get(f as usize).copied()).unwrap_or("?");
+            format!("column {field} ({})", err.kind())
+        }
+        csv::ErrorKind::UnequalLengths { expected_len, len, .. } => format!("{len} fields where the header has {expected_len}"),
+        _ => e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const H: &str = "t_s,x_m,y_m,theta_rad\n";
+
+    fn err(text: &str) -> String {
+        Trajectory::parse_csv(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn parses_interpolates_and_holds_the_ends() {
+        let t = Trajectory::parse_csv(&format!("{H}0,0,1,0\n# comment\n2, 2 ,3,1\n")).unwrap();
+        assert_eq!(t.samples.len(), 2);
+        assert_eq!(t.end_line, Some(4));
+        assert_eq!(t.pose_at(1.0), Pose2::new(1.0, 2.0, 0.5));
+        assert_eq!(t.pose_at(-1.0), Pose2::new(0.0, 1.0, 0.0));
+        assert_eq!(t.pose_at(7.0), Pose2::new(2.0, 3.0, 1.0));
+        let (p, v) = t.pose_and_velocity_at(0.5);
+        assert_eq!((p, v), (Pose2::new(0.5, 1.5, 0.25), Pose2::new(1.0, 1.0, 0.5)));
+        assert_eq!(t.pose_and_velocity_at(9.0).1, Pose2::default(), "at rest after the end");
+        assert_eq!((t.span_s(), t.duration_s()), ((0.0, 2.0), 2.0));
+    }
+
+    #[test]
+    fn errors_name_the_line_counting_comments_and_the_column() {
+        let e = err(&format!("{H}0,0,1,0\n# comment\n\n1,abc,1,0\n"));
+        assert!(e.starts_with("trajectory line 5: column x_m") && e.contains("`abc` is not a number"), "{e}");
+        let e = err(&format!("{H}0,0,1,0\n1,0,1\n"));
+        assert_eq!(e, "trajectory line 3: 3 fields where the header has 4");
+        let e = err(&format!("{H}0,0,0,0\n0,1,2,0\n"));
+        assert_eq!(e, "trajectory line 3: t_s = 0 does not increase (previous 0)");
+        let e = err("t,x,y\n0,0,0\n");
+        assert_eq!(e, "trajectory line 1: the header must be t_s,x_m,y_m,theta_rad, found t,x,y");
+        let e = err(&format!("{H}0,0,0,0\n1,NaN,2,0\n"));
+        assert_eq!(e, "trajectory row 2 (line 3): x_m is NaN, not a finite number");
+        assert_eq!(err(H), "trajectory: no samples");
+        assert!(err("").starts_with("trajectory line 1: the header must be"), "{}", err(""));
+        let long = "9".repeat(100) + "x";
+        assert!(err(&format!("{H}0,{long},0,0\n")).contains("…` is not a number"), "a client's value is clipped");
+    }
+
+    #[test]
+    fn tick_count_is_bounded_without_overflow() {
+        let t = Trajectory::parse_csv(&format!("{H}0,0,0,0\n2,0,0,0\n")).unwrap();
+        assert_eq!(t.tick_count(1000.0, 2000), Ok(2000));
+        let e = t.tick_count(1000.0, 1999).unwrap_err().to_string();
+        assert!(e.starts_with("trajectory line 3: t_s = 2e0 ends 2e0 s after the first sample, 2e3 ticks"), "{e}");
+        let far = Trajectory::from_samples(vec![(0.0, Pose2::default()), (1e300, Pose2::default())]);
+        assert!(matches!(far.tick_count(1e10, u64::MAX), Err(TrajectoryError::TooLong { .. })));
+    }
+}
