@@ -30,7 +30,7 @@ use clap::{Parser, ValueEnum};
 use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
 use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
 use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
-use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum DeviceKind {
@@ -364,7 +364,7 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
     let mut last_echo_seq = 0u64;
     let mut prev_buttons: Option<u32> = None;
 
-    match needlesim_bridge::rt::request_realtime_priority(cli.rt_priority) {
+    match needlesim_channel::rt::request_realtime_priority(cli.rt_priority) {
         Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
         Err(why) => tracing::warn!("the device loop runs without real-time priority ({why}); periods may be missed under load"),
     }
