@@ -677,6 +677,7 @@ fn watch_device_channel(watch: needlesim_channel::shm::ChannelWatch, stop: Arc<A
 pub const FLIP_BEVEL_BUTTON: u32 = 1;
 
 pub use needlesim_channel::rt::request_realtime_priority;
+use needlesim_channel::schedule::Schedule;
 
 impl RtLoop {
     fn run(mut self) {
@@ -684,30 +685,19 @@ impl RtLoop {
             Ok(()) => tracing::debug!(priority = self.rt_priority, "real-time thread runs with SCHED_FIFO"),
             Err(why) => tracing::warn!("the real-time thread runs without real-time priority ({why}); ticks may be late under load"),
         }
-        let start = Instant::now();
-        let mut k: u64 = 0;
+        // Drift-free: tick k at start + k·period (needlesim_channel::schedule).
+        let mut schedule = Schedule::start_now(self.period);
         let mut pose = self.sim.pose();
         let mut last_seq = 0;
         let mut last_client_time = 0;
         while !self.stop.load(Ordering::Relaxed) {
-            let deadline = start + self.period.mul_f64(k as f64);
-            let now = Instant::now();
-            if deadline > now {
-                std::thread::sleep(deadline - now);
-            }
-            let woke = Instant::now();
-            let lateness = woke.saturating_duration_since(deadline);
-            self.tick_from_rt(&mut pose, &mut last_seq, &mut last_client_time, lateness);
-            k += 1;
-            // Behind by more than a period: count the missed deadlines and skip ahead.
-            let next = start + self.period.mul_f64(k as f64);
-            let end = Instant::now();
-            if end > next + self.period {
-                let behind = ((end - start).as_secs_f64() / self.period.as_secs_f64()) as u64;
-                self.counters.missed_deadlines.fetch_add(behind.saturating_sub(k), Ordering::Relaxed);
-                k = behind;
-            } else if end > next {
-                self.counters.missed_deadlines.fetch_add(1, Ordering::Relaxed);
+            let wake = schedule.wait();
+            self.tick_from_rt(&mut pose, &mut last_seq, &mut last_client_time, wake.lateness);
+            // Behind by a period or more: the skipped ticks are missed deadlines; behind by less,
+            // the next tick runs late at once, one missed deadline.
+            let missed = schedule.catch_up().missed_deadlines();
+            if missed > 0 {
+                self.counters.missed_deadlines.fetch_add(missed, Ordering::Relaxed);
             }
         }
     }
