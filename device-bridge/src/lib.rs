@@ -1,8 +1,7 @@
-//! The haptic device bridge library: the shared-memory channel to a session's real-time thread ([`shm`]),
-//! the gRPC remote link for a bridge on another machine ([`remote`]), the devices ([`device`]) and the safety layer that renders the server's force on them ([`render`]).
+//! The haptic device bridge library: the devices ([`device`]), the safety layer that renders the server's force on them ([`render`])
+//! and the gRPC remote link for a bridge on another machine ([`remote`]). The shared-memory channel to a session's
+//! real-time thread, real-time priority and the device loop's schedule are in the `needlesim-channel` crate.
 
 pub mod device;
 pub mod remote;
 pub mod render;
-pub mod rt;
-pub mod shm;

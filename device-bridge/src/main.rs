@@ -23,14 +23,15 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, ValueEnum};
 use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
 use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
 use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
-use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
+use needlesim_channel::schedule::Schedule;
+use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum DeviceKind {
@@ -364,43 +365,37 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
     let mut last_echo_seq = 0u64;
     let mut prev_buttons: Option<u32> = None;
 
-    match needlesim_bridge::rt::request_realtime_priority(cli.rt_priority) {
+    match needlesim_channel::rt::request_realtime_priority(cli.rt_priority) {
         Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
         Err(why) => tracing::warn!("the device loop runs without real-time priority ({why}); periods may be missed under load"),
     }
-    let dt = Duration::from_secs_f64(period_s);
-    let t0 = Instant::now();
-    let mut k: u64 = 0;
+    // Drift-free schedule: period k starts at t0 + k·Δt (needlesim_channel::schedule).
+    let mut schedule = Schedule::start_now(Duration::from_secs_f64(period_s));
+    // --seconds S ends the schedule at t0 + S: executed plus missed periods = S·rate.
+    if let Some(n) = periods_total {
+        schedule = schedule.with_period_limit(n);
+    }
     let mut stale_since: Option<u64> = None;
     loop {
         if STOP.load(Ordering::Relaxed) {
             report.exit = "signal".into();
             return Ok(());
         }
-        // --seconds S ends the schedule at t0 + S: executed plus missed periods = S·rate.
-        if periods_total.is_some_and(|n| k >= n) {
+        if schedule.is_finished() {
             report.exit = "done".into();
             return Ok(());
         }
-        // Drift-free schedule: period k starts at t0 + k·Δt.
-        let deadline = t0 + dt.mul_f64(k as f64);
-        let now = Instant::now();
-        if deadline > now {
-            std::thread::sleep(deadline - now);
-        } else {
-            let late = (now - deadline).as_secs_f64() / period_s;
-            if late >= 1.0 {
-                let skip = (late.floor() as u64).min(periods_total.map_or(u64::MAX, |n| n.saturating_sub(k)));
-                report.missed_periods += skip;
-                renderer.missed(skip);
-                k += skip;
-                if periods_total.is_some_and(|n| k >= n) {
-                    continue;
-                }
+        // A period or more behind: skip (and count) the missed periods rather than burst through
+        // them. Less than a period behind, the period runs late (not counted).
+        let skipped = schedule.catch_up().skipped_periods;
+        if skipped > 0 {
+            report.missed_periods += skipped;
+            renderer.missed(skipped);
+            if schedule.is_finished() {
+                continue;
             }
         }
-        let t_s = k as f64 * period_s;
-        k += 1;
+        let t_s = schedule.wait().index as f64 * period_s;
         report.periods += 1;
 
         let state = device.read_pose(t_s)?;

@@ -22,7 +22,7 @@ use tokio::sync::mpsc;
 use tokio::time::Instant;
 
 use crate::render::ServerSample;
-use crate::shm::monotonic_ns;
+use needlesim_channel::shm::monotonic_ns;
 
 /// A pose on its way out.
 #[derive(Debug, Clone, Copy)]

@@ -26,7 +26,7 @@
 //! 4. **Limits**: the force is scaled to `|F| ≤ F_max` keeping its direction, the torque clamped to
 //!    `|τ| ≤ τ_max`; a non-finite value gives zero.
 
-use crate::shm::ServerForce;
+use needlesim_channel::shm::ServerForce;
 
 /// Parameters of the safety layer.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -9,7 +9,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use needlesim_bridge::device::{Device, PluginDevice};
-use needlesim_bridge::shm::{DeviceChannel, ServerEnd, ServerForce, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, ServerEnd, ServerForce, monotonic_ns};
 
 const BIN: &str = env!("CARGO_BIN_EXE_needlesim-bridge");
 /// The fake tissue: w = J q (linear, so the bridge's local model is exact).

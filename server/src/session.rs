@@ -273,7 +273,7 @@ pub struct SessionCounters {
     /// Fresh device poses taken.
     pub device_poses: AtomicU64,
     /// 1 once the device channel is broken (its file was truncated, resized, overwritten, deleted
-    /// or replaced: `needlesim_bridge::shm::Broken`): the device stays stale for the rest of the session.
+    /// or replaced: `needlesim_channel::shm::Broken`): the device stays stale for the rest of the session.
     pub device_channel_broken: AtomicU64,
     /// Bevel flips asked for (by clients and the device's button 0), and applied by the
     /// real-time thread.
@@ -398,7 +398,7 @@ pub enum SessionError {
     #[error("cannot start a session thread: {0}")]
     Thread(std::io::Error),
     #[error("cannot create the device channel: {0}")]
-    Device(#[from] needlesim_bridge::shm::ShmError),
+    Device(#[from] needlesim_channel::shm::ShmError),
 }
 
 fn random_token() -> String {
@@ -423,7 +423,7 @@ impl Session {
         let device = match device_dir {
             Some(dir) => {
                 let path = dir.join(format!("needlesim-{id}"));
-                Some(needlesim_bridge::shm::DeviceChannel::create(&path)?)
+                Some(needlesim_channel::shm::DeviceChannel::create(&path)?)
             }
             None => None,
         };
@@ -636,7 +636,7 @@ struct RtLoop {
     record: Box<TickRecord>,
     rt_priority: i32,
     /// The server end of the device channel, if any.
-    device: Option<needlesim_bridge::shm::ServerEnd>,
+    device: Option<needlesim_channel::shm::ServerEnd>,
     /// A device pose has been received at least once.
     device_seen: bool,
     /// The device's buttons at its previous fresh pose (None before the first).
@@ -649,16 +649,16 @@ struct RtLoop {
 }
 
 /// The session's device-channel watcher (a non-real-time thread): checks the channel's file every
-/// [`needlesim_bridge::shm::WATCH_PERIOD`] (deleted, replaced, resized: system calls the real-time
+/// [`needlesim_channel::shm::WATCH_PERIOD`] (deleted, replaced, resized: system calls the real-time
 /// thread does not make), which the real-time thread then sees as a broken channel; logs the cause
 /// once, whoever found it.
-fn watch_device_channel(watch: needlesim_bridge::shm::ChannelWatch, stop: Arc<AtomicBool>) {
+fn watch_device_channel(watch: needlesim_channel::shm::ChannelWatch, stop: Arc<AtomicBool>) {
     const STEP: Duration = Duration::from_millis(10);
     let mut since_check = Duration::ZERO;
     while !stop.load(Ordering::Relaxed) {
         std::thread::sleep(STEP);
         since_check += STEP;
-        if since_check < needlesim_bridge::shm::WATCH_PERIOD {
+        if since_check < needlesim_channel::shm::WATCH_PERIOD {
             continue;
         }
         since_check = Duration::ZERO;
@@ -676,7 +676,8 @@ fn watch_device_channel(watch: needlesim_bridge::shm::ChannelWatch, stop: Arc<At
 /// on each press (rising edge).
 pub const FLIP_BEVEL_BUTTON: u32 = 1;
 
-pub use needlesim_bridge::rt::request_realtime_priority;
+pub use needlesim_channel::rt::request_realtime_priority;
+use needlesim_channel::schedule::Schedule;
 
 impl RtLoop {
     fn run(mut self) {
@@ -684,30 +685,19 @@ impl RtLoop {
             Ok(()) => tracing::debug!(priority = self.rt_priority, "real-time thread runs with SCHED_FIFO"),
             Err(why) => tracing::warn!("the real-time thread runs without real-time priority ({why}); ticks may be late under load"),
         }
-        let start = Instant::now();
-        let mut k: u64 = 0;
+        // Drift-free: tick k at start + k·period (needlesim_channel::schedule).
+        let mut schedule = Schedule::start_now(self.period);
         let mut pose = self.sim.pose();
         let mut last_seq = 0;
         let mut last_client_time = 0;
         while !self.stop.load(Ordering::Relaxed) {
-            let deadline = start + self.period.mul_f64(k as f64);
-            let now = Instant::now();
-            if deadline > now {
-                std::thread::sleep(deadline - now);
-            }
-            let woke = Instant::now();
-            let lateness = woke.saturating_duration_since(deadline);
-            self.tick_from_rt(&mut pose, &mut last_seq, &mut last_client_time, lateness);
-            k += 1;
-            // Behind by more than a period: count the missed deadlines and skip ahead.
-            let next = start + self.period.mul_f64(k as f64);
-            let end = Instant::now();
-            if end > next + self.period {
-                let behind = ((end - start).as_secs_f64() / self.period.as_secs_f64()) as u64;
-                self.counters.missed_deadlines.fetch_add(behind.saturating_sub(k), Ordering::Relaxed);
-                k = behind;
-            } else if end > next {
-                self.counters.missed_deadlines.fetch_add(1, Ordering::Relaxed);
+            let wake = schedule.wait();
+            self.tick_from_rt(&mut pose, &mut last_seq, &mut last_client_time, wake.lateness);
+            // Behind by a period or more: the skipped ticks are missed deadlines; behind by less,
+            // the next tick runs late at once, one missed deadline.
+            let missed = schedule.catch_up().missed_deadlines();
+            if missed > 0 {
+                self.counters.missed_deadlines.fetch_add(missed, Ordering::Relaxed);
             }
         }
     }
@@ -743,7 +733,7 @@ impl RtLoop {
         let mut device_stale = false;
         if let Some(dev) = self.device.as_mut() {
             let sample = dev.read_pose_from_rt();
-            if sample.status == needlesim_bridge::shm::ReadStatus::Broken {
+            if sample.status == needlesim_channel::shm::ReadStatus::Broken {
                 // The channel's file was changed under it: no device can reach this session any
                 // more. Stale for good; hold the needle unless a client moves it.
                 self.counters.device_channel_broken.store(1, Ordering::Relaxed);
@@ -849,17 +839,17 @@ impl RtLoop {
         self.record.device_stale = device_stale;
         if let Some(dev) = self.device.as_mut() {
             let r = &self.record;
-            dev.write_force_from_rt(&needlesim_bridge::shm::ServerForce {
-                t_ns: needlesim_bridge::shm::monotonic_ns(),
+            dev.write_force_from_rt(&needlesim_channel::shm::ServerForce {
+                t_ns: needlesim_channel::shm::monotonic_ns(),
                 tick: r.tick,
                 force_n: r.force_n,
                 torque_nm: r.torque_nm,
                 stiffness: self.stiffness,
                 base: [r.base.x_m, r.base.y_m, r.base.theta_rad],
                 state: if device_stale {
-                    needlesim_bridge::shm::ServerForce::STATE_DEVICE_STALE
+                    needlesim_channel::shm::ServerForce::STATE_DEVICE_STALE
                 } else {
-                    needlesim_bridge::shm::ServerForce::STATE_OK
+                    needlesim_channel::shm::ServerForce::STATE_OK
                 },
             });
         }

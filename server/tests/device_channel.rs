@@ -5,7 +5,7 @@
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
-use needlesim_bridge::shm::{DeviceChannel, DeviceEnd, DevicePose, ServerForce, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ServerForce, monotonic_ns};
 use needlesim_core::MeshLimits;
 use needlesim_server::session::Session;
 
@@ -130,7 +130,7 @@ fn issue_8_device_button_flips_the_bevel() {
 /// broken, holding the needle where the device left it; another session is untouched.
 #[test]
 fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
-    use needlesim_bridge::shm::{Broken, ReadStatus};
+    use needlesim_channel::shm::{Broken, ReadStatus};
     let scene = needlesim_scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
     let dir = std::env::temp_dir().join(format!("needlesim-device-broken-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -7,7 +7,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use needlesim_bridge::shm::{DeviceChannel, DevicePose, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, DevicePose, monotonic_ns};
 use needlesim_core::{BasePose, MeshLimits};
 use needlesim_server::session::{IN_TICK, Session, WARM_UP_TICKS};
 

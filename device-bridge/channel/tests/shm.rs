@@ -4,14 +4,14 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use needlesim_bridge::shm::{Broken, DeviceChannel, ReadStatus, ServerForce, monotonic_ns};
+use needlesim_channel::shm::{Broken, DeviceChannel, ReadStatus, ServerForce, monotonic_ns};
 
 fn temp_path(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("needlesim-shm-it-{}-{name}", std::process::id()))
 }
 
 /// Wait until the probe has attached (its pid shows up in the header).
-fn wait_attached(server: &needlesim_bridge::shm::ServerEnd, pid: u32) {
+fn wait_attached(server: &needlesim_channel::shm::ServerEnd, pid: u32) {
     let t0 = Instant::now();
     while server.attacher_pid() != Some(pid) {
         assert!(t0.elapsed() < Duration::from_secs(20), "probe did not attach");
@@ -38,7 +38,7 @@ fn cross_process_poses_are_never_torn() {
     loop {
         let s = server.read_pose_from_rt();
         match s.status {
-            needlesim_bridge::shm::ReadStatus::Contended => contended += 1,
+            needlesim_channel::shm::ReadStatus::Contended => contended += 1,
             _ if s.fresh() => {
                 fresh += 1;
                 let p = s.value.unwrap();

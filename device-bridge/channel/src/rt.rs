@@ -1,4 +1,4 @@
-//! Real-time scheduling for the threads that must not be preempted: a session's tick loop in the
+//! Real-time priority for the threads that must not be preempted: a session's tick loop in the
 //! server and the device loop in the bridge.
 
 /// Asks the OS to schedule the calling thread with the real-time policy SCHED_FIFO at

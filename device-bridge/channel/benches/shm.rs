@@ -1,11 +1,11 @@
 //! Round-trip latency of the device channel: in-process (write + read of each slot) and cross-process ping-pong.
 //!
-//! `cargo bench -p needlesim-bridge --bench shm` (set `SHM_BENCH_ITERS` to change the 1e6 iterations).
+//! `cargo bench -p needlesim-channel --bench shm` (set `SHM_BENCH_ITERS` to change the 1e6 iterations).
 
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use needlesim_bridge::shm::{DeviceChannel, DevicePose, ServerForce};
+use needlesim_channel::shm::{DeviceChannel, DevicePose, ServerForce};
 
 fn report(name: &str, mut ns: Vec<u64>) {
     ns.sort_unstable();

@@ -1,4 +1,4 @@
-//! A helper process for the cross-process tests and benchmarks of the device channel (`needlesim_bridge::shm`).
+//! A helper process for the cross-process tests and benchmarks of the device channel (`needlesim_channel::shm`).
 //!
 //! `shm-probe write-poses PATH N`: attach, wait for the first force (the go signal), and write N poses at full speed, each with
 //! `x = y = theta = counter` and `buttons = counter as u32`.
@@ -7,7 +7,7 @@
 //! `shm-probe foreign-sigbus PATH SCRATCH`: attach (installing the `SIGBUS` handler), then fault on a
 //! truncated mapping of SCRATCH that is no channel: the process must die of `SIGBUS`.
 
-use needlesim_bridge::shm::{DeviceChannel, DevicePose, ReadStatus, ServerForce, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, DevicePose, ReadStatus, ServerForce, monotonic_ns};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
