@@ -18,6 +18,7 @@ pub mod assembly;
 pub mod beam;
 pub mod compliance;
 pub mod factor;
+pub mod fixtures;
 pub mod ids;
 pub mod material;
 pub mod mesh;

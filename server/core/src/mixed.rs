@@ -573,26 +573,12 @@ pub fn world_to_local(v: [f64; 2], angle_rad: f64) -> [f64; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assembly::MaterialMap;
-    use crate::compliance::TissueModel;
     use crate::ids::{Axis, NodeIdx, Slot};
-    use crate::material::{Material, PlaneModel};
-    use crate::mesh::{MeshLimits, RectMeshParams};
     use crate::statics::{NodeCondition, StaticProblem};
     use rand::rngs::SmallRng;
     use rand::{Rng, SeedableRng};
 
-    fn model(nx: usize) -> TissueModel {
-        let mesh = RectMeshParams::new(nx, nx, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(
-            &mesh,
-            &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }],
-            PlaneModel::Strain { thickness_m: 1.0 },
-        )
-        .unwrap();
-        let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
-        TissueModel::new(mesh, mats, &fixed).unwrap()
-    }
+    use crate::fixtures::strain_square as model;
 
     fn max_rel_diff(s: &MixedSolver, cache: &ComplianceCache) -> f64 {
         let h = s.hybrid_from_scratch(cache).unwrap();

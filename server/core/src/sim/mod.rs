@@ -314,3 +314,41 @@ impl Simulation {
         output::snapshot(&self.state.ws, &self.out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixtures::{phantom, phantom_params};
+    use crate::needle::{FlexibleNeedle, NeedleShape};
+
+    /// The scratch carries nothing between ticks that is not rebuilt: replacing it mid-run with
+    /// a fresh one changes no output bit (flexible bevel needle: couplings, LU, probe curve).
+    #[test]
+    fn scratch_is_droppable() {
+        let mut f = FlexibleNeedle::gauge17_steel(0.1);
+        f.flexural_rigidity_nm2 *= 0.3;
+        f.bevel_force_ratio = 0.2;
+        let params = phantom_params(NeedleShape::Flexible(f));
+        let model = phantom(25);
+        let a0 = -1.3f64;
+        let base_at = |d: f64| BasePose::new(0.04 + (d - 0.1) * a0.cos(), 0.1 + (d - 0.1) * a0.sin(), a0);
+        let params = SimParams { initial_pose: base_at(-0.005), ..params };
+        let mut a = Simulation::new(model.clone(), params.clone()).unwrap();
+        let mut b = Simulation::new(model, params).unwrap();
+        for k in 0..1500 {
+            let pose = base_at(-0.005 + 0.045 * k as f64 / 1500.0);
+            if k % 50 == 25 {
+                b.scratch = Scratch::new(&b.model, &b.params);
+            }
+            let (oa, ob) = (a.step(pose).unwrap().clone(), b.step(pose).unwrap().clone());
+            assert_eq!((oa.force_n, oa.torque_nm, oa.tip_m), (ob.force_n, ob.torque_nm, ob.tip_m), "tick {k}");
+            assert_eq!(oa.needle_nodes, ob.needle_nodes, "tick {k}");
+            if k % 10 == 0 {
+                assert_eq!(a.stiffness_jacobian().unwrap(), b.stiffness_jacobian().unwrap(), "tick {k}");
+            }
+            a.prefetch_columns(16).unwrap();
+            b.prefetch_columns(16).unwrap();
+        }
+        assert!(a.stats().captures > 5, "{:?}", a.stats());
+    }
+}
