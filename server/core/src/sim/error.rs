@@ -25,9 +25,9 @@ pub enum SimError {
     #[error(transparent)]
     Mixed(#[from] MixedError),
     /// A step's result is not finite or exceeds a physical bound derived from the scene
-    /// ([`DivergenceBounds`](super::DivergenceBounds)): the solve diverged. The step's output is not written (the last
-    /// good one stays in [`super::Simulation::output`]) and every later step returns this error again:
-    /// the simulation is faulted for good.
+    /// ([`DivergenceBounds`](super::DivergenceBounds)): the solve diverged. The step's output is
+    /// not written (the last good one stays in [`super::Simulation::output`]) and every later
+    /// step returns this error again: the simulation is faulted for good.
     #[error("tick {tick}: the solve diverged: {what} = {value:.3e} {unit} is not within the bound {bound:.3e} {unit}", unit = what.unit())]
     Diverged { tick: u64, what: Divergence, value: f64, bound: f64 },
 }

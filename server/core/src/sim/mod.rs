@@ -1,47 +1,51 @@
 //! The needle–tissue insertion simulation: one [`Simulation::step`] per haptic tick, from the
 //! commanded base pose to forces, needle-node states, tip and targets.
 //!
-//! A step, in order (each stage a function in its own module, taking the pieces of state it
-//! reads and writes explicitly):
-//! 1. **Pose** (`frames`): reject non-finite poses, clamp jumps larger than the configured step.
-//! 2. **Frames and values** (`frames`): rotate every needle node's frame with the needle (section 4.2) and
-//!    set its prescribed values: lateral $u_n = -n\cdot(X-b)$ keeps the node on the shaft, axial
-//!    $u_t = s_a - t\cdot(X-b)$ holds a stuck node at its shaft point $s_a$ (the tip node at $s = L$).
-//! 3. **Release** (`capture`): shaft nodes the tip has withdrawn past leave the working set.
-//! 4. **Capture** (`capture`): nodes near the tip (spatial grid, never a scan) whose deformed position the tip
-//!    passed within the capture radius become needle nodes. If no node is carried by the tip,
-//!    the most distal one is (puncture: it is pushed until its axial reaction exceeds the
-//!    region's puncture force, or its cutting force inside a region).
-//! 5. **Friction** (`active_set`): each shaft node gets the integral of the friction distribution over its
-//!    tributary segment (see [`crate::needle`]).
-//! 6. **Active set** (`active_set`): solve; stuck nodes whose axial force exceeds static friction slip, slipping
-//!    nodes whose relative motion stopped or reversed stick, the tip node punctures or, when it no
-//!    longer pushes, lets go; repeat (bounded), each change an $O(d^2)$ update.
-//! 7. **Divergence check and output** (`divergence`, `output`): force and torque on the needle base, $F = -\sum_i f_i$, $\tau = \sum_i (p_i - b)\times(-f_i)$,
-//!    node states, tip, targets.
+//! A step, in order (each stage a function in its own file, taking the pieces of state it reads
+//! and writes explicitly):
+//! 1. **Pose** (`frames.rs`): reject non-finite poses, clamp jumps larger than the configured
+//!    step.
+//! 2. **Frames and values** (`frames.rs`): rotate every needle node's frame with the needle
+//!    (section 4.2) and set its prescribed values: lateral $u_n = -n\cdot(X-b)$ keeps the node
+//!    on the shaft, axial $u_t = s_a - t\cdot(X-b)$ holds a stuck node at its shaft point $s_a$
+//!    (the tip node at $s = L$).
+//! 3. **Release** (`capture.rs`): shaft nodes the tip has withdrawn past leave the working set.
+//! 4. **Capture** (`capture.rs`): nodes near the tip (spatial grid, never a scan) whose deformed
+//!    position the tip passed within the capture radius become needle nodes. If no node is
+//!    carried by the tip, the most distal one is (puncture: it is pushed until its axial
+//!    reaction exceeds the region's puncture force, or its cutting force inside a region).
+//! 5. **Friction** (`active_set.rs`): each shaft node gets the integral of the friction
+//!    distribution over its tributary segment (see [`crate::needle`]).
+//! 6. **Active set** (`active_set.rs`): solve; stuck nodes whose axial force exceeds static
+//!    friction slip, slipping nodes whose relative motion stopped or reversed stick, the tip node
+//!    punctures or, when it no longer pushes, lets go; repeat (bounded), each change an
+//!    $O(d^2)$ update.
+//! 7. **Divergence check and output** (`divergence.rs`, `output.rs`): the solved state is checked
+//!    against [`DivergenceBounds`], then written: force and torque on the needle base,
+//!    $F = -\sum_i f_i$, $\tau = \sum_i (p_i - b)\times(-f_i)$, node states, tip, targets.
 //!
-//! A flexible needle ([`crate::beam`], `flexible`) changes stages 1, 2, 4, 6 and 7: frames follow the bent
-//! shape's local tangent, prescribed values put nodes on the bent shape, the tip captures along
-//! its own tangent, every solve of the working set includes the needle's lateral compliance (one
-//! small dense solve), and after the tick the shape is brought to equilibrium with the new
-//! forces. A bevel tip's node carries a lateral force $-s_b\beta f_t$ instead of a lateral
-//! displacement, so the tip cuts sideways and the needle curves towards its bevel side.
+//! A flexible needle ([`crate::beam`], `flexible.rs`) changes stages 1, 2, 4, 6 and 7: frames
+//! follow the bent shape's local tangent, prescribed values put nodes on the bent shape, the tip
+//! captures along its own tangent, every solve of the working set includes the needle's lateral
+//! compliance (one small dense solve), and after the tick the shape is brought to equilibrium
+//! with the new forces. A bevel tip's node carries a lateral force $-s_b\beta f_t$ instead of a
+//! lateral displacement, so the tip cuts sideways and the needle curves towards its bevel side.
 //!
 //! The tissue factorisation is never touched: compliance columns come from the cache, computed
 //! ahead of time for the nodes the tip approaches ([`Simulation::prefetch_columns`]), and counted
 //! when a step has to compute one itself.
-
 //!
-//! The state is split three ways, as faer splits a solve into symbolic and numeric parts with
-//! scratch sized up front:
-//! - `setup`: what `new` derives once and never changes (grid, boundary, regions, targets,
-//!   divergence bounds);
-//! - `state`: what one tick hands to the next (pose, working set and solver, column cache,
+//! The state is split three ways, as faer splits a solve into a symbolic part done once and a
+//! numeric part with scratch sized up front:
+//! - `setup.rs`: what [`Simulation::new`] derives once and never changes (grid, boundary,
+//!   regions, targets, divergence bounds);
+//! - `state.rs`: what one tick hands to the next (pose, working set and solver, column cache,
 //!   needle shape, counters);
-//! - `scratch`: buffers sized up front from the parameters, droppable;
+//! - `scratch.rs`: buffers sized up front from the parameters, droppable;
 //!
 //! plus the per-tick [`StepOutput`], rewritten in place. Parameters and their named capacity
-//! limits are in `params`; the stiffness Jacobian's probe solves in `jacobian`.
+//! limits ([`param_limits`]) are in `params.rs`; the stiffness Jacobian's probe solves in
+//! `jacobian.rs`.
 
 mod active_set;
 mod capture;

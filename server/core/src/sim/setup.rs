@@ -86,15 +86,19 @@ fn boundary_nodes(mesh: &Mesh) -> (Vec<bool>, f64) {
     (is_boundary, edge_len_sum / edges.len().max(1) as f64)
 }
 
-/// Each node's region: the one covering most area around it (with more than 8 regions, the
-/// region of the last triangle touching it).
+/// Most regions for which a node's region is chosen by area ([`node_regions`]): the per-node
+/// area tally is a fixed array of this many entries. With more regions, a node takes the region
+/// of the last triangle touching it (exact away from region borders).
+pub(super) const MAX_REGIONS_BY_AREA: usize = 8;
+
+/// Each node's region: the one covering most area around it (with more than
+/// [`MAX_REGIONS_BY_AREA`] regions, the region of the last triangle touching it).
 fn node_regions(mesh: &Mesh) -> Vec<usize> {
     let n_nodes = mesh.n_nodes();
-    // A node's region: the one covering most area around it.
-    let mut area = vec![[0.0f64; 8]; n_nodes];
+    let mut area = vec![[0.0f64; MAX_REGIONS_BY_AREA]; n_nodes];
     let mut node_region = vec![0usize; n_nodes];
     let n_regions = mesh.region_names().len();
-    if n_regions <= 8 {
+    if n_regions <= MAX_REGIONS_BY_AREA {
         for (ti, t) in mesh.triangles().iter().enumerate() {
             let a = mesh.signed_area_m2(ti).abs();
             for &n in t {
