@@ -59,11 +59,10 @@ pub(super) fn update_friction(
     order.clear();
     for slot in ws.slots() {
         let frame = geo.slot_frame(ws, slot);
-        let u_t = ws.solver.displacement_local(slot)[Axis::Axial];
-        let nn = ws.node_mut(slot);
+        let nn = &mut ws.nodes[slot.index()];
         nn.s_work_m = match nn.state {
             NodeState::Stuck => nn.anchor_s_m,
-            NodeState::Slipping if current => frame.coords(nodes_m[nn.node.index()]).0 + u_t,
+            NodeState::Slipping if current => frame.coords(nodes_m[nn.node.index()]).0 + ws.solver.displacement_local(slot)[Axis::Axial],
             NodeState::Slipping => nn.s_prev_m,
             NodeState::Tip => continue,
         };

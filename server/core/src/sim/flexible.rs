@@ -112,7 +112,7 @@ pub(super) fn settle_shape(
         let s = match nn.state {
             NodeState::Slipping => {
                 let x = nodes_m[nn.node.index()];
-                let geo = Geometry { shape, pose, curve: Some(&fx.curve) };
+                let geo = Geometry::of(shape, pose, Some(&fx.curve));
                 geo.slot_frame(ws, slot).coords(x).0 + ws.solver.displacement_local(slot)[Axis::Axial]
             }
             _ => nn.s_ref_m(s_tip),

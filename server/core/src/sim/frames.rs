@@ -33,6 +33,7 @@ impl Frame {
         Self { origin: pose.position_m(), s0: 0.0, t: pose.axis(), n: pose.normal() }
     }
     /// The coordinates (arc length m, lateral offset m) of `p` in this frame.
+    #[inline]
     pub fn coords(&self, p: [f64; 2]) -> (f64, f64) {
         let d = [p[0] - self.origin[0], p[1] - self.origin[1]];
         let s = self.t[0] * d[0] + self.t[1] * d[1];
@@ -47,17 +48,30 @@ pub(super) struct Geometry<'a> {
     pub shape: &'a NeedleShape,
     pub pose: BasePose,
     pub curve: Option<&'a NeedleCurve>,
+    /// The straight needle's frame at `pose`, computed once (rigid needle only; unused, and not
+    /// computed, for a flexible one).
+    rigid: Frame,
 }
 
 impl<'a> Geometry<'a> {
     pub fn new(params: &'a SimParams, pose: BasePose, flex: Option<&'a FlexState>) -> Self {
-        Self { shape: &params.needle, pose, curve: flex.map(|f| &f.curve) }
+        Self::of(&params.needle, pose, flex.map(|f| &f.curve))
+    }
+    /// The geometry of `shape` at `pose`, bent along `curve` if it is flexible.
+    pub fn of(shape: &'a NeedleShape, pose: BasePose, curve: Option<&'a NeedleCurve>) -> Self {
+        let rigid = match curve {
+            None => Frame::rigid(&pose),
+            Some(_) => Frame { origin: [0.0; 2], s0: 0.0, t: [1.0, 0.0], n: [0.0, 1.0] },
+        };
+        Self { shape, pose, curve, rigid }
     }
     /// The arc length of the tip, $L$.
+    #[inline]
     pub fn s_tip_m(&self) -> f64 {
         self.shape.tip_s_m()
     }
     /// The tip's position.
+    #[inline]
     pub fn tip(&self) -> [f64; 2] {
         match self.curve {
             Some(c) => c.tip_m(),
@@ -65,24 +79,27 @@ impl<'a> Geometry<'a> {
         }
     }
     /// The tip's frame: captures happen along the tip's own tangent.
+    #[inline]
     pub fn tip_frame(&self) -> Frame {
         match self.curve {
             Some(c) => Frame::new(c.tip_m(), self.s_tip_m(), c.tip_angle_rad()),
-            None => Frame::rigid(&self.pose),
+            None => self.rigid,
         }
     }
     /// The frame of needle node `nn` whose solver frame is at `angle_rad`: at its shaft point
     /// (flexible needle), or the straight needle's frame.
+    #[inline]
     pub fn node_frame(&self, nn: &NeedleNode, angle_rad: f64) -> Frame {
         match self.curve {
             Some(c) => {
                 let s_ref = nn.s_ref_m(self.s_tip_m());
                 Frame::new(c.point_at(s_ref), s_ref, angle_rad)
             }
-            None => Frame::rigid(&self.pose),
+            None => self.rigid,
         }
     }
     /// [`Self::node_frame`] of working slot `slot`.
+    #[inline]
     pub fn slot_frame(&self, ws: &WorkingSet, slot: Slot) -> Frame {
         self.node_frame(ws.node(slot), ws.solver.angle_rad(slot))
     }
@@ -94,7 +111,7 @@ impl<'a> Geometry<'a> {
                 let a = c.tangent_angle_at(s_ref_m);
                 (a, Frame::new(c.point_at(s_ref_m), s_ref_m, a))
             }
-            None => (self.shape.frame_angle_at(&self.pose, s_m), Frame::rigid(&self.pose)),
+            None => (self.shape.frame_angle_at(&self.pose, s_m), self.rigid),
         }
     }
 }

@@ -40,10 +40,11 @@ fn probe_wrench_rigid(ctx: &Ctx<'_>, ws: &WorkingSet, probe: &mut MixedSolver, p
     let shape = &ctx.params.needle;
     let s_tip = ctx.setup.s_tip_m;
     let nodes_m = ctx.model.mesh().nodes_m();
+    let frame = Frame::rigid(pose);
     for slot in ws.slots() {
         let nn = ws.node(slot);
         probe.set_angle(slot, shape.frame_angle_at(pose, nn.s_prev_m))?;
-        prescribe(probe, slot, nn, Frame::rigid(pose), nodes_m[nn.node.index()], s_tip);
+        prescribe(probe, slot, nn, frame, nodes_m[nn.node.index()], s_tip);
     }
     probe.solve();
     Ok(wrench_of(nodes_m, ws, probe, pose))

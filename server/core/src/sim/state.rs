@@ -65,6 +65,7 @@ pub(super) struct NeedleNode {
 impl NeedleNode {
     /// The arc length the node's frame is attached to: the anchor of a stuck node, last tick's
     /// position of a slipping one, the tip's arc length `s_tip_m` for the tip's node.
+    #[inline]
     pub fn s_ref_m(&self, s_tip_m: f64) -> f64 {
         match self.state {
             NodeState::Stuck => self.anchor_s_m,
@@ -101,22 +102,27 @@ impl WorkingSet {
         }
     }
     /// Number of needle nodes.
+    #[inline]
     pub fn len(&self) -> usize {
         self.nodes.len()
     }
     /// The slots `0..len`.
+    #[inline]
     pub fn slots(&self) -> impl DoubleEndedIterator<Item = Slot> + ExactSizeIterator + use<> {
         Slot::all(self.nodes.len())
     }
     /// The needle node in `slot`.
+    #[inline]
     pub fn node(&self, slot: Slot) -> &NeedleNode {
         &self.nodes[slot.index()]
     }
     /// The needle node in `slot`, mutable.
+    #[inline]
     pub fn node_mut(&mut self, slot: Slot) -> &mut NeedleNode {
         &mut self.nodes[slot.index()]
     }
     /// Whether mesh node `node` is a needle node.
+    #[inline]
     pub fn contains(&self, node: NodeIdx) -> bool {
         self.slot_of_node[node.index()].is_some()
     }
