@@ -6,9 +6,10 @@
 
 use std::time::Instant;
 
+use needlesim_core::fixtures::phantom_bench;
 use needlesim_core::sim::Simulation;
 use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape};
-use needlesim_server::bench::{grid_simulation, machine, pct};
+use needlesim_server::bench::{machine, pct};
 
 fn main() {
     let sizes: Vec<usize> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
@@ -25,7 +26,7 @@ fn main() {
     for n in sizes {
         for needle in ["rigid", "flexible 17 G", "flexible 22 G, Fig. 4 path"] {
             let t0 = Instant::now();
-            let (model, mut params) = grid_simulation(n).unwrap();
+            let (model, mut params) = phantom_bench(n);
             let setup_s = t0.elapsed().as_secs_f64();
             let base = params.initial_pose;
             let x = base.x_m;

@@ -8,7 +8,10 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use needlesim_core::{ComplianceCache, Condition, Material, MaterialMap, MeshLimits, MixedSolver, PlaneModel, RectMeshParams, TissueModel};
+use needlesim_core::{
+    Axis, ComplianceCache, Condition, Material, MaterialMap, MeshLimits, MixedSolver, NodeIdx, PlaneModel, RectMeshParams, Slot,
+    TissueModel,
+};
 use rand::rngs::SmallRng;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
@@ -77,7 +80,7 @@ fn working_set(model: &TissueModel, cache: &mut ComplianceCache, rng: &mut Small
     let mut s = MixedSolver::with_capacity(n_nodes);
     for &node in &free[..n_nodes] {
         cache.ensure(model, node, &mut scratch).expect("columns of a free node");
-        s.add_node(cache, node, rng.random_range(-std::f64::consts::PI..std::f64::consts::PI)).expect("room for the node");
+        s.add_node(cache, NodeIdx(node), rng.random_range(-std::f64::consts::PI..std::f64::consts::PI)).expect("room for the node");
     }
     let mut dofs: Vec<usize> = (0..2 * n_nodes).collect();
     dofs.shuffle(rng);
@@ -87,7 +90,7 @@ fn working_set(model: &TissueModel, cache: &mut ComplianceCache, rng: &mut Small
         } else {
             (Condition::Force, rng.random_range(-0.01..0.01))
         };
-        s.set_condition(k / 2, k % 2, cond, v).expect("a non-singular pivot");
+        s.set_condition(Slot::new(k / 2), Axis::of_index(k), cond, v).expect("a non-singular pivot");
     }
     s
 }
@@ -162,7 +165,7 @@ fn main() {
                 let t0 = Instant::now();
                 s.solve();
                 let dt = t0.elapsed();
-                black_box(s.displacement_local(0));
+                black_box(s.displacement_local(Slot::new(0)));
                 dt
             });
             rows.push(row(&format!("MixedSolver::solve, {n_work} nodes, {n_p} P / {} F DOFs", d - n_p), solve));
@@ -174,7 +177,7 @@ fn main() {
             let switch = sample(&plan, 1000, || {
                 let k = order[(call / 2) % d];
                 call += 1;
-                let (slot, comp) = (k / 2, k % 2);
+                let (slot, comp) = (Slot::new(k / 2), Axis::of_index(k));
                 let (cond, v) = match s.condition(slot, comp) {
                     Condition::Force => (Condition::Displacement, 1e-4),
                     Condition::Displacement => (Condition::Force, 1e-3),

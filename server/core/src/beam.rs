@@ -36,6 +36,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve};
 use faer::{Accum, Conj, MatMut, MatRef, Par};
 
+use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedSolver};
 use crate::needle::{BasePose, FlexibleNeedle};
 
@@ -80,10 +81,14 @@ pub struct NeedleCurve {
     /// Fixed-point iterations of the last shape update, and updates that hit the bound.
     pub last_iterations: usize,
     pub unconverged_updates: u64,
+    /// Points or loads past `max_loads` that an update had to leave out (never expected: the
+    /// simulation sizes the curve for its whole working set; counted so it is never silent).
+    pub capacity_drops: u64,
 }
 
 impl NeedleCurve {
-    /// A straight needle at `base` with room for `max_loads` point loads.
+    /// A straight needle at `base` with room for `max_loads` point loads (and as many points in
+    /// [`Self::tangent_compliance_into`]); more are left out and counted in `capacity_drops`.
     pub fn new(params: &FlexibleNeedle, base: BasePose, max_loads: usize) -> Self {
         let n = params.n_links;
         let mut c = Self {
@@ -108,6 +113,7 @@ impl NeedleCurve {
             joint_c: vec![0.0; n],
             last_iterations: 0,
             unconverged_updates: 0,
+            capacity_drops: 0,
         };
         c.rebuild_points();
         c
@@ -199,6 +205,8 @@ impl NeedleCurve {
             let t = self.compliance_terms(s, a);
             if self.point_terms.len() < self.point_terms.capacity() {
                 self.point_terms.push(t);
+            } else {
+                self.capacity_drops += 1;
             }
         }
         let b = self.base.position_m();
@@ -335,6 +343,8 @@ impl NeedleCurve {
         for (s, f) in loads {
             if self.loads.len() < self.loads.capacity() {
                 self.loads.push((s.clamp(0.0, self.length_m), f));
+            } else {
+                self.capacity_drops += 1;
             }
         }
         self.loads.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
@@ -396,8 +406,8 @@ impl NeedleCurve {
 pub struct Coupling {
     cap: usize,
     /// Slots whose lateral displacement is prescribed (N) and with prescribed lateral force (K).
-    n_slots: Vec<usize>,
-    k_slots: Vec<usize>,
+    n_slots: Vec<Slot>,
+    k_slots: Vec<Slot>,
     /// $G$ over all slots (row-major, stride `cap`).
     g: Vec<f64>,
     points: Vec<(f64, f64)>,
@@ -466,8 +476,8 @@ impl Coupling {
         let d = solver.n_nodes().min(nodes.len());
         self.points.clear();
         self.loads.clear();
-        for (i, node) in nodes.iter().enumerate().take(d) {
-            self.points.push((node.s_m, solver.angle_rad(i)));
+        for (slot, node) in Slot::all(d).zip(nodes) {
+            self.points.push((node.s_m, solver.angle_rad(slot)));
             // The needle carries the opposite of the force on the tissue.
             self.loads.push((node.s_m, [-node.force_ref_local_n[0], -node.force_ref_local_n[1]]));
         }
@@ -481,8 +491,8 @@ impl Coupling {
         let d = solver.n_nodes();
         self.n_slots.clear();
         self.k_slots.clear();
-        for slot in 0..d {
-            if solver.condition(slot, 1) == Condition::Displacement {
+        for slot in Slot::all(d) {
+            if solver.condition(slot, Axis::Lateral) == Condition::Displacement {
                 self.n_slots.push(slot);
             } else {
                 self.k_slots.push(slot);
@@ -492,9 +502,9 @@ impl Coupling {
         // b = y_N - A v at the current values.
         solver.solve();
         for (a, &si) in self.n_slots.iter().enumerate() {
-            let mut y = solver.force_local(si)[1];
+            let mut y = solver.force_local(si)[Axis::Lateral];
             for &sj in &self.n_slots {
-                y -= solver.hybrid(2 * si + 1, 2 * sj + 1) * solver.prescribed_value(sj, 1);
+                y -= solver.hybrid(si.dof(Axis::Lateral), sj.dof(Axis::Lateral)) * solver.prescribed_value(sj, Axis::Lateral);
             }
             self.y_cur[a] = y;
         }
@@ -505,8 +515,8 @@ impl Coupling {
             // M = I + G_NN A (column-major), the product by faer.
             for (c, &sc) in self.n_slots.iter().enumerate() {
                 for (a, &sa) in self.n_slots.iter().enumerate() {
-                    self.g_nn[c * cap + a] = self.g[sa * cap + sc];
-                    self.a_nn[c * cap + a] = solver.hybrid(2 * sa + 1, 2 * sc + 1);
+                    self.g_nn[c * cap + a] = self.g[sa.index() * cap + sc.index()];
+                    self.a_nn[c * cap + a] = solver.hybrid(sa.dof(Axis::Lateral), sc.dof(Axis::Lateral));
                     self.m[c * cap + a] = if a == c { 1.0 } else { 0.0 };
                 }
             }
@@ -532,15 +542,16 @@ impl Coupling {
         }
         // rhs = g - G_NN (b - f_ref_N) - G_NK (f_K - f_ref_K).
         for slot in 0..d {
-            self.f_ref_lat[slot] = nodes[slot].force_ref_local_n[1];
+            self.f_ref_lat[slot] = nodes[slot].force_ref_local_n[Axis::Lateral];
         }
         for (a, &si) in self.n_slots.iter().enumerate() {
-            let mut r = nodes[si].lateral_ref_m;
+            let (i, lat) = (si.index(), Axis::Lateral);
+            let mut r = nodes[i].lateral_ref_m;
             for (c, &sc) in self.n_slots.iter().enumerate() {
-                r -= self.g[si * cap + sc] * (self.y_cur[c] - self.f_ref_lat[sc]);
+                r -= self.g[i * cap + sc.index()] * (self.y_cur[c] - self.f_ref_lat[sc.index()]);
             }
             for &sk in &self.k_slots {
-                r -= self.g[si * cap + sk] * (solver.prescribed_value(sk, 1) - self.f_ref_lat[sk]);
+                r -= self.g[i * cap + sk.index()] * (solver.prescribed_value(sk, lat) - self.f_ref_lat[sk.index()]);
             }
             self.rhs[a] = r;
         }
@@ -551,7 +562,7 @@ impl Coupling {
             lu_solve::solve_in_place_with_conj(lu, lu, perm, Conj::No, rhs, Par::Seq, MemStack::new(&mut self.buf));
         }
         for (a, &si) in self.n_slots.iter().enumerate() {
-            solver.set_value(si, 1, self.rhs[a]);
+            solver.set_value(si, Axis::Lateral, self.rhs[a]);
         }
         solver.solve();
     }

@@ -327,17 +327,7 @@ mod tests {
     use crate::material::{Material, PlaneModel};
     use crate::mesh::{MeshLimits, RectMeshParams};
 
-    fn model(nx: usize) -> TissueModel {
-        let mesh = RectMeshParams::new(nx, nx, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(
-            &mesh,
-            &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }],
-            PlaneModel::Strain { thickness_m: 1.0 },
-        )
-        .unwrap();
-        let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
-        TissueModel::new(mesh, mats, &fixed).unwrap()
-    }
+    use crate::fixtures::strain_square as model;
 
     #[test]
     fn columns_invert_the_stiffness_and_are_symmetric() {

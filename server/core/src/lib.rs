@@ -6,7 +6,9 @@
 //! ([`compliance`]) and the condensed mixed boundary-condition solve on the working nodes with
 //! O(d²) updates ([`mixed`]). Gmsh meshes are read from text by [`msh`]. The needle ([`needle`])
 //! and the insertion simulation stepped once per haptic tick ([`sim`]) sit on top, with a spatial
-//! grid ([`spatial`]) for finding the nodes near the tip.
+//! grid ([`spatial`]) for finding the nodes near the tip. Node indices, working-set slots and
+//! needle-frame components have their own types ([`ids`]); the test and benchmark set-ups of
+//! every crate are in [`fixtures`].
 //!
 //! The crate does no I/O and knows no async runtime or protocol: state in, state out, typed errors.
 
@@ -18,6 +20,8 @@ pub mod assembly;
 pub mod beam;
 pub mod compliance;
 pub mod factor;
+pub mod fixtures;
+pub mod ids;
 pub mod material;
 pub mod mesh;
 pub mod mixed;
@@ -30,6 +34,7 @@ pub mod statics;
 pub use assembly::MaterialMap;
 pub use beam::NeedleCurve;
 pub use compliance::{ColumnScratch, ComplianceCache, TissueError, TissueModel};
+pub use ids::{Axis, NodeIdx, Slot};
 pub use material::{Material, MaterialError, PlaneModel};
 pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};
 pub use mixed::{Condition, MixedError, MixedSolver};

@@ -17,6 +17,7 @@
 //! Nothing here allocates after [`MixedSolver::with_capacity`].
 
 use crate::compliance::ComplianceCache;
+use crate::ids::{Axis, NodeIdx, Slot};
 
 /// What is prescribed on one local DOF.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,20 +36,20 @@ pub enum MixedError {
     Full { cap_nodes: usize },
     /// The node is already in the working set.
     #[error("node {node_idx} is already a working node")]
-    AlreadyWorking { node_idx: usize },
+    AlreadyWorking { node_idx: NodeIdx },
     /// The compliance columns of a node are not cached.
     #[error("the compliance columns of node {node_idx} are not cached")]
-    NotCached { node_idx: usize },
+    NotCached { node_idx: NodeIdx },
     /// The slot does not exist.
     #[error("working slot {slot} does not exist ({n_nodes} working nodes)")]
-    NoSuchSlot { slot: usize, n_nodes: usize },
+    NoSuchSlot { slot: Slot, n_nodes: usize },
     /// Prescribing this displacement would make the system singular (the DOF is already
     /// determined by other prescribed displacements, or it has no compliance, e.g. a fixed node).
-    #[error("prescribing the displacement of node {node_idx} component {comp} makes the working system singular (pivot {pivot:e})")]
-    SingularPivot { node_idx: usize, comp: usize, pivot: f64 },
+    #[error("prescribing the {axis} displacement of node {node_idx} makes the working system singular (pivot {pivot:e})")]
+    SingularPivot { node_idx: NodeIdx, axis: Axis, pivot: f64 },
     /// A value or angle is not finite.
     #[error("{what} of working node {node_idx} is not finite")]
-    NonFinite { what: &'static str, node_idx: usize },
+    NonFinite { what: &'static str, node_idx: NodeIdx },
 }
 
 /// Counters of the updates performed.
@@ -67,7 +68,7 @@ pub struct MixedSolver {
     cap_nodes: usize,
     stride: usize,
     n_nodes: usize,
-    node_of_slot: Vec<usize>,
+    node_of_slot: Vec<NodeIdx>,
     angle_rad: Vec<f64>,
     /// World self-compliance block of each slot, to know each DOF's own compliance.
     c_self: Vec<[[f64; 2]; 2]>,
@@ -116,7 +117,7 @@ impl MixedSolver {
             cap_nodes,
             stride,
             n_nodes: 0,
-            node_of_slot: vec![0; cap_nodes],
+            node_of_slot: vec![NodeIdx(0); cap_nodes],
             angle_rad: vec![0.0; cap_nodes],
             c_self: vec![[[0.0; 2]; 2]; cap_nodes],
             kind: vec![Condition::Force; stride],
@@ -166,28 +167,29 @@ impl MixedSolver {
         self.stats
     }
     /// Mesh node of each slot.
-    pub fn nodes(&self) -> &[usize] {
+    pub fn nodes(&self) -> &[NodeIdx] {
         &self.node_of_slot[..self.n_nodes]
     }
     /// The slot of a mesh node, if it is working. $O(m)$.
-    pub fn slot_of(&self, node_idx: usize) -> Option<usize> {
-        self.nodes().iter().position(|&n| n == node_idx)
+    pub fn slot_of(&self, node_idx: NodeIdx) -> Option<Slot> {
+        self.nodes().iter().position(|&n| n == node_idx).map(Slot::new)
     }
     /// The frame angle of a slot.
-    pub fn angle_rad(&self, slot: usize) -> f64 {
-        self.angle_rad[slot]
+    pub fn angle_rad(&self, slot: Slot) -> f64 {
+        self.angle_rad[slot.index()]
     }
-    /// The condition kind of a slot's local component (0 = t, 1 = n).
-    pub fn condition(&self, slot: usize, comp: usize) -> Condition {
-        self.kind[2 * slot + comp]
+    /// The condition kind of a slot's local component along `axis`.
+    pub fn condition(&self, slot: Slot, axis: Axis) -> Condition {
+        self.kind[slot.dof(axis)]
     }
-    /// The hybrid matrix entry $H_{ij}$ (for tests and diagnostics).
+    /// The hybrid matrix entry $H_{ij}$ between local DOFs $i$, $j$ ([`Slot::dof`]).
+    /// For the flexible needle's coupling, tests and diagnostics.
     pub fn hybrid(&self, i: usize, j: usize) -> f64 {
         self.h[i * self.stride + j]
     }
 
-    fn check_slot(&self, slot: usize) -> Result<(), MixedError> {
-        if slot >= self.n_nodes { Err(MixedError::NoSuchSlot { slot, n_nodes: self.n_nodes }) } else { Ok(()) }
+    fn check_slot(&self, slot: Slot) -> Result<(), MixedError> {
+        if slot.index() >= self.n_nodes { Err(MixedError::NoSuchSlot { slot, n_nodes: self.n_nodes }) } else { Ok(()) }
     }
 
     /// The local compliance of DOF `k` (its own, before any condensation).
@@ -199,7 +201,12 @@ impl MixedSolver {
 
     /// Adds `node_idx` to the working set with frame angle `angle_rad` and both local DOFs
     /// force-prescribed at zero. Needs the columns of `node_idx` in `cache`. $O(d^2)$.
-    pub fn add_node(&mut self, cache: &ComplianceCache, node_idx: usize, angle_rad: f64) -> Result<usize, MixedError> {
+    ///
+    /// Errors: [`MixedError::Full`] when all `cap_nodes` slots are taken,
+    /// [`MixedError::NonFinite`] for a non-finite angle, [`MixedError::AlreadyWorking`] when the
+    /// node has a slot, [`MixedError::NotCached`] when its columns are missing; the state is then
+    /// unchanged.
+    pub fn add_node(&mut self, cache: &ComplianceCache, node_idx: NodeIdx, angle_rad: f64) -> Result<Slot, MixedError> {
         if self.n_nodes == self.cap_nodes {
             return Err(MixedError::Full { cap_nodes: self.cap_nodes });
         }
@@ -209,12 +216,12 @@ impl MixedSolver {
         if self.slot_of(node_idx).is_some() {
             return Err(MixedError::AlreadyWorking { node_idx });
         }
-        let c_nn_world = cache.block(node_idx, node_idx).ok_or(MixedError::NotCached { node_idx })?;
+        let c_nn_world = cache.block(node_idx.0, node_idx.0).ok_or(MixedError::NotCached { node_idx })?;
         let d = self.n_dofs();
         let st = self.stride;
         // c: local compliance between existing DOFs and the two new ones.
         for s in 0..self.n_nodes {
-            let b = cache.block(self.node_of_slot[s], node_idx).ok_or(MixedError::NotCached { node_idx })?;
+            let b = cache.block(self.node_of_slot[s].0, node_idx.0).ok_or(MixedError::NotCached { node_idx })?;
             let l = to_local(b, self.angle_rad[s], angle_rad);
             self.tmp_c[2 * s] = l[0];
             self.tmp_c[2 * s + 1] = l[1];
@@ -275,7 +282,7 @@ impl MixedSolver {
         self.x[n1] = 0.0;
         self.n_nodes += 1;
         self.stats.n_added += 1;
-        Ok(slot)
+        Ok(Slot::new(slot))
     }
 
     /// Exchanges $x_k$ and $y_k$ (the principal pivot on $k$). Leaves the state unchanged and
@@ -291,7 +298,7 @@ impl MixedSolver {
             Condition::Displacement => 0.0,
         };
         if !(p > threshold && p.is_finite()) {
-            return Err(MixedError::SingularPivot { node_idx: self.node_of_slot[k / 2], comp: k % 2, pivot: p });
+            return Err(MixedError::SingularPivot { node_idx: self.node_of_slot[k / 2], axis: Axis::of_index(k), pivot: p });
         }
         for j in 0..d {
             self.tmp_row[j] = self.h[k * st + j];
@@ -323,15 +330,19 @@ impl MixedSolver {
         Ok(())
     }
 
-    /// Sets what is prescribed on a local DOF of `slot` (component 0 = t, 1 = n) and its value
-    /// (m for a displacement, N for a force, in the node's frame). $O(d^2)$ when the kind changes,
-    /// $O(1)$ otherwise.
-    pub fn set_condition(&mut self, slot: usize, comp: usize, cond: Condition, value: f64) -> Result<(), MixedError> {
+    /// Sets what is prescribed on the local DOF of `slot` along `axis` and its value (m for a
+    /// displacement, N for a force, in the node's frame). $O(d^2)$ when the kind changes, $O(1)$
+    /// otherwise.
+    ///
+    /// Errors: [`MixedError::NoSuchSlot`], [`MixedError::NonFinite`] for a non-finite value, and
+    /// [`MixedError::SingularPivot`] when the kind change would make the system singular (the
+    /// state is then unchanged).
+    pub fn set_condition(&mut self, slot: Slot, axis: Axis, cond: Condition, value: f64) -> Result<(), MixedError> {
         self.check_slot(slot)?;
         if !value.is_finite() {
-            return Err(MixedError::NonFinite { what: "a prescribed value", node_idx: self.node_of_slot[slot] });
+            return Err(MixedError::NonFinite { what: "a prescribed value", node_idx: self.node_of_slot[slot.index()] });
         }
-        let k = 2 * slot + comp;
+        let k = slot.dof(axis);
         if self.kind[k] != cond {
             self.pivot(k)?;
         }
@@ -340,27 +351,31 @@ impl MixedSolver {
     }
 
     /// The prescribed value of a local DOF (a displacement or a force, by its kind).
-    pub fn prescribed_value(&self, slot: usize, comp: usize) -> f64 {
-        self.x[2 * slot + comp]
+    pub fn prescribed_value(&self, slot: Slot, axis: Axis) -> f64 {
+        self.x[slot.dof(axis)]
     }
 
     /// Sets only the prescribed value of a local DOF, keeping its kind. $O(1)$.
-    pub fn set_value(&mut self, slot: usize, comp: usize, value: f64) {
-        self.x[2 * slot + comp] = value;
+    pub fn set_value(&mut self, slot: Slot, axis: Axis, value: f64) {
+        self.x[slot.dof(axis)] = value;
     }
 
     /// Rotates the frame of `slot` to `angle_rad`. Prescribed values are kept as numbers in the
     /// new frame (the caller sets them anew). $O(d)$, or $O(d^2)$ for a node with mixed kinds.
-    pub fn set_angle(&mut self, slot: usize, angle_rad: f64) -> Result<(), MixedError> {
+    ///
+    /// Errors: [`MixedError::NoSuchSlot`], [`MixedError::NonFinite`] for a non-finite angle, and
+    /// [`MixedError::SingularPivot`] when a node with mixed kinds cannot be pivoted back (it is
+    /// then left force-prescribed at zero on that DOF).
+    pub fn set_angle(&mut self, slot: Slot, angle_rad: f64) -> Result<(), MixedError> {
         self.check_slot(slot)?;
         if !angle_rad.is_finite() {
-            return Err(MixedError::NonFinite { what: "the frame angle", node_idx: self.node_of_slot[slot] });
+            return Err(MixedError::NonFinite { what: "the frame angle", node_idx: self.node_of_slot[slot.index()] });
         }
-        let delta = angle_rad - self.angle_rad[slot];
+        let delta = angle_rad - self.angle_rad[slot.index()];
         if delta == 0.0 {
             return Ok(());
         }
-        let (k0, k1) = (2 * slot, 2 * slot + 1);
+        let (k0, k1) = (slot.dof(Axis::Axial), slot.dof(Axis::Lateral));
         // Make both kinds equal: pivot a displacement DOF to force (always a positive pivot).
         let mixed_pivot = if self.kind[k0] != self.kind[k1] {
             let k = if self.kind[k0] == Condition::Displacement { k0 } else { k1 };
@@ -383,7 +398,7 @@ impl MixedSolver {
             self.h[i * st + k0] = a * q[0][0] + b * q[0][1];
             self.h[i * st + k1] = a * q[1][0] + b * q[1][1];
         }
-        self.angle_rad[slot] = angle_rad;
+        self.angle_rad[slot.index()] = angle_rad;
         self.stats.n_rotations += 1;
         if let Some(k) = mixed_pivot
             && let Err(e) = self.pivot(k)
@@ -397,17 +412,20 @@ impl MixedSolver {
 
     /// Removes `slot` from the working set (its force becomes zero). The last slot moves into
     /// its place. $O(d^2)$ when a displacement was prescribed on it, else $O(d)$.
-    pub fn remove_slot(&mut self, slot: usize) -> Result<(), MixedError> {
+    ///
+    /// Errors: [`MixedError::NoSuchSlot`], or [`MixedError::SingularPivot`] when a prescribed
+    /// displacement cannot be released (not expected: that pivot is always positive).
+    pub fn remove_slot(&mut self, slot: Slot) -> Result<(), MixedError> {
         self.check_slot(slot)?;
-        for comp in 0..2 {
-            let k = 2 * slot + comp;
+        for axis in Axis::BOTH {
+            let k = slot.dof(axis);
             if self.kind[k] == Condition::Displacement {
                 self.pivot(k)?;
             }
         }
         let last = self.n_nodes - 1;
-        if slot != last {
-            self.swap_slots(slot, last);
+        if slot.index() != last {
+            self.swap_slots(slot.index(), last);
         }
         self.n_nodes -= 1;
         self.stats.n_removed += 1;
@@ -445,26 +463,26 @@ impl MixedSolver {
     }
 
     /// Local displacement $(u_t, u_n)$ of `slot` after [`MixedSolver::solve`].
-    pub fn displacement_local(&self, slot: usize) -> [f64; 2] {
+    pub fn displacement_local(&self, slot: Slot) -> [f64; 2] {
         std::array::from_fn(|c| {
-            let k = 2 * slot + c;
+            let k = 2 * slot.index() + c;
             if self.kind[k] == Condition::Displacement { self.x[k] } else { self.y[k] }
         })
     }
     /// Local force $(f_t, f_n)$ on `slot` after [`MixedSolver::solve`].
-    pub fn force_local(&self, slot: usize) -> [f64; 2] {
+    pub fn force_local(&self, slot: Slot) -> [f64; 2] {
         std::array::from_fn(|c| {
-            let k = 2 * slot + c;
+            let k = 2 * slot.index() + c;
             if self.kind[k] == Condition::Force { self.x[k] } else { self.y[k] }
         })
     }
     /// World displacement of `slot`.
-    pub fn displacement_world(&self, slot: usize) -> [f64; 2] {
-        local_to_world(self.displacement_local(slot), self.angle_rad[slot])
+    pub fn displacement_world(&self, slot: Slot) -> [f64; 2] {
+        local_to_world(self.displacement_local(slot), self.angle_rad[slot.index()])
     }
     /// World force on `slot` (the force the needle applies to the tissue node).
-    pub fn force_world(&self, slot: usize) -> [f64; 2] {
-        local_to_world(self.force_local(slot), self.angle_rad[slot])
+    pub fn force_world(&self, slot: Slot) -> [f64; 2] {
+        local_to_world(self.force_local(slot), self.angle_rad[slot.index()])
     }
 
     /// Rebuilds $H$ from $C_{\mathcal{WW}}$ from scratch with a dense factorisation: the reference
@@ -488,7 +506,7 @@ impl MixedSolver {
         for a in 0..self.n_nodes {
             for b in 0..self.n_nodes {
                 let (na, nb) = (self.node_of_slot[a], self.node_of_slot[b]);
-                let blk = cache.block(na, nb).ok_or(MixedError::NotCached { node_idx: nb })?;
+                let blk = cache.block(na.0, nb.0).ok_or(MixedError::NotCached { node_idx: nb })?;
                 let l = to_local(blk, self.angle_rad[a], self.angle_rad[b]);
                 for i in 0..2 {
                     for j in 0..2 {
@@ -509,7 +527,7 @@ impl MixedSolver {
         } else {
             let llt = cpp.llt(faer::Side::Lower).map_err(|_| {
                 let k = p[0];
-                MixedError::SingularPivot { node_idx: self.node_of_slot[k / 2], comp: k % 2, pivot: 0.0 }
+                MixedError::SingularPivot { node_idx: self.node_of_slot[k / 2], axis: Axis::of_index(k), pivot: 0.0 }
             })?;
             let inv = faer::linalg::solvers::DenseSolveCore::inverse(&llt);
             let hpf = -(&inv * &cpf);
@@ -555,25 +573,12 @@ pub fn world_to_local(v: [f64; 2], angle_rad: f64) -> [f64; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assembly::MaterialMap;
-    use crate::compliance::TissueModel;
-    use crate::material::{Material, PlaneModel};
-    use crate::mesh::{MeshLimits, RectMeshParams};
+    use crate::ids::{Axis, NodeIdx, Slot};
     use crate::statics::{NodeCondition, StaticProblem};
     use rand::rngs::SmallRng;
     use rand::{Rng, SeedableRng};
 
-    fn model(nx: usize) -> TissueModel {
-        let mesh = RectMeshParams::new(nx, nx, 0.1, 0.1).build(&MeshLimits::default()).unwrap();
-        let mats = MaterialMap::per_region(
-            &mesh,
-            &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }],
-            PlaneModel::Strain { thickness_m: 1.0 },
-        )
-        .unwrap();
-        let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
-        TissueModel::new(mesh, mats, &fixed).unwrap()
-    }
+    use crate::fixtures::strain_square as model;
 
     fn max_rel_diff(s: &MixedSolver, cache: &ComplianceCache) -> f64 {
         let h = s.hybrid_from_scratch(cache).unwrap();
@@ -611,23 +616,23 @@ mod tests {
                 let op = rng.random_range(0..10);
                 if s.n_nodes() < 3 || (op < 3 && s.n_nodes() < max_nodes) {
                     let node = candidates[rng.random_range(0..candidates.len())];
-                    if s.slot_of(node).is_some() {
+                    if s.slot_of(NodeIdx(node)).is_some() {
                         continue;
                     }
                     cache.ensure(&m, node, &mut scratch).unwrap();
-                    s.add_node(&cache, node, rng.random_range(-3.2..3.2)).unwrap();
+                    s.add_node(&cache, NodeIdx(node), rng.random_range(-3.2..3.2)).unwrap();
                 } else if op < 6 {
-                    let slot = rng.random_range(0..s.n_nodes());
-                    let comp = rng.random_range(0..2);
+                    let slot = Slot::new(rng.random_range(0..s.n_nodes()));
+                    let axis = Axis::of_index(rng.random_range(0..2));
                     let cond = if rng.random_bool(0.6) { Condition::Displacement } else { Condition::Force };
                     let v = if cond == Condition::Displacement { rng.random_range(-1e-3..1e-3) } else { rng.random_range(-0.01..0.01) };
-                    s.set_condition(slot, comp, cond, v).unwrap();
+                    s.set_condition(slot, axis, cond, v).unwrap();
                 } else if op < 8 {
-                    let slot = rng.random_range(0..s.n_nodes());
+                    let slot = Slot::new(rng.random_range(0..s.n_nodes()));
                     let a = s.angle_rad(slot) + rng.random_range(-0.5..0.5);
                     s.set_angle(slot, a).unwrap();
                 } else if op < 9 && s.n_nodes() > 3 {
-                    let slot = rng.random_range(0..s.n_nodes());
+                    let slot = Slot::new(rng.random_range(0..s.n_nodes()));
                     s.remove_slot(slot).unwrap();
                 } else {
                     // fresh values on every DOF
@@ -652,10 +657,10 @@ mod tests {
             // Grow to the full working set and check once more.
             while s.n_nodes() < max_nodes {
                 let node = candidates[rng.random_range(0..candidates.len())];
-                if s.slot_of(node).is_none() {
+                if s.slot_of(NodeIdx(node)).is_none() {
                     cache.ensure(&m, node, &mut scratch).unwrap();
-                    let slot = s.add_node(&cache, node, rng.random_range(-3.2..3.2)).unwrap();
-                    s.set_condition(slot, 1, Condition::Displacement, rng.random_range(-1e-3..1e-3)).unwrap();
+                    let slot = s.add_node(&cache, NodeIdx(node), rng.random_range(-3.2..3.2)).unwrap();
+                    s.set_condition(slot, Axis::Lateral, Condition::Displacement, rng.random_range(-1e-3..1e-3)).unwrap();
                 }
             }
             s.solve();
@@ -680,17 +685,17 @@ mod tests {
         };
         for (i, &n) in nodes.iter().enumerate() {
             cache.ensure(&m, n, &mut scratch).unwrap();
-            let slot = s.add_node(&cache, n, 0.3).unwrap();
+            let slot = s.add_node(&cache, NodeIdx(n), 0.3).unwrap();
             s.set_angle(slot, angle).unwrap();
             let un = 1e-4 * i as f64;
-            s.set_condition(slot, 1, Condition::Displacement, un).unwrap();
+            s.set_condition(slot, Axis::Lateral, Condition::Displacement, un).unwrap();
             if i % 2 == 0 {
                 let ut = -2e-4 * (i + 1) as f64;
-                s.set_condition(slot, 0, Condition::Displacement, ut).unwrap();
+                s.set_condition(slot, Axis::Axial, Condition::Displacement, ut).unwrap();
                 problem.conditions.push((n, NodeCondition::Local { angle_rad: angle, ut_m: Some(ut), un_m: Some(un) }));
             } else {
                 let ft = -3e-3;
-                s.set_condition(slot, 0, Condition::Force, ft).unwrap();
+                s.set_condition(slot, Axis::Axial, Condition::Force, ft).unwrap();
                 problem.conditions.push((n, NodeCondition::Local { angle_rad: angle, ut_m: None, un_m: Some(un) }));
                 problem.loads_n.push((n, local_to_world([ft, 0.0], angle)));
             }
@@ -698,7 +703,7 @@ mod tests {
         s.solve();
         let full = problem.solve(m.mesh(), m.materials()).unwrap();
         let scale = full.displacement_m.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        for (slot, &n) in nodes.iter().enumerate() {
+        for (slot, &n) in Slot::all(nodes.len()).zip(&nodes) {
             let u = s.displacement_world(slot);
             for c in 0..2 {
                 assert!((u[c] - full.displacement_m[2 * n + c]).abs() < 1e-10 * scale, "node {n}");
@@ -706,17 +711,19 @@ mod tests {
         }
         // Whole-mesh displacement from the working forces equals the full solve.
         let mut u_all = vec![0.0; m.n_dofs()];
-        cache.displacement_from_forces_into((0..s.n_nodes()).map(|k| (s.nodes()[k], s.force_world(k))), &mut u_all).unwrap();
+        cache
+            .displacement_from_forces_into(Slot::all(s.n_nodes()).map(|k| (s.nodes()[k.index()].0, s.force_world(k))), &mut u_all)
+            .unwrap();
         for (a, b) in u_all.iter().zip(&full.displacement_m) {
             assert!((a - b).abs() < 1e-10 * scale);
         }
         // Reactions: the force on a stuck node equals minus the static reaction... the static
         // reaction is K u - f at the constrained DOF, i.e. the force the needle applies.
-        for (slot, &n) in nodes.iter().enumerate() {
+        for (slot, &n) in Slot::all(nodes.len()).zip(&nodes) {
             let r = full.reactions_local_n.iter().find(|r| r.0 == n).unwrap();
             let f = s.force_local(slot);
             if let Some(rn) = r.2[1] {
-                assert!((f[1] - rn).abs() < 1e-8 * rn.abs().max(1e-6), "node {n}: {} vs {rn}", f[1]);
+                assert!((f[Axis::Lateral] - rn).abs() < 1e-8 * rn.abs().max(1e-6), "node {n}: {} vs {rn}", f[Axis::Lateral]);
             }
         }
     }
@@ -727,20 +734,25 @@ mod tests {
         let mut cache = ComplianceCache::new(m.mesh().n_nodes());
         let mut scratch = m.column_scratch();
         let mut s = MixedSolver::with_capacity(2);
-        assert_eq!(s.add_node(&cache, 20, 0.0).unwrap_err(), MixedError::NotCached { node_idx: 20 });
+        let n = NodeIdx;
+        assert_eq!(s.add_node(&cache, n(20), 0.0).unwrap_err(), MixedError::NotCached { node_idx: n(20) });
         for n in [20, 21, 0] {
             cache.ensure(&m, n, &mut scratch).unwrap();
         }
-        s.add_node(&cache, 20, 0.0).unwrap();
-        assert_eq!(s.add_node(&cache, 20, 0.0).unwrap_err(), MixedError::AlreadyWorking { node_idx: 20 });
+        s.add_node(&cache, n(20), 0.0).unwrap();
+        assert_eq!(s.add_node(&cache, n(20), 0.0).unwrap_err(), MixedError::AlreadyWorking { node_idx: n(20) });
         // A fixed node has no compliance: prescribing its displacement is singular.
-        let slot = s.add_node(&cache, 0, 0.0).unwrap();
-        let e = s.set_condition(slot, 0, Condition::Displacement, 0.0).unwrap_err();
-        assert!(matches!(e, MixedError::SingularPivot { node_idx: 0, .. }), "{e}");
-        assert_eq!(s.condition(slot, 0), Condition::Force);
-        assert_eq!(s.add_node(&cache, 21, 0.0).unwrap_err(), MixedError::Full { cap_nodes: 2 });
-        assert!(s.set_condition(0, 0, Condition::Displacement, f64::NAN).is_err());
-        assert!(s.set_angle(0, f64::INFINITY).is_err());
-        assert!(s.set_condition(5, 0, Condition::Force, 0.0).is_err());
+        let slot = s.add_node(&cache, n(0), 0.0).unwrap();
+        let e = s.set_condition(slot, Axis::Axial, Condition::Displacement, 0.0).unwrap_err();
+        assert!(matches!(e, MixedError::SingularPivot { node_idx: NodeIdx(0), axis: Axis::Axial, .. }), "{e}");
+        assert_eq!(s.condition(slot, Axis::Axial), Condition::Force);
+        assert_eq!(s.add_node(&cache, n(21), 0.0).unwrap_err(), MixedError::Full { cap_nodes: 2 });
+        let first = Slot::new(0);
+        assert!(s.set_condition(first, Axis::Axial, Condition::Displacement, f64::NAN).is_err());
+        assert!(s.set_angle(first, f64::INFINITY).is_err());
+        assert_eq!(
+            s.set_condition(Slot::new(5), Axis::Axial, Condition::Force, 0.0).unwrap_err(),
+            MixedError::NoSuchSlot { slot: Slot::new(5), n_nodes: 2 }
+        );
     }
 }

@@ -3,9 +3,7 @@
 //! the path towards its bevel side and a 180° flip reverses the curvature, and the needle nodes
 //! lie on the bent shape.
 
-mod common;
-
-use common::{phantom, phantom_params as params};
+use needlesim_core::fixtures::{phantom, phantom_params as params};
 use needlesim_core::sim::{Simulation, StepOutput};
 use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape, RigidNeedle};
 

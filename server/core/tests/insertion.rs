@@ -2,9 +2,7 @@
 //! re-insertion, frames of a rotating needle against a fresh static solve, bad poses, and the
 //! guarantee that no step refactorises the stiffness.
 
-mod common;
-
-use common::phantom;
+use needlesim_core::fixtures::{phantom, phantom_params};
 use needlesim_core::sim::{SimParams, Simulation, StepOutput, TargetParams};
 use needlesim_core::{BasePose, NeedleShape, NodeCondition, RegionNeedleParams, RigidNeedle, StaticProblem};
 
@@ -12,17 +10,10 @@ const FRAC_PI_2: f64 = std::f64::consts::FRAC_PI_2;
 
 fn params(region: RegionNeedleParams, base: BasePose) -> SimParams {
     SimParams {
-        needle: NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }),
         initial_pose: base,
-        capture_radius_m: 0.0015,
-        max_needle_nodes: 64,
         regions: vec![region],
         targets: vec![TargetParams { name: "c".into(), center_m: [0.05, 0.05], radius_m: 0.001 }],
-        tick_rate_hz: 1000.0,
-        max_base_step_m: 0.002,
-        max_base_step_rad: 0.05,
-        max_active_set_iterations: 12,
-        lookahead_m: 0.01,
+        ..phantom_params(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }))
     }
 }
 
@@ -362,4 +353,37 @@ fn jacobian_case(needle: Option<NeedleShape>, tol_translation: f64, tol_rotation
     let lateral_stiffness = n[0] * (j[0][0] * n[0] + j[0][1] * n[1]) + n[1] * (j[1][0] * n[0] + j[1][1] * n[1]);
     assert!(lateral_stiffness < 0.0, "a lateral push meets a restoring force: {lateral_stiffness}");
     j
+}
+
+/// Issue 14: every fixed capacity a step fills is a named limit whose overflow is counted. A
+/// 3 cm jump of the base (allowed by a large step bound) with a wide capture radius passes far
+/// more nodes in one tick than the capture list holds, reports more approaching nodes than
+/// their list holds, queries more grid nodes than the reserved buffer, and fills the working
+/// set: each is counted, none is silent, and the simulation keeps stepping.
+#[test]
+fn overflows_of_fixed_capacities_are_counted() {
+    use needlesim_core::sim::param_limits::{MAX_APPROACHING, MAX_CAPTURES_PER_TICK};
+    let model = phantom(100);
+    let p = SimParams {
+        capture_radius_m: 0.003,
+        max_needle_nodes: 32,
+        max_base_step_m: 0.05,
+        lookahead_m: 0.05,
+        ..phantom_params(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }))
+    };
+    let mut sim = Simulation::new(model, p).unwrap();
+    sim.step(top_base()).unwrap();
+    assert_eq!(sim.output().approaching.len(), MAX_APPROACHING, "the approaching list filled");
+    let first = sim.stats();
+    assert!(first.approaching_overflow > 0, "{first:?}");
+    sim.step(BasePose::new(0.05, 0.175, -FRAC_PI_2)).unwrap();
+    let st = sim.stats();
+    assert!(st.capture_overflow > 0, "more than {MAX_CAPTURES_PER_TICK} nodes passed in one tick: {st:?}");
+    assert!(st.capacity_drops > 0 && st.captures == 32, "the working set filled: {st:?}");
+    assert!(st.candidate_growths > 0, "the grid query outgrew its buffer: {st:?}");
+    assert_eq!(
+        st.overflows(),
+        st.capacity_drops + st.capture_overflow + st.approaching_overflow + st.candidate_growths + st.curve_capacity_drops
+    );
+    sim.step(BasePose::new(0.05, 0.17, -FRAC_PI_2)).unwrap();
 }

@@ -4,12 +4,10 @@
 //! the rigid needle and for a flexible bevel-tip needle whose bevel is flipped half-way, with the
 //! device's stiffness Jacobian taken every 10 ticks as the real-time thread does.
 
-mod common;
-
 use std::alloc::{GlobalAlloc, Layout, System};
 
 use needlesim_core::sim::{SimParams, Simulation};
-use needlesim_core::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle};
+use needlesim_core::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle, fixtures};
 
 struct Counting;
 
@@ -54,21 +52,13 @@ fn flexible_bevel_needle_steps_allocate_nothing_after_warm_up() {
 }
 
 fn run_case(needle: NeedleShape) {
-    let model = common::phantom(25);
+    let model = fixtures::phantom(25);
     let a0 = -1.3f64;
     let base_at = |d: f64, a: f64| BasePose::new(0.04 + (d - 0.1) * a.cos(), 0.1 + (d - 0.1) * a.sin(), a);
     let params = SimParams {
-        needle,
         initial_pose: base_at(-0.005, a0),
-        capture_radius_m: 0.0015,
-        max_needle_nodes: 64,
-        regions: vec![RegionNeedleParams::default()],
         targets: vec![needlesim_core::TargetParams { name: "t".into(), center_m: [0.05, 0.04], radius_m: 0.002 }],
-        tick_rate_hz: 1000.0,
-        max_base_step_m: 0.002,
-        max_base_step_rad: 0.05,
-        max_active_set_iterations: 12,
-        lookahead_m: 0.01,
+        ..fixtures::phantom_params(needle)
     };
     let mut sim = Simulation::new(model, params).unwrap();
     let mut poses: Vec<BasePose> = (0..=4000).map(|k| base_at(-0.005 + 0.045 * k as f64 / 4000.0, a0)).collect();
@@ -111,7 +101,7 @@ fn run_case(needle: NeedleShape) {
 #[test]
 fn issue_13_a_diverging_step_is_caught_without_allocating() {
     use needlesim_core::sim::{Divergence, SimError};
-    let model = common::phantom(19);
+    let model = fixtures::phantom(19);
     let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
     f.flexural_rigidity_nm2 = 193e9 * needlesim_core::FlexibleNeedle::tube_second_moment_m4(0.718e-3, 0.413e-3);
     let down = -std::f64::consts::FRAC_PI_2;
@@ -120,7 +110,7 @@ fn issue_13_a_diverging_step_is_caught_without_allocating() {
         capture_radius_m: 0.5 * (2.0 + std::f64::consts::SQRT_2) / 3.0 * 0.1 / 18.0,
         max_needle_nodes: 128,
         regions: vec![RegionNeedleParams { friction_n_per_m: 1e4, ..Default::default() }],
-        ..common::phantom_params(NeedleShape::Flexible(f))
+        ..fixtures::phantom_params(NeedleShape::Flexible(f))
     };
     let mut sim = Simulation::new(model, params).unwrap();
     // Fig. 4's path, four times faster: down 40 mm, 5 mm sideways, down 50 mm.

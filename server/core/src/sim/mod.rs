@@ -1,0 +1,358 @@
+//! The needle–tissue insertion simulation: one [`Simulation::step`] per haptic tick, from the
+//! commanded base pose to forces, needle-node states, tip and targets.
+//!
+//! A step, in order (each stage a function in its own file, taking the pieces of state it reads
+//! and writes explicitly):
+//! 1. **Pose** (`frames.rs`): reject non-finite poses, clamp jumps larger than the configured
+//!    step.
+//! 2. **Frames and values** (`frames.rs`): rotate every needle node's frame with the needle
+//!    (section 4.2) and set its prescribed values: lateral $u_n = -n\cdot(X-b)$ keeps the node
+//!    on the shaft, axial $u_t = s_a - t\cdot(X-b)$ holds a stuck node at its shaft point $s_a$
+//!    (the tip node at $s = L$).
+//! 3. **Release** (`capture.rs`): shaft nodes the tip has withdrawn past leave the working set.
+//! 4. **Capture** (`capture.rs`): nodes near the tip (spatial grid, never a scan) whose deformed
+//!    position the tip passed within the capture radius become needle nodes. If no node is
+//!    carried by the tip, the most distal one is (puncture: it is pushed until its axial
+//!    reaction exceeds the region's puncture force, or its cutting force inside a region).
+//! 5. **Friction** (`active_set.rs`): each shaft node gets the integral of the friction
+//!    distribution over its tributary segment (see [`crate::needle`]).
+//! 6. **Active set** (`active_set.rs`): solve; stuck nodes whose axial force exceeds static
+//!    friction slip, slipping nodes whose relative motion stopped or reversed stick, the tip node
+//!    punctures or, when it no longer pushes, lets go; repeat (bounded), each change an
+//!    $O(d^2)$ update.
+//! 7. **Divergence check and output** (`divergence.rs`, `output.rs`): the solved state is checked
+//!    against [`DivergenceBounds`], then written: force and torque on the needle base,
+//!    $F = -\sum_i f_i$, $\tau = \sum_i (p_i - b)\times(-f_i)$, node states, tip, targets.
+//!
+//! A flexible needle ([`crate::beam`], `flexible.rs`) changes stages 1, 2, 4, 6 and 7: frames
+//! follow the bent shape's local tangent, prescribed values put nodes on the bent shape, the tip
+//! captures along its own tangent, every solve of the working set includes the needle's lateral
+//! compliance (one small dense solve), and after the tick the shape is brought to equilibrium
+//! with the new forces. A bevel tip's node carries a lateral force $-s_b\beta f_t$ instead of a
+//! lateral displacement, so the tip cuts sideways and the needle curves towards its bevel side.
+//!
+//! The tissue factorisation is never touched: compliance columns come from the cache, computed
+//! ahead of time for the nodes the tip approaches ([`Simulation::prefetch_columns`]), and counted
+//! when a step has to compute one itself.
+//!
+//! The state is split three ways, as faer splits a solve into a symbolic part done once and a
+//! numeric part with scratch sized up front:
+//! - `setup.rs`: what [`Simulation::new`] derives once and never changes (grid, boundary,
+//!   regions, targets, divergence bounds);
+//! - `state.rs`: what one tick hands to the next (pose, working set and solver, column cache,
+//!   needle shape, counters);
+//! - `scratch.rs`: buffers sized up front from the parameters, droppable;
+//!
+//! plus the per-tick [`StepOutput`], rewritten in place. Parameters and their named capacity
+//! limits ([`param_limits`]) are in `params.rs`; the stiffness Jacobian's probe solves in
+//! `jacobian.rs`.
+
+mod active_set;
+mod capture;
+mod divergence;
+mod error;
+mod flexible;
+mod frames;
+mod jacobian;
+mod output;
+mod params;
+mod scratch;
+mod setup;
+mod state;
+
+use std::sync::Arc;
+
+use crate::beam::NeedleCurve;
+use crate::compliance::{ComplianceCache, TissueModel};
+use crate::mixed::MixedSolver;
+use crate::needle::BasePose;
+
+pub use divergence::DivergenceBounds;
+pub use error::{Divergence, SimError};
+pub use output::{LocalCondition, NeedleNodeOut, SimStats, StateSnapshot, StepOutput, TargetOut};
+pub use params::{SimParams, TargetParams, param_limits};
+pub use state::NodeState;
+
+use frames::Geometry;
+use scratch::Scratch;
+use setup::Setup;
+use state::{Diverged, FlexState, State, WorkingSet};
+
+/// The read-only inputs every stage may use.
+#[derive(Clone, Copy)]
+struct Ctx<'a> {
+    model: &'a TissueModel,
+    params: &'a SimParams,
+    setup: &'a Setup,
+}
+
+impl From<Diverged> for SimError {
+    fn from(d: Diverged) -> Self {
+        SimError::Diverged { tick: d.tick, what: d.what, value: d.value, bound: d.bound }
+    }
+}
+
+/// The simulation of one needle in one tissue: the facade over the stages, owning the set-up,
+/// the persistent state, the scratch and the last output.
+pub struct Simulation {
+    model: Arc<TissueModel>,
+    params: SimParams,
+    setup: Setup,
+    state: State,
+    scratch: Scratch,
+    out: StepOutput,
+}
+
+impl Simulation {
+    /// Validates the parameters against the model and sets up the simulation (spatial grid,
+    /// boundary nodes, target locations, all per-step storage).
+    ///
+    /// Errors: [`SimError::InvalidParams`] when a parameter is out of range
+    /// ([`SimParams::validate`]), the region parameters do not match the mesh
+    /// ([`SimParams::validate_for_mesh`]), or a target lies outside the mesh.
+    pub fn new(model: Arc<TissueModel>, params: SimParams) -> Result<Self, SimError> {
+        params.validate()?;
+        params.validate_for_mesh(model.mesh())?;
+        let setup = Setup::new(&model, &params)?;
+        let n_nodes = model.mesh().n_nodes();
+        let cap = params.max_needle_nodes;
+        let mut cache = ComplianceCache::new(n_nodes);
+        cache.reserve(cap + 16);
+        let flex = params.needle.flexible().map(|f| FlexState::new(f, params.initial_pose, cap));
+        let geo = Geometry::new(&params, params.initial_pose, flex.as_ref());
+        let out = StepOutput::initial(&params, &geo, flex.as_ref().map_or(0.0, FlexState::reported_bevel_side));
+        let state = State {
+            pose: params.initial_pose,
+            ws: WorkingSet::new(n_nodes, cap),
+            cache,
+            flex,
+            last_tip_region: None,
+            target_hit: vec![false; params.targets.len()],
+            tick: 0,
+            stats: SimStats::default(),
+            diverged: None,
+        };
+        let scratch = Scratch::new(&model, &params);
+        Ok(Self { model, params, setup, state, scratch, out })
+    }
+
+    /// The tissue model.
+    pub fn model(&self) -> &Arc<TissueModel> {
+        &self.model
+    }
+    /// The parameters.
+    pub fn params(&self) -> &SimParams {
+        &self.params
+    }
+    /// Counters over the simulation's life (including what overflowed a capacity:
+    /// [`SimStats::overflows`]).
+    pub fn stats(&self) -> SimStats {
+        let mut s = self.state.stats;
+        s.curve_capacity_drops = self.state.flex.as_ref().map_or(0, |f| f.curve.capacity_drops)
+            + self.scratch.flex.as_ref().map_or(0, |f| f.probe_curve.capacity_drops);
+        s
+    }
+    /// The working-set solver (for its update counters).
+    pub fn solver(&self) -> &MixedSolver {
+        &self.state.ws.solver
+    }
+    /// The current base pose.
+    pub fn pose(&self) -> BasePose {
+        self.state.pose
+    }
+    /// The last step's output.
+    pub fn output(&self) -> &StepOutput {
+        &self.out
+    }
+    /// The compliance cache.
+    pub fn cache(&self) -> &ComplianceCache {
+        &self.state.cache
+    }
+
+    /// Computes (allocating, outside any step) the compliance columns of up to `max_nodes` of
+    /// the nodes the last step reported as approaching. Returns how many it computed.
+    ///
+    /// Errors: [`SimError::Tissue`] when a column solve fails (columns computed before it stay).
+    pub fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, SimError> {
+        let (cache, cs) = (&mut self.state.cache, &mut self.scratch.capture);
+        let mut n = 0;
+        for &node in &self.out.approaching {
+            if n == max_nodes {
+                break;
+            }
+            if !cache.contains(node) {
+                self.model.compliance_columns_into(node, &mut cs.column_buf, &mut cs.columns)?;
+                cache.insert(node, &cs.column_buf);
+                n += 1;
+            }
+        }
+        Ok(n)
+    }
+
+    /// Stores columns computed by a worker ([`TissueModel::compliance_columns_into`]).
+    pub fn insert_columns(&mut self, node_idx: usize, columns: &[f64]) {
+        self.state.cache.insert(node_idx, columns);
+    }
+
+    /// Stores columns handed over as an owned box, allocating no column storage (for the
+    /// real-time thread); returns the box not kept, to be dropped off the real-time thread.
+    pub fn insert_columns_owned(&mut self, node_idx: usize, columns: Box<[f64]>) -> Option<Box<[f64]>> {
+        self.state.cache.insert_owned(node_idx, columns)
+    }
+
+    /// Reserves bookkeeping room in the column cache for `n_nodes` more nodes.
+    pub fn reserve_cached_nodes(&mut self, n_nodes: usize) {
+        self.state.cache.reserve(n_nodes);
+    }
+
+    /// The bevel side $s_b$ (0 for a symmetric tip).
+    pub fn bevel_side(&self) -> f64 {
+        self.state.flex.as_ref().map_or(0.0, FlexState::reported_bevel_side)
+    }
+
+    /// Turns the needle 180° about its axis: the bevel faces the other side from the next step
+    /// on. Returns the new side (0 and no change for a symmetric tip or a rigid needle).
+    pub fn flip_bevel(&mut self) -> f64 {
+        if let Some(f) = self.state.flex.as_mut()
+            && f.bevel_ratio > 0.0
+        {
+            f.bevel_side = -f.bevel_side;
+            self.state.stats.bevel_flips += 1;
+        }
+        self.out.bevel_side = self.bevel_side();
+        self.out.bevel_side
+    }
+
+    /// The needle's current shape (joint positions base to tip), if it is flexible.
+    pub fn needle_curve(&self) -> Option<&NeedleCurve> {
+        self.state.flex.as_ref().map(|f| &f.curve)
+    }
+
+    /// The bounds a step's results are checked against.
+    pub fn divergence_bounds(&self) -> DivergenceBounds {
+        self.setup.bounds
+    }
+
+    /// Advances one tick towards the commanded base pose, stage by stage (module docs).
+    ///
+    /// Errors: [`SimError::NonFinitePose`] for a pose with a NaN or infinite component (the
+    /// state is unchanged); [`SimError::Tissue`] or [`SimError::Mixed`] when a column or a
+    /// solver update fails mid-tick; [`SimError::Diverged`] when the results are not finite or
+    /// exceed [`DivergenceBounds`] — the output is then not written, and every later step fails
+    /// the same way (checked in $O(d)$, plus the shape's joints for a flexible needle).
+    pub fn step(&mut self, commanded: BasePose) -> Result<&StepOutput, SimError> {
+        let Self { model, params, setup, state: st, scratch: sc, out } = self;
+        let ctx = Ctx { model, params, setup };
+        if let Some(d) = st.diverged {
+            return Err(d.into());
+        }
+        if !commanded.is_finite() {
+            st.stats.rejected_poses += 1;
+            return Err(SimError::NonFinitePose { tick: st.tick, x_m: commanded.x_m, y_m: commanded.y_m, theta_rad: commanded.theta_rad });
+        }
+        let nodes_m = model.mesh().nodes_m();
+        let s_tip = setup.s_tip_m;
+        let prev_tip = Geometry::new(params, st.pose, st.flex.as_ref()).tip();
+        let clamped = frames::apply_pose(params, commanded, &mut st.pose, &mut st.ws, st.flex.as_mut())?;
+        frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), nodes_m, &mut st.ws);
+        capture::release_withdrawn(s_tip, &mut st.ws, &mut st.stats)?;
+        capture::capture(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip)?;
+        let geo = Geometry::new(params, st.pose, st.flex.as_ref());
+        active_set::update_friction(params, &geo, nodes_m, &mut st.ws, &mut sc.active_set.order, false, 0.0);
+        let (mut iterations, mut converged) = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
+        // A flexible needle comes to equilibrium with the tick's forces; where that moves it off
+        // the linearised prediction by more than SHAPE_GAP_TOL_M, the tissue is solved again on
+        // the new shape (a bounded Picard iteration).
+        for pass in 1..=flexible::SHAPE_PASSES {
+            let (Some(fx), Some(fsc)) = (st.flex.as_mut(), sc.flex.as_mut()) else { break };
+            let gap = flexible::settle_shape(nodes_m, st.pose, &params.needle, &mut st.ws, fx, fsc, &mut st.stats.shape_unconverged);
+            if gap <= flexible::SHAPE_GAP_TOL_M || pass == flexible::SHAPE_PASSES {
+                break;
+            }
+            flexible::refresh_frames(&fx.curve, &mut st.ws, s_tip)?;
+            frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), nodes_m, &mut st.ws);
+            let (it, conv) = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
+            iterations += it;
+            converged &= conv;
+            st.stats.shape_passes += 1;
+        }
+        let geo = Geometry::new(params, st.pose, st.flex.as_ref());
+        if let Err((what, value, bound)) = divergence::check(&setup.bounds, nodes_m, &geo, &st.ws) {
+            let d = Diverged { tick: st.tick, what, value, bound };
+            st.diverged = Some(d);
+            return Err(d.into());
+        }
+        output::write_output(&ctx, st, out, iterations, converged, clamped);
+        st.tick += 1;
+        st.stats.ticks += 1;
+        st.stats.clamped_ticks += clamped as u64;
+        st.stats.unconverged_ticks += (!converged) as u64;
+        Ok(out)
+    }
+
+    /// The local stiffness the device feels: the 3 × 3 Jacobian
+    /// $J_{ij} = \partial w_i / \partial q_j$ of the wrench $w = (F_x, F_y, \tau)$ on the base with
+    /// respect to the base pose $q = (x, y, \theta)$, at the current state with the contact
+    /// conditions held (row-major). Central differences of probe solves ($h$ = 1 µm, 1 mrad):
+    /// exact for translations (the held problem is linear in them), $O(h^2)$ for the rotation.
+    /// Six probe solves plus frame rotations: $O(k\,d^2)$ for $k$ slipping nodes; no allocation.
+    /// A device bridge renders $w(q) \approx w_0 + J (q - q_0)$ between server updates.
+    ///
+    /// Errors: [`SimError::Mixed`] when the probe solver refuses a frame rotation (the
+    /// simulation's state is untouched).
+    pub fn stiffness_jacobian(&mut self) -> Result<[[f64; 3]; 3], SimError> {
+        let ctx = Ctx { model: &self.model, params: &self.params, setup: &self.setup };
+        let st = &self.state;
+        jacobian::stiffness_jacobian(&ctx, st.pose, &st.ws, st.flex.as_ref(), &mut self.scratch.probe, self.scratch.flex.as_mut())
+    }
+
+    /// Displacement of every DOF ($O(n\,d)$; for rendering at frame rate, not every tick).
+    pub fn displacement_field_into(&self, out: &mut [f64]) {
+        output::displacement_field_into(&self.state.ws, &self.state.cache, out);
+    }
+
+    /// The static problem that the last step solved: each needle node's conditions in its frame
+    /// (`un` always; `ut` when stuck or carried by the tip) and the friction loads of slipping
+    /// nodes (world components).
+    pub fn snapshot(&self) -> StateSnapshot {
+        output::snapshot(&self.state.ws, &self.out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixtures::{phantom, phantom_params};
+    use crate::needle::{FlexibleNeedle, NeedleShape};
+
+    /// The scratch carries nothing between ticks that is not rebuilt: replacing it mid-run with
+    /// a fresh one changes no output bit (flexible bevel needle: couplings, LU, probe curve).
+    #[test]
+    fn scratch_is_droppable() {
+        let mut f = FlexibleNeedle::gauge17_steel(0.1);
+        f.flexural_rigidity_nm2 *= 0.3;
+        f.bevel_force_ratio = 0.2;
+        let params = phantom_params(NeedleShape::Flexible(f));
+        let model = phantom(25);
+        let a0 = -1.3f64;
+        let base_at = |d: f64| BasePose::new(0.04 + (d - 0.1) * a0.cos(), 0.1 + (d - 0.1) * a0.sin(), a0);
+        let params = SimParams { initial_pose: base_at(-0.005), ..params };
+        let mut a = Simulation::new(model.clone(), params.clone()).unwrap();
+        let mut b = Simulation::new(model, params).unwrap();
+        for k in 0..1500 {
+            let pose = base_at(-0.005 + 0.045 * k as f64 / 1500.0);
+            if k % 50 == 25 {
+                b.scratch = Scratch::new(&b.model, &b.params);
+            }
+            let (oa, ob) = (a.step(pose).unwrap().clone(), b.step(pose).unwrap().clone());
+            assert_eq!((oa.force_n, oa.torque_nm, oa.tip_m), (ob.force_n, ob.torque_nm, ob.tip_m), "tick {k}");
+            assert_eq!(oa.needle_nodes, ob.needle_nodes, "tick {k}");
+            if k % 10 == 0 {
+                assert_eq!(a.stiffness_jacobian().unwrap(), b.stiffness_jacobian().unwrap(), "tick {k}");
+            }
+            a.prefetch_columns(16).unwrap();
+            b.prefetch_columns(16).unwrap();
+        }
+        assert!(a.stats().captures > 5, "{:?}", a.stats());
+    }
+}

@@ -1,0 +1,276 @@
+//! Stage 7 of a step and what the simulation reports: the per-tick output ([`StepOutput`],
+//! owned by the simulation and rewritten in place), the life-long counters ([`SimStats`]), and
+//! the static problem of the last step ([`StateSnapshot`]).
+
+use crate::compliance::ComplianceCache;
+use crate::ids::{Axis, Slot};
+use crate::mixed::Condition;
+use crate::needle::BasePose;
+
+use super::capture::node_displacement;
+use super::frames::Geometry;
+use super::param_limits;
+use super::state::{NodeState, State, WorkingSet};
+use super::{Ctx, SimParams};
+
+/// One needle node in a step's output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NeedleNodeOut {
+    pub node_idx: usize,
+    pub state: NodeState,
+    /// Deformed position.
+    pub position_m: [f64; 2],
+    /// Force of the needle on the tissue node, world frame.
+    pub force_n: [f64; 2],
+    /// Arc length along the shaft.
+    pub s_m: f64,
+}
+
+/// A target in a step's output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetOut {
+    /// Current (displaced) centre.
+    pub position_m: [f64; 2],
+    /// Distance from the tip to the centre.
+    pub distance_m: f64,
+    /// Whether the tip has been within the radius at any tick so far.
+    pub hit: bool,
+}
+
+/// The result of a step. Owned by the simulation and reused: reading it allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct StepOutput {
+    pub tick: u64,
+    pub time_s: f64,
+    /// The pose applied (after clamping).
+    pub base: BasePose,
+    /// Force of the tissue on the needle base (world frame), N.
+    pub force_n: [f64; 2],
+    /// Torque of the tissue on the needle about the base, N·m (counter-clockwise positive).
+    pub torque_nm: f64,
+    /// Axial component $t\cdot F$ (negative when the tissue resists insertion).
+    pub force_axial_n: f64,
+    /// Lateral component $n\cdot F$.
+    pub force_lateral_n: f64,
+    pub tip_m: [f64; 2],
+    /// Direction of the needle at the tip (the base angle for a rigid needle).
+    pub tip_angle_rad: f64,
+    /// The needle's shape: base, joints, tip (two points for a rigid needle).
+    pub shape_m: Vec<[f64; 2]>,
+    /// Bevel side $s_b$ (+1 towards the base frame's $+n$, −1 towards $-n$; 0 for a symmetric tip).
+    pub bevel_side: f64,
+    /// Length of shaft between the most proximal needle node and the tip (0 outside the tissue).
+    pub inserted_length_m: f64,
+    pub n_stuck: usize,
+    pub n_slipping: usize,
+    pub n_tip: usize,
+    pub needle_nodes: Vec<NeedleNodeOut>,
+    pub targets: Vec<TargetOut>,
+    /// Nodes ahead of the tip whose compliance columns are not cached yet, nearest first; at
+    /// most [`param_limits::MAX_APPROACHING`] (the rest counted in
+    /// [`SimStats::approaching_overflow`]).
+    pub approaching: Vec<usize>,
+    pub active_set_iterations: usize,
+    pub converged: bool,
+    /// The commanded pose was clamped this tick.
+    pub clamped: bool,
+}
+
+/// Counters over the simulation's life ([`super::Simulation::stats`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SimStats {
+    pub ticks: u64,
+    /// Columns a step had to compute itself (the prefetch did not have them ready).
+    pub column_misses: u64,
+    pub clamped_ticks: u64,
+    pub rejected_poses: u64,
+    pub unconverged_ticks: u64,
+    pub captures: u64,
+    pub releases: u64,
+    pub punctures: u64,
+    pub stick_to_slip: u64,
+    pub slip_to_stick: u64,
+    /// Captures dropped because the working set was full (`max_needle_nodes`).
+    pub capacity_drops: u64,
+    /// Nodes the tip passed that did not fit one tick's capture list
+    /// ([`param_limits::MAX_CAPTURES_PER_TICK`]); left for later ticks.
+    pub capture_overflow: u64,
+    /// Approaching nodes not reported because [`StepOutput::approaching`] was full
+    /// ([`param_limits::MAX_APPROACHING`]).
+    pub approaching_overflow: u64,
+    /// Spatial-grid queries that outgrew their reserved buffer
+    /// ([`param_limits::NEAR_TIP_CANDIDATES`]): each one allocated inside a step.
+    pub candidate_growths: u64,
+    /// Flexible needle: loads or points the needle curve had to leave out past its capacity
+    /// (the working set's; never expected).
+    pub curve_capacity_drops: u64,
+    /// Flexible needle: shape updates that did not converge within their iteration bound.
+    pub shape_unconverged: u64,
+    /// Bevel flips commanded.
+    pub bevel_flips: u64,
+    /// Extra solves of the working set on a settled needle shape (flexible needle).
+    pub shape_passes: u64,
+}
+
+impl SimStats {
+    /// Everything that did not fit a fixed capacity, summed: captures past the working set or
+    /// the tick's capture list, approaching nodes past the list, curve loads past capacity, and
+    /// grid queries that grew their buffer. Zero in a run whose limits were never reached.
+    pub fn overflows(&self) -> u64 {
+        self.capacity_drops + self.capture_overflow + self.approaching_overflow + self.curve_capacity_drops + self.candidate_growths
+    }
+}
+
+/// One needle node's conditions in its frame, as in the exchange format's `prescribed_local`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LocalCondition {
+    pub node_idx: usize,
+    pub angle_rad: f64,
+    pub ut_m: Option<f64>,
+    pub un_m: Option<f64>,
+}
+
+/// The static problem of the last step (see [`super::Simulation::snapshot`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StateSnapshot {
+    pub conditions: Vec<LocalCondition>,
+    pub loads_n: Vec<(usize, [f64; 2])>,
+    pub needle_nodes: Vec<NeedleNodeOut>,
+}
+
+impl StepOutput {
+    /// The output before the first step: the needle at `params.initial_pose`, every list
+    /// allocated to its capacity (needle nodes: the working set's; approaching:
+    /// [`param_limits::MAX_APPROACHING`]; shape: the curve's joints).
+    pub(super) fn initial(params: &SimParams, geo: &Geometry<'_>, bevel_side: f64) -> Self {
+        let n_shape = params.needle.flexible().map_or(2, |f| f.n_links + 1);
+        let mut shape_m = Vec::with_capacity(n_shape);
+        write_shape(geo, &mut shape_m);
+        StepOutput {
+            shape_m,
+            tip_angle_rad: params.initial_pose.theta_rad,
+            bevel_side,
+            needle_nodes: Vec::with_capacity(params.max_needle_nodes),
+            targets: Vec::with_capacity(params.targets.len()),
+            approaching: Vec::with_capacity(param_limits::MAX_APPROACHING),
+            base: params.initial_pose,
+            tip_m: geo.tip(),
+            converged: true,
+            ..Default::default()
+        }
+    }
+}
+
+/// The needle's shape points: the curve's joints, or base and tip of a rigid needle.
+fn write_shape(geo: &Geometry<'_>, shape_m: &mut Vec<[f64; 2]>) {
+    shape_m.clear();
+    match geo.curve {
+        Some(c) => shape_m.extend_from_slice(c.points_m()),
+        None => {
+            shape_m.push(geo.pose.position_m());
+            shape_m.push(geo.shape.tip_m(&geo.pose));
+        }
+    }
+}
+
+/// Stage 7: writes the solved tick into `out` (forces $F = -\sum_i f_i$ and torque
+/// $\tau = \sum_i (p_i - b)\times(-f_i)$ on the base, node states, shape, tip, targets) and
+/// keeps each node's world force, displacement, arc length and reference force for the next
+/// tick. Allocates nothing: every list has its capacity from [`StepOutput::initial`].
+pub(super) fn write_output(ctx: &Ctx<'_>, st: &mut State, out: &mut StepOutput, iterations: usize, converged: bool, clamped: bool) {
+    let nodes_m = ctx.model.mesh().nodes_m();
+    let geo = Geometry::new(ctx.params, st.pose, st.flex.as_ref());
+    let pose = st.pose;
+    let b = pose.position_m();
+    let (t, n) = (pose.axis(), pose.normal());
+    let mut force = [0.0; 2];
+    let mut torque = 0.0;
+    let mut min_s = f64::INFINITY;
+    out.needle_nodes.clear();
+    let (mut n_stuck, mut n_slip, mut n_tip) = (0, 0, 0);
+    let ws = &mut st.ws;
+    for slot in ws.slots() {
+        let k = slot.index();
+        let f = ws.solver.force_world(slot);
+        let u = ws.solver.displacement_world(slot);
+        ws.f_world[k] = f;
+        ws.u_world[k] = u;
+        let frame = geo.slot_frame(ws, slot);
+        let f_local = ws.solver.force_local(slot);
+        let nn = ws.node_mut(slot);
+        let x = nodes_m[nn.node.index()];
+        let p = [x[0] + u[0], x[1] + u[1]];
+        let (s, _) = frame.coords(p);
+        nn.s_prev_m = s;
+        nn.force_ref_local_n = f_local;
+        min_s = min_s.min(s);
+        force[0] -= f[0];
+        force[1] -= f[1];
+        torque += (p[0] - b[0]) * (-f[1]) - (p[1] - b[1]) * (-f[0]);
+        match nn.state {
+            NodeState::Stuck => n_stuck += 1,
+            NodeState::Slipping => n_slip += 1,
+            NodeState::Tip => n_tip += 1,
+        }
+        out.needle_nodes.push(NeedleNodeOut { node_idx: nn.node.index(), state: nn.state, position_m: p, force_n: f, s_m: s });
+    }
+    write_shape(&geo, &mut out.shape_m);
+    out.tip_angle_rad = geo.curve.map_or(pose.theta_rad, |c| c.tip_angle_rad());
+    let tip = geo.tip();
+    out.bevel_side = st.flex.as_ref().map_or(0.0, |f| f.reported_bevel_side());
+    out.targets.clear();
+    for (k, tg) in ctx.setup.targets.iter().enumerate() {
+        let mut pos = [0.0; 2];
+        for (&node, &w) in tg.nodes.iter().zip(&tg.bary) {
+            let x = nodes_m[node];
+            let u = node_displacement(&st.ws, &st.cache, crate::ids::NodeIdx(node));
+            pos[0] += w * (x[0] + u[0]);
+            pos[1] += w * (x[1] + u[1]);
+        }
+        let distance_m = (pos[0] - tip[0]).hypot(pos[1] - tip[1]);
+        let hit = st.target_hit[k] || distance_m <= tg.radius_m;
+        st.target_hit[k] = hit;
+        out.targets.push(TargetOut { position_m: pos, distance_m, hit });
+    }
+    out.tick = st.tick;
+    out.time_s = st.tick as f64 / ctx.params.tick_rate_hz;
+    out.base = pose;
+    out.force_n = force;
+    out.torque_nm = torque;
+    out.force_axial_n = t[0] * force[0] + t[1] * force[1];
+    out.force_lateral_n = n[0] * force[0] + n[1] * force[1];
+    out.tip_m = tip;
+    out.inserted_length_m = if st.ws.len() == 0 { 0.0 } else { (geo.s_tip_m() - min_s).max(0.0) };
+    out.n_stuck = n_stuck;
+    out.n_slipping = n_slip;
+    out.n_tip = n_tip;
+    out.active_set_iterations = iterations;
+    out.converged = converged;
+    out.clamped = clamped;
+}
+
+/// The static problem the last step solved (see [`super::Simulation::snapshot`]). Allocates.
+pub(super) fn snapshot(ws: &WorkingSet, out: &StepOutput) -> StateSnapshot {
+    let mut conditions = Vec::with_capacity(ws.len());
+    let mut loads_n = Vec::new();
+    for slot in ws.slots() {
+        let node_idx = ws.node(slot).node.index();
+        let angle = ws.solver.angle_rad(slot);
+        let val = |a| (ws.solver.condition(slot, a) == Condition::Displacement).then(|| ws.solver.prescribed_value(slot, a));
+        conditions.push(LocalCondition { node_idx, angle_rad: angle, ut_m: val(Axis::Axial), un_m: val(Axis::Lateral) });
+        for axis in Axis::BOTH {
+            if ws.solver.condition(slot, axis) == Condition::Force {
+                let mut v = [0.0; 2];
+                v[axis] = ws.solver.prescribed_value(slot, axis);
+                loads_n.push((node_idx, crate::mixed::local_to_world(v, angle)));
+            }
+        }
+    }
+    StateSnapshot { conditions, loads_n, needle_nodes: out.needle_nodes.clone() }
+}
+
+/// The displacement of every DOF from the working forces last written out, $O(n\,d)$.
+pub(super) fn displacement_field_into(ws: &WorkingSet, cache: &ComplianceCache, out: &mut [f64]) {
+    let forces = Slot::all(ws.len()).map(|k| (ws.node(k).node.index(), ws.f_world[k.index()]));
+    cache.displacement_from_forces_into(forces, out).expect("working nodes are cached");
+}

@@ -1,0 +1,145 @@
+//! The simulation's parameters ([`SimParams`]), their validation, and the named limits on
+//! everything that sizes per-step storage ([`param_limits`]).
+
+use crate::mesh::Mesh;
+use crate::needle::{BasePose, NeedleShape, RegionNeedleParams};
+
+use super::SimError;
+
+/// A target embedded in the tissue: a point (radius 0) or a small disc.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TargetParams {
+    pub name: String,
+    pub center_m: [f64; 2],
+    pub radius_m: f64,
+}
+
+/// Everything the simulation needs besides the tissue model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimParams {
+    pub needle: NeedleShape,
+    pub initial_pose: BasePose,
+    /// A node whose deformed position lies within this lateral distance of the shaft line when
+    /// the tip passes it becomes a needle node.
+    pub capture_radius_m: f64,
+    /// Capacity of the working set (nodes): sizes the hybrid matrix, its probe copy and the
+    /// flexible coupling up front. A capture past it is dropped and counted
+    /// ([`super::SimStats::capacity_drops`]).
+    pub max_needle_nodes: usize,
+    /// Needle parameters per tissue region (one per mesh region).
+    pub regions: Vec<RegionNeedleParams>,
+    pub targets: Vec<TargetParams>,
+    /// Ticks per second: a step's output time is $t = k / f_{tick}$.
+    pub tick_rate_hz: f64,
+    /// Largest base translation accepted in one tick; larger jumps are clamped.
+    pub max_base_step_m: f64,
+    /// Largest base rotation accepted in one tick; larger jumps are clamped.
+    pub max_base_step_rad: f64,
+    /// Bound on the stick/slip iterations within one tick.
+    pub max_active_set_iterations: usize,
+    /// How far ahead of the tip nodes are reported as approaching (for column prefetch).
+    pub lookahead_m: f64,
+}
+
+impl SimParams {
+    /// Checks every value that does not need the mesh (ranges, finiteness, capacities); the
+    /// message names the field and its allowed range. [`super::Simulation::new`] calls it first.
+    ///
+    /// Errors: [`SimError::InvalidParams`] for the first invalid value (a non-finite pose, a
+    /// non-positive rate, radius or step bound, a negative lookahead, a capacity or iteration
+    /// bound outside [`param_limits`], a target with a non-finite centre or negative radius).
+    pub fn validate(&self) -> Result<(), SimError> {
+        use param_limits::*;
+        let bad = |m: String| Err(SimError::InvalidParams(m));
+        self.needle.validate().map_err(SimError::InvalidParams)?;
+        if !self.initial_pose.is_finite() {
+            let p = self.initial_pose;
+            return bad(format!("initial_pose = ({}, {}, {}) must be finite", p.x_m, p.y_m, p.theta_rad));
+        }
+        let positive = [
+            ("capture_radius_m", self.capture_radius_m),
+            ("tick_rate_hz", self.tick_rate_hz),
+            ("max_base_step_m", self.max_base_step_m),
+            ("max_base_step_rad", self.max_base_step_rad),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{name} = {v} must be finite and > 0"));
+            }
+        }
+        if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
+            return bad(format!("lookahead_m = {} must be finite and ≥ 0", self.lookahead_m));
+        }
+        if self.max_needle_nodes == 0 || self.max_needle_nodes > MAX_NEEDLE_NODES {
+            return bad(format!("max_needle_nodes = {} must be in 1..={MAX_NEEDLE_NODES}", self.max_needle_nodes));
+        }
+        if self.needle.flexible().is_some() && self.max_needle_nodes > MAX_NEEDLE_NODES_FLEXIBLE {
+            return bad(format!(
+                "max_needle_nodes = {} must be ≤ {MAX_NEEDLE_NODES_FLEXIBLE} with a flexible needle",
+                self.max_needle_nodes
+            ));
+        }
+        if !(1..=MAX_ACTIVE_SET_ITERATIONS).contains(&self.max_active_set_iterations) {
+            return bad(format!(
+                "max_active_set_iterations = {} must be in 1..={MAX_ACTIVE_SET_ITERATIONS}",
+                self.max_active_set_iterations
+            ));
+        }
+        for t in &self.targets {
+            if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
+                return bad(format!("target '{}': radius_m = {} must be finite and ≥ 0", t.name, t.radius_m));
+            }
+            if !(t.center_m[0].is_finite() && t.center_m[1].is_finite()) {
+                return bad(format!("target '{}': center_m {:?} is not finite", t.name, t.center_m));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl SimParams {
+    /// Checks the parameters against the mesh: one set of needle parameters per mesh region,
+    /// each valid. [`super::Simulation::new`] calls it after [`SimParams::validate`].
+    ///
+    /// Errors: [`SimError::InvalidParams`] naming the region count or the region and field.
+    pub fn validate_for_mesh(&self, mesh: &Mesh) -> Result<(), SimError> {
+        if self.regions.len() != mesh.region_names().len() {
+            return Err(SimError::InvalidParams(format!(
+                "the mesh has {} region(s) ({}) but needle parameters were given for {}",
+                mesh.region_names().len(),
+                mesh.region_names().join(", "),
+                self.regions.len()
+            )));
+        }
+        for (r, name) in self.regions.iter().zip(mesh.region_names()) {
+            r.validate(name).map_err(SimError::InvalidParams)?;
+        }
+        Ok(())
+    }
+}
+
+/// Limits on the parameters that size per-step storage or bound a tick's work, and the fixed
+/// capacities of the per-tick lists. Architecture invariant: every list a step fills has one of
+/// these capacities, allocated before the first step; what does not fit is counted in
+/// [`super::SimStats`] (see [`super::SimStats::overflows`]), never dropped silently.
+pub mod param_limits {
+    /// Largest working-set capacity (the hybrid matrix is its square: 4096² × 8 B = 134 MB).
+    pub const MAX_NEEDLE_NODES: usize = 4096;
+    /// Largest working-set capacity with a flexible needle (its coupling is dense too).
+    pub const MAX_NEEDLE_NODES_FLEXIBLE: usize = 1024;
+    /// Largest bound on the stick/slip iterations of one tick.
+    pub const MAX_ACTIVE_SET_ITERATIONS: usize = 10_000;
+
+    /// Capacity of one tick's capture list: nodes the tip passed within the capture radius in
+    /// one tick (a few at a capture radius below the mesh spacing). Candidates past it are left
+    /// for later ticks and counted in [`crate::sim::SimStats::capture_overflow`].
+    pub const MAX_CAPTURES_PER_TICK: usize = 64;
+    /// Capacity of [`crate::sim::StepOutput::approaching`]: uncached nodes ahead of the tip
+    /// reported for prefetch. Nodes past it are not reported this tick and are counted in
+    /// [`crate::sim::SimStats::approaching_overflow`].
+    pub const MAX_APPROACHING: usize = 256;
+    /// Capacity reserved up front for the spatial grid's answer to one query near the tip. A
+    /// query returning more grows the buffer (an allocation inside a step, once); each growth
+    /// is counted in [`crate::sim::SimStats::candidate_growths`].
+    pub const NEAR_TIP_CANDIDATES: usize = 1024;
+}

@@ -1,0 +1,200 @@
+//! The simulation's persistent state: what one tick hands to the next (pose, working set and its
+//! solver, column cache, needle shape, counters). Everything here is sized when the simulation
+//! is built; a step changes values, never capacities.
+
+use crate::beam::NeedleCurve;
+use crate::compliance::ComplianceCache;
+use crate::ids::{NodeIdx, Slot};
+use crate::mixed::{MixedError, MixedSolver};
+use crate::needle::{BasePose, FlexibleNeedle};
+
+use super::{Divergence, SimStats};
+
+/// The contact state of a needle node (the paper's Fig. 5a).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NodeState {
+    /// Held at a fixed point of the shaft.
+    Stuck,
+    /// Sliding along the shaft against friction.
+    Slipping,
+    /// Carried ahead of the tip until puncture.
+    Tip,
+}
+
+impl NodeState {
+    /// Lower-case name, as written in files.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            NodeState::Stuck => "stuck",
+            NodeState::Slipping => "slipping",
+            NodeState::Tip => "tip",
+        }
+    }
+}
+
+/// One needle node: a mesh node in the working set and its contact state.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct NeedleNode {
+    pub node: NodeIdx,
+    pub state: NodeState,
+    /// Shaft point a stuck node is held at.
+    pub anchor_s_m: f64,
+    /// Arc length at the end of the previous tick.
+    pub s_prev_m: f64,
+    /// Kinetic friction share.
+    pub friction_n: f64,
+    /// A share being computed (within the friction stage).
+    pub friction_new_n: f64,
+    /// Shaft position used for the friction shares and the shape update (within a stage).
+    pub s_work_m: f64,
+    /// Direction of the friction force on the tissue along $t$ while slipping (±1).
+    pub slip_sign: f64,
+    /// Axial force at which a tip node is released.
+    pub release_force_n: f64,
+    /// The mesh region the node belongs to (index into [`super::SimParams::regions`]).
+    pub region: usize,
+    /// Lateral offset from the shaft the node is held at (a bevel tip's node keeps the offset it
+    /// was cut at when punctured; 0 otherwise).
+    pub lat_offset_m: f64,
+    /// The lateral value that puts the node on the reference shape (flexible needle).
+    pub lateral_ref_m: f64,
+    /// The node's force on the tissue (in its frame) the reference shape carries.
+    pub force_ref_local_n: [f64; 2],
+}
+
+impl NeedleNode {
+    /// The arc length the node's frame is attached to: the anchor of a stuck node, last tick's
+    /// position of a slipping one, the tip's arc length `s_tip_m` for the tip's node.
+    #[inline]
+    pub fn s_ref_m(&self, s_tip_m: f64) -> f64 {
+        match self.state {
+            NodeState::Stuck => self.anchor_s_m,
+            NodeState::Slipping => self.s_prev_m,
+            NodeState::Tip => s_tip_m,
+        }
+    }
+}
+
+/// The working set: the needle nodes by slot, the solver whose slots they are, and the map
+/// from mesh node to slot. Architecture invariant: `nodes[k]`, the solver's slot `k` and
+/// `slot_of_node[nodes[k].node]` always agree (only [`WorkingSet::push`] and
+/// [`WorkingSet::remove`] change them).
+pub(super) struct WorkingSet {
+    pub solver: MixedSolver,
+    /// The needle nodes, indexed by slot.
+    pub nodes: Vec<NeedleNode>,
+    slot_of_node: Vec<Option<Slot>>,
+    /// Each slot's force on the tissue and displacement (world) as last written out: the loads
+    /// of [`super::capture::node_displacement`] between steps.
+    pub f_world: Vec<[f64; 2]>,
+    pub u_world: Vec<[f64; 2]>,
+}
+
+impl WorkingSet {
+    /// An empty working set for a mesh of `n_nodes` nodes with room for `cap` needle nodes.
+    pub fn new(n_nodes: usize, cap: usize) -> Self {
+        Self {
+            solver: MixedSolver::with_capacity(cap),
+            nodes: Vec::with_capacity(cap),
+            slot_of_node: vec![None; n_nodes],
+            f_world: Vec::with_capacity(cap),
+            u_world: Vec::with_capacity(cap),
+        }
+    }
+    /// Number of needle nodes.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+    /// The slots `0..len`.
+    #[inline]
+    pub fn slots(&self) -> impl DoubleEndedIterator<Item = Slot> + ExactSizeIterator + use<> {
+        Slot::all(self.nodes.len())
+    }
+    /// The needle node in `slot`.
+    #[inline]
+    pub fn node(&self, slot: Slot) -> &NeedleNode {
+        &self.nodes[slot.index()]
+    }
+    /// The needle node in `slot`, mutable.
+    #[inline]
+    pub fn node_mut(&mut self, slot: Slot) -> &mut NeedleNode {
+        &mut self.nodes[slot.index()]
+    }
+    /// Whether mesh node `node` is a needle node.
+    #[inline]
+    pub fn contains(&self, node: NodeIdx) -> bool {
+        self.slot_of_node[node.index()].is_some()
+    }
+    /// Records `nn`, just added to the solver in `slot` (the next free one).
+    pub fn push(&mut self, slot: Slot, nn: NeedleNode) {
+        debug_assert_eq!(slot.index(), self.nodes.len(), "slots are dense");
+        self.slot_of_node[nn.node.index()] = Some(slot);
+        self.nodes.push(nn);
+        self.f_world.push([0.0; 2]);
+        self.u_world.push([0.0; 2]);
+    }
+    /// Removes `slot` from the solver and the set; the last slot moves into its place.
+    ///
+    /// Errors: those of [`MixedSolver::remove_slot`] (the set is then unchanged).
+    pub fn remove(&mut self, slot: Slot) -> Result<(), MixedError> {
+        self.solver.remove_slot(slot)?;
+        let k = slot.index();
+        let gone = self.nodes.swap_remove(k);
+        self.f_world.swap_remove(k);
+        self.u_world.swap_remove(k);
+        self.slot_of_node[gone.node.index()] = None;
+        if k < self.nodes.len() {
+            self.slot_of_node[self.nodes[k].node.index()] = Some(slot);
+        }
+        Ok(())
+    }
+}
+
+/// The persistent state of a flexible needle: its shape and which side its bevel faces.
+pub(super) struct FlexState {
+    pub curve: NeedleCurve,
+    /// Bevel force ratio $\beta$ (0 for a symmetric tip), from the parameters.
+    pub bevel_ratio: f64,
+    /// Bevel side $s_b$ (±1), flipped by [`super::Simulation::flip_bevel`].
+    pub bevel_side: f64,
+}
+
+impl FlexState {
+    pub fn new(f: &FlexibleNeedle, pose: BasePose, cap: usize) -> Self {
+        Self { curve: NeedleCurve::new(f, pose, cap), bevel_ratio: f.bevel_force_ratio, bevel_side: f.bevel_side }
+    }
+    /// The bevel side the output reports: $s_b$, or 0 for a symmetric tip.
+    pub fn reported_bevel_side(&self) -> f64 {
+        if self.bevel_ratio > 0.0 { self.bevel_side } else { 0.0 }
+    }
+}
+
+/// The first divergence of the simulation; every later step fails with it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Diverged {
+    pub tick: u64,
+    pub what: Divergence,
+    pub value: f64,
+    pub bound: f64,
+}
+
+/// Everything a tick hands to the next.
+pub(super) struct State {
+    /// The base pose applied by the last step (after clamping).
+    pub pose: BasePose,
+    pub ws: WorkingSet,
+    /// Compliance columns by mesh node; filled by prefetch, workers, or a step's miss.
+    pub cache: ComplianceCache,
+    /// The flexible needle's shape (`None` for a rigid needle).
+    pub flex: Option<FlexState>,
+    /// The region the tip last entered (a tip node entering a new region needs its puncture
+    /// force rather than its cutting force).
+    pub last_tip_region: Option<usize>,
+    /// Whether each target has been hit at any tick so far.
+    pub target_hit: Vec<bool>,
+    /// The number of the next tick.
+    pub tick: u64,
+    pub stats: SimStats,
+    pub diverged: Option<Diverged>,
+}
