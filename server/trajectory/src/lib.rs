@@ -11,6 +11,13 @@ use serde::Deserialize;
 /// The column names, in order, of the CSV header.
 pub const HEADER: [&str; 4] = ["t_s", "x_m", "y_m", "theta_rad"];
 
+/// The largest magnitude of a position (m) or angle (rad) in a trajectory: far beyond any
+/// tissue, and small enough that no interpolation or difference of two poses overflows.
+pub const MAX_ABS_POSE: f64 = 1e3;
+
+/// The shortest time between two samples (s): the segment slopes (velocities) stay finite.
+pub const MIN_SAMPLE_GAP_S: f64 = 1e-9;
+
 /// A planar base pose: position (m) and the needle's angle to the +y axis (rad).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Pose2 {
@@ -46,9 +53,18 @@ pub enum TrajectoryError {
     /// A value is NaN or infinite; `row` counts samples from 1.
     #[error("trajectory row {row} (line {line}): {column} is {value}, not a finite number")]
     NonFinite { row: usize, line: u64, column: &'static str, value: f64 },
+    /// A position or angle beyond ±[`MAX_ABS_POSE`]; `row` counts samples from 1.
+    #[error("trajectory row {row} (line {line}): {column} = {value:e} is out of range (at most {MAX_ABS_POSE:e} in magnitude)")]
+    OutOfRange { row: usize, line: u64, column: &'static str, value: f64 },
     /// A time does not increase over the previous row's.
     #[error("trajectory line {line}: t_s = {t_s} does not increase (previous {previous_s})")]
     NotIncreasing { line: u64, t_s: f64, previous_s: f64 },
+    /// A time follows the previous one by less than [`MIN_SAMPLE_GAP_S`], or by more than a
+    /// double can hold (the segment's slope would be infinite, or its length).
+    #[error(
+        "trajectory line {line}: t_s = {t_s:e} is {gap_s:e} s after the previous sample ({previous_s:e}): the gap must be a finite number of at least {MIN_SAMPLE_GAP_S:e} s"
+    )]
+    BadGap { line: u64, t_s: f64, previous_s: f64, gap_s: f64 },
     /// Nothing after the header.
     #[error("trajectory: no samples")]
     Empty,
@@ -77,7 +93,10 @@ struct Row {
 
 impl Trajectory {
     /// Parses the CSV text: a header, then rows; `#` starts a comment line and fields are
-    /// trimmed. Errors name the line (comment and blank lines counted) and the column.
+    /// trimmed. Errors name the line (comment and blank lines counted) and the column. Every
+    /// value is finite, positions and angles within ±[`MAX_ABS_POSE`], consecutive times at
+    /// least [`MIN_SAMPLE_GAP_S`] and at most a finite double apart: so every pose and slope
+    /// [`Trajectory::pose_and_velocity_at`] returns is finite.
     pub fn parse_csv(text: &str) -> Result<Self, TrajectoryError> {
         let mut rdr = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
         let headers =
@@ -136,10 +155,19 @@ impl Trajectory {
                     return Err(TrajectoryError::NonFinite { row: samples.len() + 1, line, column, value });
                 }
             }
-            if let Some(&(previous_s, _)) = samples.last()
-                && row.t_s <= previous_s
-            {
-                return Err(TrajectoryError::NotIncreasing { line, t_s: row.t_s, previous_s });
+            for (column, value) in HEADER[1..].iter().zip([row.x_m, row.y_m, row.theta_rad]) {
+                if value.abs() > MAX_ABS_POSE {
+                    return Err(TrajectoryError::OutOfRange { row: samples.len() + 1, line, column, value });
+                }
+            }
+            if let Some(&(previous_s, _)) = samples.last() {
+                if row.t_s <= previous_s {
+                    return Err(TrajectoryError::NotIncreasing { line, t_s: row.t_s, previous_s });
+                }
+                let gap_s = row.t_s - previous_s;
+                if !(gap_s.is_finite() && gap_s >= MIN_SAMPLE_GAP_S) {
+                    return Err(TrajectoryError::BadGap { line, t_s: row.t_s, previous_s, gap_s });
+                }
             }
             samples.push((row.t_s, Pose2::new(row.x_m, row.y_m, row.theta_rad)));
             end_line = line;
@@ -266,6 +294,25 @@ mod tests {
         assert!(err("").starts_with("trajectory line 1: the header must be"), "{}", err(""));
         let long = "9".repeat(100) + "x";
         assert!(err(&format!("{H}0,{long},0,0\n")).contains("…` is not a number"), "a client's value is clipped");
+    }
+
+    /// Issue 13 (found by the long fuzzing run of the one parser): finite but huge values were
+    /// accepted and interpolated to infinity (`1e308` then `-1e308`: the difference overflows),
+    /// and samples a subnormal time apart gave infinite slopes.
+    #[test]
+    fn issue_13_huge_poses_and_gaps_are_refused_not_interpolated_to_infinity() {
+        let e = err(&format!("{H}0.14,1e308,0.03,0.04\n0.34,-1e308,0.08,0.04\n"));
+        assert_eq!(e, "trajectory row 1 (line 2): x_m = 1e308 is out of range (at most 1e3 in magnitude)");
+        let e = err(&format!("{H}0,0,0,0\n1,0,0,-2e3\n"));
+        assert!(e.starts_with("trajectory row 2 (line 3): theta_rad = -2e3 is out of range"), "{e}");
+        let e = err(&format!("{H}0,0,0,0\n1e-300,1,0,0\n"));
+        assert!(e.starts_with("trajectory line 3: t_s = 1e-300 is 1e-300 s after the previous sample"), "{e}");
+        let e = err(&format!("{H}-1e308,0,0,0\n1e308,1,0,0\n"));
+        assert!(e.contains("is inf s after the previous sample"), "{e}");
+        // At the bounds every sample and slope is finite.
+        let t = Trajectory::parse_csv(&format!("{H}0,-1e3,1e3,-1e3\n1e-9,1e3,-1e3,1e3\n")).unwrap();
+        let (p, v) = t.pose_and_velocity_at(0.5e-9);
+        assert!([p.x_m, p.y_m, p.theta_rad, v.x_m, v.y_m, v.theta_rad].iter().all(|x| x.is_finite()), "{p:?} {v:?}");
     }
 
     #[test]
