@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use needlesim_core::sim::Simulation;
 use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape};
-use needlesim_server::bench::{grid_simulation, machine, pct};
+use needlesim_lab::bench::{grid_simulation, machine, pct};
 
 fn main() {
     let sizes: Vec<usize> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();

@@ -1,4 +1,4 @@
-//! `needlesim-server bench`: the same scripted insertion and withdrawal on several grid sizes,
+//! `needlesim-lab bench`: the same scripted insertion and withdrawal on several grid sizes,
 //! stepped by three solvers side by side:
 //!
 //! - **ours**: the [`Simulation`] as is: compliance columns from the sparse factorisation,
@@ -14,11 +14,11 @@
 //!   meshes only a sample of ticks, spread over the script, is timed.
 //!
 //! Peak memory is measured by a counting global allocator ([`CountingAlloc`], installed by the
-//! `needlesim-server` binary): the peak of live heap bytes during one solver's run (setup and
+//! `needlesim-lab` binary, and only there): the peak of live heap bytes during one solver's run (setup and
 //! all steps) above the live heap when that run started.
 //!
 //! The static solve of one full problem (the state at the end of the hold, deepest insertion)
-//! is also timed against SciPy's `spsolve` through `server/bench/scipy_static.py`.
+//! is also timed against SciPy's `spsolve` through `server/lab/bench/scipy_static.py`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::fmt::Write as _;
@@ -47,7 +47,7 @@ static CURRENT: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
 
 /// A global allocator that counts live heap bytes and their peak (install it with
-/// `#[global_allocator]`; the `needlesim-server` binary does).
+/// `#[global_allocator]`; the `needlesim-lab` binary does, and no other).
 pub struct CountingAlloc;
 
 fn note_alloc(size: usize) {
@@ -475,7 +475,7 @@ fn scenario_of(s: &Setup, p: &StaticProblem, n: usize) -> Scenario {
     }
     Scenario {
         name: Some(format!("bench-{n}x{n}-end-of-hold")),
-        description: Some("needlesim-server bench: the state at the end of the hold".to_owned()),
+        description: Some("needlesim-lab bench: the state at the end of the hold".to_owned()),
         nodes: s.mesh.nodes_m().to_vec(),
         triangles: s.mesh.triangles().iter().map(|t| t.map(|i| i as i64)).collect(),
         young_modulus_pa: 30e3,
@@ -500,7 +500,7 @@ fn find_python() -> PathBuf {
     if let Some(p) = std::env::var_os("NEEDLESIM_PYTHON") {
         return PathBuf::from(p);
     }
-    let venv = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/.venv/bin/python");
+    let venv = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/.venv/bin/python");
     if venv.exists() { venv } else { PathBuf::from("python3") }
 }
 
@@ -685,7 +685,7 @@ fn to_json(rows: &[Row], statics: &[StaticRow], script: &Script, opts: &BenchOpt
         "peak_mem": MEM_NOTE,
         "results": results,
         "static": {
-            "what": "one full static solve of the state at the end of the hold (deepest insertion): ours = StaticProblem::solve (assembly + sparse Cholesky + solve, best of 3; ours_assembly_s is the assembly alone); scipy = server/bench/scipy_static.py, numpy assembly and scipy.sparse.linalg.spsolve timed separately",
+            "what": "one full static solve of the state at the end of the hold (deepest insertion): ours = StaticProblem::solve (assembly + sparse Cholesky + solve, best of 3; ours_assembly_s is the assembly alone); scipy = server/lab/bench/scipy_static.py, numpy assembly and scipy.sparse.linalg.spsolve timed separately",
             "results": st,
         },
     })
