@@ -7,8 +7,8 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use needlesim_core::MeshLimits;
+use needlesim_lab::bench::{machine, pct};
 use needlesim_scene::load_scene;
-use needlesim_server::bench::{machine, pct};
 use needlesim_server::plan::{PlanOptions, PlanRequest, plan};
 
 fn main() {

@@ -148,7 +148,7 @@ fn main() {
     }));
     println!(
         "machine: {}; server and clients in one process on loopback; {secs} s per case, first 1 s excluded from latency",
-        needlesim_server::bench::machine()
+        needlesim_lab::bench::machine()
     );
     println!();
     println!(

@@ -9,7 +9,7 @@ use std::time::Instant;
 use needlesim_core::fixtures::phantom_bench;
 use needlesim_core::sim::Simulation;
 use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape};
-use needlesim_server::bench::{machine, pct};
+use needlesim_lab::bench::{machine, pct};
 
 fn main() {
     let sizes: Vec<usize> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();

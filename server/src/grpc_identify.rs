@@ -1,5 +1,5 @@
 //! The gRPC `IdentifyService` of `needlesim.v1`: marker tracking, E/ν identification and the needle
-//! force distribution, the same functions as `needlesim-server identify …`, streaming progress.
+//! force distribution, the same functions as `needlesim-lab identify …`, streaming progress.
 //!
 //! Like `Simulate`, these calls touch no session and need no token. Each call parses and checks
 //! its inputs on a blocking worker before answering, so that bad input is the call's status
@@ -12,16 +12,16 @@
 //! final result is always delivered), and inconsistencies found by the fit itself (time stamps
 //! that do not overlap, no usable frame) end the stream with INVALID_ARGUMENT.
 
+use needlesim_identify::logs::{ForceLog, ProbeLog};
+use needlesim_identify::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
+use needlesim_identify::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
+use needlesim_identify::tracks::MarkerTracks;
 use needlesim_proto::v1 as pb;
 use tokio::sync::mpsc;
 use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
 use crate::grpc::Api;
-use crate::identify::experiment::{ForceLog, ProbeLog};
-use crate::identify::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
-use crate::identify::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
-use crate::identify::tracks::MarkerTracks;
 use crate::jobs::{JobKind, JobPermit};
 use crate::status::{ApiError, SizeLimit, quote, status_of};
 
@@ -96,7 +96,7 @@ impl pb::identify_service_server::IdentifyService for Api {
     type NeedleStream = ProgressStream;
 
     async fn track(&self, req: Request<pb::TrackRequest>) -> Result<Response<Self::TrackStream>, Status> {
-        use crate::identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
+        use needlesim_identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
         let r = req.into_inner();
         if r.frames.is_empty() {
             return Err(Status::invalid_argument("frames is empty"));
@@ -107,7 +107,7 @@ impl pb::identify_service_server::IdentifyService for Api {
         // Every image's size from its header, before anything is decoded.
         let max_pixels = self.state.limits.max_image_pixels;
         for (k, f) in r.frames.iter().enumerate() {
-            let header = image::ImageReader::with_format(std::io::Cursor::new(&f.png), image::ImageFormat::Png).into_dimensions();
+            let header = needlesim_identify::frame::png_dimensions(&f.png);
             let (w, h) = header.map_err(|e| ApiError::invalid(format!("frames[{k}].png"), format!("not a PNG image: {e}")))?;
             let pixels = u64::from(w) * u64::from(h);
             if pixels > max_pixels {

@@ -1,15 +1,16 @@
-//! needlesim-server as a library: the scene format, the exchange format of the validation suite,
-//! the offline commands (solve, simulate, bench), and the real-time server (sessions, gRPC
-//! services, recordings), shared by the `needlesim-server` binary and the tests.
+//! needlesim-server as a library: the offline commands (solve, simulate, plan) and the real-time
+//! server (sessions, gRPC services, recordings), shared by the `needlesim-server` binary and the
+//! tests. The measurement pipeline is the needlesim-identify crate; bench and the identify
+//! commands are in needlesim-lab.
 
 pub mod access;
-pub mod bench;
 pub mod control_lease;
 pub mod convert;
 pub mod grpc;
 pub mod grpc_identify;
 pub mod grpc_plan;
-pub mod identify;
+/// The measurement pipeline, under the path grpc.rs names (`crate::identify::track::…`).
+pub use needlesim_identify as identify;
 pub mod jobs;
 pub mod plan;
 pub mod recording;

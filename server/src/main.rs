@@ -8,11 +8,7 @@ use clap::{Args, Parser, Subcommand};
 use needlesim_core::MeshLimits;
 
 use needlesim_scene::{self as scene, exchange};
-use needlesim_server::{bench, grpc, plan, serve, simulate};
-
-/// Counts heap bytes for `bench`'s peak-memory figures (a relaxed atomic add per allocation).
-#[global_allocator]
-static ALLOC: bench::CountingAlloc = bench::CountingAlloc;
+use needlesim_server::{grpc, plan, serve, simulate};
 
 #[derive(Parser)]
 #[command(name = "needlesim-server", version, about = "Real-time needle insertion simulator: server and offline tools")]
@@ -99,11 +95,6 @@ struct ServeArgs {
 
 #[derive(Subcommand)]
 enum Command {
-    /// The measurement pipeline: marker tracking, E/ν identification, needle force distribution.
-    Identify {
-        #[command(subcommand)]
-        command: needlesim_server::identify::cli::IdentifyCommand,
-    },
     /// Start the gRPC server (the default when no command is given).
     Serve(ServeArgs),
     /// Print a summary of the paper-phantom insertion, offline.
@@ -137,24 +128,6 @@ enum Command {
     },
     /// Plan an insertion that reaches a target despite the tissue deformation it causes.
     Plan(PlanArgs),
-    /// Step-time benchmark: ours (sparse columns on demand) vs a dense inverse vs a full solve per tick.
-    Bench {
-        /// Fewer sizes (19×19, 50×50, 100×100) and a faster script (50 mm/s, 0.2 s hold): about a minute at most.
-        #[arg(long)]
-        quick: bool,
-        /// Print the results as one JSON object instead of a markdown table.
-        #[arg(long)]
-        json: bool,
-        /// Write a log-log SVG plot of step p50 against mesh nodes.
-        #[arg(long)]
-        plot: Option<PathBuf>,
-        /// Grid sizes (nodes per side), e.g. --sizes 19,50; default 19,50,100,200,400 (19,50,100 with --quick).
-        #[arg(long, value_delimiter = ',')]
-        sizes: Vec<usize>,
-        /// Skip the static-solve comparison with SciPy.
-        #[arg(long)]
-        no_scipy: bool,
-    },
 }
 
 /// `plan`'s arguments; absent ones take the scene's planning example's values (server/scenes/fig3-plan.toml).
@@ -200,12 +173,8 @@ fn main() -> ExitCode {
         Some(Command::Simulate { scene, trajectory, output, dump_state, max_ticks }) => {
             run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits)
         }
-        Some(Command::Bench { quick, json, plot, sizes, no_scipy }) => {
-            run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json)
-        }
         Some(Command::Plan(args)) => run_plan(&args, &limits),
         Some(Command::Summary) => summary(&limits),
-        Some(Command::Identify { command }) => needlesim_server::identify::cli::run(command),
         Some(Command::Serve(args)) => run_serve(args, &limits),
         None => run_serve(cli.serve, &limits),
     };
@@ -378,16 +347,6 @@ fn summary(limits: &MeshLimits) -> Result<()> {
     let p = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize] * 1e6;
     println!("step time: p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs (debug builds are slower; use --release)", p(0.5), p(0.99), p(1.0));
     println!("full time series: needlesim-server simulate --scene paper-phantom -o paper-phantom.csv");
-    Ok(())
-}
-
-fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
-    let (value, markdown) = bench::run(&opts)?;
-    if json {
-        println!("{}", serde_json::to_string(&value)?);
-    } else {
-        print!("{markdown}");
-    }
     Ok(())
 }
 

@@ -27,10 +27,10 @@ use std::time::Duration;
 
 use fuzz::{Target, Verdict, verdict};
 use needlesim_core::MeshLimits;
+use needlesim_identify::logs::{ForceLog, ProbeLog};
+use needlesim_identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
+use needlesim_identify::tracks::MarkerTracks;
 use needlesim_scene::exchange::{Scenario, solve_scenario};
-use needlesim_server::identify::experiment::{ForceLog, ProbeLog};
-use needlesim_server::identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
-use needlesim_server::identify::tracks::MarkerTracks;
 use rand::Rng;
 use rand::rngs::SmallRng;
 
@@ -571,36 +571,50 @@ fn logs_target() -> Target {
 // ---------------------------------------------------------------------------------------------
 // PNG frames
 
-/// A phantom frame: 3 × 3 dark dots of radius 3 px on a lit background, offset by `shift_px`.
-fn phantom_frame(shift_px: f64) -> image::GrayImage {
-    image::GrayImage::from_fn(96, 96, |x, y| {
-        let near = (0..9).any(|k| {
-            let (cx, cy) = (24.0 + 24.0 * f64::from(k % 3) + shift_px, 24.0 + 24.0 * f64::from(k / 3));
-            (f64::from(x) - cx).hypot(f64::from(y) - cy) <= 3.0
-        });
-        image::Luma([if near { 40 } else { 200 }])
-    })
+/// A phantom frame, 96 × 96 8-bit gray levels: 3 × 3 dark dots of radius 3 px on a lit
+/// background, offset by `shift_px`.
+fn phantom_frame(shift_px: f64) -> Vec<u8> {
+    (0..96u32)
+        .flat_map(|y| (0..96u32).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let near = (0..9).any(|k| {
+                let (cx, cy) = (24.0 + 24.0 * f64::from(k % 3) + shift_px, 24.0 + 24.0 * f64::from(k / 3));
+                (f64::from(x) - cx).hypot(f64::from(y) - cy) <= 3.0
+            });
+            if near { 40 } else { 200 }
+        })
+        .collect()
 }
 
-fn png(img: &image::DynamicImage) -> Vec<u8> {
-    let mut out = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut out, image::ImageFormat::Png).unwrap();
-    out.into_inner()
+/// A 96 × 96 PNG of colour type `color` and bit depth `depth` holding `samples` (big-endian
+/// 16-bit samples when `depth` is 16).
+fn png(color: png::ColorType, depth: png::BitDepth, samples: &[u8]) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut encoder = png::Encoder::new(&mut out, 96, 96);
+    encoder.set_color(color);
+    encoder.set_depth(depth);
+    let mut writer = encoder.write_header().unwrap();
+    writer.write_image_data(samples).unwrap();
+    writer.finish().unwrap();
+    out
 }
 
 /// Frame 0, unmutated: the reference the mutated frame is tracked against.
 fn first_frame() -> &'static [u8] {
     static FRAME: OnceLock<Vec<u8>> = OnceLock::new();
-    FRAME.get_or_init(|| png(&image::DynamicImage::ImageLuma8(phantom_frame(0.0))))
+    FRAME.get_or_init(|| png(png::ColorType::Grayscale, png::BitDepth::Eight, &phantom_frame(0.0)))
 }
 
+/// The shifted frame as 8-bit gray, 8-bit RGB, 16-bit gray and 16-bit RGBA (opaque).
 fn png_seeds() -> Vec<Vec<u8>> {
-    let g = image::DynamicImage::ImageLuma8(phantom_frame(1.0));
+    use png::{BitDepth, ColorType};
+    let g = phantom_frame(1.0);
+    let wide = |v: u8| (u16::from(v) * 257).to_be_bytes();
     vec![
-        png(&g),
-        png(&image::DynamicImage::ImageRgb8(g.to_rgb8())),
-        png(&image::DynamicImage::ImageLuma16(g.to_luma16())),
-        png(&image::DynamicImage::ImageRgba16(g.to_rgba16())),
+        png(ColorType::Grayscale, BitDepth::Eight, &g),
+        png(ColorType::Rgb, BitDepth::Eight, &g.iter().flat_map(|&v| [v, v, v]).collect::<Vec<u8>>()),
+        png(ColorType::Grayscale, BitDepth::Sixteen, &g.iter().flat_map(|&v| wide(v)).collect::<Vec<u8>>()),
+        png(ColorType::Rgba, BitDepth::Sixteen, &g.iter().flat_map(|&v| [v, v, v, 255].into_iter().flat_map(wide)).collect::<Vec<u8>>()),
     ]
 }
 

@@ -1,4 +1,4 @@
-//! `needlesim-server bench --quick --json` through the real binary: one JSON object with the
+//! `needlesim-lab bench --quick --json` through the real binary: one JSON object with the
 //! required keys for ours, dense and naive at 50×50, finite positive figures, the SVG plot, and
 //! the property that ours' step is faster than a full solve per tick.
 
@@ -18,7 +18,7 @@ fn quick_bench_reports_the_three_solvers() {
     let tmp = TempDir::new("bench");
     let plot = tmp.join("step_time.svg");
     let started = std::time::Instant::now();
-    let o = run(Command::new(bin("needlesim-server")).args(["bench", "--quick", "--json", "--plot"]).arg(&plot));
+    let o = run(Command::new(bin("needlesim-lab")).args(["bench", "--quick", "--json", "--plot"]).arg(&plot));
     let (out, err) = text(&o);
     assert!(o.status.success(), "bench failed: {err}");
     assert!(!err.contains("panicked"), "{err}");
@@ -55,7 +55,7 @@ fn quick_bench_reports_the_three_solvers() {
 
 #[test]
 fn bench_rejects_a_too_small_grid() {
-    let o = run(Command::new(bin("needlesim-server")).args(["bench", "--quick", "--json", "--sizes", "2"]));
+    let o = run(Command::new(bin("needlesim-lab")).args(["bench", "--quick", "--json", "--sizes", "2"]));
     let (out, err) = text(&o);
     assert!(!o.status.success(), "a 2×2 grid was accepted: {out}");
     assert!(err.contains("grid size 2 is too small"), "{err}");

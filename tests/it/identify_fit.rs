@@ -1,4 +1,4 @@
-//! Issue 9, the fits: `needlesim-server identify synth|probe|needle` through the real binary
+//! Issue 9, the fits: `needlesim-lab identify synth|probe|needle` through the real binary
 //! (E and ν from synthetic probing, the needle force distribution from a synthetic insertion,
 //! the round trip through a fitted scene, the input errors) and the gRPC IdentifyService through a
 //! real server process.
@@ -9,17 +9,17 @@ use std::process::Command;
 use needlesim_proto::v1 as pb;
 use needlesim_tests::{ServerProcess, TempDir, bin, connect, run, text};
 
-/// Runs `needlesim-server identify ARGS…`, asserts success, returns stdout as JSON.
+/// Runs `needlesim-lab identify ARGS…`, asserts success, returns stdout as JSON.
 fn identify(args: &[&str]) -> serde_json::Value {
-    let out = run(Command::new(bin("needlesim-server")).arg("identify").args(args));
+    let out = run(Command::new(bin("needlesim-lab")).arg("identify").args(args));
     let (o, e) = text(&out);
     assert!(out.status.success(), "identify {args:?} failed:\n{e}");
     serde_json::from_str(&o).unwrap_or_else(|err| panic!("identify {args:?}: not JSON ({err}):\n{o}"))
 }
 
-/// Runs `needlesim-server identify ARGS…`, asserts failure, returns stderr.
+/// Runs `needlesim-lab identify ARGS…`, asserts failure, returns stderr.
 fn identify_err(args: &[&str]) -> String {
-    let out = run(Command::new(bin("needlesim-server")).arg("identify").args(args));
+    let out = run(Command::new(bin("needlesim-lab")).arg("identify").args(args));
     let (o, e) = text(&out);
     assert!(!out.status.success(), "identify {args:?} should fail, printed:\n{o}");
     e
@@ -104,7 +104,7 @@ fn rendered_images_tracked_and_fitted_give_e_and_nu() {
     let dir = TempDir::new("identify-pipeline");
     identify(&["synth", "probe", "--marker-noise-px", "0", "--out", p(dir.path())]);
     let img = dir.join("img");
-    let out = run(Command::new(bin("needlesim-server"))
+    let out = run(Command::new(bin("needlesim-lab"))
         .args(["identify", "render", "--tracks"])
         .arg(dir.join("probe-tracks.csv"))
         .arg("--out-dir")
@@ -112,7 +112,7 @@ fn rendered_images_tracked_and_fitted_give_e_and_nu() {
         .args(["--width", "560", "--height", "560"]));
     assert!(out.status.success(), "{}", text(&out).1);
     let tracked = dir.join("tracked.csv");
-    let out = run(Command::new(bin("needlesim-server"))
+    let out = run(Command::new(bin("needlesim-lab"))
         .args(["identify", "track", "--images"])
         .arg(&img)
         .args(["--dark", "--m-per-px", "0.0002", "--origin-px", "20,520", "--origin-m", "0,0", "--expected", "121", "-o"])
@@ -279,7 +279,7 @@ async fn grpc_probe_and_needle_stream_progress_and_results() {
     assert!(st.message().starts_with("probe_log_csv:"), "{}", st.message());
     // Track: rendered marker images in, marker tracks out.
     let img = dir.join("img");
-    let out = run(Command::new(bin("needlesim-server"))
+    let out = run(Command::new(bin("needlesim-lab"))
         .args(["identify", "render", "--tracks"])
         .arg(dir.join("probe-tracks.csv"))
         .arg("--out-dir")

@@ -1,4 +1,4 @@
-//! `needlesim-server identify render` and `identify track` through the real binary: synthetic
+//! `needlesim-lab identify render` and `identify track` through the real binary: synthetic
 //! marker images rendered from known tracks are tracked back to within a tenth of a pixel, bad
 //! image directories give errors that name the file, and the shipped probing example goes from
 //! images to E and ν (render → track → probe).
@@ -47,8 +47,8 @@ fn parse(csv: &str) -> Vec<(usize, usize, f64, f64, f64, f64, bool)> {
         .collect()
 }
 
-fn server(args: &[&str]) -> (bool, String, String) {
-    let out = run(Command::new(bin("needlesim-server")).arg("identify").args(args));
+fn lab(args: &[&str]) -> (bool, String, String) {
+    let out = run(Command::new(bin("needlesim-lab")).arg("identify").args(args));
     let (o, e) = text(&out);
     (out.status.success(), o, e)
 }
@@ -56,7 +56,7 @@ fn server(args: &[&str]) -> (bool, String, String) {
 fn render(truth: &Path, dir: &Path, extra: &[&str]) {
     let mut args = vec!["render", "--tracks", truth.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()];
     args.extend_from_slice(extra);
-    let (ok, o, e) = server(&args);
+    let (ok, o, e) = lab(&args);
     assert!(ok, "render failed: {o}{e}");
     assert!(o.contains("rendered 5 frames of 35 markers"), "{o}");
 }
@@ -80,7 +80,7 @@ fn issue_9_tracked_markers_within_a_tenth_of_a_pixel() {
     let out = tmp.join("tracks.csv");
     let origin = format!("{},{}", 52.0 * M_PER_PX, (H - 192.0) * M_PER_PX);
     let spacing = (SPACING_PX * M_PER_PX).to_string();
-    let (ok, o, e) = server(&[
+    let (ok, o, e) = lab(&[
         "track",
         "--images",
         frames.to_str().unwrap(),
@@ -122,7 +122,7 @@ fn issue_9_tracked_markers_within_a_tenth_of_a_pixel() {
     assert!(worst_m < 0.25 * M_PER_PX, "worst position error {worst_m} m");
 
     // A given scale: metres follow the pixels exactly (y up).
-    let (ok, o, e) = server(&[
+    let (ok, o, e) = lab(&[
         "track",
         "--images",
         frames.to_str().unwrap(),
@@ -150,7 +150,7 @@ fn identify_track_errors_name_the_file_or_directory() {
         let out = tmp.join("out.csv");
         let mut args = vec!["track", "--images", images, "--dark", "--m-per-px", "1e-4", "-o", out.to_str().unwrap()];
         args.extend_from_slice(extra);
-        let (ok, o, e) = server(&args);
+        let (ok, o, e) = lab(&args);
         assert!(!ok, "should fail: {o}");
         e
     };
@@ -186,7 +186,7 @@ fn probing_example_from_rendered_images_recovers_e_and_nu() {
     let tmp = TempDir::new("identify-track-probe");
     let example = needlesim_tests::repo_root().join("server/identify-example");
     let images = tmp.join("images");
-    let (ok, o, e) = server(&[
+    let (ok, o, e) = lab(&[
         "render",
         "--tracks",
         example.join("probe-tracks.csv").to_str().unwrap(),
@@ -201,7 +201,7 @@ fn probing_example_from_rendered_images_recovers_e_and_nu() {
     ]);
     assert!(ok, "render failed: {o}{e}");
     let tracks = tmp.join("tracks.csv");
-    let (ok, o, e) = server(&[
+    let (ok, o, e) = lab(&[
         "track",
         "--images",
         images.to_str().unwrap(),
@@ -214,7 +214,7 @@ fn probing_example_from_rendered_images_recovers_e_and_nu() {
         tracks.to_str().unwrap(),
     ]);
     assert!(ok, "track failed: {o}{e}");
-    let (ok, o, e) = server(&[
+    let (ok, o, e) = lab(&[
         "probe",
         "--tracks",
         tracks.to_str().unwrap(),

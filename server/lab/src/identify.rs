@@ -1,9 +1,9 @@
-//! The `needlesim-server identify …` subcommands (argument parsing and file I/O only; the work is
-//! in the sibling modules).
+//! The `needlesim-lab identify …` subcommands (argument parsing and file I/O only; the work is in
+//! the needlesim-identify crate).
 
 use clap::Subcommand;
 
-/// `needlesim-server identify <command>`.
+/// `needlesim-lab identify <command>`.
 #[derive(Subcommand, Debug)]
 pub enum IdentifyCommand {
     /// Detect and track dot markers in a sequence of PNG images; writes marker tracks (CSV:
@@ -198,8 +198,8 @@ fn list_frames(dir: &std::path::Path, fps: Option<f64>) -> anyhow::Result<Vec<(f
 
 /// Runs `identify track`.
 fn run_track(a: TrackArgs) -> anyhow::Result<()> {
-    use super::track::{Polarity, Scale, TrackParams, Tracker};
     use anyhow::Context;
+    use needlesim_identify::track::{Polarity, Scale, TrackParams, Tracker};
     let polarity = if a.bright { Polarity::Bright } else { Polarity::Dark };
     let scale = match (a.spacing_m, a.m_per_px) {
         (Some(spacing_m), _) => Scale::MarkerSpacing { spacing_m, origin_m: a.origin_m },
@@ -235,11 +235,11 @@ fn run_track(a: TrackArgs) -> anyhow::Result<()> {
 
 /// Runs `identify render`.
 fn run_render(a: RenderArgs) -> anyhow::Result<()> {
-    use super::render::{RenderParams, render_sequence};
-    use super::track::Polarity;
     use anyhow::Context;
+    use needlesim_identify::render::{RenderParams, render_sequence};
+    use needlesim_identify::track::Polarity;
     let text = std::fs::read_to_string(&a.tracks).with_context(|| format!("cannot read {}", a.tracks.display()))?;
-    let tracks = super::tracks::MarkerTracks::from_csv(&text).with_context(|| a.tracks.display().to_string())?;
+    let tracks = needlesim_identify::tracks::MarkerTracks::from_csv(&text).with_context(|| a.tracks.display().to_string())?;
     let polarity = if a.bright { Polarity::Bright } else { Polarity::Dark };
     let p = RenderParams {
         width_px: a.width,
@@ -264,9 +264,9 @@ fn read_text(path: &std::path::Path) -> anyhow::Result<String> {
     std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
 }
 
-fn read_tracks(path: &std::path::Path) -> anyhow::Result<super::tracks::MarkerTracks> {
+fn read_tracks(path: &std::path::Path) -> anyhow::Result<needlesim_identify::tracks::MarkerTracks> {
     use anyhow::Context;
-    super::tracks::MarkerTracks::from_csv(&read_text(path)?).with_context(|| path.display().to_string())
+    needlesim_identify::tracks::MarkerTracks::from_csv(&read_text(path)?).with_context(|| path.display().to_string())
 }
 
 fn plane_of(model: &str, thickness_m: f64) -> anyhow::Result<needlesim_core::PlaneModel> {
@@ -328,10 +328,10 @@ pub struct ProbeArgs {
 }
 
 fn run_probe(a: ProbeArgs) -> anyhow::Result<()> {
-    use super::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
     use anyhow::Context;
+    use needlesim_identify::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
     let tracks = read_tracks(&a.tracks)?;
-    let log = super::experiment::ProbeLog::from_csv(&read_text(&a.probe_log)?).with_context(|| a.probe_log.display().to_string())?;
+    let log = needlesim_identify::logs::ProbeLog::from_csv(&read_text(&a.probe_log)?).with_context(|| a.probe_log.display().to_string())?;
     let model = match (&a.grid, &a.scene) {
         (Some((nx, ny, w, h)), _) => grid_model(&tracks, *nx, *ny, *w, *h, plane_of(&a.plane, a.thickness_m)?)?,
         (None, Some(spec)) => {
@@ -395,8 +395,8 @@ fn scene_text(spec: &str) -> anyhow::Result<String> {
 }
 
 fn run_needle(a: NeedleArgs) -> anyhow::Result<()> {
-    use super::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
     use anyhow::Context;
+    use needlesim_identify::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
     let scene = needlesim_scene::load_scene(&a.scene, &needlesim_core::MeshLimits::default())?;
     let traj = match (&a.trajectory, scene.example_trajectory) {
         (Some(p), _) => needlesim_scene::Trajectory::parse_csv(&read_text(p)?).with_context(|| p.display().to_string())?,
@@ -404,7 +404,7 @@ fn run_needle(a: NeedleArgs) -> anyhow::Result<()> {
         (None, None) => anyhow::bail!("--trajectory is needed: the scene is not a shipped example with its own"),
     };
     let tracks = read_tracks(&a.tracks)?;
-    let log = super::experiment::ForceLog::from_csv(&read_text(&a.force_log)?).with_context(|| a.force_log.display().to_string())?;
+    let log = needlesim_identify::logs::ForceLog::from_csv(&read_text(&a.force_log)?).with_context(|| a.force_log.display().to_string())?;
     let started = std::time::Instant::now();
     let mut fit = fit_needle(
         &scene,
@@ -464,8 +464,8 @@ pub struct SynthNoiseArgs {
 }
 
 impl SynthNoiseArgs {
-    fn params(&self) -> super::experiment::NoiseParams {
-        super::experiment::NoiseParams {
+    fn params(&self) -> needlesim_identify::experiment::NoiseParams {
+        needlesim_identify::experiment::NoiseParams {
             px_per_m: self.px_per_m,
             marker_noise_px: self.marker_noise_px,
             force_noise_rel: self.force_noise_rel,
@@ -540,8 +540,8 @@ fn write_out(dir: &std::path::Path, name: &str, text: &str) -> anyhow::Result<()
 }
 
 fn run_synth(cmd: SynthCommand) -> anyhow::Result<()> {
-    use super::experiment::{NeedleSynthParams, ProbeSynthParams, synth_needle, synth_probe};
     use anyhow::Context;
+    use needlesim_identify::experiment::{NeedleSynthParams, ProbeSynthParams, synth_needle, synth_probe};
     match cmd {
         SynthCommand::Probe(a) => {
             let p = ProbeSynthParams {

@@ -27,8 +27,8 @@ use anyhow::{Context, Result, bail};
 use needlesim_core::{Material, MaterialMap, Mesh, MeshLimits, NodeCondition, PlaneModel, RectMeshParams, StaticProblem};
 use serde::Serialize;
 
-use super::experiment::{ProbeLog, interp};
-use super::tracks::MarkerTracks;
+use crate::logs::{ProbeLog, interp};
+use crate::tracks::MarkerTracks;
 
 /// The FEM model of the probed phantom: a mesh, its plane model and fixed nodes, and the node
 /// of every marker.
@@ -420,10 +420,10 @@ fn data_force(data: &Data, i: usize) -> f64 {
     data.force[i / 2].1[i % 2]
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "synthetic"))]
 mod tests {
-    use super::super::experiment::{ProbeSynthParams, synth_probe};
     use super::*;
+    use crate::experiment::{ProbeSynthParams, synth_probe};
 
     #[test]
     fn recovers_e_and_nu_from_noisy_probing() {

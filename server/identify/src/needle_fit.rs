@@ -2,7 +2,7 @@
 //! measured marker displacements, the needle nodes along the shaft, and the fitted friction per
 //! length and tip peak; the fitted parameters written into a scene file.
 //!
-//! Every mesh node carries a marker (registered to it, see [`super::probe::register_markers`]).
+//! Every mesh node carries a marker (registered to it, see [`crate::probe::register_markers`]).
 //! Frame 0 is the undeformed phantom; the reference position of every node is its mesh position
 //! under the affine map fitted to the frame-0 markers (camera registration, with the frame-0 marker
 //! noise averaged out). In frame $k$ the displacements $u_k = p_k - (A X + b)$ give the forces the
@@ -33,9 +33,9 @@ use needlesim_core::RegionNeedleParams;
 use needlesim_core::assembly::mul_stiffness;
 use serde::Serialize;
 
-use super::experiment::{ForceLog, interp};
-use super::probe::register_markers;
-use super::tracks::MarkerTracks;
+use crate::logs::{ForceLog, interp};
+use crate::probe::register_markers;
+use crate::tracks::MarkerTracks;
 use needlesim_scene::{Scene, Trajectory};
 
 /// Fit options.
@@ -400,7 +400,7 @@ pub fn write_fitted_scene(base_toml: &str, region: &str, fit: &NeedleFit) -> Res
     r.insert("tip_peak_ratio".into(), toml::Value::Float(fit.tip_peak_ratio));
     r.insert("tip_peak_width_m".into(), toml::Value::Float(fit.tip_peak_width_m));
     let desc = format!(
-        "identified by needlesim-server identify needle: q0 = {:.4} N/m, h = {:.3}, w = {:.3} mm",
+        "identified by the needle force fit (needlesim-lab identify needle): q0 = {:.4} N/m, h = {:.3}, w = {:.3} mm",
         fit.friction_n_per_m,
         fit.tip_peak_ratio,
         fit.tip_peak_width_m * 1e3
@@ -409,10 +409,10 @@ pub fn write_fitted_scene(base_toml: &str, region: &str, fit: &NeedleFit) -> Res
     toml::to_string(&doc).context("serialise the fitted scene")
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "synthetic"))]
 mod tests {
-    use super::super::experiment::{NeedleSynthParams, synth_needle};
     use super::*;
+    use crate::experiment::{NeedleSynthParams, synth_needle};
     use needlesim_core::MeshLimits;
 
     #[test]

@@ -6,7 +6,7 @@
 
 Prints one JSON object: assembly_s (numpy assembly of K in CSC, local frames, the split into
 free and constrained DOFs), solve_s (scipy.sparse.linalg.spsolve of the free block), n_dofs,
-n_free, strain_energy and max_abs_displacement. Used by `needlesim-server bench`.
+n_free, strain_energy and max_abs_displacement. Used by `needlesim-lab bench`.
 """
 
 import json

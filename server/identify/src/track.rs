@@ -28,11 +28,10 @@
 //! `x_m = origin_m.x + (x_px − origin_px.x)·s` and `y_m = origin_m.y − (y_px − origin_px.y)·s`.
 
 use anyhow::{Context, Result, bail};
-use image::{DynamicImage, GrayImage};
+use needlesim_scene::limit::SizeLimit;
 
-use crate::status::SizeLimit;
-
-use super::tracks::MarkerTracks;
+use crate::frame::{GrayImage, decode_png_levels, png_dimensions};
+use crate::tracks::MarkerTracks;
 
 /// Whether the markers are darker or brighter than the background.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -156,16 +155,11 @@ impl Plane {
         Self { w: img.width() as usize, h: img.height() as usize, v }
     }
 
-    /// Any decoded image; 16-bit and colour images keep 16-bit precision (luma).
-    fn from_dynamic(img: &DynamicImage, polarity: Polarity) -> Self {
-        match img {
-            DynamicImage::ImageLuma8(g) => Self::from_gray8(g, polarity),
-            other => {
-                let g = other.to_luma16();
-                let v = g.as_raw().iter().map(|&x| signal(f32::from(x) / 257.0, polarity)).collect();
-                Self { w: g.width() as usize, h: g.height() as usize, v }
-            }
-        }
+    /// Gray levels of a decoded PNG (0–255; 16-bit and colour images keep 16-bit precision, as
+    /// luma), turned into signal in place.
+    fn from_levels(w: usize, h: usize, mut v: Vec<f32>, polarity: Polarity) -> Self {
+        v.iter_mut().for_each(|x| *x = signal(*x, polarity));
+        Self { w, h, v }
     }
 }
 
@@ -514,8 +508,7 @@ impl Tracker {
     /// `max_missing_frames` consecutive frames. After an error the tracker is unchanged.
     pub fn push_png(&mut self, t_s: f64, png: &[u8]) -> Result<()> {
         let k = self.times.len();
-        let reader = || image::ImageReader::with_format(std::io::Cursor::new(png), image::ImageFormat::Png);
-        let (w, h) = reader().into_dimensions().with_context(|| format!("frame {k}: not a decodable PNG image"))?;
+        let (w, h) = png_dimensions(png).with_context(|| format!("frame {k}: not a decodable PNG image"))?;
         let pixels = u64::from(w) * u64::from(h);
         if pixels > self.p.max_image_pixels {
             return Err(anyhow::Error::new(SizeLimit {
@@ -526,15 +519,11 @@ impl Tracker {
                 hint: " (server flag --max-image-pixels)".to_owned(),
             }));
         }
-        // The decoder holds to the header's size: at most 8 bytes per pixel (16-bit RGBA).
-        let mut limits = image::Limits::default();
-        limits.max_image_width = Some(w);
-        limits.max_image_height = Some(h);
-        limits.max_alloc = Some(pixels.saturating_mul(8).saturating_add(1 << 20));
-        let mut decoder = reader();
-        decoder.limits(limits);
-        let img = decoder.decode().with_context(|| format!("frame {k}: not a decodable PNG image"))?;
-        self.push_plane(t_s, Plane::from_dynamic(&img, self.p.polarity))
+        // The decoded image holds at most 8 bytes per pixel (16-bit RGBA), bounded by the check
+        // above; the decoder's own buffers (rows, metadata chunks) are held to as much plus 1 MiB.
+        let max_decoder_bytes = usize::try_from(pixels.saturating_mul(8).saturating_add(1 << 20)).unwrap_or(usize::MAX);
+        let (w, h, levels) = decode_png_levels(png, max_decoder_bytes).with_context(|| format!("frame {k}: not a decodable PNG image"))?;
+        self.push_plane(t_s, Plane::from_levels(w, h, levels, self.p.polarity))
     }
 
     fn push_plane(&mut self, t: f64, pl: Plane) -> Result<()> {
@@ -755,8 +744,10 @@ pub fn track_png_bytes(frames: &[(f64, &[u8])], p: &TrackParams, progress: &mut 
 
 #[cfg(test)]
 mod tests {
-    use super::super::render::{RenderParams, render_frame};
     use super::*;
+    #[cfg(feature = "synthetic")]
+    use crate::render::{RenderParams, render_frame};
+    #[cfg(feature = "synthetic")]
     use rand::{Rng, SeedableRng, rngs::SmallRng};
 
     fn params() -> TrackParams {
@@ -767,9 +758,7 @@ mod tests {
     /// header, before the decoder allocates half a gigabyte for it.
     #[test]
     fn issue_13_png_announcing_a_huge_frame_is_rejected_before_decoding() {
-        let mut png = std::io::Cursor::new(Vec::new());
-        GrayImage::new(8, 8).write_to(&mut png, image::ImageFormat::Png).unwrap();
-        let mut png = png.into_inner();
+        let mut png = GrayImage::new(8, 8).to_png().unwrap();
         // IHDR: bytes 8..12 length, 12..16 "IHDR", 16..20 width, 20..24 height, 29..33 CRC.
         assert_eq!(&png[12..16], b"IHDR");
         png[16..20].copy_from_slice(&65_535u32.to_be_bytes());
@@ -782,6 +771,7 @@ mod tests {
         assert!(e.to_string().starts_with("frame 0 (65535 × 1000 pixels)"), "{e:#}");
     }
 
+    #[cfg(feature = "synthetic")]
     /// A `cols × rows` grid with spacing `sp` px starting at `(x0, y0)`, jittered by up to ±0.5 px.
     fn grid(rng: &mut SmallRng, cols: usize, rows: usize, x0: f64, y0: f64, sp: f64) -> Vec<[f64; 2]> {
         let mut v = Vec::new();
@@ -793,6 +783,7 @@ mod tests {
         v
     }
 
+    #[cfg(feature = "synthetic")]
     /// RMS distance between detections and the truth, each detection paired with its nearest truth.
     fn rms_vs_truth(found: &[[f64; 2]], truth: &[[f64; 2]]) -> f64 {
         assert_eq!(found.len(), truth.len());
@@ -803,9 +794,7 @@ mod tests {
 
     #[test]
     fn issue_13_an_image_over_the_pixel_limit_is_refused_from_its_header() {
-        let mut buf = std::io::Cursor::new(Vec::new());
-        GrayImage::new(100, 80).write_to(&mut buf, image::ImageFormat::Png).unwrap();
-        let png = buf.into_inner();
+        let png = GrayImage::new(100, 80).to_png().unwrap();
         let p = TrackParams { max_image_pixels: 7999, ..params() };
         let e = track_png_bytes(&[(0.0, &png)], &p, &mut |_, _| {}).unwrap_err();
         let size = e.downcast_ref::<SizeLimit>().unwrap_or_else(|| panic!("not a size limit: {e:#}"));
@@ -813,6 +802,7 @@ mod tests {
         assert!(e.to_string().contains("frame 0 (100 × 80 pixels)"), "{e}");
     }
 
+    #[cfg(feature = "synthetic")]
     #[test]
     fn issue_9_detected_centroids_within_a_tenth_of_a_pixel_rms_with_noise() {
         let mut rng = SmallRng::seed_from_u64(9);
@@ -836,6 +826,7 @@ mod tests {
         }
     }
 
+    #[cfg(feature = "synthetic")]
     #[test]
     fn a_missing_dot_is_filled_in_and_its_track_stays_on_the_right_marker() {
         let mut rng = SmallRng::seed_from_u64(1);
@@ -870,6 +861,7 @@ mod tests {
         }
     }
 
+    #[cfg(feature = "synthetic")]
     #[test]
     fn a_marker_that_disappears_is_an_error_naming_the_frame() {
         let mut rng = SmallRng::seed_from_u64(2);
@@ -889,6 +881,7 @@ mod tests {
         assert!(e.contains("frame 0: found 16 markers but 17 are expected"), "{e}");
     }
 
+    #[cfg(feature = "synthetic")]
     #[test]
     fn bad_inputs_give_errors_naming_the_frame() {
         let rp = RenderParams { width_px: 60, height_px: 60, ..Default::default() };
@@ -910,7 +903,7 @@ mod tests {
         assert!(e.contains("frame 0: not a decodable PNG"), "{e}");
         assert!(track_frames(&[], &p, &mut |_, _| {}).is_err());
         // A speckle of isolated dark pixels: 40 000 one-pixel blobs, none of them markers.
-        let speckle = GrayImage::from_fn(402, 402, |x, y| image::Luma([if x % 2 == 1 && y % 2 == 1 { 0 } else { 200 }]));
+        let speckle = GrayImage::from_fn(402, 402, |x, y| if x % 2 == 1 && y % 2 == 1 { 0 } else { 200 });
         let loose = TrackParams { min_area_px: 1, ..p.clone() };
         let e = track_frames(&[(0.0, speckle)], &loose, &mut |_, _| {}).err().map(|e| format!("{e:#}")).unwrap_or_default();
         assert!(e.contains("frame 0:") && e.contains("40000 blobs found, more than 20000"), "{e}");
@@ -918,21 +911,15 @@ mod tests {
         assert!(e.contains("max jump"), "{e}");
     }
 
+    #[cfg(feature = "synthetic")]
     #[test]
     fn marker_spacing_scale_recovers_metres_and_png_bytes_track_like_images() {
         // A 5 × 4 grid at 25 px spacing, no jitter; 1 px = 0.4 mm when the spacing is 10 mm.
         let base: Vec<[f64; 2]> = (0..4).flat_map(|r| (0..5).map(move |c| [20.3 + 25.0 * c as f64, 15.6 + 25.0 * r as f64])).collect();
         let rp = RenderParams { width_px: 140, height_px: 110, noise_sigma: 2.0, ..Default::default() };
         let moved: Vec<[f64; 2]> = base.iter().map(|q| [q[0] + 2.5, q[1]]).collect();
-        let pngs: Vec<Vec<u8>> = [&base, &moved]
-            .iter()
-            .enumerate()
-            .map(|(f, pts)| {
-                let mut buf = std::io::Cursor::new(Vec::new());
-                render_frame(pts, &rp, f as u64).write_to(&mut buf, image::ImageFormat::Png).unwrap();
-                buf.into_inner()
-            })
-            .collect();
+        let rendered: Vec<GrayImage> = [&base, &moved].iter().enumerate().map(|(f, pts)| render_frame(pts, &rp, f as u64)).collect();
+        let pngs: Vec<Vec<u8>> = rendered.iter().map(|img| img.to_png().unwrap()).collect();
         let p = TrackParams {
             expected_markers: Some(20),
             ..TrackParams::new(Polarity::Dark, Scale::MarkerSpacing { spacing_m: 0.01, origin_m: [0.005, 0.002] })
@@ -949,14 +936,15 @@ mod tests {
             assert!((d[0] - 0.001).abs() < 5e-5 && d[1].abs() < 5e-5, "marker {m}: {d:?}");
         }
         // The same frames as images give the same tracks.
-        let imgs: Vec<(f64, GrayImage)> = frames.iter().map(|(t, b)| (*t, image::load_from_memory(b).unwrap().to_luma8())).collect();
+        let imgs: Vec<(f64, GrayImage)> = frames.iter().zip(rendered).map(|((t, _), img)| (*t, img)).collect();
         assert_eq!(track_frames(&imgs, &p, &mut |_, _| {}).unwrap(), tr);
     }
 
+    #[cfg(feature = "synthetic")]
     /// The figures of the report: RMS centroid error by noise and blur (dots of radius 4 px,
     /// contrast 120, 5 images of 80 dots each), and the time to track a 640 × 480 frame with 100
     /// markers (median of 5 runs over 10 frames). Run with
-    /// `cargo test --release -p needlesim-server --lib identify::track::tests::figures -- --ignored --nocapture`.
+    /// `cargo test --release -p needlesim-identify --features synthetic --lib track::tests::figures -- --ignored --nocapture`.
     #[test]
     #[ignore]
     fn figures() {
@@ -982,14 +970,7 @@ mod tests {
                 (f as f64 / 30.0, render_frame(&pts, &rp, f as u64))
             })
             .collect();
-        let pngs: Vec<(f64, Vec<u8>)> = frames
-            .iter()
-            .map(|(t, img)| {
-                let mut buf = std::io::Cursor::new(Vec::new());
-                img.write_to(&mut buf, image::ImageFormat::Png).unwrap();
-                (*t, buf.into_inner())
-            })
-            .collect();
+        let pngs: Vec<(f64, Vec<u8>)> = frames.iter().map(|(t, img)| (*t, img.to_png().unwrap())).collect();
         let png_refs: Vec<(f64, &[u8])> = pngs.iter().map(|(t, b)| (*t, b.as_slice())).collect();
         let median_ms = |f: &mut dyn FnMut()| {
             let mut v: Vec<f64> = (0..5)
@@ -1010,6 +991,7 @@ mod tests {
         );
     }
 
+    #[cfg(feature = "synthetic")]
     #[test]
     fn uneven_lighting_is_flattened_before_thresholding() {
         // The background falls by 90 gray levels across the image, more than the dots' contrast of
@@ -1018,9 +1000,10 @@ mod tests {
         let truth = grid(&mut rng, 10, 8, 30.0, 30.0, 24.0);
         let rp = RenderParams { width_px: 300, height_px: 240, noise_sigma: 4.0, contrast: 80.0, ..Default::default() };
         let mut img = render_frame(&truth, &rp, 1);
-        for (x, y, v) in img.enumerate_pixels_mut() {
-            let g = 70.0 * (f64::from(x) / 300.0) + 20.0 * (f64::from(y) / 240.0);
-            v.0[0] = (f64::from(v.0[0]) - g).round().clamp(0.0, 255.0) as u8;
+        for (i, v) in img.as_mut_raw().iter_mut().enumerate() {
+            let (x, y) = ((i % 300) as f64, (i / 300) as f64);
+            let g = 70.0 * (x / 300.0) + 20.0 * (y / 240.0);
+            *v = (f64::from(*v) - g).round().clamp(0.0, 255.0) as u8;
         }
         let found = detect(&img, &params()).unwrap();
         assert_eq!(found.len(), truth.len());

@@ -8,17 +8,17 @@
 //!
 //! [`render_sequence`] turns marker tracks ([`MarkerTracks`], pixel columns) into
 //! `frame_0000.png, frame_0001.png, …` plus `frames.csv` (`frame,t_s,file`), the input of
-//! `needlesim-server identify track`. Markers whose `detected` flag is 0 in the tracks are not
+//! `needlesim-lab identify track`. Markers whose `detected` flag is 0 in the tracks are not
 //! drawn, which is how a test makes a missing detection.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
-use image::GrayImage;
 use rand::{Rng, SeedableRng, rngs::SmallRng};
 
-use super::track::Polarity;
-use super::tracks::MarkerTracks;
+use crate::frame::GrayImage;
+use crate::track::Polarity;
+use crate::tracks::MarkerTracks;
 
 /// How synthetic marker images look.
 #[derive(Debug, Clone, PartialEq)]
@@ -115,7 +115,7 @@ pub fn render_frame(centres_px: &[[f64; 2]], p: &RenderParams, frame_seed: u64) 
     let mut rng = SmallRng::seed_from_u64(splitmix64(p.seed ^ splitmix64(frame_seed.wrapping_add(0x9E37_79B9_7F4A_7C15))));
     let mut normals = NormalPairs::default();
     let mut img = GrayImage::new(w as u32, h as u32);
-    for (px, c) in img.as_mut().iter_mut().zip(&cover) {
+    for (px, c) in img.as_mut_raw().iter_mut().zip(&cover) {
         let mut v = p.background + sign * p.contrast * f64::from(*c);
         if p.noise_sigma > 0.0 {
             v += p.noise_sigma * normals.next(&mut rng);
@@ -255,7 +255,8 @@ pub fn render_sequence(tracks: &MarkerTracks, p: &RenderParams, dir: &Path) -> R
         let img = render_frame(&centres, p, f as u64);
         let name = format!("frame_{f:04}.png");
         let path = dir.join(&name);
-        img.save_with_format(&path, image::ImageFormat::Png).with_context(|| format!("render: cannot write {}", path.display()))?;
+        let png = img.to_png().with_context(|| format!("render: cannot encode {}", path.display()))?;
+        std::fs::write(&path, png).with_context(|| format!("render: cannot write {}", path.display()))?;
         index.push_str(&format!("{f},{},{name}\n", tracks.times_s[f]));
         paths.push(path);
     }
@@ -271,11 +272,12 @@ mod tests {
     /// Intensity centroid of `img` (background-subtracted, dark dots) over the whole image.
     fn centroid(img: &GrayImage, bg: f64) -> [f64; 2] {
         let (mut sw, mut sx, mut sy) = (0.0, 0.0, 0.0);
-        for (x, y, v) in img.enumerate_pixels() {
-            let w = bg - f64::from(v.0[0]);
+        let width = img.width() as usize;
+        for (i, &v) in img.as_raw().iter().enumerate() {
+            let w = bg - f64::from(v);
             sw += w;
-            sx += w * f64::from(x);
-            sy += w * f64::from(y);
+            sx += w * (i % width) as f64;
+            sy += w * (i / width) as f64;
         }
         [sx / sw, sy / sw]
     }
@@ -289,7 +291,7 @@ mod tests {
             let img = render_frame(&[c], &p, k as u64);
             let g = centroid(&img, 250.0);
             assert!((g[0] - c[0]).abs() < 0.01 && (g[1] - c[1]).abs() < 0.01, "{g:?} vs {c:?}");
-            let mass: f64 = img.pixels().map(|v| 250.0 - f64::from(v.0[0])).sum();
+            let mass: f64 = img.as_raw().iter().map(|&v| 250.0 - f64::from(v)).sum();
             let expect = 200.0 * std::f64::consts::PI * 16.0;
             assert!((mass / expect - 1.0).abs() < 0.01, "mass {mass} vs {expect}");
         }
@@ -301,7 +303,7 @@ mod tests {
         let a = render_frame(&[], &p, 3);
         assert_eq!(a, render_frame(&[], &p, 3));
         assert_ne!(a, render_frame(&[], &p, 4));
-        let v: Vec<f64> = a.pixels().map(|v| f64::from(v.0[0]) - 128.0).collect();
+        let v: Vec<f64> = a.as_raw().iter().map(|&v| f64::from(v) - 128.0).collect();
         let mean = v.iter().sum::<f64>() / v.len() as f64;
         let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / v.len() as f64).sqrt();
         assert!(mean.abs() < 0.1 && (sd - 5.0).abs() < 0.15, "mean {mean} sd {sd}");

@@ -1,4 +1,4 @@
-//! `needlesim-server bench`: the same scripted insertion and withdrawal on several grid sizes,
+//! `needlesim-lab bench`: the same scripted insertion and withdrawal on several grid sizes,
 //! stepped by three solvers side by side:
 //!
 //! - **ours**: the [`Simulation`] as is: compliance columns from the sparse factorisation,
@@ -14,11 +14,11 @@
 //!   meshes only a sample of ticks, spread over the script, is timed.
 //!
 //! Peak memory is measured by a counting global allocator ([`CountingAlloc`], installed by the
-//! `needlesim-server` binary): the peak of live heap bytes during one solver's run (setup and
+//! `needlesim-lab` binary, and only there): the peak of live heap bytes during one solver's run (setup and
 //! all steps) above the live heap when that run started.
 //!
 //! The static solve of one full problem (the state at the end of the hold, deepest insertion)
-//! is also timed against SciPy's `spsolve` through `server/bench/scipy_static.py`.
+//! is also timed against SciPy's `spsolve` through `server/lab/bench/scipy_static.py`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::fmt::Write as _;
@@ -31,11 +31,9 @@ use anyhow::{Context, Result};
 use faer::Mat;
 use faer::linalg::solvers::DenseSolveCore;
 use needlesim_core::compliance::TissueModel;
+use needlesim_core::fixtures;
 use needlesim_core::sim::{SimParams, Simulation};
-use needlesim_core::{
-    BasePose, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, NodeCondition, PlaneModel, RectMeshParams, RegionNeedleParams,
-    RigidNeedle, StaticProblem,
-};
+use needlesim_core::{BasePose, MaterialMap, Mesh, NodeCondition, StaticProblem};
 use serde_json::{Value, json};
 
 use needlesim_scene::exchange::{Load, PrescribedLocal, Scenario};
@@ -47,7 +45,7 @@ static CURRENT: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
 
 /// A global allocator that counts live heap bytes and their peak (install it with
-/// `#[global_allocator]`; the `needlesim-server` binary does).
+/// `#[global_allocator]`; the `needlesim-lab` binary does, and no other).
 pub struct CountingAlloc;
 
 fn note_alloc(size: usize) {
@@ -160,50 +158,26 @@ impl Script {
     }
 }
 
+/// The step benchmarks' phantom (`needlesim_core::fixtures`), unfactorised, with its needle.
 struct Setup {
     mesh: Mesh,
     mats: MaterialMap,
     fixed: Vec<usize>,
+    params: SimParams,
+    /// The needle's column (m).
     x: f64,
-    h: f64,
 }
 
 fn build_setup(n: usize) -> Result<Setup> {
-    let limits = MeshLimits { max_nodes: usize::MAX, max_triangles: usize::MAX };
-    let mesh = RectMeshParams::new(n, n, 0.1, 0.1).build(&limits)?;
-    let mats = MaterialMap::per_region(
-        &mesh,
-        &[Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 }],
-        PlaneModel::Stress { thickness_m: 0.01 },
-    )?;
-    let fixed = mesh.boundary_set("bottom").context("the grid has a bottom boundary")?.to_vec();
-    let h = 0.1 / (n - 1) as f64;
-    let x = ((n - 1) / 2) as f64 * h;
-    Ok(Setup { mesh, mats, fixed, x, h })
+    let (mesh, mats, fixed) = fixtures::phantom_parts(n);
+    let params = fixtures::phantom_bench_params(n);
+    Ok(Setup { mesh, mats, fixed, x: params.initial_pose.x_m, params })
 }
 
-/// The benchmark tissue of `n × n` nodes (the set-up above), factorised, and the parameters of
-/// its vertical needle: what every step-time benchmark of the crate starts from.
+/// The benchmark tissue of `n × n` nodes (`needlesim_core::fixtures::phantom_bench`), factorised,
+/// and the parameters of its vertical needle: what every step-time benchmark starts from.
 pub fn grid_simulation(n: usize) -> Result<(Arc<TissueModel>, SimParams)> {
-    let s = build_setup(n)?;
-    let params = sim_params(&s);
-    Ok((Arc::new(TissueModel::new(s.mesh, s.mats, &s.fixed)?), params))
-}
-
-fn sim_params(s: &Setup) -> SimParams {
-    SimParams {
-        needle: NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }),
-        initial_pose: BasePose::new(s.x, 0.205, -std::f64::consts::FRAC_PI_2),
-        capture_radius_m: 0.3 * s.h,
-        max_needle_nodes: 160,
-        regions: vec![RegionNeedleParams::default()],
-        targets: vec![],
-        tick_rate_hz: 1000.0,
-        max_base_step_m: 0.002,
-        max_base_step_rad: 0.05,
-        max_active_set_iterations: 12,
-        lookahead_m: 0.01,
-    }
+    Ok(fixtures::phantom_bench(n))
 }
 
 /// The static problem a simulation's last step solved, with the fixed nodes.
@@ -259,7 +233,7 @@ fn run_ours(n: usize, script: &Script) -> Result<(Row, StaticProblem)> {
     let t0 = Instant::now();
     let model = Arc::new(TissueModel::new(s.mesh.clone(), s.mats.clone(), &s.fixed)?);
     let setup_s = t0.elapsed().as_secs_f64();
-    let mut sim = Simulation::new(model.clone(), sim_params(&s))?;
+    let mut sim = Simulation::new(model.clone(), s.params.clone())?;
     let (poses, end_of_hold) = script.poses(s.x);
     let mut times = Vec::with_capacity(poses.len());
     let mut prefetched = 0usize;
@@ -346,7 +320,7 @@ fn run_dense(n: usize, script: &Script) -> Result<Row> {
         llt.inverse()
     };
     let setup_s = t0.elapsed().as_secs_f64();
-    let mut sim = Simulation::new(model.clone(), sim_params(&s))?;
+    let mut sim = Simulation::new(model.clone(), s.params.clone())?;
     let n_dofs = model.n_dofs();
     let mut buf = vec![0.0; 2 * n_dofs];
     let (poses, _) = script.poses(s.x);
@@ -409,7 +383,7 @@ fn run_naive(n: usize, script: &Script, budget_s: f64) -> Result<Row> {
     let sampled: Vec<usize> = (0..n_samples).map(|i| i * (n_ticks - 1) / (n_samples - 1).max(1)).collect();
     let problems = {
         let model = Arc::new(TissueModel::new(s.mesh.clone(), s.mats.clone(), &s.fixed)?);
-        let mut sim = Simulation::new(model, sim_params(&s))?;
+        let mut sim = Simulation::new(model, s.params.clone())?;
         let mut problems = Vec::with_capacity(n_samples);
         let mut next = 0;
         for (k, p) in poses.iter().enumerate() {
@@ -475,7 +449,7 @@ fn scenario_of(s: &Setup, p: &StaticProblem, n: usize) -> Scenario {
     }
     Scenario {
         name: Some(format!("bench-{n}x{n}-end-of-hold")),
-        description: Some("needlesim-server bench: the state at the end of the hold".to_owned()),
+        description: Some("needlesim-lab bench: the state at the end of the hold".to_owned()),
         nodes: s.mesh.nodes_m().to_vec(),
         triangles: s.mesh.triangles().iter().map(|t| t.map(|i| i as i64)).collect(),
         young_modulus_pa: 30e3,
@@ -500,7 +474,7 @@ fn find_python() -> PathBuf {
     if let Some(p) = std::env::var_os("NEEDLESIM_PYTHON") {
         return PathBuf::from(p);
     }
-    let venv = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/.venv/bin/python");
+    let venv = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/.venv/bin/python");
     if venv.exists() { venv } else { PathBuf::from("python3") }
 }
 
@@ -685,7 +659,7 @@ fn to_json(rows: &[Row], statics: &[StaticRow], script: &Script, opts: &BenchOpt
         "peak_mem": MEM_NOTE,
         "results": results,
         "static": {
-            "what": "one full static solve of the state at the end of the hold (deepest insertion): ours = StaticProblem::solve (assembly + sparse Cholesky + solve, best of 3; ours_assembly_s is the assembly alone); scipy = server/bench/scipy_static.py, numpy assembly and scipy.sparse.linalg.spsolve timed separately",
+            "what": "one full static solve of the state at the end of the hold (deepest insertion): ours = StaticProblem::solve (assembly + sparse Cholesky + solve, best of 3; ours_assembly_s is the assembly alone); scipy = server/lab/bench/scipy_static.py, numpy assembly and scipy.sparse.linalg.spsolve timed separately",
             "results": st,
         },
     })

@@ -1,0 +1,76 @@
+//! `needlesim-lab`: the offline lab tools, the step-time benchmark (`bench`) and the measurement
+//! pipeline (`identify …`). The only binary whose global allocator counts (for bench's
+//! peak-memory figures); the real-time server runs on the system allocator.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use needlesim_lab::{bench, identify};
+
+/// Counts heap bytes for `bench`'s peak-memory figures (a relaxed atomic add per allocation).
+#[global_allocator]
+static ALLOC: bench::CountingAlloc = bench::CountingAlloc;
+
+#[derive(Parser)]
+#[command(name = "needlesim-lab", version, about = "Offline lab tools of needlesim: step-time benchmark and the measurement pipeline")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// The measurement pipeline: marker tracking, E/ν identification, needle force distribution.
+    Identify {
+        #[command(subcommand)]
+        command: identify::IdentifyCommand,
+    },
+    /// Step-time benchmark: ours (sparse columns on demand) vs a dense inverse vs a full solve per tick.
+    Bench {
+        /// Fewer sizes (19×19, 50×50, 100×100) and a faster script (50 mm/s, 0.2 s hold): about a minute at most.
+        #[arg(long)]
+        quick: bool,
+        /// Print the results as one JSON object instead of a markdown table.
+        #[arg(long)]
+        json: bool,
+        /// Write a log-log SVG plot of step p50 against mesh nodes.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+        /// Grid sizes (nodes per side), e.g. --sizes 19,50; default 19,50,100,200,400 (19,50,100 with --quick).
+        #[arg(long, value_delimiter = ',')]
+        sizes: Vec<usize>,
+        /// Skip the static-solve comparison with SciPy.
+        #[arg(long)]
+        no_scipy: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    tracing_subscriber::fmt()
+        .with_writer(std::io::stderr)
+        .with_env_filter(tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "info".into()))
+        .init();
+    let result = match Cli::parse().command {
+        Command::Bench { quick, json, plot, sizes, no_scipy } => run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json),
+        Command::Identify { command } => identify::run(command),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
+    let (value, markdown) = bench::run(&opts)?;
+    if json {
+        println!("{}", serde_json::to_string(&value)?);
+    } else {
+        print!("{markdown}");
+    }
+    Ok(())
+}
