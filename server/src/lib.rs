@@ -1,19 +1,17 @@
-//! needlesim-server as a library: the scene format, the exchange format of the validation suite,
-//! the offline commands (solve, simulate, bench), and the real-time server (sessions, gRPC
-//! services, recordings), shared by the `needlesim-server` binary and the tests.
+//! needlesim-server as a library: the gRPC service over the real-time sessions (needlesim-session)
+//! and the offline runs (needlesim-offline) — the services (`grpc/`, `grpc_identify`), every
+//! protocol conversion (`convert`), recordings (MCAP), the HTTP/gRPC server (`serve`), tokens,
+//! offline-job permits and the one mapping of typed errors to statuses — plus, until they move
+//! out, the measurement pipeline (`identify`) and `bench`; shared by the `needlesim-server` binary
+//! and the tests.
 
 pub mod access;
 pub mod bench;
-pub mod control_lease;
 pub mod convert;
 pub mod grpc;
 pub mod grpc_identify;
-pub mod grpc_plan;
 pub mod identify;
 pub mod jobs;
-pub mod plan;
 pub mod recording;
 pub mod serve;
-pub mod session;
-pub mod simulate;
 pub mod status;
