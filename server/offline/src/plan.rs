@@ -466,17 +466,15 @@ fn straight_entry(scene: &Scene, p: &Problem) -> Result<[f64; 2]> {
     });
     match best {
         Some(w) => Ok(lerp(a, b, w)),
-        None => {
-            return Err(input(
-                "angles_deg",
-                format!(
-                    "angles_deg: from no point of the entry segment does a straight line to target '{}' have an angle in [{:.1}, {:.1}]°",
-                    p.target_name,
-                    p.angles[0].to_degrees(),
-                    p.angles[1].to_degrees()
-                ),
-            ));
-        }
+        None => Err(input(
+            "angles_deg",
+            format!(
+                "angles_deg: from no point of the entry segment does a straight line to target '{}' have an angle in [{:.1}, {:.1}]°",
+                p.target_name,
+                p.angles[0].to_degrees(),
+                p.angles[1].to_degrees()
+            ),
+        )),
     }
 }
 

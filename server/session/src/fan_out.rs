@@ -1,6 +1,7 @@
-//! Off the real-time thread: the column worker (compliance columns ahead of the tip) and the
+//! Off the real-time thread: the column worker (compliance columns ahead of the tip), the
 //! fan-out (tick records to histograms, the record sink, every-tick and latest-value observers,
-//! and the displacement field at frame rate).
+//! and the displacement field at frame rate), and the device channel's watcher. These threads may
+//! log; the real-time thread never does.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -179,5 +180,29 @@ impl FanOut {
             }
         }
         Field { tick: rec.tick, displacement_m: u }
+    }
+}
+
+/// The session's device-channel watcher (a non-real-time thread): checks the channel's file every
+/// [`needlesim_bridge::shm::WATCH_PERIOD`] (deleted, replaced, resized: system calls the real-time
+/// thread does not make), which the real-time thread then sees as a broken channel; logs the cause
+/// once, whoever found it.
+pub(crate) fn watch_device_channel(watch: needlesim_bridge::shm::ChannelWatch, stop: Arc<AtomicBool>) {
+    const STEP: Duration = Duration::from_millis(10);
+    let mut since_check = Duration::ZERO;
+    while !stop.load(Ordering::Relaxed) {
+        std::thread::sleep(STEP);
+        since_check += STEP;
+        if since_check < needlesim_bridge::shm::WATCH_PERIOD {
+            continue;
+        }
+        since_check = Duration::ZERO;
+        if let Err(why) = watch.check_file() {
+            tracing::warn!(
+                channel = %watch.path().display(),
+                "device channel broken: {why}; the device is stale for the rest of the session (the needle is held, other clients may still drive it)"
+            );
+            return;
+        }
     }
 }

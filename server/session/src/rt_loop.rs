@@ -54,30 +54,6 @@ pub(crate) struct RtLoop {
     pub(crate) rt_priority_tx: std::sync::mpsc::SyncSender<Result<i32, String>>,
 }
 
-/// The session's device-channel watcher (a non-real-time thread): checks the channel's file every
-/// [`needlesim_bridge::shm::WATCH_PERIOD`] (deleted, replaced, resized: system calls the real-time
-/// thread does not make), which the real-time thread then sees as a broken channel; logs the cause
-/// once, whoever found it.
-pub(crate) fn watch_device_channel(watch: needlesim_bridge::shm::ChannelWatch, stop: Arc<AtomicBool>) {
-    const STEP: Duration = Duration::from_millis(10);
-    let mut since_check = Duration::ZERO;
-    while !stop.load(Ordering::Relaxed) {
-        std::thread::sleep(STEP);
-        since_check += STEP;
-        if since_check < needlesim_bridge::shm::WATCH_PERIOD {
-            continue;
-        }
-        since_check = Duration::ZERO;
-        if let Err(why) = watch.check_file() {
-            tracing::warn!(
-                channel = %watch.path().display(),
-                "device channel broken: {why}; the device is stale for the rest of the session (the needle is held, other clients may still drive it)"
-            );
-            return;
-        }
-    }
-}
-
 /// The device button (bit of `DevicePose::buttons`) that turns the needle 180° about its axis,
 /// on each press (rising edge).
 pub const FLIP_BEVEL_BUTTON: u32 = 1;

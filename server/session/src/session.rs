@@ -11,9 +11,9 @@ use needlesim_core::sim::{SimError, Simulation};
 use needlesim_scene::Scene;
 
 use crate::counters::{SessionCounters, StatsSnapshot};
-use crate::fan_out::{ColumnWorker, FanOut, Field, Histograms, RecordSink};
+use crate::fan_out::{ColumnWorker, FanOut, Field, Histograms, RecordSink, watch_device_channel};
 use crate::record::{COLUMN_QUEUE, PoseCommand, RECORD_RING, TickRecord};
-use crate::rt_loop::{RtLoop, watch_device_channel};
+use crate::rt_loop::RtLoop;
 
 /// The IO side's handle on a running session.
 pub struct Session {
