@@ -123,19 +123,24 @@ impl From<mcap::McapError> for RecordingError {
     }
 }
 
+/// How a tick record becomes a frame (given the session's target names): the service's
+/// conversion (`convert::frame_from_record`), passed in so that this module needs no import of
+/// the conversions (which import this module's types).
+pub type FrameOfRecord = fn(&TickRecord, &[String]) -> Frame;
+
 /// The recording of a live session: the session's [`RecordSink`]. Each tick record becomes a
-/// frame ([`crate::convert::frame_from_record`]) on the fan-out thread, is encoded and queued for
-/// the writer thread.
+/// frame on the fan-out thread, is encoded and queued for the writer thread.
 pub struct SessionRecording {
     recorder: Recorder,
     target_names: Vec<String>,
+    frame_of: FrameOfRecord,
 }
 
 impl SessionRecording {
     /// Records `session`'s frames into `recorder` from the next tick on, or gives the recorder
     /// back when the session already has a record sink.
-    pub fn attach(session: &Session, recorder: Recorder) -> Result<(), Recorder> {
-        let sink = Box::new(SessionRecording { recorder, target_names: session.target_names.clone() });
+    pub fn attach(session: &Session, recorder: Recorder, frame_of: FrameOfRecord) -> Result<(), Recorder> {
+        let sink = Box::new(SessionRecording { recorder, target_names: session.target_names.clone(), frame_of });
         session.attach_sink_from_io(sink).map_err(|back| match back.into_any().downcast::<SessionRecording>() {
             Ok(r) => r.recorder,
             Err(_) => unreachable!("the sink just refused is the recording given"),
@@ -160,7 +165,7 @@ impl SessionRecording {
 
 impl RecordSink for SessionRecording {
     fn write_from_fanout(&mut self, rec: &TickRecord) {
-        self.recorder.write_from_fanout(&crate::convert::frame_from_record(rec, &self.target_names, 0));
+        self.recorder.write_from_fanout(&(self.frame_of)(rec, &self.target_names));
     }
 
     fn as_any(&self) -> &dyn std::any::Any {

@@ -30,7 +30,7 @@ pub(super) fn start_recording(state: &ServerState, s: &Arc<Session>) -> Result<p
         return Err(Status::internal(format!("cannot start the recording: {e}")));
     }
     let info = convert::recording_info(&rec.info());
-    if let Err(rec) = crate::recording::SessionRecording::attach(s, rec) {
+    if let Err(rec) = crate::recording::SessionRecording::attach(s, rec, |r, names| convert::frame_from_record(r, names, 0)) {
         // Another request started one in the meantime: this file is finished and left empty.
         let name = rec.info().name;
         drop(rec);
