@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use needlesim_core::MeshLimits;
 use needlesim_lab::bench::{machine, pct};
+use needlesim_offline::plan::{PlanOptions, PlanRequest, plan};
 use needlesim_scene::load_scene;
-use needlesim_server::plan::{PlanOptions, PlanRequest, plan};
 
 fn main() {
     let runs: usize = std::env::args().skip(1).find_map(|a| a.parse().ok()).unwrap_or(5);

@@ -1,6 +1,7 @@
-//! Conversions between the protocol (`needlesim.v1`) and the core and session types: the one
-//! place where protocol types meet the rest of the server. Errors name the offending field, as
-//! the gRPC layer returns them as INVALID_ARGUMENT.
+//! Conversions between the protocol (`needlesim.v1`) and the core, session, offline and recording
+//! types: the one place where protocol messages are built and read field by field (the services
+//! only name their request and response types). Errors name the offending field, as the gRPC
+//! layer returns them as INVALID_ARGUMENT.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -16,7 +17,21 @@ use needlesim_scene::{Scene, SceneLimits, Trajectory};
 
 /// The needle working-set capacity of an uploaded scene.
 const UPLOADED_MAX_NEEDLE_NODES: usize = 128;
-use crate::session::TickRecord;
+use needlesim_offline::plan::{Insertion, Plan, PlanProgress, PlanRequest};
+use needlesim_session::{Session, StatsSnapshot, TickRecord};
+
+use crate::recording::{RecordingInfo, SessionRecording};
+use crate::status::ApiError;
+
+/// A pose a client sent in `field`: present and finite (INVALID_ARGUMENT naming the field).
+pub fn checked_pose_from_pb(p: Option<&pb::Pose2>, field: &str) -> Result<BasePose, ApiError> {
+    let p = p.ok_or_else(|| ApiError::invalid(field, format!("{field} is missing")))?;
+    let pose = pose_from_pb(p);
+    if !pose.is_finite() {
+        return Err(ApiError::invalid(field, format!("{field} ({}, {}, {}) is not finite", p.x_m, p.y_m, p.theta_rad)));
+    }
+    Ok(pose)
+}
 
 /// A proto pose to a core pose (finite-ness is checked by the caller or the simulation).
 pub fn pose_from_pb(p: &pb::Pose2) -> BasePose {
@@ -115,6 +130,183 @@ pub fn series_row(o: &StepOutput, t0_s: f64, target_names: &[String]) -> pb::Ser
         n_tip: o.n_tip as u32,
         targets: o.targets.iter().enumerate().map(|(i, t)| target_state(target_names, i, t.position_m, t.distance_m, t.hit)).collect(),
     }
+}
+
+/// What a session is, for listings.
+pub fn session_info(s: &Session) -> pb::SessionInfo {
+    use std::sync::atomic::Ordering;
+    pb::SessionInfo {
+        session_id: s.id.clone(),
+        scene_name: s.scene_name.clone(),
+        n_nodes: s.tissue.mesh().n_nodes() as u32,
+        n_triangles: s.tissue.mesh().n_triangles() as u32,
+        tick_rate_hz: s.tick_rate_hz,
+        created_unix_ms: s.created_unix_ms,
+        tick: s.counters.ticks.load(Ordering::Relaxed),
+        n_observers: s.n_observers.load(Ordering::Relaxed) as u32,
+        recording: SessionRecording::info_of(s).map(|r| r.name).unwrap_or_default(),
+        target_names: s.target_names.clone(),
+        device_channel_path: s.device_channel_path.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
+        device_stale: s.counters.device_stale.load(Ordering::Relaxed) != 0,
+        device_channel_broken: s.counters.device_channel_broken.load(Ordering::Relaxed) != 0,
+    }
+}
+
+/// A new session and its tokens (the one answer that carries them).
+pub fn create_session_response(s: &Session) -> pb::CreateSessionResponse {
+    pb::CreateSessionResponse {
+        session: Some(session_info(s)),
+        controller_token: s.controller_token.clone(),
+        observer_token: s.observer_token.clone(),
+    }
+}
+
+/// The sessions, oldest first (ties by id).
+pub fn list_sessions_response(mut sessions: Vec<Arc<Session>>) -> pb::ListSessionsResponse {
+    sessions.sort_by(|a, b| a.created_unix_ms.cmp(&b.created_unix_ms).then(a.id.cmp(&b.id)));
+    pb::ListSessionsResponse { sessions: sessions.iter().map(|s| session_info(s)).collect() }
+}
+
+/// The recordings a token opens.
+pub fn list_recordings_response(list: &[RecordingInfo]) -> pb::ListRecordingsResponse {
+    pb::ListRecordingsResponse { recordings: list.iter().map(recording_info).collect() }
+}
+
+/// The tick loop's percentiles and counters.
+pub fn session_stats(st: &StatsSnapshot) -> pb::SessionStats {
+    pb::SessionStats {
+        ticks: st.ticks,
+        compute_p50_us: st.compute_us[0],
+        compute_p99_us: st.compute_us[1],
+        compute_p999_us: st.compute_us[2],
+        compute_max_us: st.compute_us[3],
+        lateness_p50_us: st.lateness_us[0],
+        lateness_p99_us: st.lateness_us[1],
+        lateness_p999_us: st.lateness_us[2],
+        missed_deadlines: st.missed_deadlines,
+        superseded_poses: st.superseded_poses,
+        dropped_records: st.dropped_records,
+        column_misses: st.column_misses,
+        rejected_poses: st.rejected_poses,
+        clamped_ticks: st.clamped_ticks,
+        faulted: st.fault.is_some(),
+        fault: st.fault.clone().unwrap_or_default(),
+    }
+}
+
+/// The answer to FlipBevel: the flips requested so far.
+pub fn flip_bevel_response(flips_requested: u64) -> pb::FlipBevelResponse {
+    pb::FlipBevelResponse { flips_requested }
+}
+
+/// A recording, live or on disk.
+pub fn recording_info(i: &RecordingInfo) -> pb::RecordingInfo {
+    pb::RecordingInfo {
+        name: i.name.clone(),
+        session_id: i.session_id.clone(),
+        size_bytes: i.size_bytes,
+        messages: i.messages,
+        finished: i.finished,
+    }
+}
+
+/// A piece of a recording's file at `offset`.
+pub fn recording_chunk(data: Vec<u8>, offset: u64) -> pb::RecordingChunk {
+    pb::RecordingChunk { data, offset }
+}
+
+/// The request's planning problem; errors name the field.
+pub fn plan_request_from_pb(r: &pb::PlanRequest) -> Result<PlanRequest, ApiError> {
+    if r.target.trim().is_empty() {
+        return Err(ApiError::invalid("target", "target is empty: give the name of one of the scene's targets"));
+    }
+    let entry_m = match (&r.entry_from_m, &r.entry_to_m) {
+        (None, None) => None,
+        (Some(a), Some(b)) => Some([[a.x, a.y], [b.x, b.y]]),
+        _ => {
+            return Err(ApiError::invalid(
+                "entry_from_m and entry_to_m",
+                "entry_from_m and entry_to_m: give both ends of the entry segment, or neither",
+            ));
+        }
+    };
+    let angles_deg = match (r.angle_min_deg, r.angle_max_deg) {
+        (None, None) => None,
+        (Some(a), Some(b)) => Some([a, b]),
+        _ => return Err(ApiError::invalid("angle_min_deg and angle_max_deg", "angle_min_deg and angle_max_deg: give both, or neither")),
+    };
+    Ok(PlanRequest { target: r.target.clone(), entry_m, angles_deg, speed_m_s: r.speed_mm_s.map(|v| v * 1e-3) })
+}
+
+/// A progress message of the Plan stream, after an iteration.
+pub fn plan_progress(pr: &PlanProgress) -> pb::PlanProgress {
+    pb::PlanProgress {
+        iteration: pr.iteration as u32,
+        simulations: pr.simulations as u32,
+        best_error_m: pr.best_error_m,
+        straight_error_m: pr.straight_error_m,
+        result: None,
+    }
+}
+
+/// The last message of the Plan stream, with the plan.
+pub fn plan_final(p: &Plan) -> pb::PlanProgress {
+    pb::PlanProgress {
+        iteration: p.iterations as u32,
+        simulations: p.simulations as u32,
+        best_error_m: p.plan.predicted_error_m,
+        straight_error_m: p.straight.predicted_error_m,
+        result: Some(plan_result_to_pb(p)),
+    }
+}
+
+/// A plan's result.
+pub fn plan_result_to_pb(p: &Plan) -> pb::PlanResult {
+    let vec2 = |v: [f64; 2]| pb::Vec2 { x: v[0], y: v[1] };
+    let ins = |i: &Insertion| pb::PlannedInsertion {
+        entry_m: Some(vec2(i.entry_m)),
+        angle_rad: i.angle_rad,
+        depth_m: i.depth_m,
+        predicted_error_m: i.predicted_error_m,
+        tip_m: Some(vec2(i.tip_m)),
+        target_m: Some(vec2(i.target_m)),
+        aim_m: Some(vec2(i.aim_m)),
+    };
+    pb::PlanResult {
+        target: p.target.clone(),
+        target_radius_m: p.target_radius_m,
+        target_center_m: Some(vec2(p.target_center_m)),
+        speed_mm_s: p.speed_m_s * 1e3,
+        plan: Some(ins(&p.plan)),
+        straight: Some(ins(&p.straight)),
+        trajectory: p
+            .trajectory
+            .iter()
+            .map(|&[t, x, y, th]| pb::TrajectorySample { t_s: t, base: Some(pb::Pose2 { x_m: x, y_m: y, theta_rad: th }) })
+            .collect(),
+        converged: p.converged,
+        iterations: p.iterations as u32,
+        simulations: p.simulations as u32,
+        wall_s: p.wall_s,
+        threads: p.threads as u32,
+    }
+}
+
+/// A chunk of series rows of the Simulate stream.
+pub fn series_chunk(rows: Vec<pb::SeriesRow>) -> pb::SimulateResponse {
+    pb::SimulateResponse { event: Some(pb::simulate_response::Event::Series(pb::SeriesChunk { rows })) }
+}
+
+/// A progress message of the Simulate stream.
+pub fn simulate_progress(ticks_done: u64, ticks_total: u64) -> pb::SimulateResponse {
+    pb::SimulateResponse { event: Some(pb::simulate_response::Event::Progress(pb::SimulateProgress { ticks_done, ticks_total })) }
+}
+
+/// The last message of the Simulate stream: ticks, wall time, step time p50 and p99 (µs), the
+/// final displacement of every node.
+pub fn simulate_result(ticks: u64, wall_s: f64, step_us: [f64; 2], final_displacement_m: Vec<f64>) -> pb::SimulateResponse {
+    let result = pb::SimulateResult { rows: vec![], ticks, wall_s, step_p50_us: step_us[0], step_p99_us: step_us[1], final_displacement_m };
+    pb::SimulateResponse { event: Some(pb::simulate_response::Event::Result(result)) }
 }
 
 /// The reference mesh of a tissue, for renderers.

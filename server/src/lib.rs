@@ -1,20 +1,15 @@
-//! needlesim-server as a library: the offline commands (solve, simulate, plan) and the real-time
-//! server (sessions, gRPC services, recordings), shared by the `needlesim-server` binary and the
-//! tests. The measurement pipeline is the needlesim-identify crate; bench and the identify
-//! commands are in needlesim-lab.
+//! needlesim-server as a library: the gRPC service over the real-time sessions (needlesim-session)
+//! and the offline runs (needlesim-offline) — the services (`grpc/`, `grpc_identify`), every
+//! protocol conversion (`convert`), recordings (MCAP), the HTTP/gRPC server (`serve`), tokens,
+//! offline-job permits and the one mapping of typed errors to statuses; shared by the
+//! `needlesim-server` binary and the tests. The measurement pipeline is needlesim-identify; the
+//! `bench` and `identify` commands are needlesim-lab's.
 
 pub mod access;
-pub mod control_lease;
 pub mod convert;
 pub mod grpc;
 pub mod grpc_identify;
-pub mod grpc_plan;
-/// The measurement pipeline, under the path grpc.rs names (`crate::identify::track::…`).
-pub use needlesim_identify as identify;
 pub mod jobs;
-pub mod plan;
 pub mod recording;
 pub mod serve;
-pub mod session;
-pub mod simulate;
 pub mod status;

@@ -7,8 +7,9 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use needlesim_core::MeshLimits;
 
+use needlesim_offline::{plan, simulate};
 use needlesim_scene::{self as scene, exchange};
-use needlesim_server::{grpc, plan, serve, simulate};
+use needlesim_server::{grpc, serve};
 
 #[derive(Parser)]
 #[command(name = "needlesim-server", version, about = "Real-time needle insertion simulator: server and offline tools")]
@@ -365,7 +366,7 @@ fn read_admin_token(path: &std::path::Path) -> Result<String> {
 }
 
 fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
-    needlesim_server::session::set_rt_priority(args.rt_priority);
+    needlesim_session::set_rt_priority(args.rt_priority);
     let config = serve::ServeConfig {
         listen: args.listen,
         data_dir: args.data_dir,

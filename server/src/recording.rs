@@ -2,8 +2,8 @@
 //! their schema), readable by Foxglove and by the `mcap` libraries, and the listing and opening
 //! of the recordings of a directory.
 //!
-//! A [`Recorder`] owns a dedicated writer thread. The I/O thread hands frames over with
-//! [`Recorder::write_from_io`], which encodes the frame and queues it without blocking (a full
+//! A [`Recorder`] owns a dedicated writer thread. The session's fan-out thread hands frames over
+//! with [`Recorder::write_from_fanout`] (through [`SessionRecording`], the session's record sink), which encodes the frame and queues it without blocking (a full
 //! queue drops the frame and counts it). The writer thread writes them into small chunks
 //! (about [`CHUNK_BYTES`] of messages each) and hands every finished chunk to the OS at once, so
 //! that a killed server leaves a file that the streaming readers can read up to its last chunk.
@@ -27,6 +27,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use needlesim_proto::v1::Frame;
+use needlesim_session::{RecordSink, Session, TickRecord};
 use prost::Message as _;
 
 /// The topic of the frames in a recording.
@@ -41,7 +42,7 @@ pub const EXTENSION: &str = "mcap";
 pub const CHUNK_BYTES: usize = 64 * 1024;
 /// The writer also closes a non-empty chunk after this long, so that a slow stream is on disk.
 pub const FLUSH_INTERVAL: Duration = Duration::from_secs(1);
-/// Frames that can wait for the writer thread before [`Recorder::write_from_io`] drops them.
+/// Frames that can wait for the writer thread before [`Recorder::write_from_fanout`] drops them.
 pub const QUEUE_FRAMES: usize = 4096;
 
 /// Why a recording could not be started, written, finished or opened.
@@ -119,6 +120,60 @@ impl std::error::Error for RecordingError {
 impl From<mcap::McapError> for RecordingError {
     fn from(e: mcap::McapError) -> Self {
         Self::Mcap(e)
+    }
+}
+
+/// How a tick record becomes a frame (given the session's target names): the service's
+/// conversion (`convert::frame_from_record`), passed in so that this module needs no import of
+/// the conversions (which import this module's types).
+pub type FrameOfRecord = fn(&TickRecord, &[String]) -> Frame;
+
+/// The recording of a live session: the session's [`RecordSink`]. Each tick record becomes a
+/// frame on the fan-out thread, is encoded and queued for the writer thread.
+pub struct SessionRecording {
+    recorder: Recorder,
+    target_names: Vec<String>,
+    frame_of: FrameOfRecord,
+}
+
+impl SessionRecording {
+    /// Records `session`'s frames into `recorder` from the next tick on, or gives the recorder
+    /// back when the session already has a record sink.
+    pub fn attach(session: &Session, recorder: Recorder, frame_of: FrameOfRecord) -> Result<(), Recorder> {
+        let sink = Box::new(SessionRecording { recorder, target_names: session.target_names.clone(), frame_of });
+        session.attach_sink_from_io(sink).map_err(|back| match back.into_any().downcast::<SessionRecording>() {
+            Ok(r) => r.recorder,
+            Err(_) => unreachable!("the sink just refused is the recording given"),
+        })
+    }
+
+    /// The recording `session` is making, if any.
+    pub fn info_of(session: &Session) -> Option<RecordingInfo> {
+        session.with_sink_from_io(|sink| sink?.as_any().downcast_ref::<SessionRecording>().map(|r| r.recorder.info()))
+    }
+
+    /// Stops recording `session` and gives the recorder back (to be finished off the runtime);
+    /// None when it is not recording.
+    pub fn detach(session: &Session) -> Option<Recorder> {
+        let sink = session.detach_sink_from_io()?;
+        match sink.into_any().downcast::<SessionRecording>() {
+            Ok(r) => Some(r.recorder),
+            Err(_) => None,
+        }
+    }
+}
+
+impl RecordSink for SessionRecording {
+    fn write_from_fanout(&mut self, rec: &TickRecord) {
+        self.recorder.write_from_fanout(&(self.frame_of)(rec, &self.target_names));
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn into_any(self: Box<Self>) -> Box<dyn std::any::Any + Send> {
+        self
     }
 }
 
@@ -227,7 +282,7 @@ impl Recorder {
     /// Encodes `frame` and queues it for the writer thread, without blocking and without file
     /// I/O. Returns false, and counts the frame as dropped, when the queue is full or the writer
     /// has stopped.
-    pub fn write_from_io(&self, frame: &Frame) -> bool {
+    pub fn write_from_fanout(&self, frame: &Frame) -> bool {
         let Some(tx) = &self.tx else { return false };
         let queued = Queued { tick: frame.tick, time_s: frame.time_s, data: frame.encode_to_vec() };
         match tx.try_send(queued) {
@@ -685,7 +740,7 @@ mod tests {
     /// Writes frames, waiting for the queue rather than dropping them.
     fn write_all(recorder: &Recorder, frames: &[Frame]) {
         for f in frames {
-            while !recorder.write_from_io(f) {
+            while !recorder.write_from_fanout(f) {
                 std::thread::sleep(Duration::from_millis(1));
             }
         }

@@ -158,7 +158,7 @@ fn size_limit_status(mut resp: axum::response::Response) -> axum::response::Resp
 
 /// Plays `traj` on `session` in a loop (poses every 2 ms, interpolated) until a client sends a
 /// pose or the session closes.
-async fn play_demo(session: Arc<crate::session::Session>, traj: needlesim_scene::Trajectory) {
+async fn play_demo(session: Arc<needlesim_session::Session>, traj: needlesim_scene::Trajectory) {
     let (t0, t1) = traj.span_s();
     let mut interval = tokio::time::interval(std::time::Duration::from_millis(2));
     let start = tokio::time::Instant::now();
@@ -174,7 +174,7 @@ async fn play_demo(session: Arc<crate::session::Session>, traj: needlesim_scene:
         }
         let t = t0 + start.elapsed().as_secs_f64() % (t1 - t0).max(1e-3);
         seq += 1;
-        session.write_pose_from_io(crate::session::PoseCommand {
+        session.write_pose_from_io(needlesim_session::PoseCommand {
             pose: needlesim_scene::base_pose(traj.pose_at(t)),
             seq,
             client_time_ns: 0,

@@ -11,10 +11,12 @@
 use needlesim_core::mesh::MeshError;
 use needlesim_core::msh::MshError;
 use needlesim_core::sim::SimError;
+use needlesim_offline::RunError;
+use needlesim_offline::plan::PlanInputError;
 use tonic::Status;
 
 use crate::recording::RecordingError;
-use crate::session::SessionError;
+use needlesim_session::SessionError;
 
 pub use needlesim_scene::limit::{MAX_QUOTE_CHARS, SizeLimit, clip, quote};
 
@@ -67,6 +69,12 @@ impl ApiError {
             {
                 return Self::ResourceExhausted(msg);
             }
+            if let Some(p) = cause.downcast_ref::<PlanInputError>() {
+                return Self::invalid(p.field, msg);
+            }
+            if let Some(r) = cause.downcast_ref::<RunError>() {
+                return Self::from(r);
+            }
             if let Some(s) = cause.downcast_ref::<SessionError>() {
                 return match Self::from(s) {
                     Self::InvalidArgument { .. } => Self::invalid_with_prefix(field, msg),
@@ -75,6 +83,16 @@ impl ApiError {
             }
         }
         Self::invalid_with_prefix(field, msg)
+    }
+
+    /// The status of an error of work that began after its input was validated (a plan): the
+    /// client's when a cause says so by its type ([`PlanInputError`], a size limit), else
+    /// INTERNAL. Never decided by the words of the message.
+    pub fn after_validation(e: &anyhow::Error) -> Self {
+        match Self::from_chain("", e) {
+            ApiError::InvalidArgument { .. } if !e.chain().any(|c| c.is::<PlanInputError>()) => ApiError::Internal(format!("{e:#}")),
+            other => other,
+        }
     }
 
     /// INVALID_ARGUMENT for `field`, or for the field the message starts with when `field` is
@@ -96,6 +114,31 @@ impl From<&SimError> for ApiError {
             // Anything else the core finds wrong with the parameters or the pose names it.
             SimError::InvalidParams(_) | SimError::NonFinitePose { .. } => ApiError::invalid("scene", e),
             _ => ApiError::Internal(e.to_string()),
+        }
+    }
+}
+
+/// An error and its causes, as `anyhow` writes them with `{:#}`.
+fn with_causes(e: &dyn std::error::Error) -> String {
+    let mut s = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        s.push_str(": ");
+        s.push_str(&c.to_string());
+        cause = c.source();
+    }
+    s
+}
+
+impl From<&RunError> for ApiError {
+    fn from(e: &RunError) -> Self {
+        match e {
+            RunError::TooLong(_) => ApiError::ResourceExhausted(with_causes(e)),
+            RunError::BadEnd { .. } => ApiError::invalid("trajectory", e),
+            RunError::Setup(s) => ApiError::from(s),
+            // A trajectory whose interpolation is not finite is the caller's.
+            RunError::Step { source: SimError::NonFinitePose { .. }, .. } => ApiError::invalid("trajectory", with_causes(e)),
+            RunError::Step { .. } | RunError::Prefetch { .. } => ApiError::Internal(with_causes(e)),
         }
     }
 }

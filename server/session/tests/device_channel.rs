@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ServerForce, monotonic_ns};
 use needlesim_core::MeshLimits;
-use needlesim_server::session::Session;
+use needlesim_session::Session;
 
 fn drive(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64) -> Option<ServerForce> {
     drive_buttons(device, from_y, to_y, secs, |_| 0)
@@ -96,7 +96,7 @@ fn device_drives_goes_stale_and_reattaches() {
 /// sample it is held down).
 #[test]
 fn issue_8_device_button_flips_the_bevel() {
-    let text = include_str!("../scenes/fig4-steering.toml").replace("gauge = 22", "gauge = 22\nbevel_force_ratio = 0.3");
+    let text = include_str!("../../scenes/fig4-steering.toml").replace("gauge = 22", "gauge = 22\nbevel_force_ratio = 0.3");
     let scene = needlesim_scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
     let dir = std::env::temp_dir().join(format!("needlesim-device-bevel-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -116,7 +116,7 @@ fn issue_8_device_button_flips_the_bevel() {
     assert_eq!(session.counters.bevel_flips_applied.load(Ordering::Relaxed), 2);
     assert_eq!(session.latest_record().bevel_side, 1.0);
     let rec = session.latest_record();
-    assert_eq!(rec.shape().len(), needlesim_server::session::MAX_RECORD_SHAPE, "a flexible needle's shape is recorded");
+    assert_eq!(rec.shape().len(), needlesim_session::MAX_RECORD_SHAPE, "a flexible needle's shape is recorded");
     let (first, last) = (rec.shape()[0], rec.shape()[rec.shape().len() - 1]);
     assert!((first[1] - rec.base.y_m).abs() < 1e-12 && (last[1] - rec.tip_m[1]).abs() < 1e-12, "base to tip: {first:?} {last:?}");
     drop(device);
@@ -191,7 +191,7 @@ fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
 /// torque and stiffness every tick, and the session no longer steps.
 #[test]
 fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
-    let text = include_str!("../scenes/fig4-steering.toml").replace("friction_n_per_m = 10\n", "friction_n_per_m = 1e4\n");
+    let text = include_str!("../../scenes/fig4-steering.toml").replace("friction_n_per_m = 10\n", "friction_n_per_m = 1e4\n");
     let scene = needlesim_scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
     let dir = std::env::temp_dir().join(format!("needlesim-device-fault-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -56,14 +56,15 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::BasePose;
-use needlesim_core::sim::Simulation;
 use serde::{Deserialize, Serialize};
 
 use needlesim_scene::{Scene, Trajectory};
 
+use crate::driver::{RunOptions, Script, ScriptedRun};
+
 /// The shipped planning examples: (name, TOML). Each names its scene and gives the defaults of
 /// `needlesim-server plan` for it.
-pub const PLAN_EXAMPLES: &[(&str, &str)] = &[("fig3-plan", include_str!("../scenes/fig3-plan.toml"))];
+pub const PLAN_EXAMPLES: &[(&str, &str)] = &[("fig3-plan", include_str!("../../scenes/fig3-plan.toml"))];
 
 /// A planning problem as written in TOML (server/scenes/fig3-plan.toml).
 #[derive(Debug, Clone, Deserialize)]
@@ -88,6 +89,21 @@ pub fn example_for_scene(scene_name: &str) -> Result<Option<PlanFile>> {
         }
     }
     Ok(None)
+}
+
+/// A planning request that is wrong: `field` names the request's field (`target`, `entry`,
+/// `angles_deg`, `speed_mm_s`), which the message starts with. Typed, so that the service answers
+/// INVALID_ARGUMENT from the type, not from the words.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{message}")]
+pub struct PlanInputError {
+    pub field: &'static str,
+    pub message: String,
+}
+
+/// A [`PlanInputError`] as the planner's `anyhow` error.
+fn input(field: &'static str, message: String) -> anyhow::Error {
+    anyhow::Error::new(PlanInputError { field, message })
 }
 
 /// What to plan. Absent fields take the shipped planning example's values for the scene (if the
@@ -134,7 +150,7 @@ impl Default for PlanOptions {
             start_outside_m: 0.005,
             hold_s: 0.2,
             cancel: None,
-            max_ticks_per_simulation: crate::simulate::DEFAULT_MAX_TICKS,
+            max_ticks_per_simulation: crate::driver::DEFAULT_MAX_TICKS,
         }
     }
 }
@@ -309,41 +325,51 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
     let Some(target_idx) = targets.iter().position(|t| t.name == req.target) else {
         let names: Vec<&str> = targets.iter().map(|t| t.name.as_str()).collect();
         if names.is_empty() {
-            bail!("target: scene '{}' has no targets (a scene lists them as [[targets]])", scene.name);
+            return Err(input("target", format!("target: scene '{}' has no targets (a scene lists them as [[targets]])", scene.name)));
         }
-        bail!("target: no target named '{}' in scene '{}' (targets: {})", crate::status::quote(&req.target), scene.name, names.join(", "));
+        return Err(input(
+            "target",
+            format!(
+                "target: no target named '{}' in scene '{}' (targets: {})",
+                needlesim_scene::limit::quote(&req.target),
+                scene.name,
+                names.join(", ")
+            ),
+        ));
     };
     let tg = &targets[target_idx];
     let seg = match (req.entry_m, &defaults) {
         (Some(s), _) => s,
         (None, Some(d)) => d.entry_m,
-        (None, None) => bail!("entry: scene '{}' has no planning example, so the entry segment must be given", scene.name),
+        (None, None) => {
+            return Err(input(
+                "entry",
+                format!("entry: scene '{}' has no planning example, so the entry segment must be given", scene.name),
+            ));
+        }
     };
     if !seg.iter().flatten().all(|v| v.is_finite()) {
-        bail!("entry: the segment {seg:?} has a coordinate that is not a finite number");
+        return Err(input("entry", format!("entry: the segment {seg:?} has a coordinate that is not a finite number")));
     }
     let (lo, hi) = scene.tissue.mesh().bounding_box_m();
     let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     let seg_len = norm(sub(seg[1], seg[0]));
     if seg_len <= 1e-9 * size {
-        bail!("entry: the segment's two points ({}, {}) and ({}, {}) coincide", seg[0][0], seg[0][1], seg[1][0], seg[1][1]);
+        return Err(input(
+            "entry",
+            format!("entry: the segment's two points ({}, {}) and ({}, {}) coincide", seg[0][0], seg[0][1], seg[1][0], seg[1][1]),
+        ));
     }
     for k in 0..=20 {
         let p = lerp(seg[0], seg[1], k as f64 / 20.0);
         if !in_mesh(scene, p, 1e-9 * size) {
-            bail!(
-                "entry: the point ({}, {}) of the entry segment ({}, {})–({}, {}) is outside the mesh (bounding box ({}, {})–({}, {}))",
-                p[0],
-                p[1],
-                seg[0][0],
-                seg[0][1],
-                seg[1][0],
-                seg[1][1],
-                lo[0],
-                lo[1],
-                hi[0],
-                hi[1]
-            );
+            return Err(input(
+                "entry",
+                format!(
+                    "entry: the point ({}, {}) of the entry segment ({}, {})–({}, {}) is outside the mesh (bounding box ({}, {})–({}, {}))",
+                    p[0], p[1], seg[0][0], seg[0][1], seg[1][0], seg[1][1], lo[0], lo[1], hi[0], hi[1]
+                ),
+            ));
         }
     }
     let angles_deg = match (req.angles_deg, &defaults) {
@@ -352,13 +378,16 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
         _ => [-180.0, 180.0],
     };
     if !angles_deg.iter().all(|a| a.is_finite()) {
-        bail!("angles_deg: [{}, {}] is not a pair of finite numbers", angles_deg[0], angles_deg[1]);
+        return Err(input("angles_deg", format!("angles_deg: [{}, {}] is not a pair of finite numbers", angles_deg[0], angles_deg[1])));
     }
     if angles_deg[0] > angles_deg[1] {
-        bail!("angles_deg: the range [{}, {}] is empty (the first angle must not exceed the second)", angles_deg[0], angles_deg[1]);
+        return Err(input(
+            "angles_deg",
+            format!("angles_deg: the range [{}, {}] is empty (the first angle must not exceed the second)", angles_deg[0], angles_deg[1]),
+        ));
     }
     if angles_deg[1] - angles_deg[0] > 360.0 {
-        bail!("angles_deg: the range [{}, {}] spans more than 360°", angles_deg[0], angles_deg[1]);
+        return Err(input("angles_deg", format!("angles_deg: the range [{}, {}] spans more than 360°", angles_deg[0], angles_deg[1])));
     }
     let speed = match (req.speed_m_s, &defaults) {
         (Some(v), _) => v,
@@ -367,17 +396,27 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
     };
     let max_speed = scene.params.max_base_step_m * scene.params.tick_rate_hz;
     if !(speed.is_finite() && speed > 0.0 && speed <= max_speed) {
-        bail!("speed_mm_s = {}: must be > 0 and at most {} mm/s (limits.max_base_step_m × tick_rate_hz)", speed * 1e3, max_speed * 1e3);
+        return Err(input(
+            "speed_mm_s",
+            format!(
+                "speed_mm_s = {}: must be > 0 and at most {} mm/s (limits.max_base_step_m × tick_rate_hz)",
+                speed * 1e3,
+                max_speed * 1e3
+            ),
+        ));
     }
     let length = scene.params.needle.tip_s_m();
     let reach = dist_to_segment(tg.center_m, seg[0], seg[1]);
     if reach >= length {
-        bail!(
-            "target: '{}' is {:.1} mm from the nearest entry point, beyond the needle's length of {:.1} mm (needle.length_m)",
-            tg.name,
-            reach * 1e3,
-            length * 1e3
-        );
+        return Err(input(
+            "target",
+            format!(
+                "target: '{}' is {:.1} mm from the nearest entry point, beyond the needle's length of {:.1} mm (needle.length_m)",
+                tg.name,
+                reach * 1e3,
+                length * 1e3
+            ),
+        ));
     }
     Ok(Problem {
         target_idx,
@@ -427,12 +466,15 @@ fn straight_entry(scene: &Scene, p: &Problem) -> Result<[f64; 2]> {
     });
     match best {
         Some(w) => Ok(lerp(a, b, w)),
-        None => bail!(
-            "angles_deg: from no point of the entry segment does a straight line to target '{}' have an angle in [{:.1}, {:.1}]°",
-            p.target_name,
-            p.angles[0].to_degrees(),
-            p.angles[1].to_degrees()
-        ),
+        None => Err(input(
+            "angles_deg",
+            format!(
+                "angles_deg: from no point of the entry segment does a straight line to target '{}' have an angle in [{:.1}, {:.1}]°",
+                p.target_name,
+                p.angles[0].to_degrees(),
+                p.angles[1].to_degrees()
+            ),
+        )),
     }
 }
 
@@ -475,22 +517,21 @@ fn evaluate(scene: &Scene, p: &Problem, opts: &PlanOptions, u: f64, line: Line, 
     let end = base_at(max_depth);
     let span = (outside + max_depth) / p.speed;
     let traj = Trajectory::from_samples(vec![(0.0, needlesim_scene::pose2(start)), (span, needlesim_scene::pose2(end))]);
-    let mut params = scene.params.clone();
-    params.initial_pose = start;
-    let mut sim = Simulation::new(scene.tissue.clone(), params).context("simulation")?;
-    let rate = sim.params().tick_rate_hz;
-    let n_ticks = (span * rate).round() as u64;
+    // The run driver starts the simulation at the trajectory's first pose, `start`.
+    let run_opts = RunOptions { max_ticks: opts.max_ticks_per_simulation, ..RunOptions::default() };
+    let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::trajectory(&traj), run_opts)?;
+    let rate = scene.params.tick_rate_hz;
     let pass_m = 0.003 + 2.0 * p.radius;
     // (distance, tick, tip, target, lateral miss) at the closest approach so far.
     type Closest = (f64, u64, [f64; 2], [f64; 2], f64);
     let mut best: Option<Closest> = None;
-    for k in 0..=n_ticks {
-        if k % 64 == 0 && cancel.load(Ordering::Relaxed) {
+    loop {
+        let k = run.next_k();
+        if k < run.ticks_total() && k % 64 == 0 && cancel.load(Ordering::Relaxed) {
             bail!("planning cancelled");
         }
-        let tk = k as f64 / rate;
-        let pose = needlesim_scene::base_pose(traj.pose_at(tk));
-        let out = sim.step(pose).with_context(|| format!("step at t = {tk:.4} s"))?;
+        let Some(tick) = run.next_tick()? else { break };
+        let (k, out) = (tick.k, run.output());
         let tip = out.tip_m;
         let tg = out.targets.get(p.target_idx).context("the simulation reports no such target")?;
         let d = sub(tg.position_m, tip);
@@ -502,10 +543,9 @@ fn evaluate(scene: &Scene, p: &Problem, opts: &PlanOptions, u: f64, line: Line, 
         if dot(d, t) < -pass_m {
             break;
         }
-        sim.prefetch_columns(8)?;
     }
     let (distance, k, tip, target, miss) = best.context("no tick was simulated")?;
-    tracing::debug!(u, ticks = sim.stats().ticks, elapsed_ms = eval_started.elapsed().as_secs_f64() * 1e3, "candidate simulated");
+    tracing::debug!(u, ticks = run.sim().stats().ticks, elapsed_ms = eval_started.elapsed().as_secs_f64() * 1e3, "candidate simulated");
     let t_closest_s = k as f64 / rate;
     Ok(Eval {
         u,
@@ -619,7 +659,7 @@ pub fn validate_request(scene: &Scene, req: &PlanRequest, opts: &PlanOptions) ->
 fn check_ticks(scene: &Scene, p: &Problem, opts: &PlanOptions) -> Result<()> {
     let ticks = ((opts.start_outside_m + p.length) / p.speed * scene.params.tick_rate_hz).ceil();
     if ticks > opts.max_ticks_per_simulation as f64 {
-        let e = crate::status::SizeLimit {
+        let e = needlesim_scene::limit::SizeLimit {
             what: "a simulated insertion at this speed".to_owned(),
             amount: ticks as u64,
             limit: opts.max_ticks_per_simulation,
@@ -790,7 +830,7 @@ mod tests {
 
     #[test]
     fn an_unreachable_target_is_an_error() {
-        let text = include_str!("../scenes/fig3-target.toml").replace("length_m = 0.1", "length_m = 0.03");
+        let text = include_str!("../../scenes/fig3-target.toml").replace("length_m = 0.1", "length_m = 0.03");
         let scene = needlesim_scene::parse_scene(&text, std::path::Path::new("."), &MeshLimits::default()).unwrap();
         let e = plan(&scene, &PlanRequest { target: "biopsy".into(), ..Default::default() }, &PlanOptions::default(), |_| {
             ControlFlow::Continue(())

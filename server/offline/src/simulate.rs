@@ -2,16 +2,16 @@
 //! server uses, written as a CSV time series, with the final state in the exchange format.
 
 use std::fmt::Write as _;
+use std::ops::ControlFlow;
 
-use anyhow::{Context, Result};
-use needlesim_core::sim::{SimError, Simulation, StateSnapshot};
+use needlesim_core::sim::{Simulation, StateSnapshot, StepOutput};
+
+use crate::driver::{RunError, RunOptions, Script, ScriptedRun};
 
 use needlesim_scene::exchange::{Load, PrescribedLocal, Scenario};
 use needlesim_scene::{Scene, Trajectory};
 
-/// The longest offline simulation, in ticks, by default: the server's Simulate limit and the
-/// `simulate` command's `--max-ticks` (10⁶ ticks: 1000 s at 1 kHz, 8 MB of step times).
-pub const DEFAULT_MAX_TICKS: u64 = 1_000_000;
+pub use crate::driver::DEFAULT_MAX_TICKS;
 
 /// What a run produced besides the CSV.
 #[derive(Debug, Clone, Default)]
@@ -36,46 +36,34 @@ pub fn csv_header(target_names: &[String]) -> String {
     h
 }
 
-/// Runs `traj` through a new simulation of `scene`, ticking at the scene's rate from the
-/// trajectory's first to its last time. Each tick's row is appended to `csv` (when given).
-/// Columns for the nodes the tip approaches are computed between steps, as a worker would.
-/// A trajectory longer than `max_ticks` is an error naming its last line; a step that diverges
-/// ([`SimError::Diverged`]) stops the run with an error naming the tick and time.
-pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mut String>) -> Result<(Simulation, RunSummary)> {
-    let mut params = scene.params.clone();
-    params.initial_pose = needlesim_scene::base_pose(traj.samples[0].1);
-    let rate = params.tick_rate_hz;
-    let (t0, _) = traj.span_s();
-    let n_ticks = traj.tick_count(rate, max_ticks)?;
-    let mut sim = Simulation::new(scene.tissue.clone(), params).context("simulation")?;
-    let mut summary = RunSummary { step_times_s: Vec::with_capacity(n_ticks as usize + 1), ..Default::default() };
+/// Runs `traj` through a new simulation of `scene` with the run driver ([`ScriptedRun`]),
+/// ticking at the scene's rate from the trajectory's first to its last time. Each tick's row is
+/// appended to `csv` (when given). Columns for the nodes the tip approaches are computed between
+/// steps, as a worker would. A trajectory longer than `max_ticks` is an error naming its last
+/// line; a failed step (a diverged solve, a pose that is not finite, …) stops the run with an
+/// error naming the tick and time ([`RunError`]).
+pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mut String>) -> Result<(Simulation, RunSummary), RunError> {
+    let opts = RunOptions { max_ticks, ..RunOptions::default() };
+    let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::trajectory(traj), opts)?;
+    let rate = scene.params.tick_rate_hz;
+    let t0 = run.t0_s();
+    let mut summary = RunSummary { step_times_s: Vec::with_capacity(run.ticks_total() as usize), ..Default::default() };
     if let Some(c) = csv.as_deref_mut() {
         c.push_str(&csv_header(&scene.target_names));
         c.push('\n');
     }
     let mut clamp_run_start: Option<u64> = None;
-    for k in 0..=n_ticks {
-        let t = t0 + k as f64 / rate;
-        let pose = needlesim_scene::base_pose(traj.pose_at(t));
-        let started = std::time::Instant::now();
-        let out = match sim.step(pose) {
-            Ok(o) => o,
-            Err(e @ SimError::NonFinitePose { .. }) => {
-                tracing::warn!("{e}");
-                continue;
-            }
-            // A diverged step names its tick itself.
-            Err(e @ SimError::Diverged { .. }) => return Err(e).with_context(|| format!("the run stopped at t = {t:.4} s")),
-            Err(e) => return Err(e).with_context(|| format!("the run stopped at tick {k} (t = {t:.4} s)")),
-        };
-        summary.step_times_s.push(started.elapsed().as_secs_f64());
+    run.run(|tick, sim| {
+        let out = sim.output();
+        let k = tick.k;
+        summary.step_times_s.push(tick.step_s);
         match (out.clamped, clamp_run_start) {
             (true, None) => clamp_run_start = Some(k),
             (false, Some(s)) => {
                 tracing::warn!(
                     "trajectory jumps faster than max_base_step_m/max_base_step_rad per tick between t = {:.4} s and {:.4} s: the pose was clamped for {} tick(s)",
                     t0 + s as f64 / rate,
-                    t,
+                    tick.t_s,
                     k - s
                 );
                 clamp_run_start = None;
@@ -83,43 +71,51 @@ pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mu
             _ => {}
         }
         if let Some(c) = csv.as_deref_mut() {
-            let b = out.base;
-            let _ = write!(
-                c,
-                "{:.6},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{},{}",
-                t0 + out.time_s,
-                b.x_m,
-                b.y_m,
-                b.theta_rad,
-                out.force_n[0],
-                out.force_n[1],
-                out.torque_nm,
-                out.force_axial_n,
-                out.force_lateral_n,
-                out.tip_m[0],
-                out.tip_m[1],
-                out.inserted_length_m,
-                out.n_stuck,
-                out.n_slipping,
-                out.n_tip
-            );
-            for tg in &out.targets {
-                let _ = write!(c, ",{:e},{},{},{}", tg.distance_m, tg.position_m[0], tg.position_m[1], tg.hit as u8);
-            }
-            c.push('\n');
+            write_csv_row(c, out, t0);
         }
-        summary.prefetched_columns += sim.prefetch_columns(8)? as u64;
-    }
+        ControlFlow::Continue(())
+    })?;
     if let Some(s) = clamp_run_start {
         tracing::warn!("the pose was clamped from t = {:.4} s to the end of the trajectory", t0 + s as f64 / rate);
     }
+    let (sim, totals) = run.finish()?;
     let st = sim.stats();
     summary.ticks = st.ticks;
     summary.clamped_ticks = st.clamped_ticks;
     summary.column_misses = st.column_misses;
+    summary.prefetched_columns = totals.prefetched_columns;
     summary.unconverged_ticks = st.unconverged_ticks;
     summary.numeric_factorisations = sim.model().cholesky().n_numeric_factorisations();
     Ok((sim, summary))
+}
+
+/// One row of the CSV ([`csv_header`]'s columns) for a step's output; `t0_s` is the
+/// trajectory's start.
+pub fn write_csv_row(c: &mut String, out: &StepOutput, t0_s: f64) {
+    let b = out.base;
+    let _ = write!(
+        c,
+        "{:.6},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{},{}",
+        t0_s + out.time_s,
+        b.x_m,
+        b.y_m,
+        b.theta_rad,
+        out.force_n[0],
+        out.force_n[1],
+        out.torque_nm,
+        out.force_axial_n,
+        out.force_lateral_n,
+        out.tip_m[0],
+        out.tip_m[1],
+        out.inserted_length_m,
+        out.n_stuck,
+        out.n_slipping,
+        out.n_tip
+    );
+    for tg in &out.targets {
+        let _ = write!(c, ",{:e},{},{},{}", tg.distance_m, tg.position_m[0], tg.position_m[1], tg.hit as u8);
+    }
+    c.push('\n');
 }
 
 /// The final state as a static problem in the exchange format, with the solver's own results.

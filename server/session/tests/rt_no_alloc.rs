@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use needlesim_channel::shm::{DeviceChannel, DevicePose, monotonic_ns};
 use needlesim_core::{BasePose, MeshLimits};
-use needlesim_server::session::{IN_TICK, Session, WARM_UP_TICKS};
+use needlesim_session::{IN_TICK, Session, WARM_UP_TICKS};
 
 struct Counting;
 

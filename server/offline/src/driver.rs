@@ -1,0 +1,340 @@
+//! The one scripted-run driver: a script of base poses (a trajectory sampled at the tick rate, or
+//! a list of poses) through `Simulation::step`, with the compliance columns of the nodes the tip
+//! approaches computed between steps, as a session's column worker would. One tick limit, one
+//! error policy; each caller takes what it needs from each tick.
+//!
+//! # Error policy
+//! Any failed step stops the run with [`RunError::Step`], naming the tick and the script time:
+//! a diverged solve, a failed solve or compliance column, and also a pose that is not finite
+//! (`SimError::NonFinitePose`). The last is the strictest of the policies the five hand-written
+//! loops had (`simulate` skipped such a tick with a warning; the Simulate RPC, `plan`,
+//! the identify experiments and `bench` stopped): a skipped tick would shift every later row of
+//! a time series off the tick grid. A script never yields one from finite samples unless the
+//! interpolation overflows (samples near ±1.8e308).
+
+use std::ops::ControlFlow;
+use std::sync::Arc;
+use std::time::Instant;
+
+use needlesim_core::BasePose;
+use needlesim_core::compliance::TissueModel;
+use needlesim_core::sim::{SimError, SimParams, Simulation, StepOutput};
+use needlesim_scene::Trajectory;
+use needlesim_trajectory::TrajectoryError;
+
+/// The longest offline simulation, in ticks, by default: the server's Simulate limit and the
+/// `simulate` command's `--max-ticks` (10⁶ ticks: 1000 s at 1 kHz, 8 MB of step times).
+pub const DEFAULT_MAX_TICKS: u64 = 1_000_000;
+
+/// Compliance columns computed between two steps, by default (the budget a worker would have).
+pub const DEFAULT_PREFETCH_NODES_PER_TICK: usize = 8;
+
+/// Why a scripted run did not start or stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The script is longer than the tick limit (the error names its last sample).
+    #[error(transparent)]
+    TooLong(#[from] TrajectoryError),
+    /// The end time given is not after the script's start.
+    #[error("the run's end t = {end_s} s must come after the trajectory's start ({start_s} s)")]
+    BadEnd { end_s: f64, start_s: f64 },
+    /// The simulation could not be built from the scene's parameters.
+    #[error("simulation")]
+    Setup(#[source] SimError),
+    /// A step failed (see the module documentation): the run stops there. A diverged step names
+    /// its tick itself.
+    #[error("{}", step_context(*tick, *t_s, source))]
+    Step { tick: u64, t_s: f64, source: SimError },
+    /// Computing the columns of approaching nodes after a step failed.
+    #[error("the run stopped at tick {tick} (t = {t_s:.4} s): compliance columns")]
+    Prefetch { tick: u64, t_s: f64, source: SimError },
+}
+
+fn step_context(tick: u64, t_s: f64, source: &SimError) -> String {
+    match source {
+        SimError::Diverged { .. } => format!("the run stopped at t = {t_s:.4} s"),
+        _ => format!("the run stopped at tick {tick} (t = {t_s:.4} s)"),
+    }
+}
+
+impl RunError {
+    /// The simulation error behind a failed step or column, if that is what stopped the run.
+    pub fn sim_error(&self) -> Option<&SimError> {
+        match self {
+            RunError::Setup(e) | RunError::Step { source: e, .. } | RunError::Prefetch { source: e, .. } => Some(e),
+            RunError::TooLong(_) | RunError::BadEnd { .. } => None,
+        }
+    }
+}
+
+/// The poses a run follows, one per tick.
+#[derive(Debug, Clone, Copy)]
+pub enum Script<'a> {
+    /// A trajectory sampled at the scene's tick rate from its first sample's time to its last
+    /// (or to `end_s`, when earlier); the simulation starts at the first sample's pose.
+    Trajectory { trajectory: &'a Trajectory, end_s: Option<f64> },
+    /// One pose per tick, from time 0; the simulation starts at the scene's initial pose.
+    Poses(&'a [BasePose]),
+}
+
+impl<'a> Script<'a> {
+    /// The whole of a trajectory.
+    pub fn trajectory(trajectory: &'a Trajectory) -> Self {
+        Script::Trajectory { trajectory, end_s: None }
+    }
+}
+
+/// How a run goes.
+#[derive(Debug, Clone, Copy)]
+pub struct RunOptions {
+    /// The most ticks (after the first) a run may take; longer scripts are refused before
+    /// anything is simulated ([`RunError::TooLong`]).
+    pub max_ticks: u64,
+    /// Nodes whose compliance columns are computed after each step (0: none; the caller then
+    /// provides them, e.g. from a dense inverse, through [`ScriptedRun::sim_mut`]).
+    pub prefetch_nodes_per_tick: usize,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        Self { max_ticks: DEFAULT_MAX_TICKS, prefetch_nodes_per_tick: DEFAULT_PREFETCH_NODES_PER_TICK }
+    }
+}
+
+/// One tick of a run, as [`ScriptedRun::next_tick`] reports it (the step's output is
+/// [`ScriptedRun::output`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tick {
+    /// The tick's index in the run, from 0.
+    pub k: u64,
+    /// The script's time at this tick, s (a trajectory's own clock).
+    pub t_s: f64,
+    /// The time `Simulation::step` took, s.
+    pub step_s: f64,
+}
+
+/// What a finished run did besides its ticks.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RunTotals {
+    /// Ticks stepped.
+    pub ticks: u64,
+    /// Column pairs computed between steps.
+    pub prefetched_columns: u64,
+    /// Whether the per-tick callback stopped the run early.
+    pub stopped_early: bool,
+}
+
+/// A scripted run in progress: a simulation and where it is in its script.
+pub struct ScriptedRun<'a> {
+    sim: Simulation,
+    script: Script<'a>,
+    /// The script's time at tick 0, s.
+    t0_s: f64,
+    rate_hz: f64,
+    /// Ticks the run steps: 0..ticks_total.
+    ticks_total: u64,
+    next_k: u64,
+    /// The previous tick's prefetch is still due (done at the start of the next tick, so a caller
+    /// that stops pays none).
+    prefetch_due: bool,
+    prefetch_nodes_per_tick: usize,
+    prefetched_columns: u64,
+}
+
+impl<'a> ScriptedRun<'a> {
+    /// A run of `script` on a new simulation of `tissue` with `params` (its `initial_pose` is
+    /// the trajectory's first pose for a trajectory script). The length is checked here, before
+    /// anything is simulated.
+    pub fn new(tissue: Arc<TissueModel>, mut params: SimParams, script: Script<'a>, opts: RunOptions) -> Result<Self, RunError> {
+        let rate_hz = params.tick_rate_hz;
+        let (t0_s, ticks_total) = match script {
+            Script::Trajectory { trajectory, end_s: None } => {
+                params.initial_pose = needlesim_scene::base_pose(trajectory.samples[0].1);
+                (trajectory.span_s().0, trajectory.tick_count(rate_hz, opts.max_ticks)? + 1)
+            }
+            Script::Trajectory { trajectory, end_s: Some(end_s) } => {
+                params.initial_pose = needlesim_scene::base_pose(trajectory.samples[0].1);
+                let (t0, t1) = trajectory.span_s();
+                if !(end_s.is_finite() && end_s > t0) {
+                    return Err(RunError::BadEnd { end_s, start_s: t0 });
+                }
+                let cut = Trajectory::from_samples(vec![trajectory.samples[0], (t1.min(end_s), trajectory.samples[0].1)]);
+                (t0, cut.tick_count(rate_hz, opts.max_ticks)? + 1)
+            }
+            Script::Poses(poses) => {
+                let n = poses.len() as u64;
+                if n > opts.max_ticks.saturating_add(1) {
+                    return Err(RunError::TooLong(TrajectoryError::TooLong {
+                        at: format!("pose[{}]", n - 1),
+                        end_s: (n - 1) as f64 / rate_hz,
+                        span_s: (n - 1) as f64 / rate_hz,
+                        ticks: (n - 1) as f64,
+                        rate_hz,
+                        max_ticks: opts.max_ticks,
+                    }));
+                }
+                (0.0, n)
+            }
+        };
+        let sim = Simulation::new(tissue, params).map_err(RunError::Setup)?;
+        Ok(Self {
+            sim,
+            script,
+            t0_s,
+            rate_hz,
+            ticks_total,
+            next_k: 0,
+            prefetch_due: false,
+            prefetch_nodes_per_tick: opts.prefetch_nodes_per_tick,
+            prefetched_columns: 0,
+        })
+    }
+
+    /// Ticks the whole run steps.
+    pub fn ticks_total(&self) -> u64 {
+        self.ticks_total
+    }
+
+    /// The index of the last tick (a run steps ticks `0..=last_tick()`; 0 for an empty run).
+    pub fn last_tick(&self) -> u64 {
+        self.ticks_total.saturating_sub(1)
+    }
+
+    /// The index of the tick [`next_tick`](Self::next_tick) steps next.
+    pub fn next_k(&self) -> u64 {
+        self.next_k
+    }
+
+    /// The script's time at tick 0, s.
+    pub fn t0_s(&self) -> f64 {
+        self.t0_s
+    }
+
+    /// The script's pose at tick `k`.
+    pub fn pose_at_tick(&self, k: u64) -> BasePose {
+        match self.script {
+            Script::Trajectory { trajectory, .. } => needlesim_scene::base_pose(trajectory.pose_at(self.t0_s + k as f64 / self.rate_hz)),
+            Script::Poses(poses) => poses[k as usize],
+        }
+    }
+
+    /// Computes the columns due from the previous tick, then steps the next tick; `None` when
+    /// the script is done. The step's output is [`output`](Self::output).
+    pub fn next_tick(&mut self) -> Result<Option<Tick>, RunError> {
+        self.prefetch_now()?;
+        if self.next_k >= self.ticks_total {
+            return Ok(None);
+        }
+        let k = self.next_k;
+        let t_s = self.t0_s + k as f64 / self.rate_hz;
+        let pose = self.pose_at_tick(k);
+        let started = Instant::now();
+        let stepped = self.sim.step(pose).map(|_| ());
+        let step_s = started.elapsed().as_secs_f64();
+        stepped.map_err(|source| RunError::Step { tick: k, t_s, source })?;
+        self.next_k = k + 1;
+        self.prefetch_due = true;
+        Ok(Some(Tick { k, t_s, step_s }))
+    }
+
+    /// Runs to the end of the script, calling `on_tick` after each step (before the columns
+    /// for the next are computed); `ControlFlow::Break` ends the run there, without error.
+    pub fn run(&mut self, mut on_tick: impl FnMut(&Tick, &Simulation) -> ControlFlow<()>) -> Result<RunTotals, RunError> {
+        let mut stopped_early = false;
+        while let Some(tick) = self.next_tick()? {
+            if on_tick(&tick, &self.sim).is_break() {
+                stopped_early = true;
+                self.prefetch_due = false;
+                break;
+            }
+        }
+        Ok(self.totals(stopped_early))
+    }
+
+    fn prefetch_now(&mut self) -> Result<(), RunError> {
+        if !std::mem::take(&mut self.prefetch_due) || self.prefetch_nodes_per_tick == 0 {
+            return Ok(());
+        }
+        let k = self.next_k - 1;
+        let t_s = self.t0_s + k as f64 / self.rate_hz;
+        let n = self.sim.prefetch_columns(self.prefetch_nodes_per_tick).map_err(|source| RunError::Prefetch { tick: k, t_s, source })?;
+        self.prefetched_columns += n as u64;
+        Ok(())
+    }
+
+    fn totals(&self, stopped_early: bool) -> RunTotals {
+        RunTotals { ticks: self.next_k, prefetched_columns: self.prefetched_columns, stopped_early }
+    }
+
+    /// The output of the last step.
+    pub fn output(&self) -> &StepOutput {
+        self.sim.output()
+    }
+
+    /// The simulation (its state after the last step).
+    pub fn sim(&self) -> &Simulation {
+        &self.sim
+    }
+
+    /// The simulation, for a caller that supplies compliance columns itself
+    /// (`RunOptions::prefetch_nodes_per_tick = 0`).
+    pub fn sim_mut(&mut self) -> &mut Simulation {
+        &mut self.sim
+    }
+
+    /// Column pairs computed between steps so far.
+    pub fn prefetched_columns(&self) -> u64 {
+        self.prefetched_columns
+    }
+
+    /// Ends the run: the simulation in its final state. Columns still due for the last tick
+    /// are computed first, as a run to the end always has.
+    pub fn finish(mut self) -> Result<(Simulation, RunTotals), RunError> {
+        self.prefetch_now()?;
+        let totals = self.totals(false);
+        Ok((self.sim, totals))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> needlesim_scene::Scene {
+        needlesim_scene::load_scene("paper-phantom", &needlesim_core::MeshLimits::default()).unwrap()
+    }
+
+    #[test]
+    fn a_run_steps_every_tick_of_the_trajectory_and_can_stop_early() {
+        let scene = scene();
+        let traj = Trajectory::parse_csv(scene.example_trajectory.unwrap()).unwrap();
+        let opts = RunOptions::default();
+        let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::trajectory(&traj), opts).unwrap();
+        let total = run.ticks_total();
+        assert_eq!(total, traj.tick_count(scene.params.tick_rate_hz, u64::MAX).unwrap() + 1);
+        let mut seen = 0;
+        let totals = run
+            .run(|tick, _| {
+                assert_eq!(tick.k, seen);
+                seen += 1;
+                if seen == 10 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+            })
+            .unwrap();
+        assert_eq!((totals.ticks, totals.stopped_early), (10, true));
+        // The length is checked before anything is simulated.
+        let short = RunOptions { max_ticks: 5, ..opts };
+        let e = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::trajectory(&traj), short).err().unwrap();
+        assert!(matches!(e, RunError::TooLong(_)), "{e}");
+    }
+
+    #[test]
+    fn a_pose_that_is_not_finite_stops_the_run_naming_the_tick() {
+        let scene = scene();
+        let p = scene.params.initial_pose;
+        let poses = [p, p, BasePose::new(f64::NAN, p.y_m, p.theta_rad), p];
+        let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::Poses(&poses), RunOptions::default()).unwrap();
+        let e = run.run(|_, _| ControlFlow::Continue(())).unwrap_err();
+        assert!(matches!(e, RunError::Step { tick: 2, source: SimError::NonFinitePose { .. }, .. }), "{e:?}");
+        assert!(e.to_string().starts_with("the run stopped at tick 2 (t = 0.0020 s)"), "{e}");
+    }
+}

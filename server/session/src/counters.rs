@@ -1,0 +1,85 @@
+//! The counters a session's threads share (atomics: the real-time side takes no lock), and the
+//! percentile summary the IO side reads.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::record::SessionFault;
+
+/// Counters shared between the threads of a session (atomics: no locks on the real-time side).
+#[derive(Debug, Default)]
+pub struct SessionCounters {
+    pub ticks: AtomicU64,
+    pub missed_deadlines: AtomicU64,
+    pub dropped_records: AtomicU64,
+    pub dropped_column_requests: AtomicU64,
+    pub superseded_poses: AtomicU64,
+    pub poses_written: AtomicU64,
+    pub rejected_poses: AtomicU64,
+    pub column_misses: AtomicU64,
+    pub clamped_ticks: AtomicU64,
+    pub records_truncated: AtomicU64,
+    /// 1 while a device channel's bridge is stale (no fresh pose for [`DEVICE_STALE_TICKS`](crate::DEVICE_STALE_TICKS)).
+    pub device_stale: AtomicU64,
+    /// Times the device went stale.
+    pub device_stale_events: AtomicU64,
+    /// Fresh device poses taken.
+    pub device_poses: AtomicU64,
+    /// 1 once the device channel is broken (its file was truncated, resized, overwritten, deleted
+    /// or replaced: `needlesim_channel::shm::Broken`): the device stays stale for the rest of the session.
+    pub device_channel_broken: AtomicU64,
+    /// Bevel flips asked for (by clients and the device's button 0), and applied by the
+    /// real-time thread.
+    pub bevel_flips_requested: AtomicU64,
+    pub bevel_flips_applied: AtomicU64,
+    /// Steps that failed other than by diverging (the solver or a compliance column): the tick
+    /// held its pose and published nothing; [`MAX_CONSECUTIVE_STEP_ERRORS`](crate::MAX_CONSECUTIVE_STEP_ERRORS) in a row fault.
+    pub step_errors: AtomicU64,
+    /// Refreshes of the stiffness Jacobian that failed (the last one is kept; logged by the fan-out).
+    pub stiffness_errors: AtomicU64,
+    /// Faults of the simulation (0 or 1: a faulted session stops stepping for good).
+    pub faults: AtomicU64,
+    /// The fault ([`SessionFault`]): its code (0: none; written last, with release ordering),
+    /// tick, and value and bound as `f64` bits.
+    pub fault_code: AtomicU64,
+    pub fault_tick: AtomicU64,
+    pub fault_value_bits: AtomicU64,
+    pub fault_bound_bits: AtomicU64,
+}
+
+impl SessionCounters {
+    /// The fault, if the session has one.
+    pub fn fault(&self) -> Option<SessionFault> {
+        let code = self.fault_code.load(Ordering::Acquire);
+        (code != 0).then(|| SessionFault {
+            tick: self.fault_tick.load(Ordering::Relaxed),
+            code: code as u8,
+            value: f64::from_bits(self.fault_value_bits.load(Ordering::Relaxed)),
+            bound: f64::from_bits(self.fault_bound_bits.load(Ordering::Relaxed)),
+        })
+    }
+
+    pub(crate) fn set_fault_from_rt(&self, f: &SessionFault) {
+        self.fault_tick.store(f.tick, Ordering::Relaxed);
+        self.fault_value_bits.store(f.value.to_bits(), Ordering::Relaxed);
+        self.fault_bound_bits.store(f.bound.to_bits(), Ordering::Relaxed);
+        self.fault_code.store(f.code as u64, Ordering::Release);
+        self.faults.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+/// Percentile summary of the tick loop, kept by the fan-out thread.
+#[derive(Debug, Clone, Default)]
+pub struct StatsSnapshot {
+    pub ticks: u64,
+    pub compute_us: [f64; 4],
+    pub lateness_us: [f64; 3],
+    pub missed_deadlines: u64,
+    pub superseded_poses: u64,
+    pub dropped_records: u64,
+    pub column_misses: u64,
+    pub rejected_poses: u64,
+    pub clamped_ticks: u64,
+    /// Faults (0 or 1) and the fault, in words.
+    pub faults: u64,
+    pub fault: Option<String>,
+}

@@ -1,0 +1,208 @@
+//! Off the real-time thread: the column worker (compliance columns ahead of the tip), the
+//! fan-out (tick records to histograms, the record sink, every-tick and latest-value observers,
+//! and the displacement field at frame rate), and the device channel's watcher. These threads may
+//! log; the real-time thread never does.
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use needlesim_core::compliance::TissueModel;
+
+use crate::counters::SessionCounters;
+use crate::record::TickRecord;
+
+/// Where the fan-out hands every tick record the real-time thread published, in tick order
+/// (a recording, in the service layer: the session knows no wire format). Implemented outside this
+/// crate; attached with [`crate::Session::attach_sink_from_io`].
+pub trait RecordSink: Send + 'static {
+    /// Takes one record, on the fan-out thread. Must not block: queue the work and return (a
+    /// slow sink delays every observer, never the real-time thread).
+    fn write_from_fanout(&mut self, rec: &TickRecord);
+
+    /// The sink as `Any`, so that its owner can find its own type again (e.g. to read a
+    /// recording's name).
+    fn as_any(&self) -> &dyn std::any::Any;
+
+    /// The sink as `Box<dyn Any>`, so that its owner can take its own type back (e.g. to finish
+    /// a recording).
+    fn into_any(self: Box<Self>) -> Box<dyn std::any::Any + Send>;
+}
+
+/// The sink slot shared by the IO side (attach, detach) and the fan-out (write).
+pub(crate) type SinkSlot = Arc<Mutex<Option<Box<dyn RecordSink>>>>;
+
+pub(crate) struct Histograms {
+    pub(crate) compute_ns: hdrhistogram::Histogram<u64>,
+    pub(crate) lateness_ns: hdrhistogram::Histogram<u64>,
+}
+
+/// A displacement field of every node, computed by the fan-out at frame rate.
+#[derive(Debug, Clone, Default)]
+pub struct Field {
+    pub tick: u64,
+    pub displacement_m: Vec<f64>,
+}
+
+/// Computes compliance columns off the real-time thread.
+pub(crate) struct ColumnWorker {
+    pub(crate) tissue: Arc<TissueModel>,
+    pub(crate) req_rx: rtrb::Consumer<u32>,
+    pub(crate) col_tx: rtrb::Producer<(u32, Box<[f64]>)>,
+    pub(crate) ret_rx: rtrb::Consumer<Box<[f64]>>,
+    pub(crate) render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>,
+    pub(crate) stop: Arc<AtomicBool>,
+}
+
+impl ColumnWorker {
+    pub(crate) fn run(mut self) {
+        let mut scratch = self.tissue.column_scratch();
+        let len = 2 * self.tissue.n_dofs();
+        while !self.stop.load(Ordering::Relaxed) {
+            while self.ret_rx.pop().is_ok() {}
+            let Ok(node) = self.req_rx.pop() else {
+                std::thread::sleep(Duration::from_micros(500));
+                continue;
+            };
+            let mut cols = vec![0.0; len].into_boxed_slice();
+            if let Err(e) = self.tissue.compliance_columns_into(node as usize, &mut cols, &mut scratch) {
+                tracing::error!("column of node {node}: {e}");
+                continue;
+            }
+            self.render_columns.lock().expect("render columns lock").insert(node, Arc::from(&cols[..]));
+            let mut item = (node, cols);
+            loop {
+                match self.col_tx.push(item) {
+                    Ok(()) => break,
+                    Err(rtrb::PushError::Full(back)) => {
+                        if self.stop.load(Ordering::Relaxed) {
+                            return;
+                        }
+                        item = back;
+                        std::thread::sleep(Duration::from_micros(200));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Distributes tick records off the real-time thread.
+pub(crate) struct FanOut {
+    pub(crate) rec_rx: rtrb::Consumer<TickRecord>,
+    pub(crate) all_tx: tokio::sync::broadcast::Sender<Arc<TickRecord>>,
+    pub(crate) latest_tx: tokio::sync::watch::Sender<Arc<TickRecord>>,
+    pub(crate) field_tx: tokio::sync::watch::Sender<Arc<Field>>,
+    pub(crate) field_subscribers: Arc<AtomicU64>,
+    pub(crate) render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>,
+    pub(crate) n_dofs: usize,
+    pub(crate) histograms: Arc<Mutex<Histograms>>,
+    pub(crate) sink: SinkSlot,
+    pub(crate) counters: Arc<SessionCounters>,
+    /// The real-time thread's one report on its scheduling priority, logged here (the real-time
+    /// thread does not log).
+    pub(crate) rt_priority_rx: std::sync::mpsc::Receiver<Result<i32, String>>,
+    pub(crate) session_id: String,
+    pub(crate) stop: Arc<AtomicBool>,
+}
+
+/// How often the fan-out computes the displacement field while someone wants it.
+const FIELD_PERIOD: Duration = Duration::from_millis(8);
+
+impl FanOut {
+    pub(crate) fn run(mut self) {
+        let mut last_field = Instant::now() - FIELD_PERIOD;
+        let mut latest: Option<Arc<TickRecord>> = None;
+        let mut stiffness_errors_logged = 0;
+        while !self.stop.load(Ordering::Relaxed) {
+            self.log_rt_reports(&mut stiffness_errors_logged);
+            let mut any = false;
+            while let Ok(rec) = self.rec_rx.pop() {
+                any = true;
+                {
+                    let mut h = self.histograms.lock().expect("histogram lock");
+                    let _ = h.compute_ns.record(rec.compute_ns.max(1));
+                    let _ = h.lateness_ns.record(rec.lateness_ns.max(1));
+                }
+                let rec = Arc::new(rec);
+                if let Some(sink) = self.sink.lock().expect("record sink lock").as_mut() {
+                    sink.write_from_fanout(&rec);
+                }
+                let _ = self.all_tx.send(rec.clone());
+                latest = Some(rec);
+            }
+            if let Some(rec) = &latest {
+                self.latest_tx.send_replace(rec.clone());
+                if self.field_subscribers.load(Ordering::Relaxed) > 0 && last_field.elapsed() >= FIELD_PERIOD {
+                    last_field = Instant::now();
+                    let field = self.field_for(rec);
+                    self.field_tx.send_replace(Arc::new(field));
+                }
+            }
+            if !any {
+                std::thread::sleep(Duration::from_micros(250));
+            }
+        }
+    }
+
+    /// Puts into the log what the real-time thread only counted or reported through a queue: its
+    /// scheduling priority (once), failures of the stiffness Jacobian (at counts 1, 2, 4, …).
+    fn log_rt_reports(&self, stiffness_errors_logged: &mut u64) {
+        match self.rt_priority_rx.try_recv() {
+            Ok(Ok(priority)) => tracing::debug!(session = %self.session_id, priority, "real-time thread runs with SCHED_FIFO"),
+            Ok(Err(why)) => tracing::warn!(
+                session = %self.session_id,
+                "the real-time thread runs without real-time priority ({why}); ticks may be late under load"
+            ),
+            Err(_) => {}
+        }
+        let errors = self.counters.stiffness_errors.load(Ordering::Relaxed);
+        if errors > *stiffness_errors_logged && errors.is_power_of_two() {
+            tracing::error!(session = %self.session_id, errors, "the stiffness Jacobian failed; the last one is kept");
+        }
+        *stiffness_errors_logged = errors;
+    }
+
+    /// $u = \sum_w C_{:,w} f_w$ from the columns the worker computed.
+    fn field_for(&self, rec: &TickRecord) -> Field {
+        let mut u = vec![0.0; self.n_dofs];
+        let cols = self.render_columns.lock().expect("render columns lock");
+        for nn in rec.nodes() {
+            if let Some(c) = cols.get(&nn.node) {
+                for comp in 0..2 {
+                    let f = nn.force_n[comp];
+                    if f != 0.0 {
+                        for (o, v) in u.iter_mut().zip(&c[comp * self.n_dofs..(comp + 1) * self.n_dofs]) {
+                            *o += v * f;
+                        }
+                    }
+                }
+            }
+        }
+        Field { tick: rec.tick, displacement_m: u }
+    }
+}
+
+/// The session's device-channel watcher (a non-real-time thread): checks the channel's file every
+/// [`needlesim_channel::shm::WATCH_PERIOD`] (deleted, replaced, resized: system calls the real-time
+/// thread does not make), which the real-time thread then sees as a broken channel; logs the cause
+/// once, whoever found it.
+pub(crate) fn watch_device_channel(watch: needlesim_channel::shm::ChannelWatch, stop: Arc<AtomicBool>) {
+    const STEP: Duration = Duration::from_millis(10);
+    let mut since_check = Duration::ZERO;
+    while !stop.load(Ordering::Relaxed) {
+        std::thread::sleep(STEP);
+        since_check += STEP;
+        if since_check < needlesim_channel::shm::WATCH_PERIOD {
+            continue;
+        }
+        since_check = Duration::ZERO;
+        if let Err(why) = watch.check_file() {
+            tracing::warn!(
+                channel = %watch.path().display(),
+                "device channel broken: {why}; the device is stale for the rest of the session (the needle is held, other clients may still drive it)"
+            );
+            return;
+        }
+    }
+}

@@ -1,0 +1,232 @@
+//! The plain data that crosses the real-time thread's queues: the tick record (fixed size, copied
+//! into the ring without allocating), its nodes and targets, the pose command, and the fault the
+//! real-time thread stores as a code and numbers (put into words off it).
+
+use needlesim_core::BasePose;
+use needlesim_core::sim::{Divergence, NodeState, SimError, StepOutput};
+
+/// Needle nodes carried by one tick record (a simulation may have more; they are counted).
+pub const MAX_RECORD_NODES: usize = 128;
+/// Targets carried by one tick record.
+pub const MAX_RECORD_TARGETS: usize = 8;
+/// Capacity of the ring between the real-time thread and the fan-out, in ticks.
+pub(crate) const RECORD_RING: usize = 2048;
+/// Capacity of the column request and delivery queues.
+pub(crate) const COLUMN_QUEUE: usize = 512;
+/// How often the real-time thread refreshes the stiffness Jacobian (six probe solves).
+pub const STIFFNESS_EVERY_TICKS: u64 = 10;
+/// Ticks without a fresh device pose after which the device counts as stale and the needle is
+/// held where it was (50 ms at 1 kHz).
+pub const DEVICE_STALE_TICKS: u64 = 50;
+
+/// One needle node in a tick record.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct NodeRecord {
+    pub node: u32,
+    /// 0 stuck, 1 slipping, 2 tip.
+    pub state: u8,
+    pub position_m: [f64; 2],
+    pub force_n: [f64; 2],
+}
+
+/// One target in a tick record.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TargetRecord {
+    pub position_m: [f64; 2],
+    pub distance_m: f64,
+    pub hit: bool,
+}
+
+/// Everything one tick produced, as plain data of fixed size (copied into the ring without
+/// allocation).
+#[derive(Debug, Clone, Copy)]
+pub struct TickRecord {
+    pub tick: u64,
+    pub time_s: f64,
+    pub base: BasePose,
+    pub force_n: [f64; 2],
+    pub torque_nm: f64,
+    pub force_axial_n: f64,
+    pub force_lateral_n: f64,
+    pub tip_m: [f64; 2],
+    pub inserted_length_m: f64,
+    pub n_stuck: u32,
+    pub n_slipping: u32,
+    pub n_tip: u32,
+    pub n_nodes: u16,
+    pub nodes: [NodeRecord; MAX_RECORD_NODES],
+    pub n_targets: u8,
+    pub targets: [TargetRecord; MAX_RECORD_TARGETS],
+    /// Time spent computing this tick.
+    pub compute_ns: u64,
+    /// How late the tick started after its deadline.
+    pub lateness_ns: u64,
+    /// The newest pose command this tick used.
+    pub pose_seq: u64,
+    pub client_time_ns: u64,
+    /// The local stiffness $\partial(F_x, F_y, \tau)/\partial(x, y, \theta)$, row-major, refreshed
+    /// every [`STIFFNESS_EVERY_TICKS`] ticks.
+    pub stiffness: [f64; 9],
+    /// A device channel exists and its bridge stopped sending poses.
+    pub device_stale: bool,
+    /// The needle's shape, base to tip, down-sampled to at most [`MAX_RECORD_SHAPE`] points.
+    pub n_shape: u8,
+    pub shape_m: [[f64; 2]; MAX_RECORD_SHAPE],
+    /// The bevel side (0: symmetric tip).
+    pub bevel_side: f64,
+    /// The session faulted at this record's tick: the simulation failed, the force is zero and
+    /// the needle is held; no record follows.
+    pub fault: Option<SessionFault>,
+}
+
+/// Why a live session stopped stepping: plain data (a code and numbers), written by the
+/// real-time thread without allocating and put into words by [`SessionFault::message`] off it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SessionFault {
+    /// The tick whose step failed.
+    pub tick: u64,
+    /// A [`Divergence`] code (1..), or one of the `FAULT_*` codes for other solver errors.
+    pub code: u8,
+    /// The diverged quantity's value and bound (0 for other errors).
+    pub value: f64,
+    pub bound: f64,
+}
+
+/// Fault code: the tissue model failed (computing a compliance column).
+pub const FAULT_TISSUE: u8 = 101;
+/// Fault code: the working-set solver failed.
+pub const FAULT_SOLVER: u8 = 102;
+/// Fault code: any other simulation error.
+pub const FAULT_OTHER: u8 = 103;
+
+impl SessionFault {
+    /// The fault of a failed step at `tick` (not for a rejected pose, which is no fault).
+    pub fn of(e: &SimError, tick: u64) -> Self {
+        match *e {
+            SimError::Diverged { tick, what, value, bound } => Self { tick, code: what.code(), value, bound },
+            SimError::Tissue(_) => Self { tick, code: FAULT_TISSUE, value: 0.0, bound: 0.0 },
+            SimError::Mixed(_) => Self { tick, code: FAULT_SOLVER, value: 0.0, bound: 0.0 },
+            _ => Self { tick, code: FAULT_OTHER, value: 0.0, bound: 0.0 },
+        }
+    }
+
+    /// The fault in words (allocates: for the IO side).
+    pub fn message(&self) -> String {
+        let what = match Divergence::from_code(self.code) {
+            Some(what) => return SimError::Diverged { tick: self.tick, what, value: self.value, bound: self.bound }.to_string(),
+            None if self.code == FAULT_TISSUE => "the tissue model failed (a compliance column)",
+            None if self.code == FAULT_SOLVER => "the working-set solver failed",
+            None => "the simulation failed",
+        };
+        format!("tick {}: {what}", self.tick)
+    }
+}
+
+/// Step failures in a row (other than a divergence, which faults at once) after which a live
+/// session faults: 0.1 s at 1 kHz.
+pub const MAX_CONSECUTIVE_STEP_ERRORS: u32 = 100;
+
+/// Points of the needle's shape kept in a record.
+pub const MAX_RECORD_SHAPE: usize = 33;
+
+impl Default for TickRecord {
+    fn default() -> Self {
+        Self {
+            tick: 0,
+            time_s: 0.0,
+            base: BasePose::default(),
+            force_n: [0.0; 2],
+            torque_nm: 0.0,
+            force_axial_n: 0.0,
+            force_lateral_n: 0.0,
+            tip_m: [0.0; 2],
+            inserted_length_m: 0.0,
+            n_stuck: 0,
+            n_slipping: 0,
+            n_tip: 0,
+            n_nodes: 0,
+            nodes: [NodeRecord::default(); MAX_RECORD_NODES],
+            n_targets: 0,
+            targets: [TargetRecord::default(); MAX_RECORD_TARGETS],
+            compute_ns: 0,
+            lateness_ns: 0,
+            pose_seq: 0,
+            client_time_ns: 0,
+            stiffness: [0.0; 9],
+            device_stale: false,
+            n_shape: 0,
+            shape_m: [[0.0; 2]; MAX_RECORD_SHAPE],
+            bevel_side: 0.0,
+            fault: None,
+        }
+    }
+}
+
+impl TickRecord {
+    pub(crate) fn fill_from_rt(&mut self, out: &StepOutput) {
+        self.tick = out.tick;
+        self.time_s = out.time_s;
+        self.base = out.base;
+        self.force_n = out.force_n;
+        self.torque_nm = out.torque_nm;
+        self.force_axial_n = out.force_axial_n;
+        self.force_lateral_n = out.force_lateral_n;
+        self.tip_m = out.tip_m;
+        self.inserted_length_m = out.inserted_length_m;
+        self.n_stuck = out.n_stuck as u32;
+        self.n_slipping = out.n_slipping as u32;
+        self.n_tip = out.n_tip as u32;
+        let n = out.needle_nodes.len().min(MAX_RECORD_NODES);
+        self.n_nodes = n as u16;
+        for (r, nn) in self.nodes.iter_mut().zip(&out.needle_nodes[..n]) {
+            *r = NodeRecord {
+                node: nn.node_idx as u32,
+                state: match nn.state {
+                    NodeState::Stuck => 0,
+                    NodeState::Slipping => 1,
+                    NodeState::Tip => 2,
+                },
+                position_m: nn.position_m,
+                force_n: nn.force_n,
+            };
+        }
+        // The shape, evenly down-sampled (first and last points kept).
+        let n_pts = out.shape_m.len();
+        let kept = n_pts.min(MAX_RECORD_SHAPE);
+        self.n_shape = kept as u8;
+        for (k, r) in self.shape_m.iter_mut().take(kept).enumerate() {
+            let idx = if kept < 2 { 0 } else { (k * (n_pts - 1) + (kept - 1) / 2) / (kept - 1) };
+            *r = out.shape_m[idx.min(n_pts - 1)];
+        }
+        if kept >= 2 {
+            self.shape_m[kept - 1] = out.shape_m[n_pts - 1];
+        }
+        self.bevel_side = out.bevel_side;
+        let m = out.targets.len().min(MAX_RECORD_TARGETS);
+        self.n_targets = m as u8;
+        for (r, t) in self.targets.iter_mut().zip(&out.targets[..m]) {
+            *r = TargetRecord { position_m: t.position_m, distance_m: t.distance_m, hit: t.hit };
+        }
+    }
+
+    /// The needle nodes of this record.
+    pub fn nodes(&self) -> &[NodeRecord] {
+        &self.nodes[..self.n_nodes as usize]
+    }
+    /// The targets of this record.
+    pub fn targets(&self) -> &[TargetRecord] {
+        &self.targets[..self.n_targets as usize]
+    }
+    /// The needle's shape of this record.
+    pub fn shape(&self) -> &[[f64; 2]] {
+        &self.shape_m[..self.n_shape as usize]
+    }
+}
+
+/// A pose command from a controller.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PoseCommand {
+    pub pose: BasePose,
+    pub seq: u64,
+    pub client_time_ns: u64,
+}

@@ -1,0 +1,258 @@
+//! The gRPC services of `needlesim.v1`, one module per service — sessions, control, observe,
+//! simulate (offline), recordings, plan — over one shared state ([`ServerState`]); identify is in
+//! `grpc_identify.rs`. Every call validates its input and answers with the right status
+//! (`status.rs`): INVALID_ARGUMENT naming the field, NOT_FOUND, PERMISSION_DENIED,
+//! RESOURCE_EXHAUSTED, FAILED_PRECONDITION. Messages are built and read in `convert.rs`.
+
+mod control;
+mod observe;
+pub mod plan;
+mod recordings;
+mod sessions;
+mod simulate;
+
+pub use simulate::SERIES_CHUNK_ROWS;
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::pin::Pin;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, RwLock};
+
+use needlesim_core::MeshLimits;
+use needlesim_proto::v1 as pb;
+use needlesim_session::Session;
+use tokio_stream::Stream;
+use tonic::{Request, Status};
+
+use crate::convert;
+use crate::jobs::JobLimiter;
+use crate::status::{ApiError, quote, status_of};
+
+type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send + 'static>>;
+
+/// Limits of the server.
+#[derive(Debug, Clone)]
+pub struct ServerLimits {
+    pub max_sessions: usize,
+    pub max_observers_per_session: usize,
+    pub mesh: MeshLimits,
+    /// Largest trajectory accepted by Simulate, in samples.
+    pub max_trajectory_samples: usize,
+    /// Longest offline simulation, in ticks (one Simulate call; each simulation of a plan).
+    pub max_simulate_ticks: u64,
+    /// Largest estimated memory of a scene's session (`scene::estimated_session_bytes`), bytes.
+    pub max_session_bytes: u64,
+    /// Offline calls (Simulate, Plan, every Identify call) running at once.
+    pub max_offline_jobs: usize,
+    /// Plans running at once (each also takes an offline slot).
+    pub max_plans: usize,
+    /// Largest image a Track call decodes, in pixels (width × height, read from the header).
+    pub max_image_pixels: u64,
+}
+
+impl ServerLimits {
+    /// What a scene loaded for a client may cost.
+    pub fn scene(&self) -> needlesim_scene::SceneLimits {
+        needlesim_scene::SceneLimits { mesh: self.mesh, max_session_bytes: self.max_session_bytes }
+    }
+}
+
+impl Default for ServerLimits {
+    fn default() -> Self {
+        Self {
+            max_sessions: 16,
+            max_observers_per_session: 256,
+            mesh: MeshLimits { max_nodes: 250_000, max_triangles: 500_000 },
+            max_trajectory_samples: 1_000_000,
+            max_simulate_ticks: needlesim_offline::DEFAULT_MAX_TICKS,
+            max_session_bytes: 1280 << 20,
+            max_offline_jobs: 4,
+            max_plans: 2,
+            max_image_pixels: needlesim_identify::track::DEFAULT_MAX_IMAGE_PIXELS,
+        }
+    }
+}
+
+/// State shared by the services.
+pub struct ServerState {
+    pub sessions: RwLock<HashMap<String, Arc<Session>>>,
+    /// Sessions being started: reserved under the `sessions` write lock, so that `sessions` plus
+    /// these never exceed `max_sessions`.
+    pending_sessions: Arc<AtomicUsize>,
+    pub limits: ServerLimits,
+    pub data_dir: PathBuf,
+    /// Permits of the offline calls (Simulate, Plan, Identify).
+    pub jobs: Arc<JobLimiter>,
+    /// The SHA-256 of the admin token (`serve --admin-token-file`), which opens every recording.
+    admin_token_sha256: Option<crate::access::TokenDigest>,
+}
+
+/// A place among the `max_sessions` sessions, held while a session starts; given back when
+/// dropped unless the session was registered.
+pub struct SessionSlot {
+    pending: Arc<AtomicUsize>,
+    armed: bool,
+}
+
+impl Drop for SessionSlot {
+    fn drop(&mut self) {
+        if self.armed {
+            self.pending.fetch_sub(1, Ordering::AcqRel);
+        }
+    }
+}
+
+impl ServerState {
+    pub fn new(limits: ServerLimits, data_dir: PathBuf) -> Arc<Self> {
+        Self::with_admin_token(limits, data_dir, None)
+    }
+
+    /// A state whose `admin_token` (if any) opens every recording; only its digest is kept.
+    pub fn with_admin_token(limits: ServerLimits, data_dir: PathBuf, admin_token: Option<&str>) -> Arc<Self> {
+        let jobs = JobLimiter::new(limits.max_offline_jobs, limits.max_plans);
+        Arc::new(Self {
+            sessions: RwLock::default(),
+            pending_sessions: Arc::default(),
+            limits,
+            data_dir,
+            admin_token_sha256: admin_token.map(crate::access::token_digest),
+            jobs,
+        })
+    }
+
+    /// Reserves a place for a new session, checking the limit and reserving in one step (under
+    /// the sessions lock): concurrent creates never exceed `max_sessions`.
+    pub fn reserve_session_slot(&self) -> Result<SessionSlot, Status> {
+        let sessions = self.sessions.write().expect("sessions lock");
+        if sessions.len() + self.pending_sessions.load(Ordering::Acquire) >= self.limits.max_sessions {
+            return Err(Status::resource_exhausted(format!("the server runs its limit of {} sessions", self.limits.max_sessions)));
+        }
+        self.pending_sessions.fetch_add(1, Ordering::AcqRel);
+        Ok(SessionSlot { pending: self.pending_sessions.clone(), armed: true })
+    }
+
+    /// Where device channels are created: tmpfs (/dev/shm) when there is one, else the data dir.
+    fn device_dir(&self) -> PathBuf {
+        let shm = std::path::Path::new("/dev/shm");
+        if shm.is_dir() { shm.to_path_buf() } else { self.data_dir.join("devices") }
+    }
+
+    /// Starts a session and registers it.
+    pub fn create_session(&self, scene: &needlesim_scene::Scene, tick_rate_hz: f64) -> Result<Arc<Session>, Status> {
+        self.create_session_with(scene, tick_rate_hz, false)
+    }
+
+    /// Starts a session, with a shared-memory device channel when `device_channel`, and registers it.
+    pub fn create_session_with(
+        &self,
+        scene: &needlesim_scene::Scene,
+        tick_rate_hz: f64,
+        device_channel: bool,
+    ) -> Result<Arc<Session>, Status> {
+        let slot = self.reserve_session_slot()?;
+        self.create_session_in(slot, scene, tick_rate_hz, device_channel)
+    }
+
+    /// Starts a session in a reserved `slot`, with a shared-memory device channel when
+    /// `device_channel`, and registers it.
+    pub fn create_session_in(
+        &self,
+        mut slot: SessionSlot,
+        scene: &needlesim_scene::Scene,
+        tick_rate_hz: f64,
+        device_channel: bool,
+    ) -> Result<Arc<Session>, Status> {
+        let dir = device_channel.then(|| self.device_dir());
+        if let Some(d) = &dir {
+            std::fs::create_dir_all(d).map_err(|e| Status::internal(format!("cannot create {}: {e}", d.display())))?;
+        }
+        let s = Session::start(scene, tick_rate_hz, dir.as_deref()).map_err(|e| Status::from(ApiError::from(e)))?;
+        {
+            // Registered and unreserved in one step.
+            let mut sessions = self.sessions.write().expect("sessions lock");
+            sessions.insert(s.id.clone(), s.clone());
+            slot.armed = false;
+            self.pending_sessions.fetch_sub(1, Ordering::AcqRel);
+        }
+        tracing::info!(session = %s.id, scene = %s.scene_name, n_nodes = s.tissue.mesh().n_nodes(), tick_rate_hz, "session created");
+        Ok(s)
+    }
+
+    fn session(&self, id: &str) -> Result<Arc<Session>, Status> {
+        if id.is_empty() {
+            return Err(Status::invalid_argument("session_id is empty"));
+        }
+        self.sessions
+            .read()
+            .expect("sessions lock")
+            .get(id)
+            .cloned()
+            .ok_or_else(|| Status::not_found(format!("no session '{}'", quote(id))))
+    }
+
+    /// Closes every session (server shutdown).
+    pub fn close_all(&self) {
+        let all: Vec<_> = self.sessions.write().expect("sessions lock").drain().map(|(_, s)| s).collect();
+        for s in all {
+            s.close();
+        }
+    }
+}
+
+/// What a token allows.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Role {
+    Controller,
+    Observer,
+}
+
+fn token_of<T>(req: &Request<T>) -> Option<String> {
+    let v = req.metadata().get("authorization")?.to_str().ok()?;
+    v.strip_prefix("Bearer ").map(|t| t.trim().to_owned())
+}
+
+fn authorize<T>(req: &Request<T>, s: &Session, role: Role) -> Result<(), Status> {
+    let Some(tok) = token_of(req) else {
+        return Err(Status::permission_denied("missing token: send `authorization: Bearer <token>` metadata"));
+    };
+    // Constant time, and both compared (no short cut that would tell which one matched).
+    let is_controller = crate::access::token_matches(&tok, &s.controller_token);
+    let is_observer = crate::access::token_matches(&tok, &s.observer_token);
+    let ok = match role {
+        Role::Controller => is_controller,
+        Role::Observer => is_observer | is_controller,
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(Status::permission_denied(match role {
+            Role::Controller => "wrong token: driving a session needs its controller token",
+            Role::Observer => "wrong token: watching a session needs its observer or controller token",
+        }))
+    }
+}
+
+/// A pose a client sent in `field`, present and finite.
+fn check_pose(p: Option<&pb::Pose2>, field: &str) -> Result<needlesim_core::BasePose, Status> {
+    convert::checked_pose_from_pb(p, field).map_err(Status::from)
+}
+
+/// Implements all services over one shared state.
+#[derive(Clone)]
+pub struct Api {
+    pub state: Arc<ServerState>,
+}
+
+/// Loads (parses, meshes, factorises) a scene off the async runtime; a scene over the mesh or
+/// memory limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field
+/// (`status::ApiError::from_chain`).
+pub(crate) async fn load_scene_from_pb(
+    src: Option<pb::SceneSource>,
+    limits: needlesim_scene::SceneLimits,
+) -> Result<needlesim_scene::Scene, Status> {
+    tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
+        .await
+        .map_err(|e| Status::internal(format!("scene task: {e}")))?
+        .map_err(|e| status_of("scene", &e))
+}

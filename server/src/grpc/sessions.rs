@@ -1,0 +1,63 @@
+//! `SessionService`: create (a scene loaded off the runtime, within the session limit), list,
+//! get, mesh, statistics, close.
+
+use needlesim_proto::v1 as pb;
+use tonic::{Request, Response, Status};
+
+use super::{Api, Role, authorize, load_scene_from_pb};
+use crate::convert;
+
+#[tonic::async_trait]
+impl pb::session_service_server::SessionService for Api {
+    async fn create_session(&self, req: Request<pb::CreateSessionRequest>) -> Result<Response<pb::CreateSessionResponse>, Status> {
+        let r = req.into_inner();
+        // The limit is checked and a place reserved first, in one step: a create over the limit
+        // costs nothing, and concurrent creates never exceed it.
+        let slot = self.state.reserve_session_slot()?;
+        let scene = load_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
+        let rate = if r.tick_rate_hz == 0.0 { scene.params.tick_rate_hz } else { r.tick_rate_hz };
+        if !(rate.is_finite() && (500.0..=1000.0).contains(&rate)) {
+            return Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")));
+        }
+        let state = self.state.clone();
+        let device = r.device_channel;
+        let s = tokio::task::spawn_blocking(move || state.create_session_in(slot, &scene, rate, device))
+            .await
+            .map_err(|e| Status::internal(format!("session task: {e}")))??;
+        if r.record {
+            super::recordings::start_recording(&self.state, &s)?;
+        }
+        Ok(Response::new(convert::create_session_response(&s)))
+    }
+
+    async fn list_sessions(&self, _req: Request<pb::ListSessionsRequest>) -> Result<Response<pb::ListSessionsResponse>, Status> {
+        let sessions: Vec<_> = self.state.sessions.read().expect("sessions lock").values().cloned().collect();
+        Ok(Response::new(convert::list_sessions_response(sessions)))
+    }
+
+    async fn get_session(&self, req: Request<pb::GetSessionRequest>) -> Result<Response<pb::SessionInfo>, Status> {
+        let s = self.state.session(&req.get_ref().session_id)?;
+        Ok(Response::new(convert::session_info(&s)))
+    }
+
+    async fn get_mesh(&self, req: Request<pb::GetSessionRequest>) -> Result<Response<pb::Mesh>, Status> {
+        let s = self.state.session(&req.get_ref().session_id)?;
+        authorize(&req, &s, Role::Observer)?;
+        Ok(Response::new(convert::mesh_to_pb(s.tissue.mesh())))
+    }
+
+    async fn get_stats(&self, req: Request<pb::GetSessionRequest>) -> Result<Response<pb::SessionStats>, Status> {
+        let s = self.state.session(&req.get_ref().session_id)?;
+        authorize(&req, &s, Role::Observer)?;
+        let st = s.stats();
+        Ok(Response::new(convert::session_stats(&st)))
+    }
+
+    async fn close_session(&self, req: Request<pb::CloseSessionRequest>) -> Result<Response<pb::CloseSessionResponse>, Status> {
+        let s = self.state.session(&req.get_ref().session_id)?;
+        authorize(&req, &s, Role::Controller)?;
+        self.state.sessions.write().expect("sessions lock").remove(&s.id);
+        tokio::task::spawn_blocking(move || s.close()).await.map_err(|e| Status::internal(format!("close: {e}")))?;
+        Ok(Response::new(pb::CloseSessionResponse {}))
+    }
+}

@@ -1,0 +1,129 @@
+//! `SimulationService.Simulate`: an offline run (the run driver of needlesim-offline) on a
+//! blocking worker, its time series streamed in chunks.
+
+use std::ops::ControlFlow;
+
+use needlesim_proto::v1 as pb;
+use tokio::sync::mpsc;
+use tokio_stream::wrappers::ReceiverStream;
+use tonic::{Request, Response, Status};
+
+use super::{Api, BoxStream};
+use crate::convert;
+use crate::jobs::JobKind;
+use crate::status::{ApiError, SizeLimit, status_of};
+
+#[tonic::async_trait]
+impl pb::simulation_service_server::SimulationService for Api {
+    type SimulateStream = BoxStream<pb::SimulateResponse>;
+
+    async fn simulate(&self, req: Request<pb::SimulateRequest>) -> Result<Response<Self::SimulateStream>, Status> {
+        let r = req.into_inner();
+        if r.trajectory.len() > self.state.limits.max_trajectory_samples {
+            return Err(ApiError::from(SizeLimit {
+                what: "trajectory".to_owned(),
+                amount: r.trajectory.len() as u64,
+                limit: self.state.limits.max_trajectory_samples as u64,
+                unit: "samples",
+                hint: String::new(),
+            })
+            .into());
+        }
+        // Held by the worker until it ends; refused at once when the server is busy.
+        let permit = self.state.jobs.try_start(JobKind::Simulate)?;
+        let limits = self.state.limits.clone();
+        let (tx, rx) = mpsc::channel(16);
+        // Parse and validate before answering, so that errors are statuses, not stream items.
+        let (scene, traj) = tokio::task::spawn_blocking(move || -> Result<_, Status> {
+            let scene = convert::scene_from_pb(r.scene.as_ref(), &limits.scene()).map_err(|e| status_of("scene", &e))?;
+            let traj = if r.trajectory.is_empty() {
+                let text = scene
+                    .example_trajectory
+                    .ok_or_else(|| Status::invalid_argument("trajectory is empty and the scene is not a shipped example with its own"))?;
+                needlesim_scene::Trajectory::parse_csv(text).map_err(|e| Status::internal(format!("{e:#}")))?
+            } else {
+                convert::trajectory_from_pb(&r.trajectory).map_err(|e| status_of("trajectory", &e))?
+            };
+            let (t0, t1) = traj.span_s();
+            let ticks = ((t1 - t0) * scene.params.tick_rate_hz).round() as u64;
+            if ticks > limits.max_simulate_ticks {
+                return Err(ApiError::from(SizeLimit {
+                    what: format!("the trajectory ({:.3} s at {} Hz)", t1 - t0, scene.params.tick_rate_hz),
+                    amount: ticks,
+                    limit: limits.max_simulate_ticks,
+                    unit: "ticks",
+                    hint: " (server flag --max-simulate-ticks)".to_owned(),
+                })
+                .into());
+            }
+            Ok((scene, traj))
+        })
+        .await
+        .map_err(|e| Status::internal(format!("simulate task: {e}")))??;
+        let decimate = r.decimate.max(1) as u64;
+        let limits_ticks = self.state.limits.max_simulate_ticks;
+        // A worker thread of the blocking pool: never a session's real-time thread.
+        tokio::task::spawn_blocking(move || {
+            let _permit = permit;
+            if let Err(e) = run_offline(&scene, &traj, limits_ticks, decimate, &tx) {
+                let _ = tx.blocking_send(Err(ApiError::from(&e).into()));
+            }
+        });
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+    }
+}
+
+/// Rows of the time series per `SeriesChunk` message (about 200 bytes each without targets).
+pub const SERIES_CHUNK_ROWS: usize = 1000;
+
+/// Runs an offline simulation with the run driver, streaming progress, the time series in
+/// chunks of at most [`SERIES_CHUNK_ROWS`] rows, then the result. Memory is bounded by one chunk
+/// and the channel, whatever the length: step times go into a histogram, not a list. Ends early,
+/// without error, when the client goes away.
+fn run_offline(
+    scene: &needlesim_scene::Scene,
+    traj: &needlesim_scene::Trajectory,
+    max_ticks: u64,
+    decimate: u64,
+    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
+) -> Result<(), needlesim_offline::RunError> {
+    let send = |response: pb::SimulateResponse| tx.blocking_send(Ok(response)).is_ok();
+    let started = std::time::Instant::now();
+    let opts = needlesim_offline::RunOptions { max_ticks, ..Default::default() };
+    let mut run =
+        needlesim_offline::ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), needlesim_offline::Script::trajectory(traj), opts)?;
+    let (t0, n_ticks) = (run.t0_s(), run.last_tick());
+    let mut chunk = Vec::with_capacity(SERIES_CHUNK_ROWS);
+    let mut step_ns = hdrhistogram::Histogram::<u64>::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds");
+    let progress_every = (n_ticks / 20).max(1);
+    let mut client_gone = false;
+    run.run(|tick, sim| {
+        if tx.is_closed() {
+            client_gone = true;
+            return ControlFlow::Break(());
+        }
+        let k = tick.k;
+        step_ns.saturating_record(((tick.step_s * 1e9) as u64).max(1));
+        if k % decimate == 0 || k == n_ticks {
+            chunk.push(convert::series_row(sim.output(), t0, &scene.target_names));
+            if chunk.len() == SERIES_CHUNK_ROWS && !send(convert::series_chunk(std::mem::take(&mut chunk))) {
+                client_gone = true;
+                return ControlFlow::Break(());
+            }
+        }
+        if k % progress_every == 0 && !send(convert::simulate_progress(k, n_ticks)) {
+            client_gone = true;
+            return ControlFlow::Break(());
+        }
+        ControlFlow::Continue(())
+    })?;
+    if client_gone || (!chunk.is_empty() && !send(convert::series_chunk(chunk))) {
+        return Ok(());
+    }
+    let (sim, _) = run.finish()?;
+    let mut u = vec![0.0; scene.tissue.n_dofs()];
+    sim.displacement_field_into(&mut u);
+    let step_us = [step_ns.value_at_quantile(0.5) as f64 * 1e-3, step_ns.value_at_quantile(0.99) as f64 * 1e-3];
+    send(convert::simulate_result(sim.stats().ticks, started.elapsed().as_secs_f64(), step_us, u));
+    Ok(())
+}
