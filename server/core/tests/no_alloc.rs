@@ -4,39 +4,13 @@
 //! the rigid needle and for a flexible bevel-tip needle whose bevel is flipped half-way, with the
 //! device's stiffness Jacobian taken every 10 ticks as the real-time thread does.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-
+use needlesim_alloc_count::{CountingAlloc, count_on_this_thread, thread_allocations};
 use needlesim_core::sim::{SimParams, Simulation};
 use needlesim_core::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle, fixtures};
 
-struct Counting;
-
-// Per thread: the tests run in parallel, and only the counting thread's allocations count.
-thread_local! {
-    static COUNTING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-    static ALLOCS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.with(|c| c.get()) {
-            ALLOCS.with(|a| a.set(a.get() + 1));
-        }
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.with(|c| c.get()) {
-            ALLOCS.with(|a| a.set(a.get() + 1));
-        }
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
+// Counts per thread: the tests run in parallel, and only the counting thread's calls count.
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: CountingAlloc = CountingAlloc::new();
 
 #[test]
 fn steps_allocate_nothing_after_warm_up() {
@@ -68,19 +42,19 @@ fn run_case(needle: NeedleShape) {
     let mut steps_with_allocation = 0;
     let mut total = 0;
     for (k, p) in poses.iter().enumerate() {
-        ALLOCS.with(|a| a.set(0));
-        COUNTING.with(|c| c.set(true));
+        let before = thread_allocations();
+        count_on_this_thread(true);
         if k == poses.len() / 2 {
             sim.flip_bevel();
         }
         let r = sim.step(*p).map(|o| o.needle_nodes.len());
         let j = if k % 10 == 0 { Some(sim.stiffness_jacobian()) } else { None };
-        COUNTING.with(|c| c.set(false));
+        count_on_this_thread(false);
         r.unwrap();
         if let Some(j) = j {
             j.unwrap();
         }
-        let n = ALLOCS.with(|a| a.get());
+        let n = thread_allocations() - before;
         // The first ticks size the per-step buffers; after that nothing may allocate.
         if k >= 10 && n > 0 {
             steps_with_allocation += 1;
@@ -126,11 +100,11 @@ fn issue_13_a_diverging_step_is_caught_without_allocating() {
     for (k, p) in poses.iter().enumerate() {
         let last_good = (sim.output().tick, sim.output().force_n);
         let misses = sim.stats().column_misses;
-        ALLOCS.with(|a| a.set(0));
-        COUNTING.with(|c| c.set(true));
+        let before = thread_allocations();
+        count_on_this_thread(true);
         let r = sim.step(*p).map(|o| o.force_n);
-        COUNTING.with(|c| c.set(false));
-        let n = ALLOCS.with(|a| a.get());
+        count_on_this_thread(false);
+        let n = thread_allocations() - before;
         match r {
             Ok(force_n) => {
                 assert!(force_n[0].hypot(force_n[1]) <= sim.divergence_bounds().force_n);
@@ -153,10 +127,11 @@ fn issue_13_a_diverging_step_is_caught_without_allocating() {
     assert!(tick > 1000, "diverged at tick {tick}");
     // Faulted for good: every later step returns the same error, allocating nothing.
     for _ in 0..3 {
-        COUNTING.with(|c| c.set(true));
-        let again = sim.step(BasePose::new(0.05, 0.2, down)).map(|_| ()).unwrap_err();
-        COUNTING.with(|c| c.set(false));
-        assert_eq!(again.to_string(), diverged.as_ref().unwrap().to_string()); // NaN ≠ NaN: compare the text
+        let before = thread_allocations();
+        count_on_this_thread(true);
+        let again = sim.step(BasePose::new(0.05, 0.2, down)).map(|_| ());
+        count_on_this_thread(false);
+        assert_eq!(thread_allocations() - before, 0, "a faulted step allocated");
+        assert_eq!(again.unwrap_err().to_string(), diverged.as_ref().unwrap().to_string()); // NaN ≠ NaN: compare the text
     }
-    assert_eq!(ALLOCS.with(|a| a.get()), 0);
 }

@@ -10,19 +10,23 @@
 //! tissue (the reaction at the probed node), with Gaussian noise of standard deviation
 //! $\sigma_F = \text{rel}\cdot\max_t |F(t)|$.
 //!
-//! **Needle insertion** ([`synth_needle`]): the simulator itself ([`Simulation::step`]) run on a
-//! scene along a trajectory at the scene's tick rate; every mesh node is a marker, sampled at the
-//! camera rate from [`Simulation::displacement_field_into`]; the base force log
+//! **Needle insertion** ([`synth_needle`]): the simulator itself run on a scene along a trajectory
+//! at the scene's tick rate (needlesim-offline's [`ScriptedRun`]); every mesh node is a marker,
+//! sampled at the camera rate from [`Simulation::displacement_field_into`]; the base force log
 //! (`t_s,force_x_n,force_y_n,depth_m`, [`ForceLog`]) at its own rate, force noise as above.
+//!
+//! [`Simulation::displacement_field_into`]: needlesim_core::sim::Simulation::displacement_field_into
 //!
 //! Marker positions are written in pixels through a nominal camera (`px_per_m`, a 20 px margin,
 //! image rows downwards: the tracks render as images with `identify render`) with Gaussian noise
 //! of `marker_noise_px` pixels; the metre columns (tissue frame, y up) are the noisy pixel
 //! positions mapped back.
 
+use std::ops::ControlFlow;
+
 use anyhow::{Context, Result, bail};
-use needlesim_core::sim::Simulation;
 use needlesim_core::{Material, MaterialMap, MeshLimits, NodeCondition, PlaneModel, RectMeshParams, StaticProblem};
+use needlesim_offline::driver::{RunOptions, Script, ScriptedRun};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
@@ -282,29 +286,27 @@ pub fn synth_needle(scene: &Scene, traj: &Trajectory, p: &NeedleSynthParams) -> 
     if !(p.frame_rate_hz.is_finite() && p.frame_rate_hz > 0.0 && p.log_rate_hz.is_finite() && p.log_rate_hz > 0.0) {
         bail!("frame_rate_hz and log_rate_hz must be finite and > 0");
     }
-    let (t0, mut t1) = traj.span_s();
-    if let Some(te) = p.t_end_s {
-        if !(te.is_finite() && te > t0) {
-            bail!("t_end_s = {te} must come after the trajectory's start ({t0} s)");
-        }
-        t1 = t1.min(te);
+    let t0 = traj.span_s().0;
+    if let Some(te) = p.t_end_s
+        && !(te.is_finite() && te > t0)
+    {
+        bail!("t_end_s = {te} must come after the trajectory's start ({t0} s)");
     }
-    let mut params = scene.params.clone();
-    params.initial_pose = needlesim_scene::base_pose(traj.samples[0].1);
-    let mut sim = Simulation::new(scene.tissue.clone(), params).context("simulation")?;
-    let rate = sim.params().tick_rate_hz;
-    let n_ticks = ((t1 - t0) * rate).round() as u64;
+    // The one run driver: the trajectory at the scene's tick rate, 8 nodes' columns between steps.
+    let script = Script::Trajectory { trajectory: traj, end_s: p.t_end_s };
+    let opts = RunOptions { max_ticks: u64::MAX, ..Default::default() };
+    let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), script, opts)?;
+    let rate = scene.params.tick_rate_hz;
     let mesh = scene.tissue.mesh();
     let n = mesh.n_nodes();
     let mut u = vec![0.0; 2 * n];
     let (mut next_frame, mut next_log) = (0u64, 0u64);
     let (mut times, mut positions) = (Vec::new(), Vec::new());
     let mut log = ForceLog::default();
-    for k in 0..=n_ticks {
-        let t = k as f64 / rate;
-        let out = sim.step(needlesim_scene::base_pose(traj.pose_at(t0 + t))).with_context(|| format!("step at t = {:.4} s", t0 + t))?;
+    run.run(|tick, sim| {
+        let t = tick.k as f64 / rate;
+        let out = sim.output();
         let (force, depth) = (out.force_n, out.inserted_length_m);
-        sim.prefetch_columns(8).context("columns")?;
         // A sample is due when its time is within half a tick of this tick.
         while (next_log as f64 / p.log_rate_hz) <= t + 0.5 / rate {
             log.times_s.push(t0 + next_log as f64 / p.log_rate_hz);
@@ -320,7 +322,8 @@ pub fn synth_needle(scene: &Scene, traj: &Trajectory, p: &NeedleSynthParams) -> 
             }
             next_frame += 1;
         }
-    }
+        ControlFlow::Continue(())
+    })?;
     let mut rng = Noise::new(p.noise.seed);
     let (lo, hi) = mesh.bounding_box_m();
     let tracks = to_tracks(times, positions, n, (lo, hi[1]), &p.noise, &mut rng);

@@ -13,18 +13,16 @@
 //!   solve per tick is a lower bound (a naive code needs one per active-set iteration). On big
 //!   meshes only a sample of ticks, spread over the script, is timed.
 //!
-//! Peak memory is measured by a counting global allocator ([`CountingAlloc`], installed by the
-//! `needlesim-lab` binary, and only there): the peak of live heap bytes during one solver's run (setup and
+//! Peak memory is measured by a counting global allocator (`needlesim_alloc_count::CountingAlloc`,
+//! installed by the `needlesim-lab` binary, and only there): the peak of live heap bytes during one solver's run (setup and
 //! all steps) above the live heap when that run started.
 //!
 //! The static solve of one full problem (the state at the end of the hold, deepest insertion)
 //! is also timed against SciPy's `spsolve` through `server/lab/bench/scipy_static.py`.
 
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
@@ -34,70 +32,27 @@ use needlesim_core::compliance::TissueModel;
 use needlesim_core::fixtures;
 use needlesim_core::sim::{SimParams, Simulation};
 use needlesim_core::{BasePose, MaterialMap, Mesh, NodeCondition, StaticProblem};
+use needlesim_offline::driver::{RunOptions, Script as OfflineScript, ScriptedRun};
 use serde_json::{Value, json};
 
 use needlesim_scene::exchange::{Load, PrescribedLocal, Scenario};
 
 // ---------------------------------------------------------------------------------------------
-// Memory accounting.
+// Memory accounting (needlesim-alloc-count's `CountingAlloc`, the binary's global allocator).
 
-static CURRENT: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-/// A global allocator that counts live heap bytes and their peak (install it with
-/// `#[global_allocator]`; the `needlesim-lab` binary does, and no other).
-pub struct CountingAlloc;
-
-fn note_alloc(size: usize) {
-    let now = CURRENT.fetch_add(size, Ordering::Relaxed) + size;
-    PEAK.fetch_max(now, Ordering::Relaxed);
-}
-
-// SAFETY: every call is forwarded to the system allocator unchanged; only counters are updated.
-unsafe impl GlobalAlloc for CountingAlloc {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            note_alloc(layout.size());
-        }
-        p
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            note_alloc(layout.size());
-        }
-        p
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) };
-        CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = unsafe { System.realloc(ptr, layout, new_size) };
-        if !p.is_null() {
-            CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
-            note_alloc(new_size);
-        }
-        p
-    }
-}
-
-/// Live heap bytes (0 when [`CountingAlloc`] is not the global allocator).
+/// Live heap bytes (0 when `CountingAlloc` is not the global allocator).
 pub fn heap_current() -> usize {
-    CURRENT.load(Ordering::Relaxed)
+    needlesim_alloc_count::live_bytes()
 }
 
 /// Starts a measurement: the peak is reset to the live heap. Returns that baseline.
 fn mem_start() -> usize {
-    let now = CURRENT.load(Ordering::Relaxed);
-    PEAK.store(now, Ordering::Relaxed);
-    now
+    needlesim_alloc_count::reset_peak()
 }
 
 /// Peak live heap since [`mem_start`], above its baseline.
 fn mem_peak_since(baseline: usize) -> usize {
-    PEAK.load(Ordering::Relaxed).saturating_sub(baseline)
+    needlesim_alloc_count::peak_bytes().saturating_sub(baseline)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -233,22 +188,26 @@ fn run_ours(n: usize, script: &Script) -> Result<(Row, StaticProblem)> {
     let t0 = Instant::now();
     let model = Arc::new(TissueModel::new(s.mesh.clone(), s.mats.clone(), &s.fixed)?);
     let setup_s = t0.elapsed().as_secs_f64();
-    let mut sim = Simulation::new(model.clone(), s.params.clone())?;
     let (poses, end_of_hold) = script.poses(s.x);
+    // Columns are prefetched between steps, untimed: `step_s` is the step alone.
+    let mut run = ScriptedRun::new(
+        model.clone(),
+        s.params.clone(),
+        OfflineScript::Poses(&poses),
+        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 64 },
+    )?;
     let mut times = Vec::with_capacity(poses.len());
-    let mut prefetched = 0usize;
     let mut max_nodes = 0usize;
     let mut deepest = None;
-    for (k, p) in poses.iter().enumerate() {
-        let t = Instant::now();
-        let o = sim.step(*p)?;
-        times.push(t.elapsed().as_secs_f64());
-        max_nodes = max_nodes.max(o.needle_nodes.len());
-        prefetched += sim.prefetch_columns(64)?;
-        if k == end_of_hold {
-            deepest = Some(snapshot_problem(&sim, &s.fixed));
+    while let Some(t) = run.next_tick()? {
+        times.push(t.step_s);
+        max_nodes = max_nodes.max(run.output().needle_nodes.len());
+        if t.k == end_of_hold as u64 {
+            deepest = Some(snapshot_problem(run.sim(), &s.fixed));
         }
     }
+    let (sim, totals) = run.finish()?;
+    let prefetched = totals.prefetched_columns;
     let st = sim.stats();
     let row = Row {
         mesh: format!("{n}x{n}"),
@@ -320,17 +279,22 @@ fn run_dense(n: usize, script: &Script) -> Result<Row> {
         llt.inverse()
     };
     let setup_s = t0.elapsed().as_secs_f64();
-    let mut sim = Simulation::new(model.clone(), s.params.clone())?;
     let n_dofs = model.n_dofs();
     let mut buf = vec![0.0; 2 * n_dofs];
     let (poses, _) = script.poses(s.x);
+    // No prefetch: the columns come from the dense inverse, between steps, untimed.
+    let mut run = ScriptedRun::new(
+        model.clone(),
+        s.params.clone(),
+        OfflineScript::Poses(&poses),
+        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 0 },
+    )?;
     let mut times = Vec::with_capacity(poses.len());
     let mut inserted = 0usize;
-    for p in &poses {
-        let t = Instant::now();
-        sim.step(*p)?;
-        times.push(t.elapsed().as_secs_f64());
+    while let Some(t) = run.next_tick()? {
+        times.push(t.step_s);
         // Between steps: every approaching node's columns, copied from the dense inverse.
+        let sim = run.sim_mut();
         for k in 0..sim.output().approaching.len() {
             let node = sim.output().approaching[k];
             if sim.cache().contains(node) {
@@ -349,6 +313,7 @@ fn run_dense(n: usize, script: &Script) -> Result<Row> {
             inserted += 1;
         }
     }
+    let (sim, _) = run.finish()?;
     let st = sim.stats();
     Ok(Row {
         mesh,
@@ -383,14 +348,13 @@ fn run_naive(n: usize, script: &Script, budget_s: f64) -> Result<Row> {
     let sampled: Vec<usize> = (0..n_samples).map(|i| i * (n_ticks - 1) / (n_samples - 1).max(1)).collect();
     let problems = {
         let model = Arc::new(TissueModel::new(s.mesh.clone(), s.mats.clone(), &s.fixed)?);
-        let mut sim = Simulation::new(model, s.params.clone())?;
+        let opts = RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 64 };
+        let mut run = ScriptedRun::new(model, s.params.clone(), OfflineScript::Poses(&poses), opts)?;
         let mut problems = Vec::with_capacity(n_samples);
         let mut next = 0;
-        for (k, p) in poses.iter().enumerate() {
-            sim.step(*p)?;
-            sim.prefetch_columns(64)?;
-            while next < sampled.len() && sampled[next] == k {
-                problems.push(snapshot_problem(&sim, &s.fixed));
+        while let Some(t) = run.next_tick()? {
+            while next < sampled.len() && sampled[next] as u64 == t.k {
+                problems.push(snapshot_problem(run.sim(), &s.fixed));
                 next += 1;
             }
         }

@@ -9,9 +9,10 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 use needlesim_lab::{bench, identify};
 
-/// Counts heap bytes for `bench`'s peak-memory figures (a relaxed atomic add per allocation).
+/// Counts heap bytes for `bench`'s peak-memory figures (relaxed atomic adds per allocation; no
+/// thread turns allocation counting on).
 #[global_allocator]
-static ALLOC: bench::CountingAlloc = bench::CountingAlloc;
+static ALLOC: needlesim_alloc_count::CountingAlloc = needlesim_alloc_count::CountingAlloc::new();
 
 #[derive(Parser)]
 #[command(name = "needlesim-lab", version, about = "Offline lab tools of needlesim: step-time benchmark and the measurement pipeline")]

@@ -3,41 +3,21 @@
 //! 1 kHz driven through the shared-memory device channel, with observers attached; the
 //! stiffness Jacobian is refreshed inside ticks too.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
+use needlesim_alloc_count::{CountingAlloc, allocations};
 use needlesim_channel::shm::{DeviceChannel, DevicePose, monotonic_ns};
 use needlesim_core::{BasePose, MeshLimits};
 use needlesim_session::{IN_TICK, Session, WARM_UP_TICKS};
 
-struct Counting;
-
-static IN_TICK_ALLOCS: AtomicU64 = AtomicU64::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if IN_TICK.with(|c| c.get()) {
-            IN_TICK_ALLOCS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        if IN_TICK.with(|c| c.get()) {
-            IN_TICK_ALLOCS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if IN_TICK.with(|c| c.get()) {
-            IN_TICK_ALLOCS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
+/// Counting is on on whichever thread is inside a warm tick (the session sets `IN_TICK` there).
+fn in_tick() -> bool {
+    IN_TICK.with(|c| c.get())
 }
 
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: CountingAlloc = CountingAlloc::counting_when(in_tick);
 
 #[test]
 fn real_time_ticks_allocate_nothing_after_warm_up() {
@@ -78,12 +58,12 @@ fn real_time_ticks_allocate_nothing_after_warm_up() {
     println!(
         "{ticks} ticks, {forces} fresh forces read by the device, {} needle nodes at the end, {} allocations inside warm ticks",
         rec.n_nodes,
-        IN_TICK_ALLOCS.load(Ordering::Relaxed)
+        allocations()
     );
     assert!(ticks > WARM_UP_TICKS + 2000, "the session ticked ({ticks})");
     assert!(forces > 1000, "the device read the server's forces");
     assert!(rec.n_nodes >= 5 && rec.force_axial_n < 0.0, "the device drove the needle into the tissue");
     assert!(rec.stiffness.iter().any(|v| *v != 0.0), "the stiffness is computed in ticks too");
     assert_eq!(session.counters.column_misses.load(Ordering::Relaxed), 0, "the worker delivered columns ahead of the tip");
-    assert_eq!(IN_TICK_ALLOCS.load(Ordering::Relaxed), 0, "allocations inside real-time ticks");
+    assert_eq!(allocations(), 0, "allocations inside real-time ticks");
 }
