@@ -404,6 +404,12 @@ struct StaticRow {
     scipy: Result<Value, String>,
 }
 
+/// The phantom's slice thickness (`fixtures::PHANTOM_PLANE`, plane stress).
+const PHANTOM_THICKNESS_M: f64 = match fixtures::PHANTOM_PLANE {
+    needlesim_core::PlaneModel::Stress { thickness_m } => thickness_m,
+    needlesim_core::PlaneModel::Strain { thickness_m } => thickness_m,
+};
+
 fn scenario_of(s: &Setup, p: &StaticProblem, n: usize) -> Scenario {
     let mut prescribed_local = Vec::new();
     for &(node, c) in &p.conditions {
@@ -416,10 +422,10 @@ fn scenario_of(s: &Setup, p: &StaticProblem, n: usize) -> Scenario {
         description: Some("needlesim-lab bench: the state at the end of the hold".to_owned()),
         nodes: s.mesh.nodes_m().to_vec(),
         triangles: s.mesh.triangles().iter().map(|t| t.map(|i| i as i64)).collect(),
-        young_modulus_pa: 30e3,
-        nu: 0.45,
+        young_modulus_pa: fixtures::PHANTOM_MATERIAL.young_modulus_pa,
+        nu: fixtures::PHANTOM_MATERIAL.poisson_ratio,
         plane: "stress".to_owned(),
-        thickness: 0.01,
+        thickness: PHANTOM_THICKNESS_M,
         young_modulus_elem_pa: None,
         nu_elem: None,
         fixed_nodes: s.fixed.iter().map(|&n| n as i64).collect(),
