@@ -9,8 +9,10 @@
 //! (`SimError::NonFinitePose`). The last is the strictest of the policies the five hand-written
 //! loops had (`simulate` skipped such a tick with a warning; the Simulate RPC, `plan`,
 //! the identify experiments and `bench` stopped): a skipped tick would shift every later row of
-//! a time series off the tick grid. A script never yields one from finite samples unless the
-//! interpolation overflows (samples near ±1.8e308).
+//! a time series off the tick grid. A trajectory read from CSV never yields one (needlesim-trajectory
+//! bounds poses to ±1e3 and sample gaps to ≥ 1 ns); samples that come from the API are checked
+//! for finiteness only, so two near ±1.8e308 can interpolate to infinity, which stops the run
+//! here with that error.
 
 use std::ops::ControlFlow;
 use std::sync::Arc;
