@@ -9,13 +9,8 @@ pub fn quote(s: &str) -> String {
     clip(s, MAX_QUOTE_CHARS)
 }
 
-/// At most `n` characters of `s`, with "…" appended when cut.
-pub fn clip(s: &str, n: usize) -> String {
-    match s.char_indices().nth(n) {
-        None => s.to_owned(),
-        Some((i, _)) => format!("{}…", &s[..i]),
-    }
-}
+/// At most `n` characters of `s`, with "…" appended when cut (the trajectory parser's, shared).
+pub use needlesim_trajectory::clip;
 
 /// A request over a size limit: the typed cause of RESOURCE_EXHAUSTED in the service layer, also
 /// inside `anyhow` chains (scene loading).

@@ -234,8 +234,9 @@ impl Trajectory {
     }
 }
 
-/// At most `n` characters of `s`, with "…" when cut (a client's text quoted in a message).
-fn clip(s: &str, n: usize) -> String {
+/// At most `n` characters of `s`, with "…" appended when cut: a client's text quoted in a
+/// message. The one clipping of quoted text; `needlesim_scene::limit` re-exports it.
+pub fn clip(s: &str, n: usize) -> String {
     match s.char_indices().nth(n) {
         None => s.to_owned(),
         Some((i, _)) => format!("{}…", &s[..i]),
