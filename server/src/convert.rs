@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
-use needlesim_core::sim::{SimParams, StepOutput, TargetParams};
+use needlesim_core::sim::{ContactModel, SimParams, StepOutput, TargetParams};
 use needlesim_core::{BasePose, Material, MaterialMap, Mesh, NeedleShape, PlaneModel, RegionNeedleParams, RigidNeedle};
 use needlesim_proto::v1 as pb;
 
@@ -416,6 +416,12 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
     let params = SimParams {
         needle: NeedleShape::Rigid(RigidNeedle { length_m: or(u.needle_length_m, 0.1) }),
         initial_pose: pose_from_pb(base),
+        contact: if u.node_capture {
+            ContactModel::Nodes
+        } else {
+            ContactModel::MaterialPoints { spacing_m: or(u.contact_spacing_m, ContactModel::DEFAULT_SPACING_M) }
+        },
+        columns_in_step: false,
         capture_radius_m: or(u.capture_radius_m, 0.5 * mean_edge),
         max_needle_nodes: UPLOADED_MAX_NEEDLE_NODES,
         regions: u

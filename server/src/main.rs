@@ -240,6 +240,7 @@ fn run_simulate(
         step_p99_us = pct(0.99),
         step_max_us = pct(1.0),
         column_misses = summary.column_misses,
+        column_deferrals = summary.column_deferrals,
         prefetched_columns = summary.prefetched_columns,
         clamped_ticks = summary.clamped_ticks,
         unconverged_ticks = summary.unconverged_ticks,

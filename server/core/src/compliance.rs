@@ -14,6 +14,7 @@ use faer::Mat;
 use faer::sparse::SparseColMat;
 
 use crate::assembly::{MaterialMap, assemble_stiffness};
+use crate::contact::ContactPoint;
 use crate::factor::{CholeskyScratch, DofMap, FactorError, SparseCholesky};
 use crate::mesh::Mesh;
 
@@ -274,6 +275,32 @@ impl ComplianceCache {
         let cx = self.column(b, 0)?;
         let cy = self.column(b, 1)?;
         Some([[cx[2 * a], cy[2 * a]], [cx[2 * a + 1], cy[2 * a + 1]]])
+    }
+
+    /// The world-frame compliance block between two contacts,
+    /// $W_{ab} = \sum_{i \in a}\sum_{j \in b} N_{a,i} N_{b,j}\, C_{ij}$ (2 × 2): displacement of
+    /// contact `a` per unit force on contact `b` ([`crate::contact`]). Needs the columns of `b`'s
+    /// nodes; `None` when one is not cached. $O(1)$: at most nine nodal blocks.
+    pub fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; 2]; 2]> {
+        let mut out = [[0.0; 2]; 2];
+        for (j, wj) in b.terms() {
+            let cx = self.column(j.index(), 0)?;
+            let cy = self.column(j.index(), 1)?;
+            for (i, wi) in a.terms() {
+                let w = wi * wj;
+                let (r0, r1) = (i.dof(0), i.dof(1));
+                out[0][0] += w * cx[r0];
+                out[0][1] += w * cy[r0];
+                out[1][0] += w * cx[r1];
+                out[1][1] += w * cy[r1];
+            }
+        }
+        Some(out)
+    }
+
+    /// Whether the columns of every node of `contact` are cached.
+    pub fn contains_contact(&self, contact: &ContactPoint) -> bool {
+        contact.nodes().iter().all(|n| self.contains(n.index()))
     }
 
     /// $C_{\mathcal{WW}}$ for the given nodes, DOF order `[ux(w0), uy(w0), ux(w1), …]`, row-major

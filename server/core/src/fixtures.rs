@@ -13,7 +13,7 @@ use crate::compliance::TissueModel;
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{Mesh, MeshLimits, RectMeshParams};
 use crate::needle::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle};
-use crate::sim::SimParams;
+use crate::sim::{ContactModel, SimParams};
 
 /// Side of the phantom's square (m).
 pub const PHANTOM_SIDE_M: f64 = 0.1;
@@ -49,13 +49,16 @@ pub fn phantom(n: usize) -> Arc<TissueModel> {
 }
 
 /// The tests' needle set-up in the phantom: `needle` pointing down from 5 mm above the top
-/// centre, a 1.5 mm capture radius, room for 64 needle nodes, one region of default friction,
+/// centre, the paper's node capture with a 1.5 mm capture radius (columns computed in the step
+/// when missing), room for 64 needle nodes, one region of default friction,
 /// no targets, 1 kHz, 2 mm / 0.05 rad per tick at most, 12 active-set iterations, 1 cm
 /// lookahead. Tests change what they need with struct update syntax.
 pub fn phantom_params(needle: NeedleShape) -> SimParams {
     SimParams {
         needle,
         initial_pose: BasePose::new(0.5 * PHANTOM_SIDE_M, PHANTOM_BASE_Y_M, -std::f64::consts::FRAC_PI_2),
+        contact: ContactModel::Nodes,
+        columns_in_step: true,
         capture_radius_m: 0.0015,
         max_needle_nodes: 64,
         regions: vec![RegionNeedleParams::default()],

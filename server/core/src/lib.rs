@@ -19,6 +19,7 @@
 pub mod assembly;
 pub mod beam;
 pub mod compliance;
+pub mod contact;
 pub mod factor;
 pub mod fixtures;
 pub mod ids;
@@ -34,6 +35,7 @@ pub mod statics;
 pub use assembly::MaterialMap;
 pub use beam::NeedleCurve;
 pub use compliance::{ColumnScratch, ComplianceCache, TissueError, TissueModel};
+pub use contact::ContactPoint;
 pub use ids::{Axis, NodeIdx, Slot};
 pub use material::{Material, MaterialError, PlaneModel};
 pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};

@@ -17,6 +17,7 @@
 //! Nothing here allocates after [`MixedSolver::with_capacity`].
 
 use crate::compliance::ComplianceCache;
+use crate::contact::ContactPoint;
 use crate::ids::{Axis, NodeIdx, Slot};
 
 /// What is prescribed on one local DOF.
@@ -37,19 +38,19 @@ pub enum MixedError {
     /// The node is already in the working set.
     #[error("node {node_idx} is already a working node")]
     AlreadyWorking { node_idx: NodeIdx },
-    /// The compliance columns of a node are not cached.
-    #[error("the compliance columns of node {node_idx} are not cached")]
-    NotCached { node_idx: NodeIdx },
+    /// The compliance columns of a contact's node(s) are not cached.
+    #[error("the compliance columns of {contact} are not cached")]
+    NotCached { contact: ContactPoint },
     /// The slot does not exist.
     #[error("working slot {slot} does not exist ({n_nodes} working nodes)")]
     NoSuchSlot { slot: Slot, n_nodes: usize },
     /// Prescribing this displacement would make the system singular (the DOF is already
     /// determined by other prescribed displacements, or it has no compliance, e.g. a fixed node).
-    #[error("prescribing the {axis} displacement of node {node_idx} makes the working system singular (pivot {pivot:e})")]
-    SingularPivot { node_idx: NodeIdx, axis: Axis, pivot: f64 },
+    #[error("prescribing the {axis} displacement of {contact} makes the working system singular (pivot {pivot:e})")]
+    SingularPivot { contact: ContactPoint, axis: Axis, pivot: f64 },
     /// A value or angle is not finite.
-    #[error("{what} of working node {node_idx} is not finite")]
-    NonFinite { what: &'static str, node_idx: NodeIdx },
+    #[error("{what} of working contact {contact} is not finite")]
+    NonFinite { what: &'static str, contact: ContactPoint },
 }
 
 /// Counters of the updates performed.
@@ -68,7 +69,7 @@ pub struct MixedSolver {
     cap_nodes: usize,
     stride: usize,
     n_nodes: usize,
-    node_of_slot: Vec<NodeIdx>,
+    contact_of_slot: Vec<ContactPoint>,
     angle_rad: Vec<f64>,
     /// World self-compliance block of each slot, to know each DOF's own compliance.
     c_self: Vec<[[f64; 2]; 2]>,
@@ -117,7 +118,7 @@ impl MixedSolver {
             cap_nodes,
             stride,
             n_nodes: 0,
-            node_of_slot: vec![NodeIdx(0); cap_nodes],
+            contact_of_slot: vec![ContactPoint::node(NodeIdx(0)); cap_nodes],
             angle_rad: vec![0.0; cap_nodes],
             c_self: vec![[[0.0; 2]; 2]; cap_nodes],
             kind: vec![Condition::Force; stride],
@@ -136,7 +137,7 @@ impl MixedSolver {
     pub fn copy_from(&mut self, other: &MixedSolver) {
         assert_eq!(self.cap_nodes, other.cap_nodes, "copy_from needs equal capacities");
         self.n_nodes = other.n_nodes;
-        self.node_of_slot.copy_from_slice(&other.node_of_slot);
+        self.contact_of_slot.copy_from_slice(&other.contact_of_slot);
         self.angle_rad.copy_from_slice(&other.angle_rad);
         self.c_self.copy_from_slice(&other.c_self);
         self.kind.copy_from_slice(&other.kind);
@@ -166,13 +167,13 @@ impl MixedSolver {
     pub fn stats(&self) -> MixedStats {
         self.stats
     }
-    /// Mesh node of each slot.
-    pub fn nodes(&self) -> &[NodeIdx] {
-        &self.node_of_slot[..self.n_nodes]
+    /// The contact of each slot (a mesh node or a material point).
+    pub fn contacts(&self) -> &[ContactPoint] {
+        &self.contact_of_slot[..self.n_nodes]
     }
-    /// The slot of a mesh node, if it is working. $O(m)$.
+    /// The slot of a mesh node working as a node contact, if it is one. $O(m)$.
     pub fn slot_of(&self, node_idx: NodeIdx) -> Option<Slot> {
-        self.nodes().iter().position(|&n| n == node_idx).map(Slot::new)
+        self.contacts().iter().position(|c| c.as_node() == Some(node_idx)).map(Slot::new)
     }
     /// The frame angle of a slot.
     pub fn angle_rad(&self, slot: Slot) -> f64 {
@@ -199,29 +200,39 @@ impl MixedSolver {
         to_local(self.c_self[s], a, a)[k % 2][k % 2]
     }
 
-    /// Adds `node_idx` to the working set with frame angle `angle_rad` and both local DOFs
-    /// force-prescribed at zero. Needs the columns of `node_idx` in `cache`. $O(d^2)$.
+    /// Adds mesh node `node_idx` to the working set ([`MixedSolver::add_contact`] of the node).
+    ///
+    /// Errors: those of [`MixedSolver::add_contact`].
+    pub fn add_node(&mut self, cache: &ComplianceCache, node_idx: NodeIdx, angle_rad: f64) -> Result<Slot, MixedError> {
+        self.add_contact(cache, ContactPoint::node(node_idx), angle_rad)
+    }
+
+    /// Adds `contact` (a node or a material point) to the working set with frame angle
+    /// `angle_rad` and both local DOFs force-prescribed at zero. Needs the columns of the
+    /// contact's nodes in `cache`. $O(d^2)$.
     ///
     /// Errors: [`MixedError::Full`] when all `cap_nodes` slots are taken,
     /// [`MixedError::NonFinite`] for a non-finite angle, [`MixedError::AlreadyWorking`] when the
     /// node has a slot, [`MixedError::NotCached`] when its columns are missing; the state is then
     /// unchanged.
-    pub fn add_node(&mut self, cache: &ComplianceCache, node_idx: NodeIdx, angle_rad: f64) -> Result<Slot, MixedError> {
+    pub fn add_contact(&mut self, cache: &ComplianceCache, contact: ContactPoint, angle_rad: f64) -> Result<Slot, MixedError> {
         if self.n_nodes == self.cap_nodes {
             return Err(MixedError::Full { cap_nodes: self.cap_nodes });
         }
         if !angle_rad.is_finite() {
-            return Err(MixedError::NonFinite { what: "the frame angle", node_idx });
+            return Err(MixedError::NonFinite { what: "the frame angle", contact });
         }
-        if self.slot_of(node_idx).is_some() {
+        if let Some(node_idx) = contact.as_node()
+            && self.slot_of(node_idx).is_some()
+        {
             return Err(MixedError::AlreadyWorking { node_idx });
         }
-        let c_nn_world = cache.block(node_idx.0, node_idx.0).ok_or(MixedError::NotCached { node_idx })?;
+        let c_nn_world = cache.contact_block(&contact, &contact).ok_or(MixedError::NotCached { contact })?;
         let d = self.n_dofs();
         let st = self.stride;
         // c: local compliance between existing DOFs and the two new ones.
         for s in 0..self.n_nodes {
-            let b = cache.block(self.node_of_slot[s].0, node_idx.0).ok_or(MixedError::NotCached { node_idx })?;
+            let b = cache.contact_block(&self.contact_of_slot[s], &contact).ok_or(MixedError::NotCached { contact })?;
             let l = to_local(b, self.angle_rad[s], angle_rad);
             self.tmp_c[2 * s] = l[0];
             self.tmp_c[2 * s + 1] = l[1];
@@ -273,7 +284,7 @@ impl MixedSolver {
             }
         }
         let slot = self.n_nodes;
-        self.node_of_slot[slot] = node_idx;
+        self.contact_of_slot[slot] = contact;
         self.angle_rad[slot] = angle_rad;
         self.c_self[slot] = c_nn_world;
         self.kind[n0] = Condition::Force;
@@ -298,7 +309,7 @@ impl MixedSolver {
             Condition::Displacement => 0.0,
         };
         if !(p > threshold && p.is_finite()) {
-            return Err(MixedError::SingularPivot { node_idx: self.node_of_slot[k / 2], axis: Axis::of_index(k), pivot: p });
+            return Err(MixedError::SingularPivot { contact: self.contact_of_slot[k / 2], axis: Axis::of_index(k), pivot: p });
         }
         for j in 0..d {
             self.tmp_row[j] = self.h[k * st + j];
@@ -340,7 +351,7 @@ impl MixedSolver {
     pub fn set_condition(&mut self, slot: Slot, axis: Axis, cond: Condition, value: f64) -> Result<(), MixedError> {
         self.check_slot(slot)?;
         if !value.is_finite() {
-            return Err(MixedError::NonFinite { what: "a prescribed value", node_idx: self.node_of_slot[slot.index()] });
+            return Err(MixedError::NonFinite { what: "a prescribed value", contact: self.contact_of_slot[slot.index()] });
         }
         let k = slot.dof(axis);
         if self.kind[k] != cond {
@@ -369,7 +380,7 @@ impl MixedSolver {
     pub fn set_angle(&mut self, slot: Slot, angle_rad: f64) -> Result<(), MixedError> {
         self.check_slot(slot)?;
         if !angle_rad.is_finite() {
-            return Err(MixedError::NonFinite { what: "the frame angle", node_idx: self.node_of_slot[slot.index()] });
+            return Err(MixedError::NonFinite { what: "the frame angle", contact: self.contact_of_slot[slot.index()] });
         }
         let delta = angle_rad - self.angle_rad[slot.index()];
         if delta == 0.0 {
@@ -447,7 +458,7 @@ impl MixedSolver {
             self.x.swap(i, j);
             self.y.swap(i, j);
         }
-        self.node_of_slot.swap(a, b);
+        self.contact_of_slot.swap(a, b);
         self.angle_rad.swap(a, b);
         self.c_self.swap(a, b);
     }
@@ -505,8 +516,8 @@ impl MixedSolver {
         let mut cl = faer::Mat::<f64>::zeros(d, d);
         for a in 0..self.n_nodes {
             for b in 0..self.n_nodes {
-                let (na, nb) = (self.node_of_slot[a], self.node_of_slot[b]);
-                let blk = cache.block(na.0, nb.0).ok_or(MixedError::NotCached { node_idx: nb })?;
+                let (ca, cb) = (&self.contact_of_slot[a], &self.contact_of_slot[b]);
+                let blk = cache.contact_block(ca, cb).ok_or(MixedError::NotCached { contact: *cb })?;
                 let l = to_local(blk, self.angle_rad[a], self.angle_rad[b]);
                 for i in 0..2 {
                     for j in 0..2 {
@@ -527,7 +538,7 @@ impl MixedSolver {
         } else {
             let llt = cpp.llt(faer::Side::Lower).map_err(|_| {
                 let k = p[0];
-                MixedError::SingularPivot { node_idx: self.node_of_slot[k / 2], axis: Axis::of_index(k), pivot: 0.0 }
+                MixedError::SingularPivot { contact: self.contact_of_slot[k / 2], axis: Axis::of_index(k), pivot: 0.0 }
             })?;
             let inv = faer::linalg::solvers::DenseSolveCore::inverse(&llt);
             let hpf = -(&inv * &cpf);
@@ -712,7 +723,10 @@ mod tests {
         // Whole-mesh displacement from the working forces equals the full solve.
         let mut u_all = vec![0.0; m.n_dofs()];
         cache
-            .displacement_from_forces_into(Slot::all(s.n_nodes()).map(|k| (s.nodes()[k.index()].0, s.force_world(k))), &mut u_all)
+            .displacement_from_forces_into(
+                Slot::all(s.n_nodes()).map(|k| (s.contacts()[k.index()].nearest_node().0, s.force_world(k))),
+                &mut u_all,
+            )
             .unwrap();
         for (a, b) in u_all.iter().zip(&full.displacement_m) {
             assert!((a - b).abs() < 1e-10 * scale);
@@ -735,7 +749,7 @@ mod tests {
         let mut scratch = m.column_scratch();
         let mut s = MixedSolver::with_capacity(2);
         let n = NodeIdx;
-        assert_eq!(s.add_node(&cache, n(20), 0.0).unwrap_err(), MixedError::NotCached { node_idx: n(20) });
+        assert_eq!(s.add_node(&cache, n(20), 0.0).unwrap_err(), MixedError::NotCached { contact: ContactPoint::node(n(20)) });
         for n in [20, 21, 0] {
             cache.ensure(&m, n, &mut scratch).unwrap();
         }
@@ -744,7 +758,10 @@ mod tests {
         // A fixed node has no compliance: prescribing its displacement is singular.
         let slot = s.add_node(&cache, n(0), 0.0).unwrap();
         let e = s.set_condition(slot, Axis::Axial, Condition::Displacement, 0.0).unwrap_err();
-        assert!(matches!(e, MixedError::SingularPivot { node_idx: NodeIdx(0), axis: Axis::Axial, .. }), "{e}");
+        assert!(
+            matches!(e, MixedError::SingularPivot { contact, axis: Axis::Axial, .. } if contact == ContactPoint::node(NodeIdx(0))),
+            "{e}"
+        );
         assert_eq!(s.condition(slot, Axis::Axial), Condition::Force);
         assert_eq!(s.add_node(&cache, n(21), 0.0).unwrap_err(), MixedError::Full { cap_nodes: 2 });
         let first = Slot::new(0);

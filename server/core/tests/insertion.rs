@@ -196,7 +196,7 @@ fn rotating_oblique_needle_state_equals_fresh_static_solve() {
     let snap = sim.snapshot();
     let mut problem = StaticProblem {
         conditions: model.mesh().boundary_set("bottom").unwrap().iter().map(|&n| (n, NodeCondition::Fixed)).collect(),
-        loads_n: snap.loads_n.clone(),
+        loads_n: snap.node_loads_n(),
     };
     for c in &snap.conditions {
         problem.conditions.push((c.node_idx, NodeCondition::Local { angle_rad: c.angle_rad, ut_m: c.ut_m, un_m: c.un_m }));
@@ -215,7 +215,7 @@ fn rotating_oblique_needle_state_equals_fresh_static_solve() {
             f[1] -= r[1].unwrap();
         }
     }
-    for (node, l) in &snap.loads_n {
+    for (node, l) in &snap.node_loads_n() {
         let _ = node;
         f[0] -= l[0];
         f[1] -= l[1];

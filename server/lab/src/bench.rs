@@ -142,7 +142,7 @@ fn snapshot_problem(sim: &Simulation, fixed: &[usize]) -> StaticProblem {
     for c in &snap.conditions {
         conditions.push((c.node_idx, NodeCondition::Local { angle_rad: c.angle_rad, ut_m: c.ut_m, un_m: c.un_m }));
     }
-    StaticProblem { conditions, loads_n: snap.loads_n }
+    StaticProblem { conditions, loads_n: snap.node_loads_n() }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -432,6 +432,8 @@ fn scenario_of(s: &Setup, p: &StaticProblem, n: usize) -> Scenario {
         prescribed: vec![],
         prescribed_local,
         loads: p.loads_n.iter().map(|&(n, [fx, fy])| Load { node: n as i64, fx, fy }).collect(),
+        points: vec![],
+        working_points: None,
         working_nodes: None,
         output_stresses: false,
         solver_displacements: None,

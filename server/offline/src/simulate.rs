@@ -4,11 +4,11 @@
 use std::fmt::Write as _;
 use std::ops::ControlFlow;
 
-use needlesim_core::sim::{Simulation, StateSnapshot, StepOutput};
+use needlesim_core::sim::{LocalCondition, Simulation, StateSnapshot, StepOutput};
 
 use crate::driver::{RunError, RunOptions, Script, ScriptedRun};
 
-use needlesim_scene::exchange::{Load, PrescribedLocal, Scenario};
+use needlesim_scene::exchange::{Load, PointCondition, PrescribedLocal, Scenario};
 use needlesim_scene::{Scene, Trajectory};
 
 pub use crate::driver::DEFAULT_MAX_TICKS;
@@ -19,6 +19,8 @@ pub struct RunSummary {
     pub ticks: u64,
     pub clamped_ticks: u64,
     pub column_misses: u64,
+    /// Ticks at which a new contact waited for its columns (admitted a tick later).
+    pub column_deferrals: u64,
     pub prefetched_columns: u64,
     pub unconverged_ticks: u64,
     pub numeric_factorisations: u64,
@@ -83,6 +85,7 @@ pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mu
     summary.ticks = st.ticks;
     summary.clamped_ticks = st.clamped_ticks;
     summary.column_misses = st.column_misses;
+    summary.column_deferrals = st.column_deferrals;
     summary.prefetched_columns = totals.prefetched_columns;
     summary.unconverged_ticks = st.unconverged_ticks;
     summary.numeric_factorisations = sim.model().cholesky().n_numeric_factorisations();
@@ -122,7 +125,8 @@ pub fn write_csv_row(c: &mut String, out: &StepOutput, t0_s: f64) {
 pub fn dump_state(scene: &Scene, sim: &Simulation) -> Scenario {
     let mesh = scene.tissue.mesh();
     let mats = scene.tissue.materials();
-    let StateSnapshot { conditions, loads_n, needle_nodes } = sim.snapshot();
+    let StateSnapshot { conditions, needle_nodes } = sim.snapshot();
+    let (nodal, points): (Vec<&LocalCondition>, Vec<&LocalCondition>) = conditions.iter().partition(|c| c.contact.as_node().is_some());
     let mut u = vec![0.0; 2 * mesh.n_nodes()];
     sim.displacement_field_into(&mut u);
     let plane = mats.plane();
@@ -139,18 +143,42 @@ pub fn dump_state(scene: &Scene, sim: &Simulation) -> Scenario {
         nu_elem: Some(mats.material_of_tri().iter().map(|m| m.poisson_ratio).collect()),
         fixed_nodes: scene.fixed_nodes.iter().map(|&n| n as i64).collect(),
         prescribed: vec![],
-        prescribed_local: conditions
+        prescribed_local: nodal
             .iter()
             .map(|c| PrescribedLocal { node: c.node_idx as i64, angle_rad: c.angle_rad, ut: c.ut_m, un: c.un_m })
             .collect(),
-        loads: loads_n.iter().map(|&(n, [fx, fy])| Load { node: n as i64, fx, fy }).collect(),
+        loads: nodal
+            .iter()
+            .filter(|c| c.load_n != [0.0; 2])
+            .map(|c| Load { node: c.node_idx as i64, fx: c.load_n[0], fy: c.load_n[1] })
+            .collect(),
+        points: points
+            .iter()
+            .map(|c| PointCondition {
+                x: c.reference_m,
+                angle_rad: c.angle_rad,
+                ut: c.ut_m,
+                un: c.un_m,
+                f: (c.load_n != [0.0; 2]).then_some(c.load_n),
+            })
+            .collect(),
+        working_points: None,
         working_nodes: None,
         output_stresses: false,
         solver_displacements: Some(u.chunks(2).map(|c| [c[0], c[1]]).collect()),
         needle_nodes: Some(serde_json::Value::Array(
             needle_nodes
                 .iter()
-                .map(|n| serde_json::json!({"node": n.node_idx, "state": n.state.as_str(), "fx": n.force_n[0], "fy": n.force_n[1]}))
+                .map(|n| match n.contact.as_node() {
+                    Some(_) => serde_json::json!({"node": n.node_idx, "state": n.state.as_str(), "fx": n.force_n[0], "fy": n.force_n[1]}),
+                    None => serde_json::json!({
+                        "node": n.node_idx,
+                        "point": n.reference_m,
+                        "state": n.state.as_str(),
+                        "fx": n.force_n[0],
+                        "fy": n.force_n[1],
+                    }),
+                })
                 .collect(),
         )),
     }

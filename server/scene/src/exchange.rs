@@ -39,6 +39,12 @@ pub struct Scenario {
     pub prescribed_local: Vec<PrescribedLocal>,
     #[serde(default)]
     pub loads: Vec<Load>,
+    /// Conditions at material points (contact points that need not be nodes); solved by the
+    /// reference (fem_ref.py), not by [`solve_scenario`].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub points: Vec<PointCondition>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub working_points: Option<Vec<[f64; 2]>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub working_nodes: Option<Vec<i64>>,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
@@ -115,6 +121,22 @@ pub struct PrescribedLocal {
     pub ut: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub un: Option<f64>,
+}
+
+/// A material point's conditions: the frame components `ut`, `un` (frame rotated by
+/// `angle_rad`) of the interpolated displacement $u(x) = \sum_k N_k(x) u_k$ prescribed where
+/// given, and a world force `f` (N) applied at `x` (m, reference position).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointCondition {
+    pub x: [f64; 2],
+    pub angle_rad: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ut: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub un: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub f: Option<[f64; 2]>,
 }
 
 /// A nodal point force in world components.
@@ -220,7 +242,17 @@ impl Scenario {
     }
 
     /// The static problem: fixed nodes, prescribed (world entries for one node merge) and loads.
+    ///
+    /// Errors: a node id out of range (naming the list), or material `points` /
+    /// `working_points`, which only the reference solver (fem_ref.py) takes.
     pub fn static_problem(&self, n_nodes: usize) -> Result<StaticProblem> {
+        if !self.points.is_empty() || self.working_points.is_some() {
+            bail!(
+                "the scenario has conditions at material points ({} `points`{}): solve it with the reference solver (fem_ref.py); this solver takes node conditions only",
+                self.points.len(),
+                if self.working_points.is_some() { ", `working_points`" } else { "" }
+            );
+        }
         let mut conditions = Vec::new();
         for &n in &self.fixed_nodes {
             conditions.push((node_id(n, n_nodes, "fixed_nodes")?, NodeCondition::Fixed));

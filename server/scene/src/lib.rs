@@ -12,7 +12,7 @@ use std::sync::Arc;
 use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::mesh::DiagonalPattern;
-use needlesim_core::sim::{SimParams, TargetParams};
+use needlesim_core::sim::{ContactModel, SimParams, TargetParams};
 use needlesim_core::{
     BasePose, FlexibleNeedle, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams,
     RigidNeedle,
@@ -158,7 +158,15 @@ pub struct NeedleSpec {
     pub length_m: f64,
     /// Initial base pose `[x_m, y_m, theta_rad]`.
     pub base: [f64; 3],
+    /// With `contact = "nodes"`: a node within this lateral distance (m) of the shaft when the
+    /// tip passes it becomes a needle node (default: half the mean edge length).
     pub capture_radius_m: Option<f64>,
+    /// `points` (default): contact at material points `contact_spacing_m` apart along the
+    /// shaft; `nodes`: the original paper's node capture.
+    #[serde(default)]
+    pub contact: ContactSpec,
+    /// Arc length (m) between material contact points (default 2 mm).
+    pub contact_spacing_m: Option<f64>,
     #[serde(default = "d_max_nodes")]
     pub max_nodes: usize,
     /// `rigid` (default) or `flexible`.
@@ -175,6 +183,15 @@ pub struct NeedleSpec {
     pub bevel_force_ratio: Option<f64>,
     /// Flexible needle: initial bevel side, +1 or -1 (towards the needle's +n or -n).
     pub bevel_side: Option<f64>,
+}
+
+/// How the needle holds the tissue ([`needlesim_core::sim::ContactModel`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContactSpec {
+    #[default]
+    Points,
+    Nodes,
 }
 
 /// The needle model a scene chooses.
@@ -564,6 +581,15 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
     let params = SimParams {
         needle: n.shape()?,
         initial_pose: BasePose::new(n.base[0], n.base[1], n.base[2]),
+        contact: match n.contact {
+            ContactSpec::Nodes => ContactModel::Nodes,
+            ContactSpec::Points => {
+                ContactModel::MaterialPoints { spacing_m: n.contact_spacing_m.unwrap_or(ContactModel::DEFAULT_SPACING_M) }
+            }
+        },
+        // The real-time thread never runs a sparse solve: offline drivers prefetch, live
+        // sessions have a column worker.
+        columns_in_step: false,
         capture_radius_m: n.capture_radius_m.unwrap_or(0.5 * mean_edge),
         max_needle_nodes: n.max_nodes,
         regions: needle_params,

@@ -168,9 +168,10 @@ impl FanOut {
         let mut u = vec![0.0; self.n_dofs];
         let cols = self.render_columns.lock().expect("render columns lock");
         for nn in rec.nodes() {
-            if let Some(c) = cols.get(&nn.node) {
+            for (node, weight) in TickRecord::contact_terms(nn) {
+                let Some(c) = cols.get(&node) else { continue };
                 for comp in 0..2 {
-                    let f = nn.force_n[comp];
+                    let f = weight * nn.force_n[comp];
                     if f != 0.0 {
                         for (o, v) in u.iter_mut().zip(&c[comp * self.n_dofs..(comp + 1) * self.n_dofs]) {
                             *o += v * f;

@@ -22,7 +22,14 @@ pub const DEVICE_STALE_TICKS: u64 = 50;
 /// One needle node in a tick record.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct NodeRecord {
+    /// The node, or a material point's nearest node.
     pub node: u32,
+    /// The mesh nodes the contact interpolates (`contact_nodes[..n_contact]`, 1 for a node
+    /// contact, 3 for a material point) and their weights: the contact's force loads node
+    /// `contact_nodes[k]` with `contact_weights[k]` of it.
+    pub contact_nodes: [u32; 3],
+    pub contact_weights: [f64; 3],
+    pub n_contact: u8,
     /// 0 stuck, 1 slipping, 2 tip.
     pub state: u8,
     pub position_m: [f64; 2],
@@ -179,8 +186,19 @@ impl TickRecord {
         let n = out.needle_nodes.len().min(MAX_RECORD_NODES);
         self.n_nodes = n as u16;
         for (r, nn) in self.nodes.iter_mut().zip(&out.needle_nodes[..n]) {
+            let mut contact_nodes = [0u32; 3];
+            let mut contact_weights = [0.0; 3];
+            let mut n_contact = 0u8;
+            for (k, (j, w)) in nn.contact.terms().enumerate() {
+                contact_nodes[k] = j.index() as u32;
+                contact_weights[k] = w;
+                n_contact += 1;
+            }
             *r = NodeRecord {
                 node: nn.node_idx as u32,
+                contact_nodes,
+                contact_weights,
+                n_contact,
                 state: match nn.state {
                     NodeState::Stuck => 0,
                     NodeState::Slipping => 1,
@@ -212,6 +230,11 @@ impl TickRecord {
     /// The needle nodes of this record.
     pub fn nodes(&self) -> &[NodeRecord] {
         &self.nodes[..self.n_nodes as usize]
+    }
+    /// The nodes and weights of a record's contact ([`NodeRecord::contact_nodes`]).
+    pub fn contact_terms(nn: &NodeRecord) -> impl Iterator<Item = (u32, f64)> + '_ {
+        let n = nn.n_contact as usize;
+        nn.contact_nodes[..n].iter().copied().zip(nn.contact_weights[..n].iter().copied())
     }
     /// The targets of this record.
     pub fn targets(&self) -> &[TargetRecord] {

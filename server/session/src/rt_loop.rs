@@ -246,9 +246,18 @@ impl RtLoop {
         // a tick computed itself (so that the fan-out can render their share of the field).
         let out = self.sim.output();
         let n_app = out.approaching.len();
-        for k in 0..n_app + out.needle_nodes.len() {
+        let n_req = n_app + 3 * out.needle_nodes.len();
+        for k in 0..n_req {
             let out = self.sim.output();
-            let node = if k < n_app { out.approaching[k] } else { out.needle_nodes[k - n_app].node_idx };
+            let node = if k < n_app {
+                out.approaching[k]
+            } else {
+                let nn = &out.needle_nodes[(k - n_app) / 3];
+                match nn.contact.nodes().get((k - n_app) % 3) {
+                    Some(j) => j.index(),
+                    None => continue,
+                }
+            };
             if !self.requested[node] {
                 if self.req_tx.push(node as u32).is_ok() {
                     self.requested[node] = true;

@@ -49,7 +49,6 @@ pub(super) struct ActiveSetScratch {
 pub(super) fn update_friction(
     params: &SimParams,
     geo: &Geometry<'_>,
-    nodes_m: &[[f64; 2]],
     ws: &mut WorkingSet,
     order: &mut Vec<Slot>,
     current: bool,
@@ -62,7 +61,7 @@ pub(super) fn update_friction(
         let nn = &mut ws.nodes[slot.index()];
         nn.s_work_m = match nn.state {
             NodeState::Stuck => nn.anchor_s_m,
-            NodeState::Slipping if current => frame.coords(nodes_m[nn.node.index()]).0 + ws.solver.displacement_local(slot)[Axis::Axial],
+            NodeState::Slipping if current => frame.coords(nn.x_ref_m).0 + ws.solver.displacement_local(slot)[Axis::Axial],
             NodeState::Slipping => nn.s_prev_m,
             NodeState::Tip => continue,
         };
@@ -113,7 +112,6 @@ pub(super) fn resolve_active_set(
     flex_sc: &mut Option<FlexScratch>,
 ) -> Result<(usize, bool), SimError> {
     let params = ctx.params;
-    let nodes_m = ctx.model.mesh().nodes_m();
     let s_tip = ctx.setup.s_tip_m;
     let tick = st.tick;
     // Slipping nodes just captured still need their force condition.
@@ -133,7 +131,7 @@ pub(super) fn resolve_active_set(
         let tol = FRICTION_TOL * total.max(1e-12);
         for _ in 0..FRICTION_SWEEPS {
             let geo = Geometry::new(params, st.pose, st.flex.as_ref());
-            let friction_change = update_friction(params, &geo, nodes_m, &mut st.ws, &mut sc.order, true, tol);
+            let friction_change = update_friction(params, &geo, &mut st.ws, &mut sc.order, true, tol);
             let bevel_change = st.flex.as_ref().map_or(0.0, |fx| flexible::update_bevel_force(&mut st.ws, fx));
             if friction_change <= tol && bevel_change <= tol {
                 break;
@@ -146,7 +144,7 @@ pub(super) fn resolve_active_set(
         for slot in ws.slots() {
             let nn = *ws.node(slot);
             let f = ws.solver.force_local(slot);
-            let (s0, _) = geo.slot_frame(ws, slot).coords(nodes_m[nn.node.index()]);
+            let (s0, _) = geo.slot_frame(ws, slot).coords(nn.x_ref_m);
             let s_now = s0 + ws.solver.displacement_local(slot)[Axis::Axial];
             let f_t = f[Axis::Axial];
             let change = match nn.state {
@@ -174,7 +172,7 @@ pub(super) fn resolve_active_set(
         // Apply in descending slot order so removals do not disturb pending slots.
         sc.changes.sort_unstable_by_key(|c| std::cmp::Reverse(c.0));
         for &(slot, change) in sc.changes.iter() {
-            let x = nodes_m[ws.node(slot).node.index()];
+            let x = ws.node(slot).x_ref_m;
             let (s0, lat0) = geo.slot_frame(ws, slot).coords(x);
             match change {
                 Change::Puncture => {

@@ -6,6 +6,7 @@
 //! in [`super::SimStats`].
 
 use crate::compliance::{ColumnScratch, ComplianceCache, TissueModel};
+use crate::contact::ContactPoint;
 use crate::ids::{Axis, NodeIdx};
 use crate::mixed::Condition;
 
@@ -53,37 +54,53 @@ pub(super) fn release_withdrawn(s_tip_m: f64, ws: &mut WorkingSet, stats: &mut S
 }
 
 /// Displacement of any node from the working forces last written out,
-/// $u_j = \sum_{i \in W} C_{ji} f_i$, $O(d)$. Working nodes without cached columns contribute
-/// nothing (they always have them).
+/// $u_j = \sum_{w \in W} W_{jw} f_w$, $O(d)$ ([`contact_displacement`] of the node).
 pub(super) fn node_displacement(ws: &WorkingSet, cache: &ComplianceCache, node: NodeIdx) -> [f64; 2] {
-    let (jx, jy) = (node.dof(0), node.dof(1));
+    contact_displacement(ws, cache, &ContactPoint::node(node))
+}
+
+/// Displacement of any contact (a node or a material point) from the working forces last
+/// written out, $u_q = \sum_{w \in W} W_{qw} f_w$ with the blocks of
+/// [`ComplianceCache::contact_block`]: it needs only the working contacts' columns. $O(d)$.
+/// Working contacts without cached columns contribute nothing (they always have them).
+pub(super) fn contact_displacement(ws: &WorkingSet, cache: &ComplianceCache, q: &ContactPoint) -> [f64; 2] {
     let mut u = [0.0; 2];
     for (nn, f) in ws.nodes.iter().zip(&ws.f_world) {
-        let w = nn.node.index();
-        let (Some(cx), Some(cy)) = (cache.column(w, 0), cache.column(w, 1)) else { continue };
-        u[0] += cx[jx] * f[0] + cy[jx] * f[1];
-        u[1] += cx[jy] * f[0] + cy[jy] * f[1];
+        let Some(b) = cache.contact_block(q, &nn.contact) else { continue };
+        u[0] += b[0][0] * f[0] + b[0][1] * f[1];
+        u[1] += b[1][0] * f[0] + b[1][1] * f[1];
     }
     u
 }
 
-/// Makes sure the columns of `node` are cached, computing them (counted in `column_misses`)
-/// when the prefetch did not.
+/// Whether the columns of every node of `contact` are cached; when they are not, computes them
+/// inside the step (`columns_in_step`, counted in `column_misses`) or leaves the contact for a
+/// later tick (counted in `column_deferrals`) and returns `false`.
 ///
-/// Errors: [`SimError::Tissue`] when the column solve fails.
+/// Errors: [`SimError::Tissue`] when a column solve fails.
 fn ensure_columns(
     model: &TissueModel,
+    columns_in_step: bool,
     cache: &mut ComplianceCache,
     sc: &mut CaptureScratch,
     stats: &mut SimStats,
-    node: NodeIdx,
-) -> Result<(), SimError> {
-    if !cache.contains(node.index()) {
-        model.compliance_columns_into(node.index(), &mut sc.column_buf, &mut sc.columns)?;
-        cache.insert(node.index(), &sc.column_buf);
-        stats.column_misses += 1;
+    contact: &ContactPoint,
+) -> Result<bool, SimError> {
+    if cache.contains_contact(contact) {
+        return Ok(true);
     }
-    Ok(())
+    if !columns_in_step {
+        stats.column_deferrals += 1;
+        return Ok(false);
+    }
+    for node in contact.nodes() {
+        if !cache.contains(node.index()) {
+            model.compliance_columns_into(node.index(), &mut sc.column_buf, &mut sc.columns)?;
+            cache.insert(node.index(), &sc.column_buf);
+            stats.column_misses += 1;
+        }
+    }
+    Ok(true)
 }
 
 /// Stage 4: interception of nodes the tip has passed, and the list of approaching nodes.
@@ -175,7 +192,10 @@ pub(super) fn capture(
             st.stats.capacity_drops += (n_cap - k) as u64;
             break;
         }
-        ensure_columns(model, &mut st.cache, sc, &mut st.stats, j)?;
+        if !ensure_columns(model, params.columns_in_step, &mut st.cache, sc, &mut st.stats, &ContactPoint::node(j))? {
+            // Admitted at a later tick, when the tip has passed it by a little more.
+            continue;
+        }
         let is_tip = !has_tip && k + 1 == n_cap;
         let s_ref = if is_tip { s_tip } else { s };
         let (angle, frame) = geo.capture_frame(s_ref, s);
@@ -189,14 +209,15 @@ pub(super) fn capture(
         } else {
             0.0
         };
-        let slot = ws.solver.add_node(&st.cache, j, angle)?;
+        let slot = ws.solver.add_contact(&st.cache, ContactPoint::node(j), angle)?;
         let (s0, lat0) = frame.coords(x);
         let region = setup.node_region[j.index()];
         let bevel_tip = is_tip && bevel;
         let entering = setup.is_boundary[j.index()] || st.last_tip_region != Some(region);
         let rp = params.regions[region];
         let nn = NeedleNode {
-            node: j,
+            contact: ContactPoint::node(j),
+            x_ref_m: x,
             state: if is_tip { NodeState::Tip } else { NodeState::Slipping },
             anchor_s_m: s,
             s_prev_m: s,
@@ -235,4 +256,183 @@ fn query_near(setup: &super::setup::Setup, center_m: [f64; 2], radius_m: f64, ou
     if out.capacity() != cap {
         stats.candidate_growths += 1;
     }
+}
+
+/// Fixed-point iterations locating the material point at a deformed position.
+const LOCATE_ITERATIONS: usize = 8;
+
+/// The material point $X$ that the deformation has carried to `p_m`: the fixed point of
+/// $X = p - u(X)$ ([`contact_displacement`] at $X$'s interpolation), started from
+/// $X_0 = p - u_0$. Converges when the displacement gradient is below 1 (a tissue not turned
+/// inside out). Returns the triangle, weights and $X$, or `None` when $X$ lies outside the mesh.
+fn material_point_at(
+    ctx: &Ctx<'_>,
+    st: &State,
+    candidates: &mut Vec<usize>,
+    p_m: [f64; 2],
+    u0: [f64; 2],
+) -> Option<(ContactPoint, [f64; 2])> {
+    let (setup, mesh) = (ctx.setup, ctx.model.mesh());
+    let mut x = [p_m[0] - u0[0], p_m[1] - u0[1]];
+    let tol = 1e-12 * setup.max_edge_m;
+    for _ in 0..LOCATE_ITERATIONS {
+        let (tri, bary) = setup.locate_near(mesh, x, setup.max_edge_m, candidates)?;
+        let c = ContactPoint::in_triangle(tri, mesh.triangles()[tri], bary);
+        let u = contact_displacement(&st.ws, &st.cache, &c);
+        let next = [p_m[0] - u[0], p_m[1] - u[1]];
+        let moved = (next[0] - x[0]).hypot(next[1] - x[1]);
+        x = next;
+        if moved <= tol {
+            break;
+        }
+    }
+    let (tri, bary) = setup.locate_near(mesh, x, setup.max_edge_m, candidates)?;
+    Some((ContactPoint::in_triangle(tri, mesh.triangles()[tri], bary), x))
+}
+
+/// Stage 4 with material-point contact ([`super::ContactModel::MaterialPoints`]): when no
+/// contact is carried by the tip, the tip has advanced along its axis since the last tick, and
+/// it lies `spacing_m` of arc length beyond the most distal contact, the material point the tip
+/// passed last tick (where the previous tip position $x_{k-1}$ lies in the tissue) becomes the
+/// tip's contact: carried until its axial force exceeds the puncture or cutting force. It is
+/// taken only at a reference distance from every working point of at least both points'
+/// triangle diameters, so that no segment of the shaft inside one triangle holds two points
+/// (along a straight needle, the points' conditions are then independent). Nodes of the
+/// triangles ahead of the tip are reported for prefetch, the next contact's first.
+///
+/// Errors: [`SimError::Tissue`] when a column computed in the step fails,
+/// [`SimError::Mixed`] when the solver refuses the point's conditions for a reason other than
+/// dependence (a dependent point is dropped and counted in `dependent_points`).
+pub(super) fn capture_points(
+    ctx: &Ctx<'_>,
+    st: &mut State,
+    sc: &mut CaptureScratch,
+    approaching: &mut Vec<usize>,
+    prev_tip: [f64; 2],
+    spacing_m: f64,
+) -> Result<(), SimError> {
+    let (params, setup, model) = (ctx.params, ctx.setup, ctx.model);
+    let mesh = model.mesh();
+    let nodes_m = mesh.nodes_m();
+    let geo = Geometry::new(params, st.pose, st.flex.as_ref());
+    let tip = geo.tip();
+    let tip_frame = geo.tip_frame();
+    let s_tip = geo.s_tip_m();
+    let ws = &st.ws;
+    let has_tip = ws.nodes.iter().any(|n| n.state == NodeState::Tip);
+    let distal = (0..ws.len()).max_by(|&a, &b| ws.nodes[a].s_prev_m.total_cmp(&ws.nodes[b].s_prev_m));
+    let s_distal = distal.map(|k| if ws.nodes[k].state == NodeState::Tip { s_tip } else { ws.nodes[k].s_prev_m });
+    let u_d = distal.map_or([0.0; 2], |k| ws.u_world[k]);
+    let (s_prev_tip, _) = tip_frame.coords(prev_tip);
+    let advancing = s_tip - s_prev_tip > 1e-9;
+    let due = !has_tip && advancing && s_distal.is_none_or(|s| s_tip - s >= spacing_m);
+    let mut candidate = if due { material_point_at(ctx, st, &mut sc.candidates, prev_tip, u_d) } else { None };
+    if let Some((c, x)) = candidate {
+        let diam = |c: &ContactPoint| c.tri_idx().map_or(0.0, |t| setup.tri_diam_m[t]);
+        let too_close = st.ws.nodes.iter().any(|nn| {
+            let d = (nn.x_ref_m[0] - x[0]).hypot(nn.x_ref_m[1] - x[1]);
+            d <= diam(&c).max(diam(&nn.contact)) * (1.0 + 1e-9)
+        });
+        if too_close {
+            candidate = None;
+        }
+    }
+    // Approaching nodes: the next contact's nodes first, then the nodes of the triangles the
+    // axis crosses ahead of the tip.
+    approaching.clear();
+    if let Some((c, _)) = candidate {
+        for n in c.nodes() {
+            if !st.cache.contains(n.index()) && !approaching.contains(&n.index()) {
+                approaching.push(n.index());
+            }
+        }
+    }
+    let look = params.lookahead_m;
+    let band = setup.max_edge_m;
+    if look > 0.0 {
+        let t = tip_frame.t;
+        let q = [tip[0] - u_d[0], tip[1] - u_d[1]];
+        let centre = [q[0] + 0.5 * look * t[0], q[1] + 0.5 * look * t[1]];
+        query_near(setup, centre, 0.5 * look + band, &mut sc.candidates, &mut st.stats);
+        let first = approaching.len();
+        for k in 0..sc.candidates.len() {
+            let j = sc.candidates[k];
+            if st.cache.contains(j) || model.is_fixed(j) || approaching[..first].contains(&j) {
+                continue;
+            }
+            let x = nodes_m[j];
+            let (s, lat) = tip_frame.coords([x[0] + u_d[0], x[1] + u_d[1]]);
+            if lat.abs() <= band && s > s_tip - band && s <= s_tip + look {
+                if approaching.len() < MAX_APPROACHING {
+                    approaching.push(j);
+                } else {
+                    st.stats.approaching_overflow += 1;
+                }
+            }
+        }
+        let key = |j: &usize| tip_frame.coords([nodes_m[*j][0] + u_d[0], nodes_m[*j][1] + u_d[1]]).0;
+        approaching[first..].sort_unstable_by(|a, b| key(a).total_cmp(&key(b)));
+    }
+    let Some((contact, x)) = candidate else { return Ok(()) };
+    if st.ws.len() == params.max_needle_nodes {
+        st.stats.capacity_drops += 1;
+        return Ok(());
+    }
+    if !ensure_columns(model, params.columns_in_step, &mut st.cache, sc, &mut st.stats, &contact)? {
+        return Ok(());
+    }
+    let (s_new, _) = tip_frame.coords(prev_tip);
+    let (angle, frame) = geo.capture_frame(s_tip, s_new);
+    // A flexible needle takes the point where it is; the rigid one puts it on the shaft (it
+    // lies there up to the tip's lateral motion in one tick).
+    let lat_offset_m = if geo.curve.is_some() { frame.coords(prev_tip).1 } else { 0.0 };
+    let (s0, lat0) = frame.coords(x);
+    let tri = contact.tri_idx().expect("a material point lies in a triangle");
+    let region = mesh.region_of_tri()[tri];
+    let entering = st.ws.len() == 0 || st.last_tip_region != Some(region);
+    let rp = params.regions[region];
+    let bevel = st.flex.as_ref().is_some_and(|f| f.bevel_ratio > 0.0);
+    let ws = &mut st.ws;
+    let slot = ws.solver.add_contact(&st.cache, contact, angle)?;
+    let lateral = if bevel {
+        ws.solver.set_condition(slot, Axis::Lateral, Condition::Force, 0.0)
+    } else {
+        ws.solver.set_condition(slot, Axis::Lateral, Condition::Displacement, lat_offset_m - lat0)
+    };
+    let axial = lateral.and_then(|()| ws.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_tip - s0));
+    match axial {
+        Ok(()) => {}
+        Err(crate::mixed::MixedError::SingularPivot { .. }) => {
+            // Its conditions depend on the other points' (not expected with the distance rule).
+            ws.solver.remove_slot(slot)?;
+            st.stats.dependent_points += 1;
+            return Ok(());
+        }
+        Err(e) => {
+            ws.solver.remove_slot(slot)?;
+            return Err(e.into());
+        }
+    }
+    st.last_tip_region = Some(region);
+    ws.push(
+        slot,
+        NeedleNode {
+            contact,
+            x_ref_m: x,
+            state: NodeState::Tip,
+            anchor_s_m: s_new,
+            s_prev_m: s_new,
+            s_work_m: s_new,
+            friction_n: 0.0,
+            friction_new_n: 0.0,
+            slip_sign: 1.0,
+            release_force_n: if entering { rp.puncture_force_n } else { rp.cutting_force_n },
+            region,
+            lat_offset_m,
+            lateral_ref_m: lat_offset_m - lat0,
+            force_ref_local_n: [0.0; 2],
+        },
+    );
+    st.stats.captures += 1;
+    Ok(())
 }

@@ -65,12 +65,7 @@ impl DivergenceBounds {
 /// force and displacement, the base force and torque, the inserted length and the needle's
 /// shape. $O(d)$, plus the joints of a flexible needle. Returns the first quantity out of
 /// bounds, its value and its bound.
-pub(super) fn check(
-    bounds: &DivergenceBounds,
-    nodes_m: &[[f64; 2]],
-    geo: &Geometry<'_>,
-    ws: &WorkingSet,
-) -> Result<(), (Divergence, f64, f64)> {
+pub(super) fn check(bounds: &DivergenceBounds, geo: &Geometry<'_>, ws: &WorkingSet) -> Result<(), (Divergence, f64, f64)> {
     let bd = bounds;
     let check = |what: Divergence, value: f64, bound: f64| if value <= bound { Ok(()) } else { Err((what, value, bound)) };
     let b = geo.pose.position_m();
@@ -82,7 +77,7 @@ pub(super) fn check(
         let u = ws.solver.displacement_world(slot);
         check(Divergence::NodeForce, f[0].hypot(f[1]), bd.force_n)?;
         check(Divergence::Displacement, u[0].hypot(u[1]), bd.displacement_m)?;
-        let x = nodes_m[ws.node(slot).node.index()];
+        let x = ws.node(slot).x_ref_m;
         let p = [x[0] + u[0], x[1] + u[1]];
         min_s = min_s.min(geo.slot_frame(ws, slot).coords(p).0);
         force[0] -= f[0];

@@ -97,7 +97,6 @@ pub(super) fn update_bevel_force(ws: &mut WorkingSet, fx: &FlexState) -> f64 {
 /// and returns how far (m) the displacement-prescribed needle nodes lie off it laterally.
 /// A shape update that does not converge within its bound is counted in `shape_unconverged`.
 pub(super) fn settle_shape(
-    nodes_m: &[[f64; 2]],
     pose: BasePose,
     shape: &crate::needle::NeedleShape,
     ws: &mut WorkingSet,
@@ -111,7 +110,7 @@ pub(super) fn settle_shape(
         let nn = *ws.node(slot);
         let s = match nn.state {
             NodeState::Slipping => {
-                let x = nodes_m[nn.node.index()];
+                let x = nn.x_ref_m;
                 let geo = Geometry::of(shape, pose, Some(&fx.curve));
                 geo.slot_frame(ws, slot).coords(x).0 + ws.solver.displacement_local(slot)[Axis::Axial]
             }
@@ -139,7 +138,7 @@ pub(super) fn settle_shape(
             continue;
         }
         let nn = ws.node(slot);
-        let x = nodes_m[nn.node.index()];
+        let x = nn.x_ref_m;
         let u = ws.solver.displacement_world(slot);
         let s = nn.s_work_m;
         let (_, lat) = fx.curve.frame_coords(s, fx.curve.tangent_angle_at(s), [x[0] + u[0], x[1] + u[1]]);

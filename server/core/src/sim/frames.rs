@@ -167,11 +167,11 @@ pub(super) fn apply_pose(
 /// Stage 2: every needle node's prescribed values from the current geometry: laterally
 /// $u_n = o - n\cdot(X - x_0)$ (its offset $o$ from the shaft), axially $u_t = s_a - s(X)$ for
 /// a stuck node held at $s_a$ and $u_t = L - s(X)$ for the tip's node.
-pub(super) fn set_prescribed_values(geo: &Geometry<'_>, nodes_m: &[[f64; 2]], ws: &mut WorkingSet) {
+pub(super) fn set_prescribed_values(geo: &Geometry<'_>, ws: &mut WorkingSet) {
     let s_tip = geo.s_tip_m();
     for slot in ws.slots() {
         let nn = *ws.node(slot);
-        let x = nodes_m[nn.node.index()];
+        let x = nn.x_ref_m;
         let frame = geo.slot_frame(ws, slot);
         ws.node_mut(slot).lateral_ref_m = prescribe(&mut ws.solver, slot, &nn, frame, x, s_tip);
     }

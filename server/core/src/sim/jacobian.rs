@@ -18,13 +18,13 @@ pub(super) struct ProbeScratch {
 
 /// The force and torque of the tissue on the base, $(F_x, F_y, \tau)$, for a solved `solver`
 /// whose slots are the working set's needle nodes, at base `pose`.
-fn wrench_of(nodes_m: &[[f64; 2]], ws: &WorkingSet, solver: &MixedSolver, pose: &BasePose) -> [f64; 3] {
+fn wrench_of(ws: &WorkingSet, solver: &MixedSolver, pose: &BasePose) -> [f64; 3] {
     let b = pose.position_m();
     let mut w = [0.0; 3];
     for slot in ws.slots() {
         let f = solver.force_world(slot);
         let u = solver.displacement_world(slot);
-        let x = nodes_m[ws.node(slot).node.index()];
+        let x = ws.node(slot).x_ref_m;
         let p = [x[0] + u[0], x[1] + u[1]];
         w[0] -= f[0];
         w[1] -= f[1];
@@ -39,15 +39,14 @@ fn probe_wrench_rigid(ctx: &Ctx<'_>, ws: &WorkingSet, probe: &mut MixedSolver, p
     probe.copy_from(&ws.solver);
     let shape = &ctx.params.needle;
     let s_tip = ctx.setup.s_tip_m;
-    let nodes_m = ctx.model.mesh().nodes_m();
     let frame = Frame::rigid(pose);
     for slot in ws.slots() {
         let nn = ws.node(slot);
         probe.set_angle(slot, shape.frame_angle_at(pose, nn.s_prev_m))?;
-        prescribe(probe, slot, nn, frame, nodes_m[nn.node.index()], s_tip);
+        prescribe(probe, slot, nn, frame, nn.x_ref_m, s_tip);
     }
     probe.solve();
-    Ok(wrench_of(nodes_m, ws, probe, pose))
+    Ok(wrench_of(ws, probe, pose))
 }
 
 /// [`probe_wrench_rigid`] for a flexible needle: its shape moved rigidly with the base, the
@@ -62,7 +61,6 @@ fn probe_wrench_flexible(
 ) -> Result<[f64; 3], SimError> {
     probe.copy_from(&ws.solver);
     let s_tip = ctx.setup.s_tip_m;
-    let nodes_m = ctx.model.mesh().nodes_m();
     sc.probe_curve.copy_from(&fx.curve);
     sc.probe_curve.set_base(*pose);
     sc.nodes.clear();
@@ -74,12 +72,12 @@ fn probe_wrench_flexible(
             probe.set_angle(slot, a)?;
         }
         let frame = Frame::new(sc.probe_curve.point_at(s_ref), s_ref, probe.angle_rad(slot));
-        let lateral = prescribe(probe, slot, nn, frame, nodes_m[nn.node.index()], s_tip);
+        let lateral = prescribe(probe, slot, nn, frame, nn.x_ref_m, s_tip);
         sc.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_local_n: nn.force_ref_local_n });
     }
     sc.probe_coupling.update_compliance(&mut sc.probe_curve, probe, &sc.nodes);
     sc.probe_coupling.solve(probe, &sc.nodes);
-    Ok(wrench_of(nodes_m, ws, probe, pose))
+    Ok(wrench_of(ws, probe, pose))
 }
 
 /// The 3 × 3 Jacobian $J_{ij} = \partial w_i / \partial q_j$ of the wrench $w = (F_x, F_y, \tau)$

@@ -10,10 +10,15 @@
 //!    on the shaft, axial $u_t = s_a - t\cdot(X-b)$ holds a stuck node at its shaft point $s_a$
 //!    (the tip node at $s = L$).
 //! 3. **Release** (`capture.rs`): shaft nodes the tip has withdrawn past leave the working set.
-//! 4. **Capture** (`capture.rs`): nodes near the tip (spatial grid, never a scan) whose deformed
-//!    position the tip passed within the capture radius become needle nodes. If no node is
-//!    carried by the tip, the most distal one is (puncture: it is pushed until its axial
-//!    reaction exceeds the region's puncture force, or its cutting force inside a region).
+//! 4. **Capture** (`capture.rs`), by the [`ContactModel`]: with material points (the default of
+//!    scenes), when no contact is carried by the tip and the tip has advanced the spacing beyond
+//!    the most distal one, the material point the tip passed last tick becomes the tip's
+//!    contact, wherever it lies in its triangle ([`crate::contact`]); with the paper's node
+//!    capture, nodes near the tip (spatial grid, never a scan) whose deformed position the tip
+//!    passed within the capture radius become needle nodes, the most distal one carried by the
+//!    tip when none is. The tip's contact is pushed until its axial reaction exceeds the
+//!    region's puncture force (or its cutting force inside a region). A contact whose columns
+//!    are not cached is admitted a tick later unless [`SimParams::columns_in_step`].
 //! 5. **Friction** (`active_set.rs`): each shaft node gets the integral of the friction
 //!    distribution over its tributary segment (see [`crate::needle`]).
 //! 6. **Active set** (`active_set.rs`): solve; stuck nodes whose axial force exceeds static
@@ -70,7 +75,7 @@ use crate::needle::BasePose;
 pub use divergence::DivergenceBounds;
 pub use error::{Divergence, SimError};
 pub use output::{LocalCondition, NeedleNodeOut, SimStats, StateSnapshot, StepOutput, TargetOut};
-pub use params::{SimParams, TargetParams, param_limits};
+pub use params::{ContactModel, SimParams, TargetParams, param_limits};
 pub use state::NodeState;
 
 use frames::Geometry;
@@ -250,34 +255,38 @@ impl Simulation {
             st.stats.rejected_poses += 1;
             return Err(SimError::NonFinitePose { tick: st.tick, x_m: commanded.x_m, y_m: commanded.y_m, theta_rad: commanded.theta_rad });
         }
-        let nodes_m = model.mesh().nodes_m();
         let s_tip = setup.s_tip_m;
         let prev_tip = Geometry::new(params, st.pose, st.flex.as_ref()).tip();
         let clamped = frames::apply_pose(params, commanded, &mut st.pose, &mut st.ws, st.flex.as_mut())?;
-        frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), nodes_m, &mut st.ws);
+        frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
         capture::release_withdrawn(s_tip, &mut st.ws, &mut st.stats)?;
-        capture::capture(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip)?;
+        match params.contact {
+            ContactModel::Nodes => capture::capture(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip)?,
+            ContactModel::MaterialPoints { spacing_m } => {
+                capture::capture_points(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip, spacing_m)?
+            }
+        }
         let geo = Geometry::new(params, st.pose, st.flex.as_ref());
-        active_set::update_friction(params, &geo, nodes_m, &mut st.ws, &mut sc.active_set.order, false, 0.0);
+        active_set::update_friction(params, &geo, &mut st.ws, &mut sc.active_set.order, false, 0.0);
         let (mut iterations, mut converged) = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
         // A flexible needle comes to equilibrium with the tick's forces; where that moves it off
         // the linearised prediction by more than SHAPE_GAP_TOL_M, the tissue is solved again on
         // the new shape (a bounded Picard iteration).
         for pass in 1..=flexible::SHAPE_PASSES {
             let (Some(fx), Some(fsc)) = (st.flex.as_mut(), sc.flex.as_mut()) else { break };
-            let gap = flexible::settle_shape(nodes_m, st.pose, &params.needle, &mut st.ws, fx, fsc, &mut st.stats.shape_unconverged);
+            let gap = flexible::settle_shape(st.pose, &params.needle, &mut st.ws, fx, fsc, &mut st.stats.shape_unconverged);
             if gap <= flexible::SHAPE_GAP_TOL_M || pass == flexible::SHAPE_PASSES {
                 break;
             }
             flexible::refresh_frames(&fx.curve, &mut st.ws, s_tip)?;
-            frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), nodes_m, &mut st.ws);
+            frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
             let (it, conv) = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
             iterations += it;
             converged &= conv;
             st.stats.shape_passes += 1;
         }
         let geo = Geometry::new(params, st.pose, st.flex.as_ref());
-        if let Err((what, value, bound)) = divergence::check(&setup.bounds, nodes_m, &geo, &st.ws) {
+        if let Err((what, value, bound)) = divergence::check(&setup.bounds, &geo, &st.ws) {
             let d = Diverged { tick: st.tick, what, value, bound };
             st.diverged = Some(d);
             return Err(d.into());

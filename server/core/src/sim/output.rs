@@ -3,6 +3,7 @@
 //! the static problem of the last step ([`StateSnapshot`]).
 
 use crate::compliance::ComplianceCache;
+use crate::contact::ContactPoint;
 use crate::ids::{Axis, Slot};
 use crate::mixed::Condition;
 use crate::needle::BasePose;
@@ -13,10 +14,16 @@ use super::param_limits;
 use super::state::{NodeState, State, WorkingSet};
 use super::{Ctx, SimParams};
 
-/// One needle node in a step's output.
+/// One needle contact (a node, or a material point) in a step's output.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NeedleNodeOut {
+    /// The node, or for a material point the node of its triangle with the largest weight
+    /// ([`ContactPoint::nearest_node`]): for clients that know only nodes.
     pub node_idx: usize,
+    /// Where the contact sits in the mesh.
+    pub contact: ContactPoint,
+    /// Its reference (undeformed) position.
+    pub reference_m: [f64; 2],
     pub state: NodeState,
     /// Deformed position.
     pub position_m: [f64; 2],
@@ -80,8 +87,15 @@ pub struct StepOutput {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct SimStats {
     pub ticks: u64,
-    /// Columns a step had to compute itself (the prefetch did not have them ready).
+    /// Columns a step had to compute itself (the prefetch did not have them ready;
+    /// [`super::SimParams::columns_in_step`]).
     pub column_misses: u64,
+    /// Ticks at which a new contact waited for its columns (admitted at a later tick; without
+    /// [`super::SimParams::columns_in_step`]).
+    pub column_deferrals: u64,
+    /// Material points dropped because their conditions depended on the other points' (a
+    /// singular pivot; not expected with the spacing rule of [`super::ContactModel`]).
+    pub dependent_points: u64,
     pub clamped_ticks: u64,
     pub rejected_poses: u64,
     pub unconverged_ticks: u64,
@@ -121,10 +135,18 @@ impl SimStats {
     }
 }
 
-/// One needle node's conditions in its frame, as in the exchange format's `prescribed_local`.
+/// One needle contact's conditions in its frame, as in the exchange format's
+/// `prescribed_local` (a node) or `points` (a material point).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LocalCondition {
+    /// The node, or the material point's nearest node ([`NeedleNodeOut::node_idx`]).
     pub node_idx: usize,
+    /// Where the contact sits; for a material point its reference position is `reference_m`.
+    pub contact: ContactPoint,
+    pub reference_m: [f64; 2],
+    /// The world force prescribed on its force-kind components (friction, a bevel's lateral
+    /// force), N.
+    pub load_n: [f64; 2],
     pub angle_rad: f64,
     pub ut_m: Option<f64>,
     pub un_m: Option<f64>,
@@ -134,8 +156,15 @@ pub struct LocalCondition {
 #[derive(Debug, Clone, PartialEq)]
 pub struct StateSnapshot {
     pub conditions: Vec<LocalCondition>,
-    pub loads_n: Vec<(usize, [f64; 2])>,
     pub needle_nodes: Vec<NeedleNodeOut>,
+}
+
+impl StateSnapshot {
+    /// The loads of node contacts as nodal forces (node, world force N), for a nodal static
+    /// problem ([`crate::StaticProblem`]); material points' loads are in their conditions.
+    pub fn node_loads_n(&self) -> Vec<(usize, [f64; 2])> {
+        self.conditions.iter().filter(|c| c.contact.as_node().is_some() && c.load_n != [0.0; 2]).map(|c| (c.node_idx, c.load_n)).collect()
+    }
 }
 
 impl StepOutput {
@@ -198,7 +227,7 @@ pub(super) fn write_output(ctx: &Ctx<'_>, st: &mut State, out: &mut StepOutput, 
         let frame = geo.slot_frame(ws, slot);
         let f_local = ws.solver.force_local(slot);
         let nn = ws.node_mut(slot);
-        let x = nodes_m[nn.node.index()];
+        let x = nn.x_ref_m;
         let p = [x[0] + u[0], x[1] + u[1]];
         let (s, _) = frame.coords(p);
         nn.s_prev_m = s;
@@ -212,7 +241,15 @@ pub(super) fn write_output(ctx: &Ctx<'_>, st: &mut State, out: &mut StepOutput, 
             NodeState::Slipping => n_slip += 1,
             NodeState::Tip => n_tip += 1,
         }
-        out.needle_nodes.push(NeedleNodeOut { node_idx: nn.node.index(), state: nn.state, position_m: p, force_n: f, s_m: s });
+        out.needle_nodes.push(NeedleNodeOut {
+            node_idx: nn.contact.nearest_node().index(),
+            contact: nn.contact,
+            reference_m: x,
+            state: nn.state,
+            position_m: p,
+            force_n: f,
+            s_m: s,
+        });
     }
     write_shape(&geo, &mut out.shape_m);
     out.tip_angle_rad = geo.curve.map_or(pose.theta_rad, |c| c.tip_angle_rad());
@@ -252,25 +289,34 @@ pub(super) fn write_output(ctx: &Ctx<'_>, st: &mut State, out: &mut StepOutput, 
 /// The static problem the last step solved (see [`super::Simulation::snapshot`]). Allocates.
 pub(super) fn snapshot(ws: &WorkingSet, out: &StepOutput) -> StateSnapshot {
     let mut conditions = Vec::with_capacity(ws.len());
-    let mut loads_n = Vec::new();
     for slot in ws.slots() {
-        let node_idx = ws.node(slot).node.index();
+        let nn = ws.node(slot);
         let angle = ws.solver.angle_rad(slot);
         let val = |a| (ws.solver.condition(slot, a) == Condition::Displacement).then(|| ws.solver.prescribed_value(slot, a));
-        conditions.push(LocalCondition { node_idx, angle_rad: angle, ut_m: val(Axis::Axial), un_m: val(Axis::Lateral) });
+        let mut v = [0.0; 2];
         for axis in Axis::BOTH {
             if ws.solver.condition(slot, axis) == Condition::Force {
-                let mut v = [0.0; 2];
                 v[axis] = ws.solver.prescribed_value(slot, axis);
-                loads_n.push((node_idx, crate::mixed::local_to_world(v, angle)));
             }
         }
+        conditions.push(LocalCondition {
+            node_idx: nn.contact.nearest_node().index(),
+            contact: nn.contact,
+            reference_m: nn.x_ref_m,
+            load_n: crate::mixed::local_to_world(v, angle),
+            angle_rad: angle,
+            ut_m: val(Axis::Axial),
+            un_m: val(Axis::Lateral),
+        });
     }
-    StateSnapshot { conditions, loads_n, needle_nodes: out.needle_nodes.clone() }
+    StateSnapshot { conditions, needle_nodes: out.needle_nodes.clone() }
 }
 
 /// The displacement of every DOF from the working forces last written out, $O(n\,d)$.
 pub(super) fn displacement_field_into(ws: &WorkingSet, cache: &ComplianceCache, out: &mut [f64]) {
-    let forces = Slot::all(ws.len()).map(|k| (ws.node(k).node.index(), ws.f_world[k.index()]));
-    cache.displacement_from_forces_into(forces, out).expect("working nodes are cached");
+    let forces = Slot::all(ws.len()).flat_map(|k| {
+        let f = ws.f_world[k.index()];
+        ws.node(k).contact.terms().map(move |(j, w)| (j.index(), [w * f[0], w * f[1]]))
+    });
+    cache.displacement_from_forces_into(forces, out).expect("working contacts are cached");
 }

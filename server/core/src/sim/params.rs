@@ -14,11 +14,46 @@ pub struct TargetParams {
     pub radius_m: f64,
 }
 
+/// How the needle holds the tissue: which points of the tissue become needle contacts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactModel {
+    /// The paper's scheme: a mesh node whose deformed position the tip passes within
+    /// [`SimParams::capture_radius_m`] becomes a needle node (put onto the shaft for a rigid
+    /// needle). Reproduces the paper; the working set grows like $1/h$ as the mesh is refined.
+    Nodes,
+    /// Contact at material points: a point of the tissue is taken at the tip each time the tip
+    /// has advanced `spacing_m` beyond the most distal contact, wherever it lies in its
+    /// triangle ([`crate::contact`]); no more than two points of the working set per triangle
+    /// (three collinear points would prescribe a linear field three times). The working set
+    /// depends on the inserted length, not on the mesh.
+    MaterialPoints {
+        /// Arc length (m) between consecutive contact points along the shaft.
+        spacing_m: f64,
+    },
+}
+
+impl ContactModel {
+    /// The default spacing of material points (m).
+    pub const DEFAULT_SPACING_M: f64 = 0.002;
+    /// Material points at the default spacing.
+    pub const fn default_points() -> Self {
+        ContactModel::MaterialPoints { spacing_m: Self::DEFAULT_SPACING_M }
+    }
+}
+
 /// Everything the simulation needs besides the tissue model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimParams {
     pub needle: NeedleShape,
     pub initial_pose: BasePose,
+    /// Which points of the tissue the needle holds.
+    pub contact: ContactModel,
+    /// What a step does when a new contact's compliance columns are not cached: compute them
+    /// itself (`true`, counted in [`super::SimStats::column_misses`]), or admit the contact at a
+    /// later tick once a worker or [`super::Simulation::prefetch_columns`] has provided them
+    /// (`false`, counted in [`super::SimStats::column_deferrals`]): a real-time step then never
+    /// runs a sparse solve.
+    pub columns_in_step: bool,
     /// A node whose deformed position lies within this lateral distance of the shaft line when
     /// the tip passes it becomes a needle node.
     pub capture_radius_m: f64,
@@ -66,6 +101,11 @@ impl SimParams {
             if !(v.is_finite() && v > 0.0) {
                 return bad(format!("{name} = {v} must be finite and > 0"));
             }
+        }
+        if let ContactModel::MaterialPoints { spacing_m } = self.contact
+            && !(spacing_m.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&spacing_m))
+        {
+            return bad(format!("contact spacing_m = {spacing_m} must be in {MIN_CONTACT_SPACING_M}..={MAX_CONTACT_SPACING_M} m"));
         }
         if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
             return bad(format!("lookahead_m = {} must be finite and ≥ 0", self.lookahead_m));
@@ -127,6 +167,11 @@ pub mod param_limits {
     pub const MAX_NEEDLE_NODES: usize = 4096;
     /// Largest working-set capacity with a flexible needle (its coupling is dense too).
     pub const MAX_NEEDLE_NODES_FLEXIBLE: usize = 1024;
+    /// Smallest spacing of material contact points (m): 10 µm, far below any element a mesh
+    /// limit admits along a needle; the per-triangle rule bounds the density on coarser meshes.
+    pub const MIN_CONTACT_SPACING_M: f64 = 1e-5;
+    /// Largest spacing of material contact points (m).
+    pub const MAX_CONTACT_SPACING_M: f64 = 1.0;
     /// Largest bound on the stick/slip iterations of one tick.
     pub const MAX_ACTIVE_SET_ITERATIONS: usize = 10_000;
 

@@ -29,6 +29,14 @@ pub(super) struct Setup {
     pub bounds: DivergenceBounds,
     /// The arc length of the tip, $L$.
     pub s_tip_m: f64,
+    /// The triangles around each node (CSR: `node_tris[node_tri_start[j]..node_tri_start[j + 1]]`).
+    pub node_tri_start: Vec<usize>,
+    pub node_tris: Vec<usize>,
+    /// Each triangle's diameter (its longest edge, m).
+    pub tri_diam_m: Vec<f64>,
+    /// The longest edge of the mesh (m): every node of a triangle a line crosses lies within it
+    /// of the line.
+    pub max_edge_m: f64,
 }
 
 impl Setup {
@@ -44,7 +52,21 @@ impl Setup {
             targets.push(LocatedTarget { nodes, bary, radius_m: t.radius_m });
         }
         let (is_boundary, mean_edge) = boundary_nodes(mesh);
+        let (node_tri_start, node_tris) = node_triangles(mesh);
+        let tri_diam_m: Vec<f64> = mesh
+            .triangles()
+            .iter()
+            .map(|t| {
+                let p = t.map(|i| mesh.nodes_m()[i]);
+                (0..3).map(|k| (p[k][0] - p[(k + 1) % 3][0]).hypot(p[k][1] - p[(k + 1) % 3][1])).fold(0.0, f64::max)
+            })
+            .collect();
+        let max_edge_m = tri_diam_m.iter().copied().fold(0.0, f64::max);
         Ok(Self {
+            node_tri_start,
+            node_tris,
+            tri_diam_m,
+            max_edge_m,
             grid: NodeGrid::new(mesh.nodes_m(), mean_edge.max(1e-9)),
             is_boundary,
             node_region: node_regions(mesh),
@@ -53,6 +75,62 @@ impl Setup {
             s_tip_m: params.needle.tip_s_m(),
         })
     }
+}
+
+impl Setup {
+    /// The triangle containing `p` (m) and its barycentric weights, searched among the
+    /// triangles around the grid's nodes within `reach_m` of `p` (no mesh scan; `candidates` is
+    /// the caller's buffer). Points on an edge or a vertex belong to the first triangle found.
+    /// `None` outside the mesh.
+    pub fn locate_near(&self, mesh: &Mesh, p: [f64; 2], reach_m: f64, candidates: &mut Vec<usize>) -> Option<(usize, [f64; 3])> {
+        candidates.clear();
+        self.grid.query_into(p, reach_m, candidates);
+        let mut best: Option<(usize, [f64; 3], f64)> = None;
+        for &j in candidates.iter() {
+            for &ti in &self.node_tris[self.node_tri_start[j]..self.node_tri_start[j + 1]] {
+                let bary = barycentric(mesh, ti, p);
+                let worst = bary[0].min(bary[1]).min(bary[2]);
+                if best.as_ref().is_none_or(|b| worst > b.2) {
+                    best = Some((ti, bary, worst));
+                }
+                if worst >= 0.0 {
+                    return Some((ti, bary));
+                }
+            }
+        }
+        best.filter(|b| b.2 >= -1e-12).map(|b| (b.0, b.1))
+    }
+}
+
+/// The barycentric weights of `p` in triangle `ti` (in the triangle's node order).
+pub(super) fn barycentric(mesh: &Mesh, ti: usize, p: [f64; 2]) -> [f64; 3] {
+    let [a, b, c] = mesh.triangles()[ti].map(|i| mesh.nodes_m()[i]);
+    let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    let l1 = ((b[0] - p[0]) * (c[1] - p[1]) - (c[0] - p[0]) * (b[1] - p[1])) / det;
+    let l2 = ((c[0] - p[0]) * (a[1] - p[1]) - (a[0] - p[0]) * (c[1] - p[1])) / det;
+    [l1, l2, 1.0 - l1 - l2]
+}
+
+/// The triangles around each node, in CSR form (start offsets, triangle indices).
+fn node_triangles(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
+    let mut start = vec![0usize; mesh.n_nodes() + 1];
+    for t in mesh.triangles() {
+        for &n in t {
+            start[n + 1] += 1;
+        }
+    }
+    for j in 0..mesh.n_nodes() {
+        start[j + 1] += start[j];
+    }
+    let mut fill = start.clone();
+    let mut tris = vec![0usize; start[mesh.n_nodes()]];
+    for (ti, t) in mesh.triangles().iter().enumerate() {
+        for &n in t {
+            tris[fill[n]] = ti;
+            fill[n] += 1;
+        }
+    }
+    (start, tris)
 }
 
 /// The boundary flag of every node (on an edge used by one triangle only) and the mean edge
@@ -122,16 +200,11 @@ fn node_regions(mesh: &Mesh) -> Vec<usize> {
 fn locate(mesh: &Mesh, p: [f64; 2]) -> Option<([usize; 3], [f64; 3])> {
     let mut best: Option<([usize; 3], [f64; 3], f64)> = None;
     for (ti, t) in mesh.triangles().iter().enumerate() {
-        let [a, b, c] = t.map(|i| mesh.nodes_m()[i]);
-        let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
-        let l1 = ((b[0] - p[0]) * (c[1] - p[1]) - (c[0] - p[0]) * (b[1] - p[1])) / det;
-        let l2 = ((c[0] - p[0]) * (a[1] - p[1]) - (a[0] - p[0]) * (c[1] - p[1])) / det;
-        let l3 = 1.0 - l1 - l2;
-        let worst = l1.min(l2).min(l3);
+        let bary = barycentric(mesh, ti, p);
+        let worst = bary[0].min(bary[1]).min(bary[2]);
         if best.as_ref().is_none_or(|bst| worst > bst.2) {
-            best = Some((*t, [l1, l2, l3], worst));
+            best = Some((*t, bary, worst));
         }
-        let _ = ti;
     }
     best.filter(|b| b.2 >= -1e-9).map(|b| (b.0, b.1))
 }

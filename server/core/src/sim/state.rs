@@ -4,6 +4,7 @@
 
 use crate::beam::NeedleCurve;
 use crate::compliance::ComplianceCache;
+use crate::contact::ContactPoint;
 use crate::ids::{NodeIdx, Slot};
 use crate::mixed::{MixedError, MixedSolver};
 use crate::needle::{BasePose, FlexibleNeedle};
@@ -32,10 +33,14 @@ impl NodeState {
     }
 }
 
-/// One needle node: a mesh node in the working set and its contact state.
+/// One needle contact: a mesh node or a material point in the working set, and its contact
+/// state. (Named after the paper's needle nodes; with material-point contact it is a point.)
 #[derive(Debug, Clone, Copy)]
 pub(super) struct NeedleNode {
-    pub node: NodeIdx,
+    /// Where the contact sits in the mesh.
+    pub contact: ContactPoint,
+    /// Its reference (undeformed) position $X$.
+    pub x_ref_m: [f64; 2],
     pub state: NodeState,
     /// Shaft point a stuck node is held at.
     pub anchor_s_m: f64,
@@ -75,10 +80,10 @@ impl NeedleNode {
     }
 }
 
-/// The working set: the needle nodes by slot, the solver whose slots they are, and the map
-/// from mesh node to slot. Architecture invariant: `nodes[k]`, the solver's slot `k` and
-/// `slot_of_node[nodes[k].node]` always agree (only [`WorkingSet::push`] and
-/// [`WorkingSet::remove`] change them).
+/// The working set: the needle contacts by slot, the solver whose slots they are, and the map
+/// from mesh node to slot for node contacts. Architecture invariant: `nodes[k]`, the solver's
+/// slot `k` and (for a node contact) `slot_of_node[nodes[k].contact]` always agree (only
+/// [`WorkingSet::push`] and [`WorkingSet::remove`] change them).
 pub(super) struct WorkingSet {
     pub solver: MixedSolver,
     /// The needle nodes, indexed by slot.
@@ -121,7 +126,7 @@ impl WorkingSet {
     pub fn node_mut(&mut self, slot: Slot) -> &mut NeedleNode {
         &mut self.nodes[slot.index()]
     }
-    /// Whether mesh node `node` is a needle node.
+    /// Whether mesh node `node` is a needle node (a node contact).
     #[inline]
     pub fn contains(&self, node: NodeIdx) -> bool {
         self.slot_of_node[node.index()].is_some()
@@ -129,7 +134,9 @@ impl WorkingSet {
     /// Records `nn`, just added to the solver in `slot` (the next free one).
     pub fn push(&mut self, slot: Slot, nn: NeedleNode) {
         debug_assert_eq!(slot.index(), self.nodes.len(), "slots are dense");
-        self.slot_of_node[nn.node.index()] = Some(slot);
+        if let Some(j) = nn.contact.as_node() {
+            self.slot_of_node[j.index()] = Some(slot);
+        }
         self.nodes.push(nn);
         self.f_world.push([0.0; 2]);
         self.u_world.push([0.0; 2]);
@@ -143,9 +150,13 @@ impl WorkingSet {
         let gone = self.nodes.swap_remove(k);
         self.f_world.swap_remove(k);
         self.u_world.swap_remove(k);
-        self.slot_of_node[gone.node.index()] = None;
-        if k < self.nodes.len() {
-            self.slot_of_node[self.nodes[k].node.index()] = Some(slot);
+        if let Some(j) = gone.contact.as_node() {
+            self.slot_of_node[j.index()] = None;
+        }
+        if k < self.nodes.len()
+            && let Some(j) = self.nodes[k].contact.as_node()
+        {
+            self.slot_of_node[j.index()] = Some(slot);
         }
         Ok(())
     }
