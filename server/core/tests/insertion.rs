@@ -387,3 +387,39 @@ fn overflows_of_fixed_capacities_are_counted() {
     );
     sim.step(BasePose::new(0.05, 0.17, -FRAC_PI_2)).unwrap();
 }
+
+/// Issue 15: a tick's active-set work is bounded. A needle holding ~200 nodes (node capture
+/// with a 5 mm radius on a 60 × 60 mesh) turned by 0.05 rad in single ticks changes the
+/// conditions of many nodes at once: the stick/slip iteration stops at the per-tick budget of
+/// O(d²) updates (counted), every tick still solves, and the run goes on.
+#[test]
+fn issue_15_the_per_tick_update_budget_bounds_a_pathological_tick() {
+    use needlesim_core::sim::param_limits::MAX_UPDATES_PER_TICK;
+    let model = phantom(60);
+    let p = SimParams {
+        capture_radius_m: 0.005,
+        max_needle_nodes: 400,
+        max_active_set_iterations: 10_000,
+        ..params(RegionNeedleParams::default(), top_base())
+    };
+    let mut sim = Simulation::new(model, p).unwrap();
+    run(&mut sim, vertical(0.205, 0.14, 0.05));
+    let d = sim.output().needle_nodes.len();
+    assert!(d > 150, "the needle holds {d} nodes");
+    let mut worst = 0;
+    for k in 0..40 {
+        let theta = -FRAC_PI_2 + if k % 2 == 0 { 0.05 } else { -0.05 };
+        let before = sim.solver().stats();
+        let o = sim.step(BasePose::new(0.05, 0.14, theta)).unwrap().clone();
+        let after = sim.solver().stats();
+        let updates = (after.n_pivots + after.n_rotations + after.n_added + after.n_removed)
+            - (before.n_pivots + before.n_rotations + before.n_added + before.n_removed);
+        worst = worst.max(updates);
+        assert!(o.force_n.iter().all(|f| f.is_finite()));
+        // The check runs before each pass: a pass can add at most one update per contact, plus
+        // the frame rotations and captures that precede the iteration.
+        assert!(updates <= MAX_UPDATES_PER_TICK + 4 * d as u64, "tick {k}: {updates} updates with d = {d}");
+    }
+    let st = sim.stats();
+    assert!(st.budget_exhausted_ticks > 0 && st.unconverged_ticks >= st.budget_exhausted_ticks, "{st:?} (worst {worst} updates)");
+}

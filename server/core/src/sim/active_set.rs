@@ -8,6 +8,7 @@ use crate::mixed::Condition;
 
 use super::flexible::{self, FlexScratch};
 use super::frames::Geometry;
+use super::param_limits::MAX_UPDATES_PER_TICK;
 use super::state::{FlexState, NodeState, State, WorkingSet};
 use super::{Ctx, SimError, SimParams};
 
@@ -96,6 +97,13 @@ pub(super) fn update_friction(
     max_change
 }
 
+/// The $O(d^2)$ updates of the working solver (pivots, rotations, additions, removals) since
+/// the tick began.
+fn updates_this_tick(st: &State) -> u64 {
+    let s = st.ws.solver.stats();
+    (s.n_pivots + s.n_rotations + s.n_added + s.n_removed).saturating_sub(st.updates_at_tick_start)
+}
+
 /// The flexible needle's state and scratch together, if the needle is flexible.
 fn flex_pair<'a>(fx: &'a mut Option<FlexState>, sc: &'a mut Option<FlexScratch>) -> Option<(&'a mut FlexState, &'a mut FlexScratch)> {
     fx.as_mut().zip(sc.as_mut())
@@ -123,6 +131,13 @@ pub(super) fn resolve_active_set(
     }
     let max_iter = params.max_active_set_iterations;
     for iter in 1..=max_iter {
+        if updates_this_tick(st) > MAX_UPDATES_PER_TICK {
+            // The tick's budget of O(d²) updates is spent: solve with the conditions as they
+            // are (the next tick goes on from them) and say so.
+            flexible::solve_working_set(&mut st.ws, flex_pair(&mut st.flex, flex_sc), s_tip, tick);
+            st.stats.budget_exhausted_ticks += 1;
+            return Ok((iter, false));
+        }
         flexible::solve_working_set(&mut st.ws, flex_pair(&mut st.flex, flex_sc), s_tip, tick);
         // Friction shares follow the slipping nodes' positions (a node sliding back lengthens
         // its tributary segment): a short fixed-point iteration, contracting when the friction

@@ -136,6 +136,7 @@ impl Simulation {
             tick: 0,
             stats: SimStats::default(),
             diverged: None,
+            updates_at_tick_start: 0,
         };
         let scratch = Scratch::new(&model, &params);
         Ok(Self { model, params, setup, state, scratch, out })
@@ -257,6 +258,8 @@ impl Simulation {
         }
         let s_tip = setup.s_tip_m;
         let prev_tip = Geometry::new(params, st.pose, st.flex.as_ref()).tip();
+        let us = st.ws.solver.stats();
+        st.updates_at_tick_start = us.n_pivots + us.n_rotations + us.n_added + us.n_removed;
         let clamped = frames::apply_pose(params, commanded, &mut st.pose, &mut st.ws, st.flex.as_mut())?;
         frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
         capture::release_withdrawn(s_tip, &mut st.ws, &mut st.stats)?;

@@ -115,6 +115,9 @@ pub struct SimStats {
     /// Spatial-grid queries that outgrew their reserved buffer
     /// ([`param_limits::NEAR_TIP_CANDIDATES`]): each one allocated inside a step.
     pub candidate_growths: u64,
+    /// Ticks whose stick/slip iteration stopped at the per-tick update budget
+    /// ([`param_limits::MAX_UPDATES_PER_TICK`]).
+    pub budget_exhausted_ticks: u64,
     /// Flexible needle: loads or points the needle curve had to leave out past its capacity
     /// (the working set's; never expected).
     pub curve_capacity_drops: u64,

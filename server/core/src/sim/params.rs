@@ -175,6 +175,14 @@ pub mod param_limits {
     /// Largest bound on the stick/slip iterations of one tick.
     pub const MAX_ACTIVE_SET_ITERATIONS: usize = 10_000;
 
+    /// The per-tick budget of $O(d^2)$ updates of the working solver (pivots, frame rotations,
+    /// additions, removals): the stick/slip iteration stops once a tick has made more, solves
+    /// with the conditions as they are (the next tick goes on from them) and counts the tick in
+    /// [`crate::sim::SimStats::budget_exhausted_ticks`] (and as unconverged). A turning needle
+    /// rotates every contact once and pivots a few (tens of updates at 2 mm spacing); only
+    /// pathological input reaches it. At $d = 120$ local DOFs one update is ~15k flops, so the
+    /// budget bounds a tick's active-set work near 10 M flops.
+    pub const MAX_UPDATES_PER_TICK: u64 = 640;
     /// Capacity of one tick's capture list: nodes the tip passed within the capture radius in
     /// one tick (a few at a capture radius below the mesh spacing). Candidates past it are left
     /// for later ticks and counted in [`crate::sim::SimStats::capture_overflow`].

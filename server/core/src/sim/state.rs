@@ -208,4 +208,7 @@ pub(super) struct State {
     pub tick: u64,
     pub stats: SimStats,
     pub diverged: Option<Diverged>,
+    /// The solver's update count (pivots, rotations, additions, removals) when the tick began:
+    /// the base of the per-tick budget ([`super::param_limits::MAX_UPDATES_PER_TICK`]).
+    pub updates_at_tick_start: u64,
 }
