@@ -437,6 +437,15 @@ fn check_values(f: &SceneFile) -> Result<()> {
     if !n.base.iter().all(|v| v.is_finite()) {
         bail!("needle.base = [{}, {}, {}]: must be finite", n.base[0], n.base[1], n.base[2]);
     }
+    if let Some(s) = n.contact_spacing_m {
+        use needlesim_core::sim::param_limits::{MAX_CONTACT_SPACING_M, MIN_CONTACT_SPACING_M};
+        if !(s.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&s)) {
+            bail!("needle.contact_spacing_m = {s}: must be between {MIN_CONTACT_SPACING_M} and {MAX_CONTACT_SPACING_M} m");
+        }
+        if n.contact == ContactSpec::Nodes {
+            bail!("needle.contact_spacing_m is set but needle.contact = \"nodes\": the spacing applies to material points only");
+        }
+    }
     if let Some(r) = n.capture_radius_m
         && !(r.is_finite() && r > 0.0)
     {
@@ -759,6 +768,9 @@ mod tests {
             (base_line, "max_nodes = 0\nbase = [0.05, 0.205, 0]", "needle.max_nodes = 0: must be in 1..=4096"),
             (base_line, "max_nodes = 1000000000\nbase = [0.05, 0.205, 0]", "needle.max_nodes = 1000000000: must be in 1..=4096"),
             (base_line, "capture_radius_m = -0.001\nbase = [0.05, 0.205, 0]", "needle.capture_radius_m = -0.001: must be finite and > 0"),
+            ("contact = \"nodes\"", "contact_spacing_m = 0", "needle.contact_spacing_m = 0: must be between 0.00001 and 1 m"),
+            ("contact = \"nodes\"", "contact = \"nodes\"\ncontact_spacing_m = 0.001", "the spacing applies to material points only"),
+            ("contact = \"nodes\"", "contact = \"edges\"", "unknown variant `edges`, expected `points` or `nodes`"),
             ("length_m = 0.1", "length_m = inf", "needle.length_m = inf: must be finite and > 0"),
             ("radius_m = 0.002", "radius_m = nan", "targets[0] ('centre').radius_m = NaN: must be finite and ≥ 0"),
             ("tick_rate_hz = 1000", "tick_rate_hz = 1e9", "tick_rate_hz = 1000000000: must be between 100 and 10000"),
