@@ -448,7 +448,7 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
         tick_rate_hz: or(u.tick_rate_hz, 1000.0),
         max_base_step_m: 0.002,
         max_base_step_rad: 0.05,
-        max_active_set_iterations: 12,
+        max_active_set_iterations: 64,
         lookahead_m: 0.01,
     };
     // Validate the needle parameters now, so the error reaches the caller as INVALID_ARGUMENT.

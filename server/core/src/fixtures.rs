@@ -51,7 +51,7 @@ pub fn phantom(n: usize) -> Arc<TissueModel> {
 /// The tests' needle set-up in the phantom: `needle` pointing down from 5 mm above the top
 /// centre, the paper's node capture with a 1.5 mm capture radius (columns computed in the step
 /// when missing), room for 64 needle nodes, one region of default friction,
-/// no targets, 1 kHz, 2 mm / 0.05 rad per tick at most, 12 active-set iterations, 1 cm
+/// no targets, 1 kHz, 2 mm / 0.05 rad per tick at most, 64 active-set iterations, 1 cm
 /// lookahead. Tests change what they need with struct update syntax.
 pub fn phantom_params(needle: NeedleShape) -> SimParams {
     SimParams {
@@ -66,7 +66,7 @@ pub fn phantom_params(needle: NeedleShape) -> SimParams {
         tick_rate_hz: 1000.0,
         max_base_step_m: 0.002,
         max_base_step_rad: 0.05,
-        max_active_set_iterations: 12,
+        max_active_set_iterations: 64,
         lookahead_m: 0.01,
     }
 }

@@ -297,8 +297,10 @@ fn d_step_m() -> f64 {
 fn d_step_rad() -> f64 {
     0.05
 }
+/// A slip front crossing the working set takes one pass per contact it reaches (60 mm at 2 mm
+/// spacing: 30); the per-tick update budget bounds the work whatever the bound.
 fn d_iters() -> usize {
-    12
+    64
 }
 fn d_lookahead() -> f64 {
     0.01
