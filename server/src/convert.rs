@@ -75,6 +75,7 @@ pub fn frame_from_record(r: &TickRecord, target_names: &[String], missed_ticks: 
                 } as i32,
                 position_m: v2(n.position_m),
                 force_n: v2(n.force_n),
+                material_point: n.n_contact > 1,
             })
             .collect(),
         targets: r.targets().iter().enumerate().map(|(i, t)| target_state(target_names, i, t.position_m, t.distance_m, t.hit)).collect(),

@@ -10,6 +10,7 @@ mod bench;
 mod bridge_e2e;
 mod cli;
 mod cli_errors;
+mod contact_points;
 mod flexible_e2e;
 mod identify_fit;
 mod identify_track;

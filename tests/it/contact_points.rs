@@ -1,0 +1,57 @@
+//! Issue 15 through the real server: a live session of a scene with the default contact (the
+//! bevel-tip example: material points) holds the tissue at material points, says so in every
+//! frame, and never computes a compliance column inside a tick.
+
+use needlesim_proto::v1 as pb;
+use needlesim_tests::{ServerProcess, connect, create_example_session, with_token};
+
+#[tokio::test]
+async fn issue_15_a_live_session_holds_the_tissue_at_material_points() {
+    let _turn = needlesim_tests::REALTIME.lock().await;
+    let server = ServerProcess::start(&[]);
+    let ch = connect(&server).await;
+    let created = create_example_session(&ch, "bevel-tip").await;
+    let sid = created.session.unwrap().session_id;
+    let mut observe = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+    let mut obs = observe
+        .observe(with_token(
+            pb::ObserveRequest { session_id: sid.clone(), rate_hz: 60.0, include_displacements: false },
+            &created.observer_token,
+        ))
+        .await
+        .unwrap()
+        .into_inner();
+    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    // 25 mm down at 25 mm/s (the tip starts 5 mm above the surface).
+    for k in 1..=50 {
+        let pose = pb::Pose2 { x_m: 0.05, y_m: 0.205 - 5e-4 * k as f64, theta_rad: -std::f64::consts::FRAC_PI_2 };
+        control
+            .set_pose(with_token(
+                pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose), client_id: String::new(), take_over: false },
+                &created.controller_token,
+            ))
+            .await
+            .unwrap();
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
+    }
+    let deadline = tokio::time::Instant::now() + std::time::Duration::from_secs(5);
+    let frame = loop {
+        assert!(tokio::time::Instant::now() < deadline, "no frame from after the insertion");
+        let f = obs.message().await.expect("frames").expect("the stream goes on");
+        if f.base.is_some_and(|b| b.y_m < 0.1801) {
+            break f;
+        }
+    };
+    assert!(!frame.faulted, "{:?}", frame.fault);
+    let contacts = &frame.needle_nodes;
+    // 20 mm in the tissue at 2 mm spacing (at most one point per 3.3 mm grid triangle: ≥ 4).
+    assert!(contacts.len() >= 4, "the needle holds the tissue at {} contacts", contacts.len());
+    assert!(contacts.iter().all(|n| n.material_point), "every contact is a material point: {contacts:?}");
+    assert!(frame.force_axial_n < 0.0, "the tissue resists the insertion: {} N", frame.force_axial_n);
+    let stats = pb::session_service_client::SessionServiceClient::new(ch.clone())
+        .get_stats(with_token(pb::GetSessionRequest { session_id: sid.clone() }, &created.observer_token))
+        .await
+        .unwrap()
+        .into_inner();
+    assert_eq!(stats.column_misses, 0, "no column computed inside a tick: {stats:?}");
+}
