@@ -156,6 +156,11 @@ impl Simulation {
     pub fn solver(&self) -> &MixedSolver {
         &self.state.ws.solver
     }
+    /// The flexible needle's coupling counters, dense factorisations against low-rank
+    /// corrections (diagnostics; `None` for a rigid needle; they restart with a new scratch).
+    pub fn coupling_stats(&self) -> Option<crate::beam::CouplingStats> {
+        self.scratch.flex.as_ref().map(|f| f.coupling.stats())
+    }
     /// The current base pose.
     pub fn pose(&self) -> BasePose {
         self.state.pose
