@@ -707,6 +707,7 @@ mod tests {
                     state: if i == 5 { NodeState::Tip } else { NodeState::Stuck } as i32,
                     position_m: v(0.02 + 0.001 * f64::from(i), 1e-4 * f64::from(i)),
                     force_n: v(0.01 * f64::from(i) * t, -0.002),
+                    material_point: i % 2 == 0,
                 })
                 .collect(),
             targets: vec![TargetState { name: "lesion".into(), position_m: v(0.05, 0.0), distance_m: 0.05 - 0.01 * t, hit: false }],

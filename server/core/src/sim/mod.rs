@@ -49,8 +49,8 @@
 //! - `scratch.rs`: buffers sized up front from the parameters, droppable;
 //!
 //! plus the per-tick [`StepOutput`], rewritten in place. Parameters and their named capacity
-//! limits ([`param_limits`]) are in `params.rs`; the stiffness Jacobian's probe solves in
-//! `jacobian.rs`.
+//! limits ([`param_limits`]) are in `params.rs`; the stiffness Jacobian (probe solves and a
+//! directional derivative) in `jacobian.rs`.
 
 mod active_set;
 mod capture;
@@ -161,6 +161,11 @@ impl Simulation {
     /// The working-set solver (for its update counters).
     pub fn solver(&self) -> &MixedSolver {
         &self.state.ws.solver
+    }
+    /// The flexible needle's coupling counters, dense factorisations against low-rank
+    /// corrections (diagnostics; `None` for a rigid needle; they restart with a new scratch).
+    pub fn coupling_stats(&self) -> Option<crate::beam::CouplingStats> {
+        self.scratch.flex.as_ref().map(|f| f.coupling.stats())
     }
     /// The current base pose.
     pub fn pose(&self) -> BasePose {
@@ -305,9 +310,10 @@ impl Simulation {
     /// The local stiffness the device feels: the 3 × 3 Jacobian
     /// $J_{ij} = \partial w_i / \partial q_j$ of the wrench $w = (F_x, F_y, \tau)$ on the base with
     /// respect to the base pose $q = (x, y, \theta)$, at the current state with the contact
-    /// conditions held (row-major). Central differences of probe solves ($h$ = 1 µm, 1 mrad):
-    /// exact for translations (the held problem is linear in them), $O(h^2)$ for the rotation.
-    /// Six probe solves plus frame rotations: $O(k\,d^2)$ for $k$ slipping nodes; no allocation.
+    /// conditions held (row-major). Central differences of probe solves for the translations
+    /// ($h$ = 1 µm; exact, the held problem is linear in them), a directional derivative for the
+    /// rotation (`jacobian.rs`): $O(d^2)$ in all, whatever the number of slipping nodes (a
+    /// flexible needle adds one factorisation of its coupling); no allocation.
     /// A device bridge renders $w(q) \approx w_0 + J (q - q_0)$ between server updates.
     ///
     /// Errors: [`SimError::Mixed`] when the probe solver refuses a frame rotation (the

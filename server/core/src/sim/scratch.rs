@@ -5,7 +5,6 @@
 //! gives the same results (the `scratch_is_droppable` test checks it).
 
 use crate::compliance::TissueModel;
-use crate::mixed::MixedSolver;
 
 use super::SimParams;
 use super::active_set::ActiveSetScratch;
@@ -36,7 +35,7 @@ impl Scratch {
                 column_buf: vec![0.0; 2 * model.n_dofs()],
             },
             active_set: ActiveSetScratch { order: Vec::with_capacity(cap), changes: Vec::with_capacity(2 * cap) },
-            probe: ProbeScratch { solver: MixedSolver::with_capacity(cap) },
+            probe: ProbeScratch::new(cap),
             flex: params.needle.flexible().map(|f| FlexScratch::new(f, params.initial_pose, cap)),
         }
     }
