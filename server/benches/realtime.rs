@@ -228,7 +228,7 @@ async fn run_case(ch: tonic::transport::Channel, opts: &Options, port: u16, n_ob
     let g = |k: &str| m.get(k).copied().unwrap_or(f64::NAN);
     let spin_share = g("tick_spin_seconds") / (st.ticks as f64 * 1e-3);
     let row = format!(
-        "| {} | {n_observers} | {} | {} ({:.4} %) | {:.1} | {:.1} | {:.1} | {:.0} | {:.1} | {:.1} | {:.1} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {answered} | {} | {:.0} / {:.0} | {:.1} % |",
+        "| {} | {n_observers} | {} | {} ({:.4} %) | {:.2} | {:.2} | {:.1} | {:.0} | {:.1} | {:.1} | {:.1} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {answered} | {} | {:.0} / {:.0} | {:.1} % |",
         opts.driver,
         st.ticks,
         st.missed_deadlines,
