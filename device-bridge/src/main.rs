@@ -14,10 +14,25 @@
 //! ramps the force out, the zero wrench is written, and the bridge exits with status 1 and a
 //! message naming the cause.
 //!
-//! Latency figures in the report (µs, p50/p99, over the fresh forces seen):
-//! - `pose_to_force_us`: (time the bridge first saw a force) − (write time of the newest pose the
-//!   bridge had written at or before the force's `t_ns`), i.e. an upper bound on the device→server→device
-//!   round trip as the server echoes no pose counter today (the server may have used an older pose);
+//! # Phase-aligned with the session's ticks (`--phase-lead-us`, shared memory only)
+//!
+//! The session publishes its tick phase on the channel (tick k due at `origin + k·period` on
+//! `CLOCK_MONOTONIC`). With the same rate, the device loop runs `--phase-lead-us` (100 µs) before
+//! each tick: the pose is written just before the tick that takes it, and the loop then waits
+//! (spinning, at most `--force-wait-us`) for the force that tick computes, which names the pose it
+//! answers (`ServerForce::pose_counter`), and renders it in the same period: pose → force is the
+//! lead plus the tick's compute time, not a period more. The wait ends early when a force written
+//! after the pose arrives without answering it (the pose came too late for that tick; the next
+//! pose supersedes it). Unaligned (lead 0, another rate, or a session that published no phase),
+//! the loop keeps its own phase and takes the force that is there right after writing the pose,
+//! which answers a pose of an earlier period. Both the lead and the wait spin on a core: on a
+//! 2-core machine they compete with the server's clients (see `needlesim_channel::schedule`).
+//!
+//! Latency figures in the report (µs, p50/p99/p99.9/max, over the fresh forces seen):
+//! - `pose_to_force_us` (shared memory): (time the bridge first saw a force) − (write time of the
+//!   pose the force answers, by its `pose_counter`), over the poses answered; poses never answered
+//!   (superseded before a tick took them) are counted in `unanswered_poses`. With the remote link
+//!   it is a true round trip too (the server echoes the pose's client time);
 //! - `force_age_us`: (time the bridge first saw a force) − its `t_ns` (the server → bridge part).
 
 use std::io::Write;
@@ -30,7 +45,7 @@ use clap::{Parser, ValueEnum};
 use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
 use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
 use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
-use needlesim_channel::schedule::Schedule;
+use needlesim_channel::schedule::{MonotonicClock, Schedule};
 use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -89,6 +104,19 @@ struct Cli {
     /// Device rate (Hz).
     #[arg(long, default_value_t = 1000.0)]
     rate_hz: f64,
+    /// With --channel: write each pose this long (µs) before the session's tick deadline and
+    /// render the force computed from it in the same period (the session publishes its tick phase
+    /// on the channel; --rate-hz must equal its tick rate). 0: run on the loop's own phase.
+    #[arg(long, value_name = "US", default_value_t = 100)]
+    phase_lead_us: u64,
+    /// Phase-aligned only: the longest the loop waits (spinning) after writing a pose for the force
+    /// that answers it, in µs (at most 3/4 of the period); past it, it renders what it has.
+    #[arg(long, value_name = "US", default_value_t = 400)]
+    force_wait_us: u64,
+    /// Sleep until this long (µs) before each period, then spin (0: sleep to the period's start).
+    /// Spinning starts the period on time at the cost of that much of a core every period.
+    #[arg(long, value_name = "US", default_value_t = 150)]
+    spin_margin_us: u64,
     /// Stop after this many seconds (default: until Ctrl-C / SIGTERM).
     #[arg(long, value_name = "S")]
     seconds: Option<f64>,
@@ -174,6 +202,15 @@ struct Report {
     limited_periods: u64,
     pose_to_force_ns: Vec<u64>,
     force_age_ns: Vec<u64>,
+    /// The loop ran phase-aligned with the session's ticks (--phase-lead-us).
+    aligned: bool,
+    /// Poses a force answered (by its pose counter), and poses superseded before any tick took them.
+    answered_poses: u64,
+    unanswered_poses: u64,
+    /// Poses answered within the period that wrote them (phase-aligned), and waits that ended at
+    /// --force-wait-us without a force written after the pose.
+    answered_in_period: u64,
+    waits_timed_out: u64,
     last_counter: u64,
     last_tick: Option<u64>,
     max_rendered_force_n: f64,
@@ -218,12 +255,19 @@ fn json_str(s: &str) -> String {
 
 impl Report {
     fn print(&mut self, json: bool) {
-        let p2f = [percentile_us(&mut self.pose_to_force_ns, 0.5), percentile_us(&mut self.pose_to_force_ns, 0.99)];
+        let p2f = [
+            percentile_us(&mut self.pose_to_force_ns, 0.5),
+            percentile_us(&mut self.pose_to_force_ns, 0.99),
+            percentile_us(&mut self.pose_to_force_ns, 0.999),
+            percentile_us(&mut self.pose_to_force_ns, 1.0),
+        ];
         let age = [percentile_us(&mut self.force_age_ns, 0.5), percentile_us(&mut self.force_age_ns, 0.99)];
         if json {
             println!(
                 "{{\"device\":{},\"periods\":{},\"missed_periods\":{},\"fresh_forces\":{},\"watchdog_periods\":{},\"limited_periods\":{},\
-                 \"pose_counter\":{},\"last_server_tick\":{},\"pose_to_force_us\":{{\"p50\":{},\"p99\":{}}},\"force_age_us\":{{\"p50\":{},\"p99\":{}}},\
+                 \"pose_counter\":{},\"last_server_tick\":{},\"pose_to_force_us\":{{\"p50\":{},\"p99\":{},\"p999\":{},\"max\":{}}},\
+                 \"force_age_us\":{{\"p50\":{},\"p99\":{}}},\"aligned\":{},\"answered_poses\":{},\"unanswered_poses\":{},\
+                 \"answered_in_period\":{},\"waits_timed_out\":{},\
                  \"max_rendered_force_n\":{},\"final_pose\":[{},{},{}],\"final_wrench\":[0,0,0],\"link\":{},\"render\":{},\"inject_rtt_ms\":{},\
                  \"dropped_poses\":{},\"stiffness\":{},\"exit\":{}}}",
                 json_str(&self.device),
@@ -236,8 +280,15 @@ impl Report {
                 self.last_tick.map_or("null".into(), |t| t.to_string()),
                 json_num(p2f[0]),
                 json_num(p2f[1]),
+                json_num(p2f[2]),
+                json_num(p2f[3]),
                 json_num(age[0]),
                 json_num(age[1]),
+                self.aligned,
+                self.answered_poses,
+                self.unanswered_poses,
+                self.answered_in_period,
+                self.waits_timed_out,
                 self.max_rendered_force_n,
                 self.final_pose[0],
                 self.final_pose[1],
@@ -254,7 +305,8 @@ impl Report {
             let f = |x: Option<f64>| x.map_or("-".into(), |v| format!("{v:.1}"));
             eprintln!(
                 "needlesim-bridge: {} periods ({} missed), {} fresh forces, {} periods under the watchdog, {} limited; \
-                 pose→force p50 {} µs p99 {} µs, force age p50 {} µs p99 {} µs; exit: {}",
+                 pose→force p50 {} µs p99 {} µs p99.9 {} µs max {} µs ({}: {} poses answered, {} in their period, {} unanswered), \
+                 force age p50 {} µs p99 {} µs; exit: {}",
                 self.periods,
                 self.missed_periods,
                 self.fresh_forces,
@@ -262,6 +314,12 @@ impl Report {
                 self.limited_periods,
                 f(p2f[0]),
                 f(p2f[1]),
+                f(p2f[2]),
+                f(p2f[3]),
+                if self.aligned { "phase-aligned" } else { "own phase" },
+                self.answered_poses,
+                self.answered_in_period,
+                self.unanswered_poses,
                 f(age[0]),
                 f(age[1]),
                 self.exit
@@ -327,6 +385,42 @@ struct Exchange {
     lost: bool,
 }
 
+/// How long the bridge waits at start for a session that has not published its tick phase yet
+/// (its real-time thread publishes it before its first tick, just after creating the channel).
+const PHASE_WAIT: Duration = Duration::from_millis(500);
+
+/// Where the device loop's period 0 should fall to run `--phase-lead-us` before the session's
+/// ticks (on `CLOCK_MONOTONIC`), or `None` to run on its own phase: no lead, the remote link, a
+/// session that published no phase within [`PHASE_WAIT`], or one ticking at another rate (each
+/// case but the first says why).
+fn align_with_session(cli: &Cli, link: &Link, period: Duration) -> Option<Duration> {
+    let Link::Shm(channel) = link else { return None };
+    if cli.phase_lead_us == 0 {
+        return None;
+    }
+    let lead = Duration::from_micros(cli.phase_lead_us);
+    let give_up = std::time::Instant::now() + PHASE_WAIT;
+    let (origin, tick) = loop {
+        if let Some(phase) = channel.server_schedule() {
+            break phase;
+        }
+        if std::time::Instant::now() >= give_up || STOP.load(Ordering::Relaxed) {
+            tracing::warn!("the session published no tick phase: the device loop runs on its own phase (pose → force takes a period more)");
+            return None;
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    };
+    if tick != period || lead >= period {
+        tracing::warn!(
+            session_period = ?tick, device_period = ?period, ?lead,
+            "the device loop runs on its own phase: its period is not the session's, or the lead is not shorter than it"
+        );
+        return None;
+    }
+    // Period 0 of the session is due at `origin`; ours `lead` before one of its ticks.
+    Some(origin.checked_sub(lead).unwrap_or(origin + period - lead))
+}
+
 fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report) -> Result<()> {
     if !(cli.rate_hz.is_finite() && cli.rate_hz > 0.0) {
         bail!("--rate-hz must be positive, got {}", cli.rate_hz);
@@ -357,20 +451,35 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
     let cap = periods_total.unwrap_or(60_000).min(1 << 22) as usize;
     report.pose_to_force_ns.reserve(cap);
     report.force_age_ns.reserve(cap);
-    // (write time, counter) of the last poses, to find the newest one written at or before a force's t_ns.
-    const RING: usize = 1024;
-    let mut ring = [0u64; RING];
-    let mut ring_len = 0usize;
+    // The write times of the last poses, by counter, to time the force that answers each.
+    const RING: u64 = 1024;
+    let mut written_ns = [0u64; RING as usize];
+    let mut last_answered = 0u64;
     let mut remote_last = RemoteSample::default();
     let mut last_echo_seq = 0u64;
     let mut prev_buttons: Option<u32> = None;
 
     match needlesim_channel::rt::request_realtime_priority(cli.rt_priority) {
         Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
-        Err(why) => tracing::warn!("the device loop runs without real-time priority ({why}); periods may be missed under load"),
+        Err(why) => {
+            tracing::warn!("the device loop runs without real-time priority ({why}); periods may be missed under load");
+            // Without SCHED_FIFO, sleeps wake up to 50 µs late (the timer slack) unless told otherwise.
+            let _ = needlesim_channel::rt::request_precise_timers();
+        }
     }
-    // Drift-free schedule: period k starts at t0 + k·Δt (needlesim_channel::schedule).
-    let mut schedule = Schedule::start_now(Duration::from_secs_f64(period_s));
+    // Drift-free schedule: period k starts at t0 + k·Δt (needlesim_channel::schedule), t0 just
+    // before one of the session's ticks when phase-aligned.
+    let period = Duration::from_secs_f64(period_s);
+    let clock = MonotonicClock::new();
+    let mut schedule = match align_with_session(cli, link, period) {
+        Some(phase) => {
+            report.aligned = true;
+            Schedule::start_in_phase(clock, phase, period)
+        }
+        None => Schedule::start(clock, period),
+    }
+    .with_spin_margin(Duration::from_micros(cli.spin_margin_us).min(period));
+    let force_wait = Duration::from_micros(cli.force_wait_us).min(period * 3 / 4);
     // --seconds S ends the schedule at t0 + S: executed plus missed periods = S·rate.
     if let Some(n) = periods_total {
         schedule = schedule.with_period_limit(n);
@@ -412,27 +521,45 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                     buttons: state.buttons,
                     counter: 0,
                 };
-                if let Ok(c) = channel.write_pose_from_device(&pose) {
+                let written = channel.write_pose_from_device(&pose).ok();
+                if let Some(c) = written {
                     report.last_counter = c;
-                    ring[ring_len % RING] = t_pose;
-                    ring_len += 1;
+                    written_ns[(c % RING) as usize] = t_pose;
                 }
-                let sample = channel.read_force_from_device();
-                let t_seen = monotonic_ns();
-                let fresh = match (sample.status, sample.value) {
-                    (ReadStatus::Fresh, Some(f)) if f.state == ServerForce::STATE_OK || f.state == ServerForce::STATE_DEVICE_STALE => {
-                        Some(f)
+                // Phase-aligned: the tick that takes this pose is due within the lead; wait for
+                // its force (spinning: it comes within the tick's compute time), or for any force
+                // written after the pose (the tick missed it), at most `force_wait`.
+                let wait_until = (report.aligned && written.is_some()).then(|| t_pose + force_wait.as_nanos() as u64);
+                let mut fresh: Option<ServerForce> = None;
+                let sample = loop {
+                    let sample = channel.read_force_from_device();
+                    let t_seen = monotonic_ns();
+                    if let (ReadStatus::Fresh, Some(f)) = (sample.status, sample.value)
+                        && (f.state == ServerForce::STATE_OK || f.state == ServerForce::STATE_DEVICE_STALE)
+                    {
+                        report.force_age_ns.push(t_seen.saturating_sub(f.t_ns));
+                        // The pose it answers, timed at its first force, if still in the ring.
+                        let c = f.pose_counter;
+                        if c > last_answered && c <= report.last_counter && report.last_counter - c < RING {
+                            report.pose_to_force_ns.push(t_seen.saturating_sub(written_ns[(c % RING) as usize]));
+                            report.unanswered_poses += (c - last_answered - 1) * u64::from(last_answered > 0);
+                            report.answered_poses += 1;
+                            report.answered_in_period += u64::from(written == Some(c));
+                            last_answered = c;
+                        }
+                        fresh = Some(f);
                     }
-                    _ => None,
+                    let Some(until) = wait_until else { break sample };
+                    let answered = fresh.is_some_and(|f| f.t_ns >= t_pose || written.is_some_and(|c| f.pose_counter >= c));
+                    if answered || matches!(sample.status, ReadStatus::Stale | ReadStatus::Broken) {
+                        break sample;
+                    }
+                    if t_seen >= until {
+                        report.waits_timed_out += 1;
+                        break sample;
+                    }
+                    std::hint::spin_loop();
                 };
-                if let Some(f) = &fresh {
-                    report.force_age_ns.push(t_seen.saturating_sub(f.t_ns));
-                    // Newest pose written at or before f.t_ns (the ring is in write order).
-                    let n = ring_len.min(RING);
-                    if let Some(tp) = (0..n).map(|i| ring[(ring_len - 1 - i) % RING]).find(|&tp| tp <= f.t_ns) {
-                        report.pose_to_force_ns.push(t_seen.saturating_sub(tp));
-                    }
-                }
                 let sv = sample.value.unwrap_or_default();
                 Exchange {
                     fresh: fresh.as_ref().map(ServerSample::from),

@@ -1,15 +1,38 @@
-//! Real-time server benchmark: a session at 1 kHz driven through the gRPC control stream on
-//! loopback, with 0, 10 and 100 rendering observers (60 Hz) attached. Reports tick compute time
-//! and start lateness (p50, p99, p99.9) from the session's histograms, missed deadlines, and the
-//! loopback latency from a pose sent to the force computed from it received back. The tick
-//! histograms cover the whole case; the latency excludes its first second.
-//! Run: `cargo bench -p needlesim-server --bench realtime`.
+//! Real-time server benchmark (issue 15): a live session at 1 kHz in the real server process, its
+//! clients in other processes.
+//!
+//! - The server: the release `needlesim-server serve` binary (Cargo builds it for this bench), in
+//!   its own process, with `--spin-margin-us` passed through.
+//! - The session: the shipped `paper-phantom` scene (19 × 19 nodes, 0.1 m square, rigid 0.1 m
+//!   needle), created with a shared-memory device channel.
+//! - The device (`--driver device`, the default): the release `needlesim-bridge` binary in its own
+//!   process (`cargo build --release -p needlesim-bridge` first), replaying the scene's example
+//!   motion in a loop (`server/scenes/paper-phantom.csv`: insertion 80 mm at 20 mm/s, 2 s hold,
+//!   withdrawal; 10 s a cycle) through the channel, phase-aligned with the session's ticks
+//!   (`--phase-lead-us`). Its pose→force latency is exact: each force names the device pose it
+//!   answers. `--driver grpc` drives the session over the gRPC Control stream from this process
+//!   instead (one pose a millisecond; pose→force is then the loopback round trip to the response
+//!   echoing the pose's client time).
+//! - The observers: N rendering observers (60 Hz, no displacement field) over gRPC from this
+//!   process (not the server's).
+//!
+//! Per case (a fresh session each): missed deadlines, tick start lateness p50/p99/p99.9/max and
+//! compute time (the session's histograms over its whole life, from GetStats and /metrics),
+//! pose→force p50/p99/p99.9/max, the fan-out's wakes and timeouts, and the spin margin's cost (the
+//! time the tick thread spun, as a share of one core).
+//!
+//! Run: `cargo build --release -p needlesim-bridge && cargo bench -p needlesim-server --bench realtime`
+//! (0, 10 and 100 observers, 6 s each), or one long case:
+//! `cargo bench -p needlesim-server --bench realtime -- --seconds 600 --observers 100`.
+//! Options: `--seconds S`, `--observers N[,N…]`, `--driver device|grpc`, `--spin-margin-us M`,
+//! `--phase-lead-us L`.
 
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use needlesim_proto::v1 as pb;
-use needlesim_server::grpc::ServerLimits;
-use needlesim_server::serve::{ServeConfig, serve};
 use tokio_stream::StreamExt;
 use tonic::metadata::MetadataValue;
 
@@ -20,23 +43,132 @@ fn with_token<T>(msg: T, token: &str) -> tonic::Request<T> {
 }
 
 fn pct(v: &mut [f64], q: f64) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
     v.sort_by(f64::total_cmp);
     v[((v.len() - 1) as f64 * q).round() as usize]
 }
 
-async fn run_case(ch: tonic::transport::Channel, n_observers: usize, secs: f64) -> String {
+#[derive(Debug, Clone)]
+struct Options {
+    seconds: f64,
+    observers: Vec<usize>,
+    driver: String,
+    spin_margin_us: Option<u64>,
+    phase_lead_us: Option<u64>,
+}
+
+fn parse_options() -> Options {
+    let mut o = Options { seconds: 6.0, observers: vec![0, 10, 100], driver: "device".into(), spin_margin_us: None, phase_lead_us: None };
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = |name: &str| args.next().unwrap_or_else(|| panic!("{name} needs a value"));
+        match a.as_str() {
+            "--bench" => {}
+            "--seconds" => o.seconds = value("--seconds").parse().expect("--seconds S"),
+            "--observers" => {
+                o.observers = value("--observers").split(',').map(|n| n.trim().parse().expect("--observers N[,N…]")).collect();
+            }
+            "--driver" => o.driver = value("--driver"),
+            "--spin-margin-us" => o.spin_margin_us = Some(value("--spin-margin-us").parse().expect("--spin-margin-us M")),
+            "--phase-lead-us" => o.phase_lead_us = Some(value("--phase-lead-us").parse().expect("--phase-lead-us L")),
+            other => panic!("unknown argument {other:?} (see the header of server/benches/realtime.rs)"),
+        }
+    }
+    assert!(o.driver == "device" || o.driver == "grpc", "--driver device|grpc, not {:?}", o.driver);
+    o
+}
+
+/// The server process, killed on drop.
+struct Server {
+    child: Child,
+    port: u16,
+    dir: PathBuf,
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        // SIGTERM: the server closes its sessions (and removes their channel files).
+        // SAFETY: kill(2) on the pid of a child we spawned and have not reaped.
+        unsafe { libc::kill(self.child.id() as libc::pid_t, libc::SIGTERM) };
+        let t0 = Instant::now();
+        while t0.elapsed() < Duration::from_secs(5) {
+            if let Ok(Some(_)) = self.child.try_wait() {
+                let _ = std::fs::remove_dir_all(&self.dir);
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+fn start_server(opts: &Options) -> Server {
+    let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    let dir = std::env::temp_dir().join(format!("needlesim-bench-rt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_needlesim-server"));
+    cmd.args(["serve", "--listen", &format!("127.0.0.1:{port}"), "--default-scene", "none", "--data-dir"])
+        .arg(&dir)
+        .arg("--web-dir")
+        .arg(&dir);
+    if let Some(m) = opts.spin_margin_us {
+        cmd.args(["--spin-margin-us", &m.to_string()]);
+    }
+    let log = std::fs::File::create(dir.join("server.log")).unwrap();
+    let child = cmd.env("RUST_LOG", "warn").stdout(Stdio::null()).stderr(log).spawn().expect("start needlesim-server");
+    Server { child, port, dir }
+}
+
+/// The bridge binary beside the server binary (same profile).
+fn bridge_binary() -> PathBuf {
+    let server = Path::new(env!("CARGO_BIN_EXE_needlesim-server"));
+    let p = server.with_file_name("needlesim-bridge");
+    assert!(p.is_file(), "{} is missing: cargo build --release -p needlesim-bridge", p.display());
+    p
+}
+
+/// The server's /metrics gauges of one session, by name (without the `needlesim_` prefix).
+fn session_metrics(port: u16, session: &str) -> std::collections::HashMap<String, f64> {
+    let mut s = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+    write!(s, "GET /metrics HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n").unwrap();
+    let mut text = String::new();
+    s.read_to_string(&mut text).unwrap();
+    let label = format!("session=\"{session}\"");
+    text.lines()
+        .filter(|l| l.starts_with("needlesim_") && l.contains(&label))
+        .filter_map(|l| {
+            let name = l.split('{').next()?.trim_start_matches("needlesim_").to_owned();
+            let value = l.rsplit(' ').next()?.parse().ok()?;
+            Some((name, value))
+        })
+        .collect()
+}
+
+struct CaseResult {
+    row: String,
+    notes: Vec<String>,
+}
+
+async fn run_case(ch: tonic::transport::Channel, opts: &Options, port: u16, n_observers: usize) -> CaseResult {
+    let secs = opts.seconds;
+    let device = opts.driver == "device";
     let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
     let created = sessions
         .create_session(pb::CreateSessionRequest {
             scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
             tick_rate_hz: 1000.0,
             record: false,
-            device_channel: false,
+            device_channel: device,
         })
         .await
         .unwrap()
         .into_inner();
-    let sid = created.session.unwrap().session_id;
+    let info = created.session.unwrap();
+    let sid = info.session_id.clone();
     let (ctl, obs) = (created.controller_token, created.observer_token);
     let mut observers = Vec::new();
     for _ in 0..n_observers {
@@ -51,11 +183,88 @@ async fn run_case(ch: tonic::transport::Channel, n_observers: usize, secs: f64) 
             n
         }));
     }
+    let mut notes = Vec::new();
+    let (p2f, answered) = if device {
+        let traj = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-phantom.csv");
+        let mut cmd = Command::new(bridge_binary());
+        cmd.arg("--channel").arg(&info.device_channel_path).args(["--device", "scripted", "--trajectory"]).arg(traj).args([
+            "--loop",
+            "--seconds",
+            &secs.to_string(),
+            "--json",
+        ]);
+        if let Some(l) = opts.phase_lead_us {
+            cmd.args(["--phase-lead-us", &l.to_string()]);
+        }
+        let out = tokio::task::spawn_blocking(move || cmd.env("RUST_LOG", "warn").output().expect("run needlesim-bridge")).await.unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "the bridge failed: {}{}", stdout, String::from_utf8_lossy(&out.stderr));
+        let r: serde_json::Value = serde_json::from_str(stdout.trim()).expect("the bridge's JSON report");
+        let p = &r["pose_to_force_us"];
+        let f = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
+        notes.push(format!(
+            "bridge: {} periods, {} missed, aligned {}, {} poses answered ({} within their period), {} unanswered, {} force waits timed out",
+            r["periods"], r["missed_periods"], r["aligned"], r["answered_poses"], r["answered_in_period"], r["unanswered_poses"], r["waits_timed_out"]
+        ));
+        ([f(&p["p50"]), f(&p["p99"]), f(&p["p999"]), f(&p["max"])], format!("{} / {}", r["answered_poses"], r["unanswered_poses"]))
+    } else {
+        let mut lat = grpc_drive(ch.clone(), &sid, &ctl, secs).await;
+        let n = lat.len();
+        ([pct(&mut lat, 0.5), pct(&mut lat, 0.99), pct(&mut lat, 0.999), pct(&mut lat, 1.0)], format!("{n} / -"))
+    };
+    let st = sessions.get_stats(with_token(pb::GetSessionRequest { session_id: sid.clone() }, &obs)).await.unwrap().into_inner();
+    let m = tokio::task::spawn_blocking({
+        let sid = sid.clone();
+        move || session_metrics(port, &sid)
+    })
+    .await
+    .unwrap();
+    sessions.close_session(with_token(pb::CloseSessionRequest { session_id: sid }, &ctl)).await.unwrap();
+    let mut frames = Vec::new();
+    for o in observers {
+        frames.push(o.await.unwrap());
+    }
+    let min_frames = frames.iter().min().copied().unwrap_or(0);
+    let g = |k: &str| m.get(k).copied().unwrap_or(f64::NAN);
+    let spin_share = g("tick_spin_seconds") / (st.ticks as f64 * 1e-3);
+    let row = format!(
+        "| {} | {n_observers} | {} | {} ({:.4} %) | {:.2} | {:.2} | {:.1} | {:.0} | {:.1} | {:.1} | {:.1} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {answered} | {} | {:.0} / {:.0} | {:.1} % |",
+        opts.driver,
+        st.ticks,
+        st.missed_deadlines,
+        100.0 * st.missed_deadlines as f64 / st.ticks.max(1) as f64,
+        st.lateness_p50_us,
+        st.lateness_p99_us,
+        st.lateness_p999_us,
+        g("tick_lateness_max_seconds") * 1e6,
+        st.compute_p50_us,
+        st.compute_p99_us,
+        st.compute_p999_us,
+        st.compute_max_us,
+        p2f[0],
+        p2f[1],
+        p2f[2],
+        p2f[3],
+        if n_observers == 0 { "-".to_owned() } else { min_frames.to_string() },
+        g("fanout_wakes"),
+        g("fanout_timeouts"),
+        100.0 * spin_share,
+    );
+    notes.push(format!(
+        "server: dropped records {}, column misses {}, superseded poses {}",
+        st.dropped_records, st.column_misses, st.superseded_poses
+    ));
+    CaseResult { row, notes }
+}
+
+/// Drives the session over the Control stream (a pose a millisecond, the insertion of the old
+/// benchmark: 40 mm over the case) and returns the pose→force latencies (µs) after the first second.
+async fn grpc_drive(ch: tonic::transport::Channel, sid: &str, ctl: &str, secs: f64) -> Vec<f64> {
     let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
     let epoch = Instant::now();
     let pose = move |t: f64| pb::Pose2 { x_m: 0.05, y_m: 0.205 - 0.04 * (t / secs).min(1.0), theta_rad: -std::f64::consts::FRAC_PI_2 };
     tx.send(pb::ControlRequest {
-        session_id: sid.clone(),
+        session_id: sid.to_owned(),
         base: Some(pose(0.0)),
         client_time_ns: 1,
         seq: 1,
@@ -64,8 +273,8 @@ async fn run_case(ch: tonic::transport::Channel, n_observers: usize, secs: f64) 
     })
     .await
     .unwrap();
-    let mut responses = pb::control_service_client::ControlServiceClient::new(ch.clone())
-        .control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), &ctl))
+    let mut responses = pb::control_service_client::ControlServiceClient::new(ch)
+        .control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), ctl))
         .await
         .unwrap()
         .into_inner();
@@ -102,67 +311,55 @@ async fn run_case(ch: tonic::transport::Channel, n_observers: usize, secs: f64) 
         }
     }
     let _ = sender.await;
-    let st = sessions.get_stats(with_token(pb::GetSessionRequest { session_id: sid.clone() }, &obs)).await.unwrap().into_inner();
-    sessions.close_session(with_token(pb::CloseSessionRequest { session_id: sid }, &ctl)).await.unwrap();
-    let mut frames = Vec::new();
-    for o in observers {
-        frames.push(o.await.unwrap());
-    }
-    let min_frames = frames.iter().min().copied().unwrap_or(0);
-    format!(
-        "| {n_observers} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} | {:.0} | {:.0} | {:.0} | {} |",
-        st.ticks,
-        st.compute_p50_us,
-        st.compute_p99_us,
-        st.compute_p999_us,
-        st.lateness_p50_us,
-        st.lateness_p99_us,
-        st.lateness_p999_us,
-        st.missed_deadlines,
-        pct(&mut latencies, 0.5),
-        pct(&mut latencies, 0.99),
-        pct(&mut latencies, 0.999),
-        if n_observers == 0 { "-".to_owned() } else { min_frames.to_string() }
-    )
+    latencies
 }
 
 fn main() {
-    let secs: f64 = std::env::args().skip(1).find_map(|a| a.parse().ok()).unwrap_or(6.0);
-    let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
-    let data = std::env::temp_dir().join(format!("needlesim-bench-{}", std::process::id()));
-    let config = ServeConfig {
-        listen: format!("127.0.0.1:{port}").parse().unwrap(),
-        data_dir: data.clone(),
-        web_dir: data.clone(),
-        tls: None,
-        limits: ServerLimits::default(),
-        max_message_bytes: 4 << 20,
-        default_scene: None,
-        demo: false,
-        admin_token: None,
-    };
-    let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
-    let (stop_tx, stop_rx) = tokio::sync::oneshot::channel::<()>();
-    let server = rt.spawn(serve(config, async move {
-        let _ = stop_rx.await;
-    }));
+    let opts = parse_options();
+    let server = start_server(&opts);
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!(
-        "machine: {}; server and clients in one process on loopback; {secs} s per case, first 1 s excluded from latency",
-        needlesim_lab::bench::machine()
+        "machine: {}; load average before: {}; server process: {} (spin margin {}); clients in this process{}; {} s per case",
+        needlesim_lab::bench::machine(),
+        load.split_whitespace().take(3).collect::<Vec<_>>().join(" "),
+        env!("CARGO_BIN_EXE_needlesim-server"),
+        opts.spin_margin_us.map_or("default".to_owned(), |m| format!("{m} µs")),
+        if opts.driver == "device" { " and the bridge's" } else { "" },
+        opts.seconds
     );
     println!();
     println!(
-        "| observers (60 Hz) | ticks | compute p50 µs | p99 | p99.9 | lateness p50 µs | p99 | p99.9 | missed deadlines | pose→force p50 µs | p99 | p99.9 | min frames/observer |"
+        "| driver | observers (60 Hz) | ticks | missed deadlines | lateness p50 µs | p99 | p99.9 | max | compute p50 µs | p99 | p99.9 | max | pose→force p50 µs | p99 | p99.9 | max | poses answered / unanswered | min frames/observer | fan-out wakes / timeouts | tick thread spinning |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let rt = tokio::runtime::Builder::new_multi_thread().enable_all().build().unwrap();
+    let mut notes = Vec::new();
     rt.block_on(async {
-        tokio::time::sleep(Duration::from_millis(300)).await;
-        let ch = tonic::transport::Channel::from_shared(format!("http://127.0.0.1:{port}")).unwrap().connect().await.unwrap();
-        for n in [0, 10, 100] {
-            println!("{}", run_case(ch.clone(), n, secs).await);
+        let url = format!("http://127.0.0.1:{}", server.port);
+        let t0 = Instant::now();
+        let ch = loop {
+            match tonic::transport::Channel::from_shared(url.clone()).unwrap().connect().await {
+                Ok(ch) => break ch,
+                Err(e) if t0.elapsed() < Duration::from_secs(20) => {
+                    let _ = e;
+                    tokio::time::sleep(Duration::from_millis(50)).await;
+                }
+                Err(e) => panic!("the server did not come up: {e}"),
+            }
+        };
+        for &n in &opts.observers {
+            let r = run_case(ch.clone(), &opts, server.port, n).await;
+            println!("{}", r.row);
+            notes.push((n, r.notes));
         }
     });
-    let _ = stop_tx.send(());
-    let _ = rt.block_on(server);
-    let _ = std::fs::remove_dir_all(data);
+    println!();
+    for (n, ns) in notes {
+        for note in ns {
+            println!("- {n} observers: {note}");
+        }
+    }
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    println!("- load average after: {}", load.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
+    drop(server);
 }

@@ -6,7 +6,7 @@
 //! device → server ([`DevicePose`]) and server → device ([`ServerForce`]). Neither side ever
 //! blocks: a read retries a bounded number of times and otherwise returns the last good value.
 //!
-//! # Layout (little-endian, [`LAYOUT_VERSION`] 1, [`CHANNEL_SIZE`] = 512 bytes)
+//! # Layout (little-endian, [`LAYOUT_VERSION`] 2, [`CHANNEL_SIZE`] = 512 bytes)
 //!
 //! Every field is a naturally aligned `u32`/`u64` accessed only through atomics; `f64`s are stored
 //! as their bit patterns, `u32`s of the slots in the low half of a `u64` word. Blocks are 128-byte
@@ -22,15 +22,24 @@
 //! | 32  | 4 | creator pid (`u32`) |
 //! | 36  | 4 | attacher pid (`u32`, 0 when no bridge is attached) |
 //! | 40  | 4 | closed (`u32`, 1 once the server end was dropped) |
-//! | 44  | 84 | reserved (0) |
+//! | 44  | 4 | reserved (0) |
+//! | 48  | 8 | tick origin (`u64`): `CLOCK_MONOTONIC` ns of the session's tick 0 deadline; 0 until published |
+//! | 56  | 8 | tick period (`u64`, ns; valid once the origin is not 0) |
+//! | 64  | 64 | reserved (0) |
 //! | 128 | 8 | pose slot: sequence (odd while being written, even when done, 0 = never written) |
 //! | 136 | 8 | pose slot: generation of the writer |
 //! | 144 | 48 | pose: `t_ns`, `x_m`, `y_m`, `theta_rad`, `buttons`, `counter` (one `u64` word each) |
 //! | 192 | 64 | reserved (0) |
 //! | 256 | 8 | force slot: sequence |
 //! | 264 | 8 | force slot: generation of the writer |
-//! | 272 | 144 | force: `t_ns`, `tick`, `force_n[2]`, `torque_nm`, `stiffness[9]` (row-major), `base[3]`, `state` |
-//! | 416 | 96 | reserved (0) |
+//! | 272 | 152 | force: `t_ns`, `tick`, `force_n[2]`, `torque_nm`, `stiffness[9]` (row-major), `base[3]`, `state`, `pose_counter` |
+//! | 424 | 88 | reserved (0) |
+//!
+//! Version 2 added the tick phase (the session's tick deadlines are `origin + k·period` on
+//! `CLOCK_MONOTONIC`: [`ServerEnd::publish_schedule_from_rt`], [`DeviceEnd::server_schedule`]), so
+//! that a bridge can write each pose just before the tick that uses it, and the force's
+//! `pose_counter` (the counter of the device pose the force was computed from), so that a bridge
+//! knows which of its poses a force answers.
 //!
 //! # Freshness and stale state
 //!
@@ -118,7 +127,7 @@ use memmap2::{MmapOptions, MmapRaw};
 /// The 8 magic bytes at offset 0.
 pub const MAGIC: [u8; 8] = *b"NDLSIMv1";
 /// The layout version at offset 8; bump it on any change of the layout.
-pub const LAYOUT_VERSION: u32 = 1;
+pub const LAYOUT_VERSION: u32 = 2;
 /// The size of the channel file in bytes.
 pub const CHANNEL_SIZE: u64 = size_of::<Layout>() as u64;
 /// How many times a read retries while the writer is mid-write before giving up (≈ a few µs).
@@ -253,6 +262,9 @@ pub struct ServerForce {
     pub base: [f64; 3],
     /// [`ServerForce::STATE_OK`], [`ServerForce::STATE_DEVICE_STALE`] or [`ServerForce::STATE_CLOSING`].
     pub state: u32,
+    /// The [`DevicePose::counter`] of the device pose this force was computed from; 0 when the
+    /// tick used no device pose (a client's pose, or the needle held).
+    pub pose_counter: u64,
 }
 
 impl ServerForce {
@@ -327,10 +339,13 @@ struct Header {
     creator_pid: AtomicU32,
     attacher_pid: AtomicU32,
     closed: AtomicU32,
+    _reserved1: AtomicU32,
+    tick_origin_ns: AtomicU64,
+    tick_period_ns: AtomicU64,
 }
 
 const POSE_WORDS: usize = 6;
-const FORCE_WORDS: usize = 18;
+const FORCE_WORDS: usize = 19;
 
 #[repr(C, align(128))]
 struct Slot<const N: usize> {
@@ -355,6 +370,8 @@ const _: () = {
     assert!(offset_of!(Header, creator_pid) == 32);
     assert!(offset_of!(Header, attacher_pid) == 36);
     assert!(offset_of!(Header, closed) == 40);
+    assert!(offset_of!(Header, tick_origin_ns) == 48);
+    assert!(offset_of!(Header, tick_period_ns) == 56);
     assert!(offset_of!(Layout, pose) == 128);
     assert!(offset_of!(Layout, force) == 256);
     assert!(offset_of!(Slot<FORCE_WORDS>, words) == 16);
@@ -441,6 +458,7 @@ impl ServerForce {
             *d = s.to_bits();
         }
         w[17] = self.state as u64;
+        w[18] = self.pose_counter;
         w
     }
     fn decode(w: &[u64; FORCE_WORDS]) -> Self {
@@ -453,6 +471,7 @@ impl ServerForce {
             stiffness: std::array::from_fn(|i| f(5 + i)),
             base: [f(14), f(15), f(16)],
             state: w[17] as u32,
+            pose_counter: w[18],
         }
     }
 }
@@ -816,6 +835,9 @@ impl DeviceChannel {
         l.header.total_size.store(CHANNEL_SIZE, Ordering::Relaxed);
         l.header.creator_pid.store(std::process::id(), Ordering::Relaxed);
         l.header.attacher_pid.store(0, Ordering::Relaxed);
+        l.header._reserved1.store(0, Ordering::Relaxed);
+        l.header.tick_origin_ns.store(0, Ordering::Relaxed);
+        l.header.tick_period_ns.store(0, Ordering::Relaxed);
         l.pose.reset();
         l.force.reset();
         let generation = random_generation(previous);
@@ -933,6 +955,20 @@ impl ServerEnd {
         }
     }
 
+    /// Publishes the session's tick phase: tick k is due at `origin_ns + k·period_ns` on
+    /// `CLOCK_MONOTONIC` (the real-time thread, once, before its first tick). A bridge reads it
+    /// with [`DeviceEnd::server_schedule`] to write each pose just before the tick that uses it.
+    /// Two stores; nothing is written once the channel is broken, or for a zero origin or period.
+    pub fn publish_schedule_from_rt(&mut self, origin_ns: u64, period_ns: u64) {
+        if origin_ns == 0 || period_ns == 0 || self.m.check(true).is_err() {
+            return;
+        }
+        let h = &self.m.layout().header;
+        h.tick_period_ns.store(period_ns, Ordering::Relaxed);
+        // Release: a reader that sees the origin sees the period.
+        h.tick_origin_ns.store(origin_ns, Ordering::Release);
+    }
+
     /// The latest pose, fresh if the bridge wrote one since the previous call;
     /// [`ReadStatus::Broken`] (nothing read) once the channel is broken.
     pub fn read_pose_from_rt(&mut self) -> Sample<DevicePose> {
@@ -1026,6 +1062,20 @@ impl DeviceEnd {
         self.counter += 1;
         self.m.layout().pose.write(self.m.generation, &pose.encode(self.counter));
         Ok(self.counter)
+    }
+
+    /// The session's tick phase, once its real-time thread published it
+    /// ([`ServerEnd::publish_schedule_from_rt`]): (the `CLOCK_MONOTONIC` time of tick 0's
+    /// deadline, the tick period); tick k is due at `origin + k·period`. `None` before, and when
+    /// the channel is not current.
+    pub fn server_schedule(&self) -> Option<(Duration, Duration)> {
+        if !self.is_current() {
+            return None;
+        }
+        let h = &self.m.layout().header;
+        let origin = h.tick_origin_ns.load(Ordering::Acquire);
+        let period = h.tick_period_ns.load(Ordering::Relaxed);
+        (origin != 0 && period != 0).then(|| (Duration::from_nanos(origin), Duration::from_nanos(period)))
     }
 
     /// The counter the next successful write will stamp, minus one (the last one written).
@@ -1131,7 +1181,25 @@ mod tests {
             stiffness: std::array::from_fn(|i| i as f64 * 10.0 + tick as f64),
             base: [0.01, 0.02, 0.3],
             state: ServerForce::STATE_OK,
+            pose_counter: tick + 7,
         }
+    }
+
+    #[test]
+    fn the_tick_phase_is_published_once_and_reset_by_a_new_channel() {
+        let path = temp_path("phase");
+        let mut server = DeviceChannel::create(&path).unwrap();
+        let device = DeviceChannel::attach(&path).unwrap();
+        assert_eq!(device.server_schedule(), None, "nothing published yet");
+        server.publish_schedule_from_rt(0, 1_000_000);
+        assert_eq!(device.server_schedule(), None, "a zero origin is not published");
+        server.publish_schedule_from_rt(123_456_789, 1_000_000);
+        assert_eq!(device.server_schedule(), Some((Duration::from_nanos(123_456_789), Duration::from_millis(1))));
+        // Re-created in place (a new session in the same file): the phase is gone with the old generation.
+        let _server2 = DeviceChannel::create(&path).unwrap();
+        assert_eq!(device.server_schedule(), None, "a stale end has no phase");
+        let again = DeviceChannel::attach(&path).unwrap();
+        assert_eq!(again.server_schedule(), None, "the new channel has not published its phase");
     }
 
     #[test]
@@ -1275,7 +1343,7 @@ mod tests {
         let _server2 = DeviceChannel::create(&version).unwrap();
         patch(&version, 8, &7u32.to_le_bytes());
         let msg = DeviceChannel::attach(&version).err().unwrap().to_string();
-        assert!(msg.contains(&version.display().to_string()) && msg.contains("layout version 7, this bridge speaks 1"), "{msg}");
+        assert!(msg.contains(&version.display().to_string()) && msg.contains("layout version 7, this bridge speaks 2"), "{msg}");
 
         let zeros = temp_path("zeros");
         std::fs::write(&zeros, [0u8; 512]).unwrap();

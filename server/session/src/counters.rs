@@ -36,6 +36,16 @@ pub struct SessionCounters {
     pub step_errors: AtomicU64,
     /// Refreshes of the stiffness Jacobian that failed (the last one is kept; logged by the fan-out).
     pub stiffness_errors: AtomicU64,
+    /// Times the real-time thread woke the parked fan-out after pushing a record (its doorbell).
+    pub fanout_wakes: AtomicU64,
+    /// Times the fan-out's park ended by its safety timeout instead (no record for that long: a
+    /// stalled or faulted session, or a lost wake-up).
+    pub fanout_timeouts: AtomicU64,
+    /// Times the real-time thread woke the parked column worker after pushing column requests.
+    pub column_wakes: AtomicU64,
+    /// Time the real-time thread spent spinning before its deadlines, in all (ns): the CPU the
+    /// spin margin costs.
+    pub spin_ns: AtomicU64,
     /// Faults of the simulation (0 or 1: a faulted session stops stepping for good).
     pub faults: AtomicU64,
     /// The fault ([`SessionFault`]): its code (0: none; written last, with release ordering),
@@ -72,13 +82,19 @@ impl SessionCounters {
 pub struct StatsSnapshot {
     pub ticks: u64,
     pub compute_us: [f64; 4],
+    /// p50, p99, p99.9.
     pub lateness_us: [f64; 3],
+    pub lateness_max_us: f64,
     pub missed_deadlines: u64,
     pub superseded_poses: u64,
     pub dropped_records: u64,
     pub column_misses: u64,
     pub rejected_poses: u64,
     pub clamped_ticks: u64,
+    /// See [`SessionCounters::fanout_wakes`], [`SessionCounters::fanout_timeouts`], [`SessionCounters::spin_ns`].
+    pub fanout_wakes: u64,
+    pub fanout_timeouts: u64,
+    pub spin_ns: u64,
     /// Faults (0 or 1) and the fault, in words.
     pub faults: u64,
     pub fault: Option<String>,

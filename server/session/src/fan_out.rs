@@ -2,6 +2,16 @@
 //! fan-out (tick records to histograms, the record sink, every-tick and latest-value observers,
 //! and the displacement field at frame rate), and the device channel's watcher. These threads may
 //! log; the real-time thread never does.
+//!
+//! The fan-out and the column worker do not poll: when their queue is empty they park, and the
+//! real-time thread rings their doorbell after pushing a record or a column request
+//! ([`crate::doorbell`]), so a record reaches the observers as soon as the tick that made it ends.
+//! Their park timeouts ([`FAN_OUT_TIMEOUT`], [`COLUMN_WORKER_TIMEOUT`]) are safety nets that also
+//! bound how long a stop goes unnoticed (a close rings them anyway). The remaining polls: the
+//! column worker waits 200 µs when the delivery queue is full (the real-time thread drains it
+//! every tick, so it is full only if the ticks stall), and the device channel's watcher checks
+//! the file every [`needlesim_channel::shm::WATCH_PERIOD`] (system calls the real-time thread does
+//! not make), looking at the stop flag every 10 ms.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -10,7 +20,15 @@ use std::time::{Duration, Instant};
 use needlesim_core::compliance::TissueModel;
 
 use crate::counters::SessionCounters;
+use crate::doorbell::{Doorbell, Woken};
 use crate::record::TickRecord;
+
+/// The fan-out's safety net: with no record (and no ring) for this long it wakes anyway, counted
+/// in [`SessionCounters::fanout_timeouts`] (a stalled or faulted session, or a lost wake-up).
+pub const FAN_OUT_TIMEOUT: Duration = Duration::from_millis(20);
+/// The column worker's safety net: with no request (and no ring) for this long it wakes anyway,
+/// frees the column boxes the real-time thread handed back, and looks at the stop flag.
+pub const COLUMN_WORKER_TIMEOUT: Duration = Duration::from_millis(50);
 
 /// Where the fan-out hands every tick record the real-time thread published, in tick order
 /// (a recording, in the service layer: the session knows no wire format). Implemented outside this
@@ -51,6 +69,8 @@ pub(crate) struct ColumnWorker {
     pub(crate) col_tx: rtrb::Producer<(u32, Box<[f64]>)>,
     pub(crate) ret_rx: rtrb::Consumer<Box<[f64]>>,
     pub(crate) render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>,
+    /// Rung by the real-time thread after it pushes requests.
+    pub(crate) bell: Arc<Doorbell>,
     pub(crate) stop: Arc<AtomicBool>,
 }
 
@@ -61,7 +81,7 @@ impl ColumnWorker {
         while !self.stop.load(Ordering::Relaxed) {
             while self.ret_rx.pop().is_ok() {}
             let Ok(node) = self.req_rx.pop() else {
-                std::thread::sleep(Duration::from_micros(500));
+                self.bell.wait_from_worker(COLUMN_WORKER_TIMEOUT, || !self.req_rx.is_empty() || self.stop.load(Ordering::Relaxed));
                 continue;
             };
             let mut cols = vec![0.0; len].into_boxed_slice();
@@ -103,6 +123,8 @@ pub(crate) struct FanOut {
     /// thread does not log).
     pub(crate) rt_priority_rx: std::sync::mpsc::Receiver<Result<i32, String>>,
     pub(crate) session_id: String,
+    /// Rung by the real-time thread after it pushes a record.
+    pub(crate) bell: Arc<Doorbell>,
     pub(crate) stop: Arc<AtomicBool>,
 }
 
@@ -112,6 +134,7 @@ const FIELD_PERIOD: Duration = Duration::from_millis(8);
 impl FanOut {
     pub(crate) fn run(mut self) {
         let mut last_field = Instant::now() - FIELD_PERIOD;
+        let mut field_tick = None;
         let mut latest: Option<Arc<TickRecord>> = None;
         let mut stiffness_errors_logged = 0;
         while !self.stop.load(Ordering::Relaxed) {
@@ -132,15 +155,26 @@ impl FanOut {
                 latest = Some(rec);
             }
             if let Some(rec) = &latest {
-                self.latest_tx.send_replace(rec.clone());
-                if self.field_subscribers.load(Ordering::Relaxed) > 0 && last_field.elapsed() >= FIELD_PERIOD {
+                if any {
+                    self.latest_tx.send_replace(rec.clone());
+                }
+                // At most every FIELD_PERIOD, for a record whose field is not out yet (a field
+                // subscriber of a session that stopped stepping gets it at the next timeout).
+                if self.field_subscribers.load(Ordering::Relaxed) > 0
+                    && last_field.elapsed() >= FIELD_PERIOD
+                    && field_tick != Some(rec.tick)
+                {
                     last_field = Instant::now();
+                    field_tick = Some(rec.tick);
                     let field = self.field_for(rec);
                     self.field_tx.send_replace(Arc::new(field));
                 }
             }
-            if !any {
-                std::thread::sleep(Duration::from_micros(250));
+            if !any
+                && self.bell.wait_from_worker(FAN_OUT_TIMEOUT, || !self.rec_rx.is_empty() || self.stop.load(Ordering::Relaxed))
+                    == Woken::TimedOut
+            {
+                self.counters.fanout_timeouts.fetch_add(1, Ordering::Relaxed);
             }
         }
     }

@@ -20,6 +20,7 @@
 
 pub mod control_lease;
 mod counters;
+mod doorbell;
 mod fan_out;
 mod record;
 mod rt_loop;
@@ -32,4 +33,4 @@ pub use record::{
     MAX_RECORD_TARGETS, NodeRecord, PoseCommand, STIFFNESS_EVERY_TICKS, SessionFault, TargetRecord, TickRecord,
 };
 pub use rt_loop::{FLIP_BEVEL_BUTTON, IN_TICK, WARM_UP_TICKS, request_realtime_priority};
-pub use session::{Session, SessionError, set_rt_priority};
+pub use session::{DEFAULT_SPIN_MARGIN, Session, SessionError, set_rt_priority, set_spin_margin};

@@ -3,6 +3,15 @@
 //! column requests, the record out. Only non-blocking operations on bounded queues and
 //! latest-value slots; no allocation once warmed up, no I/O, no lock, no logging: what goes wrong
 //! becomes a counter or the fault state in [`SessionCounters`], read by the fan-out and the IO side.
+//!
+//! Each tick starts on time to within the clock read: the schedule sleeps until the spin margin
+//! before the deadline and spins the rest (`needlesim_channel::schedule`; the margin is
+//! [`crate::set_spin_margin`]'s, 0 to sleep to the deadline). The tick phase is published on the
+//! device channel before the first tick, so that the bridge writes each pose just before the tick
+//! that uses it, and the force says which device pose it answers (`ServerForce::pose_counter`):
+//! a pose reaches the device as a force within the same tick. The fan-out and the column worker
+//! park when idle; the thread rings their doorbells after pushing them work
+//! ([`crate::doorbell`]: no system call unless the thread is parked), and counts the wakes.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -12,6 +21,7 @@ use needlesim_core::BasePose;
 use needlesim_core::sim::{SimError, Simulation};
 
 use crate::counters::SessionCounters;
+use crate::doorbell::Doorbell;
 use crate::record::{
     DEVICE_STALE_TICKS, MAX_CONSECUTIVE_STEP_ERRORS, MAX_RECORD_NODES, PoseCommand, STIFFNESS_EVERY_TICKS, SessionFault, TickRecord,
 };
@@ -39,6 +49,14 @@ pub(crate) struct RtLoop {
     pub(crate) stop: Arc<AtomicBool>,
     pub(crate) record: Box<TickRecord>,
     pub(crate) rt_priority: i32,
+    /// Sleep until this long before each deadline, then spin (zero: sleep to the deadline).
+    pub(crate) spin_margin: Duration,
+    /// Rung after a record is pushed (the fan-out parks when the ring is empty).
+    pub(crate) fanout_bell: Arc<Doorbell>,
+    /// Rung after column requests are pushed (the column worker parks when it has none).
+    pub(crate) column_bell: Arc<Doorbell>,
+    /// The counter of the device pose the current pose came from (0: not from the device).
+    pub(crate) device_pose_counter: u64,
     /// The server end of the device channel, if any.
     pub(crate) device: Option<needlesim_channel::shm::ServerEnd>,
     /// A device pose has been received at least once.
@@ -58,20 +76,33 @@ pub(crate) struct RtLoop {
 /// on each press (rising edge).
 pub const FLIP_BEVEL_BUTTON: u32 = 1;
 
+use needlesim_channel::rt::request_precise_timers;
 pub use needlesim_channel::rt::request_realtime_priority;
 use needlesim_channel::schedule::Schedule;
 
 impl RtLoop {
     pub(crate) fn run(mut self) {
         // Reported, not logged: the fan-out puts it into the log.
-        let _ = self.rt_priority_tx.try_send(request_realtime_priority(self.rt_priority).map(|()| self.rt_priority));
-        // Drift-free: tick k at start + k·period (needlesim_channel::schedule).
-        let mut schedule = Schedule::start_now(self.period);
+        let priority = request_realtime_priority(self.rt_priority).map(|()| self.rt_priority);
+        if priority.is_err() {
+            // Without SCHED_FIFO a sleep may wake up to 50 µs late (the timer slack) on top of the
+            // scheduler's delay; the spin margin absorbs what it can. Best effort.
+            let _ = request_precise_timers();
+        }
+        let _ = self.rt_priority_tx.try_send(priority);
+        // Drift-free: tick k at start + k·period (needlesim_channel::schedule), on CLOCK_MONOTONIC.
+        let mut schedule = Schedule::start_now(self.period).with_spin_margin(self.spin_margin);
+        if let Some(dev) = self.device.as_mut() {
+            dev.publish_schedule_from_rt(schedule.start_time().as_nanos() as u64, self.period.as_nanos() as u64);
+        }
         let mut pose = self.sim.pose();
         let mut last_seq = 0;
         let mut last_client_time = 0;
         while !self.stop.load(Ordering::Relaxed) {
             let wake = schedule.wait();
+            if wake.spins > 0 {
+                self.counters.spin_ns.fetch_add(wake.spun.as_nanos() as u64, Ordering::Relaxed);
+            }
             self.tick_from_rt(&mut pose, &mut last_seq, &mut last_client_time, wake.lateness);
             // Behind by a period or more: the skipped ticks are missed deadlines; behind by less,
             // the next tick runs late at once, one missed deadline.
@@ -107,6 +138,7 @@ impl RtLoop {
             *pose = cmd.pose;
             *last_seq = cmd.seq;
             *last_client_time = cmd.client_time_ns;
+            self.device_pose_counter = 0;
         }
         // A device on the shared-memory channel drives the needle while it sends poses; when it
         // stops, the needle is held where it was and the device is marked stale.
@@ -120,11 +152,13 @@ impl RtLoop {
                 device_stale = true;
                 if !client_pose {
                     *pose = self.sim.pose();
+                    self.device_pose_counter = 0;
                 }
             } else if sample.fresh()
                 && let Some(p) = sample.value
             {
                 *pose = BasePose::new(p.x_m, p.y_m, p.theta_rad);
+                self.device_pose_counter = p.counter;
                 // Button 0 pressed (rising edge): flip the bevel.
                 if let Some(prev) = self.last_buttons
                     && p.buttons & FLIP_BEVEL_BUTTON != 0
@@ -140,6 +174,7 @@ impl RtLoop {
                 device_stale = true;
                 if !client_pose {
                     *pose = self.sim.pose();
+                    self.device_pose_counter = 0;
                 }
             }
             let was = self.counters.device_stale.swap(device_stale as u64, Ordering::Relaxed);
@@ -234,6 +269,8 @@ impl RtLoop {
                 } else {
                     needlesim_channel::shm::ServerForce::STATE_OK
                 },
+                // The device pose this force answers (none when the tick did not step on it).
+                pose_counter: if stepped { self.device_pose_counter } else { 0 },
             });
         }
         let st = self.sim.stats();
@@ -247,6 +284,7 @@ impl RtLoop {
         let out = self.sim.output();
         let n_app = out.approaching.len();
         let n_req = n_app + 3 * out.needle_nodes.len();
+        let mut requested_any = false;
         for k in 0..n_req {
             let out = self.sim.output();
             let node = if k < n_app {
@@ -261,19 +299,27 @@ impl RtLoop {
             if !self.requested[node] {
                 if self.req_tx.push(node as u32).is_ok() {
                     self.requested[node] = true;
+                    requested_any = true;
                 } else {
                     self.counters.dropped_column_requests.fetch_add(1, Ordering::Relaxed);
                     break;
                 }
             }
         }
+        if requested_any && self.column_bell.ring_from_rt() {
+            self.counters.column_wakes.fetch_add(1, Ordering::Relaxed);
+        }
         self.record.pose_seq = *last_seq;
         self.record.client_time_ns = *last_client_time;
         self.record.lateness_ns = lateness.as_nanos() as u64;
         self.record.compute_ns = t0.elapsed().as_nanos() as u64;
         // A tick that did not step publishes nothing (observers never see a tick twice).
-        if (stepped || just_faulted) && self.rec_tx.push(*self.record).is_err() {
-            self.counters.dropped_records.fetch_add(1, Ordering::Relaxed);
+        if stepped || just_faulted {
+            if self.rec_tx.push(*self.record).is_err() {
+                self.counters.dropped_records.fetch_add(1, Ordering::Relaxed);
+            } else if self.fanout_bell.ring_from_rt() {
+                self.counters.fanout_wakes.fetch_add(1, Ordering::Relaxed);
+            }
         }
         self.counters.ticks.fetch_add(1, Ordering::Relaxed);
     }

@@ -11,6 +11,7 @@ use needlesim_core::sim::{SimError, Simulation};
 use needlesim_scene::Scene;
 
 use crate::counters::{SessionCounters, StatsSnapshot};
+use crate::doorbell::Doorbell;
 use crate::fan_out::{ColumnWorker, FanOut, Field, Histograms, RecordSink, watch_device_channel};
 use crate::record::{COLUMN_QUEUE, PoseCommand, RECORD_RING, TickRecord};
 use crate::rt_loop::RtLoop;
@@ -46,6 +47,8 @@ pub struct Session {
     histograms: Arc<Mutex<Histograms>>,
     /// Where the fan-out hands every record (a recording), when one is attached.
     sink: crate::fan_out::SinkSlot,
+    /// The fan-out's and the column worker's doorbells, rung at close so that they stop at once.
+    bells: [Arc<Doorbell>; 2],
     threads: Mutex<Vec<JoinHandle<()>>>,
 }
 
@@ -59,6 +62,25 @@ pub fn set_rt_priority(priority: i32) {
 
 fn rt_priority() -> i32 {
     RT_PRIORITY.load(Ordering::Relaxed)
+}
+
+/// The default spin margin: 150 µs, 15 % of a core per session at 1 kHz.
+pub const DEFAULT_SPIN_MARGIN: Duration = Duration::from_micros(150);
+
+/// How long before each deadline new sessions' real-time threads stop sleeping and spin (ns).
+static SPIN_MARGIN_NS: AtomicU64 = AtomicU64::new(DEFAULT_SPIN_MARGIN.as_nanos() as u64);
+
+/// Sets how long before each tick's deadline new sessions' real-time threads stop sleeping and
+/// busy-wait ([`DEFAULT_SPIN_MARGIN`]; zero sleeps to the deadline, spinning never). The margin
+/// buys a wake-up on time (an OS sleep wakes tens of µs late, more under load) for its worth of a
+/// core every tick: at 1 kHz, 150 µs is 15 % of a core per session, which a 2-core machine takes
+/// from the clients and the fan-outs. Capped at the tick period.
+pub fn set_spin_margin(margin: Duration) {
+    SPIN_MARGIN_NS.store(margin.as_nanos().min(u64::MAX as u128) as u64, Ordering::Relaxed);
+}
+
+fn spin_margin() -> Duration {
+    Duration::from_nanos(SPIN_MARGIN_NS.load(Ordering::Relaxed))
 }
 
 /// Errors starting a session.
@@ -122,11 +144,14 @@ impl Session {
         let field_subscribers = Arc::new(AtomicU64::new(0));
         let sink: crate::fan_out::SinkSlot = Arc::new(Mutex::new(None));
         let (rt_priority_tx, rt_priority_rx) = std::sync::mpsc::sync_channel(1);
+        let fanout_bell = Arc::new(Doorbell::default());
+        let column_bell = Arc::new(Doorbell::default());
         let mut threads = Vec::new();
+        let period = Duration::from_secs_f64(1.0 / tick_rate_hz);
 
         let rt = RtLoop {
             sim,
-            period: Duration::from_secs_f64(1.0 / tick_rate_hz),
+            period,
             pose_out,
             rec_tx,
             req_tx,
@@ -137,6 +162,10 @@ impl Session {
             stop: stop.clone(),
             record: Box::new(TickRecord::default()),
             rt_priority: rt_priority(),
+            spin_margin: spin_margin().min(period),
+            fanout_bell: fanout_bell.clone(),
+            column_bell: column_bell.clone(),
+            device_pose_counter: 0,
             device,
             device_seen: false,
             last_buttons: None,
@@ -157,6 +186,7 @@ impl Session {
             col_tx,
             ret_rx,
             render_columns: render_columns.clone(),
+            bell: column_bell.clone(),
             stop: stop.clone(),
         };
         threads.push(std::thread::Builder::new().name(format!("columns-{id}")).spawn(move || worker.run()).map_err(SessionError::Thread)?);
@@ -173,6 +203,7 @@ impl Session {
             counters: counters.clone(),
             rt_priority_rx,
             session_id: id.clone(),
+            bell: fanout_bell.clone(),
             stop: stop.clone(),
         };
         threads.push(std::thread::Builder::new().name(format!("fanout-{id}")).spawn(move || fan.run()).map_err(SessionError::Thread)?);
@@ -200,6 +231,7 @@ impl Session {
             n_observers: Arc::new(AtomicU64::new(0)),
             histograms,
             sink,
+            bells: [fanout_bell, column_bell],
             threads: Mutex::new(threads),
         }))
     }
@@ -250,12 +282,16 @@ impl Session {
             ticks: c.ticks.load(Ordering::Relaxed),
             compute_us: [q(&h.compute_ns, 0.5), q(&h.compute_ns, 0.99), q(&h.compute_ns, 0.999), h.compute_ns.max() as f64 / 1e3],
             lateness_us: [q(&h.lateness_ns, 0.5), q(&h.lateness_ns, 0.99), q(&h.lateness_ns, 0.999)],
+            lateness_max_us: h.lateness_ns.max() as f64 / 1e3,
             missed_deadlines: c.missed_deadlines.load(Ordering::Relaxed),
             superseded_poses: c.superseded_poses.load(Ordering::Relaxed),
             dropped_records: c.dropped_records.load(Ordering::Relaxed),
             column_misses: c.column_misses.load(Ordering::Relaxed),
             rejected_poses: c.rejected_poses.load(Ordering::Relaxed),
             clamped_ticks: c.clamped_ticks.load(Ordering::Relaxed),
+            fanout_wakes: c.fanout_wakes.load(Ordering::Relaxed),
+            fanout_timeouts: c.fanout_timeouts.load(Ordering::Relaxed),
+            spin_ns: c.spin_ns.load(Ordering::Relaxed),
             faults: c.faults.load(Ordering::Relaxed),
             fault: c.fault().map(|f| f.message()),
         }
@@ -293,6 +329,9 @@ impl Session {
     /// when dropped).
     pub fn close(&self) {
         self.stop.store(true, Ordering::Relaxed);
+        for bell in &self.bells {
+            bell.wake_from_io();
+        }
         let threads: Vec<_> = std::mem::take(&mut *self.threads.lock().expect("threads lock"));
         for t in threads {
             let _ = t.join();
@@ -304,5 +343,8 @@ impl Session {
 impl Drop for Session {
     fn drop(&mut self) {
         self.stop.store(true, Ordering::Relaxed);
+        for bell in &self.bells {
+            bell.wake_from_io();
+        }
     }
 }

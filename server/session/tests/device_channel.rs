@@ -53,6 +53,11 @@ fn device_drives_goes_stale_and_reattaches() {
     let mut device = DeviceChannel::attach(&path).unwrap();
     let f = drive(&mut device, 0.205, 0.165, 2.0).expect("forces arrive");
     assert_eq!(f.state, ServerForce::STATE_OK);
+    // The force names the device pose it answers, and the session published its tick phase.
+    assert!((1..=device.pose_counter()).contains(&f.pose_counter), "pose counter {} of {}", f.pose_counter, device.pose_counter());
+    let (origin, period) = device.server_schedule().expect("the tick phase is published");
+    assert_eq!(period, Duration::from_millis(1));
+    assert!(origin.as_nanos() as u64 <= monotonic_ns(), "tick 0 is in the past");
     assert!((f.base[1] - 0.165).abs() < 0.002, "the server used the device's pose: {:?}", f.base);
     let axial = -f.force_n[1]; // the needle points down: axial = -Fy
     assert!(axial < -0.1, "the tissue resists the insertion: {f:?}");

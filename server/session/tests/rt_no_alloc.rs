@@ -1,7 +1,8 @@
 //! A session's real-time thread allocates nothing inside a tick once warmed up: a counting global
 //! allocator counts allocations made while `session::IN_TICK` is set, during a 3 s insertion at
 //! 1 kHz driven through the shared-memory device channel, with observers attached; the
-//! stiffness Jacobian is refreshed inside ticks too.
+//! stiffness Jacobian is refreshed inside ticks too, and the fan-out's and the column worker's
+//! doorbells are rung inside them (a wake is an unpark: no allocation).
 
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
@@ -65,5 +66,6 @@ fn real_time_ticks_allocate_nothing_after_warm_up() {
     assert!(rec.n_nodes >= 5 && rec.force_axial_n < 0.0, "the device drove the needle into the tissue");
     assert!(rec.stiffness.iter().any(|v| *v != 0.0), "the stiffness is computed in ticks too");
     assert_eq!(session.counters.column_misses.load(Ordering::Relaxed), 0, "the worker delivered columns ahead of the tip");
+    assert!(session.counters.fanout_wakes.load(Ordering::Relaxed) > 0, "the doorbell rang inside counted ticks");
     assert_eq!(allocations(), 0, "allocations inside real-time ticks");
 }
