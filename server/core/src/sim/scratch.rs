@@ -29,7 +29,7 @@ impl Scratch {
         let cap = params.max_needle_nodes;
         Self {
             capture: CaptureScratch {
-                candidates: Vec::with_capacity(NEAR_TIP_CANDIDATES),
+                candidates: Vec::with_capacity(near_tip_reserve(model, params)),
                 captured: Vec::with_capacity(MAX_CAPTURES_PER_TICK),
                 columns: model.column_scratch(),
                 column_buf: vec![0.0; 2 * model.n_dofs()],
@@ -39,4 +39,28 @@ impl Scratch {
             flex: params.needle.flexible().map(|f| FlexScratch::new(f, params.initial_pose, cap)),
         }
     }
+}
+
+/// The reserve of the spatial grid's answer near the tip: [`NEAR_TIP_CANDIDATES`], or more on a
+/// fine mesh, where the approaching query (a square of side $\ell + 2b$ around the path ahead:
+/// lookahead $\ell$, lateral band $b$ — the longest edge, or twice the capture radius) covers
+/// more nodes: twice the mean node density times that square widened by a cell on each side.
+/// A query past it still works and is counted ([`super::SimStats::candidate_growths`]).
+fn near_tip_reserve(model: &TissueModel, params: &SimParams) -> usize {
+    let mesh = model.mesh();
+    let (lo, hi) = mesh.bounding_box_m();
+    let area = ((hi[0] - lo[0]) * (hi[1] - lo[1])).max(f64::MIN_POSITIVE);
+    let density = mesh.n_nodes() as f64 / area;
+    let nodes = mesh.nodes_m();
+    let max_edge = mesh
+        .triangles()
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+        .map(|(a, b)| (nodes[a][0] - nodes[b][0]).hypot(nodes[a][1] - nodes[b][1]))
+        .fold(0.0, f64::max);
+    let band = max_edge.max(2.0 * params.capture_radius_m);
+    let side = params.lookahead_m + 2.0 * band + 4.0 * max_edge;
+    let estimate = 2.0 * density * side * side;
+    // Bounded by the mesh itself.
+    NEAR_TIP_CANDIDATES.max((estimate.min(mesh.n_nodes() as f64)) as usize)
 }
