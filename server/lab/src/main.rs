@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use needlesim_lab::{bench, identify, motions};
 
@@ -71,6 +71,9 @@ enum Command {
         /// Nodes whose compliance columns are computed between two steps.
         #[arg(long, default_value_t = needlesim_offline::driver::DEFAULT_PREFETCH_NODES_PER_TICK)]
         prefetch_per_tick: usize,
+        /// Also write the JSON object (with the slowest ticks' counters) to this file.
+        #[arg(long)]
+        json_out: Option<PathBuf>,
     },
 }
 
@@ -81,7 +84,7 @@ fn main() -> ExitCode {
         .init();
     let result = match Cli::parse().command {
         Command::Bench { quick, json, plot, sizes, no_scipy } => run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json),
-        Command::Motions { quick, json, sizes, motions, contact, spacing_mm, prefetch_per_tick } => run_motions(
+        Command::Motions { quick, json, sizes, motions, contact, spacing_mm, prefetch_per_tick, json_out } => run_motions(
             motions::MotionOptions {
                 quick,
                 sizes,
@@ -92,6 +95,7 @@ fn main() -> ExitCode {
                 progress: true,
             },
             json,
+            json_out,
         ),
         Command::Identify { command } => identify::run(command),
     };
@@ -114,10 +118,14 @@ fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
     Ok(())
 }
 
-fn run_motions(opts: motions::MotionOptions, json: bool) -> Result<()> {
+fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBuf>) -> Result<()> {
     let suite = motions::run_suite(&opts)?;
+    let value = motions::to_json(&suite, &opts);
+    if let Some(path) = json_out {
+        std::fs::write(&path, serde_json::to_string_pretty(&value)?).with_context(|| format!("cannot write {}", path.display()))?;
+    }
     if json {
-        println!("{}", serde_json::to_string(&motions::to_json(&suite, &opts))?);
+        println!("{}", serde_json::to_string(&value)?);
     } else {
         print!("{}", motions::to_markdown(&suite, &opts));
     }

@@ -492,9 +492,14 @@ pub struct TickRecord {
     pub shape_passes: u64,
     /// Working set after the step.
     pub d: usize,
-    /// Time the thread spent waiting on a run queue around this step (ns; [`SchedStat`]): a
-    /// step that waited was preempted by another process, and its time is not all the solver's.
+    /// Time the thread spent waiting on a run queue around this step (ns; [`ThreadCounters`]):
+    /// a step that waited was preempted by another process, and its time is not all the solver's.
     pub cpu_wait_ns: u64,
+    /// Page faults around this step ([`ThreadCounters`]).
+    pub page_faults: u64,
+    /// Columns computed by the prefetch just before this step (it streams the sparse factor
+    /// through the caches, so the step after it starts cold).
+    pub columns_before: u64,
 }
 
 /// One (motion, mesh) case.
@@ -599,34 +604,73 @@ impl CaseResult {
         if self.stats.column_misses > 0 {
             m.push(format!("{} column misses", self.stats.column_misses));
         }
-        if self.stats.overflows() > 0 {
-            m.push(format!("{} overflows", self.stats.overflows()));
+        m
+    }
+    /// What is not one of the targets but a run should not do: capacity overflows (a
+    /// candidate-buffer growth is an allocation inside a step), failed Jacobians.
+    pub fn notes(&self) -> Vec<String> {
+        let s = &self.stats;
+        let mut m = Vec::new();
+        for (n, what) in [
+            (s.capacity_drops, "contacts dropped at capacity"),
+            (s.capture_overflow, "capture-list overflows"),
+            (s.approaching_overflow, "approaching-list overflows"),
+            (s.candidate_growths, "candidate-buffer growth (an allocation in a step)"),
+            (s.curve_capacity_drops, "curve capacity drops"),
+            (self.jacobian_errors as u64, "failed Jacobians"),
+        ] {
+            if n > 0 {
+                m.push(format!("{n} {what}"));
+            }
         }
         m
     }
 }
 
-/// This thread's scheduler statistics (`/proc/thread-self/schedstat`: time on the CPU, time
-/// waiting on a run queue, times scheduled in), read around each step to tell a preempted step
-/// from a slow one. `None` where the file is missing (no schedstats in the kernel).
-pub struct SchedStat {
-    file: Option<std::fs::File>,
+/// This thread's counters from procfs, read around each step to tell a slow step from one the
+/// machine slowed: the time waited on a run queue (`/proc/thread-self/schedstat`, its second
+/// field: another process had the core) and the page faults (`/proc/thread-self/stat`, minflt +
+/// majflt). Missing files (a kernel without schedstats) read as `None`.
+pub struct ThreadCounters {
+    schedstat: Option<std::fs::File>,
+    stat: Option<std::fs::File>,
     buf: String,
 }
 
-impl SchedStat {
-    /// Opens this thread's schedstat file.
+/// One reading of [`ThreadCounters`].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ThreadSample {
+    /// Time waited on a run queue so far (ns).
+    pub wait_ns: Option<u64>,
+    /// Minor and major page faults so far.
+    pub page_faults: Option<u64>,
+}
+
+impl ThreadCounters {
+    /// Opens this thread's files.
     pub fn open() -> Self {
-        Self { file: std::fs::File::open("/proc/thread-self/schedstat").ok(), buf: String::with_capacity(64) }
+        let open = |p: &str| std::fs::File::open(p).ok();
+        Self { schedstat: open("/proc/thread-self/schedstat"), stat: open("/proc/thread-self/stat"), buf: String::with_capacity(512) }
     }
-    /// Nanoseconds this thread has waited on a run queue so far.
-    pub fn wait_ns(&mut self) -> Option<u64> {
+    fn read(file: Option<&mut std::fs::File>, buf: &mut String) -> Option<()> {
         use std::io::{Read, Seek};
-        let f = self.file.as_mut()?;
-        self.buf.clear();
+        let f = file?;
+        buf.clear();
         f.rewind().ok()?;
-        f.read_to_string(&mut self.buf).ok()?;
-        self.buf.split_whitespace().nth(1)?.parse().ok()
+        f.read_to_string(buf).ok()?;
+        Some(())
+    }
+    /// The counters now.
+    pub fn sample(&mut self) -> ThreadSample {
+        let wait_ns = Self::read(self.schedstat.as_mut(), &mut self.buf).and_then(|()| self.buf.split_whitespace().nth(1)?.parse().ok());
+        let page_faults = Self::read(self.stat.as_mut(), &mut self.buf).and_then(|()| {
+            // After the command name in parentheses: state, ppid, pgrp, session, tty_nr, tpgid,
+            // flags, minflt, cminflt, majflt.
+            let rest = &self.buf[self.buf.rfind(')')? + 1..];
+            let f: Vec<&str> = rest.split_whitespace().take(10).collect();
+            Some(f.get(7)?.parse::<u64>().ok()? + f.get(9)?.parse::<u64>().ok()?)
+        });
+        ThreadSample { wait_ns, page_faults }
     }
 }
 
@@ -683,19 +727,23 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
         wall_s: 0.0,
         failed: None,
     };
-    let mut sched = SchedStat::open();
+    let mut counters = ThreadCounters::open();
     let turning = script.phases.iter().position(|p| p.name == "turn").map(|i| {
         let end = script.phases.get(i + 1).map_or(script.poses.len(), |p| p.first_tick);
         script.phases[i].first_tick..end
     });
     loop {
         let k = run.next_k() as usize;
+        let mut columns_before = 0;
         if k > 0 {
             // Between steps, untimed as the step: the columns of the nodes the last step reported
             // as approaching (as the server's column worker would provide them).
             let t = Instant::now();
             match run.sim_mut().prefetch_columns(opts.prefetch_nodes_per_tick) {
-                Ok(c) => res.prefetched_nodes += c as u64,
+                Ok(c) => {
+                    columns_before = c as u64;
+                    res.prefetched_nodes += c as u64;
+                }
                 Err(e) => {
                     res.failed = Some(format!("prefetch after tick {}: {e}", k - 1));
                     break;
@@ -707,7 +755,7 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
             run.sim_mut().flip_bevel();
         }
         let (sim_before, solver_before) = (run.sim().stats(), run.sim().solver().stats());
-        let wait_before = sched.wait_ns();
+        let before = counters.sample();
         let tick = match run.next_tick() {
             Ok(Some(t)) => t,
             Ok(None) => break,
@@ -716,10 +764,8 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
                 break;
             }
         };
-        let cpu_wait_ns = match (wait_before, sched.wait_ns()) {
-            (Some(a), Some(b)) => b.saturating_sub(a),
-            _ => 0,
-        };
+        let after = counters.sample();
+        let delta = |a: Option<u64>, b: Option<u64>| a.zip(b).map_or(0, |(a, b)| b.saturating_sub(a));
         let sim = run.sim();
         let (s, v) = (sim.stats(), sim.solver().stats());
         let out = sim.output();
@@ -737,7 +783,9 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
             deferrals: s.column_deferrals - sim_before.column_deferrals,
             shape_passes: s.shape_passes - sim_before.shape_passes,
             d,
-            cpu_wait_ns,
+            cpu_wait_ns: delta(before.wait_ns, after.wait_ns),
+            page_faults: delta(before.page_faults, after.page_faults),
+            columns_before,
         });
         res.d_max = res.d_max.max(d);
         if k == script.deepest_tick {
@@ -812,7 +860,7 @@ pub fn run_suite(opts: &MotionOptions) -> Result<Suite> {
                 let [p50, p99, p999, max] = c.step_quantiles();
                 let misses = c.misses();
                 eprintln!(
-                    "[{}/{total}] {} {n}x{n}: p50 {} p99 {} p99.9 {} max {} µs, {} unconverged, {} misses, {} deferrals, d {} (max {}), prefetch {:.1} s, wall {:.1} s, load {:.2}{}",
+                    "[{}/{total}] {} {n}x{n}: p50 {} p99 {} p99.9 {} max {} µs, {} unconverged, {} misses, {} deferrals, d {} (max {}), prefetch {:.1} s, wall {:.1} s, load {:.2}{}{}",
                     cases.len() + 1,
                     s.motion.name(),
                     us(p50),
@@ -827,7 +875,8 @@ pub fn run_suite(opts: &MotionOptions) -> Result<Suite> {
                     c.prefetch_s,
                     c.wall_s,
                     c.load_avg[1],
-                    if misses.is_empty() { " — targets met".to_owned() } else { format!(" — misses: {}", misses.join(", ")) }
+                    if misses.is_empty() { " — targets met".to_owned() } else { format!(" — misses: {}", misses.join(", ")) },
+                    if c.notes().is_empty() { String::new() } else { format!(" ({})", c.notes().join(", ")) }
                 );
             }
             cases.push(c);
@@ -847,6 +896,14 @@ fn num(v: f64) -> Value {
     if v.is_finite() { json!(v) } else { Value::Null }
 }
 
+fn targets_cell(misses: &[String], notes: &[String]) -> String {
+    let mut cell = if misses.is_empty() { "met".to_owned() } else { format!("**misses**: {}", misses.join(", ")) };
+    if !notes.is_empty() {
+        let _ = write!(cell, "; _{}_", notes.join(", "));
+    }
+    cell
+}
+
 fn contact_label(c: ContactChoice, spacing_m: f64) -> String {
     match c {
         ContactChoice::Points => format!("material points every {:.1} mm", spacing_m * 1e3),
@@ -860,6 +917,7 @@ fn record_json(r: &TickRecord, phase: &str) -> Value {
         "active_set_iterations": r.active_set_iterations, "pivots": r.pivots, "rotations": r.rotations,
         "stick_slip_changes": r.stick_slip_changes, "captures": r.captures, "releases": r.releases,
         "deferrals": r.deferrals, "shape_passes": r.shape_passes, "d": r.d, "cpu_wait_s": r.cpu_wait_ns as f64 * 1e-9,
+        "page_faults": r.page_faults, "columns_before": r.columns_before,
     })
 }
 
@@ -875,6 +933,13 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
             let s = &c.stats;
             let worst: Vec<Value> =
                 c.worst(WORST_TICKS).iter().map(|r| record_json(r, script_of(c.motion).map_or("", |sc| sc.phase_of(r.tick)))).collect();
+            let unconverged: Vec<Value> = c
+                .ticks
+                .iter()
+                .filter(|r| !r.converged)
+                .take(20)
+                .map(|r| record_json(r, script_of(c.motion).map_or("", |sc| sc.phase_of(r.tick))))
+                .collect();
             let slow: Vec<&TickRecord> = c.ticks.iter().filter(|r| r.step_s > TARGET_P999_S).collect();
             let mut o = json!({
                 "motion": c.motion.name(), "mesh": format!("{}x{}", c.n, c.n), "n_nodes": c.n * c.n,
@@ -901,10 +966,17 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
                 "theta_range_rad": [num(c.theta_range_rad[0]), num(c.theta_range_rad[1])],
                 "tip_x_range_m": [num(c.tip_x_range_m[0]), num(c.tip_x_range_m[1])],
                 "load_avg_1min": [num(c.load_avg[0]), num(c.load_avg[1])], "wall_s": c.wall_s,
-                "worst_ticks": worst, "misses": c.misses(), "failed": c.failed,
+                "worst_ticks": worst, "unconverged": unconverged, "misses": c.misses(), "notes": c.notes(), "failed": c.failed,
             });
-            if let (Some(o), Value::Object(more)) = (o.as_object_mut(), counters) {
-                o.extend(more);
+            let overflows = json!({
+                "capacity_drops": s.capacity_drops, "capture_overflow": s.capture_overflow,
+                "approaching_overflow": s.approaching_overflow, "candidate_growths": s.candidate_growths,
+                "curve_capacity_drops": s.curve_capacity_drops,
+            });
+            for more in [counters, overflows] {
+                if let (Some(o), Value::Object(more)) = (o.as_object_mut(), more) {
+                    o.extend(more);
+                }
             }
             o
         })
@@ -973,7 +1045,7 @@ pub fn to_markdown(suite: &Suite, opts: &MotionOptions) -> String {
             c.setup_s,
             c.prefetch_s,
             c.prefetched_nodes,
-            if misses.is_empty() { "met".to_owned() } else { format!("**misses**: {}", misses.join(", ")) }
+            targets_cell(&misses, &c.notes())
         );
     }
     let _ = writeln!(
@@ -986,9 +1058,9 @@ pub fn to_markdown(suite: &Suite, opts: &MotionOptions) -> String {
     );
     let _ = writeln!(
         s,
-        "| motion | mesh | tick (phase) | step µs | active-set iterations | pivots | rotations | stick↔slip | captures / releases | shape passes | d | ticks > 500 µs (preempted) | case totals: pivots / rotations / stick↔slip |"
+        "| motion | mesh | tick (phase) | step µs | active-set iterations | pivots | rotations | stick↔slip | captures / releases | shape passes | d | page faults | columns prefetched before | ticks > 500 µs (preempted) | case totals: pivots / rotations / stick↔slip |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for c in &suite.cases {
         let phase_of = |t: usize| suite.scripts.iter().find(|sc| sc.motion == c.motion).map_or("", |sc| sc.phase_of(t));
         let over = c.ticks.iter().filter(|r| r.step_s > TARGET_P999_S).count();
@@ -997,7 +1069,7 @@ pub fn to_markdown(suite: &Suite, opts: &MotionOptions) -> String {
         if let Some(w) = worst {
             let _ = writeln!(
                 s,
-                "| {} | {}² | {} ({}) | {} | {} | {} | {} | {} | {} / {} | {} | {} | {over} ({over_preempted}) | {} / {} / {} |",
+                "| {} | {}² | {} ({}) | {} | {} | {} | {} | {} | {} / {} | {} | {} | {} | {} | {over} ({over_preempted}) | {} / {} / {} |",
                 c.motion.name(),
                 c.n,
                 w.tick,
@@ -1011,6 +1083,8 @@ pub fn to_markdown(suite: &Suite, opts: &MotionOptions) -> String {
                 w.releases,
                 w.shape_passes,
                 w.d,
+                w.page_faults,
+                w.columns_before,
                 c.solver.n_pivots,
                 c.solver.n_rotations,
                 c.stats.stick_to_slip + c.stats.slip_to_stick
