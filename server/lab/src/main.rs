@@ -74,6 +74,10 @@ enum Command {
         /// Also write the JSON object (with the slowest ticks' counters) to this file.
         #[arg(long)]
         json_out: Option<PathBuf>,
+        /// Stop a case when its column cache (never evicted; 5.1 MB a node on 400×400) passes
+        /// this many GB: bevel on 400×400 needs about 21 GB.
+        #[arg(long)]
+        max_column_gb: Option<f64>,
     },
 }
 
@@ -84,7 +88,7 @@ fn main() -> ExitCode {
         .init();
     let result = match Cli::parse().command {
         Command::Bench { quick, json, plot, sizes, no_scipy } => run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json),
-        Command::Motions { quick, json, sizes, motions, contact, spacing_mm, prefetch_per_tick, json_out } => run_motions(
+        Command::Motions { quick, json, sizes, motions, contact, spacing_mm, prefetch_per_tick, json_out, max_column_gb } => run_motions(
             motions::MotionOptions {
                 quick,
                 sizes,
@@ -93,6 +97,7 @@ fn main() -> ExitCode {
                 spacing_m: spacing_mm * 1e-3,
                 prefetch_nodes_per_tick: prefetch_per_tick,
                 progress: true,
+                max_column_bytes: max_column_gb.map(|gb| (gb * 1e9) as usize),
             },
             json,
             json_out,

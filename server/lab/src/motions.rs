@@ -127,6 +127,10 @@ pub struct MotionOptions {
     pub prefetch_nodes_per_tick: usize,
     /// Print a progress line per case on stderr.
     pub progress: bool,
+    /// Stop a case (recorded as failed) when its column cache outgrows this many bytes: the
+    /// cache keeps every column it was given (two columns of 2n doubles per node, 5.1 MB a node
+    /// on 400 × 400), and the bevel motion on 400 × 400 asks for ~4200 nodes.
+    pub max_column_bytes: Option<usize>,
 }
 
 impl Default for MotionOptions {
@@ -139,6 +143,7 @@ impl Default for MotionOptions {
             spacing_m: ContactModel::DEFAULT_SPACING_M,
             prefetch_nodes_per_tick: DEFAULT_PREFETCH_NODES_PER_TICK,
             progress: true,
+            max_column_bytes: None,
         }
     }
 }
@@ -528,6 +533,8 @@ pub struct CaseResult {
     /// Column prefetch between steps, total s.
     pub prefetch_s: f64,
     pub prefetched_nodes: u64,
+    /// Bytes of compliance columns cached at the end of the run (never evicted).
+    pub column_cache_bytes: usize,
     /// Deepest tip below the top surface over the run (m).
     pub tip_depth_max_m: f64,
     /// The tip at the deepest tick (m).
@@ -716,6 +723,7 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
         setup_s,
         prefetch_s: 0.0,
         prefetched_nodes: 0,
+        column_cache_bytes: 0,
         tip_depth_max_m: f64::NEG_INFINITY,
         tip_deepest_m: [f64::NAN; 2],
         theta_range_rad: [f64::INFINITY, f64::NEG_INFINITY],
@@ -750,6 +758,18 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
                 }
             }
             res.prefetch_s += t.elapsed().as_secs_f64();
+            let bytes = run.sim().cache().column_bytes();
+            if let Some(limit) = opts.max_column_bytes
+                && bytes > limit
+            {
+                res.failed = Some(format!(
+                    "column cache {:.2} GB over the limit of {:.2} GB after tick {}",
+                    bytes as f64 / 1e9,
+                    limit as f64 / 1e9,
+                    k - 1
+                ));
+                break;
+            }
         }
         if script.flip_tick == Some(k) {
             run.sim_mut().flip_bevel();
@@ -810,6 +830,7 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
     res.stats = sim.stats();
     res.solver = sim.solver().stats();
     res.d_final = sim.output().needle_nodes.len();
+    res.column_cache_bytes = sim.cache().column_bytes();
     res.bevel_side_first_last[1] = sim.bevel_side();
     if res.d_min_turning == usize::MAX {
         res.d_min_turning = 0;
@@ -860,7 +881,7 @@ pub fn run_suite(opts: &MotionOptions) -> Result<Suite> {
                 let [p50, p99, p999, max] = c.step_quantiles();
                 let misses = c.misses();
                 eprintln!(
-                    "[{}/{total}] {} {n}x{n}: p50 {} p99 {} p99.9 {} max {} µs, {} unconverged, {} misses, {} deferrals, d {} (max {}), prefetch {:.1} s, wall {:.1} s, load {:.2}{}{}",
+                    "[{}/{total}] {} {n}x{n}: p50 {} p99 {} p99.9 {} max {} µs, {} unconverged, {} misses, {} deferrals, d {} (max {}), prefetch {:.1} s ({:.2} GB of columns), wall {:.1} s, load {:.2}{}{}",
                     cases.len() + 1,
                     s.motion.name(),
                     us(p50),
@@ -873,6 +894,7 @@ pub fn run_suite(opts: &MotionOptions) -> Result<Suite> {
                     c.d_deepest,
                     c.d_max,
                     c.prefetch_s,
+                    c.column_cache_bytes as f64 / 1e9,
                     c.wall_s,
                     c.load_avg[1],
                     if misses.is_empty() { " — targets met".to_owned() } else { format!(" — misses: {}", misses.join(", ")) },
@@ -940,6 +962,14 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
                 .take(20)
                 .map(|r| record_json(r, script_of(c.motion).map_or("", |sc| sc.phase_of(r.tick))))
                 .collect();
+            // Columns prefetched before the ticks of each phase.
+            let mut by_phase = serde_json::Map::new();
+            if let Some(sc) = script_of(c.motion) {
+                for r in &c.ticks {
+                    let e = by_phase.entry(sc.phase_of(r.tick)).or_insert(json!(0));
+                    *e = json!(e.as_u64().unwrap_or(0) + r.columns_before);
+                }
+            }
             let slow: Vec<&TickRecord> = c.ticks.iter().filter(|r| r.step_s > TARGET_P999_S).collect();
             let mut o = json!({
                 "motion": c.motion.name(), "mesh": format!("{}x{}", c.n, c.n), "n_nodes": c.n * c.n,
@@ -951,7 +981,7 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
                 "jacobian_count": c.jacobian_s.len(), "jacobian_errors": c.jacobian_errors,
                 "unconverged_ticks": s.unconverged_ticks, "column_misses": s.column_misses, "column_deferrals": s.column_deferrals,
                 "d_deepest": c.d_deepest, "d_max": c.d_max, "d_final": c.d_final,
-                "setup_s": c.setup_s, "prefetch_s": c.prefetch_s, "prefetched_nodes": c.prefetched_nodes,
+                "setup_s": c.setup_s, "prefetch_s": c.prefetch_s, "prefetched_nodes": c.prefetched_nodes, "column_cache_bytes": c.column_cache_bytes,
                 "preempted_ticks": c.preempted_ticks(),
                 "unpreempted_step_p999_s": num(c.unpreempted_quantiles()[0]), "unpreempted_step_max_s": num(c.unpreempted_quantiles()[1]),
             });
@@ -966,7 +996,7 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
                 "theta_range_rad": [num(c.theta_range_rad[0]), num(c.theta_range_rad[1])],
                 "tip_x_range_m": [num(c.tip_x_range_m[0]), num(c.tip_x_range_m[1])],
                 "load_avg_1min": [num(c.load_avg[0]), num(c.load_avg[1])], "wall_s": c.wall_s,
-                "worst_ticks": worst, "unconverged": unconverged, "misses": c.misses(), "notes": c.notes(), "failed": c.failed,
+                "worst_ticks": worst, "unconverged": unconverged, "prefetched_nodes_by_phase": by_phase, "misses": c.misses(), "notes": c.notes(), "failed": c.failed,
             });
             let overflows = json!({
                 "capacity_drops": s.capacity_drops, "capture_overflow": s.capture_overflow,
@@ -1014,7 +1044,7 @@ pub fn to_markdown(suite: &Suite, opts: &MotionOptions) -> String {
     let _ = writeln!(s);
     let _ = writeln!(
         s,
-        "| motion | mesh | ticks | step p50 µs | p99 µs | p99.9 µs | max µs | preempted ticks: count, p99.9 / max µs without them | Jacobian p50 / p99 / max µs | unconverged | column misses | deferrals | d deepest (max) | setup s | prefetch s (nodes) | targets |"
+        "| motion | mesh | ticks | step p50 µs | p99 µs | p99.9 µs | max µs | preempted ticks: count, p99.9 / max µs without them | Jacobian p50 / p99 / max µs | unconverged | column misses | deferrals | d deepest (max) | setup s | prefetch s (nodes, GB cached) | targets |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for c in &suite.cases {
@@ -1023,7 +1053,7 @@ pub fn to_markdown(suite: &Suite, opts: &MotionOptions) -> String {
         let misses = c.misses();
         let _ = writeln!(
             s,
-            "| {} | {}² | {} | {} | {} | {} | {} | {}: {} / {} | {} / {} / {} | {} | {} | {} | {} ({}) | {:.3} | {:.2} ({}) | {} |",
+            "| {} | {}² | {} | {} | {} | {} | {} | {}: {} / {} | {} / {} / {} | {} | {} | {} | {} ({}) | {:.3} | {:.2} ({}, {:.2}) | {} |",
             c.motion.name(),
             c.n,
             c.ticks.len(),
@@ -1045,6 +1075,7 @@ pub fn to_markdown(suite: &Suite, opts: &MotionOptions) -> String {
             c.setup_s,
             c.prefetch_s,
             c.prefetched_nodes,
+            c.column_cache_bytes as f64 / 1e9,
             targets_cell(&misses, &c.notes())
         );
     }

@@ -158,3 +158,18 @@ fn material_points_bound_d_by_the_spacing() {
     let nodes100 = run(100, ContactChoice::Nodes);
     assert!(nodes100 > 2 * d100, "node capture {nodes100} vs points {d100}");
 }
+
+/// A column-cache limit stops the case where the cache passes it, and says so.
+#[test]
+fn column_cache_limit_stops_a_case() {
+    let sc = script(Motion::Vertical, Pace::QUICK).unwrap();
+    let model = fixtures::phantom(19);
+    let one_node_bytes = 2 * 2 * model.mesh().n_nodes() * std::mem::size_of::<f64>();
+    let opts = MotionOptions { max_column_bytes: Some(3 * one_node_bytes), ..quick(&[19], &[Motion::Vertical], ContactChoice::Points) };
+    let c = run_case(&sc, &model, 0.0, &opts).unwrap();
+    assert!(c.failed.as_deref().is_some_and(|w| w.contains("column cache")), "{:?}", c.failed);
+    assert!(c.ticks.len() < c.script_ticks && !c.misses().is_empty());
+    assert!(c.prefetched_nodes > 3);
+    let unlimited = run_case(&sc, &model, 0.0, &quick(&[19], &[Motion::Vertical], ContactChoice::Points)).unwrap();
+    assert_eq!(unlimited.column_cache_bytes, unlimited.prefetched_nodes as usize * one_node_bytes, "no column computed in a step");
+}
