@@ -310,7 +310,7 @@ fn scene_needle(name: &str) -> Result<(NeedleShape, RegionNeedleParams, &'static
     Ok((scene.params.needle, scene.params.regions[0], csv))
 }
 
-fn flexible_label(needle: &NeedleShape, gauge: u32) -> String {
+fn needle_label_of(needle: &NeedleShape, gauge: u32) -> String {
     match needle.flexible() {
         Some(f) if f.bevel_force_ratio > 0.0 => format!(
             "flexible {gauge} G bevel tip ({:.0} mm, EI = {:.2e} N·m², {} links, bevel ratio {})",
@@ -347,7 +347,7 @@ pub fn script(motion: Motion, pace: Pace) -> Result<MotionScript> {
                 flip_tick: None,
                 needle: rigid_needle(),
                 region,
-                needle_label: flexible_label(&rigid_needle(), 0),
+                needle_label: needle_label_of(&rigid_needle(), 0),
                 description: format!(
                     "inserted {how} through the top centre, {travel_mm:.0} mm of base travel at {v_mm_s:.0} mm/s, {} s hold, withdrawn at {v_mm_s:.0} mm/s",
                     pace.hold_s
@@ -376,7 +376,7 @@ pub fn script(motion: Motion, pace: Pace) -> Result<MotionScript> {
                 flip_tick: None,
                 needle: rigid_needle(),
                 region,
-                needle_label: flexible_label(&rigid_needle(), 0),
+                needle_label: needle_label_of(&rigid_needle(), 0),
                 description: format!(
                     "inserted vertically {travel_mm:.0} mm at {v_mm_s:.0} mm/s, turned ±10° about the entry point ({TURN_PERIODS} sine periods of {} s, peak {:.2} rad/s), withdrawn at {v_mm_s:.0} mm/s",
                     pace.turn_period_s,
@@ -412,7 +412,7 @@ pub fn script(motion: Motion, pace: Pace) -> Result<MotionScript> {
                 initial_pose: start,
                 deepest_tick,
                 flip_tick: None,
-                needle_label: flexible_label(&needle, gauge),
+                needle_label: needle_label_of(&needle, gauge),
                 needle,
                 region,
                 description: format!(
@@ -438,7 +438,7 @@ pub fn script(motion: Motion, pace: Pace) -> Result<MotionScript> {
                 initial_pose: b.start,
                 deepest_tick,
                 flip_tick: Some(flip_tick),
-                needle_label: flexible_label(&needle, 20),
+                needle_label: needle_label_of(&needle, 20),
                 needle,
                 region,
                 description: format!(
