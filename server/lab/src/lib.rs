@@ -1,6 +1,7 @@
 //! needlesim-lab as a library: the step-time benchmark ([`bench`], with its counting allocator and
-//! the helpers the server's `cargo bench` targets share) and the `identify` commands ([`identify`]),
-//! run by the `needlesim-lab` binary.
+//! the helpers the server's `cargo bench` targets share), the motion suite of issue 15
+//! ([`motions`]) and the `identify` commands ([`identify`]), run by the `needlesim-lab` binary.
 
 pub mod bench;
 pub mod identify;
+pub mod motions;

@@ -1,13 +1,13 @@
-//! `needlesim-lab`: the offline lab tools, the step-time benchmark (`bench`) and the measurement
-//! pipeline (`identify …`). The only binary whose global allocator counts (for bench's
+//! `needlesim-lab`: the offline lab tools, the step-time benchmark (`bench`), the motion suite
+//! (`motions`) and the measurement pipeline (`identify …`). The only binary whose global allocator counts (for bench's
 //! peak-memory figures); the real-time server runs on the system allocator.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use needlesim_lab::{bench, identify};
+use needlesim_lab::{bench, identify, motions};
 
 /// Counts heap bytes for `bench`'s peak-memory figures (relaxed atomic adds per allocation; no
 /// thread turns allocation counting on).
@@ -46,6 +46,39 @@ enum Command {
         #[arg(long)]
         no_scipy: bool,
     },
+    /// The motion suite (issue 15): vertical, oblique 40°, turning ±10°, flexible Fig. 4 path and
+    /// bevel flip on several meshes; step p50/p99/p99.9/max, Jacobian, unconverged ticks, column
+    /// misses and deferrals, d at the deepest point.
+    Motions {
+        /// Faster scripts (50 mm/s, 0.2 s hold, 0.4 s turning periods) on 19×19 and 100×100.
+        #[arg(long)]
+        quick: bool,
+        /// Print the results as one JSON object instead of markdown.
+        #[arg(long)]
+        json: bool,
+        /// Grid sizes (nodes per side); default 19,100,200,400 (19,100 with --quick).
+        #[arg(long, value_delimiter = ',')]
+        sizes: Vec<usize>,
+        /// Motions to run (default: all).
+        #[arg(long, value_delimiter = ',', value_enum)]
+        motions: Vec<motions::Motion>,
+        /// Contact model: material points (default) or the paper's node capture.
+        #[arg(long, value_enum, default_value = "points")]
+        contact: motions::ContactChoice,
+        /// Material-point spacing (mm).
+        #[arg(long, default_value_t = 2.0)]
+        spacing_mm: f64,
+        /// Nodes whose compliance columns are computed between two steps.
+        #[arg(long, default_value_t = needlesim_offline::driver::DEFAULT_PREFETCH_NODES_PER_TICK)]
+        prefetch_per_tick: usize,
+        /// Also write the JSON object (with the slowest ticks' counters) to this file.
+        #[arg(long)]
+        json_out: Option<PathBuf>,
+        /// Stop a case when its column cache (never evicted; 5.1 MB a node on 400×400) passes
+        /// this many GB: bevel on 400×400 needs about 21 GB.
+        #[arg(long)]
+        max_column_gb: Option<f64>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -55,6 +88,20 @@ fn main() -> ExitCode {
         .init();
     let result = match Cli::parse().command {
         Command::Bench { quick, json, plot, sizes, no_scipy } => run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json),
+        Command::Motions { quick, json, sizes, motions, contact, spacing_mm, prefetch_per_tick, json_out, max_column_gb } => run_motions(
+            motions::MotionOptions {
+                quick,
+                sizes,
+                motions,
+                contact,
+                spacing_m: spacing_mm * 1e-3,
+                prefetch_nodes_per_tick: prefetch_per_tick,
+                progress: true,
+                max_column_bytes: max_column_gb.map(|gb| (gb * 1e9) as usize),
+            },
+            json,
+            json_out,
+        ),
         Command::Identify { command } => identify::run(command),
     };
     match result {
@@ -72,6 +119,20 @@ fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
         println!("{}", serde_json::to_string(&value)?);
     } else {
         print!("{markdown}");
+    }
+    Ok(())
+}
+
+fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBuf>) -> Result<()> {
+    let suite = motions::run_suite(&opts)?;
+    let value = motions::to_json(&suite, &opts);
+    if let Some(path) = json_out {
+        std::fs::write(&path, serde_json::to_string_pretty(&value)?).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if json {
+        println!("{}", serde_json::to_string(&value)?);
+    } else {
+        print!("{}", motions::to_markdown(&suite, &opts));
     }
     Ok(())
 }
