@@ -365,10 +365,12 @@ fn overflows_of_fixed_capacities_are_counted() {
     use needlesim_core::sim::param_limits::{MAX_APPROACHING, MAX_CAPTURES_PER_TICK};
     let model = phantom(100);
     let p = SimParams {
-        capture_radius_m: 0.003,
+        // The near-tip buffer is reserved for the lookahead query (2 cm, a 1 cm band: ~4200
+        // nodes here); the capture query after a 3 cm jump covers ~6300.
+        capture_radius_m: 0.005,
         max_needle_nodes: 32,
         max_base_step_m: 0.05,
-        lookahead_m: 0.05,
+        lookahead_m: 0.02,
         ..phantom_params(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }))
     };
     let mut sim = Simulation::new(model, p).unwrap();
