@@ -41,7 +41,10 @@ fn records_reach_an_observer_by_a_wake_not_by_a_timeout() {
         (c.fanout_wakes.load(Ordering::Relaxed), c.fanout_timeouts.load(Ordering::Relaxed), c.column_wakes.load(Ordering::Relaxed));
     session.close();
     println!("{received} records: {wakes} fan-out wakes, {timeouts} timeouts; {column_wakes} column worker wakes");
-    assert!(stats.fanout_wakes > 0 && stats.fanout_wakes <= wakes && stats.fanout_timeouts <= timeouts, "the stats carry the counters: {stats:?}");
+    assert!(
+        stats.fanout_wakes > 0 && stats.fanout_wakes <= wakes && stats.fanout_timeouts <= timeouts,
+        "the stats carry the counters: {stats:?}"
+    );
     // Polling (or a doorbell that never rings) would deliver them all through timeouts: at most
     // one per FAN_OUT_TIMEOUT (20 ms), i.e. ≥ 75 timeouts and no wake for 1500 records.
     assert!(wakes > 0, "the real-time thread never woke the fan-out");
