@@ -102,8 +102,20 @@ try {
   for (let i = 1; i <= steps; i++) {
     await page.mouse.move(x, y + (travel * i) / steps);
     await page.waitForTimeout(40);
+    // Regression (the CI run of issue 15's stop): the layout shifts mid-drag (here a 40 px row
+    // added to the header, as when the session list refills and the header wraps); the drag
+    // must still follow the mouse's travel, not the canvas's new place on the page.
+    if (i === steps / 2) {
+      await page.evaluate(() => {
+        const row = document.createElement("div");
+        row.id = "layout-shift";
+        row.style.cssText = "flex-basis: 100%; height: 40px";
+        document.querySelector("header").appendChild(row);
+      });
+    }
   }
   await page.mouse.up();
+  await page.evaluate(() => document.getElementById("layout-shift")?.remove());
   await page.waitForFunction((d0) => Number(document.body.dataset.depthM) > d0 + 0.01, depth0, { timeout: 15000 });
   await page.waitForTimeout(800);
   const depth1 = await page.evaluate(() => Number(document.body.dataset.depthM));

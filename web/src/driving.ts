@@ -6,7 +6,7 @@ import { Pose2Schema } from "./gen/needlesim/v1/needlesim_pb";
 import { auth, control } from "./api";
 import { publish, status } from "./dom";
 import { type Pose, state } from "./state";
-import { toWorld, viewTransform } from "./view";
+import { viewTransform } from "./view";
 
 /** The pose to start from: the last commanded one, else the shown frame's base. */
 /** This tab's id for SetPose: the server lets one controller drive at a time, and this tab's
@@ -59,27 +59,22 @@ function pump(): void {
 
 /** Lets the mouse drive the needle on this canvas (the tissue view). */
 export function installDriving(view: HTMLCanvasElement): void {
-  const eventWorld = (ev: MouseEvent): [number, number] => {
-    const r = view.getBoundingClientRect();
-    const px = ((ev.clientX - r.left) * view.width) / r.width;
-    const py = ((ev.clientY - r.top) * view.height) / r.height;
-    return toWorld(viewTransform(view, state), px, py);
-  };
-
   view.addEventListener("mousedown", (ev) => {
     if (state.mode !== "live") return;
     const start = currentPose();
     if (!start) return;
-    const [wxM, wyM] = eventWorld(ev);
-    state.driving.drag = { start, wxM, wyM, clientX: ev.clientX, free: ev.altKey, rotate: ev.shiftKey };
+    const r = view.getBoundingClientRect();
+    const mPerClientPx = view.width / r.width / viewTransform(view, state).s;
+    state.driving.drag = { start, clientX: ev.clientX, clientY: ev.clientY, mPerClientPx, free: ev.altKey, rotate: ev.shiftKey };
     ev.preventDefault();
   });
 
   window.addEventListener("mousemove", (ev) => {
     const drag = state.driving.drag;
     if (!drag) return;
-    const [wx, wy] = eventWorld(ev);
-    const dx = wx - drag.wxM, dy = wy - drag.wyM;
+    // World y points up, client y down.
+    const dx = (ev.clientX - drag.clientX) * drag.mPerClientPx;
+    const dy = -(ev.clientY - drag.clientY) * drag.mPerClientPx;
     const s = drag.start;
     if (drag.rotate) {
       command({ ...s, thetaRad: s.thetaRad + (ev.clientX - drag.clientX) * 0.005 });

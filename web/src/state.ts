@@ -15,10 +15,13 @@ export interface Pose {
 export interface Drag {
   /** The pose when the drag began. */
   start: Pose;
-  /** Where it began, in world coordinates (m) and in client pixels (x). */
-  wxM: number;
-  wyM: number;
+  /** Where it began, in client pixels (CSS). */
   clientX: number;
+  clientY: number;
+  /** Metres per client pixel, frozen when the drag began: the drag follows the mouse's travel
+   * even if the page's layout shifts under it (issue 15's CI run: a header that wrapped mid-drag
+   * moved the canvas and shortened the insertion). */
+  mPerClientPx: number;
   /** Alt: move the base freely; Shift: rotate. */
   free: boolean;
   rotate: boolean;

@@ -22,7 +22,6 @@ export function viewTransform(canvas: HTMLCanvasElement, st: ViewerState): Xf {
 }
 
 export const toPx = (xf: Xf, x: number, y: number): [number, number] => [xf.ox + xf.s * x, xf.oy - xf.s * y];
-export const toWorld = (xf: Xf, px: number, py: number): [number, number] => [(px - xf.ox) / xf.s, (xf.oy - py) / xf.s];
 
 /** Fixes the view's bounds once per session: the mesh, the needle base and the whole needle. */
 export function updateViewBounds(st: ViewerState, f: Frame): void {
