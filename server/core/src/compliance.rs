@@ -173,6 +173,17 @@ impl ComplianceCache {
         self.columns.len() * 2 * self.n_dofs * std::mem::size_of::<f64>()
     }
 
+    /// Storage slots, live or free (a slot's storage is kept for reuse after an eviction).
+    pub fn n_slots(&self) -> usize {
+        self.node_of_slot.len()
+    }
+
+    /// The node whose columns slot `slot` holds (`None` for a free or unknown slot).
+    pub fn node_in_slot(&self, slot: usize) -> Option<usize> {
+        let node_idx = *self.node_of_slot.get(slot)?;
+        (self.slot_of_node[node_idx] as usize == slot).then_some(node_idx)
+    }
+
     /// Whether the columns of `node_idx` are cached.
     pub fn contains(&self, node_idx: usize) -> bool {
         self.slot_of_node.get(node_idx).is_some_and(|&s| s != NO_SLOT)
@@ -201,6 +212,8 @@ impl ComplianceCache {
                 None => {
                     self.columns.push(columns.into());
                     self.node_of_slot.push(node_idx);
+                    // Room to free every slot later without allocating (evictions in a step).
+                    self.free_slots.reserve(self.columns.len().saturating_sub(self.free_slots.len()));
                     (self.node_of_slot.len() - 1) as u32
                 }
             },

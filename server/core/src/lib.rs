@@ -41,5 +41,5 @@ pub use material::{Material, MaterialError, PlaneModel};
 pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};
 pub use mixed::{Condition, MixedError, MixedSolver};
 pub use needle::{BasePose, FlexibleNeedle, NeedleShape, RegionNeedleParams, RigidNeedle};
-pub use sim::{Divergence, DivergenceBounds, NodeState, SimError, SimParams, SimStats, Simulation, StepOutput, TargetParams};
+pub use sim::{Divergence, DivergenceBounds, Inserted, NodeState, SimError, SimParams, SimStats, Simulation, StepOutput, TargetParams};
 pub use statics::{NodeCondition, StaticError, StaticProblem, StaticSolution};

@@ -127,3 +127,69 @@ fn issue_15_a_missing_column_delays_the_contact_instead_of_stalling_the_tick() {
     let st = eager.stats();
     assert!(st.captures >= 3 && st.column_misses >= 3 * st.captures / 2 && st.column_deferrals == 0, "{st:?}");
 }
+
+/// Issue 15: the column cache is bounded by the working set and the lookahead
+/// ([`SimParams::max_cached_nodes`]), not by the path: columns of nodes the needle has left are
+/// evicted, in a full cache the least recently used first, and never one in use (no contact
+/// ever waits for a column the prefetch had provided). Before, a 400 × 400 bevel run cached
+/// 16 GB of columns along its path.
+#[test]
+fn issue_15_the_column_cache_stays_bounded_and_forgets_what_the_needle_left() {
+    let model = phantom(200);
+    let down = -std::f64::consts::FRAC_PI_2;
+    let params = SimParams { max_needle_nodes: 40, ..points_params(down, ContactModel::default_points()) };
+    let cap = params.max_cached_nodes();
+    let lookahead_m = params.lookahead_m;
+    let mut sim = Simulation::new(model.clone(), params).unwrap();
+    // A quick insertion (130 mm/s), a slow withdrawal, a hold past the keep time.
+    let mut poses: Vec<BasePose> = (0..=500).map(|k| base_at(-0.005 + 0.065 * k as f64 / 500.0, down)).collect();
+    poses.extend((0..=3250).map(|k| base_at(0.06 - 0.065 * k as f64 / 3250.0, down)));
+    poses.extend(std::iter::repeat_n(base_at(-0.005, down), 2500));
+    let (mut max_len, mut max_d) = (0, 0);
+    for (k, p) in poses.iter().enumerate() {
+        let o = sim.step(*p).unwrap_or_else(|e| panic!("tick {k}: {e}"));
+        max_d = max_d.max(o.needle_nodes.len());
+        sim.prefetch_columns(64).unwrap();
+        max_len = max_len.max(sim.cache().len());
+        assert!(sim.cache().len() <= cap, "tick {k}: {} nodes cached, bound {cap}", sim.cache().len());
+    }
+    let st = sim.stats();
+    println!("max cached {max_len} (bound {cap}), d {max_d}, {st:?}");
+    assert!(max_d >= 20, "the needle held the tissue: d = {max_d}");
+    assert_eq!((st.column_misses, st.column_deferrals, st.cache_over_cap), (0, 0, 0), "{st:?}");
+    assert!(st.columns_evicted > 0, "{st:?}");
+    // A full cache makes room by evicting an unused node, never one a contact uses.
+    let mut full =
+        Simulation::new(model.clone(), SimParams { max_needle_nodes: 40, ..points_params(down, ContactModel::default_points()) }).unwrap();
+    for k in 0..=300 {
+        full.step(base_at(-0.005 + 0.025 * k as f64 / 300.0, down)).unwrap();
+        full.prefetch_columns(64).unwrap();
+    }
+    let in_use: Vec<usize> = full.output().needle_nodes.iter().flat_map(|n| n.contact.nodes().iter().map(|j| j.index())).collect();
+    assert!(in_use.len() >= 18, "{in_use:?}");
+    let (mut scratch, mut buf) = (model.column_scratch(), vec![0.0; 2 * model.n_dofs()]);
+    let mut evicted = 0;
+    for j in (0..model.mesh().n_nodes()).step_by(97).take(cap) {
+        if full.cache().contains(j) || model.is_fixed(j) {
+            continue;
+        }
+        model.compliance_columns_into(j, &mut buf, &mut scratch).unwrap();
+        evicted += usize::from(full.insert_columns(j, &buf).is_some());
+        assert!(full.cache().len() <= cap);
+    }
+    assert!(evicted > 0 && full.cache().len() == cap, "{evicted} evicted, {} cached", full.cache().len());
+    assert!(in_use.iter().all(|&j| full.cache().contains(j)), "a contact's node was evicted");
+    let o = full.step(base_at(0.02, down)).unwrap();
+    assert_eq!(o.needle_nodes.len(), in_use.len() / 3, "the contacts hold on");
+    // Withdrawn and held past the keep time: only nodes near the tip's lookahead stay cached.
+    let tip = sim.output().tip_m;
+    let mesh = model.mesh();
+    let reach_m = lookahead_m + 0.01;
+    for slot in 0..sim.cache().n_slots() {
+        if let Some(j) = sim.cache().node_in_slot(slot) {
+            let x = mesh.nodes_m()[j];
+            let d = (x[0] - tip[0]).hypot(x[1] - tip[1]);
+            assert!(d <= reach_m, "node {j} at {x:?} is still cached, {d} m from the withdrawn tip");
+        }
+    }
+}

@@ -171,5 +171,7 @@ fn column_cache_limit_stops_a_case() {
     assert!(c.ticks.len() < c.script_ticks && !c.misses().is_empty());
     assert!(c.prefetched_nodes > 3);
     let unlimited = run_case(&sc, &model, 0.0, &quick(&[19], &[Motion::Vertical], ContactChoice::Points)).unwrap();
-    assert_eq!(unlimited.column_cache_bytes, unlimited.prefetched_nodes as usize * one_node_bytes, "no column computed in a step");
+    assert_eq!(unlimited.stats.column_misses, 0, "no column computed in a step");
+    // Every cached column came from the prefetch (slots are reused after evictions, issue 15).
+    assert!(unlimited.column_cache_bytes <= unlimited.prefetched_nodes as usize * one_node_bytes);
 }

@@ -12,6 +12,11 @@ pub struct SessionCounters {
     pub missed_deadlines: AtomicU64,
     pub dropped_records: AtomicU64,
     pub dropped_column_requests: AtomicU64,
+    /// Columns the real-time thread's cache evicted (unused nodes; `SimStats::columns_evicted`).
+    pub columns_evicted: AtomicU64,
+    /// Eviction notices the real-time thread could not queue to the column worker (its ring was
+    /// full): the renderer keeps that node's copy until the node is computed again.
+    pub dropped_eviction_notices: AtomicU64,
     pub superseded_poses: AtomicU64,
     pub poses_written: AtomicU64,
     pub rejected_poses: AtomicU64,

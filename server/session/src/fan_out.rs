@@ -62,6 +62,16 @@ pub struct Field {
     pub displacement_m: Vec<f64>,
 }
 
+/// Set on a node index in the worker's request ring: not a request but a notice that the
+/// real-time cache evicted the node's columns, so the renderer's copy goes too. Mesh nodes are
+/// far fewer than 2³¹ (`MeshLimits`).
+pub(crate) const EVICTED_TAG: u32 = 1 << 31;
+/// Set on a node index in the worker's request ring: compute the node's columns for the
+/// renderer only (a contact's node, whose share of the field the fan-out draws); without it the
+/// columns go to the real-time thread only. Only contacts' columns are kept for rendering, so
+/// the renderer holds a few dozen nodes' columns, not the prefetch's.
+pub(crate) const RENDER_TAG: u32 = 1 << 30;
+
 /// Computes compliance columns off the real-time thread.
 pub(crate) struct ColumnWorker {
     pub(crate) tissue: Arc<TissueModel>,
@@ -84,12 +94,24 @@ impl ColumnWorker {
                 self.bell.wait_from_worker(COLUMN_WORKER_TIMEOUT, || !self.req_rx.is_empty() || self.stop.load(Ordering::Relaxed));
                 continue;
             };
+            if node & EVICTED_TAG != 0 {
+                self.render_columns.lock().expect("render columns lock").remove(&(node & !EVICTED_TAG));
+                continue;
+            }
+            let for_render = node & RENDER_TAG != 0;
+            let node = node & !RENDER_TAG;
+            if for_render && self.render_columns.lock().expect("render columns lock").contains_key(&node) {
+                continue;
+            }
             let mut cols = vec![0.0; len].into_boxed_slice();
             if let Err(e) = self.tissue.compliance_columns_into(node as usize, &mut cols, &mut scratch) {
                 tracing::error!("column of node {node}: {e}");
                 continue;
             }
-            self.render_columns.lock().expect("render columns lock").insert(node, Arc::from(&cols[..]));
+            if for_render {
+                self.render_columns.lock().expect("render columns lock").insert(node, Arc::from(cols));
+                continue;
+            }
             let mut item = (node, cols);
             loop {
                 match self.col_tx.push(item) {

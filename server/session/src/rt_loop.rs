@@ -22,6 +22,7 @@ use needlesim_core::sim::{SimError, Simulation};
 
 use crate::counters::SessionCounters;
 use crate::doorbell::Doorbell;
+use crate::fan_out::{EVICTED_TAG, RENDER_TAG};
 use crate::record::{
     DEVICE_STALE_TICKS, MAX_CONSECUTIVE_STEP_ERRORS, MAX_RECORD_NODES, PoseCommand, STIFFNESS_EVERY_TICKS, SessionFault, TickRecord,
 };
@@ -35,6 +36,11 @@ thread_local! {
 /// Ticks after which the real-time thread counts as warmed up.
 pub const WARM_UP_TICKS: u64 = 200;
 
+/// A node's columns were asked of the worker for the real-time cache.
+const REQUESTED_FOR_CACHE: u8 = 1;
+/// A node's columns were asked of the worker for the renderer (the node is a contact's).
+const REQUESTED_FOR_RENDER: u8 = 2;
+
 /// The real-time loop's state.
 pub(crate) struct RtLoop {
     pub(crate) sim: Simulation,
@@ -44,7 +50,8 @@ pub(crate) struct RtLoop {
     pub(crate) req_tx: rtrb::Producer<u32>,
     pub(crate) col_rx: rtrb::Consumer<(u32, Box<[f64]>)>,
     pub(crate) ret_tx: rtrb::Producer<Box<[f64]>>,
-    pub(crate) requested: Vec<bool>,
+    /// Per node: [`REQUESTED_FOR_CACHE`] and/or [`REQUESTED_FOR_RENDER`], until evicted.
+    pub(crate) requested: Vec<u8>,
     pub(crate) counters: Arc<SessionCounters>,
     pub(crate) stop: Arc<AtomicBool>,
     pub(crate) record: Box<TickRecord>,
@@ -113,6 +120,16 @@ impl RtLoop {
         }
     }
 
+    /// After the cache evicted `node`'s columns: it may be requested again, and the worker is
+    /// told to drop the renderer's copy (a full ring is counted; the copy then stays until the
+    /// node is computed again).
+    fn forget_columns_from_rt(&mut self, node: usize) {
+        self.requested[node] = 0;
+        if self.req_tx.push(node as u32 | EVICTED_TAG).is_err() {
+            self.counters.dropped_eviction_notices.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
     fn tick_from_rt(&mut self, pose: &mut BasePose, last_seq: &mut u64, last_client_time: &mut u64, lateness: Duration) {
         let warm = self.counters.ticks.load(Ordering::Relaxed) >= WARM_UP_TICKS;
         IN_TICK.with(|c| c.set(warm));
@@ -124,10 +141,14 @@ impl RtLoop {
         let t0 = Instant::now();
         // Columns delivered by the worker; the box not kept goes back to be freed there.
         while let Ok((node, cols)) = self.col_rx.pop() {
-            if let Some(spare) = self.sim.insert_columns_owned(node as usize, cols)
+            let inserted = self.sim.insert_columns_owned(node as usize, cols);
+            if let Some(spare) = inserted.spare
                 && let Err(rtrb::PushError::Full(spare)) = self.ret_tx.push(spare)
             {
                 drop(spare);
+            }
+            if let Some(evicted) = inserted.evicted {
+                self.forget_columns_from_rt(evicted);
             }
         }
         // A pose written since the last tick is new, whatever its seq (a controller that takes
@@ -273,32 +294,38 @@ impl RtLoop {
                 pose_counter: if stepped { self.device_pose_counter } else { 0 },
             });
         }
+        for k in 0..self.sim.output().evicted.len() {
+            let node = self.sim.output().evicted[k];
+            self.forget_columns_from_rt(node);
+        }
         let st = self.sim.stats();
         self.counters.column_misses.fetch_add(st.column_misses - misses_before, Ordering::Relaxed);
+        self.counters.columns_evicted.store(st.columns_evicted, Ordering::Relaxed);
         self.counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);
         if self.sim.output().needle_nodes.len() > MAX_RECORD_NODES {
             self.counters.records_truncated.fetch_add(1, Ordering::Relaxed);
         }
-        // Ask the worker for the columns of approaching nodes, and of needle nodes whose columns
-        // a tick computed itself (so that the fan-out can render their share of the field).
+        // Ask the worker for the columns of approaching nodes (for this thread's cache), and for
+        // the renderer's copies of the contacts' nodes (the fan-out renders their share of the
+        // field; it keeps no copy of a column only the prefetch needed).
         let out = self.sim.output();
         let n_app = out.approaching.len();
         let n_req = n_app + 3 * out.needle_nodes.len();
         let mut requested_any = false;
         for k in 0..n_req {
             let out = self.sim.output();
-            let node = if k < n_app {
-                out.approaching[k]
+            let (node, flag, tag) = if k < n_app {
+                (out.approaching[k], REQUESTED_FOR_CACHE, 0)
             } else {
                 let nn = &out.needle_nodes[(k - n_app) / 3];
                 match nn.contact.nodes().get((k - n_app) % 3) {
-                    Some(j) => j.index(),
+                    Some(j) => (j.index(), REQUESTED_FOR_RENDER, RENDER_TAG),
                     None => continue,
                 }
             };
-            if !self.requested[node] {
-                if self.req_tx.push(node as u32).is_ok() {
-                    self.requested[node] = true;
+            if self.requested[node] & flag == 0 {
+                if self.req_tx.push(node as u32 | tag).is_ok() {
+                    self.requested[node] |= flag;
                     requested_any = true;
                 } else {
                     self.counters.dropped_column_requests.fetch_add(1, Ordering::Relaxed);

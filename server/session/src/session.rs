@@ -157,7 +157,7 @@ impl Session {
             req_tx,
             col_rx,
             ret_tx,
-            requested: vec![false; scene.tissue.mesh().n_nodes()],
+            requested: vec![0; scene.tissue.mesh().n_nodes()],
             counters: counters.clone(),
             stop: stop.clone(),
             record: Box::new(TickRecord::default()),

@@ -91,8 +91,12 @@ impl pb::observe_service_server::ObserveService for Api {
                 let mut last_tick = u64::MAX;
                 loop {
                     interval.tick().await;
-                    if latest.has_changed().is_err() {
-                        return;
+                    match latest.has_changed() {
+                        Err(_) => return,
+                        // Until the session's first tick the slot holds a placeholder record
+                        // (tick 0, zero pose), not a state of the session: send nothing yet.
+                        Ok(false) if last_tick == u64::MAX => continue,
+                        Ok(_) => {}
                     }
                     let rec = latest.borrow_and_update().clone();
                     if rec.tick == last_tick {

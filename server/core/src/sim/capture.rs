@@ -139,6 +139,11 @@ pub(super) fn capture(
     sc.captured.clear();
     for k in 0..sc.candidates.len() {
         let j = NodeIdx(sc.candidates[k]);
+        if st.cache.contains(j.index()) {
+            // Near the tip, a node can be captured at any tick (a flexing shaft sweeps it even
+            // while withdrawing): in use, kept from eviction.
+            st.columns_lru.touch(j.index(), st.tick);
+        }
         if ws.contains(j) || model.is_fixed(j.index()) {
             continue;
         }
@@ -162,13 +167,16 @@ pub(super) fn capture(
         query_near(setup, centre, 0.5 * look + 2.0 * cap_r, &mut sc.candidates, &mut st.stats);
         for k in 0..sc.candidates.len() {
             let j = sc.candidates[k];
-            if st.cache.contains(j) || model.is_fixed(j) {
+            if model.is_fixed(j) {
                 continue;
             }
             let x = nodes_m[j];
             let (s, lat) = tip_frame.coords([x[0] + u_d[0], x[1] + u_d[1]]);
             if lat.abs() <= 2.0 * cap_r && s > s_tip - cap_r && s <= s_tip + look {
-                if approaching.len() < MAX_APPROACHING {
+                if st.cache.contains(j) {
+                    // Cached and ahead: in use (kept from eviction).
+                    st.columns_lru.touch(j, st.tick);
+                } else if approaching.len() < MAX_APPROACHING {
                     approaching.push(j);
                 } else {
                     st.stats.approaching_overflow += 1;
@@ -342,7 +350,9 @@ pub(super) fn capture_points(
     approaching.clear();
     if let Some((c, _)) = candidate {
         for n in c.nodes() {
-            if !st.cache.contains(n.index()) && !approaching.contains(&n.index()) {
+            if st.cache.contains(n.index()) {
+                st.columns_lru.touch(n.index(), st.tick);
+            } else if !approaching.contains(&n.index()) {
                 approaching.push(n.index());
             }
         }
@@ -357,13 +367,16 @@ pub(super) fn capture_points(
         let first = approaching.len();
         for k in 0..sc.candidates.len() {
             let j = sc.candidates[k];
-            if st.cache.contains(j) || model.is_fixed(j) || approaching[..first].contains(&j) {
+            if model.is_fixed(j) || approaching[..first].contains(&j) {
                 continue;
             }
             let x = nodes_m[j];
             let (s, lat) = tip_frame.coords([x[0] + u_d[0], x[1] + u_d[1]]);
             if lat.abs() <= band && s > s_tip - band && s <= s_tip + look {
-                if approaching.len() < MAX_APPROACHING {
+                if st.cache.contains(j) {
+                    // Cached and ahead: in use (kept from eviction).
+                    st.columns_lru.touch(j, st.tick);
+                } else if approaching.len() < MAX_APPROACHING {
                     approaching.push(j);
                 } else {
                     st.stats.approaching_overflow += 1;

@@ -137,6 +137,7 @@ impl Simulation {
             stats: SimStats::default(),
             diverged: None,
             updates_at_tick_start: 0,
+            columns_lru: state::ColumnLru::new(n_nodes),
         };
         let scratch = Scratch::new(&model, &params);
         Ok(Self { model, params, setup, state, scratch, out })
@@ -185,30 +186,39 @@ impl Simulation {
     ///
     /// Errors: [`SimError::Tissue`] when a column solve fails (columns computed before it stay).
     pub fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, SimError> {
-        let (cache, cs) = (&mut self.state.cache, &mut self.scratch.capture);
+        let cs = &mut self.scratch.capture;
         let mut n = 0;
-        for &node in &self.out.approaching {
+        for k in 0..self.out.approaching.len() {
+            let node = self.out.approaching[k];
             if n == max_nodes {
                 break;
             }
-            if !cache.contains(node) {
+            if !self.state.cache.contains(node) {
                 self.model.compliance_columns_into(node, &mut cs.column_buf, &mut cs.columns)?;
-                cache.insert(node, &cs.column_buf);
+                make_room(&self.params, &mut self.state);
+                self.state.cache.insert(node, &cs.column_buf);
                 n += 1;
             }
         }
         Ok(n)
     }
 
-    /// Stores columns computed by a worker ([`TissueModel::compliance_columns_into`]).
-    pub fn insert_columns(&mut self, node_idx: usize, columns: &[f64]) {
+    /// Stores columns computed by a worker ([`TissueModel::compliance_columns_into`]); in a full
+    /// cache they replace the least recently used node's ([`SimParams::max_cached_nodes`]), which
+    /// is returned.
+    pub fn insert_columns(&mut self, node_idx: usize, columns: &[f64]) -> Option<usize> {
+        let evicted = if self.state.cache.contains(node_idx) { None } else { make_room(&self.params, &mut self.state) };
         self.state.cache.insert(node_idx, columns);
+        evicted
     }
 
     /// Stores columns handed over as an owned box, allocating no column storage (for the
-    /// real-time thread); returns the box not kept, to be dropped off the real-time thread.
-    pub fn insert_columns_owned(&mut self, node_idx: usize, columns: Box<[f64]>) -> Option<Box<[f64]>> {
-        self.state.cache.insert_owned(node_idx, columns)
+    /// real-time thread): [`Inserted::spare`] is the box not kept, to be dropped off the
+    /// real-time thread; in a full cache the columns replace the least recently used node's
+    /// ([`Inserted::evicted`]; [`SimParams::max_cached_nodes`]).
+    pub fn insert_columns_owned(&mut self, node_idx: usize, columns: Box<[f64]>) -> Inserted {
+        let evicted = if self.state.cache.contains(node_idx) { None } else { make_room(&self.params, &mut self.state) };
+        Inserted { spare: self.state.cache.insert_owned(node_idx, columns), evicted }
     }
 
     /// Reserves bookkeeping room in the column cache for `n_nodes` more nodes.
@@ -300,6 +310,7 @@ impl Simulation {
             return Err(d.into());
         }
         output::write_output(&ctx, st, out, iterations, converged, clamped);
+        touch_and_sweep(params, model.mesh().nodes_m(), st, out);
         st.tick += 1;
         st.stats.ticks += 1;
         st.stats.clamped_ticks += clamped as u64;
@@ -334,6 +345,105 @@ impl Simulation {
     /// nodes (world components).
     pub fn snapshot(&self) -> StateSnapshot {
         output::snapshot(&self.state.ws, &self.out)
+    }
+}
+
+/// What [`Simulation::insert_columns_owned`] did with the columns.
+#[derive(Debug)]
+pub struct Inserted {
+    /// The box not kept (the node's previous columns, or reused storage's), to be dropped off
+    /// the real-time thread.
+    pub spare: Option<Box<[f64]>>,
+    /// The node evicted to make room (the cache was full).
+    pub evicted: Option<usize>,
+}
+
+/// The last stage of a step: marks the nodes in use (working contacts' nodes and the
+/// lookahead's, the latter in the capture stage) and sweeps
+/// [`param_limits::EVICTION_SWEEP_PER_TICK`] cache slots round robin, evicting nodes unused for
+/// [`param_limits::COLUMN_KEEP_S`]. With the paper's node capture ([`ContactModel::Nodes`]) a
+/// node near the shaft can be captured again whenever the shaft sweeps it (a flexing needle
+/// does, even while withdrawing), so nodes within three capture radii (plus the largest contact
+/// displacement) of the needle are kept too; material points are only taken ahead of an
+/// advancing tip, which the lookahead covers. $O(d)$ (plus the needle's joints per visited
+/// slot); allocates nothing (the cache reserved its free list).
+fn touch_and_sweep(params: &SimParams, nodes_m: &[[f64; 2]], st: &mut State, out: &mut StepOutput) {
+    let tick = st.tick;
+    for nn in &st.ws.nodes {
+        for n in nn.contact.nodes() {
+            st.columns_lru.touch(n.index(), tick);
+        }
+    }
+    for &j in &out.approaching {
+        st.columns_lru.touch(j, tick);
+    }
+    out.evicted.clear();
+    let keep_ticks = (param_limits::COLUMN_KEEP_S * params.tick_rate_hz).ceil() as u64;
+    let n_slots = st.cache.n_slots();
+    let shaft_band_m = match params.contact {
+        ContactModel::Nodes => {
+            let u_max = st.ws.u_world.iter().fold(0.0f64, |m, u| m.max(u[0].hypot(u[1])));
+            Some(3.0 * params.capture_radius_m + u_max)
+        }
+        ContactModel::MaterialPoints { .. } => None,
+    };
+    let geo = Geometry::new(params, st.pose, st.flex.as_ref());
+    let near_shaft = |x: [f64; 2], band_m: f64| match geo.curve {
+        Some(c) => c.points_m().windows(2).any(|w| segment_distance_m(x, w[0], w[1]) <= band_m),
+        None => segment_distance_m(x, [st.pose.x_m, st.pose.y_m], geo.tip()) <= band_m,
+    };
+    for _ in 0..param_limits::EVICTION_SWEEP_PER_TICK.min(n_slots) {
+        let slot = st.columns_lru.cursor % n_slots;
+        st.columns_lru.cursor = slot + 1;
+        if let Some(j) = st.cache.node_in_slot(slot)
+            && st.columns_lru.stamp[j] + keep_ticks <= tick + 1
+            && shaft_band_m.is_none_or(|band_m| !near_shaft(nodes_m[j], band_m))
+        {
+            st.cache.evict(j);
+            out.evicted.push(j);
+            st.stats.columns_evicted += 1;
+        }
+    }
+}
+
+/// The distance from `x` to the segment from `a` to `b`.
+fn segment_distance_m(x: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let ax = [x[0] - a[0], x[1] - a[1]];
+    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let s = if len2 > 0.0 { ((ax[0] * ab[0] + ax[1] * ab[1]) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    (ax[0] - s * ab[0]).hypot(ax[1] - s * ab[1])
+}
+
+/// Before a column enters a full cache ([`SimParams::max_cached_nodes`]): evicts the least
+/// recently used node that the last step did not use (the working set's and the lookahead's
+/// nodes are stamped with the last step). $O(\text{cache})$, only when full. Returns the node
+/// evicted; `None` when there was room, or when every cached node is in use (the cache then
+/// grows past its bound, counted in [`SimStats::cache_over_cap`]).
+fn make_room(params: &SimParams, st: &mut State) -> Option<usize> {
+    if st.cache.len() < params.max_cached_nodes() {
+        return None;
+    }
+    let in_use = st.tick; // the stamp of a node the last step (tick − 1) used
+    let mut victim: Option<(usize, u64)> = None;
+    for slot in 0..st.cache.n_slots() {
+        if let Some(j) = st.cache.node_in_slot(slot) {
+            let stamp = st.columns_lru.stamp[j];
+            if stamp < in_use && victim.is_none_or(|(_, s)| stamp < s) {
+                victim = Some((j, stamp));
+            }
+        }
+    }
+    match victim {
+        Some((j, _)) => {
+            st.cache.evict(j);
+            st.stats.columns_evicted += 1;
+            Some(j)
+        }
+        None => {
+            st.stats.cache_over_cap += 1;
+            None
+        }
     }
 }
 

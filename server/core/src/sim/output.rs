@@ -77,6 +77,10 @@ pub struct StepOutput {
     /// most [`param_limits::MAX_APPROACHING`] (the rest counted in
     /// [`SimStats::approaching_overflow`]).
     pub approaching: Vec<usize>,
+    /// Nodes whose compliance columns this step evicted from its cache (at most
+    /// [`param_limits::EVICTION_SWEEP_PER_TICK`]): a live loop forgets that it requested them
+    /// and tells whoever keeps copies (the renderer's) to drop them.
+    pub evicted: Vec<usize>,
     pub active_set_iterations: usize,
     pub converged: bool,
     /// The commanded pose was clamped this tick.
@@ -93,6 +97,14 @@ pub struct SimStats {
     /// Ticks at which a new contact waited for its columns (admitted at a later tick; without
     /// [`super::SimParams::columns_in_step`]).
     pub column_deferrals: u64,
+    /// Nodes whose cached compliance columns were evicted: unused for
+    /// [`super::param_limits::COLUMN_KEEP_S`], or the least recently used when a column was
+    /// inserted into a full cache ([`super::SimParams::max_cached_nodes`]).
+    pub columns_evicted: u64,
+    /// Columns inserted while every cached node was in use, so the cache grew past
+    /// [`super::SimParams::max_cached_nodes`] (not expected: the bound covers a full working
+    /// set and the lookahead).
+    pub cache_over_cap: u64,
     /// Material points dropped because their conditions depended on the other points' (a
     /// singular pivot; not expected with the spacing rule of [`super::ContactModel`]).
     pub dependent_points: u64,
@@ -185,6 +197,7 @@ impl StepOutput {
             needle_nodes: Vec::with_capacity(params.max_needle_nodes),
             targets: Vec::with_capacity(params.targets.len()),
             approaching: Vec::with_capacity(param_limits::MAX_APPROACHING),
+            evicted: Vec::with_capacity(param_limits::EVICTION_SWEEP_PER_TICK),
             base: params.initial_pose,
             tip_m: geo.tip(),
             converged: true,

@@ -138,6 +138,18 @@ impl SimParams {
 }
 
 impl SimParams {
+    /// The most nodes whose compliance columns a simulation keeps cached at once (the storage
+    /// is reused, so the column memory is bounded by this times $2 \cdot 2n \cdot 8$ bytes):
+    /// `max_needle_nodes + CACHE_LOOKAHEAD_NODES`. A column inserted when the cache is full
+    /// evicts the least recently used node that no working contact uses and that was not in the
+    /// last tick's lookahead; only when every cached node is in use does the cache exceed it
+    /// (counted in [`crate::sim::SimStats::cache_over_cap`]).
+    pub fn max_cached_nodes(&self) -> usize {
+        self.max_needle_nodes + param_limits::CACHE_LOOKAHEAD_NODES
+    }
+}
+
+impl SimParams {
     /// Checks the parameters against the mesh: one set of needle parameters per mesh region,
     /// each valid. [`super::Simulation::new`] calls it after [`SimParams::validate`].
     ///
@@ -195,4 +207,17 @@ pub mod param_limits {
     /// query returning more grows the buffer (an allocation inside a step, once); each growth
     /// is counted in [`crate::sim::SimStats::candidate_growths`].
     pub const NEAR_TIP_CANDIDATES: usize = 1024;
+    /// How long a node's cached compliance columns are kept after the last tick that used them
+    /// (a working contact's node, or a node in the lookahead ahead of the tip), in seconds of
+    /// simulated time; then they are evicted by the step's sweep. Long enough for a slow
+    /// insertion to reach a node it prefetched, short enough that a path's band of nodes does
+    /// not pile up behind the tip (issue 15: a 400 × 400 bevel run held 16 GB of columns).
+    pub const COLUMN_KEEP_S: f64 = 2.0;
+    /// Cached nodes the step's eviction sweep visits per tick (round robin): the sweep costs
+    /// O(1) per tick and visits the whole cache every `len / EVICTION_SWEEP_PER_TICK` ticks.
+    pub const EVICTION_SWEEP_PER_TICK: usize = 4;
+    /// Cached nodes in use at once beyond the working set's: the lookahead's nodes. With the
+    /// working set's `max_needle_nodes` it makes the cache's bound
+    /// ([`crate::sim::SimParams::max_cached_nodes`]).
+    pub const CACHE_LOOKAHEAD_NODES: usize = MAX_APPROACHING;
 }

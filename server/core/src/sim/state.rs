@@ -211,4 +211,26 @@ pub(super) struct State {
     /// The solver's update count (pivots, rotations, additions, removals) when the tick began:
     /// the base of the per-tick budget ([`super::param_limits::MAX_UPDATES_PER_TICK`]).
     pub updates_at_tick_start: u64,
+    /// The cache's use stamps and eviction sweep.
+    pub columns_lru: ColumnLru,
+}
+
+/// When each node's cached columns were last used, for eviction: `stamp[j]` is 1 + the last
+/// tick at which node `j` was a working contact's node or in the lookahead (0: never).
+#[derive(Debug, Clone)]
+pub(super) struct ColumnLru {
+    pub stamp: Vec<u64>,
+    /// The next cache slot the sweep visits.
+    pub cursor: usize,
+}
+
+impl ColumnLru {
+    pub fn new(n_nodes: usize) -> Self {
+        Self { stamp: vec![0; n_nodes], cursor: 0 }
+    }
+    /// Marks `node_idx` as used at tick `tick`.
+    #[inline]
+    pub fn touch(&mut self, node_idx: usize, tick: u64) {
+        self.stamp[node_idx] = tick + 1;
+    }
 }
