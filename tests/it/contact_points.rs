@@ -54,4 +54,5 @@ async fn issue_15_a_live_session_holds_the_tissue_at_material_points() {
         .unwrap()
         .into_inner();
     assert_eq!(stats.column_misses, 0, "no column computed inside a tick: {stats:?}");
+    assert_eq!(stats.budget_exhausted_ticks, 0, "{stats:?}");
 }

@@ -358,6 +358,10 @@ async fn one_port_serves_metrics_static_files_and_grpc_web() {
     let ticks: f64 = ticks_line.rsplit(' ').next().unwrap().parse().unwrap();
     assert!(ticks > 100.0, "{ticks_line}");
     assert!(metrics.contains("needlesim_tick_compute_p99_seconds{"), "{metrics}");
+    // Issue 15's counters of the column cache and the per-tick budget.
+    for name in ["column_deferrals", "columns_evicted", "budget_exhausted_ticks", "dropped_eviction_notices"] {
+        assert!(metrics.contains(&format!("needlesim_{name}{{")), "{name}: {metrics}");
+    }
     // A static file of web/.
     let page =
         String::from_utf8_lossy(&http1(&server.addr, b"GET /README.md HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")).into_owned();

@@ -14,6 +14,9 @@ pub struct SessionCounters {
     pub dropped_column_requests: AtomicU64,
     /// Columns the real-time thread's cache evicted (unused nodes; `SimStats::columns_evicted`).
     pub columns_evicted: AtomicU64,
+    /// `SimStats::column_deferrals` and `SimStats::budget_exhausted_ticks`, as of the last tick.
+    pub column_deferrals: AtomicU64,
+    pub budget_exhausted_ticks: AtomicU64,
     /// Eviction notices the real-time thread could not queue to the column worker (its ring was
     /// full): the renderer keeps that node's copy until the node is computed again.
     pub dropped_eviction_notices: AtomicU64,
@@ -94,6 +97,9 @@ pub struct StatsSnapshot {
     pub superseded_poses: u64,
     pub dropped_records: u64,
     pub column_misses: u64,
+    pub column_deferrals: u64,
+    pub columns_evicted: u64,
+    pub budget_exhausted_ticks: u64,
     pub rejected_poses: u64,
     pub clamped_ticks: u64,
     /// See [`SessionCounters::fanout_wakes`], [`SessionCounters::fanout_timeouts`], [`SessionCounters::spin_ns`].
