@@ -300,4 +300,38 @@ mod tests {
         let e = m.point_compliance_at(&[[0.0, 0.0, 0.5]]).unwrap_err();
         assert!(e.to_string().starts_with("working point 0: the point"), "{e}");
     }
+
+    /// Timing on the 21³ box grid (48 000 tetrahedra), bottom fixed; run in release:
+    /// `cargo test --release -p needlesim-core --lib d3::tissue::tests::timing_21_cubed -- --ignored --nocapture`.
+    #[test]
+    #[ignore = "timing; run in release"]
+    fn timing_21_cubed() {
+        use std::time::Instant;
+        let t0 = Instant::now();
+        let mesh = BoxGridParams::new([21, 21, 21], [0.1, 0.1, 0.1]).build(&TetMeshLimits::default()).unwrap();
+        let mats = TetMaterials::per_region(&mesh, &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }]).unwrap();
+        let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
+        let t_mesh = t0.elapsed();
+        let t1 = Instant::now();
+        let m = TetTissueModel::new(mesh, mats, &fixed).unwrap();
+        let t_model = t1.elapsed();
+        let mut scratch = m.column_scratch();
+        let mut out = vec![0.0; 3 * m.n_dofs()];
+        let nodes: Vec<usize> = (0..m.mesh().n_nodes()).filter(|&n| !m.is_fixed(n)).step_by(37).take(200).collect();
+        let t2 = Instant::now();
+        for &n in &nodes {
+            m.compliance_columns_into(n, &mut out, &mut scratch).unwrap();
+        }
+        let per_node = t2.elapsed() / nodes.len() as u32;
+        println!(
+            "21^3 box: {} nodes, {} tets, factor nnz {}, mesh {:?}, assemble + factorise (and locator) {:?}, 3 columns per node {:?} (mean of {})",
+            m.mesh().n_nodes(),
+            m.mesh().n_tets(),
+            m.cholesky().factor_nnz(),
+            t_mesh,
+            t_model,
+            per_node,
+            nodes.len()
+        );
+    }
 }
