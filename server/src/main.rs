@@ -106,9 +106,9 @@ enum Command {
     Serve(ServeArgs),
     /// Print a summary of the paper-phantom insertion, offline.
     Summary,
-    /// Solve a static problem in the exchange format of the validation suite.
+    /// Solve a static problem in the exchange format of the validation suite (2D, or 3D with `"dim": 3`).
     Solve {
-        /// The scenario JSON (nodes, triangles, E, nu, fixed_nodes, prescribed, loads, …).
+        /// The scenario JSON (nodes, triangles or tetrahedra, E, nu, fixed_nodes, prescribed, loads, points, …).
         scenario: PathBuf,
         /// Where to write the result JSON (standard output when absent).
         #[arg(short, long)]
@@ -196,14 +196,14 @@ fn main() -> ExitCode {
 
 fn solve(scenario: &std::path::Path, output: Option<&std::path::Path>, limits: &MeshLimits) -> Result<()> {
     let text = std::fs::read_to_string(scenario).with_context(|| format!("cannot read {}", scenario.display()))?;
-    let sc: exchange::Scenario = serde_json::from_str(&text).with_context(|| format!("{} is not a valid scenario", scenario.display()))?;
+    let sc = exchange::parse_any_scenario(&text).with_context(|| format!("{} is not a valid scenario", scenario.display()))?;
     let t0 = std::time::Instant::now();
-    let result = exchange::solve_scenario(&sc, limits).with_context(|| format!("{}", scenario.display()))?;
+    let result = exchange::solve_any(&sc, limits).with_context(|| format!("{}", scenario.display()))?;
     tracing::info!(
         scenario = %scenario.display(),
-        n_nodes = result.n_nodes,
-        strain_energy_j = result.strain_energy,
-        max_abs_displacement_m = result.max_abs_displacement,
+        n_nodes = result.n_nodes(),
+        strain_energy_j = result.strain_energy(),
+        max_abs_displacement_m = result.max_abs_displacement(),
         elapsed_ms = t0.elapsed().as_secs_f64() * 1e3,
         "solved"
     );

@@ -262,3 +262,375 @@ fn needle_in_a_rotated_frame_matches_the_reference_solver() {
     println!("reactions_local: max rel diff {err:e} over {} components", w.len());
     assert!(scale > 0.0 && err <= TOL, "reactions_local differ from the reference by {err:e}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// 3D (README "3D scenario format"): P1 tetrahedra, material points, fem_ref3d.py.
+// ---------------------------------------------------------------------------------------------
+
+/// The tolerance of the validation README for 3D point reactions (a saddle-point solve).
+const TOL_POINT_REACTIONS: f64 = 1e-8;
+
+/// The `[[x, y, z], …]` array of `key`, as triples.
+fn triples(value: &Value, key: &str) -> Vec<[f64; 3]> {
+    let arr = value[key].as_array().unwrap_or_else(|| panic!("`{key}` is not an array"));
+    arr.iter()
+        .map(|p| {
+            let f = |i: usize| p[i].as_f64().unwrap_or_else(|| panic!("`{key}` holds a non-number: {p}"));
+            [f(0), f(1), f(2)]
+        })
+        .collect()
+}
+
+/// `max |a - b| / max |b|` over all components.
+fn max_rel_error3(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    assert_eq!(a.len(), b.len(), "different numbers of nodes");
+    let err = a.iter().zip(b).flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs())).fold(0.0, f64::max);
+    let scale = b.iter().flat_map(|q| q.iter().map(|v| v.abs())).fold(0.0, f64::max);
+    assert!(scale > 0.0, "the reference field is zero");
+    err / scale
+}
+
+/// The metrics compare.py must report for a 3D reference.
+fn expected_metrics3(reference: &Value) -> Vec<&'static str> {
+    let mut m = vec!["disp_rel_l2", "disp_rel_max", "reactions_rel_max", "energy_rel"];
+    for (key, metric) in [
+        ("compliance", "compliance_rel_fro"),
+        ("element_stresses_voigt", "stress_rel_max"),
+        ("point_reactions", "point_reactions_rel_max"),
+        ("point_compliance", "point_compliance_rel_fro"),
+    ] {
+        if reference.get(key).is_some() {
+            m.push(metric);
+        }
+    }
+    m
+}
+
+/// The metrics of a compare.py report, by name.
+fn report_metrics(report: &str) -> Vec<(String, f64)> {
+    report
+        .lines()
+        .filter_map(|l| {
+            let mut it = l.split_whitespace();
+            let name = it.next()?;
+            let v: f64 = it.next()?.parse().ok()?;
+            Some((name.to_owned(), v))
+        })
+        .collect()
+}
+
+/// compare.py over a 3D result: every metric the reference allows is reported, within 1e-9, and
+/// the point reactions within 1e-8. Returns the failures (empty when it passes).
+fn check_against_reference3(reference: &Path, candidate: &Path) -> Vec<String> {
+    // compare.py applies one tolerance to every metric: run it at the point-reaction tolerance and
+    // hold every other metric to TOL here.
+    let o = compare(reference, candidate, TOL_POINT_REACTIONS);
+    let (out, err) = text(&o);
+    println!("compare.py {} {}:\n{out}{err}", reference.display(), candidate.display());
+    let mut failures = Vec::new();
+    if !o.status.success() {
+        failures.push(format!("compare.py --tol {TOL_POINT_REACTIONS:e} failed:\n{out}{err}"));
+    }
+    let metrics = report_metrics(&out);
+    for metric in expected_metrics3(&read_json(reference)) {
+        match metrics.iter().find(|(n, _)| n == metric) {
+            None => failures.push(format!("compare.py did not check {metric}: our result lacks it")),
+            Some((_, v)) => {
+                let tol = if metric == "point_reactions_rel_max" { TOL_POINT_REACTIONS } else { TOL };
+                if !(*v <= tol) {
+                    failures.push(format!("{metric} = {v:e} exceeds {tol:e}"));
+                }
+            }
+        }
+    }
+    failures
+}
+
+/// The frame components of `reactions_local` / `point_reactions` agree with the reference (compare.py
+/// does not look at them): same components given, values within `tol` of the largest.
+fn assert_frame_components_match(ours: &Value, reference: &Value, key: &str, id: &str, tol: f64) {
+    let get = |r: &Value| -> Vec<(u64, [Option<f64>; 3])> {
+        r[key]
+            .as_array()
+            .unwrap_or_else(|| panic!("{key} is missing"))
+            .iter()
+            .map(|e| (e[id].as_u64().expect("an id"), [e["rt"].as_f64(), e["rn"].as_f64(), e["rb"].as_f64()]))
+            .collect()
+    };
+    let (got, want) = (get(ours), get(reference));
+    assert_eq!(
+        got.iter().map(|e| (e.0, e.1.map(|r| r.is_some()))).collect::<Vec<_>>(),
+        want.iter().map(|e| (e.0, e.1.map(|r| r.is_some()))).collect::<Vec<_>>(),
+        "{key}: the same components are given"
+    );
+    let values = |l: &[(u64, [Option<f64>; 3])]| l.iter().flat_map(|e| e.1.into_iter().flatten()).collect::<Vec<f64>>();
+    let (g, w) = (values(&got), values(&want));
+    let scale = w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let err = g.iter().zip(&w).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / scale;
+    println!("{key} frame components: max rel diff {err:e} over {} components", w.len());
+    assert!(scale > 0.0 && err <= tol, "{key} frame components differ from the reference by {err:e}");
+}
+
+#[test]
+fn every_3d_scenario_matches_its_reference_result() {
+    let v = validation_dir();
+    let mut names: Vec<String> = std::fs::read_dir(v.join("scenarios3d"))
+        .expect("scenarios3d/ is readable")
+        .map(|e| e.expect("a directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .map(|p| p.file_stem().expect("a file name").to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert!(names.len() >= 3, "expected the 3D scenarios in {}", v.join("scenarios3d").display());
+    let tmp = TempDir::new("scenarios3d");
+    let mut failures = Vec::new();
+    for name in &names {
+        let scenario = v.join("scenarios3d").join(format!("{name}.json"));
+        let reference = v.join("results3d").join(format!("{name}.result.json"));
+        assert!(reference.is_file(), "scenario {name} has no reference result {}", reference.display());
+        let out = tmp.join(&format!("{name}.result.json"));
+        let o = server_solve(&scenario, &out, &[]);
+        if !o.status.success() {
+            failures.push(format!("{name}: needlesim-server solve failed ({}):\n{}", o.status, text(&o).1));
+            continue;
+        }
+        failures.extend(check_against_reference3(&reference, &out).into_iter().map(|f| format!("{name}: {f}")));
+        let (ours, want) = (read_json(&out), read_json(&reference));
+        if want.get("point_reactions").is_some() {
+            assert_frame_components_match(&ours, &want, "point_reactions", "point", TOL_POINT_REACTIONS);
+        }
+    }
+    assert!(failures.is_empty(), "{} of {} 3D scenarios failed:\n{}", failures.len(), names.len(), failures.join("\n"));
+}
+
+/// Linear tetrahedra reproduce the bar's linear field exactly (to round-off) on distorted tets.
+#[test]
+fn uniaxial_bar_3d_equals_the_closed_form() {
+    let v = validation_dir();
+    let tmp = TempDir::new("v3");
+    let ours = solve_ok(&v.join("scenarios3d/v3_uniaxial_bar_3d.json"), &tmp.join("v3.json"));
+    let exact = triples(&read_json(&v.join("results3d/v3_uniaxial_bar_3d.result.json")), "exact_displacements");
+    let err = max_rel_error3(&triples(&ours, "displacements"), &exact);
+    println!("v3 max |u - u_exact| / max |u_exact| = {err:e}");
+    assert!(err <= 1e-12, "v3 differs from the closed form by {err:e} (max abs error / max abs exact)");
+}
+
+/// The s3d2 scenario with its mesh, regions and fixed nodes taken from a Gmsh file.
+fn cube_sphere_scenario(msh_file: &str) -> Value {
+    use needlesim_core::d3::TetMeshLimits;
+    use needlesim_core::msh::parse_msh3d;
+    let v = validation_dir();
+    let path = v.join("meshes").join(msh_file);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    let msh = parse_msh3d(&text, &TetMeshLimits::default()).unwrap_or_else(|e| panic!("{msh_file}: {e}"));
+    let mesh = &msh.mesh;
+    let lesion = mesh.region_names().iter().position(|r| r == "lesion").expect("a lesion region");
+    assert!(mesh.region_names().iter().any(|r| r == "tissue"), "a tissue region");
+    let mut sc = read_json(&v.join("scenarios3d/s3d2_gmsh_cube_sphere.json"));
+    let e = sc["E"].as_f64().expect("E");
+    let e_elem: Vec<f64> = mesh.region_of_tet().iter().map(|&r| if r == lesion { 10.0 * e } else { e }).collect();
+    let bottom = mesh.boundary_set("bottom").expect("a bottom surface").to_vec();
+    assert!(bottom.iter().all(|&n| mesh.nodes_m()[n][2].abs() < 1e-12));
+    let obj = sc.as_object_mut().expect("an object");
+    obj.insert("name".into(), json!(format!("cube_sphere_{msh_file}")));
+    obj.insert("nodes".into(), json!(mesh.nodes_m()));
+    obj.insert("tetrahedra".into(), json!(mesh.tets()));
+    obj.insert("E_elem".into(), json!(e_elem));
+    obj.insert("fixed_nodes".into(), json!(bottom));
+    sc
+}
+
+/// The Gmsh cube with a lesion read from MSH 4.1 and 2.2 is s3d2's mesh (nodes, tetrahedra,
+/// lesion, fixed bottom), and both files give the reference result.
+#[test]
+fn gmsh_cube_sphere_in_both_msh_versions_gives_the_s3d2_result() {
+    let v = validation_dir();
+    let s3d2 = read_json(&v.join("scenarios3d/s3d2_gmsh_cube_sphere.json"));
+    let reference = v.join("results3d/s3d2_gmsh_cube_sphere.result.json");
+    let tmp = TempDir::new("cube_sphere");
+    let mut displacements = Vec::new();
+    for file in ["cube_sphere_v41.msh", "cube_sphere_v22.msh"] {
+        let sc = cube_sphere_scenario(file);
+        assert_eq!(sc["nodes"], s3d2["nodes"], "{file}: the nodes are s3d2's");
+        assert_eq!(sc["tetrahedra"], s3d2["tetrahedra"], "{file}: the tetrahedra are s3d2's");
+        assert_eq!(sc["E_elem"], s3d2["E_elem"], "{file}: the lesion is s3d2's");
+        let mut fixed: Vec<u64> = s3d2["fixed_nodes"].as_array().unwrap().iter().map(|n| n.as_u64().unwrap()).collect();
+        fixed.sort_unstable();
+        assert_eq!(sc["fixed_nodes"], json!(fixed), "{file}: the bottom is s3d2's fixed set");
+        let path = tmp.join(&format!("{file}.json"));
+        write_json(&path, &sc);
+        let out = tmp.join(&format!("{file}.result.json"));
+        displacements.push(triples(&solve_ok(&path, &out), "displacements"));
+        let failures = check_against_reference3(&reference, &out);
+        assert!(failures.is_empty(), "{file}:\n{}", failures.join("\n"));
+    }
+    let diff = max_rel_error3(&displacements[1], &displacements[0]);
+    println!("MSH 2.2 vs 4.1 displacements: max rel diff {diff:e}");
+    assert!(diff <= 1e-14, "the MSH 2.2 and 4.1 files give different displacements: {diff:e}");
+}
+
+/// Runs fem_ref3d.py on a scenario; returns the reference result's path.
+fn reference_solve3(scenario: &Path, out: PathBuf) -> PathBuf {
+    let script = validation_dir().join("fem_ref3d.py");
+    let o = run(Command::new(python()).arg(&script).arg(scenario).arg(&out));
+    let (stdout, stderr) = text(&o);
+    println!("fem_ref3d.py: {stdout}{stderr}");
+    assert!(o.status.success(), "fem_ref3d.py {} failed ({}):\n{stdout}{stderr}", scenario.display(), o.status);
+    let cross = read_json(&out)["cross_check"]["u_rel_l2_diff_skfem_vs_numpy"].as_f64().expect("fem_ref3d cross check");
+    assert!(cross < 1e-10, "the reference's own assemblies disagree by {cross:e}");
+    out
+}
+
+/// An orthonormal frame `[t, n, b]` with `t` along `dir`.
+fn frame_along(dir: [f64; 3]) -> [[f64; 3]; 3] {
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let scale = |v: [f64; 3], s: f64| v.map(|x| x * s);
+    let t = scale(dir, 1.0 / norm(dir));
+    let helper = if t[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let d = helper[0] * t[0] + helper[1] * t[1] + helper[2] * t[2];
+    let n = [helper[0] - d * t[0], helper[1] - d * t[1], helper[2] - d * t[2]];
+    let n = scale(n, 1.0 / norm(n));
+    let b = [t[1] * n[2] - t[2] * n[1], t[2] * n[0] - t[0] * n[2], t[0] * n[1] - t[1] * n[0]];
+    [t, n, b]
+}
+
+/// A tilted needle of material points from `entry` along `dir` (unit), `count` points
+/// `spacing_m` apart; the two deepest stuck, the rest slipping with 15 mN of friction along t.
+fn needle_points(entry: [f64; 3], dir: [f64; 3], count: usize, spacing_m: f64) -> (Vec<Value>, Vec<[f64; 3]>) {
+    let frame = frame_along(dir);
+    let t = frame[0];
+    let mut points = Vec::new();
+    let mut xs = Vec::new();
+    for k in 0..count {
+        let s = spacing_m * (k as f64 + 0.5);
+        let x = [entry[0] + s * t[0], entry[1] + s * t[1], entry[2] + s * t[2]];
+        let (un, ub) = (4e-4 * k as f64 / count as f64, -1e-4);
+        let p = if k + 2 >= count {
+            json!({"x": x, "frame": frame, "ut": 6e-4, "un": un, "ub": ub})
+        } else {
+            json!({"x": x, "frame": frame, "un": un, "ub": ub, "f": t.map(|c| 0.015 * c)})
+        };
+        points.push(p);
+        xs.push(x);
+    }
+    (points, xs)
+}
+
+/// An inhomogeneous box grid from our own builder (a stiff spherical inclusion and a stiffer,
+/// less compressible top layer, per-element E and ν), the bottom fixed, a side node with world
+/// components, three top nodes held in a tilted frame (one stuck, two slipping with an axial
+/// load), nodal loads, and a tilted needle of material points (stuck and slipping) — against
+/// fem_ref3d.py, solved at run time.
+#[test]
+fn inhomogeneous_box_with_a_tilted_needle_matches_the_reference_solver() {
+    use needlesim_core::d3::{BoxGridParams, TetMeshLimits};
+    let grid = BoxGridParams::new([7, 6, 8], [0.1, 0.08, 0.12]);
+    let mesh = grid.build(&TetMeshLimits::default()).expect("the box grid builds");
+    let (mut e_elem, mut nu_elem) = (Vec::new(), Vec::new());
+    for t in 0..mesh.n_tets() {
+        let c = mesh.tet_points_m(t).iter().fold([0.0; 3], |a, p| [a[0] + p[0] / 4.0, a[1] + p[1] / 4.0, a[2] + p[2] / 4.0]);
+        let r2 = (c[0] - 0.05).powi(2) + (c[1] - 0.04).powi(2) + (c[2] - 0.05).powi(2);
+        let (e, nu) = if r2 < 0.02f64.powi(2) {
+            (120e3, 0.3)
+        } else if c[2] > 0.1 {
+            (40e3, 0.35)
+        } else {
+            (15e3, 0.45)
+        };
+        e_elem.push(e);
+        nu_elem.push(nu);
+    }
+    assert!(e_elem.iter().filter(|&&e| e == 120e3).count() > 10, "the inclusion has elements");
+    let top = mesh.boundary_set("top").expect("a top set");
+    let tilt = frame_along([0.3, -0.2, -1.0]);
+    let held = [top[3], top[10], top[17]];
+    let prescribed_local: Vec<Value> = held
+        .iter()
+        .enumerate()
+        .map(|(k, &n)| {
+            if k == 0 {
+                json!({"node": n, "frame": tilt, "ut": 5e-4, "un": 1e-4, "ub": -2e-4})
+            } else {
+                json!({"node": n, "frame": tilt, "un": 1e-4 * k as f64, "ub": 0.0})
+            }
+        })
+        .collect();
+    let mut loads: Vec<Value> =
+        held[1..].iter().map(|&n| json!({"node": n, "fx": 0.01 * tilt[0][0], "fy": 0.01 * tilt[0][1], "fz": 0.01 * tilt[0][2]})).collect();
+    loads.push(json!({"node": grid.node(6, 3, 4), "fx": -0.02, "fy": 0.005, "fz": 0.0}));
+    loads.push(json!({"node": grid.node(6, 3, 4), "fx": -0.01, "fy": 0.0, "fz": 0.003}));
+    let (points, xs) = needle_points([0.047, 0.041, 0.12], [0.25, 0.15, -1.0], 6, 0.016);
+    let scenario = json!({
+        "name": "box_inclusion_tilted_needle",
+        "dim": 3,
+        "nodes": mesh.nodes_m(),
+        "tetrahedra": mesh.tets(),
+        "E": 15e3,
+        "nu": 0.45,
+        "E_elem": e_elem,
+        "nu_elem": nu_elem,
+        "fixed_nodes": mesh.boundary_set("bottom").expect("a bottom set"),
+        "prescribed": [{"node": grid.node(0, 2, 5), "ux": 2e-4}, {"node": grid.node(0, 2, 5), "uz": -1e-4}],
+        "prescribed_local": prescribed_local,
+        "loads": loads,
+        "points": points,
+        "working_nodes": held,
+        "working_points": xs,
+        "output_stresses": true,
+    });
+    let tmp = TempDir::new("box3d");
+    let path = tmp.join("box.json");
+    write_json(&path, &scenario);
+    let reference = reference_solve3(&path, tmp.join("box.ref.json"));
+    let ours_path = tmp.join("box.result.json");
+    let ours = solve_ok(&path, &ours_path);
+    let failures = check_against_reference3(&reference, &ours_path);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    let want = read_json(&reference);
+    assert_frame_components_match(&ours, &want, "reactions_local", "node", TOL);
+    assert_frame_components_match(&ours, &want, "point_reactions", "point", TOL_POINT_REACTIONS);
+    // The points' displacements u(x).
+    let u = |r: &Value| {
+        r["point_reactions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| {
+                let f = |i: usize| e["u"][i].as_f64().unwrap();
+                [f(0), f(1), f(2)]
+            })
+            .collect::<Vec<_>>()
+    };
+    let err = max_rel_error3(&u(&ours), &u(&want));
+    println!("point displacements: max rel diff {err:e}");
+    assert!(err <= TOL, "point displacements differ by {err:e}");
+}
+
+/// The Gmsh cube with its lesion, a needle tilted through the lesion's side (material points,
+/// stuck and slipping), a top node in a tilted frame and loads — against fem_ref3d.py.
+#[test]
+fn gmsh_cube_with_a_tilted_needle_matches_the_reference_solver() {
+    let mut sc = cube_sphere_scenario("cube_sphere_v22.msh");
+    let nodes = triples(&sc, "nodes");
+    let top: Vec<usize> = (0..nodes.len()).filter(|&i| (nodes[i][2] - 0.1).abs() < 1e-12).collect();
+    let tilt = frame_along([-0.2, 0.1, -1.0]);
+    let (points, xs) = needle_points([0.058, 0.047, 0.1], [-0.2, 0.1, -1.0], 7, 0.008);
+    let obj = sc.as_object_mut().expect("an object");
+    obj.insert("name".into(), json!("cube_sphere_tilted_needle"));
+    obj.insert("points".into(), json!(points));
+    obj.insert("working_points".into(), json!(xs));
+    obj.insert("prescribed_local".into(), json!([{"node": top[5], "frame": tilt, "un": 2e-4, "ub": 1e-4}]));
+    obj.insert("loads".into(), json!([{"node": top[9], "fx": 0.0, "fy": 0.01, "fz": -0.02}]));
+    obj.insert("working_nodes".into(), json!([top[5], top[9]]));
+    let tmp = TempDir::new("cube3d");
+    let path = tmp.join("cube.json");
+    write_json(&path, &sc);
+    let reference = reference_solve3(&path, tmp.join("cube.ref.json"));
+    let ours_path = tmp.join("cube.result.json");
+    let ours = solve_ok(&path, &ours_path);
+    let failures = check_against_reference3(&reference, &ours_path);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    let want = read_json(&reference);
+    assert_frame_components_match(&ours, &want, "reactions_local", "node", TOL);
+    assert_frame_components_match(&ours, &want, "point_reactions", "point", TOL_POINT_REACTIONS);
+}

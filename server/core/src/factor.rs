@@ -43,14 +43,22 @@ pub enum FactorError {
 pub struct DofMap {
     free_of_dof: Vec<usize>,
     dof_of_free: Vec<usize>,
+    dofs_per_node: usize,
 }
 
 impl DofMap {
     /// Marker for a constrained DOF in [`DofMap::free_index`].
     const CONSTRAINED: usize = usize::MAX;
 
-    /// `constrained[d]` is true for each constrained DOF.
+    /// `constrained[d]` is true for each constrained DOF; 2 DOFs per node (2D, $d = 2\,\mathrm{node} + \mathrm{axis}$).
     pub fn new(constrained: &[bool]) -> Self {
+        Self::with_dofs_per_node(constrained, 2)
+    }
+
+    /// As [`DofMap::new`] with `dofs_per_node` DOFs per node ($d = \mathrm{dofs\_per\_node}\cdot\mathrm{node} + \mathrm{axis}$):
+    /// 2 in 2D, 3 in 3D. Only errors use it, to name the node and axis of a DOF.
+    pub fn with_dofs_per_node(constrained: &[bool], dofs_per_node: usize) -> Self {
+        assert!((1..=3).contains(&dofs_per_node), "1 to 3 DOFs per node");
         let mut free_of_dof = vec![Self::CONSTRAINED; constrained.len()];
         let mut dof_of_free = Vec::with_capacity(constrained.len());
         for (d, &c) in constrained.iter().enumerate() {
@@ -59,7 +67,11 @@ impl DofMap {
                 dof_of_free.push(d);
             }
         }
-        Self { free_of_dof, dof_of_free }
+        Self { free_of_dof, dof_of_free, dofs_per_node }
+    }
+    /// DOFs per node (2 in 2D, 3 in 3D).
+    pub fn dofs_per_node(&self) -> usize {
+        self.dofs_per_node
     }
     /// The free index of a global DOF, or `None` when it is constrained.
     pub fn free_index(&self, dof: usize) -> Option<usize> {
@@ -128,7 +140,8 @@ impl SparseCholesky {
         }
         if let Some(f) = diag.iter().position(|&v| !(v > 0.0)) {
             let dof = dofs.free_dofs()[f];
-            return Err(FactorError::ZeroStiffness { dof, node: dof / 2, comp: if dof.is_multiple_of(2) { "x" } else { "y" } });
+            let per = dofs.dofs_per_node();
+            return Err(FactorError::ZeroStiffness { dof, node: dof / per, comp: ["x", "y", "z"][dof % per] });
         }
         let scale: Vec<f64> = diag.iter().map(|v| 1.0 / v.sqrt()).collect();
         let mut triplets = Vec::with_capacity(vals.len() / 2 + n);

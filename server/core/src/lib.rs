@@ -10,6 +10,9 @@
 //! needle-frame components have their own types ([`ids`]); the test and benchmark set-ups of
 //! every crate are in [`fixtures`].
 //!
+//! The static 3D core (linear tetrahedra: mesh, box grids, point location, assembly, statics with
+//! material-point conditions, compliance columns) is the module [`d3`].
+//!
 //! The crate does no I/O and knows no async runtime or protocol: state in, state out, typed errors.
 
 // Index loops mirror the formulas (i, j over matrix entries); `!(x > 0.0)` is deliberate: it is
@@ -20,6 +23,7 @@ pub mod assembly;
 pub mod beam;
 pub mod compliance;
 pub mod contact;
+pub mod d3;
 pub mod factor;
 pub mod fixtures;
 pub mod ids;

@@ -1,5 +1,7 @@
 //! The static-problem exchange format of ../shared/validation (scenario in, result out), and its
 //! conversion to and from the core's types. The only place where that JSON meets the core.
+//! A scenario with `"dim": 3` is a 3D problem ([`crate::exchange3d`]); [`parse_any_scenario`] and
+//! [`solve_any`] take either.
 
 use std::collections::BTreeMap;
 
@@ -280,6 +282,81 @@ impl Scenario {
             loads_n.push((node_id(l.node, n_nodes, "loads")?, [l.fx, l.fy]));
         }
         Ok(StaticProblem { conditions, loads_n })
+    }
+}
+
+/// A 2D or a 3D scenario.
+#[derive(Debug, Clone)]
+pub enum AnyScenario {
+    /// No `dim` key (or `"dim": 2`): the 2D format.
+    Dim2(Scenario),
+    /// `"dim": 3`: the 3D format.
+    Dim3(crate::exchange3d::Scenario3),
+}
+
+/// The result of [`solve_any`], serialised as the 2D or the 3D result format.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum AnyResult {
+    Dim2(ScenarioResult),
+    Dim3(crate::exchange3d::ScenarioResult3),
+}
+
+impl AnyResult {
+    /// Number of nodes.
+    pub fn n_nodes(&self) -> usize {
+        match self {
+            AnyResult::Dim2(r) => r.n_nodes,
+            AnyResult::Dim3(r) => r.n_nodes,
+        }
+    }
+    /// Strain energy in J.
+    pub fn strain_energy(&self) -> f64 {
+        match self {
+            AnyResult::Dim2(r) => r.strain_energy,
+            AnyResult::Dim3(r) => r.strain_energy,
+        }
+    }
+    /// Largest displacement component in m.
+    pub fn max_abs_displacement(&self) -> f64 {
+        match self {
+            AnyResult::Dim2(r) => r.max_abs_displacement,
+            AnyResult::Dim3(r) => r.max_abs_displacement,
+        }
+    }
+}
+
+/// Parses a scenario of either dimension: the `dim` key decides (absent or 2: 2D, 3: 3D; any
+/// other value is an error). The 2D path without `dim` is exactly [`Scenario`]'s parser.
+pub fn parse_any_scenario(text: &str) -> Result<AnyScenario> {
+    #[derive(Deserialize)]
+    struct Probe {
+        #[serde(default)]
+        dim: Option<serde_json::Value>,
+    }
+    let probe: Probe = serde_json::from_str(text)?;
+    match probe.dim {
+        None => Ok(AnyScenario::Dim2(serde_json::from_str(text)?)),
+        Some(d) if d.as_u64() == Some(2) => {
+            let mut v: serde_json::Value = serde_json::from_str(text)?;
+            if let Some(o) = v.as_object_mut() {
+                o.remove("dim");
+            }
+            Ok(AnyScenario::Dim2(serde_json::from_value(v)?))
+        }
+        Some(d) if d.as_u64() == Some(3) => Ok(AnyScenario::Dim3(serde_json::from_str(text)?)),
+        Some(d) => bail!("dim must be 2 or 3, found {d}"),
+    }
+}
+
+/// Solves a scenario of either dimension as the `solve` command does; the 3D mesh limits are
+/// [`needlesim_core::d3::TetMeshLimits::from_2d`] of `limits`.
+pub fn solve_any(sc: &AnyScenario, limits: &MeshLimits) -> Result<AnyResult> {
+    match sc {
+        AnyScenario::Dim2(s) => solve_scenario(s, limits).map(AnyResult::Dim2),
+        AnyScenario::Dim3(s) => {
+            crate::exchange3d::solve_scenario3(s, &needlesim_core::d3::TetMeshLimits::from_2d(limits)).map(AnyResult::Dim3)
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 //! needlesim-trajectory). Shipped examples live in server/scenes and are embedded in the binary.
 
 pub mod exchange;
+pub mod exchange3d;
 pub mod limit;
 
 use std::path::{Path, PathBuf};

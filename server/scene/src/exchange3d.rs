@@ -1,0 +1,413 @@
+//! The 3D static-problem exchange format of ../shared/validation (README "3D scenario format",
+//! `"dim": 3`, and "3D result format"), and its conversion to and from the core's `d3` types.
+
+use std::collections::BTreeMap;
+
+use anyhow::{Context, Result, bail};
+use needlesim_core::Material;
+use needlesim_core::d3::{PointCondition, TetMaterials, TetMesh, TetMeshLimits, TetNodeCondition, TetStaticProblem, TetTissueModel};
+use serde::{Deserialize, Serialize};
+
+/// A 3D static problem. Node ids are 0-based; tetrahedra may have either orientation.
+#[derive(Debug, Clone, Deserialize, Serialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario3 {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Must be 3.
+    pub dim: u8,
+    pub nodes: Vec<[f64; 3]>,
+    pub tetrahedra: Vec<[i64; 4]>,
+    #[serde(rename = "E")]
+    pub young_modulus_pa: f64,
+    pub nu: f64,
+    #[serde(rename = "E_elem", default, skip_serializing_if = "Option::is_none")]
+    pub young_modulus_elem_pa: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu_elem: Option<Vec<f64>>,
+    #[serde(default)]
+    pub fixed_nodes: Vec<i64>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub prescribed: Vec<Prescribed3>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub prescribed_local: Vec<PrescribedLocal3>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<Load3>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub points: Vec<Point3>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub working_nodes: Option<Vec<i64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub working_points: Option<Vec<[f64; 3]>>,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub output_stresses: bool,
+}
+
+/// Prescribed world components; a missing or null component is free.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Prescribed3 {
+    pub node: i64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ux: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uy: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uz: Option<f64>,
+}
+
+/// Components prescribed in a node frame `[t, n, b]` (orthonormal rows).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrescribedLocal3 {
+    pub node: i64,
+    pub frame: [[f64; 3]; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ut: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub un: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ub: Option<f64>,
+}
+
+/// A nodal force in world components, N.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Load3 {
+    pub node: i64,
+    #[serde(default)]
+    pub fx: f64,
+    #[serde(default)]
+    pub fy: f64,
+    #[serde(default)]
+    pub fz: f64,
+}
+
+/// A material point at reference position `x` (m): frame components of $u(x)$ prescribed where
+/// given, and a world force `f` (N) applied at it.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Point3 {
+    pub x: [f64; 3],
+    pub frame: [[f64; 3]; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ut: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub un: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ub: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub f: Option<[f64; 3]>,
+}
+
+/// The 3D result format.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ScenarioResult3 {
+    pub name: String,
+    pub dim: u8,
+    pub n_nodes: usize,
+    pub n_tetrahedra: usize,
+    pub displacements: Vec<[f64; 3]>,
+    pub reactions: Vec<Reaction3>,
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub reactions_local: Vec<ReactionLocal3>,
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub point_reactions: Vec<PointReaction3>,
+    pub strain_energy: f64,
+    pub max_abs_displacement: f64,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub element_stresses_voigt: Option<Vec<[f64; 6]>>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub compliance: Option<NodeCompliance3>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub point_compliance: Option<PointCompliance3>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Reaction3 {
+    pub node: usize,
+    pub rx: Option<f64>,
+    pub ry: Option<f64>,
+    pub rz: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ReactionLocal3 {
+    pub node: usize,
+    pub rt: Option<f64>,
+    pub rn: Option<f64>,
+    pub rb: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PointReaction3 {
+    pub point: usize,
+    pub rx: f64,
+    pub ry: f64,
+    pub rz: f64,
+    pub rt: Option<f64>,
+    pub rn: Option<f64>,
+    pub rb: Option<f64>,
+    pub u: [f64; 3],
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct NodeCompliance3 {
+    pub working_nodes: Vec<usize>,
+    pub dof_order: String,
+    pub matrix: Vec<Vec<f64>>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PointCompliance3 {
+    pub working_points: Vec<[f64; 3]>,
+    pub dof_order: String,
+    pub matrix: Vec<Vec<f64>>,
+}
+
+/// A node id from JSON: non-negative and below `n_nodes`; `what` names the key and index.
+fn node_id(v: i64, n_nodes: usize, what: &str) -> Result<usize> {
+    if v < 0 || v as u64 >= n_nodes as u64 {
+        bail!("{what} names node {v}, but the mesh has nodes 0..{} (ids are 0-based)", n_nodes.saturating_sub(1));
+    }
+    Ok(v as usize)
+}
+
+impl Scenario3 {
+    /// Builds the mesh and materials, validating both. Errors name the key and index.
+    pub fn mesh_and_materials(&self, limits: &TetMeshLimits) -> Result<(TetMesh, TetMaterials)> {
+        if self.dim != 3 {
+            bail!("dim must be 3 for a scenario with tetrahedra, found {}", self.dim);
+        }
+        let mut tets = Vec::with_capacity(self.tetrahedra.len());
+        for (i, t) in self.tetrahedra.iter().enumerate() {
+            let mut tet = [0usize; 4];
+            for k in 0..4 {
+                if t[k] < 0 {
+                    bail!("tetrahedra[{i}] refers to node {}, but node ids are 0-based and non-negative", t[k]);
+                }
+                tet[k] = usize::try_from(t[k]).unwrap_or(usize::MAX);
+            }
+            tets.push(tet);
+        }
+        let mesh = TetMesh::new(self.nodes.clone(), tets, limits).context("invalid mesh")?;
+        let n = mesh.n_tets();
+        let materials = if self.young_modulus_elem_pa.is_some() || self.nu_elem.is_some() {
+            let e = self.young_modulus_elem_pa.clone().unwrap_or_else(|| vec![self.young_modulus_pa; n]);
+            let nu = self.nu_elem.clone().unwrap_or_else(|| vec![self.nu; n]);
+            if e.len() != n {
+                bail!("E_elem has {} entries but there are {n} tetrahedra", e.len());
+            }
+            if nu.len() != n {
+                bail!("nu_elem has {} entries but there are {n} tetrahedra", nu.len());
+            }
+            let per = e.iter().zip(&nu).map(|(&e, &nu)| Material { young_modulus_pa: e, poisson_ratio: nu }).collect();
+            TetMaterials::per_element(&mesh, per).context("invalid material (E_elem / nu_elem)")?
+        } else {
+            let m = Material { young_modulus_pa: self.young_modulus_pa, poisson_ratio: self.nu };
+            TetMaterials::per_region(&mesh, &[m]).context("invalid material (E / nu)")?
+        };
+        Ok((mesh, materials))
+    }
+
+    /// The static problem: fixed nodes, prescribed (world entries for one node merge),
+    /// prescribed_local, loads and points. Errors name the key and index.
+    pub fn static_problem(&self, n_nodes: usize) -> Result<TetStaticProblem> {
+        let mut conditions = Vec::new();
+        for (i, &n) in self.fixed_nodes.iter().enumerate() {
+            conditions.push((node_id(n, n_nodes, &format!("fixed_nodes[{i}]"))?, TetNodeCondition::Fixed));
+        }
+        let mut world: BTreeMap<usize, [Option<f64>; 3]> = BTreeMap::new();
+        for (i, p) in self.prescribed.iter().enumerate() {
+            let n = node_id(p.node, n_nodes, &format!("prescribed[{i}]"))?;
+            let e = world.entry(n).or_default();
+            for (a, v) in [p.ux, p.uy, p.uz].into_iter().enumerate() {
+                if v.is_some() {
+                    e[a] = v;
+                }
+            }
+        }
+        for (n, u_m) in world {
+            if u_m.iter().any(Option::is_some) {
+                conditions.push((n, TetNodeCondition::World { u_m }));
+            }
+        }
+        for (i, p) in self.prescribed_local.iter().enumerate() {
+            let n = node_id(p.node, n_nodes, &format!("prescribed_local[{i}]"))?;
+            conditions.push((n, TetNodeCondition::Local { frame: p.frame, u_m: [p.ut, p.un, p.ub] }));
+        }
+        let mut loads_n = Vec::new();
+        for (i, l) in self.loads.iter().enumerate() {
+            loads_n.push((node_id(l.node, n_nodes, &format!("loads[{i}]"))?, [l.fx, l.fy, l.fz]));
+        }
+        let points = self
+            .points
+            .iter()
+            .map(|p| PointCondition { x_m: p.x, frame: p.frame, u_m: [p.ut, p.un, p.ub], force_n: p.f.unwrap_or([0.0; 3]) })
+            .collect();
+        Ok(TetStaticProblem { conditions, loads_n, points })
+    }
+}
+
+/// Solves a 3D scenario as the `solve` command does.
+pub fn solve_scenario3(sc: &Scenario3, limits: &TetMeshLimits) -> Result<ScenarioResult3> {
+    let (mesh, materials) = sc.mesh_and_materials(limits)?;
+    let problem = sc.static_problem(mesh.n_nodes())?;
+    let sol = problem.solve(&mesh, &materials).context("static solve failed")?;
+    let displacements: Vec<[f64; 3]> = sol.displacement_m.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let reactions = sol.reactions_n.iter().map(|&(node, [rx, ry, rz])| Reaction3 { node, rx, ry, rz }).collect();
+    let reactions_local = sol.reactions_local_n.iter().map(|&(node, [rt, rn, rb])| ReactionLocal3 { node, rt, rn, rb }).collect();
+    let point_reactions = sol
+        .point_reactions
+        .iter()
+        .enumerate()
+        .map(|(point, r)| PointReaction3 {
+            point,
+            rx: r.force_n[0],
+            ry: r.force_n[1],
+            rz: r.force_n[2],
+            rt: r.local_n[0],
+            rn: r.local_n[1],
+            rb: r.local_n[2],
+            u: r.u_m,
+        })
+        .collect();
+    let element_stresses_voigt = sc.output_stresses.then(|| sol.element_stresses_pa(&mesh, &materials));
+    let working_nodes = sc.working_nodes.as_deref().filter(|w| !w.is_empty());
+    let working_points = sc.working_points.as_deref().filter(|w| !w.is_empty());
+    let (mut compliance, mut point_compliance) = (None, None);
+    if working_nodes.is_some() || working_points.is_some() {
+        let n_nodes = mesh.n_nodes();
+        let fixed = sc
+            .fixed_nodes
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| node_id(n, n_nodes, &format!("fixed_nodes[{i}]")))
+            .collect::<Result<Vec<_>>>()?;
+        let model = TetTissueModel::new(mesh.clone(), materials.clone(), &fixed)
+            .context("the compliance needs fixed_nodes that hold the tissue")?;
+        let square = |w: Vec<f64>, d: usize| w.chunks(d).map(<[f64]>::to_vec).collect::<Vec<_>>();
+        if let Some(w) = working_nodes {
+            let nodes =
+                w.iter().enumerate().map(|(i, &n)| node_id(n, n_nodes, &format!("working_nodes[{i}]"))).collect::<Result<Vec<_>>>()?;
+            let c = model.node_compliance(&nodes)?;
+            compliance = Some(NodeCompliance3 {
+                dof_order: "[ux(w0), uy(w0), uz(w0), ux(w1), ...]".to_owned(),
+                matrix: square(c, 3 * nodes.len()),
+                working_nodes: nodes,
+            });
+        }
+        if let Some(x) = working_points {
+            let w = model.point_compliance_at(x)?;
+            point_compliance = Some(PointCompliance3 {
+                working_points: x.to_vec(),
+                dof_order: "[ux(p0), uy(p0), uz(p0), ux(p1), ...]".to_owned(),
+                matrix: square(w, 3 * x.len()),
+            });
+        }
+    }
+    let result = ScenarioResult3 {
+        name: sc.name.clone().unwrap_or_default(),
+        dim: 3,
+        n_nodes: mesh.n_nodes(),
+        n_tetrahedra: mesh.n_tets(),
+        max_abs_displacement: sol.displacement_m.iter().fold(0.0, |m, v| m.max(v.abs())),
+        displacements,
+        reactions,
+        reactions_local,
+        point_reactions,
+        strain_energy: sol.strain_energy_j,
+        element_stresses_voigt,
+        compliance,
+        point_compliance,
+    };
+    if let Some(what) = first_non_finite(&result) {
+        bail!(
+            "{what} is not finite: a prescribed displacement, a load or a material value is too large for the solve \
+             (it overflows the range of f64)"
+        );
+    }
+    Ok(result)
+}
+
+/// The first value of a 3D result that is not finite, named.
+fn first_non_finite(r: &ScenarioResult3) -> Option<String> {
+    let fin = |v: &[Option<f64>]| v.iter().flatten().all(|x| x.is_finite());
+    if let Some(i) = r.displacements.iter().position(|d| !d.iter().all(|x| x.is_finite())) {
+        return Some(format!("the displacement of node {i}"));
+    }
+    if let Some(x) = r.reactions.iter().find(|x| !fin(&[x.rx, x.ry, x.rz])) {
+        return Some(format!("the reaction at node {}", x.node));
+    }
+    if let Some(x) = r.point_reactions.iter().find(|x| !fin(&[Some(x.rx), Some(x.ry), Some(x.rz), x.rt, x.rn, x.rb])) {
+        return Some(format!("the reaction of point {}", x.point));
+    }
+    if !r.strain_energy.is_finite() {
+        return Some("the strain energy".to_owned());
+    }
+    if let Some(i) = r.element_stresses_voigt.iter().flatten().position(|s| !s.iter().all(|x| x.is_finite())) {
+        return Some(format!("the stress of tetrahedron {i}"));
+    }
+    if r.compliance
+        .iter()
+        .flat_map(|c| c.matrix.iter().flatten())
+        .chain(r.point_compliance.iter().flat_map(|c| c.matrix.iter().flatten()))
+        .any(|x| !x.is_finite())
+    {
+        return Some("the compliance block".to_owned());
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TWO_TETS: &str = r#"{"dim": 3, "nodes": [[0,0,0],[1,0,0],[0,1,0],[0,0,1],[1,1,1]], "tetrahedra": [[0,2,1,3],[1,2,3,4]],
+        "E": 1000, "nu": 0.3, "fixed_nodes": [0, 1, 2], "loads": [{"node": 4, "fz": 0.5}], "working_nodes": [3, 4],
+        "points": [{"x": [0.5, 0.5, 0.6], "frame": [[0,0,1],[1,0,0],[0,1,0]], "un": 0.001, "f": [0, 0, 0.1]}],
+        "working_points": [[0.5, 0.5, 0.6]], "output_stresses": true}"#;
+
+    #[test]
+    fn a_small_scenario_solves_with_every_key() {
+        let sc: Scenario3 = serde_json::from_str(TWO_TETS).unwrap();
+        let r = solve_scenario3(&sc, &TetMeshLimits::default()).unwrap();
+        assert_eq!((r.n_nodes, r.n_tetrahedra, r.dim), (5, 2, 3));
+        assert_eq!(r.reactions.iter().map(|x| x.node).collect::<Vec<_>>(), vec![0, 1, 2]);
+        assert_eq!(r.point_reactions.len(), 1);
+        let p = &r.point_reactions[0];
+        assert!(p.rt.is_none() && p.rn.is_some() && p.rb.is_none());
+        assert!((p.u[0] - 0.001).abs() < 1e-15, "the point holds its prescribed un = ux: {:?}", p.u);
+        assert_eq!(r.compliance.as_ref().unwrap().matrix.len(), 6);
+        assert_eq!(r.point_compliance.as_ref().unwrap().matrix.len(), 3);
+        assert_eq!(r.element_stresses_voigt.as_ref().unwrap().len(), 2);
+        // Force balance: supports + point constraint + loads.
+        let fz: f64 = r.reactions.iter().filter_map(|x| x.rz).sum::<f64>() + p.rz + 0.5 + 0.1;
+        assert!(fz.abs() < 1e-12, "{fz}");
+    }
+
+    #[test]
+    fn bad_input_names_the_key_and_index() {
+        let lim = TetMeshLimits::default();
+        let solve = |text: &str| {
+            let sc: Scenario3 = serde_json::from_str(text).unwrap();
+            format!("{:#}", solve_scenario3(&sc, &lim).unwrap_err())
+        };
+        let e = solve(&TWO_TETS.replace("\"loads\": [{\"node\": 4", "\"loads\": [{\"node\": 9"));
+        assert!(e.contains("loads[0] names node 9"), "{e}");
+        let e = solve(&TWO_TETS.replace("[1,2,3,4]]", "[1,2,3,-4]]"));
+        assert!(e.contains("tetrahedra[1] refers to node -4"), "{e}");
+        let e = solve(&TWO_TETS.replace("[1,2,3,4]]", "[1,2,3,1]]"));
+        assert!(e.contains("tetrahedron 1 uses node 1 twice"), "{e}");
+        let e = solve(&TWO_TETS.replace("\"frame\": [[0,0,1]", "\"frame\": [[0,0,2]"));
+        assert!(e.contains("point 0: the frame must be three orthonormal rows"), "{e}");
+        let e = solve(&TWO_TETS.replace("\"working_points\": [[0.5, 0.5, 0.6]]", "\"working_points\": [[0.5, 0.5, 0.6], [2, 2, 2]]"));
+        assert!(e.contains("working point 1: the point (2, 2, 2) m lies outside the mesh"), "{e}");
+        let e = solve(&TWO_TETS.replace("\"nu\": 0.3", "\"nu\": 0.5"));
+        assert!(e.contains("Poisson ratio"), "{e}");
+        let e = serde_json::from_str::<Scenario3>(&TWO_TETS.replace("\"dim\": 3", "\"dim\": 3, \"plane\": \"strain\"")).unwrap_err();
+        assert!(e.to_string().contains("unknown field `plane`"), "{e}");
+    }
+}
