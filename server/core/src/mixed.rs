@@ -35,7 +35,10 @@
 //! H'_{rs} = H_{rs}W^{-1},\quad H'_{rr} = H_{rr} - H'_{rs}\,\mathcal B\,H_{sr}.$$
 //! The rest changes by a term of rank $\operatorname{rank}\mathcal B \le 2\min(|p|, |q|) = 2$
 //! (in 2D and 3D alike: the prescribed directions themselves turn, so the condensation of every
-//! other DOF changes), one pass over $H$, $O(Dd^2)$. This is the composition of the pivots of
+//! other DOF changes), one pass over $H$, $O(d^2)$: with $k$ the lone component of its kind and
+//! $o$ the others, $\mathcal B$ links $k$ with $o$ only, so with $z = H_{is}W^{-1}$ the row update
+//! is $z\mathcal B H_{sr} = \big(\sum_{e \in o} z_e G_{ek}\big) H_{k r} + z_k \big(\sum_{c \in o}
+//! G_{kc} H_{cr}\big)$, two precomputed rows. This is the composition of the pivots of
 //! $p$ to forces, the congruence and the pivots back, in one pass instead of $2|p| + 1$. In 2D
 //! $G = cI + sJ$, $J = \begin{bmatrix} 0 & 1 \\ -1 & 0\end{bmatrix}$, so $\mathcal A = cI$ and
 //! $\mathcal B = sJ$ ([`MixedSolver::set_angle`] keeps that closed form). The new
@@ -709,21 +712,35 @@ impl<const D: usize> MixedSolver<D> {
         for c in 0..D {
             self.tmp_rows[c * st..c * st + d].copy_from_slice(&self.h[(k0 + c) * st..(k0 + c) * st + d]);
         }
+        // The rank-two form of z B H_sr: with D <= 3 one kind has a single component k (the
+        // other components o), and B links k only with o, so
+        // z B H_sr = (sum_{e in o} z_e G_ek) H_k + z_k (sum_{c in o} G_kc H_c):
+        // two streams, H_k in tmp_col and the combination in tmp_row.
+        let n_p = is_p.iter().filter(|&&v| v).count();
+        let lone = (0..D).find(|&c| is_p[c] == (n_p == 1)).expect("a slot of mixed kinds has a lone kind");
+        self.tmp_col[..d].copy_from_slice(&self.tmp_rows[lone * st..lone * st + d]);
+        self.tmp_row[..d].fill(0.0);
+        for c in 0..D {
+            if c != lone {
+                let gkc = g[lone][c];
+                for (t, &r) in self.tmp_row[..d].iter_mut().zip(&self.tmp_rows[c * st..c * st + d]) {
+                    *t += gkc * r;
+                }
+            }
+        }
         for i in 0..d {
             if i >= k0 && i < k0 + D {
                 continue;
             }
             let row = &mut self.h[i * st..i * st + d];
             let hrs: [f64; D] = std::array::from_fn(|e| row[k0 + e]);
-            // z = H_is W^-1 (the new H'_is); gvec = z B; H'_ir = H_ir - gvec H_sr.
+            // z = H_is W^-1 (the new H'_is); H'_ir = H_ir - z B H_sr.
             let z: [f64; D] = std::array::from_fn(|c| (0..D).map(|e| hrs[e] * wi[e][c]).sum());
-            let gvec: [f64; D] = std::array::from_fn(|c| (0..D).map(|e| z[e] * b[e][c]).sum());
-            for c in 0..D {
-                let gc = gvec[c];
-                if gc != 0.0 {
-                    for (hij, &r) in row.iter_mut().zip(&self.tmp_rows[c * st..c * st + d]) {
-                        *hij -= gc * r;
-                    }
+            let g_lone: f64 = (0..D).filter(|&e| e != lone).map(|e| z[e] * g[e][lone]).sum();
+            let z_lone = z[lone];
+            if g_lone != 0.0 || z_lone != 0.0 {
+                for ((hij, &r_lone), &r_comb) in row.iter_mut().zip(&self.tmp_col[..d]).zip(&self.tmp_row[..d]) {
+                    *hij -= g_lone * r_lone + z_lone * r_comb;
                 }
             }
             row[k0..k0 + D].copy_from_slice(&z);
