@@ -457,4 +457,57 @@ mod tests {
         let e = TissueModel::new(mesh, mats, &[4]).unwrap_err();
         assert!(e.to_string().contains("rigid body"), "{e}");
     }
+
+    /// The 3D cache (three columns of length 3n per node) returns the blocks, the working
+    /// block and the displacement from forces of the dense compliance it was filled from;
+    /// `ensure_with` computes once and reports errors without storing.
+    #[test]
+    fn the_3d_cache_serves_blocks_of_its_columns() {
+        let n_nodes = 9;
+        let (c, mut cache) = crate::fixtures::random_spd_compliance::<3>(n_nodes, 5);
+        let n = 3 * n_nodes;
+        assert_eq!(cache.len(), n_nodes);
+        assert_eq!(cache.column_bytes(), n_nodes * 3 * n * 8);
+        let b = cache.block(2, 7).unwrap();
+        for r in 0..3 {
+            for col in 0..3 {
+                assert_eq!(b[r][col], c[(6 + r) * n + 21 + col]);
+            }
+        }
+        let nodes = [7usize, 2, 4];
+        let mut w = vec![0.0; 81];
+        cache.working_block_into(&nodes, &mut w).unwrap();
+        for (i, &a) in nodes.iter().enumerate() {
+            for (j, &bn) in nodes.iter().enumerate() {
+                for r in 0..3 {
+                    for col in 0..3 {
+                        assert_eq!(w[(3 * i + r) * 9 + 3 * j + col], c[(3 * a + r) * n + 3 * bn + col]);
+                    }
+                }
+            }
+        }
+        let mut u = vec![0.0; n];
+        cache.displacement_from_forces_into([(4, [1.0, -2.0, 0.5]), (8, [0.0, 0.0, 3.0])], &mut u).unwrap();
+        for r in 0..n {
+            let e = c[r * n + 12] - 2.0 * c[r * n + 13] + 0.5 * c[r * n + 14] + 3.0 * c[r * n + 26];
+            assert!((u[r] - e).abs() < 1e-18, "{r}");
+        }
+        cache.evict(4);
+        assert!(cache.block(0, 4).is_none());
+        let cols: Vec<f64> = (0..3 * n).map(|k| c[(k % n) * n + 12 + k / n]).collect();
+        let mut calls = 0;
+        assert_eq!(cache.ensure_with(4, |_| Err::<(), _>("no columns")), Err("no columns"));
+        assert!(!cache.contains(4));
+        for _ in 0..2 {
+            cache
+                .ensure_with(4, |out| -> Result<(), ()> {
+                    calls += 1;
+                    out.copy_from_slice(&cols);
+                    Ok(())
+                })
+                .unwrap();
+        }
+        assert_eq!((calls, cache.n_computed()), (1, 1));
+        assert_eq!(cache.block(0, 4).unwrap()[2][1], c[2 * n + 13]);
+    }
 }

@@ -1700,6 +1700,9 @@ mod tests {
                 s.stats()
             );
             assert!(n_checks > 1000 && n_mixed_rot > 100 && n_uniform_rot > 50 && n_points > 20, "{:?}", s.stats());
+            // The cache-based rebuild (contact blocks, 3 × 3 frames) agrees with the dense one.
+            let e_rebuild = scaled_hybrid_diff(&s, &s.hybrid_from_scratch(&cache).unwrap());
+            assert!(e_rebuild < 1e-14 * cond_local(&s, &c) * s.n_dofs() as f64, "rebuild: {e_rebuild:e}");
             assert!(s.stats().n_pivots > 200 && s.stats().n_removed > 20, "{:?}", s.stats());
         }
     }
