@@ -144,6 +144,8 @@ pub struct MixedSolver<const D: usize = 2> {
     /// The slot's old rows of $H$ in a general frame change ($D$ rows of `stride`).
     tmp_rows: Vec<f64>,
     tmp_c: Vec<[f64; D]>,
+    /// The displacement-prescribed DOFs, in increasing order, while bordering.
+    p_list: Vec<usize>,
     stats: MixedStats,
 }
 
@@ -355,6 +357,7 @@ impl<const D: usize> MixedSolver<D> {
             tmp_col: vec![0.0; stride],
             tmp_rows: vec![0.0; D * stride],
             tmp_c: vec![[0.0; D]; stride],
+            p_list: vec![0; stride],
             stats: MixedStats::default(),
         }
     }
@@ -480,14 +483,22 @@ impl<const D: usize> MixedSolver<D> {
         // New columns: H[i, n] = [i in F] c_i - sum_{j in P} H_ij c_j.
         // New rows:    H[n, j] = sum_{i in P} c_i H_ij + [j in F] c_j.
         // H[n, n] = C_nn + sum_{i in P} c_i H[i, n].
+        // The sums run over the displacement-prescribed DOFs in increasing order (listed first),
+        // and the new rows are accumulated row by row of H (contiguous), not down its columns.
+        let mut n_p = 0;
+        for k in 0..d {
+            if self.kind[k] == Condition::Displacement {
+                self.p_list[n_p] = k;
+                n_p += 1;
+            }
+        }
         for i in 0..d {
             let mut acc = [0.0; D];
-            for j in 0..d {
-                if self.kind[j] == Condition::Displacement {
-                    let hij = self.h[i * st + j];
-                    for c in 0..D {
-                        acc[c] += hij * self.tmp_c[j][c];
-                    }
+            let row = &self.h[i * st..i * st + d];
+            for &j in &self.p_list[..n_p] {
+                let hij = row[j];
+                for c in 0..D {
+                    acc[c] += hij * self.tmp_c[j][c];
                 }
             }
             let is_f = self.kind[i] == Condition::Force;
@@ -496,20 +507,25 @@ impl<const D: usize> MixedSolver<D> {
                 self.h[i * st + d + c] = base - acc[c];
             }
         }
-        for j in 0..d {
-            let mut acc = [0.0; D];
-            for i in 0..d {
-                if self.kind[i] == Condition::Displacement {
-                    let hij = self.h[i * st + j];
-                    for c in 0..D {
-                        acc[c] += self.tmp_c[i][c] * hij;
-                    }
+        for c in 0..D {
+            self.h[(d + c) * st..(d + c) * st + d].fill(0.0);
+        }
+        for &i in &self.p_list[..n_p] {
+            let ci = self.tmp_c[i];
+            let (above, below) = self.h.split_at_mut(d * st);
+            let row_i = &above[i * st..i * st + d];
+            for c in 0..D {
+                let new_row = &mut below[c * st..c * st + d];
+                for (acc, &hij) in new_row.iter_mut().zip(row_i) {
+                    *acc += ci[c] * hij;
                 }
             }
-            let is_f = self.kind[j] == Condition::Force;
-            for c in 0..D {
-                let base = if is_f { self.tmp_c[j][c] } else { 0.0 };
-                self.h[(d + c) * st + j] = acc[c] + base;
+        }
+        for j in 0..d {
+            if self.kind[j] == Condition::Force {
+                for c in 0..D {
+                    self.h[(d + c) * st + j] += self.tmp_c[j][c];
+                }
             }
         }
         for r in 0..D {
