@@ -1,12 +1,19 @@
 //! The tissue model and its compliance on demand: columns of $C = K_{ff}^{-1}$ for the nodes the
 //! needle touches, from a sparse factorisation instead of a dense inverse.
 //!
-//! [`TissueModel`] assembles $K$, removes the fixed nodes and factorises $K_{ff}$ once. The two
-//! columns of node $w$ are two sparse solves, $K_{ff}\,[c_{x}, c_{y}] = [e_{2w}, e_{2w+1}]$, cost
-//! $O(\mathrm{nnz}(L))$. [`ComplianceCache`] keeps them (full DOF length, zero at fixed DOFs) so the
-//! working set $\mathcal W$ grows node by node without refactorisation, gives the blocks of
+//! [`TissueModel`] (2D) assembles $K$, removes the fixed nodes and factorises $K_{ff}$ once. The
+//! two columns of node $w$ are two sparse solves, $K_{ff}\,[c_{x}, c_{y}] = [e_{2w}, e_{2w+1}]$,
+//! cost $O(\mathrm{nnz}(L))$. [`ComplianceCache`] keeps them (full DOF length, zero at fixed DOFs)
+//! so the working set $\mathcal W$ grows node by node without refactorisation, gives the blocks of
 //! $C_{\mathcal{WW}}$, and the displacement of every node caused by forces on $\mathcal W$:
 //! $u = \sum_{w \in \mathcal W} C_{:,w} f_w$, cost $O(n\,|\mathcal W|)$.
+//!
+//! The cache serves 2D and 3D: `ComplianceCache<D>` holds, per node, the $D$ columns of length
+//! $Dn$ (world DOF $Di + c$ of node $i$, component $c$), and its blocks are $D \times D$ arrays.
+//! The dimension is a const generic (default 2, so `ComplianceCache` in a type is the 2D cache of
+//! the sim) for the reason given in [`crate::mixed`]: the blocks are fixed-size arrays the
+//! compiler unrolls. 3D columns come from the 3D tissue model through
+//! [`ComplianceCache::insert`] or [`ComplianceCache::ensure_with`].
 
 use std::sync::Arc;
 
@@ -133,11 +140,12 @@ impl TissueModel {
     }
 }
 
-/// Cached compliance columns by node, one boxed pair of columns per node (so memory follows the
-/// nodes cached, and growth never copies other nodes' columns). Storage grows only in
-/// [`ComplianceCache::insert`]; evicted storage is reused; reads allocate nothing.
+/// Cached compliance columns by node, one boxed set of `D` columns per node (so memory follows
+/// the nodes cached, and growth never copies other nodes' columns). Storage grows only in
+/// [`ComplianceCache::insert`] (and the `ensure` calls that insert); evicted storage is reused;
+/// reads allocate nothing. `D` is the dimension, 2 (the default) or 3.
 #[derive(Debug, Clone)]
-pub struct ComplianceCache {
+pub struct ComplianceCache<const D: usize = 2> {
     n_dofs: usize,
     slot_of_node: Vec<u32>,
     node_of_slot: Vec<usize>,
@@ -148,11 +156,30 @@ pub struct ComplianceCache {
 
 const NO_SLOT: u32 = u32::MAX;
 
-impl ComplianceCache {
-    /// An empty cache for a model of `n_nodes` nodes.
+/// The 3D compliance cache: three columns of length $3n$ per node.
+pub type ComplianceCache3 = ComplianceCache<3>;
+
+impl ComplianceCache<2> {
+    /// An empty 2D cache for a model of `n_nodes` nodes ([`ComplianceCache::for_nodes`]).
     pub fn new(n_nodes: usize) -> Self {
+        Self::for_nodes(n_nodes)
+    }
+
+    /// Computes and stores the columns of `node_idx` unless cached. Returns whether it computed.
+    pub fn ensure(&mut self, model: &TissueModel, node_idx: usize, scratch: &mut ColumnScratch) -> Result<bool, TissueError> {
+        if node_idx >= self.slot_of_node.len() {
+            return Err(TissueError::UnknownNode { node_idx, n_nodes: self.slot_of_node.len() });
+        }
+        self.ensure_with(node_idx, |out| model.compliance_columns_into(node_idx, out, scratch))
+    }
+}
+
+impl<const D: usize> ComplianceCache<D> {
+    /// An empty cache for a model of `n_nodes` nodes in dimension `D`.
+    pub fn for_nodes(n_nodes: usize) -> Self {
+        assert!(D == 2 || D == 3, "a compliance cache is 2D or 3D");
         Self {
-            n_dofs: 2 * n_nodes,
+            n_dofs: D * n_nodes,
             slot_of_node: vec![NO_SLOT; n_nodes],
             node_of_slot: Vec::new(),
             free_slots: Vec::new(),
@@ -170,7 +197,7 @@ impl ComplianceCache {
 
     /// Bytes held by cached columns (including evicted storage kept for reuse).
     pub fn column_bytes(&self) -> usize {
-        self.columns.len() * 2 * self.n_dofs * std::mem::size_of::<f64>()
+        self.columns.len() * D * self.n_dofs * std::mem::size_of::<f64>()
     }
 
     /// Storage slots, live or free (a slot's storage is kept for reuse after an eviction).
@@ -203,9 +230,10 @@ impl ComplianceCache {
     }
 
     /// Stores columns computed elsewhere (for example by a worker thread with
-    /// [`TissueModel::compliance_columns_into`]). `columns` has length $2 \cdot 2n$.
+    /// [`TissueModel::compliance_columns_into`]). `columns` has length $D \cdot Dn$: the column
+    /// for a unit force along world $x$, then $y$ (then $z$), each over all DOFs.
     pub fn insert(&mut self, node_idx: usize, columns: &[f64]) {
-        assert_eq!(columns.len(), 2 * self.n_dofs, "two full columns");
+        assert_eq!(columns.len(), D * self.n_dofs, "D full columns");
         let slot = match self.slot_of_node[node_idx] {
             NO_SLOT => match self.free_slots.pop() {
                 Some(s) => s,
@@ -224,11 +252,11 @@ impl ComplianceCache {
         self.columns[slot as usize].copy_from_slice(columns);
     }
 
-    /// Stores columns handed over as an owned box (length $2 \cdot 2n$), without allocating
+    /// Stores columns handed over as an owned box (length $D \cdot Dn$), without allocating
     /// column storage: the box is kept, or copied into reused storage. Returns a box the caller
     /// may drop elsewhere (the one not kept), so a real-time thread can hand it back to a worker.
     pub fn insert_owned(&mut self, node_idx: usize, columns: Box<[f64]>) -> Option<Box<[f64]>> {
-        assert_eq!(columns.len(), 2 * self.n_dofs, "two full columns");
+        assert_eq!(columns.len(), D * self.n_dofs, "D full columns");
         match self.slot_of_node[node_idx] {
             NO_SLOT => match self.free_slots.pop() {
                 Some(s) => {
@@ -247,16 +275,16 @@ impl ComplianceCache {
         }
     }
 
-    /// Computes and stores the columns of `node_idx` unless cached. Returns whether it computed.
-    pub fn ensure(&mut self, model: &TissueModel, node_idx: usize, scratch: &mut ColumnScratch) -> Result<bool, TissueError> {
-        if node_idx >= self.slot_of_node.len() {
-            return Err(TissueError::UnknownNode { node_idx, n_nodes: self.slot_of_node.len() });
-        }
+    /// Computes (with `compute`, which fills the $D$ columns of length $Dn$ of `node_idx`) and
+    /// stores the columns of `node_idx` unless cached; allocates the columns' storage. Returns
+    /// whether it computed. Errors: those of `compute` (nothing is then stored). Panics only on
+    /// a programming error (`node_idx` past the cache's nodes).
+    pub fn ensure_with<E>(&mut self, node_idx: usize, compute: impl FnOnce(&mut [f64]) -> Result<(), E>) -> Result<bool, E> {
         if self.contains(node_idx) {
             return Ok(false);
         }
-        let mut cols = vec![0.0; 2 * self.n_dofs];
-        model.compliance_columns_into(node_idx, &mut cols, scratch)?;
+        let mut cols = vec![0.0; D * self.n_dofs];
+        compute(&mut cols)?;
         self.insert(node_idx, &cols);
         self.n_computed += 1;
         Ok(true)
@@ -273,7 +301,7 @@ impl ComplianceCache {
     }
 
     /// The column of all DOFs' displacement for a unit force on `node_idx`, component `comp`
-    /// (0 = x, 1 = y); `None` when not cached.
+    /// (0 = x, 1 = y, 2 = z); `None` when not cached.
     pub fn column(&self, node_idx: usize, comp: usize) -> Option<&[f64]> {
         let s = *self.slot_of_node.get(node_idx)?;
         if s == NO_SLOT {
@@ -282,30 +310,43 @@ impl ComplianceCache {
         Some(&self.columns[s as usize][comp * self.n_dofs..(comp + 1) * self.n_dofs])
     }
 
-    /// The world-frame block $C_{ab}$ (2 × 2): displacement of node `a` per unit force on node
-    /// `b`. Needs `b`'s columns; `None` when they are not cached.
-    pub fn block(&self, a: usize, b: usize) -> Option<[[f64; 2]; 2]> {
-        let cx = self.column(b, 0)?;
-        let cy = self.column(b, 1)?;
-        Some([[cx[2 * a], cy[2 * a]], [cx[2 * a + 1], cy[2 * a + 1]]])
+    /// All `D` columns of `node_idx` (component-major, each of length $Dn$); `None` when not
+    /// cached.
+    #[inline]
+    fn columns_of(&self, node_idx: usize) -> Option<&[f64]> {
+        let s = *self.slot_of_node.get(node_idx)?;
+        if s == NO_SLOT {
+            return None;
+        }
+        Some(&self.columns[s as usize])
+    }
+
+    /// The world-frame block $C_{ab}$ ($D \times D$): displacement of node `a` per unit force on
+    /// node `b`. Needs `b`'s columns; `None` when they are not cached.
+    pub fn block(&self, a: usize, b: usize) -> Option<[[f64; D]; D]> {
+        let cols = self.columns_of(b)?;
+        let n = self.n_dofs;
+        Some(std::array::from_fn(|r| std::array::from_fn(|c| cols[c * n + D * a + r])))
     }
 
     /// The world-frame compliance block between two contacts,
-    /// $W_{ab} = \sum_{i \in a}\sum_{j \in b} N_{a,i} N_{b,j}\, C_{ij}$ (2 × 2): displacement of
-    /// contact `a` per unit force on contact `b` ([`crate::contact`]). Needs the columns of `b`'s
-    /// nodes; `None` when one is not cached. $O(1)$: at most nine nodal blocks.
-    pub fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; 2]; 2]> {
-        let mut out = [[0.0; 2]; 2];
+    /// $W_{ab} = \sum_{i \in a}\sum_{j \in b} N_{a,i} N_{b,j}\, C_{ij}$ ($D \times D$):
+    /// displacement of contact `a` per unit force on contact `b` ([`crate::contact`]). Needs the
+    /// columns of `b`'s nodes; `None` when one is not cached. $O(1)$: at most nine nodal blocks
+    /// in 2D (triangle × triangle), sixteen in 3D (tetrahedron × tetrahedron).
+    pub fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; D]; D]> {
+        let mut out = [[0.0; D]; D];
+        let n = self.n_dofs;
         for (j, wj) in b.terms() {
-            let cx = self.column(j.index(), 0)?;
-            let cy = self.column(j.index(), 1)?;
+            let cols = self.columns_of(j.index())?;
             for (i, wi) in a.terms() {
                 let w = wi * wj;
-                let (r0, r1) = (i.dof(0), i.dof(1));
-                out[0][0] += w * cx[r0];
-                out[0][1] += w * cy[r0];
-                out[1][0] += w * cx[r1];
-                out[1][1] += w * cy[r1];
+                let r0 = D * i.index();
+                for r in 0..D {
+                    for c in 0..D {
+                        out[r][c] += w * cols[c * n + r0 + r];
+                    }
+                }
             }
         }
         Some(out)
@@ -316,17 +357,19 @@ impl ComplianceCache {
         contact.nodes().iter().all(|n| self.contains(n.index()))
     }
 
-    /// $C_{\mathcal{WW}}$ for the given nodes, DOF order `[ux(w0), uy(w0), ux(w1), …]`, row-major
-    /// into `out` (length $(2m)^2$). Symmetrised as $\tfrac12 (C + C^\top)$ to remove round-off.
+    /// $C_{\mathcal{WW}}$ for the given nodes, DOF order `[ux(w0), uy(w0), (uz(w0),) ux(w1), …]`,
+    /// row-major into `out` (length $(Dm)^2$). Symmetrised as $\tfrac12 (C + C^\top)$ to remove
+    /// round-off.
     pub fn working_block_into(&self, nodes: &[usize], out: &mut [f64]) -> Option<()> {
-        let d = 2 * nodes.len();
+        let d = D * nodes.len();
         assert_eq!(out.len(), d * d);
         for (j, &b) in nodes.iter().enumerate() {
-            for comp in 0..2 {
+            for comp in 0..D {
                 let col = self.column(b, comp)?;
                 for (i, &a) in nodes.iter().enumerate() {
-                    out[(2 * i) * d + 2 * j + comp] = col[2 * a];
-                    out[(2 * i + 1) * d + 2 * j + comp] = col[2 * a + 1];
+                    for r in 0..D {
+                        out[(D * i + r) * d + D * j + comp] = col[D * a + r];
+                    }
                 }
             }
         }
@@ -341,9 +384,9 @@ impl ComplianceCache {
     }
 
     /// Displacement of every DOF caused by world forces on cached nodes,
-    /// $u = \sum_w C_{:,w} f_w$, written into `out` (length $2n$). Returns `None` if a node is not
+    /// $u = \sum_w C_{:,w} f_w$, written into `out` (length $Dn$). Returns `None` if a node is not
     /// cached. Allocates nothing.
-    pub fn displacement_from_forces_into(&self, forces_n: impl IntoIterator<Item = (usize, [f64; 2])>, out: &mut [f64]) -> Option<()> {
+    pub fn displacement_from_forces_into(&self, forces_n: impl IntoIterator<Item = (usize, [f64; D])>, out: &mut [f64]) -> Option<()> {
         out.fill(0.0);
         for (node, f) in forces_n {
             for (comp, &fc) in f.iter().enumerate() {
@@ -426,5 +469,58 @@ mod tests {
         // One fixed node: the body can still rotate about it.
         let e = TissueModel::new(mesh, mats, &[4]).unwrap_err();
         assert!(e.to_string().contains("rigid body"), "{e}");
+    }
+
+    /// The 3D cache (three columns of length 3n per node) returns the blocks, the working
+    /// block and the displacement from forces of the dense compliance it was filled from;
+    /// `ensure_with` computes once and reports errors without storing.
+    #[test]
+    fn the_3d_cache_serves_blocks_of_its_columns() {
+        let n_nodes = 9;
+        let (c, mut cache) = crate::fixtures::random_spd_compliance::<3>(n_nodes, 5);
+        let n = 3 * n_nodes;
+        assert_eq!(cache.len(), n_nodes);
+        assert_eq!(cache.column_bytes(), n_nodes * 3 * n * 8);
+        let b = cache.block(2, 7).unwrap();
+        for r in 0..3 {
+            for col in 0..3 {
+                assert_eq!(b[r][col], c[(6 + r) * n + 21 + col]);
+            }
+        }
+        let nodes = [7usize, 2, 4];
+        let mut w = vec![0.0; 81];
+        cache.working_block_into(&nodes, &mut w).unwrap();
+        for (i, &a) in nodes.iter().enumerate() {
+            for (j, &bn) in nodes.iter().enumerate() {
+                for r in 0..3 {
+                    for col in 0..3 {
+                        assert_eq!(w[(3 * i + r) * 9 + 3 * j + col], c[(3 * a + r) * n + 3 * bn + col]);
+                    }
+                }
+            }
+        }
+        let mut u = vec![0.0; n];
+        cache.displacement_from_forces_into([(4, [1.0, -2.0, 0.5]), (8, [0.0, 0.0, 3.0])], &mut u).unwrap();
+        for r in 0..n {
+            let e = c[r * n + 12] - 2.0 * c[r * n + 13] + 0.5 * c[r * n + 14] + 3.0 * c[r * n + 26];
+            assert!((u[r] - e).abs() < 1e-18, "{r}");
+        }
+        cache.evict(4);
+        assert!(cache.block(0, 4).is_none());
+        let cols: Vec<f64> = (0..3 * n).map(|k| c[(k % n) * n + 12 + k / n]).collect();
+        let mut calls = 0;
+        assert_eq!(cache.ensure_with(4, |_| Err::<(), _>("no columns")), Err("no columns"));
+        assert!(!cache.contains(4));
+        for _ in 0..2 {
+            cache
+                .ensure_with(4, |out| -> Result<(), ()> {
+                    calls += 1;
+                    out.copy_from_slice(&cols);
+                    Ok(())
+                })
+                .unwrap();
+        }
+        assert_eq!((calls, cache.n_computed()), (1, 1));
+        assert_eq!(cache.block(0, 4).unwrap()[2][1], c[2 * n + 13]);
     }
 }

@@ -4,12 +4,13 @@
 //! (those come from scene files).
 //!
 //! The functions panic on an invalid grid size (`n < 2`): they are fixtures, and a failure is a
-//! bug in the caller's set-up.
+//! bug in the caller's set-up. [`random_spd_compliance`] is a mesh-free stand-in for a tissue's
+//! compliance in 2D or 3D (the mixed solver's dimension-generic tests and benchmarks).
 
 use std::sync::Arc;
 
 use crate::assembly::MaterialMap;
-use crate::compliance::TissueModel;
+use crate::compliance::{ComplianceCache, TissueModel};
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{Mesh, MeshLimits, RectMeshParams};
 use crate::needle::{BasePose, NeedleShape, RegionNeedleParams, RigidNeedle};
@@ -106,4 +107,46 @@ pub fn strain_square(n: usize) -> TissueModel {
     .expect("valid material");
     let fixed = mesh.boundary_set("bottom").expect("a grid has a bottom boundary").to_vec();
     TissueModel::new(mesh, mats, &fixed).expect("the square factorises")
+}
+
+/// A random symmetric positive definite "compliance" of `n_nodes` nodes in dimension `D`, with
+/// a cache holding every node's columns: $C = s\,(A A^\top / (Dn) + \varepsilon I)$ with the
+/// entries of $A$ uniform in $[-1, 1]$ (SplitMix64 from `seed`, so no `rand` dependency),
+/// $\varepsilon = 0.05$ and $s = 10^{-3}$ m/N (a soft tissue's order of magnitude). Its
+/// condition number is of order $4 / \varepsilon$ at most. Returns $C$ (row-major, $Dn \times Dn$,
+/// exactly symmetric) and the filled cache. A mesh-free fixture: no element, no factorisation.
+pub fn random_spd_compliance<const D: usize>(n_nodes: usize, seed: u64) -> (Vec<f64>, ComplianceCache<D>) {
+    let n = D * n_nodes;
+    let mut state = seed;
+    let mut next = || {
+        // SplitMix64.
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let a: Vec<f64> = (0..n * n).map(|_| next()).collect();
+    let (scale, eps) = (1e-3, 0.05);
+    let mut c = vec![0.0; n * n];
+    for i in 0..n {
+        for j in 0..=i {
+            let dot: f64 = (0..n).map(|k| a[i * n + k] * a[j * n + k]).sum();
+            let v = scale * (dot / n as f64 + if i == j { eps } else { 0.0 });
+            c[i * n + j] = v;
+            c[j * n + i] = v;
+        }
+    }
+    let mut cache = ComplianceCache::<D>::for_nodes(n_nodes);
+    let mut cols = vec![0.0; D * n];
+    for node in 0..n_nodes {
+        for comp in 0..D {
+            for r in 0..n {
+                cols[comp * n + r] = c[r * n + D * node + comp];
+            }
+        }
+        cache.insert(node, &cols);
+    }
+    (c, cache)
 }

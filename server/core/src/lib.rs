@@ -4,7 +4,8 @@
 //! [`assembly`]), a sparse Cholesky factorisation of its free stiffness ([`factor`]), static
 //! solves with mixed and local-frame conditions ([`statics`]), compliance columns on demand
 //! ([`compliance`]) and the condensed mixed boundary-condition solve on the working nodes with
-//! O(d²) updates ([`mixed`]). Gmsh meshes are read from text by [`msh`]. The needle ([`needle`])
+//! O(d²) updates ([`mixed`]); the compliance cache, the contact points and the mixed solver
+//! serve 2D and 3D (a const generic dimension). Gmsh meshes are read from text by [`msh`]. The needle ([`needle`])
 //! and the insertion simulation stepped once per haptic tick ([`sim`]) sit on top, with a spatial
 //! grid ([`spatial`]) for finding the nodes near the tip. Node indices, working-set slots and
 //! needle-frame components have their own types ([`ids`]); the test and benchmark set-ups of
@@ -38,12 +39,12 @@ pub mod statics;
 
 pub use assembly::MaterialMap;
 pub use beam::NeedleCurve;
-pub use compliance::{ColumnScratch, ComplianceCache, TissueError, TissueModel};
+pub use compliance::{ColumnScratch, ComplianceCache, ComplianceCache3, TissueError, TissueModel};
 pub use contact::ContactPoint;
 pub use ids::{Axis, NodeIdx, Slot};
 pub use material::{Material, MaterialError, PlaneModel};
 pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};
-pub use mixed::{Condition, MixedError, MixedSolver};
+pub use mixed::{Condition, MixedError, MixedSolver, MixedSolver2, MixedSolver3};
 pub use needle::{BasePose, FlexibleNeedle, NeedleShape, RegionNeedleParams, RigidNeedle};
 pub use sim::{Divergence, DivergenceBounds, Inserted, NodeState, SimError, SimParams, SimStats, Simulation, StepOutput, TargetParams};
 pub use statics::{NodeCondition, StaticError, StaticProblem, StaticSolution};

@@ -149,3 +149,55 @@ fn issue_13_a_diverging_step_is_caught_without_allocating() {
         assert_eq!(again.unwrap_err().to_string(), diverged.as_ref().unwrap().to_string()); // NaN ≠ NaN: compare the text
     }
 }
+
+/// Issue 16: the 3D mixed solver allocates nothing after `with_capacity` — bordering contacts
+/// (nodes and tetrahedra's material points), pivots, frame changes of uniform- and mixed-kind
+/// slots, values, solves, removals, reads — on the mesh-free random compliance fixture.
+#[test]
+fn mixed_solver_3d_allocates_nothing_after_with_capacity() {
+    use needlesim_core::{Axis, Condition, ContactPoint, MixedSolver3, NodeIdx, Slot};
+    let n_nodes = 40;
+    let (_, cache) = fixtures::random_spd_compliance::<3>(n_nodes, 3);
+    let mut s = MixedSolver3::with_capacity(20);
+    // A rotation about z by `a`, then about x by `b` (rows t, n, b).
+    let frame = |a: f64, b: f64| {
+        let (sa, ca) = a.sin_cos();
+        let (sb, cb) = b.sin_cos();
+        [[ca, sa, 0.0], [-sa * cb, ca * cb, sb], [sa * sb, -ca * sb, cb]]
+    };
+    let before = thread_allocations();
+    count_on_this_thread(true);
+    for round in 0..3 {
+        for k in 0..20 {
+            let contact = if k % 2 == 0 {
+                ContactPoint::node(NodeIdx(k + round))
+            } else {
+                ContactPoint::in_tetrahedron(k, [k, k + 1, k + 2, k + 3], [0.1, 0.2, 0.3, 0.4])
+            };
+            let slot = s.add_contact_in_frame(&cache, contact, frame(0.1 * k as f64, 0.05 * round as f64)).unwrap();
+            s.set_condition(slot, Axis::Lateral, Condition::Displacement, 1e-4).unwrap();
+            s.set_condition(slot, Axis::Binormal, Condition::Displacement, -1e-4).unwrap();
+            if k % 3 == 0 {
+                s.set_condition(slot, Axis::Axial, Condition::Displacement, 2e-4).unwrap();
+            } else {
+                s.set_value(slot, Axis::Axial, 0.01);
+            }
+        }
+        for turn in 0..40 {
+            let slot = Slot::new(turn % 20);
+            s.set_frame(slot, frame(0.1 * turn as f64 + 0.3, 0.02 * turn as f64)).unwrap();
+        }
+        s.solve();
+        let mut sum = 0.0;
+        for slot in Slot::all(s.n_nodes()) {
+            sum += s.force_world(slot)[0] + s.displacement_world(slot)[2] + s.force_local(slot)[Axis::Binormal];
+        }
+        assert!(sum.is_finite());
+        while s.n_nodes() > 0 {
+            s.remove_slot(Slot::new(s.n_nodes() / 2)).unwrap();
+        }
+    }
+    count_on_this_thread(false);
+    assert_eq!(thread_allocations() - before, 0, "the 3D mixed solver allocated");
+    assert!(s.stats().n_rotations >= 120 && s.stats().n_pivots > 100, "{:?}", s.stats());
+}
