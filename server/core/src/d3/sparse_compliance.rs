@@ -107,6 +107,16 @@ pub struct SparseRowsScratch {
     on_reach: Vec<bool>,
     /// The current reach.
     reach: Vec<usize>,
+    /// Batched solves: compact row of each factor column on the union reach (`usize::MAX` off it).
+    pos: Vec<usize>,
+    /// Batched solves: per supernode, the batch member that last put it on its own reach.
+    stamp: Vec<u64>,
+    /// Batched solves: the stamp generation.
+    generation: u64,
+    /// Batched solves: the right-hand sides on the union reach, row-major (reach × 3 batch).
+    xb: Vec<f64>,
+    /// Batched solves: the product $L_{R_\sigma\sigma} X_\sigma$, row-major.
+    tmp: Vec<f64>,
 }
 
 /// An immutable, walkable view of a [`SparseCholesky`] factor of a 3D model: per supernode its
@@ -225,10 +235,16 @@ impl<'f> SparseFactorView<'f> {
 
     /// Scratch for [`SparseFactorView::rows_into`].
     pub fn scratch(&self) -> SparseRowsScratch {
+        let (n, n_sn) = (self.col_of_free.len(), self.n_supernodes());
         SparseRowsScratch {
-            x: vec![0.0; 3 * self.col_of_free.len()],
-            on_reach: vec![false; self.n_supernodes()],
-            reach: Vec::with_capacity(self.n_supernodes()),
+            x: vec![0.0; 3 * n],
+            on_reach: vec![false; n_sn],
+            reach: Vec::with_capacity(n_sn),
+            pos: vec![usize::MAX; n],
+            stamp: vec![0; n_sn],
+            generation: 0,
+            xb: Vec::new(),
+            tmp: Vec::new(),
         }
     }
 
@@ -241,7 +257,7 @@ impl<'f> SparseFactorView<'f> {
         }
         out.clear();
         out.starts.push(0);
-        let SparseRowsScratch { x, on_reach, reach } = scratch;
+        let SparseRowsScratch { x, on_reach, reach, .. } = scratch;
         debug_assert_eq!(x.len(), 3 * self.col_of_free.len(), "scratch of another factor");
         // Right-hand sides s_i e_inv(i) and the reach: the union of the supernode-tree paths.
         reach.clear();
@@ -307,6 +323,121 @@ impl<'f> SparseFactorView<'f> {
             }
             out.starts.push(off);
             on_reach[s] = false;
+        }
+        Ok(())
+    }
+
+    /// As [`SparseFactorView::rows_into`] for several nodes at once (`outs[t]` gets `nodes[t]`'s
+    /// rows): one forward solve with $3k$ right-hand sides over the union of their reaches, with
+    /// dense kernels per supernode (a triangular solve with $L_{\sigma\sigma}$ and a product with
+    /// $L_{R_\sigma\sigma}$), so each block of $L$ is read once for the batch rather than once per
+    /// node. Nodes near each other share most of their reach. The scratch grows to the largest
+    /// union reach × $3k$ and is kept. Errors only for an unknown node (nothing computed then).
+    pub fn rows_batch_into(
+        &self,
+        nodes: &[usize],
+        scratch: &mut SparseRowsScratch,
+        outs: &mut [NodeRows],
+    ) -> Result<(), SparseComplianceError> {
+        use faer::linalg::matmul::matmul;
+        use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+        use faer::{Accum, MatMut, MatRef, Par};
+        assert_eq!(nodes.len(), outs.len(), "one output per node");
+        if let Some(&node_idx) = nodes.iter().find(|&&v| v >= self.n_nodes) {
+            return Err(SparseComplianceError::UnknownNode { node_idx, n_nodes: self.n_nodes });
+        }
+        let m = 3 * nodes.len();
+        let SparseRowsScratch { on_reach, reach, pos, stamp, generation, xb, tmp, .. } = scratch;
+        // Each node's own reach, and their union.
+        reach.clear();
+        for (&v, out) in nodes.iter().zip(outs.iter_mut()) {
+            *generation += 1;
+            out.clear();
+            for axis in 0..3 {
+                let f = self.free_of_dof[3 * v + axis];
+                if f == usize::MAX {
+                    continue;
+                }
+                let mut s = self.sn_of_col[self.col_of_free[f]];
+                while s != usize::MAX && stamp[s] != *generation {
+                    stamp[s] = *generation;
+                    out.supernodes.push(s);
+                    if !on_reach[s] {
+                        on_reach[s] = true;
+                        reach.push(s);
+                    }
+                    s = self.sn_parent[s];
+                }
+            }
+            out.supernodes.sort_unstable();
+        }
+        reach.sort_unstable();
+        let mut len = 0;
+        for &s in reach.iter() {
+            for p in &mut pos[self.sn_begin[s]..self.sn_begin[s + 1]] {
+                *p = len;
+                len += 1;
+            }
+        }
+        xb.clear();
+        xb.resize(len * m, 0.0);
+        for (t, &v) in nodes.iter().enumerate() {
+            for axis in 0..3 {
+                let f = self.free_of_dof[3 * v + axis];
+                if f != usize::MAX {
+                    xb[pos[self.col_of_free[f]] * m + 3 * t + axis] = self.scale[f];
+                }
+            }
+        }
+        for &s in reach.iter() {
+            let b = self.sn_begin[s];
+            let w = self.sn_begin[s + 1] - b;
+            let pat = &self.pattern[self.sn_pat[s]..self.sn_pat[s + 1]];
+            let l = MatRef::from_column_major_slice(&self.l_values[self.sn_val[s]..self.sn_val[s + 1]], w + pat.len(), w);
+            let p0 = pos[b];
+            solve_lower_triangular_in_place(
+                l.subrows(0, w),
+                MatMut::from_row_major_slice_mut(&mut xb[p0 * m..(p0 + w) * m], w, m),
+                Par::Seq,
+            );
+            if pat.is_empty() {
+                continue;
+            }
+            tmp.clear();
+            tmp.resize(pat.len() * m, 0.0);
+            matmul(
+                MatMut::from_row_major_slice_mut(&mut tmp[..], pat.len(), m),
+                Accum::Replace,
+                l.subrows(w, pat.len()),
+                MatRef::from_row_major_slice(&xb[p0 * m..(p0 + w) * m], w, m),
+                1.0,
+                Par::Seq,
+            );
+            for (&row, t) in pat.iter().zip(tmp.chunks_exact(m)) {
+                let p = pos[row];
+                for (x, &d) in xb[p * m..(p + 1) * m].iter_mut().zip(t) {
+                    *x -= d;
+                }
+            }
+        }
+        for (t, out) in outs.iter_mut().enumerate() {
+            let lt: usize = out.supernodes.iter().map(|&s| self.sn_begin[s + 1] - self.sn_begin[s]).sum();
+            out.values.resize(3 * lt, 0.0);
+            out.starts.push(0);
+            let mut off = 0;
+            for &s in &out.supernodes {
+                for &p in &pos[self.sn_begin[s]..self.sn_begin[s + 1]] {
+                    for axis in 0..3 {
+                        out.values[axis * lt + off] = xb[p * m + 3 * t + axis];
+                    }
+                    off += 1;
+                }
+                out.starts.push(off);
+            }
+        }
+        for &s in reach.iter() {
+            on_reach[s] = false;
+            pos[self.sn_begin[s]..self.sn_begin[s + 1]].fill(usize::MAX);
         }
         Ok(())
     }
@@ -416,6 +547,80 @@ impl<'f> SparseCompliance<'f> {
             self.rows[node_idx] = Some(r);
         }
         Ok(())
+    }
+
+    /// Computes and caches the rows of the uncached nodes among `nodes` with batched solves of up
+    /// to `batch` nodes each ([`SparseFactorView::rows_batch_into`]): what a worker does ahead of
+    /// the needle. Errors only for an unknown node (nothing cached then).
+    pub fn prefetch(&mut self, nodes: &[usize], batch: usize) -> Result<(), SparseComplianceError> {
+        let n_nodes = self.view.n_nodes();
+        if let Some(&node_idx) = nodes.iter().find(|&&v| v >= n_nodes) {
+            return Err(SparseComplianceError::UnknownNode { node_idx, n_nodes });
+        }
+        let mut todo: Vec<usize> = nodes.iter().copied().filter(|&v| self.rows[v].is_none()).collect();
+        todo.sort_unstable();
+        todo.dedup();
+        for chunk in todo.chunks(batch.max(1)) {
+            let mut outs = vec![NodeRows::default(); chunk.len()];
+            self.view.rows_batch_into(chunk, &mut self.scratch, &mut outs)?;
+            for (&v, r) in chunk.iter().zip(outs) {
+                self.cached_bytes += r.heap_bytes();
+                self.n_cached += 1;
+                self.rows[v] = Some(r);
+            }
+        }
+        Ok(())
+    }
+
+    /// The rows of a material point, $Y_a = \sum_k N_{a,k} Y_{v_{a,k}}$ on the union of its nodes'
+    /// reaches (nodes' rows computed and cached as needed), so that a point block is one sparse
+    /// dot product: $W_{ab} = Y_a^\top Y_b$ = [`SparseFactorView::block`]`(&ya, &yb)`. Errors only
+    /// for an unknown node.
+    pub fn point_rows(&mut self, a: &PointLocation) -> Result<NodeRows, SparseComplianceError> {
+        for k in 0..4 {
+            if a.weights[k] != 0.0 {
+                self.ensure(a.nodes[k])?;
+            }
+        }
+        let view = &self.view;
+        let SparseRowsScratch { x, on_reach, reach, .. } = &mut self.scratch;
+        reach.clear();
+        for k in 0..4 {
+            let nk = a.weights[k];
+            if nk == 0.0 {
+                continue;
+            }
+            let r = self.rows[a.nodes[k]].as_ref().expect("ensured");
+            let lr = r.len();
+            for (i, &s) in r.supernodes.iter().enumerate() {
+                if !on_reach[s] {
+                    on_reach[s] = true;
+                    reach.push(s);
+                }
+                for (off, col) in (r.starts[i]..r.starts[i + 1]).zip(view.sn_begin[s]..) {
+                    for axis in 0..3 {
+                        x[3 * col + axis] += nk * r.values[axis * lr + off];
+                    }
+                }
+            }
+        }
+        reach.sort_unstable();
+        let len: usize = reach.iter().map(|&s| view.sn_begin[s + 1] - view.sn_begin[s]).sum();
+        let mut out = NodeRows { supernodes: reach.clone(), starts: Vec::with_capacity(reach.len() + 1), values: vec![0.0; 3 * len] };
+        out.starts.push(0);
+        let mut off = 0;
+        for &s in reach.iter() {
+            for col in view.sn_begin[s]..view.sn_begin[s + 1] {
+                for axis in 0..3 {
+                    out.values[axis * len + off] = x[3 * col + axis];
+                    x[3 * col + axis] = 0.0;
+                }
+                off += 1;
+            }
+            out.starts.push(off);
+            on_reach[s] = false;
+        }
+        Ok(out)
     }
 
     /// The rows $Y_v$ of node `node_idx`, computed on first use and cached. Errors only for an
@@ -600,6 +805,70 @@ mod tests {
         }
     }
 
+    /// Batched rows equal one-node rows (a fixed node and a repeated node included), for both
+    /// factor variants; prefetched blocks equal computed ones; point rows give the point blocks.
+    #[test]
+    fn batched_rows_and_point_rows_agree() {
+        let m = model([6, 5, 7]);
+        let n_nodes = m.mesh().n_nodes();
+        let fixed = (0..n_nodes).find(|&v| m.is_fixed(v)).unwrap();
+        let mut rng = SmallRng::seed_from_u64(7);
+        let mut nodes: Vec<usize> = (0..9).map(|_| rng.random_range(0..n_nodes)).collect();
+        nodes.extend([fixed, nodes[0], n_nodes - 1]);
+        for threshold in [SupernodalThreshold::FORCE_SIMPLICIAL, SupernodalThreshold::FORCE_SUPERNODAL] {
+            let chol = factor(&m, threshold);
+            let view = SparseFactorView::new(&chol).unwrap();
+            let mut scratch = view.scratch();
+            let mut outs = vec![NodeRows::default(); nodes.len()];
+            view.rows_batch_into(&nodes, &mut scratch, &mut outs).unwrap();
+            assert!(scratch.on_reach.iter().all(|&f| !f) && scratch.pos.iter().all(|&p| p == usize::MAX), "scratch reset");
+            let mut one = NodeRows::default();
+            for (&v, got) in nodes.iter().zip(&outs) {
+                view.rows_into(v, &mut scratch, &mut one).unwrap();
+                assert_eq!((&got.supernodes, &got.starts), (&one.supernodes, &one.starts), "node {v}");
+                let scale = one.values.iter().fold(0.0_f64, |a, x| a.max(x.abs())).max(f64::MIN_POSITIVE);
+                for (a, b) in got.values.iter().zip(&one.values) {
+                    assert!((a - b).abs() < 1e-12 * scale, "{threshold:?} node {v}: {a} vs {b}");
+                }
+            }
+            assert!(outs[nodes.len() - 3].is_empty(), "the fixed node");
+            let e = view.rows_batch_into(&[0, n_nodes], &mut scratch, &mut outs[..2]).unwrap_err();
+            assert_eq!(e, SparseComplianceError::UnknownNode { node_idx: n_nodes, n_nodes });
+        }
+        let mut pre = SparseCompliance::new(&m);
+        pre.prefetch(&nodes, 4).unwrap();
+        assert_eq!(pre.n_cached(), nodes.len() - 1);
+        let mut sc = SparseCompliance::new(&m);
+        for &a in &nodes {
+            for &b in &nodes {
+                let (x, y) = (pre.block(a, b).unwrap(), sc.block(a, b).unwrap());
+                let scale = y.iter().flatten().fold(1e-300_f64, |acc, v| acc.max(v.abs()));
+                for r in 0..3 {
+                    for c in 0..3 {
+                        assert!((x[r][c] - y[r][c]).abs() <= 1e-12 * scale);
+                    }
+                }
+            }
+        }
+        assert_eq!(pre.prefetch(&[n_nodes], 4).unwrap_err(), SparseComplianceError::UnknownNode { node_idx: n_nodes, n_nodes });
+        let locs: Vec<PointLocation> = (0..4)
+            .map(|_| m.locate([rng.random_range(0.0..0.1), rng.random_range(0.0..0.08), rng.random_range(0.0..0.1)]).unwrap())
+            .collect();
+        let rows: Vec<NodeRows> = locs.iter().map(|l| sc.point_rows(l).unwrap()).collect();
+        for (la, ra) in locs.iter().zip(&rows) {
+            for (lb, rb) in locs.iter().zip(&rows) {
+                let want = sc.point_block(la, lb).unwrap();
+                let got = SparseFactorView::block(ra, rb);
+                let scale = want.iter().flatten().fold(0.0_f64, |acc, v| acc.max(v.abs()));
+                for r in 0..3 {
+                    for c in 0..3 {
+                        assert!((got[r][c] - want[r][c]).abs() < 1e-12 * scale, "{} vs {}", got[r][c], want[r][c]);
+                    }
+                }
+            }
+        }
+    }
+
     /// Typed errors: an unknown node (rows, blocks, points) and a factor that is not 3D.
     #[test]
     fn errors() {
@@ -694,6 +963,17 @@ mod tests {
             sc.sparse_rows(v).unwrap();
         }
         println!("sparse rows along a vertical needle line: {:?} per node ({} nodes)", t3.elapsed() / needle.len() as u32, needle.len());
+        // Batched: the same nodes again, from an empty cache, in batches.
+        for batch in [8, 32] {
+            let mut fresh = SparseCompliance::new(&m);
+            let tb = Instant::now();
+            fresh.prefetch(&nodes, batch).unwrap();
+            println!("batched rows (scattered nodes, batch {batch}): {:?} per node", tb.elapsed() / nodes.len() as u32);
+            let mut fresh = SparseCompliance::new(&m);
+            let tb = Instant::now();
+            fresh.prefetch(&needle, batch).unwrap();
+            println!("batched rows (needle line, batch {batch}): {:?} per node", tb.elapsed() / needle.len() as u32);
+        }
         let mut acc = 0.0;
         let t4 = Instant::now();
         let mut n_blocks = 0;
@@ -733,6 +1013,20 @@ mod tests {
             }
         }
         println!("point blocks, cached: {:?} per point block [{acc:e}]", t7.elapsed() / n_pb);
+        let tp = Instant::now();
+        let prows: Vec<NodeRows> = pts.iter().map(|p| sc.point_rows(p).unwrap()).collect();
+        println!(
+            "point rows (cached nodes): {:?} per point, mean length {}",
+            tp.elapsed() / pts.len() as u32,
+            prows.iter().map(NodeRows::len).sum::<usize>() / pts.len()
+        );
+        let tq = Instant::now();
+        for a in &prows {
+            for b in &prows {
+                acc += SparseFactorView::block(a, b)[2][2];
+            }
+        }
+        println!("point block from point rows: {:?} per block [{acc:e}]", tq.elapsed() / n_pb);
         println!("cache: {} nodes, {:.1} MB", sc.n_cached(), sc.cached_bytes() as f64 * 1e-6);
         // The full-column path and one full solve.
         let mut scratch = m.column_scratch();
