@@ -507,6 +507,107 @@ fn dot3x3(a: [&[f64]; 3], b: [&[f64]; 3]) -> [[f64; 3]; 3] {
     out
 }
 
+/// A nested-dissection ordering of the free DOFs of a 3D model from its node coordinates, for
+/// [`SparseCholesky::with_ordering`] (as `SymmetricOrdering::Custom`): returns `fwd`, the free
+/// DOF placed at each factor column (`fwd[k]` = free index; a permutation of `0..n_free`).
+///
+/// Recursive coordinate bisection of the node graph (tetrahedron edges): a set of more than
+/// `leaf_nodes` nodes is split at the median coordinate along its longest extent into a left part
+/// $A$ and a right part $B$; the separator $S$ is the nodes of $A$ with a neighbour in $B$, so no
+/// edge joins $A \setminus S$ and $B$. Order: $A \setminus S$ (recursively), $B$ (recursively),
+/// then $S$; a node's free DOFs are consecutive. In the elimination tree the separators are the
+/// ancestors, so a DOF's reach is its leaf's path through one separator per level (on a box grid,
+/// planes of $O(n^{2/3})$ nodes at the top). `dofs` must have 3 DOFs per node and the mesh's node
+/// count (a programming error otherwise: panics).
+pub fn nested_dissection_order(mesh: &crate::d3::TetMesh, dofs: &crate::factor::DofMap, leaf_nodes: usize) -> Vec<usize> {
+    let n_nodes = mesh.n_nodes();
+    assert_eq!(dofs.n_dofs(), 3 * n_nodes, "a DOF map of this mesh with 3 DOFs per node");
+    // Node adjacency (CSR) from the tetrahedra's edges.
+    let mut pairs: Vec<(usize, usize)> = Vec::with_capacity(12 * mesh.n_tets());
+    for t in mesh.tets() {
+        for i in 0..4 {
+            for j in 0..4 {
+                if i != j {
+                    pairs.push((t[i], t[j]));
+                }
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    let mut adj_ptr = vec![0; n_nodes + 1];
+    for &(a, _) in &pairs {
+        adj_ptr[a + 1] += 1;
+    }
+    for v in 0..n_nodes {
+        adj_ptr[v + 1] += adj_ptr[v];
+    }
+    let adj: Vec<usize> = pairs.iter().map(|&(_, b)| b).collect();
+    let x = mesh.nodes_m();
+    let mut side = vec![0u8; n_nodes];
+    let mut node_order = Vec::with_capacity(n_nodes);
+    // Explicit stack: (nodes, separator to emit after them).
+    enum Task {
+        Split(Vec<usize>),
+        Emit(Vec<usize>),
+    }
+    let mut stack = vec![Task::Split((0..n_nodes).collect())];
+    while let Some(task) = stack.pop() {
+        let mut set = match task {
+            Task::Emit(sep) => {
+                node_order.extend(sep);
+                continue;
+            }
+            Task::Split(set) => set,
+        };
+        if set.len() <= leaf_nodes.max(1) {
+            node_order.extend(set);
+            continue;
+        }
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &v in &set {
+            for a in 0..3 {
+                lo[a] = lo[a].min(x[v][a]);
+                hi[a] = hi[a].max(x[v][a]);
+            }
+        }
+        let axis = (0..3).max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b]))).expect("3 axes");
+        set.sort_unstable_by(|&a, &b| x[a][axis].total_cmp(&x[b][axis]));
+        let cut = x[set[set.len() / 2]][axis];
+        let mut mid = set.partition_point(|&v| x[v][axis] < cut);
+        if mid == 0 {
+            mid = set.partition_point(|&v| x[v][axis] <= cut);
+        }
+        if mid == 0 || mid == set.len() {
+            node_order.extend(set);
+            continue;
+        }
+        let right = set.split_off(mid);
+        let left = set;
+        for &v in &right {
+            side[v] = 2;
+        }
+        let (sep, rest): (Vec<usize>, Vec<usize>) =
+            left.into_iter().partition(|&v| adj[adj_ptr[v]..adj_ptr[v + 1]].iter().any(|&w| side[w] == 2));
+        for &v in &right {
+            side[v] = 0;
+        }
+        // Popped in reverse: left rest, right, then the separator.
+        stack.push(Task::Emit(sep));
+        stack.push(Task::Split(right));
+        stack.push(Task::Split(rest));
+    }
+    let mut fwd = Vec::with_capacity(dofs.n_free());
+    for v in node_order {
+        for axis in 0..3 {
+            if let Some(f) = dofs.free_index(3 * v + axis) {
+                fwd.push(f);
+            }
+        }
+    }
+    fwd
+}
+
 /// The sparse compliance of a factor with a per-node cache of rows: node blocks $C_{vw}$ and point
 /// blocks $W_{ab}$ (see the module documentation). Computing a node's rows allocates its cache
 /// entry (exact size); blocks of cached nodes allocate nothing.
@@ -886,6 +987,47 @@ mod tests {
         }
     }
 
+    /// The nested-dissection ordering is a permutation, and a factor made with it gives the dense
+    /// inverse's blocks (both variants).
+    #[test]
+    fn nested_dissection_factor_gives_the_dense_inverse() {
+        let m = model([5, 4, 6]);
+        let inv = dense_inverse(&m);
+        let tol = 1e-10 * inv.amax();
+        let fwd = nested_dissection_order(m.mesh(), m.cholesky().dofs(), 8);
+        let n = m.cholesky().n_free();
+        let mut seen = vec![false; n];
+        fwd.iter().for_each(|&f| seen[f] = true);
+        assert!(fwd.len() == n && seen.iter().all(|&b| b), "a permutation of the free DOFs");
+        let mut inv_perm = vec![0; n];
+        for (k, &f) in fwd.iter().enumerate() {
+            inv_perm[f] = k;
+        }
+        let perm = faer::perm::PermRef::new_checked(&fwd, &inv_perm, n);
+        for threshold in [SupernodalThreshold::FORCE_SIMPLICIAL, SupernodalThreshold::FORCE_SUPERNODAL] {
+            let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() };
+            let chol = SparseCholesky::with_ordering(
+                m.stiffness(),
+                m.cholesky().dofs().clone(),
+                faer::sparse::linalg::cholesky::SymmetricOrdering::Custom(perm),
+                params,
+            )
+            .unwrap();
+            let mut sc = SparseCompliance::from_factor(&chol).unwrap();
+            let n_nodes = m.mesh().n_nodes();
+            for i in (0..n_nodes).step_by(3) {
+                for j in 0..n_nodes {
+                    let c = sc.block(i, j).unwrap();
+                    for r in 0..3 {
+                        for s in 0..3 {
+                            assert!((c[r][s] - inv[(3 * i + r, 3 * j + s)]).abs() < tol, "{threshold:?} C[{i},{j}]");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     /// Typed errors: an unknown node (rows, blocks, points) and a factor that is not 3D.
     #[test]
     fn errors() {
@@ -933,8 +1075,92 @@ mod tests {
         }
     }
 
+    /// Compliance figures of one factor (printed): one-node and batched rows, node, point and
+    /// point-row blocks, memory, one full solve.
+    fn report(label: &str, m: &TetTissueModel, chol: &SparseCholesky, nodes: &[usize], needle: &[usize], pts: &[PointLocation]) {
+        use std::time::Instant;
+        let n_free = chol.n_free();
+        let mut sc = SparseCompliance::from_factor(chol).unwrap();
+        println!(
+            "[{label}] nnz(L) {} ({:.0} MB), {} supernodes",
+            chol.factor_nnz(),
+            chol.factor_nnz() as f64 * 8e-6,
+            sc.view().n_supernodes()
+        );
+        let few = &nodes[..nodes.len().min(50)];
+        let t = Instant::now();
+        let mut len = 0;
+        for &v in few {
+            len += sc.sparse_rows(v).unwrap().len();
+        }
+        println!(
+            "[{label}] one-node rows: {:?} per node (mean of {}), mean reach {} of {n_free} DOFs, {} bytes per node cached (full columns: {} bytes)",
+            t.elapsed() / few.len() as u32,
+            few.len(),
+            len / few.len(),
+            sc.cached_bytes() / sc.n_cached(),
+            3 * m.n_dofs() * 8
+        );
+        for batch in [1, 8, 32] {
+            for (what, set) in [("scattered nodes", nodes), ("needle line", needle)] {
+                let mut fresh = SparseCompliance::from_factor(chol).unwrap();
+                let t = Instant::now();
+                fresh.prefetch(set, batch).unwrap();
+                println!("[{label}] batched rows ({what}, batch {batch}): {:?} per node", t.elapsed() / set.len() as u32);
+            }
+        }
+        sc.prefetch(nodes, 32).unwrap();
+        sc.prefetch(needle, 32).unwrap();
+        let mut acc = 0.0;
+        for (what, set, step) in [("scattered nodes", nodes, 10), ("needle line", needle, 1)] {
+            let t = Instant::now();
+            let mut n_blocks = 0;
+            for &a in set {
+                for &b in set.iter().step_by(step) {
+                    acc += sc.block(a, b).unwrap()[0][0];
+                    n_blocks += 1;
+                }
+            }
+            println!("[{label}] node block ({what}): {:?} per block ({n_blocks}) [{acc:e}]", t.elapsed() / n_blocks);
+        }
+        let pnodes: Vec<usize> = pts.iter().flat_map(|p| p.nodes).collect();
+        sc.prefetch(&pnodes, 32).unwrap();
+        let t = Instant::now();
+        let mut n_pb = 0;
+        for a in pts {
+            for b in pts {
+                acc += sc.point_block(a, b).unwrap()[2][2];
+                n_pb += 1;
+            }
+        }
+        println!("[{label}] point block from 16 node blocks (cached rows): {:?} [{acc:e}]", t.elapsed() / n_pb);
+        let t = Instant::now();
+        let prows: Vec<NodeRows> = pts.iter().map(|p| sc.point_rows(p).unwrap()).collect();
+        println!(
+            "[{label}] point rows (cached nodes): {:?} per point, mean length {}",
+            t.elapsed() / pts.len() as u32,
+            prows.iter().map(NodeRows::len).sum::<usize>() / pts.len()
+        );
+        let t = Instant::now();
+        for a in &prows {
+            for b in &prows {
+                acc += SparseFactorView::block(a, b)[2][2];
+            }
+        }
+        println!("[{label}] point block from point rows: {:?} per block [{acc:e}]", t.elapsed() / n_pb);
+        println!("[{label}] cache: {} nodes, {:.1} MB", sc.n_cached(), sc.cached_bytes() as f64 * 1e-6);
+        let mut rhs = faer::Mat::<f64>::from_fn(n_free, 1, |i, _| (i % 7) as f64 - 3.0);
+        let mut chs = chol.scratch(1);
+        let t = Instant::now();
+        for _ in 0..5 {
+            chol.solve_in_place(rhs.as_mut(), &mut chs);
+        }
+        println!("[{label}] one full solve (1 rhs): {:?}", t.elapsed() / 5);
+    }
+
     /// Timing against the full-column path on a box grid of `NEEDLESIM_GRID`³ nodes (default 21:
-    /// 48 000 tetrahedra; 36: 257 250), bottom fixed; run in release:
+    /// 48 000 tetrahedra; 36: 257 250), bottom fixed, with faer's AMD ordering and with
+    /// [`nested_dissection_order`]; run in release:
     /// `NEEDLESIM_GRID=21 cargo test --release -p needlesim-core --lib d3::sparse_compliance::tests::timing_box -- --ignored --nocapture`.
     #[test]
     #[ignore = "timing; run in release"]
@@ -946,120 +1172,44 @@ mod tests {
         let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
         let t0 = Instant::now();
         let m = TetTissueModel::new(mesh, mats, &fixed).unwrap();
-        let t_model = t0.elapsed();
-        let n_free = m.cholesky().n_free();
         println!(
-            "{g}^3 box: {} nodes, {} tets, {n_free} free DOFs; assemble + factorise (AMD, supernodal {}) {t_model:?}; nnz(L) {} ({:.0} MB)",
+            "{g}^3 box: {} nodes, {} tets, {} free DOFs; assemble + factorise (AMD, supernodal {}) {:?}",
             m.mesh().n_nodes(),
             m.mesh().n_tets(),
+            m.cholesky().n_free(),
             m.cholesky().is_supernodal(),
-            m.cholesky().factor_nnz(),
-            m.cholesky().factor_nnz() as f64 * 8e-6
+            t0.elapsed()
         );
-        let t1 = Instant::now();
-        let mut sc = SparseCompliance::new(&m);
-        println!("view: {} supernodes, built in {:?}", sc.view().n_supernodes(), t1.elapsed());
         let nodes: Vec<usize> = (0..m.mesh().n_nodes()).filter(|&n| !m.is_fixed(n)).step_by(37).take(200).collect();
-        let t2 = Instant::now();
-        let mut len = 0;
-        for &v in &nodes {
-            len += sc.sparse_rows(v).unwrap().len();
-        }
-        let per_node = t2.elapsed() / nodes.len() as u32;
-        println!(
-            "sparse rows: {per_node:?} per node (mean of {}), mean reach {} of {n_free} DOFs, {} bytes per node cached (full columns: {} bytes)",
-            nodes.len(),
-            len / nodes.len(),
-            sc.cached_bytes() / sc.n_cached(),
-            3 * m.n_dofs() * 8
-        );
-        // A needle's working set: the nodes of one tetrahedron column near the centre line.
+        // A needle's working set: the nodes of a vertical grid line through the centre.
         let needle: Vec<usize> = (1..g).map(|k| (k * g + g / 2) * g + g / 2).filter(|&n| !m.is_fixed(n)).collect();
-        let t3 = Instant::now();
-        for &v in &needle {
-            sc.sparse_rows(v).unwrap();
-        }
-        println!("sparse rows along a vertical needle line: {:?} per node ({} nodes)", t3.elapsed() / needle.len() as u32, needle.len());
-        // Batched: the same nodes again, from an empty cache, in batches.
-        for batch in [1, 8, 32] {
-            let mut fresh = SparseCompliance::new(&m);
-            let tb = Instant::now();
-            fresh.prefetch(&nodes, batch).unwrap();
-            println!("batched rows (scattered nodes, batch {batch}): {:?} per node", tb.elapsed() / nodes.len() as u32);
-            let mut fresh = SparseCompliance::new(&m);
-            let tb = Instant::now();
-            fresh.prefetch(&needle, batch).unwrap();
-            println!("batched rows (needle line, batch {batch}): {:?} per node", tb.elapsed() / needle.len() as u32);
-        }
-        let mut acc = 0.0;
-        let t4 = Instant::now();
-        let mut n_blocks = 0;
-        for &a in &nodes {
-            for &b in nodes.iter().step_by(10) {
-                acc += sc.block(a, b).unwrap()[0][0];
-                n_blocks += 1;
-            }
-        }
-        println!("node block (scattered nodes): {:?} per block ({n_blocks}) [{acc:e}]", t4.elapsed() / n_blocks);
-        let t5 = Instant::now();
-        let mut n_blocks = 0;
-        for &a in &needle {
-            for &b in &needle {
-                acc += sc.block(a, b).unwrap()[0][0];
-                n_blocks += 1;
-            }
-        }
-        println!("node block (needle line): {:?} per block ({n_blocks}) [{acc:e}]", t5.elapsed() / n_blocks);
         let pts: Vec<PointLocation> = (1..20).map(|k| m.locate([0.0513, 0.0487, 0.005 * k as f64 + 0.0011]).unwrap()).collect();
-        let t6 = Instant::now();
-        let mut n_pb = 0;
-        for a in &pts {
-            for b in &pts {
-                acc += sc.point_block(a, b).unwrap()[2][2];
-                n_pb += 1;
-            }
-        }
-        println!(
-            "point blocks (19 needle points, rows cached on first use): {:?} per point block incl. rows [{acc:e}]",
-            t6.elapsed() / n_pb
-        );
-        let t7 = Instant::now();
-        for a in &pts {
-            for b in &pts {
-                acc += sc.point_block(a, b).unwrap()[2][2];
-            }
-        }
-        println!("point blocks, cached: {:?} per point block [{acc:e}]", t7.elapsed() / n_pb);
-        let tp = Instant::now();
-        let prows: Vec<NodeRows> = pts.iter().map(|p| sc.point_rows(p).unwrap()).collect();
-        println!(
-            "point rows (cached nodes): {:?} per point, mean length {}",
-            tp.elapsed() / pts.len() as u32,
-            prows.iter().map(NodeRows::len).sum::<usize>() / pts.len()
-        );
-        let tq = Instant::now();
-        for a in &prows {
-            for b in &prows {
-                acc += SparseFactorView::block(a, b)[2][2];
-            }
-        }
-        println!("point block from point rows: {:?} per block [{acc:e}]", tq.elapsed() / n_pb);
-        println!("cache: {} nodes, {:.1} MB", sc.n_cached(), sc.cached_bytes() as f64 * 1e-6);
-        // The full-column path and one full solve.
         let mut scratch = m.column_scratch();
         let mut out = vec![0.0; 3 * m.n_dofs()];
-        let few = &nodes[..10];
-        let t8 = Instant::now();
-        for &v in few {
+        let t = Instant::now();
+        for &v in &nodes[..10] {
             m.compliance_columns_into(v, &mut out, &mut scratch).unwrap();
         }
-        println!("full columns: {:?} per node (mean of {})", t8.elapsed() / few.len() as u32, few.len());
-        let mut rhs = faer::Mat::<f64>::from_fn(n_free, 1, |i, _| (i % 7) as f64 - 3.0);
-        let mut chs = m.cholesky().scratch(1);
-        let t9 = Instant::now();
-        for _ in 0..5 {
-            m.cholesky().solve_in_place(rhs.as_mut(), &mut chs);
+        println!("[AMD] full columns (TetTissueModel): {:?} per node (mean of 10)", t.elapsed() / 10);
+        report("AMD", &m, m.cholesky(), &nodes, &needle, &pts);
+        let t = Instant::now();
+        let fwd = nested_dissection_order(m.mesh(), m.cholesky().dofs(), 64);
+        let t_order = t.elapsed();
+        let n = fwd.len();
+        let mut inv = vec![0; n];
+        for (k, &f) in fwd.iter().enumerate() {
+            inv[f] = k;
         }
-        println!("one full solve (1 rhs): {:?}", t9.elapsed() / 5);
+        let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
+        let t = Instant::now();
+        let nd = SparseCholesky::with_ordering(
+            m.stiffness(),
+            m.cholesky().dofs().clone(),
+            faer::sparse::linalg::cholesky::SymmetricOrdering::Custom(perm),
+            Default::default(),
+        )
+        .unwrap();
+        println!("[ND] ordering {t_order:?}, factorise (supernodal {}) {:?}", nd.is_supernodal(), t.elapsed());
+        report("ND", &m, &nd, &nodes, &needle, &pts);
     }
 }
