@@ -33,8 +33,15 @@
 //! [`SparseFactorView`] is the immutable walkable view of a factor (shareable between threads);
 //! [`SparseFactorView::rows_into`] computes a node's rows allocation-free into caller storage with
 //! a [`SparseRowsScratch`] sized once (a dense work vector whose touched entries — the reach — are
-//! reset after each solve, so no $O(n)$ work per node). [`SparseCompliance`] adds a per-node cache
-//! and the node and point blocks. No I/O.
+//! reset after each solve, so no $O(n)$ work per node); [`SparseFactorView::rows_batch_into`] solves
+//! for $k$ nodes at once ($3k$ right-hand sides on the union of their reaches, dense kernels per
+//! supernode), which reads each block of $L$ once per batch — the solve is bound by reading $L$ on
+//! the reach, so batching is what makes rows cheap. [`SparseCompliance`] adds a per-node cache
+//! ([`SparseCompliance::prefetch`] in batches), the node and point blocks, and point rows
+//! $Y_a = \sum_k N_{a,k} Y_{v_{a,k}}$ ([`SparseCompliance::point_rows`]) so that a point block is
+//! one sparse dot product. The reach length, hence the cost and the memory per node, depends on
+//! the ordering: [`nested_dissection_order`] gives shorter reaches and less fill than faer's AMD
+//! on box grids. No I/O.
 
 use crate::d3::locate::PointLocation;
 use crate::d3::tissue::TetTissueModel;
