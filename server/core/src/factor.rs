@@ -12,7 +12,9 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, factorize_symbolic_cholesky};
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
+};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par, Side, Spec};
 
@@ -124,6 +126,17 @@ impl SparseCholesky {
     /// As [`SparseCholesky::new`], with faer's symbolic parameters (tests force the simplicial
     /// or the supernodal variant through them).
     pub fn with_params(k_full: &SparseColMat<usize, f64>, dofs: DofMap, params: CholeskySymbolicParams<'_>) -> Result<Self, FactorError> {
+        Self::with_ordering(k_full, dofs, SymmetricOrdering::Amd, params)
+    }
+
+    /// As [`SparseCholesky::with_params`], with the fill-reducing ordering of the free DOFs (faer's
+    /// AMD by default; a custom permutation, e.g. a nested dissection, in free-DOF numbering).
+    pub fn with_ordering(
+        k_full: &SparseColMat<usize, f64>,
+        dofs: DofMap,
+        ordering: SymmetricOrdering<'_, usize>,
+        params: CholeskySymbolicParams<'_>,
+    ) -> Result<Self, FactorError> {
         let n = dofs.n_free();
         if n == 0 {
             return Err(FactorError::NothingFree);
@@ -155,7 +168,7 @@ impl SparseCholesky {
             }
         }
         let scaled_upper = SparseColMat::try_new_from_triplets(n, n, &triplets).map_err(|e| FactorError::Faer(format!("{e:?}")))?;
-        let symbolic = factorize_symbolic_cholesky(scaled_upper.symbolic(), Side::Upper, Default::default(), params)
+        let symbolic = factorize_symbolic_cholesky(scaled_upper.symbolic(), Side::Upper, ordering, params)
             .map_err(|e| FactorError::Faer(format!("{e:?}")))?;
         let mut this = Self { dofs, l_values: vec![0.0; symbolic.len_val()], symbolic, scaled_upper, scale, n_numeric_factorisations: 0 };
         this.factorize_numeric()?;
@@ -228,6 +241,21 @@ impl SparseCholesky {
     /// Non-zeros of the factor $L$.
     pub fn factor_nnz(&self) -> usize {
         self.l_values.len()
+    }
+    /// faer's symbolic factorisation: the fill-reducing permutation ([`SymbolicCholesky::perm`])
+    /// and the simplicial or supernodal structure of $L$. Read by
+    /// [`crate::d3::sparse_compliance`], which walks $L$ itself.
+    pub fn symbolic(&self) -> &SymbolicCholesky<usize> {
+        &self.symbolic
+    }
+    /// The numeric values of $L$ (the factor of the Jacobi-scaled, permuted $\hat K$), laid out as
+    /// [`SparseCholesky::symbolic`] describes.
+    pub fn l_values(&self) -> &[f64] {
+        &self.l_values
+    }
+    /// The Jacobi scaling $S = \mathrm{diag}(K_{ii}^{-1/2})$ per free DOF: $K_{ff}^{-1} = S \hat K^{-1} S$.
+    pub fn scale(&self) -> &[f64] {
+        &self.scale
     }
 
     /// Scratch for solves with up to `max_rhs` right-hand sides; allocate it once, outside any

@@ -3,8 +3,9 @@
 //! [`mesh`] (the tetrahedral mesh, its validation, structured box grids), [`locate`] (which
 //! tetrahedron holds a point, and its barycentric weights), [`assembly`] (3D Hooke, element
 //! matrices, sparse $K$, stresses), [`statics`] (static solves with world, local-frame and
-//! material-point conditions, reactions) and [`tissue`] (one factorisation of $K_{ff}$, compliance
-//! columns of a node and the point compliance on demand). Gmsh files with tetrahedra are read by
+//! material-point conditions, reactions), [`tissue`] (one factorisation of $K_{ff}$, compliance
+//! columns of a node and the point compliance on demand) and [`sparse_compliance`] (node and point
+//! compliance blocks from sparse forward solves along elimination-tree paths, without full columns). Gmsh files with tetrahedra are read by
 //! [`crate::msh::parse_msh3d`].
 //!
 //! Node DOFs are $[u_x, u_y, u_z]$ per node, DOF $= 3\cdot\mathrm{node} + \mathrm{axis}$, everywhere.
@@ -12,11 +13,13 @@
 pub mod assembly;
 pub mod locate;
 pub mod mesh;
+pub mod sparse_compliance;
 pub mod statics;
 pub mod tissue;
 
 pub use assembly::{TetMaterialError, TetMaterials};
 pub use locate::{LocateError, PointLocation, TetLocator};
 pub use mesh::{BoxGridParams, TetMesh, TetMeshError, TetMeshLimits};
+pub use sparse_compliance::{NodeRows, SparseCompliance, SparseComplianceError, SparseFactorView, SparseRowsScratch};
 pub use statics::{PointCondition, PointReaction, TetNodeCondition, TetStaticError, TetStaticProblem, TetStaticSolution};
 pub use tissue::{TetColumnScratch, TetTissueError, TetTissueModel};
