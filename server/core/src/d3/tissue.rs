@@ -55,6 +55,10 @@ pub struct TetColumnScratch {
     chol: CholeskyScratch,
 }
 
+/// Nodes per leaf of the nested dissection (a leaf's nodes are ordered as they come; below a few
+/// dozen the separators cost more than they save).
+const ND_LEAF_NODES: usize = 64;
+
 impl TetTissueModel {
     /// Assembles and factorises. Errors when a fixed node does not exist, when no node is fixed,
     /// and when the model is singular (see [`FactorError`]).
@@ -72,7 +76,22 @@ impl TetTissueModel {
         }
         let stiffness = assemble_stiffness(&mesh, &materials);
         let constrained: Vec<bool> = (0..3 * n_nodes).map(|d| fixed[d / 3]).collect();
-        let chol = SparseCholesky::new(&stiffness, DofMap::with_dofs_per_node(&constrained, 3))?;
+        // A nested-dissection ordering: on box grids 25–45 % less fill than faer's AMD, factorised
+        // 2.6–5.5 times faster, and shorter elimination-tree reaches for the sparse compliance rows
+        // (BENCHMARKS.md, d3::sparse_compliance's timing).
+        let dofs = DofMap::with_dofs_per_node(&constrained, 3);
+        let fwd = super::sparse_compliance::nested_dissection_order(&mesh, &dofs, ND_LEAF_NODES);
+        let mut inv = vec![0usize; fwd.len()];
+        for (k, &f) in fwd.iter().enumerate() {
+            inv[f] = k;
+        }
+        let perm = faer::perm::PermRef::new_checked(&fwd, &inv, fwd.len());
+        let chol = SparseCholesky::with_ordering(
+            &stiffness,
+            dofs,
+            faer::sparse::linalg::cholesky::SymmetricOrdering::Custom(perm),
+            Default::default(),
+        )?;
         let locator = TetLocator::new(&mesh);
         Ok(Self { mesh, materials, fixed, stiffness, chol, locator })
     }
