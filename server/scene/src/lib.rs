@@ -6,6 +6,7 @@
 pub mod exchange;
 pub mod exchange3d;
 pub mod limit;
+pub mod scene3d;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -22,6 +23,8 @@ use serde::Deserialize;
 
 pub use limit::SizeLimit;
 pub use needlesim_trajectory::{Pose2, Trajectory, TrajectoryError};
+pub use needlesim_trajectory::{Pose3, Trajectory3, Trajectory3Error};
+pub use scene3d::{EXAMPLES3D, Scene3d, estimated_session_bytes_3d, load_scene3d, parse_scene3d, scene_dim};
 
 /// The shipped examples: (name, scene TOML, trajectory CSV).
 pub const EXAMPLES: &[(&str, &str, &str)] = &[
@@ -35,6 +38,8 @@ pub const EXAMPLES: &[(&str, &str, &str)] = &[
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
+    /// 2 when given: 2D scenes need no `dim`; `dim = 3` scenes are read by [`scene3d`].
+    pub dim: Option<i64>,
     pub name: Option<String>,
     pub description: Option<String>,
     /// Haptic tick rate.
@@ -427,6 +432,9 @@ pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) 
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
     }
+    if scene_dim(text)? == 3 {
+        bail!("dim = 3: this is a 3D scene; load it with the 3D scene loader (needlesim_scene::load_scene3d)");
+    }
     let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
     build_scene(&file, base_dir, &limits.into())
 }
@@ -434,7 +442,7 @@ pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) 
 /// Checks every number of the scene that the mesh and material checks do not, before anything
 /// is built; each error names the key as written in the TOML and its allowed range.
 fn check_values(f: &SceneFile) -> Result<()> {
-    use needlesim_core::sim::param_limits::{MAX_ACTIVE_SET_ITERATIONS, MAX_NEEDLE_NODES, MAX_NEEDLE_NODES_FLEXIBLE};
+    use needlesim_core::sim::param_limits::{MAX_NEEDLE_NODES, MAX_NEEDLE_NODES_FLEXIBLE};
     if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
         bail!("tick_rate_hz = {}: must be between 100 and 10000", f.tick_rate_hz);
     }
@@ -467,19 +475,11 @@ fn check_values(f: &SceneFile) -> Result<()> {
         if let Some(first) = f.regions[..k].iter().position(|o| o.name == r.name) {
             bail!("regions[{k}]: the name '{}' is already used by regions[{first}]; region names must be unique", r.name);
         }
-        let checks = [
-            ("friction_n_per_m", r.friction_n_per_m, r.friction_n_per_m >= 0.0, "finite and ≥ 0"),
-            ("static_friction_ratio", r.static_friction_ratio, r.static_friction_ratio >= 1.0, "finite and ≥ 1"),
-            ("tip_peak_ratio", r.tip_peak_ratio, r.tip_peak_ratio >= 0.0, "finite and ≥ 0"),
-            ("tip_peak_width_m", r.tip_peak_width_m, r.tip_peak_width_m > 0.0, "finite and > 0"),
-            ("puncture_force_n", r.puncture_force_n, r.puncture_force_n >= 0.0, "finite and ≥ 0"),
-            ("cutting_force_n", r.cutting_force_n, r.cutting_force_n >= 0.0, "finite and ≥ 0"),
-        ];
-        for (key, v, ok, rule) in checks {
-            if !(v.is_finite() && ok) {
-                bail!("regions[{k}] ('{}').{key} = {v}: must be {rule}", r.name);
-            }
-        }
+        check_region_needle_values(
+            k,
+            &r.name,
+            [r.friction_n_per_m, r.static_friction_ratio, r.tip_peak_ratio, r.tip_peak_width_m, r.puncture_force_n, r.cutting_force_n],
+        )?;
     }
     for (k, t) in f.targets.iter().enumerate() {
         if let Some(first) = f.targets[..k].iter().position(|o| o.name == t.name) {
@@ -492,7 +492,38 @@ fn check_values(f: &SceneFile) -> Result<()> {
             bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, t.radius_m);
         }
     }
-    let l = &f.limits;
+    if let Some(d) = f.dim
+        && d != 2
+    {
+        bail!("dim = {d}: must be 2 or 3");
+    }
+    check_limits(&f.limits)
+}
+
+/// Checks a region's needle keys (friction, static ratio, tip peak ratio and width, puncture and
+/// cutting force, in that order), naming `regions[k] ('name').key`: shared by 2D and 3D scenes.
+pub(crate) fn check_region_needle_values(k: usize, name: &str, values: [f64; 6]) -> Result<()> {
+    let keys = ["friction_n_per_m", "static_friction_ratio", "tip_peak_ratio", "tip_peak_width_m", "puncture_force_n", "cutting_force_n"];
+    type Rule = (fn(f64) -> bool, &'static str);
+    let rules: [Rule; 6] = [
+        (|v| v >= 0.0, "finite and ≥ 0"),
+        (|v| v >= 1.0, "finite and ≥ 1"),
+        (|v| v >= 0.0, "finite and ≥ 0"),
+        (|v| v > 0.0, "finite and > 0"),
+        (|v| v >= 0.0, "finite and ≥ 0"),
+        (|v| v >= 0.0, "finite and ≥ 0"),
+    ];
+    for ((key, v), (ok, rule)) in keys.into_iter().zip(values).zip(rules) {
+        if !(v.is_finite() && ok(v)) {
+            bail!("regions[{k}] ('{name}').{key} = {v}: must be {rule}");
+        }
+    }
+    Ok(())
+}
+
+/// Checks the `[limits]` table, naming `limits.key`: shared by 2D and 3D scenes.
+pub(crate) fn check_limits(l: &LimitsSpec) -> Result<()> {
+    use needlesim_core::sim::param_limits::MAX_ACTIVE_SET_ITERATIONS;
     for (key, v) in [("max_base_step_m", l.max_base_step_m), ("max_base_step_rad", l.max_base_step_rad)] {
         if !(v.is_finite() && v > 0.0) {
             bail!("limits.{key} = {v}: must be finite and > 0");

@@ -8,6 +8,10 @@
 
 use serde::Deserialize;
 
+pub mod pose3;
+
+pub use pose3::{Pose3, Trajectory3, Trajectory3Error};
+
 /// The column names, in order, of the CSV header.
 pub const HEADER: [&str; 4] = ["t_s", "x_m", "y_m", "theta_rad"];
 
@@ -107,25 +111,8 @@ impl Trajectory {
         let mut samples: Vec<(f64, Pose2)> = Vec::new();
         let mut end_line = 0;
         let mut record = csv::StringRecord::new();
-        // Line numbers from byte offsets, counting comment lines too (the reader's own count
-        // skips them); newlines are counted once, from the previous record on.
-        let (mut counted_byte, mut counted_line) = (0usize, 1u64);
-        let mut line_at = |byte: u64| {
-            // A record's position can be that of comment or blank lines before it: skip them.
-            let mut byte = (byte as usize).min(text.len());
-            loop {
-                match text.as_bytes().get(byte) {
-                    Some(b'#') => byte = text[byte..].find('\n').map_or(text.len(), |i| byte + i + 1),
-                    Some(b'\n' | b'\r') => byte += 1,
-                    _ => break,
-                }
-            }
-            if byte > counted_byte {
-                counted_line += text.as_bytes()[counted_byte..byte].iter().filter(|&&b| b == b'\n').count() as u64;
-                counted_byte = byte;
-            }
-            counted_line
-        };
+        let mut lines = LineCounter::new(text);
+        let mut line_at = |byte: u64| lines.line_at(byte);
         loop {
             let more = match rdr.read_record(&mut record) {
                 Ok(more) => more,
@@ -243,11 +230,49 @@ pub fn clip(s: &str, n: usize) -> String {
     }
 }
 
+/// Line numbers of csv records from their byte offsets, counting comment and blank lines too (the
+/// csv reader's own count skips them); newlines are counted once, from the previous record on.
+pub(crate) struct LineCounter<'a> {
+    text: &'a str,
+    counted_byte: usize,
+    counted_line: u64,
+}
+
+impl<'a> LineCounter<'a> {
+    pub(crate) fn new(text: &'a str) -> Self {
+        Self { text, counted_byte: 0, counted_line: 1 }
+    }
+
+    /// The 1-based line of the record at `byte` (records are asked for in increasing order).
+    pub(crate) fn line_at(&mut self, byte: u64) -> u64 {
+        let text = self.text;
+        // A record's position can be that of comment or blank lines before it: skip them.
+        let mut byte = (byte as usize).min(text.len());
+        loop {
+            match text.as_bytes().get(byte) {
+                Some(b'#') => byte = text[byte..].find('\n').map_or(text.len(), |i| byte + i + 1),
+                Some(b'\n' | b'\r') => byte += 1,
+                _ => break,
+            }
+        }
+        if byte > self.counted_byte {
+            self.counted_line += text.as_bytes()[self.counted_byte..byte].iter().filter(|&&b| b == b'\n').count() as u64;
+            self.counted_byte = byte;
+        }
+        self.counted_line
+    }
+}
+
 /// A csv error as a short message naming the column.
 fn csv_kind(e: &csv::Error) -> String {
+    csv_kind_in(e, &HEADER)
+}
+
+/// A csv error as a short message naming the column of `header`.
+pub(crate) fn csv_kind_in(e: &csv::Error, header: &[&str]) -> String {
     match e.kind() {
         csv::ErrorKind::Deserialize { err, .. } => {
-            let field = err.field().and_then(|f| HEADER.get(f as usize).copied()).unwrap_or("?");
+            let field = err.field().and_then(|f| header.get(f as usize).copied()).unwrap_or("?");
             format!("column {field} ({})", err.kind())
         }
         csv::ErrorKind::UnequalLengths { expected_len, len, .. } => format!("{len} fields where the header has {expected_len}"),

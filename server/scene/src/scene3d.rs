@@ -1,0 +1,963 @@
+//! 3D scenes (`dim = 3`): scene TOML → [`Scene3d`], the tetrahedral mesh with its regions,
+//! materials, fixed nodes, rigid needle, initial base pose, target spheres and base trajectory
+//! that the 3D simulation consumes.
+//!
+//! The keys mirror the 2D scene's ([`crate::SceneFile`]) where they mean the same thing
+//! (regions' elasticity and needle interaction, `fixed`, `targets`, `limits`, `tick_rate_hz`);
+//! what differs:
+//!
+//! * `dim = 3` at the top level selects this parser (2D scenes have no `dim`, or `dim = 2`);
+//! * `[mesh]`: `type = "box"` with `nx`, `ny`, `nz` nodes, `size_m = [x, y, z]` and an optional
+//!   `origin_m` (boundary sets `left/right` x, `front/back` y, `bottom/top` z; regions after the
+//!   first claim the tetrahedra whose centroid lies in their `sphere` or `cuboid`), or
+//!   `type = "msh"` with `file` (Gmsh MSH 2.2/4.1 with tetrahedra, relative to the scene file:
+//!   physical volumes are the regions, matched by name, physical surfaces the boundary sets);
+//! * `[needle]` is rigid: `length_m`, `gauge` or `diameter_m`, `contact_spacing_m`, `max_points`,
+//!   the base position `base_m = [x, y, z]` and its orientation, either `base_quat = [w, x, y, z]`
+//!   (canonical; unit norm) or `base_axis = [x, y, z]` (unit shaft direction, base to tip) with
+//!   `base_roll_rad` about it (conventions: [`needlesim_trajectory::pose3`]);
+//! * `[[targets]]` are spheres: `center_m = [x, y, z]`, `radius_m`;
+//! * `trajectory = "file.csv"` (optional, relative to the scene file): a
+//!   `t_s,x_m,y_m,z_m,qw,qx,qy,qz` base trajectory ([`Trajectory3`]).
+//!
+//! Every bad value is an error naming its key (`needle.base_quat = [...]: must have unit norm`).
+//! Parsing builds and validates the mesh but does not factorise it: [`Scene3d::tissue_model`]
+//! does, when a simulation needs it. The memory a session would hold is estimated first
+//! ([`estimated_session_bytes_3d`]) and an oversized scene refused with a [`SizeLimit`].
+
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
+use needlesim_core::d3::{BoxGridParams, TetLocator, TetMaterials, TetMesh, TetMeshLimits, TetTissueModel};
+use needlesim_core::{Material, RegionNeedleParams};
+use needlesim_trajectory::pose3::{RotationError, quat_from_axis_roll, unit};
+use needlesim_trajectory::{Pose3, Trajectory3};
+use serde::Deserialize;
+
+use crate::limit::{self, SizeLimit};
+use crate::{
+    GAUGES, LimitsSpec, MAX_TOML_BRACKETS, SceneLimits, check_limits, check_region_needle_values, d_cutting, d_friction, d_peak, d_peak_w,
+    d_puncture, d_static, default_rate,
+};
+
+/// The mesh files a shipped example names: (file, text).
+pub type ExampleFiles = &'static [(&'static str, &'static str)];
+
+/// The shipped 3D examples: (name, scene TOML, trajectory CSV, mesh files it names).
+pub const EXAMPLES3D: &[(&str, &str, &str, ExampleFiles)] = &[
+    ("cube-phantom-3d", include_str!("../../scenes/cube-phantom-3d.toml"), include_str!("../../scenes/cube-phantom-3d.csv"), &[]),
+    (
+        "brachy-3d",
+        include_str!("../../scenes/brachy-3d.toml"),
+        include_str!("../../scenes/brachy-3d.csv"),
+        &[("brachy-3d.msh", include_str!("../../scenes/brachy-3d.msh"))],
+    ),
+    ("fig3-target-3d", include_str!("../../scenes/fig3-target-3d.toml"), include_str!("../../scenes/fig3-target-3d.csv"), &[]),
+];
+
+/// A 3D scene as written in TOML.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene3dFile {
+    /// Must be 3.
+    pub dim: i64,
+    pub name: Option<String>,
+    pub description: Option<String>,
+    #[serde(default = "default_rate")]
+    pub tick_rate_hz: f64,
+    pub mesh: Mesh3dSpec,
+    /// Boundary sets (box faces or Gmsh physical surfaces) whose nodes are fixed.
+    #[serde(default)]
+    pub fixed: Vec<String>,
+    pub regions: Vec<Region3dSpec>,
+    pub needle: Needle3dSpec,
+    #[serde(default)]
+    pub targets: Vec<Target3dSpec>,
+    /// A `t_s,x_m,y_m,z_m,qw,qx,qy,qz` CSV, relative to the scene file.
+    pub trajectory: Option<String>,
+    #[serde(default)]
+    pub limits: LimitsSpec,
+}
+
+/// The mesh: a structured box or a Gmsh file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields, tag = "type", rename_all = "lowercase")]
+pub enum Mesh3dSpec {
+    /// `nx × ny × nz` nodes over a box of `size_m`, 6 tetrahedra per cell.
+    Box {
+        nx: usize,
+        ny: usize,
+        nz: usize,
+        size_m: [f64; 3],
+        #[serde(default)]
+        origin_m: [f64; 3],
+    },
+    /// A Gmsh ASCII file (2.2 or 4.1) with tetrahedra, relative to the scene file.
+    Msh { file: String },
+}
+
+/// A tissue region: elasticity and needle interaction (the 2D region's keys).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Region3dSpec {
+    pub name: String,
+    pub young_modulus_pa: f64,
+    pub poisson_ratio: f64,
+    /// Box meshes: the tetrahedra whose centroid lies in this sphere (later regions win).
+    pub sphere: Option<SphereSpec>,
+    /// Box meshes: the tetrahedra whose centroid lies in this axis-aligned box.
+    pub cuboid: Option<CuboidSpec>,
+    #[serde(default = "d_friction")]
+    pub friction_n_per_m: f64,
+    #[serde(default = "d_static")]
+    pub static_friction_ratio: f64,
+    #[serde(default = "d_peak")]
+    pub tip_peak_ratio: f64,
+    #[serde(default = "d_peak_w")]
+    pub tip_peak_width_m: f64,
+    #[serde(default = "d_puncture")]
+    pub puncture_force_n: f64,
+    #[serde(default = "d_cutting")]
+    pub cutting_force_n: f64,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    pub center_m: [f64; 3],
+    pub radius_m: f64,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CuboidSpec {
+    pub min_m: [f64; 3],
+    pub max_m: [f64; 3],
+}
+
+/// The rigid needle and its initial base pose.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Needle3dSpec {
+    pub length_m: f64,
+    /// A stainless steel gauge of the 2D table (16, 17, 18, 20, 21, 22, 25): its outer diameter.
+    pub gauge: Option<u32>,
+    /// The outer diameter (instead of a gauge); default: 18 G, 1.27 mm.
+    pub diameter_m: Option<f64>,
+    /// Arc length between material contact points (default 2 mm).
+    pub contact_spacing_m: Option<f64>,
+    /// Most material points the needle holds at once.
+    #[serde(default = "d_max_points")]
+    pub max_points: usize,
+    /// Base position `[x, y, z]`, m.
+    pub base_m: [f64; 3],
+    /// Base orientation, a unit quaternion `[w, x, y, z]` (canonical).
+    pub base_quat: Option<[f64; 4]>,
+    /// Or: the shaft direction (base to tip), a unit vector …
+    pub base_axis: Option<[f64; 3]>,
+    /// … and the roll about it, rad (default 0).
+    pub base_roll_rad: Option<f64>,
+}
+
+/// Default [`Needle3dSpec::max_points`]: a 0.128 m inserted length at 2 mm.
+pub const DEFAULT_MAX_POINTS: usize = 64;
+
+fn d_max_points() -> usize {
+    DEFAULT_MAX_POINTS
+}
+
+/// The outer diameter of 18 G, the default needle (brachytherapy and biopsy needles).
+pub const DEFAULT_DIAMETER_M: f64 = 1.270e-3;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Target3dSpec {
+    pub name: String,
+    pub center_m: [f64; 3],
+    #[serde(default)]
+    pub radius_m: f64,
+}
+
+/// Where a scene's mesh came from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshSource3d {
+    Box {
+        n: [usize; 3],
+        size_m: [f64; 3],
+        origin_m: [f64; 3],
+    },
+    /// A Gmsh file as named in the scene, and the MSH version read.
+    Msh {
+        file: String,
+        version: String,
+    },
+}
+
+/// A region of a loaded scene, in the mesh's region order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region3d {
+    pub name: String,
+    pub material: Material,
+    pub needle: RegionNeedleParams,
+}
+
+/// The rigid needle of a loaded scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Needle3d {
+    pub length_m: f64,
+    pub diameter_m: f64,
+    pub contact_spacing_m: f64,
+    pub max_points: usize,
+}
+
+/// A target sphere (it moves with the tissue in the simulation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Target3d {
+    pub name: String,
+    pub center_m: [f64; 3],
+    pub radius_m: f64,
+}
+
+/// A loaded, validated 3D scene: what the 3D simulation consumes.
+#[derive(Debug, Clone)]
+pub struct Scene3d {
+    pub name: String,
+    pub description: Option<String>,
+    pub tick_rate_hz: f64,
+    /// The mesh, with its regions and boundary sets (and `fixed`, the union of the fixed sets).
+    pub mesh: TetMesh,
+    pub mesh_source: MeshSource3d,
+    /// One per mesh region, in the mesh's order.
+    pub regions: Vec<Region3d>,
+    /// The fixed boundary sets, as named in the scene.
+    pub fixed_sets: Vec<String>,
+    /// Their nodes, sorted, without repeats.
+    pub fixed_nodes: Vec<usize>,
+    pub needle: Needle3d,
+    /// The initial base pose.
+    pub initial_pose: Pose3,
+    pub targets: Vec<Target3d>,
+    /// The scene's base trajectory (its `trajectory` file, or a shipped example's).
+    pub trajectory: Option<Trajectory3>,
+    pub limits: LimitsSpec,
+}
+
+impl Scene3d {
+    /// The materials per region, validated for 3D (ν < 0.5).
+    pub fn materials(&self) -> Result<TetMaterials> {
+        let m: Vec<Material> = self.regions.iter().map(|r| r.material).collect();
+        TetMaterials::per_region(&self.mesh, &m).context("regions")
+    }
+
+    /// Assembles `K` and factorises its free block: the slow part (seconds for 10⁴ nodes).
+    pub fn tissue_model(&self) -> Result<TetTissueModel> {
+        TetTissueModel::new(self.mesh.clone(), self.materials()?, &self.fixed_nodes)
+            .with_context(|| format!("tissue ({} fixed nodes)", self.fixed_nodes.len()))
+    }
+}
+
+/// Bytes per mesh node of the 3D model before the factor: coordinates, about 6 tetrahedra per
+/// node, the assembled stiffness (15 nodes per row on a box grid: 45 non-zeros per row, 3 rows
+/// per node), the point locator and the per-node vectors of the model and the simulation.
+pub const MODEL_BYTES_PER_NODE_3D: u64 = 4096;
+/// Bytes of the Cholesky factor per `n^{5/3}` (n nodes). The fill of a 3D mesh's factor grows far
+/// faster than 2D's O(n log n): nested dissection would give O(n^{4/3}) non-zeros, but the
+/// factor measured here (faer's ordering, `factor_nnz` × 12 bytes: the value and its share of the
+/// row indices) grows as about n^{1.6} on box grids: 6³ nodes 0.59 MB, 11³ 11.6 MB, 16³ 71 MB,
+/// 21³ 265 MB, i.e. 76, 72, 67, 65 bytes per n^{5/3} (test `factor_fill_is_bounded_by_the_estimate`).
+/// Bounded with a margin at 80, falling with n, so an upper bound for larger meshes too.
+pub const FACTOR_BYTES_PER_NODE_5_3: u64 = 80;
+/// Bytes per mesh node of the compliance columns cached for one tissue node in 3D: three
+/// columns of 3 doubles per mesh node (2D: 2 × 2).
+pub const COLUMN_BYTES_PER_NODE_3D: u64 = 3 * 3 * 8;
+
+/// The memory a session of a 3D scene with `n_nodes` mesh nodes and a needle of up to
+/// `max_points` material points is estimated to hold, in bytes:
+/// `n × MODEL_BYTES_PER_NODE_3D + FACTOR_BYTES_PER_NODE_5_3 × n^{5/3} + n × COLUMN_BYTES_PER_NODE_3D
+/// × (8 × max_points + CACHE_LOOKAHEAD_NODES)`: the model; its factor; the column cache of the
+/// points' nodes (4 per point in 3D) and the lookahead, plus the renderer's copies of the
+/// points' nodes (4 more per point). The 2D estimate ([`crate::estimated_session_bytes`])
+/// scaled honestly: 3 DOFs per node make each cached node's columns 2.25× larger, a point has 4
+/// nodes instead of 3, and the factor fills as n^{5/3} (about 1 GB at 35k nodes, 4 GB at 42k
+/// nodes ≈ 250k tetrahedra: a better fill-reducing ordering would pay off first here). Until the 3D simulation exists to be
+/// measured, the column terms are the design's upper bound (full columns).
+pub fn estimated_session_bytes_3d(n_nodes: usize, max_points: usize) -> u64 {
+    let n = n_nodes as u64;
+    let model = n.saturating_mul(MODEL_BYTES_PER_NODE_3D);
+    let factor = (FACTOR_BYTES_PER_NODE_5_3 as f64 * (n as f64).powf(5.0 / 3.0)).min(u64::MAX as f64) as u64;
+    let cached_nodes =
+        (max_points as u64).saturating_mul(8).saturating_add(needlesim_core::sim::param_limits::CACHE_LOOKAHEAD_NODES as u64);
+    let columns = n.saturating_mul(COLUMN_BYTES_PER_NODE_3D).saturating_mul(cached_nodes);
+    model.saturating_add(factor).saturating_add(columns)
+}
+
+/// Refuses a 3D scene whose [`estimated_session_bytes_3d`] is over `limits.max_session_bytes`.
+pub fn check_session_memory_3d(n_nodes: usize, max_points: usize, limits: &SceneLimits) -> Result<(), SizeLimit> {
+    let estimate = estimated_session_bytes_3d(n_nodes, max_points);
+    if estimate <= limits.max_session_bytes {
+        return Ok(());
+    }
+    const MIB: u64 = 1 << 20;
+    Err(SizeLimit {
+        what: format!("the estimated memory of a session of this 3D scene ({n_nodes} mesh nodes, up to {max_points} needle points)"),
+        amount: estimate.div_ceil(MIB),
+        limit: limits.max_session_bytes / MIB,
+        unit: "MiB",
+        hint: " (server flag --max-session-memory-mb)".to_owned(),
+    })
+}
+
+/// The `dim` of a scene's TOML: 2 when absent. Errors only on a `dim` that is not 2 or 3 (a text
+/// that is not TOML is left to the scene parsers, which report it).
+pub fn scene_dim(text: &str) -> Result<u8> {
+    #[derive(Deserialize)]
+    struct Probe {
+        dim: Option<toml::Value>,
+    }
+    if text.bytes().filter(|b| matches!(b, b'[' | b'{')).count() > MAX_TOML_BRACKETS {
+        return Ok(2);
+    }
+    match toml::from_str::<Probe>(text) {
+        Ok(Probe { dim: None }) | Err(_) => Ok(2),
+        Ok(Probe { dim: Some(toml::Value::Integer(2)) }) => Ok(2),
+        Ok(Probe { dim: Some(toml::Value::Integer(3)) }) => Ok(3),
+        Ok(Probe { dim: Some(v) }) => bail!("dim = {v}: must be 2 or 3"),
+    }
+}
+
+/// Reads a 3D scene: a path to a TOML file, or the name of a shipped example ([`EXAMPLES3D`],
+/// whose files are embedded).
+pub fn load_scene3d(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene3d> {
+    let limits = &limits.into();
+    if let Some((name, toml_text, csv, files)) = EXAMPLES3D.iter().find(|e| e.0 == spec) {
+        let read = |f: &str| -> Result<String> {
+            if f.ends_with(".csv") {
+                return Ok((*csv).to_owned());
+            }
+            files.iter().find(|(n, _)| *n == f).map(|(_, t)| (*t).to_owned()).with_context(|| format!("{f} is not shipped"))
+        };
+        let mut scene = parse_with(toml_text, &read, limits).with_context(|| format!("example scene {name}"))?;
+        if scene.trajectory.is_none() {
+            scene.trajectory = Some(Trajectory3::parse_csv(csv).with_context(|| format!("example scene {name}: trajectory"))?);
+        }
+        return Ok(scene);
+    }
+    let path = Path::new(spec);
+    if !path.exists() {
+        let names: Vec<&str> = EXAMPLES3D.iter().map(|e| e.0).collect();
+        bail!("3D scene '{spec}' is neither a file nor a shipped example (examples: {})", names.join(", "));
+    }
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    parse_scene3d(&text, path.parent().unwrap_or(Path::new(".")), limits).with_context(|| format!("scene {}", path.display()))
+}
+
+/// Parses 3D scene TOML; `base_dir` resolves the mesh and trajectory files it names.
+pub fn parse_scene3d(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) -> Result<Scene3d> {
+    let read = |f: &str| -> Result<String> {
+        let p = base_dir.join(f);
+        std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))
+    };
+    parse_with(text, &read, &limits.into())
+}
+
+fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String>, limits: &SceneLimits) -> Result<Scene3d> {
+    let brackets = text.bytes().filter(|b| matches!(b, b'[' | b'{')).count();
+    if brackets > MAX_TOML_BRACKETS {
+        bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
+    }
+    let file: Scene3dFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
+    build(&file, read, limits)
+}
+
+fn finite<const N: usize>(v: &[f64; N]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+/// The initial base orientation from `base_quat`, or `base_axis` and `base_roll_rad`.
+fn base_orientation(n: &Needle3dSpec) -> Result<[f64; 4]> {
+    let why = |e: RotationError| e.to_string();
+    match (n.base_quat, n.base_axis) {
+        (Some(_), Some(_)) => bail!("needle: give either base_quat or base_axis (with base_roll_rad), not both"),
+        (None, None) => bail!("needle: the base orientation is missing: give base_quat = [w, x, y, z] or base_axis = [x, y, z]"),
+        (Some(q), None) => {
+            if n.base_roll_rad.is_some() {
+                bail!("needle.base_roll_rad goes with base_axis; with base_quat the roll is in the quaternion");
+            }
+            unit(q).map_err(|e| anyhow::anyhow!("needle.base_quat = {q:?}: {}", why(e)))
+        }
+        (None, Some(a)) => {
+            let a = unit(a).map_err(|e| anyhow::anyhow!("needle.base_axis = {a:?}: {}", why(e)))?;
+            let roll = n.base_roll_rad.unwrap_or(0.0);
+            if !(roll.is_finite() && roll.abs() <= 100.0) {
+                bail!("needle.base_roll_rad = {roll}: must be finite and within ±100 rad");
+            }
+            Ok(quat_from_axis_roll(a, roll))
+        }
+    }
+}
+
+fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
+    use needlesim_core::sim::param_limits::{MAX_CONTACT_SPACING_M, MAX_NEEDLE_NODES, MIN_CONTACT_SPACING_M};
+    if !(n.length_m.is_finite() && n.length_m > 0.0) {
+        bail!("needle.length_m = {}: must be finite and > 0", n.length_m);
+    }
+    let diameter_m = match (n.gauge, n.diameter_m) {
+        (Some(_), Some(_)) => bail!("needle: give either gauge or diameter_m, not both"),
+        (Some(g), None) => match GAUGES.iter().find(|(gg, _, _)| *gg == g) {
+            Some(&(_, od, _)) => od,
+            None => bail!("needle.gauge = {g} is not in the table (16, 17, 18, 20, 21, 22, 25); give diameter_m instead"),
+        },
+        (None, Some(d)) => {
+            if !(d.is_finite() && d > 0.0 && d <= 0.01) {
+                bail!("needle.diameter_m = {d}: must be finite, > 0 and at most 0.01 m");
+            }
+            d
+        }
+        (None, None) => DEFAULT_DIAMETER_M,
+    };
+    let spacing = n.contact_spacing_m.unwrap_or(needlesim_core::sim::ContactModel::DEFAULT_SPACING_M);
+    if !(spacing.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&spacing)) {
+        bail!("needle.contact_spacing_m = {spacing}: must be between {MIN_CONTACT_SPACING_M} and {MAX_CONTACT_SPACING_M} m");
+    }
+    if !(1..=MAX_NEEDLE_NODES).contains(&n.max_points) {
+        bail!("needle.max_points = {}: must be in 1..={MAX_NEEDLE_NODES}", n.max_points);
+    }
+    if !finite(&n.base_m) {
+        bail!("needle.base_m = {:?}: must be finite", n.base_m);
+    }
+    Ok(Needle3d { length_m: n.length_m, diameter_m, contact_spacing_m: spacing, max_points: n.max_points })
+}
+
+fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &SceneLimits) -> Result<Scene3d> {
+    if f.dim != 3 {
+        bail!("dim = {}: a 3D scene has dim = 3 (2D scenes load with the 2D loader)", f.dim);
+    }
+    if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
+        bail!("tick_rate_hz = {}: must be between 100 and 10000", f.tick_rate_hz);
+    }
+    if f.regions.is_empty() {
+        bail!("regions: at least one region is needed");
+    }
+    let needle = needle(&f.needle)?;
+    let quat = base_orientation(&f.needle)?;
+    for (k, r) in f.regions.iter().enumerate() {
+        if let Some(first) = f.regions[..k].iter().position(|o| o.name == r.name) {
+            bail!("regions[{k}]: the name '{}' is already used by regions[{first}]; region names must be unique", r.name);
+        }
+        check_region_needle_values(
+            k,
+            &r.name,
+            [r.friction_n_per_m, r.static_friction_ratio, r.tip_peak_ratio, r.tip_peak_width_m, r.puncture_force_n, r.cutting_force_n],
+        )?;
+    }
+    for (k, t) in f.targets.iter().enumerate() {
+        if let Some(first) = f.targets[..k].iter().position(|o| o.name == t.name) {
+            bail!("targets[{k}]: the name '{}' is already used by targets[{first}]; target names must be unique", t.name);
+        }
+        if !finite(&t.center_m) {
+            bail!("targets[{k}] ('{}').center_m = {:?}: must be finite", t.name, t.center_m);
+        }
+        if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
+            bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, t.radius_m);
+        }
+    }
+    check_limits(&f.limits)?;
+    let tet_limits = TetMeshLimits::from_2d(&scene_limits.mesh);
+
+    let (mut mesh, mesh_source) = match &f.mesh {
+        Mesh3dSpec::Box { nx, ny, nz, size_m, origin_m } => {
+            if !finite(origin_m) {
+                bail!("mesh.origin_m = {origin_m:?}: must be finite");
+            }
+            if !(finite(size_m) && size_m.iter().all(|&l| l > 0.0)) {
+                bail!("mesh.size_m = {size_m:?}: must be finite and > 0");
+            }
+            for (key, v) in [("nx", nx), ("ny", ny), ("nz", nz)] {
+                if *v < 2 {
+                    bail!("mesh.{key} = {v}: must be at least 2");
+                }
+            }
+            let n_nodes = nx.saturating_mul(*ny).saturating_mul(*nz);
+            // Refused before the mesh is built when the node count alone is over the budget.
+            if n_nodes <= tet_limits.max_nodes {
+                check_session_memory_3d(n_nodes, needle.max_points, scene_limits).context("mesh")?;
+            }
+            let grid = BoxGridParams::new([*nx, *ny, *nz], *size_m).build(&tet_limits).context("mesh")?;
+            let mesh = box_regions(grid, *origin_m, &f.regions, &tet_limits)?;
+            (mesh, MeshSource3d::Box { n: [*nx, *ny, *nz], size_m: *size_m, origin_m: *origin_m })
+        }
+        Mesh3dSpec::Msh { file } => {
+            if let Some((k, r)) = f.regions.iter().enumerate().find(|(_, r)| r.sphere.is_some() || r.cuboid.is_some()) {
+                bail!("regions[{k}] ('{}'): sphere and cuboid apply to box meshes; a Gmsh mesh's regions are its physical volumes", r.name);
+            }
+            let text = read(file).with_context(|| format!("mesh.file = \"{file}\""))?;
+            let m = needlesim_core::msh::parse_msh3d(&text, &tet_limits).with_context(|| format!("mesh.file = \"{file}\""))?;
+            (m.mesh, MeshSource3d::Msh { file: file.clone(), version: m.version })
+        }
+    };
+    check_session_memory_3d(mesh.n_nodes(), needle.max_points, scene_limits).context("mesh")?;
+
+    // Regions in the mesh's order, matched by name; every TOML region must be a mesh region.
+    for (k, r) in f.regions.iter().enumerate() {
+        if !mesh.region_names().contains(&r.name) {
+            bail!("regions[{k}]: '{}' is not a region of the mesh (mesh regions: {})", r.name, mesh.region_names().join(", "));
+        }
+    }
+    let mut regions = Vec::new();
+    for rname in mesh.region_names() {
+        let r = f
+            .regions
+            .iter()
+            .find(|r| &r.name == rname)
+            .with_context(|| format!("regions: the mesh has a region '{rname}' but no [[regions]] entry is named so"))?;
+        regions.push(Region3d {
+            name: r.name.clone(),
+            material: Material { young_modulus_pa: r.young_modulus_pa, poisson_ratio: r.poisson_ratio },
+            needle: RegionNeedleParams {
+                friction_n_per_m: r.friction_n_per_m,
+                static_friction_ratio: r.static_friction_ratio,
+                tip_peak_ratio: r.tip_peak_ratio,
+                tip_peak_width_m: r.tip_peak_width_m,
+                puncture_force_n: r.puncture_force_n,
+                cutting_force_n: r.cutting_force_n,
+            },
+        });
+    }
+    let materials: Vec<Material> = regions.iter().map(|r| r.material).collect();
+    TetMaterials::per_region(&mesh, &materials).context("regions")?;
+
+    if f.fixed.is_empty() {
+        bail!("fixed: name at least one boundary set to fix (the tissue would float)");
+    }
+    let mut fixed = Vec::new();
+    for (k, set) in f.fixed.iter().enumerate() {
+        let nodes = mesh.boundary_set(set).with_context(|| {
+            let names: Vec<&String> = mesh.boundary_sets().keys().collect();
+            format!("fixed[{k}]: the mesh has no boundary set '{set}' (it has: {names:?})")
+        })?;
+        fixed.extend_from_slice(nodes);
+    }
+    fixed.sort_unstable();
+    fixed.dedup();
+    if !mesh.boundary_sets().contains_key("fixed") {
+        mesh = with_set(mesh, "fixed", fixed.clone(), &tet_limits)?;
+    }
+
+    let locator = TetLocator::new(&mesh);
+    for (k, t) in f.targets.iter().enumerate() {
+        if locator.locate(&mesh, t.center_m).is_err() {
+            bail!("targets[{k}] ('{}').center_m = {:?}: not inside the mesh", t.name, t.center_m);
+        }
+    }
+    let trajectory = match &f.trajectory {
+        None => None,
+        Some(file) => {
+            let text = read(file).with_context(|| format!("trajectory = \"{file}\""))?;
+            Some(Trajectory3::parse_csv(&text).with_context(|| format!("trajectory = \"{file}\""))?)
+        }
+    };
+    Ok(Scene3d {
+        name: f.name.clone().unwrap_or_else(|| "scene".to_owned()),
+        description: f.description.clone(),
+        tick_rate_hz: f.tick_rate_hz,
+        mesh,
+        mesh_source,
+        regions,
+        fixed_sets: f.fixed.clone(),
+        fixed_nodes: fixed,
+        needle,
+        initial_pose: Pose3::new(f.needle.base_m, quat),
+        targets: f.targets.iter().map(|t| Target3d { name: t.name.clone(), center_m: t.center_m, radius_m: t.radius_m }).collect(),
+        trajectory,
+        limits: f.limits.clone(),
+    })
+}
+
+/// `mesh` with the node set `name` added.
+fn with_set(mesh: TetMesh, name: &str, nodes: Vec<usize>, limits: &TetMeshLimits) -> Result<TetMesh> {
+    let mut sets = mesh.boundary_sets().clone();
+    sets.insert(name.to_owned(), nodes);
+    Ok(TetMesh::with_regions(
+        mesh.nodes_m().to_vec(),
+        mesh.tets().to_vec(),
+        mesh.region_of_tet().to_vec(),
+        mesh.region_names().to_vec(),
+        sets,
+        limits,
+    )?)
+}
+
+/// Whether a point (a centroid) lies in a region's shape.
+type Inside = Box<dyn Fn(&[f64; 3]) -> bool>;
+
+/// A box grid moved to `origin_m`, its regions from the scene: the first region is the
+/// background, each later one claims the tetrahedra whose centroid lies in its sphere or cuboid.
+fn box_regions(grid: TetMesh, origin_m: [f64; 3], regions: &[Region3dSpec], limits: &TetMeshLimits) -> Result<TetMesh> {
+    let r0 = &regions[0];
+    if r0.sphere.is_some() || r0.cuboid.is_some() {
+        bail!("regions[0] ('{}') is the background of a box mesh and takes no sphere or cuboid", r0.name);
+    }
+    let nodes: Vec<[f64; 3]> = grid.nodes_m().iter().map(|p| [p[0] + origin_m[0], p[1] + origin_m[1], p[2] + origin_m[2]]).collect();
+    let centroids: Vec<[f64; 3]> = grid
+        .tets()
+        .iter()
+        .map(|t| t.iter().fold([0.0; 3], |c, &n| [c[0] + nodes[n][0] / 4.0, c[1] + nodes[n][1] / 4.0, c[2] + nodes[n][2] / 4.0]))
+        .collect();
+    let mut region_of_tet = vec![0usize; grid.n_tets()];
+    for (ri, r) in regions.iter().enumerate().skip(1) {
+        let inside: Inside = match (r.sphere, r.cuboid) {
+            (Some(s), None) => {
+                if !(finite(&s.center_m) && s.radius_m.is_finite() && s.radius_m > 0.0) {
+                    bail!("regions[{ri}] ('{}').sphere: must have a finite center_m and a radius_m > 0", r.name);
+                }
+                Box::new(move |c| (0..3).map(|i| (c[i] - s.center_m[i]).powi(2)).sum::<f64>() <= s.radius_m * s.radius_m)
+            }
+            (None, Some(b)) => {
+                if !(finite(&b.min_m) && finite(&b.max_m) && (0..3).all(|i| b.min_m[i] < b.max_m[i])) {
+                    bail!("regions[{ri}] ('{}').cuboid: min_m must be finite and below max_m on every axis", r.name);
+                }
+                Box::new(move |c| (0..3).all(|i| b.min_m[i] <= c[i] && c[i] <= b.max_m[i]))
+            }
+            (Some(_), Some(_)) => bail!("regions[{ri}] ('{}'): give either sphere or cuboid, not both", r.name),
+            (None, None) => bail!("regions[{ri}] ('{}'): a box mesh region after the first needs a sphere or a cuboid", r.name),
+        };
+        let mut claimed = 0;
+        for (ti, c) in centroids.iter().enumerate() {
+            if inside(c) {
+                region_of_tet[ti] = ri;
+                claimed += 1;
+            }
+        }
+        if claimed == 0 {
+            bail!("regions[{ri}] ('{}'): its shape holds the centroid of no tetrahedron", r.name);
+        }
+    }
+    // Later regions may have claimed every tetrahedron of an earlier one: drop empty regions
+    // from the mesh's list would renumber; instead refuse, naming it.
+    for (ri, r) in regions.iter().enumerate() {
+        if !region_of_tet.contains(&ri) {
+            bail!("regions[{ri}] ('{}'): no tetrahedron is left in it (later regions cover it)", r.name);
+        }
+    }
+    let names = regions.iter().map(|r| r.name.clone()).collect();
+    Ok(TetMesh::with_regions(nodes, grid.tets().to_vec(), region_of_tet, names, grid.boundary_sets().clone(), limits)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use needlesim_core::MeshLimits;
+
+    const CUBE: &str = include_str!("../../scenes/cube-phantom-3d.toml");
+    const CUBE_CSV: &str = include_str!("../../scenes/cube-phantom-3d.csv");
+
+    /// The server's default session budget (1280 MiB).
+    fn server() -> SceneLimits {
+        SceneLimits { mesh: MeshLimits::default(), max_session_bytes: 1280 << 20 }
+    }
+
+    /// Parses `text`, its trajectory file being the cube's CSV, or `csv` when given.
+    fn parse(text: &str, csv: Option<&str>) -> Result<Scene3d> {
+        let read = |f: &str| -> Result<String> {
+            if f.ends_with(".csv") {
+                return Ok(csv.unwrap_or(CUBE_CSV).to_owned());
+            }
+            let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes").join(f);
+            std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))
+        };
+        parse_with(text, &read, &server())
+    }
+
+    /// The cube scene, smaller (fast in debug builds), with `old` replaced by `new`.
+    fn small_cube(old: &str, new: &str) -> String {
+        let base = CUBE.replace("nx = 21\nny = 21\nnz = 21", "nx = 6\nny = 6\nnz = 6");
+        assert!(base.contains(old), "{old}");
+        base.replace(old, new)
+    }
+
+    fn error(old: &str, new: &str) -> String {
+        format!("{:#}", parse(&small_cube(old, new), None).err().unwrap_or_else(|| panic!("{new}: must be rejected")))
+    }
+
+    #[test]
+    fn shipped_examples_load_with_their_meshes_regions_fixed_sets_and_trajectories() {
+        for (name, ..) in EXAMPLES3D {
+            let s = load_scene3d(name, server()).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+            assert_eq!(&s.name, name);
+            assert!(!s.fixed_nodes.is_empty() && s.fixed_nodes.len() < s.mesh.n_nodes() / 2, "{name}");
+            assert_eq!(s.mesh.boundary_set("fixed").unwrap(), &s.fixed_nodes[..]);
+            let traj = s.trajectory.as_ref().expect("a trajectory");
+            assert!(traj.samples.len() >= 2 && traj.duration_s() > 1.0, "{name}");
+            // The trajectory starts at the scene's initial pose.
+            let p0 = traj.samples[0].1;
+            assert!((0..3).all(|i| (p0.position_m[i] - s.initial_pose.position_m[i]).abs() < 1e-12), "{name}");
+            assert!((0..4).all(|i| (p0.quat_wxyz[i] - s.initial_pose.quat_wxyz[i]).abs() < 1e-12), "{name}");
+            // The tip starts outside the tissue, aimed into it.
+            let (tip, axis) = (s.initial_pose.position_m, s.initial_pose.axis());
+            let tip = [0, 1, 2].map(|i| tip[i] + s.needle.length_m * axis[i]);
+            assert!(TetLocator::new(&s.mesh).locate(&s.mesh, tip).is_err(), "{name}: the tip starts inside");
+            let entered = [0, 1, 2].map(|i| tip[i] + 0.01 * axis[i]);
+            assert!(TetLocator::new(&s.mesh).locate(&s.mesh, entered).is_ok(), "{name}: 5 mm on, the tip is not in the tissue");
+        }
+        let cube = load_scene3d("cube-phantom-3d", server()).unwrap();
+        assert_eq!((cube.mesh.n_nodes(), cube.mesh.n_tets()), (21 * 21 * 21, 6 * 20 * 20 * 20));
+        assert_eq!(cube.fixed_nodes.len(), 21 * 21);
+        assert!(cube.fixed_nodes.iter().all(|&n| cube.mesh.nodes_m()[n][2] == 0.0));
+        assert_eq!(cube.needle, Needle3d { length_m: 0.1, diameter_m: 1.270e-3, contact_spacing_m: 0.002, max_points: 64 });
+        assert_eq!(cube.regions[0].material.young_modulus_pa, 30e3);
+        assert!(matches!(cube.mesh_source, MeshSource3d::Box { n: [21, 21, 21], .. }));
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        assert!((cube.initial_pose.axis()[2] + 1.0).abs() < 1e-15 && (cube.initial_pose.quat_wxyz[0] - s).abs() < 1e-15);
+
+        let b = load_scene3d("brachy-3d", server()).unwrap();
+        assert!(matches!(&b.mesh_source, MeshSource3d::Msh { version, .. } if version.starts_with("4.1")), "{:?}", b.mesh_source);
+        assert!((2_000..=30_000).contains(&b.mesh.n_tets()), "{} tets", b.mesh.n_tets());
+        let names: Vec<&str> = b.regions.iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(names, ["tissue", "prostate", "urethra"]);
+        assert_eq!(b.regions[1].material.young_modulus_pa, 60e3);
+        assert_eq!(b.fixed_sets, ["rectum_wall", "back"]);
+        // The rectal wall is the cylinder r = 10 mm about (x, z) = (40, 12) mm.
+        for &n in b.mesh.boundary_set("rectum_wall").unwrap() {
+            let p = b.mesh.nodes_m()[n];
+            assert!((((p[0] - 0.04).powi(2) + (p[2] - 0.012).powi(2)).sqrt() - 0.01).abs() < 2e-4, "{p:?}");
+        }
+        // Region volumes: the prostate ellipsoid less the urethra through it, within the
+        // discretisation of the curved surfaces.
+        let mut vol = [0.0; 3];
+        for t in 0..b.mesh.n_tets() {
+            vol[b.mesh.region_of_tet()[t]] += b.mesh.volume_m3(t);
+        }
+        let ellipsoid = 4.0 / 3.0 * std::f64::consts::PI * 0.02 * 0.017 * 0.016;
+        assert!((vol[1] / ellipsoid - 0.96).abs() < 0.04, "prostate {} of {ellipsoid}", vol[1]);
+        let box_less_rectum = 0.08 * 0.1 * 0.08 - std::f64::consts::PI * 0.01f64.powi(2) * 0.1;
+        assert!(((vol[0] + vol[1] + vol[2]) / box_less_rectum - 1.0).abs() < 0.005, "{vol:?}");
+        // The seed target lies in the prostate.
+        let loc = TetLocator::new(&b.mesh).locate(&b.mesh, b.targets[0].center_m).unwrap();
+        assert_eq!(b.mesh.region_of_tet()[loc.tet_idx], 1);
+    }
+
+    #[test]
+    fn box_scenes_resolve_regions_by_shape_and_origin() {
+        let text = small_cube(
+            "[needle]",
+            "[[regions]]\nname = \"lesion\"\nyoung_modulus_pa = 3e5\npoisson_ratio = 0.4\nsphere = { center_m = [0.05, 0.05, 0.05], radius_m = 0.03 }\n\n\
+             [[regions]]\nname = \"slab\"\nyoung_modulus_pa = 1e5\npoisson_ratio = 0.4\ncuboid = { min_m = [0, 0, 0], max_m = [0.1, 0.1, 0.02] }\n\n[needle]",
+        )
+        .replace("size_m = [0.1, 0.1, 0.1]", "size_m = [0.1, 0.1, 0.1]\norigin_m = [0.0, 0.0, 0.0]");
+        let s = parse(&text, None).unwrap();
+        assert_eq!((s.mesh.n_nodes(), s.mesh.n_tets()), (216, 750));
+        assert_eq!(s.mesh.region_names(), ["gel", "lesion", "slab"]);
+        for (t, &r) in s.mesh.region_of_tet().iter().enumerate() {
+            let c = s.mesh.tet_points_m(t).iter().fold([0.0; 3], |a, p| [a[0] + p[0] / 4.0, a[1] + p[1] / 4.0, a[2] + p[2] / 4.0]);
+            let in_sphere = ((c[0] - 0.05).powi(2) + (c[1] - 0.05).powi(2) + (c[2] - 0.05).powi(2)).sqrt() <= 0.03;
+            let want = if c[2] <= 0.02 {
+                2
+            } else if in_sphere {
+                1
+            } else {
+                0
+            };
+            assert_eq!(r, want, "tet {t} at {c:?}");
+        }
+        // An origin moves the mesh; the sets stay faces.
+        let s = parse(&small_cube("size_m = [0.1, 0.1, 0.1]", "size_m = [0.1, 0.1, 0.1]\norigin_m = [1.0, 0.0, -0.1]"), None);
+        let e = format!("{:#}", s.err().unwrap());
+        assert!(e.contains("targets[0] ('centre').center_m = [0.05, 0.05, 0.05]: not inside the mesh"), "{e}");
+        let moved = small_cube("size_m = [0.1, 0.1, 0.1]", "size_m = [0.1, 0.1, 0.1]\norigin_m = [0.0, 0.0, -0.1]")
+            .replace("center_m = [0.05, 0.05, 0.05]", "center_m = [0.05, 0.05, -0.05]");
+        let s = parse(&moved, None).unwrap();
+        assert!(s.fixed_nodes.iter().all(|&n| s.mesh.nodes_m()[n][2] == -0.1));
+        // The model factorises: the fixed face holds the box.
+        let model = s.tissue_model().unwrap();
+        assert_eq!(model.n_dofs(), 3 * 216);
+    }
+
+    #[test]
+    fn bad_values_name_the_key() {
+        let q = "base_quat = [0.7071067811865475, 0.0, 0.7071067811865475, 0.0]";
+        let cases = [
+            (q, "base_quat = [1.0, 0.0, 0.1, 0.0]", "needle.base_quat = [1.0, 0.0, 0.1, 0.0]: must have unit norm (its norm is 1.0049"),
+            (q, "base_quat = [0.0, 0.0, 0.0, 0.0]", "needle.base_quat = [0.0, 0.0, 0.0, 0.0]: must have unit norm"),
+            (q, "base_quat = [nan, 0.0, 0.0, 1.0]", "needle.base_quat = [NaN, 0.0, 0.0, 1.0]: must be finite"),
+            (q, "base_axis = [0.0, 0.0, -2.0]", "needle.base_axis = [0.0, 0.0, -2.0]: must have unit norm"),
+            (q, "base_axis = [0.0, 0.0, -1.0]\nbase_roll_rad = inf", "needle.base_roll_rad = inf: must be finite"),
+            (q, "", "needle: the base orientation is missing"),
+            (q, "base_quat = [1.0, 0.0, 0.0, 0.0]\nbase_axis = [1.0, 0.0, 0.0]", "give either base_quat or base_axis"),
+            (q, &format!("{q}\nbase_roll_rad = 0.5"), "needle.base_roll_rad goes with base_axis"),
+            ("base_m = [0.05, 0.05, 0.205]", "base_m = [0.05, inf, 0.205]", "needle.base_m = [0.05, inf, 0.205]: must be finite"),
+            ("base_m = [0.05, 0.05, 0.205]", "base_m = [0.05, 0.05]", "base_m"),
+            ("length_m = 0.1", "length_m = -0.1", "needle.length_m = -0.1: must be finite and > 0"),
+            ("gauge = 18", "gauge = 19", "needle.gauge = 19 is not in the table"),
+            ("gauge = 18", "gauge = 18\ndiameter_m = 0.001", "give either gauge or diameter_m"),
+            ("gauge = 18", "diameter_m = 0", "needle.diameter_m = 0: must be finite, > 0"),
+            ("contact_spacing_m = 0.002", "contact_spacing_m = 0", "needle.contact_spacing_m = 0: must be between"),
+            ("max_points = 64", "max_points = 0", "needle.max_points = 0: must be in 1..=4096"),
+            ("gauge = 18", "gauge = 18\nmodel = \"flexible\"", "unknown field `model`"),
+            ("nx = 6", "nx = 1", "mesh.nx = 1: must be at least 2"),
+            ("size_m = [0.1, 0.1, 0.1]", "size_m = [0.1, -0.1, 0.1]", "mesh.size_m = [0.1, -0.1, 0.1]: must be finite and > 0"),
+            ("type = \"box\"", "type = \"grid\"", "unknown variant `grid`, expected `box` or `msh`"),
+            ("young_modulus_pa = 30e3", "young_modulus_pa = -1", "regions"),
+            ("poisson_ratio = 0.45", "poisson_ratio = 0.5", "regions"),
+            ("friction_n_per_m = 10", "friction_n_per_m = -3", "regions[0] ('gel').friction_n_per_m = -3: must be finite and ≥ 0"),
+            (
+                "static_friction_ratio = 1.3",
+                "static_friction_ratio = 0.5",
+                "regions[0] ('gel').static_friction_ratio = 0.5: must be finite and ≥ 1",
+            ),
+            (
+                "fixed = [\"bottom\"]",
+                "fixed = [\"floor\"]",
+                "fixed[0]: the mesh has no boundary set 'floor' (it has: [\"back\", \"bottom\"",
+            ),
+            ("fixed = [\"bottom\"]", "fixed = []", "fixed: name at least one boundary set"),
+            ("radius_m = 0.002", "radius_m = -1", "targets[0] ('centre').radius_m = -1: must be finite and ≥ 0"),
+            ("center_m = [0.05, 0.05, 0.05]", "center_m = [0.05, 0.05]", "center_m"),
+            (
+                "center_m = [0.05, 0.05, 0.05]",
+                "center_m = [0.05, 0.05, 0.5]",
+                "targets[0] ('centre').center_m = [0.05, 0.05, 0.5]: not inside the mesh",
+            ),
+            ("tick_rate_hz = 1000", "tick_rate_hz = 1e9", "tick_rate_hz = 1000000000: must be between 100 and 10000"),
+            ("dim = 3", "dim = 4", "dim = 4: a 3D scene has dim = 3"),
+            ("[needle]", "[limits]\nmax_base_step_m = -1\n\n[needle]", "limits.max_base_step_m = -1: must be finite and > 0"),
+            (
+                "[needle]",
+                "[[regions]]\nname = \"gel\"\nyoung_modulus_pa = 1e4\npoisson_ratio = 0.3\n\n[needle]",
+                "regions[1]: the name 'gel' is already used by regions[0]",
+            ),
+            (
+                "[needle]",
+                "[[regions]]\nname = \"blob\"\nyoung_modulus_pa = 1e4\npoisson_ratio = 0.3\n\n[needle]",
+                "regions[1] ('blob'): a box mesh region after the first needs a sphere or a cuboid",
+            ),
+            (
+                "[needle]",
+                "[[regions]]\nname = \"blob\"\nyoung_modulus_pa = 1e4\npoisson_ratio = 0.3\nsphere = { center_m = [5, 5, 5], radius_m = 0.01 }\n\n[needle]",
+                "regions[1] ('blob'): its shape holds the centroid of no tetrahedron",
+            ),
+            ("trajectory = \"cube-phantom-3d.csv\"", "trajectory = \"nowhere.toml\"", "trajectory = \"nowhere.toml\": cannot read"),
+        ];
+        for (old, new, want) in cases {
+            let e = error(old, new);
+            assert!(e.contains(want), "{new}: {e}");
+        }
+        // The axis form is the quaternion form.
+        let a = parse(&small_cube(q, "base_axis = [0.0, 0.0, -1.0]"), None).unwrap();
+        let b = parse(&small_cube(q, q), None).unwrap();
+        assert!((0..4).all(|i| (a.initial_pose.quat_wxyz[i] - b.initial_pose.quat_wxyz[i]).abs() < 1e-15));
+        let r = parse(&small_cube(q, "base_axis = [0.0, 0.0, -1.0]\nbase_roll_rad = 1.5707963267948966"), None).unwrap();
+        let (fa, fr) = (a.initial_pose.frame(), r.initial_pose.frame());
+        assert!((0..3).all(|i| (fa[0][i] - fr[0][i]).abs() < 1e-15 && (fa[2][i] - fr[1][i]).abs() < 1e-15), "{fa:?} {fr:?}");
+    }
+
+    #[test]
+    fn the_trajectory_csvs_errors_name_the_line() {
+        let bad = "# comment\nt_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0.05,0.05,0.205,1,0,0,0\n1,0.05,0.05,0.2,0.9,0,0,0\n";
+        let e = format!("{:#}", parse(&small_cube("nx = 6", "nx = 6"), Some(bad)).err().unwrap());
+        assert!(
+            e.contains("trajectory = \"cube-phantom-3d.csv\": trajectory line 4: the quaternion qw,qx,qy,qz must have unit norm"),
+            "{e}"
+        );
+        let bad = "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0.05,0.05,0.205,1,0,0,0\n\n1,0.05,oops,0.2,1,0,0,0\n";
+        let e = format!("{:#}", parse(&small_cube("nx = 6", "nx = 6"), Some(bad)).err().unwrap());
+        assert!(e.contains("trajectory line 4: column y_m") && e.contains("`oops` is not a number"), "{e}");
+    }
+
+    #[test]
+    fn msh_scenes_check_regions_and_fixed_sets_against_the_mesh() {
+        let brachy = include_str!("../../scenes/brachy-3d.toml");
+        let read_brachy = |old: &str, new: &str| {
+            assert!(brachy.contains(old), "{old}");
+            format!("{:#}", parse(&brachy.replace(old, new), None).expect_err("rejected"))
+        };
+        let e = read_brachy("name = \"urethra\"", "name = \"bladder\"");
+        assert!(e.contains("regions[2]: 'bladder' is not a region of the mesh (mesh regions: tissue, prostate, urethra)"), "{e}");
+        let e = read_brachy("fixed = [\"rectum_wall\", \"back\"]", "fixed = [\"rectum_wall\", \"pubis\"]");
+        assert!(e.contains("fixed[1]: the mesh has no boundary set 'pubis'") && e.contains("\"rectum_wall\""), "{e}");
+        // A mesh region without an entry.
+        let cut = brachy.find("[[regions]]\nname = \"urethra\"").unwrap();
+        let needle = brachy.find("[needle]").unwrap();
+        let without = format!("{}{}", &brachy[..cut], &brachy[needle..]);
+        let e = format!("{:#}", parse(&without, None).err().unwrap());
+        assert!(e.contains("the mesh has a region 'urethra' but no [[regions]] entry is named so"), "{e}");
+        let e = read_brachy("name = \"urethra\"", "name = \"urethra\"\nsphere = { center_m = [0, 0, 0], radius_m = 1 }");
+        assert!(e.contains("regions[2] ('urethra'): sphere and cuboid apply to box meshes"), "{e}");
+        let e = read_brachy("file = \"brachy-3d.msh\"", "file = \"missing.msh\"");
+        assert!(e.contains("mesh.file = \"missing.msh\": cannot read"), "{e}");
+        // A broken file: the MSH error names its line.
+        let dir = std::env::temp_dir().join(format!("needlesim-scene3d-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let msh = include_str!("../../scenes/brachy-3d.msh").replacen("$EndNodes", "$EndNodez", 1);
+        std::fs::write(dir.join("brachy-3d.msh"), msh).unwrap();
+        std::fs::write(dir.join("brachy-3d.csv"), include_str!("../../scenes/brachy-3d.csv")).unwrap();
+        let e = format!("{:#}", parse_scene3d(brachy, &dir, server()).err().unwrap());
+        assert!(e.contains("mesh.file = \"brachy-3d.msh\": MSH line"), "{e}");
+        // The validation suite's Gmsh cube, in both versions, as a scene.
+        let validation = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation/meshes");
+        for v in ["v41", "v22"] {
+            let Ok(text) = std::fs::read_to_string(validation.join(format!("cube_sphere_{v}.msh"))) else {
+                eprintln!("skipped: no validation meshes at {}", validation.display());
+                continue;
+            };
+            std::fs::write(dir.join("cube.msh"), text).unwrap();
+            let scene =
+                small_cube("type = \"box\"\nnx = 6\nny = 6\nnz = 6\nsize_m = [0.1, 0.1, 0.1]", "type = \"msh\"\nfile = \"cube.msh\"")
+                    .replace("name = \"gel\"", "name = \"tissue\"")
+                    .replace("[needle]", "[[regions]]\nname = \"lesion\"\nyoung_modulus_pa = 3e5\npoisson_ratio = 0.45\n\n[needle]")
+                    .replace("trajectory = \"cube-phantom-3d.csv\"\n", "");
+            let s = parse_scene3d(&scene, &dir, server()).unwrap_or_else(|e| panic!("{v}: {e:#}"));
+            assert_eq!((s.mesh.n_nodes(), s.mesh.n_tets()), (2284, 10074), "{v}");
+            assert_eq!(s.mesh.region_names(), ["tissue", "lesion"]);
+            assert!(s.fixed_nodes.iter().all(|&n| s.mesh.nodes_m()[n][2].abs() < 1e-12), "{v}");
+            assert!(s.trajectory.is_none());
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn the_memory_estimate_refuses_oversized_meshes_and_fits_the_examples() {
+        // The examples fit the server's default budget; an 81³ box does not, refused before
+        // the mesh is built, with a SizeLimit in the chain.
+        assert!(estimated_session_bytes_3d(21 * 21 * 21, 64) < 1280 << 20);
+        let e = parse(&CUBE.replace("nx = 21\nny = 21\nnz = 21", "nx = 81\nny = 81\nnz = 81"), None).err().unwrap();
+        let size = e.chain().find_map(|c| c.downcast_ref::<SizeLimit>()).unwrap_or_else(|| panic!("not a size limit: {e:#}"));
+        assert_eq!((size.amount, size.limit), (estimated_session_bytes_3d(81 * 81 * 81, 64).div_ceil(1 << 20), 1280));
+        assert!(format!("{e:#}").starts_with("mesh: the estimated memory of a session of this 3D scene (531441 mesh nodes"), "{e:#}");
+        // More needle points, more cached columns.
+        assert!(estimated_session_bytes_3d(9261, 128) > estimated_session_bytes_3d(9261, 64));
+        // 3D costs more than 2D per node: 3 DOFs, 4 nodes per point, n^{5/3} fill.
+        assert!(estimated_session_bytes_3d(9261, 64) > crate::estimated_session_bytes(9261, 64));
+    }
+
+    /// The factor term bounds the measured fill of box grids (12 bytes per non-zero of `L`).
+    #[test]
+    fn factor_fill_is_bounded_by_the_estimate() {
+        for n in [6usize, 11, 16] {
+            let s = parse(&CUBE.replace("nx = 21\nny = 21\nnz = 21", &format!("nx = {n}\nny = {n}\nnz = {n}")), None).unwrap();
+            let model = s.tissue_model().unwrap();
+            let measured = 12 * model.cholesky().factor_nnz() as u64;
+            let nodes = (n * n * n) as f64;
+            let bound = FACTOR_BYTES_PER_NODE_5_3 as f64 * nodes.powf(5.0 / 3.0);
+            eprintln!("{n}³: factor {measured} bytes, estimate {bound:.0}");
+            assert!((measured as f64) < bound, "{n}³: {measured} bytes over {bound}");
+        }
+    }
+
+    #[test]
+    fn dim_selects_the_loader_and_2d_scenes_are_unchanged() {
+        assert_eq!(scene_dim(CUBE).unwrap(), 3);
+        let paper = include_str!("../../scenes/paper-phantom.toml");
+        assert_eq!(scene_dim(paper).unwrap(), 2);
+        assert_eq!(scene_dim("not toml [").unwrap(), 2);
+        assert!(format!("{:#}", scene_dim("dim = \"3\"").err().unwrap()).contains("dim = \"3\": must be 2 or 3"));
+        let lim = MeshLimits::default();
+        let e = crate::parse_scene(CUBE, Path::new("."), &lim).err().unwrap();
+        assert!(format!("{e:#}").contains("dim = 3: this is a 3D scene"), "{e:#}");
+        let with_dim = crate::parse_scene(&format!("dim = 2\n{paper}"), Path::new("."), &lim).unwrap();
+        assert_eq!(with_dim.tissue.mesh().n_nodes(), 361);
+        let e = crate::parse_scene(&format!("dim = 5\n{paper}"), Path::new("."), &lim).err().unwrap();
+        assert!(format!("{e:#}").contains("dim = 5: must be 2 or 3"), "{e:#}");
+        let e = parse(&CUBE.replace("dim = 3\n", ""), None).err().unwrap();
+        assert!(format!("{e:#}").contains("missing field `dim`"), "{e:#}");
+    }
+}
