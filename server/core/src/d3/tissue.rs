@@ -58,6 +58,8 @@ pub struct TetColumnScratch {
 /// Nodes per leaf of the nested dissection (a leaf's nodes are ordered as they come; below a few
 /// dozen the separators cost more than they save).
 const ND_LEAF_NODES: usize = 64;
+/// Meshes with fewer nodes are ordered by faer's AMD, which fills less on small meshes.
+const ND_MIN_NODES: usize = 2000;
 
 impl TetTissueModel {
     /// Assembles and factorises. Errors when a fixed node does not exist, when no node is fixed,
@@ -79,19 +81,24 @@ impl TetTissueModel {
         // A nested-dissection ordering: on box grids 25–45 % less fill than faer's AMD, factorised
         // 2.6–5.5 times faster, and shorter elimination-tree reaches for the sparse compliance rows
         // (BENCHMARKS.md, d3::sparse_compliance's timing).
+        // Below ND_MIN_NODES AMD fills less (a 6³ box: 76 k against 49 k non-zeros).
         let dofs = DofMap::with_dofs_per_node(&constrained, 3);
-        let fwd = super::sparse_compliance::nested_dissection_order(&mesh, &dofs, ND_LEAF_NODES);
-        let mut inv = vec![0usize; fwd.len()];
-        for (k, &f) in fwd.iter().enumerate() {
-            inv[f] = k;
-        }
-        let perm = faer::perm::PermRef::new_checked(&fwd, &inv, fwd.len());
-        let chol = SparseCholesky::with_ordering(
-            &stiffness,
-            dofs,
-            faer::sparse::linalg::cholesky::SymmetricOrdering::Custom(perm),
-            Default::default(),
-        )?;
+        let chol = if n_nodes < ND_MIN_NODES {
+            SparseCholesky::new(&stiffness, dofs)?
+        } else {
+            let fwd = super::sparse_compliance::nested_dissection_order(&mesh, &dofs, ND_LEAF_NODES);
+            let mut inv = vec![0usize; fwd.len()];
+            for (k, &f) in fwd.iter().enumerate() {
+                inv[f] = k;
+            }
+            let perm = faer::perm::PermRef::new_checked(&fwd, &inv, fwd.len());
+            SparseCholesky::with_ordering(
+                &stiffness,
+                dofs,
+                faer::sparse::linalg::cholesky::SymmetricOrdering::Custom(perm),
+                Default::default(),
+            )?
+        };
         let locator = TetLocator::new(&mesh);
         Ok(Self { mesh, materials, fixed, stiffness, chol, locator })
     }
