@@ -1,0 +1,238 @@
+//! The 3D rigid needle (issue 16, part 3) on the cube phantom: a vertical insertion at 20 mm/s,
+//! a hold, a restart, a 10° turn of the base about the entry point and a withdrawal, with the
+//! physics checks of the issue (friction slope, puncture, withdrawal force, stick at rest and
+//! breakaway, steering wrench, release), no refactorisation, no column computed in a step, no
+//! allocation in a warm step. Columns are prefetched between steps, as a worker would.
+
+use nalgebra::UnitQuaternion;
+use needlesim_alloc_count::{CountingAlloc, count_on_this_thread, thread_allocations};
+use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
+use needlesim_core::sim3::{BasePose3, PointState3, PoseError, Sim3Stats, SimError3, Simulation3, StepOutput3, unit_axis};
+
+#[global_allocator]
+static GLOBAL: CountingAlloc = CountingAlloc::new();
+
+/// Off-node entry point on the top face (z = 0.1 m).
+const ENTRY: [f64; 3] = [0.0513, 0.0487, 0.1];
+/// Insertion speed, m per 1 ms tick (20 mm/s).
+const V: f64 = 2e-5;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    Insert,
+    Hold,
+    Restart,
+    Rotate,
+    Withdraw,
+}
+
+#[derive(Debug, Clone)]
+struct Rec {
+    phase: Phase,
+    axial_n: f64,
+    force_n: [f64; 3],
+    torque_nm: [f64; 3],
+    inserted_m: f64,
+    tip_z_m: f64,
+    n_stuck: usize,
+    n_slipping: usize,
+    n_tip: usize,
+    stats: Sim3Stats,
+    allocations: u64,
+}
+
+fn record(phase: Phase, o: &StepOutput3, stats: Sim3Stats, allocations: u64) -> Rec {
+    let count = |s: PointState3| o.contacts.iter().filter(|c| c.state == s).count();
+    Rec {
+        phase,
+        axial_n: o.axial_force_n,
+        force_n: o.base_force_n,
+        torque_nm: o.base_torque_nm,
+        inserted_m: o.inserted_length_m,
+        tip_z_m: o.tip_m[2],
+        n_stuck: count(PointState3::Stuck),
+        n_slipping: count(PointState3::Slipping),
+        n_tip: count(PointState3::Tip),
+        stats,
+        allocations,
+    }
+}
+
+/// The commanded poses: insert 65 mm (tip from 5 mm above to 60 mm deep), hold 300 ticks,
+/// insert 10 mm more, turn 10° about world y through the entry point over 500 ticks, withdraw
+/// 90 mm along the turned axis.
+fn poses(start: BasePose3) -> Vec<(Phase, BasePose3)> {
+    let mut v = Vec::new();
+    let down = |p: BasePose3, d: f64| {
+        let t = p.axis();
+        BasePose3::from_rotation([p.position_m[0] + d * t[0], p.position_m[1] + d * t[1], p.position_m[2] + d * t[2]], p.orientation)
+    };
+    let n_in = 3250;
+    for k in 1..=n_in {
+        v.push((Phase::Insert, down(start, V * k as f64)));
+    }
+    let at = down(start, V * n_in as f64);
+    v.extend(std::iter::repeat_n((Phase::Hold, at), 300));
+    for k in 1..=500 {
+        v.push((Phase::Restart, down(at, V * k as f64)));
+    }
+    let at = down(at, V * 500.0);
+    for k in 1..=500 {
+        let r = UnitQuaternion::from_axis_angle(&unit_axis([0.0, 1.0, 0.0]), 10f64.to_radians() * k as f64 / 500.0);
+        v.push((Phase::Rotate, at.rotated_about(ENTRY, &r)));
+    }
+    let at = v.last().unwrap().1;
+    for k in 1..=4500 {
+        v.push((Phase::Withdraw, down(at, -V * k as f64)));
+    }
+    v
+}
+
+/// Runs the scenario on an `n³` phantom, prefetching columns between steps; counts the
+/// allocations inside each step.
+fn run(n: usize) -> (Simulation3, Vec<Rec>) {
+    let model = box_phantom3(n);
+    let params = box_phantom3_params(ENTRY, 0.005);
+    let mut sim = Simulation3::new(model, params).unwrap();
+    let mut recs = Vec::new();
+    for (phase, pose) in poses(sim.pose()) {
+        let before = thread_allocations();
+        count_on_this_thread(true);
+        let r = sim.step(pose).map(|_| ());
+        count_on_this_thread(false);
+        let allocations = thread_allocations() - before;
+        r.unwrap();
+        recs.push(record(phase, sim.output(), sim.stats(), allocations));
+        sim.prefetch_columns(usize::MAX).unwrap();
+    }
+    (sim, recs)
+}
+
+fn scenario() -> &'static (Simulation3, Vec<Rec>) {
+    static S: std::sync::OnceLock<(Simulation3, Vec<Rec>)> = std::sync::OnceLock::new();
+    S.get_or_init(|| run(9))
+}
+
+/// Least-squares slope of y over x.
+fn slope(xy: &[(f64, f64)]) -> f64 {
+    let n = xy.len() as f64;
+    let (mx, my) = (xy.iter().map(|p| p.0).sum::<f64>() / n, xy.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxy: f64 = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = xy.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn axial_force_rises_at_the_friction_per_length() {
+    let (_, recs) = scenario();
+    // After the puncture and past the tip's friction peak (5 mm), over the inserted length.
+    let xy: Vec<(f64, f64)> = recs
+        .iter()
+        .filter(|r| r.phase == Phase::Insert && r.stats.punctures >= 1 && r.inserted_m > 0.01)
+        .map(|r| (r.inserted_m, r.axial_n))
+        .collect();
+    assert!(xy.len() > 1000, "{} samples", xy.len());
+    let k = slope(&xy);
+    println!("axial force slope {k:.4} N/m over {} ticks (friction 10 N/m)", xy.len());
+    assert!((k - 10.0).abs() <= 0.5, "slope {k} N/m is not within 5 % of 10 N/m");
+}
+
+#[test]
+fn the_surface_punctures_with_a_peak_then_a_drop() {
+    let (_, recs) = scenario();
+    let first = recs.iter().position(|r| r.stats.punctures >= 1).expect("the surface punctures");
+    let peak = recs[..first].iter().map(|r| r.axial_n).fold(0.0, f64::max);
+    let after = recs[first].axial_n;
+    println!("puncture at tick {first}: peak {peak:.4} N, then {after:.4} N");
+    assert!(peak > 0.29 && peak <= 0.31, "the peak {peak} N is the puncture force 0.3 N");
+    assert!(after < 0.5 * peak, "the force drops after the puncture: {after} N");
+    // Before it, the tip's point is carried (one Tip contact).
+    assert_eq!(recs[first - 1].n_tip, 1);
+}
+
+#[test]
+fn withdrawal_pulls_outward_and_releases_every_point() {
+    let (sim, recs) = scenario();
+    let w: Vec<&Rec> = recs.iter().filter(|r| r.phase == Phase::Withdraw).collect();
+    let mid = &w[w.len() / 4];
+    println!("withdrawal: axial {:.4} N, force {:?}", mid.axial_n, mid.force_n);
+    assert!(mid.axial_n < -0.1, "the tissue pulls the needle in while it is pulled out: {}", mid.axial_n);
+    let max_in = recs.iter().filter(|r| r.phase == Phase::Insert).map(|r| r.axial_n).fold(0.0, f64::max);
+    assert!(max_in > 0.5);
+    let last = w.last().unwrap();
+    assert!(last.tip_z_m > 0.1, "the tip left the tissue");
+    assert_eq!(sim.output().contacts.len(), 0, "every point released");
+    assert!(last.stats.releases >= last.stats.captures - 1 && last.stats.releases > 0);
+}
+
+#[test]
+fn points_stick_at_rest_and_break_away_on_restart() {
+    let (_, recs) = scenario();
+    let hold: Vec<&Rec> = recs.iter().filter(|r| r.phase == Phase::Hold).collect();
+    let settled = &hold[hold.len() / 2..];
+    assert!(settled.iter().all(|r| r.n_slipping == 0 && r.n_stuck >= 3), "all points stuck during the hold");
+    let before = hold.last().unwrap().stats.stick_to_slip;
+    let restart: Vec<&Rec> = recs.iter().filter(|r| r.phase == Phase::Restart).collect();
+    let after = restart.last().unwrap();
+    println!(
+        "hold: {} stuck; restart: {} slipping, stick→slip {} → {}",
+        settled[0].n_stuck, after.n_slipping, before, after.stats.stick_to_slip
+    );
+    assert!(after.stats.stick_to_slip > before && after.n_slipping >= 2, "the points break away on restart");
+}
+
+#[test]
+fn turning_the_base_gives_a_lateral_force_and_torque_against_the_turn() {
+    let (_, recs) = scenario();
+    let before = recs.iter().rfind(|r| r.phase == Phase::Restart).unwrap();
+    let after = recs.iter().rfind(|r| r.phase == Phase::Rotate).unwrap();
+    let (dfx, dty) = (after.force_n[0] - before.force_n[0], after.torque_nm[1] - before.torque_nm[1]);
+    println!("turn +10° about +y: ΔF_x = {dfx:.4} N, Δτ_y = {dty:.5} N·m (F {:?}, τ {:?})", after.force_n, after.torque_nm);
+    // The shaft below the entry swings towards -x: the tissue pushes it back (+x) and the torque
+    // about the base opposes the turn (-y).
+    assert!(dfx > 0.05, "lateral force {dfx}");
+    assert!(dty < -1e-3, "torque {dty}");
+}
+
+#[test]
+fn no_refactorisation_no_column_in_a_step_no_allocation_when_warm() {
+    let (sim, recs) = scenario();
+    assert_eq!(sim.solver().stats().n_rebuilds, 0, "no dense rebuild");
+    assert_eq!(sim.cache().n_computed(), 0, "no column computed through the cache (only prefetched)");
+    let warm = &recs[50..];
+    let allocating = warm.iter().filter(|r| r.allocations > 0).count();
+    let total: u64 = warm.iter().map(|r| r.allocations).sum();
+    println!(
+        "{allocating} of {} warm steps allocated ({total} allocations); deferrals {}",
+        warm.len(),
+        recs.last().unwrap().stats.column_deferrals
+    );
+    assert_eq!(allocating, 0, "warm steps allocated");
+    let s = recs.last().unwrap().stats;
+    assert_eq!(s.dependent_points, 0);
+    assert_eq!(s.capacity_drops, 0);
+    assert_eq!(s.unconverged_ticks, 0);
+}
+
+#[test]
+fn bad_poses_and_parameters_are_refused_by_name() {
+    let model = box_phantom3(4);
+    let mut sim = Simulation3::new(model.clone(), box_phantom3_params(ENTRY, 0.005)).unwrap();
+    let good = sim.pose();
+    let mut bad = good;
+    bad.position_m[2] = f64::NAN;
+    assert!(matches!(sim.step(bad), Err(SimError3::Pose { tick: 0, source: PoseError::NonFinite { what: "position" } })));
+    assert_eq!(sim.pose(), good);
+    assert_eq!(BasePose3::new([0.0; 3], [0.9, 0.0, 0.0, 0.0]), Err(PoseError::NotUnit { norm: 0.9 }));
+    // A big jump is clamped to the per-tick step.
+    let far = BasePose3::from_rotation([good.position_m[0] + 0.01, good.position_m[1], good.position_m[2]], good.orientation);
+    let o = sim.step(far).unwrap();
+    assert!(o.clamped && (o.pose.position_m[0] - good.position_m[0] - 0.002).abs() < 1e-15);
+    let mut p = box_phantom3_params(ENTRY, 0.005);
+    p.spacing_m = -1.0;
+    let e = Simulation3::new(model.clone(), p).err().unwrap().to_string();
+    assert!(e.contains("spacing_m"), "{e}");
+    let mut p = box_phantom3_params(ENTRY, 0.005);
+    p.regions.push(Default::default());
+    assert!(Simulation3::new(model, p).err().unwrap().to_string().contains("regions"));
+}
