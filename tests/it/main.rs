@@ -17,6 +17,7 @@ mod identify_track;
 mod plan;
 mod python_client;
 mod server_e2e;
+mod sim3;
 mod simulate;
 mod validation;
 mod web;

@@ -236,3 +236,58 @@ fn bad_poses_and_parameters_are_refused_by_name() {
     p.regions.push(Default::default());
     assert!(Simulation3::new(model, p).err().unwrap().to_string().contains("regions"));
 }
+
+/// The timing figure of issue 16 on the 21³ cube (9,261 nodes, 48,000 tetrahedra): step time
+/// p50/p99/p99.9/max over the insertion, the 10° turn and the withdrawal of [`poses`], columns
+/// prefetched between steps (not timed; the step computes none). Run with
+/// `cargo test -p needlesim-core --test sim3 -- --ignored --nocapture timing` (needlesim-core
+/// is built at opt-level 3 in the dev profile) or with `--release`.
+#[test]
+#[ignore]
+fn timing_on_the_21_cube() {
+    use std::time::{Duration, Instant};
+    let t0 = Instant::now();
+    let model = box_phantom3(21);
+    let factor_s = t0.elapsed().as_secs_f64();
+    assert_eq!(model.mesh().n_tets(), 48_000);
+    let mut params = box_phantom3_params(ENTRY, 0.005);
+    if let Ok(v) = std::env::var("SIM3_LOOKAHEAD_M") {
+        params.lookahead_m = v.parse().unwrap();
+    }
+    let mut sim = Simulation3::new(model, params).unwrap();
+    let mut times: Vec<Duration> = Vec::new();
+    let (mut prefetch_s, mut columns) = (0.0, 0);
+    let mut max_d = 0;
+    let mut slow: Vec<(usize, Phase, f64)> = Vec::new();
+    for (k, (phase, pose)) in poses(sim.pose()).into_iter().enumerate() {
+        let t = Instant::now();
+        sim.step(pose).unwrap();
+        let dt = t.elapsed();
+        times.push(dt);
+        if dt.as_secs_f64() > 300e-6 {
+            slow.push((k, phase, dt.as_secs_f64() * 1e6));
+        }
+        max_d = max_d.max(sim.output().contacts.len());
+        let t = Instant::now();
+        columns += sim.prefetch_columns(usize::MAX).unwrap();
+        prefetch_s += t.elapsed().as_secs_f64();
+    }
+    let s = sim.stats();
+    assert_eq!(sim.cache().n_computed(), 0, "no column computed in a step");
+    println!("steps over 300 µs (tick, phase, µs): {slow:?}");
+    times.sort_unstable();
+    let q = |p: f64| times[((times.len() as f64 * p) as usize).min(times.len() - 1)].as_secs_f64() * 1e6;
+    println!(
+        "21³ cube (48,000 tets): assembly + factorisation {factor_s:.2} s; {} steps: p50 {:.1} µs, p99 {:.1} µs, p99.9 {:.1} µs, max {:.1} µs; \
+         up to {max_d} points; {columns} nodes prefetched in {prefetch_s:.1} s ({:.1} ms/node); deferrals {}, captures {}, releases {}",
+        times.len(),
+        q(0.5),
+        q(0.99),
+        q(0.999),
+        times.last().unwrap().as_secs_f64() * 1e6,
+        1e3 * prefetch_s / columns.max(1) as f64,
+        s.column_deferrals,
+        s.captures,
+        s.releases
+    );
+}

@@ -68,6 +68,8 @@ const LOCATE_ITERATIONS: usize = 8;
 const FRICTION_SWEEPS: usize = 6;
 /// Relative tolerance of the friction shares (of the total friction).
 const FRICTION_TOL: f64 = 1e-6;
+/// Point locations along the axis ahead of the tip per tick, for the approaching nodes.
+pub const LOOKAHEAD_SAMPLES_PER_TICK: u64 = 2;
 /// Capacity of the list of approaching nodes.
 pub const MAX_APPROACHING: usize = 128;
 
@@ -259,6 +261,8 @@ pub struct Simulation3 {
     /// Step of the axis sampling for approaching nodes (half the shortest tetrahedron edge
     /// scale), m.
     sample_step_m: f64,
+    /// The largest tetrahedron diameter, m.
+    max_diam_m: f64,
     pose: BasePose3,
     solver: MixedSolver3,
     pts: Vec<Point>,
@@ -285,6 +289,7 @@ impl Simulation3 {
         params.validate(mesh.region_names().len().max(1)).map_err(SimError3::InvalidParams)?;
         let tet_diam_m: Vec<f64> = (0..mesh.n_tets()).map(|t| crate::d3::mesh::longest_edge_m(mesh.tet_points_m(t))).collect();
         let min_diam = tet_diam_m.iter().copied().fold(f64::INFINITY, f64::min);
+        let max_diam_m = tet_diam_m.iter().copied().fold(0.0, f64::max);
         let n_nodes = mesh.n_nodes();
         let cap = params.max_contacts;
         let mut cache = ComplianceCache3::for_nodes(n_nodes);
@@ -308,6 +313,7 @@ impl Simulation3 {
         Ok(Self {
             tet_diam_m,
             sample_step_m: 0.25 * min_diam,
+            max_diam_m,
             pose,
             solver: MixedSolver3::with_capacity(cap),
             pts: Vec::with_capacity(cap),
@@ -568,6 +574,64 @@ impl Simulation3 {
         }
     }
 
+    /// The approaching nodes (for prefetch), kept across ticks: nodes now cached or out of the
+    /// band around the axis ahead of the tip (lateral distance and arc length within a
+    /// tetrahedron diameter of the lookahead segment) leave the list; the axis ahead is located
+    /// [`LOOKAHEAD_SAMPLES_PER_TICK`] samples per tick, round robin (a point location costs
+    /// microseconds: the whole segment each tick would cost tens), and the candidate point's
+    /// nodes go first. Sorted nearest first. $O(\text{list})$, no allocation.
+    fn update_approaching(&mut self, candidate: Option<ContactPoint>, u_d: [f64; 3], frame: &[[f64; 3]; 3]) {
+        let len = self.params.needle_length_m;
+        let look = self.params.lookahead_m;
+        let h = self.sample_step_m;
+        let band = self.max_diam_m;
+        let base = self.pose.position_m;
+        let model = Arc::clone(&self.model);
+        let nodes_m = model.mesh().nodes_m();
+        let t = frame[0];
+        let (s_lo, s_hi) = (len - 4.0 * h - band, len + look + band);
+        let coords = |j: usize| {
+            let d = sub(add(nodes_m[j], u_d), base);
+            let s = dot(t, d);
+            let lat = sub(d, [s * t[0], s * t[1], s * t[2]]);
+            (s, dot(lat, lat).sqrt())
+        };
+        let cache = &self.cache;
+        self.out.approaching.retain(|&j| {
+            let (s, lat) = coords(j);
+            !cache.contains(j) && lat <= band && s >= s_lo && s <= s_hi
+        });
+        if look > 0.0 {
+            let n = ((look + 4.0 * h) / h).ceil() as u64 + 1;
+            for k in 0..LOOKAHEAD_SAMPLES_PER_TICK {
+                let i = (LOOKAHEAD_SAMPLES_PER_TICK * self.tick + k) % n;
+                let q = sub(self.pose.point_at(len - 4.0 * h + i as f64 * h), u_d);
+                if let Ok(loc) = self.model.locate(q) {
+                    for node in loc.nodes {
+                        self.push_approaching(node);
+                    }
+                }
+            }
+        }
+        let key = |j: &usize| coords(*j).0;
+        self.out.approaching.sort_unstable_by(|a, b| key(a).total_cmp(&key(b)));
+        if let Some(c) = candidate {
+            for k in 0..4 {
+                let node = c.nodes()[k].index();
+                if self.model.is_fixed(node) || self.cache.contains(node) {
+                    continue;
+                }
+                if let Some(pos) = self.out.approaching.iter().position(|&j| j == node) {
+                    self.out.approaching.remove(pos);
+                } else if self.out.approaching.len() == MAX_APPROACHING {
+                    self.out.approaching.pop();
+                    self.stats.approaching_overflow += 1;
+                }
+                self.out.approaching.insert(0, node);
+            }
+        }
+    }
+
     /// Stage 4 (module docs), and the approaching nodes.
     fn capture(&mut self, prev_tip: [f64; 3], frame: &[[f64; 3]; 3]) -> Result<(), SimError3> {
         let len = self.params.needle_length_m;
@@ -587,27 +651,7 @@ impl Simulation3 {
                 candidate = None;
             }
         }
-        // Approaching nodes: the candidate's first, then the tetrahedra on the axis ahead.
-        self.out.approaching.clear();
-        if let Some((c, _)) = candidate {
-            for k in 0..4 {
-                self.push_approaching(c.nodes()[k].index());
-            }
-        }
-        let look = self.params.lookahead_m;
-        if look > 0.0 {
-            let h = self.sample_step_m;
-            let n = ((look + 4.0 * h) / h).ceil() as usize;
-            for i in 0..=n {
-                let s = len - 4.0 * h + i as f64 * h;
-                let q = sub(self.pose.point_at(s), u_d);
-                if let Ok(loc) = self.model.locate(q) {
-                    for node in loc.nodes {
-                        self.push_approaching(node);
-                    }
-                }
-            }
-        }
+        self.update_approaching(candidate.map(|c| c.0), u_d, frame);
         let Some((contact, x)) = candidate else { return Ok(()) };
         if self.pts.len() == self.params.max_contacts {
             self.stats.capacity_drops += 1;
