@@ -91,8 +91,13 @@ fn poses(start: BasePose3) -> Vec<(Phase, BasePose3)> {
 /// Runs the scenario on an `n³` phantom, prefetching columns between steps; counts the
 /// allocations inside each step.
 fn run(n: usize) -> (Simulation3, Vec<Rec>) {
+    run_with(n, |_| {})
+}
+
+fn run_with(n: usize, tune: impl FnOnce(&mut needlesim_core::sim3::Sim3Params)) -> (Simulation3, Vec<Rec>) {
     let model = box_phantom3(n);
-    let params = box_phantom3_params(ENTRY, 0.005);
+    let mut params = box_phantom3_params(ENTRY, 0.005);
+    tune(&mut params);
     let mut sim = Simulation3::new(model, params).unwrap();
     let mut recs = Vec::new();
     for (phase, pose) in poses(sim.pose()) {
@@ -212,6 +217,52 @@ fn no_refactorisation_no_column_in_a_step_no_allocation_when_warm() {
     assert_eq!(s.dependent_points, 0);
     assert_eq!(s.capacity_drops, 0);
     assert_eq!(s.unconverged_ticks, 0);
+}
+
+/// Without lookahead, a due point waits (counted) until its own nodes, reported first, are
+/// prefetched, and the run captures the same points; a cache of 16 nodes holds what is in use
+/// (counting the inserts past it) and, when the needle is re-inserted along a new path after the
+/// withdrawal, evicts the columns of the old one.
+#[test]
+fn deferred_columns_and_a_small_cache_with_a_reinsertion() {
+    let (_, base) = &run(11);
+    let (mut sim, recs) = run_with(11, |p| {
+        p.lookahead_m = 0.0;
+        p.max_cached_nodes = 16;
+    });
+    assert_eq!(recs.last().unwrap().stats.captures, base.last().unwrap().stats.captures);
+    let peak = |r: &[Rec]| r.iter().map(|r| r.axial_n).fold(0.0, f64::max);
+    assert!((peak(&recs) - peak(base)).abs() < 0.05, "{} vs {}", peak(&recs), peak(base));
+    // Re-insertion 20 mm away: over to the new entry, straight, then 40 mm down.
+    let start = sim.pose();
+    let t0 = sim.tick();
+    let shifted = |dx: f64, dz: f64| {
+        BasePose3::from_rotation([start.position_m[0] + dx, start.position_m[1], start.position_m[2] + dz], UnitQuaternion::identity())
+    };
+    let mut poses: Vec<BasePose3> = (1..=1000).map(|k| shifted(-0.02 * k as f64 / 1000.0, 0.0)).collect();
+    let depth = start.point_at(sim.params().needle_length_m)[2] - 0.06;
+    poses.extend((1..=(depth / V) as usize).map(|k| shifted(-0.02, -V * k as f64)));
+    let mut max_axial: f64 = 0.0;
+    for p in poses {
+        sim.step(p).unwrap();
+        max_axial = max_axial.max(sim.output().axial_force_n);
+        sim.prefetch_columns(usize::MAX).unwrap();
+    }
+    let s = sim.stats();
+    println!(
+        "deferrals {}, evicted {}, over cap {}, cached {}; re-insertion over {} ticks: captures {} → {}, max axial {max_axial:.3} N",
+        s.column_deferrals,
+        s.columns_evicted,
+        s.cache_over_cap,
+        sim.cache().len(),
+        sim.tick() - t0,
+        recs.last().unwrap().stats.captures,
+        s.captures
+    );
+    assert!(s.column_deferrals > 0, "points waited for their columns");
+    assert!(s.columns_evicted > 0, "the old path's columns were evicted");
+    assert!(sim.cache().len() as u64 <= 16 + s.cache_over_cap);
+    assert!(s.captures >= recs.last().unwrap().stats.captures + 3 && max_axial > 0.25, "the re-insertion punctures and holds points");
 }
 
 #[test]
