@@ -265,6 +265,41 @@ fn deferred_columns_and_a_small_cache_with_a_reinsertion() {
     assert!(s.captures >= recs.last().unwrap().stats.captures + 3 && max_axial > 0.25, "the re-insertion punctures and holds points");
 }
 
+/// A roll of the base about the needle's own axis turns every point's $n$ and $b$ (frame
+/// updates of stuck and slipping points) but not the rigid needle's shape: the wrench at the
+/// base is unchanged to round-off, and the points stay stuck.
+#[test]
+fn rolling_about_the_axis_leaves_the_wrench_unchanged() {
+    let mut sim = Simulation3::new(box_phantom3(9), box_phantom3_params(ENTRY, 0.005)).unwrap();
+    let start = sim.pose();
+    let go = |sim: &mut Simulation3, p: BasePose3| {
+        sim.step(p).unwrap();
+        sim.prefetch_columns(usize::MAX).unwrap();
+    };
+    let at = |d: f64| BasePose3::from_rotation([start.position_m[0], start.position_m[1], start.position_m[2] - d], start.orientation);
+    for k in 1..=2500 {
+        go(&mut sim, at(V * k as f64));
+    }
+    for _ in 0..100 {
+        go(&mut sim, at(V * 2500.0));
+    }
+    let (f0, tau0) = (sim.output().base_force_n, sim.output().base_torque_nm);
+    let p = sim.pose();
+    let axis = p.axis();
+    for k in 1..=300 {
+        go(&mut sim, p.rotated_about_axis(p.position_m, axis, 0.5 * std::f64::consts::PI * k as f64 / 300.0));
+    }
+    let o = sim.output();
+    let n_rolled = o.contacts[0].frame[1];
+    assert!((n_rolled[1].abs() - 1.0).abs() < 1e-12, "n turned to ±y: {n_rolled:?}");
+    assert!(o.contacts.iter().all(|c| c.state == PointState3::Stuck));
+    let scale = f0.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let df = (0..3).map(|k| (o.base_force_n[k] - f0[k]).abs()).fold(0.0, f64::max);
+    let dt = (0..3).map(|k| (o.base_torque_nm[k] - tau0[k]).abs()).fold(0.0, f64::max);
+    println!("roll 90°: |ΔF| {df:e} N of {scale:e} N, |Δτ| {dt:e} N·m; {} frame rotations", sim.solver().stats().n_rotations);
+    assert!(df <= 1e-10 * scale && dt <= 1e-10 * scale * 0.1, "the roll changed the wrench");
+}
+
 #[test]
 fn bad_poses_and_parameters_are_refused_by_name() {
     let model = box_phantom3(4);
