@@ -54,6 +54,7 @@ use std::sync::Arc;
 
 use crate::compliance::ComplianceCache3;
 use crate::contact::ContactPoint;
+use crate::d3::locate::{BARYCENTRIC_TOL, barycentric};
 use crate::d3::{TetColumnScratch, TetTissueError, TetTissueModel};
 use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedError, MixedSolver3};
@@ -545,8 +546,19 @@ impl Simulation3 {
     fn material_point_at(&self, p_m: [f64; 3], u0: [f64; 3]) -> Option<(ContactPoint, [f64; 3])> {
         let mut x = sub(p_m, u0);
         let tol = 1e-12 * self.sample_step_m;
-        for _ in 0..LOCATE_ITERATIONS {
-            let loc = self.model.locate(x).ok()?;
+        let mesh = self.model.mesh();
+        let mut loc = self.model.locate(x).ok()?;
+        for it in 0..LOCATE_ITERATIONS {
+            if it > 0 {
+                // The iterate usually stays in its tetrahedron: one barycentric test rather than
+                // a search of the locator's cell.
+                let w = barycentric(mesh.tet_points_m(loc.tet_idx), x);
+                if w.iter().all(|&v| v >= -BARYCENTRIC_TOL) {
+                    loc.weights = w;
+                } else {
+                    loc = self.model.locate(x).ok()?;
+                }
+            }
             let c = ContactPoint::in_tetrahedron(loc.tet_idx, loc.nodes, loc.weights);
             let next = sub(p_m, self.contact_displacement(&c));
             let moved = dist(next, x);
