@@ -300,6 +300,70 @@ fn rolling_about_the_axis_leaves_the_wrench_unchanged() {
     assert!(df <= 1e-10 * scale && dt <= 1e-10 * scale * 0.1, "the roll changed the wrench");
 }
 
+/// Two regions (the lower 60 mm "deep", puncture 0.25 N): the tip's point is carried to the
+/// surface's puncture force (0.3 N), to the cutting force (0.05 N) inside a region, and to the
+/// deep region's puncture force when it enters it.
+#[test]
+fn the_tip_punctures_the_surface_and_a_region_boundary_and_cuts_in_between() {
+    use needlesim_core::Material;
+    use needlesim_core::d3::{BoxGridParams, TetMaterials, TetMesh, TetMeshLimits, TetTissueModel};
+    let grid = BoxGridParams::new([11; 3], [0.1; 3]).build(&TetMeshLimits::default()).unwrap();
+    let region: Vec<usize> =
+        (0..grid.n_tets()).map(|t| usize::from(grid.tet_points_m(t).iter().map(|p| p[2]).sum::<f64>() / 4.0 < 0.06)).collect();
+    let mesh = TetMesh::with_regions(
+        grid.nodes_m().to_vec(),
+        grid.tets().to_vec(),
+        region,
+        vec!["top".into(), "deep".into()],
+        grid.boundary_sets().clone(),
+        &TetMeshLimits::default(),
+    )
+    .unwrap();
+    let m = Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 };
+    let mats = TetMaterials::per_region(&mesh, &[m, m]).unwrap();
+    let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
+    let model = std::sync::Arc::new(TetTissueModel::new(mesh, mats, &fixed).unwrap());
+    let mut params = box_phantom3_params(ENTRY, 0.005);
+    let deep = needlesim_core::RegionNeedleParams { puncture_force_n: 0.25, ..Default::default() };
+    params.regions = vec![Default::default(), deep];
+    let mut sim = Simulation3::new(model, params).unwrap();
+    let start = sim.pose();
+    // The tip's axial force on its last carried tick and the tick before.
+    let (mut carried_peak, mut carried_prev, mut releases) = (0.0f64, 0.0f64, Vec::new());
+    let mut punctures = 0;
+    for k in 1..=3750 {
+        let p = BasePose3::from_rotation([start.position_m[0], start.position_m[1], start.position_m[2] - V * k as f64], start.orientation);
+        let o = sim.step(p).unwrap();
+        let t = o.pose.axis();
+        if let Some(c) = o.contacts.iter().find(|c| c.state == PointState3::Tip) {
+            carried_prev = carried_peak;
+            carried_peak = t[0] * c.force_n[0] + t[1] * c.force_n[1] + t[2] * c.force_n[2];
+        }
+        let tip_z = o.tip_m[2];
+        if sim.stats().punctures > punctures {
+            punctures = sim.stats().punctures;
+            releases.push((carried_peak, carried_peak - carried_prev, tip_z));
+            carried_peak = 0.0;
+        }
+        sim.prefetch_columns(usize::MAX).unwrap();
+    }
+    println!("tip releases (last carried force N, its last increment N, tip z m): {releases:?}");
+    assert!(releases.len() >= 4, "{releases:?}");
+    // Released on the tick its force would pass the threshold: the last carried force is at
+    // most the threshold and less than one increment below it.
+    let entering = releases.iter().position(|&(_, _, z)| z < 0.06).expect("the tip entered the deep region");
+    for (k, &(peak, inc, _)) in releases.iter().enumerate() {
+        let want = if k == 0 {
+            0.3
+        } else if k == entering {
+            0.25
+        } else {
+            0.05
+        };
+        assert!(peak <= want && peak + 1.5 * inc > want, "release {k}: {peak} N (+{inc} N per tick) against {want} N ({releases:?})");
+    }
+}
+
 #[test]
 fn bad_poses_and_parameters_are_refused_by_name() {
     let model = box_phantom3(4);
