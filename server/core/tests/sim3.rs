@@ -408,14 +408,25 @@ fn timing_on_the_21_cube() {
     let mut times: Vec<Duration> = Vec::new();
     let (mut prefetch_s, mut columns) = (0.0, 0);
     let mut max_d = 0;
-    let mut slow: Vec<(usize, Phase, f64)> = Vec::new();
+    // Time this thread waited on a run queue (ns), from /proc/thread-self/schedstat: a step
+    // during which it grew was preempted (another process had the core, ≈ 4 ms a slice).
+    let run_queue_wait_ns = || -> u64 {
+        std::fs::read_to_string("/proc/thread-self/schedstat").ok().and_then(|s| s.split_whitespace().nth(1)?.parse().ok()).unwrap_or(0)
+    };
+    let mut slow: Vec<(usize, Phase, f64, bool)> = Vec::new();
+    let mut calm: Vec<Duration> = Vec::new();
     for (k, (phase, pose)) in poses(sim.pose()).into_iter().enumerate() {
+        let w0 = run_queue_wait_ns();
         let t = Instant::now();
         sim.step(pose).unwrap();
         let dt = t.elapsed();
+        let preempted = run_queue_wait_ns() > w0;
         times.push(dt);
+        if !preempted {
+            calm.push(dt);
+        }
         if dt.as_secs_f64() > 300e-6 {
-            slow.push((k, phase, dt.as_secs_f64() * 1e6));
+            slow.push((k, phase, dt.as_secs_f64() * 1e6, preempted));
         }
         max_d = max_d.max(sim.output().contacts.len());
         let t = Instant::now();
@@ -424,8 +435,16 @@ fn timing_on_the_21_cube() {
     }
     let s = sim.stats();
     assert_eq!(sim.cache().n_computed(), 0, "no column computed in a step");
-    println!("steps over 300 µs (tick, phase, µs): {slow:?}");
+    println!("steps over 300 µs (tick, phase, µs, preempted): {slow:?}");
     times.sort_unstable();
+    calm.sort_unstable();
+    let qc = |p: f64| calm[((calm.len() as f64 * p) as usize).min(calm.len() - 1)].as_secs_f64() * 1e6;
+    println!(
+        "without the {} preempted steps: p99.9 {:.1} µs, max {:.1} µs",
+        times.len() - calm.len(),
+        qc(0.999),
+        calm.last().unwrap().as_secs_f64() * 1e6
+    );
     let q = |p: f64| times[((times.len() as f64 * p) as usize).min(times.len() - 1)].as_secs_f64() * 1e6;
     println!(
         "21³ cube (48,000 tets): assembly + factorisation {factor_s:.2} s; {} steps: p50 {:.1} µs, p99 {:.1} µs, p99.9 {:.1} µs, max {:.1} µs; \
