@@ -167,9 +167,6 @@ pub fn box_phantom3(n: usize) -> Arc<crate::d3::TetTissueModel> {
 /// puncture 0.3 N, cutting 0.05 N ([`RegionNeedleParams::default`]), 2 mm spacing.
 pub fn box_phantom3_params(entry_m: [f64; 3], tip_above_m: f64) -> crate::sim3::Sim3Params {
     let len = 0.12;
-    let pose = crate::sim3::BasePose3::from_rotation(
-        [entry_m[0], entry_m[1], entry_m[2] + tip_above_m + len],
-        nalgebra::UnitQuaternion::identity(),
-    );
+    let pose = crate::sim3::BasePose3::straight_down([entry_m[0], entry_m[1], entry_m[2] + tip_above_m + len]);
     crate::sim3::Sim3Params::new(len, pose)
 }

@@ -1,10 +1,12 @@
 //! The 6-DOF base pose of the rigid needle in 3D, its needle frame, and the per-tick clamp.
 //!
-//! The base frame is the world frame rotated by the unit quaternion $q$ (rotation $R$). The
-//! needle leaves the base along the base frame's local $-z$: the identity pose points straight
-//! down (world $-z$), which is how a needle enters the top face of a phantom whose $z$ is up.
-//! The needle frame's rows are
-//! $$t = R\,(0, 0, -1)^\top,\quad n = R\,(1, 0, 0)^\top,\quad b = t \times n = R\,(0, -1, 0)^\top,$$
+//! The base frame is the world frame rotated by the unit quaternion $q = [w, x, y, z]$ (Hamilton,
+//! scalar first; rotation $R$). The needle leaves the base along the base frame's local $+x$, the
+//! convention of the 3D scenes' poses (`needlesim_trajectory::pose3`) and of the 2D needle at
+//! $\theta = 0$: the identity points the needle along world $+x$, and
+//! [`BasePose3::straight_down`] (a quarter turn about $+y$) points it down, world $-z$, into the
+//! top face of a phantom whose $z$ is up. The needle frame's rows are
+//! $$t = R\,e_x,\quad n = R\,e_y,\quad b = t \times n = R\,e_z,$$
 //! so the roll of the base about the shaft turns $n$ and $b$ (a bevel tip will use it) and leaves
 //! $t$. A shaft point at arc length $s$ from the base is $p(s) = x_b + s\,t$.
 
@@ -32,7 +34,7 @@ pub enum PoseError {
 pub struct BasePose3 {
     /// Base position, world, m.
     pub position_m: [f64; 3],
-    /// Base orientation; the needle axis is its local $-z$ (module docs).
+    /// Base orientation; the needle axis is its local $+x$ (module docs).
     pub orientation: UnitQuaternion<f64>,
 }
 
@@ -74,14 +76,18 @@ impl BasePose3 {
         Self { position_m, orientation }
     }
 
+    /// The pose at `position_m` pointing the needle straight down (world $-z$): a quarter turn
+    /// about world $+y$, so $n = +y$ and $b = +x$.
+    pub fn straight_down(position_m: [f64; 3]) -> Self {
+        Self { position_m, orientation: UnitQuaternion::from_axis_angle(&Vector3::y_axis(), std::f64::consts::FRAC_PI_2) }
+    }
+
     /// A pose at `position_m` whose needle axis $t$ is `axis` (normalised; any length > 0), with
-    /// the smallest rotation from the straight-down pose (so $n$ is as close to world $x$ as the
-    /// axis allows).
+    /// the smallest rotation from the identity (world $+x$).
     pub fn looking_along(position_m: [f64; 3], axis: [f64; 3]) -> Self {
-        let down = Vector3::new(0.0, 0.0, -1.0);
         let a = Vector3::new(axis[0], axis[1], axis[2]);
-        let q = UnitQuaternion::rotation_between(&down, &a)
-            .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
+        let q = UnitQuaternion::rotation_between(&Vector3::x(), &a)
+            .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI));
         Self { position_m, orientation: q }
     }
 
@@ -121,7 +127,7 @@ impl BasePose3 {
         let r = self.orientation.to_rotation_matrix();
         let m = r.matrix();
         let col = |j: usize, s: f64| [s * m[(0, j)], s * m[(1, j)], s * m[(2, j)]];
-        [col(2, -1.0), col(0, 1.0), col(1, -1.0)]
+        [col(0, 1.0), col(1, 1.0), col(2, 1.0)]
     }
 
     /// The needle axis $t$.
@@ -180,9 +186,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn frame_is_a_right_handed_rotation_with_t_down_at_identity() {
-        let p = BasePose3::default();
-        assert_eq!(p.frame(), [[-0.0, -0.0, -1.0], [1.0, 0.0, 0.0], [-0.0, -1.0, -0.0]]);
+    fn frame_is_a_right_handed_rotation_with_t_along_x_at_identity() {
+        assert_eq!(BasePose3::default().frame(), [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let d = BasePose3::straight_down([0.0; 3]).frame();
+        let want = [[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]];
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((d[i][j] - want[i][j]).abs() < 1e-15, "{d:?}");
+            }
+        }
         let q = UnitQuaternion::from_euler_angles(0.3, -0.7, 1.1);
         let f = BasePose3::from_rotation([0.0; 3], q).frame();
         let c = [f[0][1] * f[1][2] - f[0][2] * f[1][1], f[0][2] * f[1][0] - f[0][0] * f[1][2], f[0][0] * f[1][1] - f[0][1] * f[1][0]];
