@@ -18,6 +18,7 @@ mod plan;
 mod python_client;
 mod scenes3d;
 mod server_e2e;
+mod sim3;
 mod simulate;
 mod validation;
 mod web;

@@ -150,3 +150,23 @@ pub fn random_spd_compliance<const D: usize>(n_nodes: usize, seed: u64) -> (Vec<
     }
     (c, cache)
 }
+
+/// The 3D cube phantom (issue 16): a 0.1 m cube of `n × n × n` nodes
+/// ([`crate::d3::BoxGridParams`], 6 Kuhn tetrahedra per cell), E = 30 kPa, ν = 0.45, its bottom
+/// ($z = 0$) fixed; the top face is $z = 0.1$ m.
+pub fn box_phantom3(n: usize) -> Arc<crate::d3::TetTissueModel> {
+    use crate::d3::{BoxGridParams, TetMaterials, TetMeshLimits, TetTissueModel};
+    let mesh = BoxGridParams::new([n; 3], [0.1; 3]).build(&TetMeshLimits::default()).expect("the box grid builds");
+    let mats = TetMaterials::per_region(&mesh, &[Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 }]).expect("valid material");
+    let fixed = mesh.boundary_set("bottom").expect("a bottom face").to_vec();
+    Arc::new(TetTissueModel::new(mesh, mats, &fixed).expect("the phantom factorises"))
+}
+
+/// 3D simulation parameters for [`box_phantom3`]: a 0.12 m rigid needle pointing straight down
+/// with its tip `tip_above_m` above the entry point `entry_m` on the top face; friction 10 N/m,
+/// puncture 0.3 N, cutting 0.05 N ([`RegionNeedleParams::default`]), 2 mm spacing.
+pub fn box_phantom3_params(entry_m: [f64; 3], tip_above_m: f64) -> crate::sim3::Sim3Params {
+    let len = 0.12;
+    let pose = crate::sim3::BasePose3::straight_down([entry_m[0], entry_m[1], entry_m[2] + tip_above_m + len]);
+    crate::sim3::Sim3Params::new(len, pose)
+}

@@ -34,6 +34,7 @@ pub mod mixed;
 pub mod msh;
 pub mod needle;
 pub mod sim;
+pub mod sim3;
 pub mod spatial;
 pub mod statics;
 

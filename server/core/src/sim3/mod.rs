@@ -1,0 +1,895 @@
+//! The 3D insertion simulation: a rigid needle with a 6-DOF base ([`BasePose3`]) in a
+//! tetrahedral tissue ([`TetTissueModel`]), one [`Simulation3::step`] per haptic tick.
+//!
+//! It mirrors the 2D simulation ([`crate::sim`]) with contact at material points: the working
+//! set is a list of points of the tissue $X_i$ (fixed inside their tetrahedra, [`ContactPoint`])
+//! held by the needle, condensed by the mixed solver [`MixedSolver3`] with the point
+//! compliance $W = P C P^\top$ from cached node columns ([`ComplianceCache3`]). Each point has the
+//! needle frame $[t, n, b]$ of the base pose (a rigid needle: one frame for all).
+//!
+//! A step, in order:
+//! 1. **Pose**: reject a non-finite or non-unit pose ([`SimError3::Pose`], state unchanged),
+//!    clamp the jump to [`Sim3Params::max_base_step_m`] and
+//!    [`Sim3Params::max_base_step_rad`].
+//! 2. **Frames and values**: every point's frame becomes the new $[t, n, b]$
+//!    ([`MixedSolver3::set_frame`], $O(d)$ for a stuck point, $O(d^2)$ for a slipping one; nothing
+//!    when the orientation did not change), and its prescribed values put the deformed point on
+//!    the shaft: with $d_i = X_i - x_b$,
+//!    $$u_n = -n\cdot d_i,\qquad u_b = -b\cdot d_i,$$
+//!    axially a stuck point sits at its shaft anchor $s_a$, $u_t = s_a - t\cdot d_i$, and the
+//!    tip's point at the tip, $u_t = L - t\cdot d_i$.
+//! 3. **Release**: a point whose deformed position lies beyond the tip ($t\cdot(x_i - x_b) > L$:
+//!    the tip withdrew past it) leaves the working set.
+//! 4. **Capture**: when no point is carried by the tip, the tip advanced along its axis, and it
+//!    lies [`Sim3Params::spacing_m`] beyond the most distal point, the material point at the
+//!    previous tip position $p$ is found as the fixed point of $X = p - u(X)$ (started from the
+//!    distal point's displacement) and becomes the tip's point, carried until its axial force
+//!    exceeds the region's puncture force (entering the tissue or a new region) or cutting
+//!    force. It is taken only when its reference distance to every working point exceeds both
+//!    points' tetrahedron diameters (so that no tetrahedron holds two points of the shaft and
+//!    the conditions are independent); a point whose nodes' columns are not cached waits
+//!    (counted in [`Sim3Stats::column_deferrals`]): the step never computes a column.
+//! 5. **Friction**: each shaft point gets the integral of the friction distribution of the
+//!    paper's Fig. 2b over its tributary segment ([`RegionNeedleParams::friction_integral_n`]).
+//! 6. **Active set**: solve; stuck points whose $|f_t|$ exceeds static friction slip (force
+//!    $f_t = \pm$ their share, against the relative motion), slipping points whose relative motion
+//!    stopped or reversed stick, the tip's point punctures or, pulled, lets go; bounded
+//!    iterations, each change an $O(d^2)$ update.
+//! 7. **Output**: the wrench on the needle base (world),
+//!    $$F = -\sum_i f_i,\qquad \tau = \sum_i (x_i - x_b) \times (-f_i),$$
+//!    with $f_i$ the force of the needle on the tissue at point $i$ and $x_i = X_i + u_i$; the
+//!    tip, the inserted length and each point's state ([`StepOutput3`]).
+//!
+//! Columns are filled between steps by [`Simulation3::prefetch_columns`] (the nodes of the
+//! tetrahedra on the axis ahead of the tip, the next point's first) or [`Simulation3::insert_columns`]
+//! (a worker's); the cache is bounded ([`Sim3Params::max_cached_nodes`], least recently used
+//! evicted). The tissue factorisation is never touched. All per-step storage is sized in
+//! [`Simulation3::new`]: a warm step allocates nothing. [`Simulation3::snapshot`] gives the static
+//! problem the last step solved in the terms of the 3D exchange format's `points`.
+
+mod params;
+mod pose;
+
+use std::sync::Arc;
+
+use crate::compliance::ComplianceCache3;
+use crate::contact::ContactPoint;
+use crate::d3::locate::{BARYCENTRIC_TOL, barycentric};
+use crate::d3::{TetColumnScratch, TetTissueError, TetTissueModel};
+use crate::ids::{Axis, Slot};
+use crate::mixed::{Condition, MixedError, MixedSolver3};
+use crate::needle::RegionNeedleParams;
+
+pub use params::Sim3Params;
+pub use pose::{BasePose3, PoseError, UNIT_QUATERNION_TOL, unit_axis};
+
+/// Fixed-point iterations locating the material point at a deformed position.
+const LOCATE_ITERATIONS: usize = 8;
+/// Bound on the friction-share sweeps per active-set iteration.
+const FRICTION_SWEEPS: usize = 6;
+/// Relative tolerance of the friction shares (of the total friction).
+const FRICTION_TOL: f64 = 1e-6;
+/// Point locations along the axis ahead of the tip per tick, for the approaching nodes.
+pub const LOOKAHEAD_SAMPLES_PER_TICK: u64 = 2;
+/// Capacity of the list of approaching nodes.
+pub const MAX_APPROACHING: usize = 128;
+
+/// Errors of the 3D simulation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimError3 {
+    /// At [`Simulation3::new`]: a parameter out of range or not matching the mesh (the message
+    /// names it).
+    #[error("invalid 3D simulation parameters: {0}")]
+    InvalidParams(String),
+    /// At [`Simulation3::step`]: the commanded pose is not finite or its quaternion not unit;
+    /// the state is unchanged.
+    #[error("tick {tick}: {source}")]
+    Pose { tick: u64, source: PoseError },
+    /// At [`Simulation3::step`]: the working solver refused an update mid-tick (a frame, a
+    /// condition switch or a release made the system singular); the tick is lost.
+    #[error(transparent)]
+    Mixed(#[from] MixedError),
+    /// At [`Simulation3::prefetch_columns`]: a column solve failed (columns computed before it
+    /// stay).
+    #[error(transparent)]
+    Tissue(#[from] TetTissueError),
+}
+
+/// The state of a contact point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PointState3 {
+    /// Held at its shaft anchor: $u_t$ prescribed.
+    Stuck,
+    /// Sliding along the shaft: $f_t$ prescribed (its friction share, against the motion).
+    Slipping,
+    /// Carried by the tip until puncture or cutting: $u_t$ prescribed at the tip.
+    Tip,
+}
+
+/// Counters over the simulation's life.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Sim3Stats {
+    pub captures: u64,
+    pub punctures: u64,
+    /// Points released: withdrawn past by the tip, or let go by the tip.
+    pub releases: u64,
+    pub stick_to_slip: u64,
+    pub slip_to_stick: u64,
+    /// Ticks a due capture waited for its nodes' columns.
+    pub column_deferrals: u64,
+    /// Captures refused because their conditions were dependent on the others' (not expected
+    /// with the distance rule).
+    pub dependent_points: u64,
+    /// Captures dropped for a full working set.
+    pub capacity_drops: u64,
+    /// Ticks whose commanded pose was clamped.
+    pub clamped_ticks: u64,
+    /// Ticks whose active set did not settle within the iteration bound.
+    pub unconverged_ticks: u64,
+    /// Approaching nodes not reported (list full).
+    pub approaching_overflow: u64,
+    /// Cached nodes evicted to make room.
+    pub columns_evicted: u64,
+    /// Inserts past [`Sim3Params::max_cached_nodes`] with nothing evictable.
+    pub cache_over_cap: u64,
+}
+
+/// One contact point in a step's output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactOut3 {
+    pub state: PointState3,
+    /// Its frame, rows $[t, n, b]$.
+    pub frame: [[f64; 3]; 3],
+    /// Reference position $X$, m.
+    pub x_ref_m: [f64; 3],
+    /// Current position $X + u$, m.
+    pub x_m: [f64; 3],
+    /// Force of the needle on the tissue there, world, N.
+    pub force_n: [f64; 3],
+    /// Its kinetic friction share, N.
+    pub friction_n: f64,
+}
+
+/// The per-tick output, rewritten in place.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepOutput3 {
+    /// The tick this output belongs to (0 for the initial output).
+    pub tick: u64,
+    /// $t = k / f_{tick}$, s.
+    pub time_s: f64,
+    /// The pose applied (after clamping).
+    pub pose: BasePose3,
+    pub clamped: bool,
+    /// Force of the tissue on the needle base, world, N: $F = -\sum_i f_i$.
+    pub base_force_n: [f64; 3],
+    /// Torque of the tissue on the needle about the base point, world, N·m.
+    pub base_torque_nm: [f64; 3],
+    /// The axial force the tissue resists the needle with, $t\cdot\sum_i f_i = -t\cdot F$, N:
+    /// positive while pushing in, negative while pulling out.
+    pub axial_force_n: f64,
+    /// Tip position, m.
+    pub tip_m: [f64; 3],
+    /// Length of shaft from the most proximal contact to the tip (0 without contacts), m.
+    pub inserted_length_m: f64,
+    /// The working points, in slot order.
+    pub contacts: Vec<ContactOut3>,
+    /// Nodes (not cached) of the tetrahedra on the axis ahead of the tip, the next point's
+    /// first: what [`Simulation3::prefetch_columns`] computes.
+    pub approaching: Vec<usize>,
+    pub active_set_iterations: usize,
+    pub converged: bool,
+}
+
+/// One point of [`Snapshot3`], in the exchange format's terms (`points`: `x`, `frame`, `ut`,
+/// `un`, `ub`, `f`), with the simulation's answer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SnapshotPoint3 {
+    /// Reference position, m.
+    pub x_m: [f64; 3],
+    /// Frame rows $[t, n, b]$ as the solver holds them.
+    pub frame: [[f64; 3]; 3],
+    /// Prescribed displacement components (m), `None` where free.
+    pub ut: Option<f64>,
+    pub un: Option<f64>,
+    pub ub: Option<f64>,
+    /// The prescribed (friction) force, world, N; `None` for a point with every component
+    /// prescribed.
+    pub f_n: Option<[f64; 3]>,
+    /// The simulation's total force of the needle on the tissue there, world, N (constraint
+    /// reaction plus `f_n`).
+    pub force_n: [f64; 3],
+    /// The simulation's displacement there, world, m.
+    pub u_m: [f64; 3],
+}
+
+/// The static problem the last step solved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot3 {
+    pub tick: u64,
+    pub points: Vec<SnapshotPoint3>,
+}
+
+/// A working point's bookkeeping (by slot, as the solver's).
+#[derive(Debug, Clone, Copy)]
+struct Point {
+    contact: ContactPoint,
+    x_ref_m: [f64; 3],
+    state: PointState3,
+    /// Shaft arc length a stuck point is held at.
+    anchor_s_m: f64,
+    /// Shaft arc length of its deformed position at the end of the last tick.
+    s_prev_m: f64,
+    /// The arc length the friction shares use this sweep.
+    s_work_m: f64,
+    friction_n: f64,
+    friction_new_n: f64,
+    /// Sign of the axial friction force on the tissue (+1 while the needle goes in).
+    slip_sign: f64,
+    release_force_n: f64,
+    region: usize,
+    f_world: [f64; 3],
+    u_world: [f64; 3],
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Change {
+    Puncture,
+    LetGo,
+    Slip(f64),
+    Stick(f64),
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let d = sub(a, b);
+    dot(d, d).sqrt()
+}
+
+/// The simulation of one rigid needle in one 3D tissue.
+pub struct Simulation3 {
+    model: Arc<TetTissueModel>,
+    params: Sim3Params,
+    /// Longest edge of each tetrahedron, m.
+    tet_diam_m: Vec<f64>,
+    /// Step of the axis sampling for approaching nodes (half the shortest tetrahedron edge
+    /// scale), m.
+    sample_step_m: f64,
+    /// The largest tetrahedron diameter, m.
+    max_diam_m: f64,
+    pose: BasePose3,
+    solver: MixedSolver3,
+    pts: Vec<Point>,
+    cache: ComplianceCache3,
+    /// 1 + the last tick a node's columns were used (0: never).
+    stamp: Vec<u64>,
+    last_tip_region: Option<usize>,
+    tick: u64,
+    stats: Sim3Stats,
+    order: Vec<Slot>,
+    changes: Vec<(Slot, Change)>,
+    column_buf: Vec<f64>,
+    column_scratch: TetColumnScratch,
+    out: StepOutput3,
+}
+
+impl Simulation3 {
+    /// Validates the parameters against the model and sizes all per-step storage.
+    ///
+    /// Errors: [`SimError3::InvalidParams`] for a parameter out of range
+    /// ([`Sim3Params::validate`]) or a number of region parameters other than the mesh's.
+    pub fn new(model: Arc<TetTissueModel>, params: Sim3Params) -> Result<Self, SimError3> {
+        let mesh = model.mesh();
+        params.validate(mesh.region_names().len().max(1)).map_err(SimError3::InvalidParams)?;
+        let tet_diam_m: Vec<f64> = (0..mesh.n_tets()).map(|t| crate::d3::mesh::longest_edge_m(mesh.tet_points_m(t))).collect();
+        let min_diam = tet_diam_m.iter().copied().fold(f64::INFINITY, f64::min);
+        let max_diam_m = tet_diam_m.iter().copied().fold(0.0, f64::max);
+        let n_nodes = mesh.n_nodes();
+        let cap = params.max_contacts;
+        let mut cache = ComplianceCache3::for_nodes(n_nodes);
+        cache.reserve(params.max_cached_nodes.min(n_nodes) + 16);
+        let pose = params.initial_pose;
+        let out = StepOutput3 {
+            tick: 0,
+            time_s: 0.0,
+            pose,
+            clamped: false,
+            base_force_n: [0.0; 3],
+            base_torque_nm: [0.0; 3],
+            axial_force_n: 0.0,
+            tip_m: pose.point_at(params.needle_length_m),
+            inserted_length_m: 0.0,
+            contacts: Vec::with_capacity(cap),
+            approaching: Vec::with_capacity(MAX_APPROACHING),
+            active_set_iterations: 0,
+            converged: true,
+        };
+        Ok(Self {
+            tet_diam_m,
+            sample_step_m: 0.25 * min_diam,
+            max_diam_m,
+            pose,
+            solver: MixedSolver3::with_capacity(cap),
+            pts: Vec::with_capacity(cap),
+            cache,
+            stamp: vec![0; n_nodes],
+            last_tip_region: None,
+            tick: 0,
+            stats: Sim3Stats::default(),
+            order: Vec::with_capacity(cap),
+            changes: Vec::with_capacity(cap),
+            column_buf: vec![0.0; 9 * n_nodes],
+            column_scratch: model.column_scratch(),
+            out,
+            model,
+            params,
+        })
+    }
+
+    /// The tissue model.
+    pub fn model(&self) -> &Arc<TetTissueModel> {
+        &self.model
+    }
+    /// The parameters.
+    pub fn params(&self) -> &Sim3Params {
+        &self.params
+    }
+    /// The pose applied by the last step.
+    pub fn pose(&self) -> BasePose3 {
+        self.pose
+    }
+    /// The last step's output.
+    pub fn output(&self) -> &StepOutput3 {
+        &self.out
+    }
+    /// Counters over the simulation's life.
+    pub fn stats(&self) -> Sim3Stats {
+        self.stats
+    }
+    /// The working solver (for its update counters: [`MixedSolver3::stats`]).
+    pub fn solver(&self) -> &MixedSolver3 {
+        &self.solver
+    }
+    /// The column cache.
+    pub fn cache(&self) -> &ComplianceCache3 {
+        &self.cache
+    }
+    /// The number of the next tick.
+    pub fn tick(&self) -> u64 {
+        self.tick
+    }
+
+    /// Computes (allocating, outside any step) the columns of up to `max_nodes` of the nodes the
+    /// last step reported as approaching, nearest first. Returns how many it computed.
+    ///
+    /// Errors: [`SimError3::Tissue`] when a column solve fails (those before it stay).
+    pub fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, SimError3> {
+        let mut n = 0;
+        for k in 0..self.out.approaching.len() {
+            let node = self.out.approaching[k];
+            if n == max_nodes {
+                break;
+            }
+            if !self.cache.contains(node) {
+                self.model.compliance_columns_into(node, &mut self.column_buf, &mut self.column_scratch)?;
+                self.make_room();
+                self.cache.insert(node, &self.column_buf);
+                self.stamp[node] = self.tick + 1;
+                n += 1;
+            }
+        }
+        Ok(n)
+    }
+
+    /// Stores the columns of `node_idx` computed elsewhere
+    /// ([`TetTissueModel::compliance_columns_into`], length $9n$); in a full cache they replace
+    /// the least recently used node's, which is returned.
+    pub fn insert_columns(&mut self, node_idx: usize, columns: &[f64]) -> Option<usize> {
+        let evicted = if self.cache.contains(node_idx) { None } else { self.make_room() };
+        self.cache.insert(node_idx, columns);
+        self.stamp[node_idx] = self.tick + 1;
+        evicted
+    }
+
+    /// Evicts the least recently used cached node that the last step did not use, when the
+    /// cache is full.
+    fn make_room(&mut self) -> Option<usize> {
+        if self.cache.len() < self.params.max_cached_nodes {
+            return None;
+        }
+        let in_use = self.tick;
+        let mut victim: Option<(usize, u64)> = None;
+        for slot in 0..self.cache.n_slots() {
+            if let Some(j) = self.cache.node_in_slot(slot) {
+                let s = self.stamp[j];
+                if s < in_use && victim.is_none_or(|(_, v)| s < v) {
+                    victim = Some((j, s));
+                }
+            }
+        }
+        match victim {
+            Some((j, _)) => {
+                self.cache.evict(j);
+                self.stats.columns_evicted += 1;
+                Some(j)
+            }
+            None => {
+                self.stats.cache_over_cap += 1;
+                None
+            }
+        }
+    }
+
+    /// The static problem the last step solved: per working point its reference position,
+    /// frame, prescribed displacement components, prescribed (friction) force in world
+    /// components, and the simulation's force and displacement there. Allocates (not for the
+    /// real-time thread).
+    pub fn snapshot(&self) -> Snapshot3 {
+        let points = Slot::all(self.pts.len())
+            .map(|slot| {
+                let p = &self.pts[slot.index()];
+                let frame = self.solver.frame(slot);
+                let disp =
+                    |a: Axis| (self.solver.condition(slot, a) == Condition::Displacement).then(|| self.solver.prescribed_value(slot, a));
+                let mut f = [0.0; 3];
+                let mut any_force = false;
+                for a in Axis::ALL3 {
+                    if self.solver.condition(slot, a) == Condition::Force {
+                        any_force = true;
+                        let v = self.solver.prescribed_value(slot, a);
+                        for c in 0..3 {
+                            f[c] += v * frame[a.index()][c];
+                        }
+                    }
+                }
+                SnapshotPoint3 {
+                    x_m: p.x_ref_m,
+                    frame,
+                    ut: disp(Axis::Axial),
+                    un: disp(Axis::Lateral),
+                    ub: disp(Axis::Binormal),
+                    f_n: any_force.then_some(f),
+                    force_n: self.solver.force_world(slot),
+                    u_m: self.solver.displacement_world(slot),
+                }
+            })
+            .collect();
+        Snapshot3 { tick: self.out.tick, points }
+    }
+
+    /// Advances one tick towards the commanded base pose (stages in the module docs).
+    ///
+    /// Errors: [`SimError3::Pose`] for a non-finite or non-unit pose (nothing changes);
+    /// [`SimError3::Mixed`] when the working solver refuses an update mid-tick.
+    pub fn step(&mut self, commanded: BasePose3) -> Result<&StepOutput3, SimError3> {
+        commanded.check().map_err(|source| SimError3::Pose { tick: self.tick, source })?;
+        let len = self.params.needle_length_m;
+        let prev_tip = self.pose.point_at(len);
+        let (pose, clamped) = self.pose.clamped_towards(&commanded, self.params.max_base_step_m, self.params.max_base_step_rad);
+        if clamped {
+            self.stats.clamped_ticks += 1;
+        }
+        self.pose = pose;
+        let frame = pose.frame();
+        // 2. Frames and prescribed values.
+        for slot in Slot::all(self.pts.len()) {
+            self.solver.set_frame(slot, frame)?;
+        }
+        self.set_prescribed_values(&frame);
+        // 3. Release of the points the tip withdrew past.
+        for k in (0..self.pts.len()).rev() {
+            let p = self.pts[k];
+            if p.state != PointState3::Tip && dot(frame[0], sub(add(p.x_ref_m, p.u_world), pose.position_m)) > len {
+                self.remove(Slot::new(k))?;
+                self.stats.releases += 1;
+            }
+        }
+        // 4. Capture.
+        self.capture(prev_tip, &frame)?;
+        // 5, 6. Friction and active set.
+        self.update_friction(&frame, false, 0.0);
+        let (iterations, converged) = self.resolve_active_set(&frame)?;
+        if !converged {
+            self.stats.unconverged_ticks += 1;
+        }
+        self.solver.solve();
+        // 7. Output.
+        self.write_output(&frame, clamped, iterations, converged);
+        self.tick += 1;
+        Ok(&self.out)
+    }
+
+    fn remove(&mut self, slot: Slot) -> Result<(), MixedError> {
+        self.solver.remove_slot(slot)?;
+        self.pts.swap_remove(slot.index());
+        Ok(())
+    }
+
+    fn set_prescribed_values(&mut self, frame: &[[f64; 3]; 3]) {
+        let base = self.pose.position_m;
+        let len = self.params.needle_length_m;
+        for slot in Slot::all(self.pts.len()) {
+            let p = &self.pts[slot.index()];
+            let d = sub(p.x_ref_m, base);
+            self.solver.set_value(slot, Axis::Lateral, -dot(frame[1], d));
+            self.solver.set_value(slot, Axis::Binormal, -dot(frame[2], d));
+            match p.state {
+                PointState3::Stuck => self.solver.set_value(slot, Axis::Axial, p.anchor_s_m - dot(frame[0], d)),
+                PointState3::Tip => self.solver.set_value(slot, Axis::Axial, len - dot(frame[0], d)),
+                PointState3::Slipping => {}
+            }
+        }
+    }
+
+    /// The displacement of any contact from the working forces of the last solve,
+    /// $u_q = \sum_w W_{qw} f_w$ (needs only the working points' columns). $O(d)$.
+    fn contact_displacement(&self, q: &ContactPoint) -> [f64; 3] {
+        let mut u = [0.0; 3];
+        for p in &self.pts {
+            let Some(b) = self.cache.contact_block(q, &p.contact) else { continue };
+            for r in 0..3 {
+                u[r] += b[r][0] * p.f_world[0] + b[r][1] * p.f_world[1] + b[r][2] * p.f_world[2];
+            }
+        }
+        u
+    }
+
+    /// The material point $X$ at deformed position `p_m`: the fixed point of $X = p - u(X)$
+    /// from $X_0 = p - u_0$; `None` when it lies outside the mesh.
+    fn material_point_at(&self, p_m: [f64; 3], u0: [f64; 3]) -> Option<(ContactPoint, [f64; 3])> {
+        let mut x = sub(p_m, u0);
+        let tol = 1e-12 * self.sample_step_m;
+        let mesh = self.model.mesh();
+        let mut loc = self.model.locate(x).ok()?;
+        for it in 0..LOCATE_ITERATIONS {
+            if it > 0 {
+                // The iterate usually stays in its tetrahedron: one barycentric test rather than
+                // a search of the locator's cell.
+                let w = barycentric(mesh.tet_points_m(loc.tet_idx), x);
+                if w.iter().all(|&v| v >= -BARYCENTRIC_TOL) {
+                    loc.weights = w;
+                } else {
+                    loc = self.model.locate(x).ok()?;
+                }
+            }
+            let c = ContactPoint::in_tetrahedron(loc.tet_idx, loc.nodes, loc.weights);
+            let next = sub(p_m, self.contact_displacement(&c));
+            let moved = dist(next, x);
+            x = next;
+            if moved <= tol {
+                break;
+            }
+        }
+        let loc = self.model.locate(x).ok()?;
+        Some((ContactPoint::in_tetrahedron(loc.tet_idx, loc.nodes, loc.weights), x))
+    }
+
+    fn push_approaching(&mut self, node: usize) {
+        if self.model.is_fixed(node) {
+            return;
+        }
+        if self.cache.contains(node) {
+            self.stamp[node] = self.tick + 1;
+        } else if !self.out.approaching.contains(&node) {
+            if self.out.approaching.len() < MAX_APPROACHING {
+                self.out.approaching.push(node);
+            } else {
+                self.stats.approaching_overflow += 1;
+            }
+        }
+    }
+
+    /// The approaching nodes (for prefetch), kept across ticks: nodes now cached or out of the
+    /// band around the axis ahead of the tip (lateral distance and arc length within a
+    /// tetrahedron diameter of the lookahead segment) leave the list; the axis ahead is located
+    /// [`LOOKAHEAD_SAMPLES_PER_TICK`] samples per tick, round robin (a point location costs
+    /// microseconds: the whole segment each tick would cost tens), and the candidate point's
+    /// nodes go first. Sorted nearest first. $O(\text{list})$, no allocation.
+    fn update_approaching(&mut self, candidate: Option<ContactPoint>, u_d: [f64; 3], frame: &[[f64; 3]; 3]) {
+        let len = self.params.needle_length_m;
+        let look = self.params.lookahead_m;
+        let h = self.sample_step_m;
+        let band = self.max_diam_m;
+        let base = self.pose.position_m;
+        let model = Arc::clone(&self.model);
+        let nodes_m = model.mesh().nodes_m();
+        let t = frame[0];
+        let (s_lo, s_hi) = (len - 4.0 * h - band, len + look + band);
+        let coords = |j: usize| {
+            let d = sub(add(nodes_m[j], u_d), base);
+            let s = dot(t, d);
+            let lat = sub(d, [s * t[0], s * t[1], s * t[2]]);
+            (s, dot(lat, lat).sqrt())
+        };
+        let cache = &self.cache;
+        self.out.approaching.retain(|&j| {
+            let (s, lat) = coords(j);
+            !cache.contains(j) && lat <= band && s >= s_lo && s <= s_hi
+        });
+        if look > 0.0 {
+            let n = ((look + 4.0 * h) / h).ceil() as u64 + 1;
+            for k in 0..LOOKAHEAD_SAMPLES_PER_TICK {
+                let i = (LOOKAHEAD_SAMPLES_PER_TICK * self.tick + k) % n;
+                let q = sub(self.pose.point_at(len - 4.0 * h + i as f64 * h), u_d);
+                if let Ok(loc) = self.model.locate(q) {
+                    for node in loc.nodes {
+                        self.push_approaching(node);
+                    }
+                }
+            }
+        }
+        let key = |j: &usize| coords(*j).0;
+        self.out.approaching.sort_unstable_by(|a, b| key(a).total_cmp(&key(b)));
+        if let Some(c) = candidate {
+            for k in 0..4 {
+                let node = c.nodes()[k].index();
+                if self.model.is_fixed(node) || self.cache.contains(node) {
+                    continue;
+                }
+                if let Some(pos) = self.out.approaching.iter().position(|&j| j == node) {
+                    self.out.approaching.remove(pos);
+                } else if self.out.approaching.len() == MAX_APPROACHING {
+                    self.out.approaching.pop();
+                    self.stats.approaching_overflow += 1;
+                }
+                self.out.approaching.insert(0, node);
+            }
+        }
+    }
+
+    /// Stage 4 (module docs), and the approaching nodes.
+    fn capture(&mut self, prev_tip: [f64; 3], frame: &[[f64; 3]; 3]) -> Result<(), SimError3> {
+        let len = self.params.needle_length_m;
+        let base = self.pose.position_m;
+        let t = frame[0];
+        let has_tip = self.pts.iter().any(|p| p.state == PointState3::Tip);
+        let distal = (0..self.pts.len()).max_by(|&a, &b| self.pts[a].s_prev_m.total_cmp(&self.pts[b].s_prev_m));
+        let s_distal = distal.map(|k| if self.pts[k].state == PointState3::Tip { len } else { self.pts[k].s_prev_m });
+        let u_d = distal.map_or([0.0; 3], |k| self.pts[k].u_world);
+        let s_prev_tip = dot(t, sub(prev_tip, base));
+        let advancing = len - s_prev_tip > 1e-9;
+        let due = !has_tip && advancing && s_distal.is_none_or(|s| len - s >= self.params.spacing_m);
+        let mut candidate = if due { self.material_point_at(prev_tip, u_d) } else { None };
+        if let Some((c, x)) = candidate {
+            let diam = |c: &ContactPoint| c.tet_idx().map_or(0.0, |k| self.tet_diam_m[k]);
+            if self.pts.iter().any(|p| dist(p.x_ref_m, x) <= diam(&c).max(diam(&p.contact)) * (1.0 + 1e-9)) {
+                candidate = None;
+            }
+        }
+        self.update_approaching(candidate.map(|c| c.0), u_d, frame);
+        let Some((contact, x)) = candidate else { return Ok(()) };
+        if self.pts.len() == self.params.max_contacts {
+            self.stats.capacity_drops += 1;
+            return Ok(());
+        }
+        if !self.cache.contains_contact(&contact) {
+            self.stats.column_deferrals += 1;
+            return Ok(());
+        }
+        let d = sub(x, base);
+        let s_new = dot(t, sub(prev_tip, base));
+        let tet = contact.tet_idx().expect("a material point lies in a tetrahedron");
+        let region = self.model.mesh().region_of_tet().get(tet).copied().unwrap_or(0);
+        let entering = self.pts.is_empty() || self.last_tip_region != Some(region);
+        let rp: RegionNeedleParams = self.params.regions[region];
+        let slot = self.solver.add_contact_in_frame(&self.cache, contact, *frame)?;
+        let r = self
+            .solver
+            .set_condition(slot, Axis::Lateral, Condition::Displacement, -dot(frame[1], d))
+            .and_then(|()| self.solver.set_condition(slot, Axis::Binormal, Condition::Displacement, -dot(frame[2], d)))
+            .and_then(|()| self.solver.set_condition(slot, Axis::Axial, Condition::Displacement, len - dot(t, d)));
+        match r {
+            Ok(()) => {}
+            Err(MixedError::SingularPivot { .. }) => {
+                self.solver.remove_slot(slot)?;
+                self.stats.dependent_points += 1;
+                return Ok(());
+            }
+            Err(e) => {
+                self.solver.remove_slot(slot)?;
+                return Err(e.into());
+            }
+        }
+        self.last_tip_region = Some(region);
+        self.pts.push(Point {
+            contact,
+            x_ref_m: x,
+            state: PointState3::Tip,
+            anchor_s_m: s_new,
+            s_prev_m: s_new,
+            s_work_m: s_new,
+            friction_n: 0.0,
+            friction_new_n: 0.0,
+            slip_sign: 1.0,
+            release_force_n: if entering { rp.puncture_force_n } else { rp.cutting_force_n },
+            region,
+            f_world: [0.0; 3],
+            u_world: sub(prev_tip, x),
+        });
+        self.stats.captures += 1;
+        Ok(())
+    }
+
+    /// Stage 5: the friction shares from the points' arc lengths (the anchor of a stuck point;
+    /// a slipping one's at the end of the last tick, or in the current solution when
+    /// `current`). Point $i$ between its neighbours' midpoints $[a_i, b_i]$ (the most proximal
+    /// from its own $s$, the most distal to the tip) gets $\int_{L-b_i}^{L-a_i} q(\ell)\,d\ell$.
+    /// Applied when a slipping point's share changes by more than `min_change_n` (always when
+    /// not `current`). Returns the largest change.
+    fn update_friction(&mut self, frame: &[[f64; 3]; 3], current: bool, min_change_n: f64) -> f64 {
+        let len = self.params.needle_length_m;
+        let base = self.pose.position_m;
+        self.order.clear();
+        for slot in Slot::all(self.pts.len()) {
+            let s0 = dot(frame[0], sub(self.pts[slot.index()].x_ref_m, base));
+            let u_t = if current { self.solver.displacement_local(slot)[Axis::Axial] } else { 0.0 };
+            let p = &mut self.pts[slot.index()];
+            p.s_work_m = match p.state {
+                PointState3::Stuck => p.anchor_s_m,
+                PointState3::Slipping if current => s0 + u_t,
+                PointState3::Slipping => p.s_prev_m,
+                PointState3::Tip => continue,
+            };
+            self.order.push(slot);
+        }
+        let pts = &self.pts;
+        self.order.sort_unstable_by(|&a, &b| pts[a.index()].s_work_m.total_cmp(&pts[b.index()].s_work_m));
+        let k = self.order.len();
+        let mut max_change: f64 = 0.0;
+        for i in 0..k {
+            let s = self.pts[self.order[i].index()].s_work_m;
+            let lo = if i == 0 { s } else { 0.5 * (s + self.pts[self.order[i - 1].index()].s_work_m) };
+            let hi = if i + 1 == k { len.max(s) } else { 0.5 * (s + self.pts[self.order[i + 1].index()].s_work_m) };
+            let p = &mut self.pts[self.order[i].index()];
+            p.friction_new_n = self.params.regions[p.region].friction_integral_n(len - hi, len - lo);
+            if p.state == PointState3::Slipping {
+                max_change = max_change.max((p.friction_new_n - p.friction_n).abs());
+            }
+        }
+        if max_change > min_change_n || !current {
+            for i in 0..k {
+                let slot = self.order[i];
+                let p = &mut self.pts[slot.index()];
+                p.friction_n = p.friction_new_n;
+                if p.state == PointState3::Slipping && self.solver.condition(slot, Axis::Axial) == Condition::Force {
+                    self.solver.set_value(slot, Axis::Axial, p.slip_sign * p.friction_n);
+                }
+            }
+        }
+        max_change
+    }
+
+    /// Stage 6: the bounded stick/slip iteration. Returns (iterations, converged).
+    fn resolve_active_set(&mut self, frame: &[[f64; 3]; 3]) -> Result<(usize, bool), SimError3> {
+        let base = self.pose.position_m;
+        let max_iter = self.params.max_active_set_iterations;
+        for iter in 1..=max_iter {
+            self.solver.solve();
+            let total: f64 = self.pts.iter().map(|p| p.friction_n).sum();
+            let tol = FRICTION_TOL * total.max(1e-12);
+            for _ in 0..FRICTION_SWEEPS {
+                if self.update_friction(frame, true, tol) <= tol {
+                    break;
+                }
+                self.solver.solve();
+            }
+            self.changes.clear();
+            for slot in Slot::all(self.pts.len()) {
+                let p = self.pts[slot.index()];
+                let f_t = self.solver.force_local(slot)[Axis::Axial];
+                let s_now = dot(frame[0], sub(p.x_ref_m, base)) + self.solver.displacement_local(slot)[Axis::Axial];
+                let change = match p.state {
+                    PointState3::Tip if f_t > p.release_force_n => Some(Change::Puncture),
+                    PointState3::Tip if f_t <= 0.0 => Some(Change::LetGo),
+                    PointState3::Tip => None,
+                    PointState3::Stuck => {
+                        let threshold = (self.params.regions[p.region].static_friction_ratio * p.friction_n).max(1e-12);
+                        (f_t.abs() > threshold).then(|| Change::Slip(f_t.signum()))
+                    }
+                    PointState3::Slipping => (p.slip_sign * (s_now - p.s_prev_m) >= -1e-12).then_some(Change::Stick(p.s_prev_m)),
+                };
+                if let Some(c) = change {
+                    self.changes.push((slot, c));
+                }
+            }
+            if self.changes.is_empty() {
+                return Ok((iter, true));
+            }
+            self.changes.sort_unstable_by_key(|c| std::cmp::Reverse(c.0));
+            for i in 0..self.changes.len() {
+                let (slot, change) = self.changes[i];
+                let s0 = dot(frame[0], sub(self.pts[slot.index()].x_ref_m, base));
+                match change {
+                    Change::Puncture => {
+                        let u_t = self.solver.displacement_local(slot)[Axis::Axial];
+                        let p = &mut self.pts[slot.index()];
+                        p.state = PointState3::Slipping;
+                        p.slip_sign = 1.0;
+                        p.s_prev_m = s0 + u_t;
+                        let v = p.friction_n;
+                        self.solver.set_condition(slot, Axis::Axial, Condition::Force, v)?;
+                        self.stats.punctures += 1;
+                    }
+                    Change::LetGo => {
+                        self.remove(slot)?;
+                        self.stats.releases += 1;
+                    }
+                    Change::Slip(sign) => {
+                        let p = &mut self.pts[slot.index()];
+                        p.state = PointState3::Slipping;
+                        p.slip_sign = sign;
+                        let v = sign * p.friction_n;
+                        self.solver.set_condition(slot, Axis::Axial, Condition::Force, v)?;
+                        self.stats.stick_to_slip += 1;
+                    }
+                    Change::Stick(anchor) => {
+                        let p = &mut self.pts[slot.index()];
+                        p.state = PointState3::Stuck;
+                        p.anchor_s_m = anchor;
+                        self.solver.set_condition(slot, Axis::Axial, Condition::Displacement, anchor - s0)?;
+                        self.stats.slip_to_stick += 1;
+                    }
+                }
+            }
+        }
+        Ok((max_iter, false))
+    }
+
+    /// Stage 7: forces, wrench, tip, points; each point's arc length for the next tick; the
+    /// working points' nodes marked in use.
+    fn write_output(&mut self, frame: &[[f64; 3]; 3], clamped: bool, iterations: usize, converged: bool) {
+        let base = self.pose.position_m;
+        let len = self.params.needle_length_m;
+        let out = &mut self.out;
+        out.tick = self.tick;
+        out.time_s = self.tick as f64 / self.params.tick_rate_hz;
+        out.pose = self.pose;
+        out.clamped = clamped;
+        out.tip_m = self.pose.point_at(len);
+        out.active_set_iterations = iterations;
+        out.converged = converged;
+        out.contacts.clear();
+        let (mut force, mut torque, mut s_min) = ([0.0; 3], [0.0; 3], f64::INFINITY);
+        for slot in Slot::all(self.pts.len()) {
+            let f = self.solver.force_world(slot);
+            let u = self.solver.displacement_world(slot);
+            let p = &mut self.pts[slot.index()];
+            p.f_world = f;
+            p.u_world = u;
+            let x = add(p.x_ref_m, u);
+            let r = sub(x, base);
+            let neg = [-f[0], -f[1], -f[2]];
+            force = add(force, neg);
+            torque = add(torque, cross(r, neg));
+            let s = dot(frame[0], r);
+            p.s_prev_m = s;
+            s_min = s_min.min(s);
+            for n in p.contact.nodes() {
+                self.stamp[n.index()] = self.tick + 1;
+            }
+            out.contacts.push(ContactOut3 {
+                state: p.state,
+                frame: *frame,
+                x_ref_m: p.x_ref_m,
+                x_m: x,
+                force_n: f,
+                friction_n: p.friction_n,
+            });
+        }
+        out.base_force_n = force;
+        out.base_torque_nm = torque;
+        out.axial_force_n = -dot(frame[0], force);
+        out.inserted_length_m = if s_min.is_finite() { (len - s_min).max(0.0) } else { 0.0 };
+    }
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}

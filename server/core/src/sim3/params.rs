@@ -1,0 +1,90 @@
+//! The parameters of the 3D simulation ([`Sim3Params`]) and their validation.
+
+use crate::needle::RegionNeedleParams;
+
+use super::pose::BasePose3;
+
+/// Everything the 3D simulation needs besides the tissue model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sim3Params {
+    /// Shaft length $L$ from base to tip, m.
+    pub needle_length_m: f64,
+    /// The base pose before the first step.
+    pub initial_pose: BasePose3,
+    /// Arc length between consecutive material points along the shaft, m (default 2 mm). A
+    /// point is also taken only at a reference distance from every working point larger than
+    /// both points' tetrahedron diameters (independent conditions), so on a coarse mesh the
+    /// points are that far apart.
+    pub spacing_m: f64,
+    /// Needle–tissue parameters per region of the mesh (one per region, in the mesh's order).
+    pub regions: Vec<RegionNeedleParams>,
+    /// Ticks per second: a step's output time is $t = k / f_{tick}$.
+    pub tick_rate_hz: f64,
+    /// Capacity of the working set (material points); sizes the solver and the output up front.
+    /// A capture past it is dropped and counted.
+    pub max_contacts: usize,
+    /// How far ahead of the tip the nodes of the tetrahedra on the axis are reported for
+    /// prefetch, m.
+    pub lookahead_m: f64,
+    /// Largest base translation accepted in one tick (m); larger jumps are clamped.
+    pub max_base_step_m: f64,
+    /// Largest base rotation accepted in one tick (rad); larger jumps are clamped.
+    pub max_base_step_rad: f64,
+    /// Bound on the stick/slip iterations within one tick.
+    pub max_active_set_iterations: usize,
+    /// Nodes whose columns the cache holds at most; inserting past it evicts the least recently
+    /// used node not in use.
+    pub max_cached_nodes: usize,
+}
+
+impl Sim3Params {
+    /// The defaults for a needle of `needle_length_m` in a one-region tissue: 2 mm spacing,
+    /// the phantom's [`RegionNeedleParams::default`], 1 kHz, 256 contacts, 20 mm lookahead,
+    /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes.
+    pub fn new(needle_length_m: f64, initial_pose: BasePose3) -> Self {
+        Self {
+            needle_length_m,
+            initial_pose,
+            spacing_m: 0.002,
+            regions: vec![RegionNeedleParams::default()],
+            tick_rate_hz: 1000.0,
+            max_contacts: 256,
+            lookahead_m: 0.02,
+            max_base_step_m: 0.002,
+            max_base_step_rad: 0.05,
+            max_active_set_iterations: 20,
+            max_cached_nodes: 4096,
+        }
+    }
+
+    /// Checks every value against its range, and the regions against the mesh's
+    /// `n_regions`; the message names the field.
+    pub fn validate(&self, n_regions: usize) -> Result<(), String> {
+        let pos = |name: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("{name} = {v} must be finite and > 0")) };
+        pos("needle_length_m", self.needle_length_m)?;
+        pos("spacing_m", self.spacing_m)?;
+        pos("tick_rate_hz", self.tick_rate_hz)?;
+        pos("max_base_step_m", self.max_base_step_m)?;
+        pos("max_base_step_rad", self.max_base_step_rad)?;
+        if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
+            return Err(format!("lookahead_m = {} must be finite and ≥ 0", self.lookahead_m));
+        }
+        if !(1..=4096).contains(&self.max_contacts) {
+            return Err(format!("max_contacts = {} must be in 1..=4096", self.max_contacts));
+        }
+        if !(1..=1000).contains(&self.max_active_set_iterations) {
+            return Err(format!("max_active_set_iterations = {} must be in 1..=1000", self.max_active_set_iterations));
+        }
+        if self.max_cached_nodes < 16 {
+            return Err(format!("max_cached_nodes = {} must be ≥ 16", self.max_cached_nodes));
+        }
+        self.initial_pose.check().map_err(|e| format!("initial_pose: {e}"))?;
+        if self.regions.len() != n_regions {
+            return Err(format!("regions: {} given, the mesh has {n_regions}", self.regions.len()));
+        }
+        for (k, r) in self.regions.iter().enumerate() {
+            r.validate(&format!("{k}"))?;
+        }
+        Ok(())
+    }
+}

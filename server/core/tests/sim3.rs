@@ -1,0 +1,462 @@
+//! The 3D rigid needle (issue 16, part 3) on the cube phantom: a vertical insertion at 20 mm/s,
+//! a hold, a restart, a 10° turn of the base about the entry point and a withdrawal, with the
+//! physics checks of the issue (friction slope, puncture, withdrawal force, stick at rest and
+//! breakaway, steering wrench, release), no refactorisation, no column computed in a step, no
+//! allocation in a warm step. Columns are prefetched between steps, as a worker would.
+
+use nalgebra::UnitQuaternion;
+use needlesim_alloc_count::{CountingAlloc, count_on_this_thread, thread_allocations};
+use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
+use needlesim_core::sim3::{BasePose3, PointState3, PoseError, Sim3Stats, SimError3, Simulation3, StepOutput3, unit_axis};
+
+#[global_allocator]
+static GLOBAL: CountingAlloc = CountingAlloc::new();
+
+/// Off-node entry point on the top face (z = 0.1 m).
+const ENTRY: [f64; 3] = [0.0513, 0.0487, 0.1];
+/// Insertion speed, m per 1 ms tick (20 mm/s).
+const V: f64 = 2e-5;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    Insert,
+    Hold,
+    Restart,
+    Rotate,
+    Withdraw,
+}
+
+#[derive(Debug, Clone)]
+struct Rec {
+    phase: Phase,
+    axial_n: f64,
+    force_n: [f64; 3],
+    torque_nm: [f64; 3],
+    inserted_m: f64,
+    tip_z_m: f64,
+    n_stuck: usize,
+    n_slipping: usize,
+    n_tip: usize,
+    stats: Sim3Stats,
+    allocations: u64,
+}
+
+fn record(phase: Phase, o: &StepOutput3, stats: Sim3Stats, allocations: u64) -> Rec {
+    let count = |s: PointState3| o.contacts.iter().filter(|c| c.state == s).count();
+    Rec {
+        phase,
+        axial_n: o.axial_force_n,
+        force_n: o.base_force_n,
+        torque_nm: o.base_torque_nm,
+        inserted_m: o.inserted_length_m,
+        tip_z_m: o.tip_m[2],
+        n_stuck: count(PointState3::Stuck),
+        n_slipping: count(PointState3::Slipping),
+        n_tip: count(PointState3::Tip),
+        stats,
+        allocations,
+    }
+}
+
+/// The commanded poses: insert 65 mm (tip from 5 mm above to 60 mm deep), hold 300 ticks,
+/// insert 10 mm more, turn 10° about world y through the entry point over 500 ticks, withdraw
+/// 90 mm along the turned axis.
+fn poses(start: BasePose3) -> Vec<(Phase, BasePose3)> {
+    let mut v = Vec::new();
+    let down = |p: BasePose3, d: f64| {
+        let t = p.axis();
+        BasePose3::from_rotation([p.position_m[0] + d * t[0], p.position_m[1] + d * t[1], p.position_m[2] + d * t[2]], p.orientation)
+    };
+    let n_in = 3250;
+    for k in 1..=n_in {
+        v.push((Phase::Insert, down(start, V * k as f64)));
+    }
+    let at = down(start, V * n_in as f64);
+    v.extend(std::iter::repeat_n((Phase::Hold, at), 300));
+    for k in 1..=500 {
+        v.push((Phase::Restart, down(at, V * k as f64)));
+    }
+    let at = down(at, V * 500.0);
+    for k in 1..=500 {
+        let r = UnitQuaternion::from_axis_angle(&unit_axis([0.0, 1.0, 0.0]), 10f64.to_radians() * k as f64 / 500.0);
+        v.push((Phase::Rotate, at.rotated_about(ENTRY, &r)));
+    }
+    let at = v.last().unwrap().1;
+    for k in 1..=4500 {
+        v.push((Phase::Withdraw, down(at, -V * k as f64)));
+    }
+    v
+}
+
+/// Runs the scenario on an `n³` phantom, prefetching columns between steps; counts the
+/// allocations inside each step.
+fn run(n: usize) -> (Simulation3, Vec<Rec>) {
+    run_with(n, |_| {})
+}
+
+fn run_with(n: usize, tune: impl FnOnce(&mut needlesim_core::sim3::Sim3Params)) -> (Simulation3, Vec<Rec>) {
+    let model = box_phantom3(n);
+    let mut params = box_phantom3_params(ENTRY, 0.005);
+    tune(&mut params);
+    let mut sim = Simulation3::new(model, params).unwrap();
+    let mut recs = Vec::new();
+    for (phase, pose) in poses(sim.pose()) {
+        let before = thread_allocations();
+        count_on_this_thread(true);
+        let r = sim.step(pose).map(|_| ());
+        count_on_this_thread(false);
+        let allocations = thread_allocations() - before;
+        r.unwrap();
+        recs.push(record(phase, sim.output(), sim.stats(), allocations));
+        sim.prefetch_columns(usize::MAX).unwrap();
+    }
+    (sim, recs)
+}
+
+fn scenario() -> &'static (Simulation3, Vec<Rec>) {
+    static S: std::sync::OnceLock<(Simulation3, Vec<Rec>)> = std::sync::OnceLock::new();
+    S.get_or_init(|| run(9))
+}
+
+/// Least-squares slope of y over x.
+fn slope(xy: &[(f64, f64)]) -> f64 {
+    let n = xy.len() as f64;
+    let (mx, my) = (xy.iter().map(|p| p.0).sum::<f64>() / n, xy.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxy: f64 = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = xy.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn axial_force_rises_at_the_friction_per_length() {
+    let (_, recs) = scenario();
+    // After the puncture and past the tip's friction peak (5 mm), over the inserted length.
+    let xy: Vec<(f64, f64)> = recs
+        .iter()
+        .filter(|r| r.phase == Phase::Insert && r.stats.punctures >= 1 && r.inserted_m > 0.01)
+        .map(|r| (r.inserted_m, r.axial_n))
+        .collect();
+    assert!(xy.len() > 1000, "{} samples", xy.len());
+    let k = slope(&xy);
+    println!("axial force slope {k:.4} N/m over {} ticks (friction 10 N/m)", xy.len());
+    assert!((k - 10.0).abs() <= 0.5, "slope {k} N/m is not within 5 % of 10 N/m");
+}
+
+#[test]
+fn the_surface_punctures_with_a_peak_then_a_drop() {
+    let (_, recs) = scenario();
+    let first = recs.iter().position(|r| r.stats.punctures >= 1).expect("the surface punctures");
+    let peak = recs[..first].iter().map(|r| r.axial_n).fold(0.0, f64::max);
+    let after = recs[first].axial_n;
+    println!("puncture at tick {first}: peak {peak:.4} N, then {after:.4} N");
+    assert!(peak > 0.29 && peak <= 0.31, "the peak {peak} N is the puncture force 0.3 N");
+    assert!(after < 0.5 * peak, "the force drops after the puncture: {after} N");
+    // Before it, the tip's point is carried (one Tip contact).
+    assert_eq!(recs[first - 1].n_tip, 1);
+}
+
+#[test]
+fn withdrawal_pulls_outward_and_releases_every_point() {
+    let (sim, recs) = scenario();
+    let w: Vec<&Rec> = recs.iter().filter(|r| r.phase == Phase::Withdraw).collect();
+    let mid = &w[w.len() / 4];
+    println!("withdrawal: axial {:.4} N, force {:?}", mid.axial_n, mid.force_n);
+    assert!(mid.axial_n < -0.1, "the tissue pulls the needle in while it is pulled out: {}", mid.axial_n);
+    let max_in = recs.iter().filter(|r| r.phase == Phase::Insert).map(|r| r.axial_n).fold(0.0, f64::max);
+    assert!(max_in > 0.5);
+    let last = w.last().unwrap();
+    assert!(last.tip_z_m > 0.1, "the tip left the tissue");
+    assert_eq!(sim.output().contacts.len(), 0, "every point released");
+    assert!(last.stats.releases >= last.stats.captures - 1 && last.stats.releases > 0);
+}
+
+#[test]
+fn points_stick_at_rest_and_break_away_on_restart() {
+    let (_, recs) = scenario();
+    let hold: Vec<&Rec> = recs.iter().filter(|r| r.phase == Phase::Hold).collect();
+    let settled = &hold[hold.len() / 2..];
+    assert!(settled.iter().all(|r| r.n_slipping == 0 && r.n_stuck >= 3), "all points stuck during the hold");
+    let before = hold.last().unwrap().stats.stick_to_slip;
+    let restart: Vec<&Rec> = recs.iter().filter(|r| r.phase == Phase::Restart).collect();
+    let after = restart.last().unwrap();
+    println!(
+        "hold: {} stuck; restart: {} slipping, stick→slip {} → {}",
+        settled[0].n_stuck, after.n_slipping, before, after.stats.stick_to_slip
+    );
+    assert!(after.stats.stick_to_slip > before && after.n_slipping >= 2, "the points break away on restart");
+}
+
+#[test]
+fn turning_the_base_gives_a_lateral_force_and_torque_against_the_turn() {
+    let (_, recs) = scenario();
+    let before = recs.iter().rfind(|r| r.phase == Phase::Restart).unwrap();
+    let after = recs.iter().rfind(|r| r.phase == Phase::Rotate).unwrap();
+    let (dfx, dty) = (after.force_n[0] - before.force_n[0], after.torque_nm[1] - before.torque_nm[1]);
+    println!("turn +10° about +y: ΔF_x = {dfx:.4} N, Δτ_y = {dty:.5} N·m (F {:?}, τ {:?})", after.force_n, after.torque_nm);
+    // The shaft below the entry swings towards -x: the tissue pushes it back (+x) and the torque
+    // about the base opposes the turn (-y).
+    assert!(dfx > 0.05, "lateral force {dfx}");
+    assert!(dty < -1e-3, "torque {dty}");
+}
+
+#[test]
+fn no_refactorisation_no_column_in_a_step_no_allocation_when_warm() {
+    let (sim, recs) = scenario();
+    assert_eq!(sim.solver().stats().n_rebuilds, 0, "no dense rebuild");
+    assert_eq!(sim.cache().n_computed(), 0, "no column computed through the cache (only prefetched)");
+    let warm = &recs[50..];
+    let allocating = warm.iter().filter(|r| r.allocations > 0).count();
+    let total: u64 = warm.iter().map(|r| r.allocations).sum();
+    println!(
+        "{allocating} of {} warm steps allocated ({total} allocations); deferrals {}",
+        warm.len(),
+        recs.last().unwrap().stats.column_deferrals
+    );
+    assert_eq!(allocating, 0, "warm steps allocated");
+    let s = recs.last().unwrap().stats;
+    assert_eq!(s.dependent_points, 0);
+    assert_eq!(s.capacity_drops, 0);
+    assert_eq!(s.unconverged_ticks, 0);
+}
+
+/// Without lookahead, a due point waits (counted) until its own nodes, reported first, are
+/// prefetched, and the run captures the same points; a cache of 16 nodes holds what is in use
+/// (counting the inserts past it) and, when the needle is re-inserted along a new path after the
+/// withdrawal, evicts the columns of the old one.
+#[test]
+fn deferred_columns_and_a_small_cache_with_a_reinsertion() {
+    let (_, base) = &run(11);
+    let (mut sim, recs) = run_with(11, |p| {
+        p.lookahead_m = 0.0;
+        p.max_cached_nodes = 16;
+    });
+    assert_eq!(recs.last().unwrap().stats.captures, base.last().unwrap().stats.captures);
+    let peak = |r: &[Rec]| r.iter().map(|r| r.axial_n).fold(0.0, f64::max);
+    assert!((peak(&recs) - peak(base)).abs() < 0.05, "{} vs {}", peak(&recs), peak(base));
+    // Re-insertion 20 mm away: over to the new entry, straight, then 40 mm down.
+    let start = sim.pose();
+    let t0 = sim.tick();
+    let shifted = |dx: f64, dz: f64| {
+        BasePose3::from_rotation([start.position_m[0] + dx, start.position_m[1], start.position_m[2] + dz], start.orientation)
+    };
+    let mut poses: Vec<BasePose3> = (1..=1000).map(|k| shifted(-0.02 * k as f64 / 1000.0, 0.0)).collect();
+    let depth = start.point_at(sim.params().needle_length_m)[2] - 0.06;
+    poses.extend((1..=(depth / V) as usize).map(|k| shifted(-0.02, -V * k as f64)));
+    let mut max_axial: f64 = 0.0;
+    for p in poses {
+        sim.step(p).unwrap();
+        max_axial = max_axial.max(sim.output().axial_force_n);
+        sim.prefetch_columns(usize::MAX).unwrap();
+    }
+    let s = sim.stats();
+    println!(
+        "deferrals {}, evicted {}, over cap {}, cached {}; re-insertion over {} ticks: captures {} → {}, max axial {max_axial:.3} N",
+        s.column_deferrals,
+        s.columns_evicted,
+        s.cache_over_cap,
+        sim.cache().len(),
+        sim.tick() - t0,
+        recs.last().unwrap().stats.captures,
+        s.captures
+    );
+    assert!(s.column_deferrals > 0, "points waited for their columns");
+    assert!(s.columns_evicted > 0, "the old path's columns were evicted");
+    assert!(sim.cache().len() as u64 <= 16 + s.cache_over_cap);
+    assert!(s.captures >= recs.last().unwrap().stats.captures + 3 && max_axial > 0.25, "the re-insertion punctures and holds points");
+}
+
+/// A roll of the base about the needle's own axis turns every point's $n$ and $b$ (frame
+/// updates of stuck and slipping points) but not the rigid needle's shape: the wrench at the
+/// base is unchanged to round-off, and the points stay stuck.
+#[test]
+fn rolling_about_the_axis_leaves_the_wrench_unchanged() {
+    let mut sim = Simulation3::new(box_phantom3(9), box_phantom3_params(ENTRY, 0.005)).unwrap();
+    let start = sim.pose();
+    let go = |sim: &mut Simulation3, p: BasePose3| {
+        sim.step(p).unwrap();
+        sim.prefetch_columns(usize::MAX).unwrap();
+    };
+    let at = |d: f64| BasePose3::from_rotation([start.position_m[0], start.position_m[1], start.position_m[2] - d], start.orientation);
+    for k in 1..=2500 {
+        go(&mut sim, at(V * k as f64));
+    }
+    for _ in 0..100 {
+        go(&mut sim, at(V * 2500.0));
+    }
+    let (f0, tau0) = (sim.output().base_force_n, sim.output().base_torque_nm);
+    let p = sim.pose();
+    let axis = p.axis();
+    for k in 1..=300 {
+        go(&mut sim, p.rotated_about_axis(p.position_m, axis, 0.5 * std::f64::consts::PI * k as f64 / 300.0));
+    }
+    let o = sim.output();
+    let n_rolled = o.contacts[0].frame[1];
+    assert!((n_rolled[0].abs() - 1.0).abs() < 1e-12, "n turned from +y to ±x: {n_rolled:?}");
+    assert!(o.contacts.iter().all(|c| c.state == PointState3::Stuck));
+    let scale = f0.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let df = (0..3).map(|k| (o.base_force_n[k] - f0[k]).abs()).fold(0.0, f64::max);
+    let dt = (0..3).map(|k| (o.base_torque_nm[k] - tau0[k]).abs()).fold(0.0, f64::max);
+    println!("roll 90°: |ΔF| {df:e} N of {scale:e} N, |Δτ| {dt:e} N·m; {} frame rotations", sim.solver().stats().n_rotations);
+    assert!(df <= 1e-10 * scale && dt <= 1e-10 * scale * 0.1, "the roll changed the wrench");
+}
+
+/// Two regions (the lower 60 mm "deep", puncture 0.25 N): the tip's point is carried to the
+/// surface's puncture force (0.3 N), to the cutting force (0.05 N) inside a region, and to the
+/// deep region's puncture force when it enters it.
+#[test]
+fn the_tip_punctures_the_surface_and_a_region_boundary_and_cuts_in_between() {
+    use needlesim_core::Material;
+    use needlesim_core::d3::{BoxGridParams, TetMaterials, TetMesh, TetMeshLimits, TetTissueModel};
+    let grid = BoxGridParams::new([11; 3], [0.1; 3]).build(&TetMeshLimits::default()).unwrap();
+    let region: Vec<usize> =
+        (0..grid.n_tets()).map(|t| usize::from(grid.tet_points_m(t).iter().map(|p| p[2]).sum::<f64>() / 4.0 < 0.06)).collect();
+    let mesh = TetMesh::with_regions(
+        grid.nodes_m().to_vec(),
+        grid.tets().to_vec(),
+        region,
+        vec!["top".into(), "deep".into()],
+        grid.boundary_sets().clone(),
+        &TetMeshLimits::default(),
+    )
+    .unwrap();
+    let m = Material { young_modulus_pa: 30e3, poisson_ratio: 0.45 };
+    let mats = TetMaterials::per_region(&mesh, &[m, m]).unwrap();
+    let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
+    let model = std::sync::Arc::new(TetTissueModel::new(mesh, mats, &fixed).unwrap());
+    let mut params = box_phantom3_params(ENTRY, 0.005);
+    let deep = needlesim_core::RegionNeedleParams { puncture_force_n: 0.25, ..Default::default() };
+    params.regions = vec![Default::default(), deep];
+    let mut sim = Simulation3::new(model, params).unwrap();
+    let start = sim.pose();
+    // The tip's axial force on its last carried tick and the tick before.
+    let (mut carried_peak, mut carried_prev, mut releases) = (0.0f64, 0.0f64, Vec::new());
+    let mut punctures = 0;
+    for k in 1..=3750 {
+        let p = BasePose3::from_rotation([start.position_m[0], start.position_m[1], start.position_m[2] - V * k as f64], start.orientation);
+        let o = sim.step(p).unwrap();
+        let t = o.pose.axis();
+        if let Some(c) = o.contacts.iter().find(|c| c.state == PointState3::Tip) {
+            carried_prev = carried_peak;
+            carried_peak = t[0] * c.force_n[0] + t[1] * c.force_n[1] + t[2] * c.force_n[2];
+        }
+        let tip_z = o.tip_m[2];
+        if sim.stats().punctures > punctures {
+            punctures = sim.stats().punctures;
+            releases.push((carried_peak, carried_peak - carried_prev, tip_z));
+            carried_peak = 0.0;
+        }
+        sim.prefetch_columns(usize::MAX).unwrap();
+    }
+    println!("tip releases (last carried force N, its last increment N, tip z m): {releases:?}");
+    assert!(releases.len() >= 4, "{releases:?}");
+    // Released on the tick its force would pass the threshold: the last carried force is at
+    // most the threshold and less than one increment below it.
+    let entering = releases.iter().position(|&(_, _, z)| z < 0.06).expect("the tip entered the deep region");
+    for (k, &(peak, inc, _)) in releases.iter().enumerate() {
+        let want = if k == 0 {
+            0.3
+        } else if k == entering {
+            0.25
+        } else {
+            0.05
+        };
+        assert!(peak <= want && peak + 1.5 * inc > want, "release {k}: {peak} N (+{inc} N per tick) against {want} N ({releases:?})");
+    }
+}
+
+#[test]
+fn bad_poses_and_parameters_are_refused_by_name() {
+    let model = box_phantom3(4);
+    let mut sim = Simulation3::new(model.clone(), box_phantom3_params(ENTRY, 0.005)).unwrap();
+    let good = sim.pose();
+    let mut bad = good;
+    bad.position_m[2] = f64::NAN;
+    assert!(matches!(sim.step(bad), Err(SimError3::Pose { tick: 0, source: PoseError::NonFinite { what: "position" } })));
+    assert_eq!(sim.pose(), good);
+    assert_eq!(BasePose3::new([0.0; 3], [0.9, 0.0, 0.0, 0.0]), Err(PoseError::NotUnit { norm: 0.9 }));
+    // A big jump is clamped to the per-tick step.
+    let far = BasePose3::from_rotation([good.position_m[0] + 0.01, good.position_m[1], good.position_m[2]], good.orientation);
+    let o = sim.step(far).unwrap();
+    assert!(o.clamped && (o.pose.position_m[0] - good.position_m[0] - 0.002).abs() < 1e-15);
+    let mut p = box_phantom3_params(ENTRY, 0.005);
+    p.spacing_m = -1.0;
+    let e = Simulation3::new(model.clone(), p).err().unwrap().to_string();
+    assert!(e.contains("spacing_m"), "{e}");
+    let mut p = box_phantom3_params(ENTRY, 0.005);
+    p.regions.push(Default::default());
+    assert!(Simulation3::new(model, p).err().unwrap().to_string().contains("regions"));
+}
+
+/// The timing figure of issue 16 on the 21³ cube (9,261 nodes, 48,000 tetrahedra): step time
+/// p50/p99/p99.9/max over the insertion, the 10° turn and the withdrawal of [`poses`], columns
+/// prefetched between steps (not timed; the step computes none). Run with
+/// `cargo test -p needlesim-core --test sim3 -- --ignored --nocapture timing` (needlesim-core
+/// is built at opt-level 3 in the dev profile) or with `--release`.
+#[test]
+#[ignore]
+fn timing_on_the_21_cube() {
+    use std::time::{Duration, Instant};
+    let t0 = Instant::now();
+    let model = box_phantom3(21);
+    let factor_s = t0.elapsed().as_secs_f64();
+    assert_eq!(model.mesh().n_tets(), 48_000);
+    let mut params = box_phantom3_params(ENTRY, 0.005);
+    if let Ok(v) = std::env::var("SIM3_LOOKAHEAD_M") {
+        params.lookahead_m = v.parse().unwrap();
+    }
+    let mut sim = Simulation3::new(model, params).unwrap();
+    let mut times: Vec<Duration> = Vec::new();
+    let (mut prefetch_s, mut columns) = (0.0, 0);
+    let mut max_d = 0;
+    // Time this thread waited on a run queue (ns), from /proc/thread-self/schedstat: a step
+    // during which it grew was preempted (another process had the core, ≈ 4 ms a slice).
+    let run_queue_wait_ns = || -> u64 {
+        std::fs::read_to_string("/proc/thread-self/schedstat").ok().and_then(|s| s.split_whitespace().nth(1)?.parse().ok()).unwrap_or(0)
+    };
+    let mut slow: Vec<(usize, Phase, f64, bool)> = Vec::new();
+    let mut calm: Vec<Duration> = Vec::new();
+    for (k, (phase, pose)) in poses(sim.pose()).into_iter().enumerate() {
+        let w0 = run_queue_wait_ns();
+        let t = Instant::now();
+        sim.step(pose).unwrap();
+        let dt = t.elapsed();
+        let preempted = run_queue_wait_ns() > w0;
+        times.push(dt);
+        if !preempted {
+            calm.push(dt);
+        }
+        if dt.as_secs_f64() > 300e-6 {
+            slow.push((k, phase, dt.as_secs_f64() * 1e6, preempted));
+        }
+        max_d = max_d.max(sim.output().contacts.len());
+        let t = Instant::now();
+        columns += sim.prefetch_columns(usize::MAX).unwrap();
+        prefetch_s += t.elapsed().as_secs_f64();
+    }
+    let s = sim.stats();
+    assert_eq!(sim.cache().n_computed(), 0, "no column computed in a step");
+    println!("steps over 300 µs (tick, phase, µs, preempted): {slow:?}");
+    times.sort_unstable();
+    calm.sort_unstable();
+    let qc = |p: f64| calm[((calm.len() as f64 * p) as usize).min(calm.len() - 1)].as_secs_f64() * 1e6;
+    println!(
+        "without the {} preempted steps: p99.9 {:.1} µs, max {:.1} µs",
+        times.len() - calm.len(),
+        qc(0.999),
+        calm.last().unwrap().as_secs_f64() * 1e6
+    );
+    let q = |p: f64| times[((times.len() as f64 * p) as usize).min(times.len() - 1)].as_secs_f64() * 1e6;
+    println!(
+        "21³ cube (48,000 tets): assembly + factorisation {factor_s:.2} s; {} steps: p50 {:.1} µs, p99 {:.1} µs, p99.9 {:.1} µs, max {:.1} µs; \
+         up to {max_d} points; {columns} nodes prefetched in {prefetch_s:.1} s ({:.1} ms/node); deferrals {}, captures {}, releases {}",
+        times.len(),
+        q(0.5),
+        q(0.99),
+        q(0.999),
+        times.last().unwrap().as_secs_f64() * 1e6,
+        1e3 * prefetch_s / columns.max(1) as f64,
+        s.column_deferrals,
+        s.captures,
+        s.releases
+    );
+}
