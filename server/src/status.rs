@@ -135,9 +135,11 @@ impl From<&RunError> for ApiError {
         match e {
             RunError::TooLong(_) => ApiError::ResourceExhausted(with_causes(e)),
             RunError::BadEnd { .. } => ApiError::invalid("trajectory", e),
-            RunError::Setup(s) => ApiError::from(s),
+            RunError::Setup(s) => ApiError::from(&**s),
             // A trajectory whose interpolation is not finite is the caller's.
-            RunError::Step { source: SimError::NonFinitePose { .. }, .. } => ApiError::invalid("trajectory", with_causes(e)),
+            RunError::Step { source, .. } if matches!(**source, SimError::NonFinitePose { .. }) => {
+                ApiError::invalid("trajectory", with_causes(e))
+            }
             RunError::Step { .. } | RunError::Prefetch { .. } => ApiError::Internal(with_causes(e)),
         }
     }

@@ -112,7 +112,7 @@ fn snapshots_match_on(n: usize) {
         let t = p.axis();
         BasePose3::from_rotation([p.position_m[0] + d * t[0], p.position_m[1] + d * t[1], p.position_m[2] + d * t[2]], p.orientation)
     };
-    let mut step = |sim: &mut Simulation3, p: BasePose3| {
+    let step = |sim: &mut Simulation3, p: BasePose3| {
         sim.step(p).unwrap();
         sim.prefetch_columns(usize::MAX).unwrap();
     };

@@ -42,14 +42,14 @@ pub enum RunError {
     BadEnd { end_s: f64, start_s: f64 },
     /// The simulation could not be built from the scene's parameters.
     #[error("simulation")]
-    Setup(#[source] SimError),
+    Setup(#[source] Box<SimError>),
     /// A step failed (see the module documentation): the run stops there. A diverged step names
     /// its tick itself.
     #[error("{}", step_context(*tick, *t_s, source))]
-    Step { tick: u64, t_s: f64, source: SimError },
+    Step { tick: u64, t_s: f64, source: Box<SimError> },
     /// Computing the columns of approaching nodes after a step failed.
     #[error("the run stopped at tick {tick} (t = {t_s:.4} s): compliance columns")]
-    Prefetch { tick: u64, t_s: f64, source: SimError },
+    Prefetch { tick: u64, t_s: f64, source: Box<SimError> },
 }
 
 fn step_context(tick: u64, t_s: f64, source: &SimError) -> String {
@@ -63,7 +63,7 @@ impl RunError {
     /// The simulation error behind a failed step or column, if that is what stopped the run.
     pub fn sim_error(&self) -> Option<&SimError> {
         match self {
-            RunError::Setup(e) | RunError::Step { source: e, .. } | RunError::Prefetch { source: e, .. } => Some(e),
+            RunError::Setup(e) | RunError::Step { source: e, .. } | RunError::Prefetch { source: e, .. } => Some(&**e),
             RunError::TooLong(_) | RunError::BadEnd { .. } => None,
         }
     }
@@ -178,7 +178,7 @@ impl<'a> ScriptedRun<'a> {
                 (0.0, n)
             }
         };
-        let sim = Simulation::new(tissue, params).map_err(RunError::Setup)?;
+        let sim = Simulation::new(tissue, params).map_err(|e| RunError::Setup(Box::new(e)))?;
         Ok(Self {
             sim,
             script,
@@ -233,7 +233,7 @@ impl<'a> ScriptedRun<'a> {
         let started = Instant::now();
         let stepped = self.sim.step(pose).map(|_| ());
         let step_s = started.elapsed().as_secs_f64();
-        stepped.map_err(|source| RunError::Step { tick: k, t_s, source })?;
+        stepped.map_err(|source| RunError::Step { tick: k, t_s, source: Box::new(source) })?;
         self.next_k = k + 1;
         self.prefetch_due = true;
         Ok(Some(Tick { k, t_s, step_s }))
@@ -259,7 +259,11 @@ impl<'a> ScriptedRun<'a> {
         }
         let k = self.next_k - 1;
         let t_s = self.t0_s + k as f64 / self.rate_hz;
-        let n = self.sim.prefetch_columns(self.prefetch_nodes_per_tick).map_err(|source| RunError::Prefetch { tick: k, t_s, source })?;
+        let n = self.sim.prefetch_columns(self.prefetch_nodes_per_tick).map_err(|source| RunError::Prefetch {
+            tick: k,
+            t_s,
+            source: Box::new(source),
+        })?;
         self.prefetched_columns += n as u64;
         Ok(())
     }
@@ -336,7 +340,7 @@ mod tests {
         let poses = [p, p, BasePose::new(f64::NAN, p.y_m, p.theta_rad), p];
         let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::Poses(&poses), RunOptions::default()).unwrap();
         let e = run.run(|_, _| ControlFlow::Continue(())).unwrap_err();
-        assert!(matches!(e, RunError::Step { tick: 2, source: SimError::NonFinitePose { .. }, .. }), "{e:?}");
+        assert!(matches!(e, RunError::Step { tick: 2, ref source, .. } if matches!(**source, SimError::NonFinitePose { .. })), "{e:?}");
         assert!(e.to_string().starts_with("the run stopped at tick 2 (t = 0.0020 s)"), "{e}");
     }
 }
