@@ -117,25 +117,7 @@ impl TissueModel {
         if node_idx >= n_nodes {
             return Err(TissueError::UnknownNode { node_idx, n_nodes });
         }
-        let n_dofs = self.n_dofs();
-        assert_eq!(out.len(), 2 * n_dofs, "out holds two full columns");
-        out.fill(0.0);
-        if self.fixed[node_idx] {
-            return Ok(());
-        }
-        let dofs = self.chol.dofs();
-        scratch.rhs.fill(0.0);
-        for comp in 0..2 {
-            let f = dofs.free_index(2 * node_idx + comp).expect("a free node has free DOFs");
-            scratch.rhs[(f, comp)] = 1.0;
-        }
-        self.chol.solve_in_place(scratch.rhs.as_mut(), &mut scratch.chol);
-        for comp in 0..2 {
-            let col = &mut out[comp * n_dofs..(comp + 1) * n_dofs];
-            for (f, &d) in dofs.free_dofs().iter().enumerate() {
-                col[d] = scratch.rhs[(f, comp)];
-            }
-        }
+        self.chol.node_columns_into(node_idx, out, &mut scratch.rhs, &mut scratch.chol);
         Ok(())
     }
 }

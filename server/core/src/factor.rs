@@ -16,7 +16,7 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMat, Triplet};
-use faer::{Conj, MatMut, Par, Side, Spec};
+use faer::{Conj, Mat, MatMut, Par, Side, Spec};
 
 /// Smallest acceptable squared pivot of the Jacobi-scaled matrix (whose diagonal is 1).
 pub const SINGULAR_PIVOT: f64 = 1e-12;
@@ -263,6 +263,33 @@ impl SparseCholesky {
     pub fn scratch(&self, max_rhs: usize) -> CholeskyScratch {
         let req = self.symbolic.solve_in_place_scratch::<f64>(max_rhs.max(1), Par::Seq);
         CholeskyScratch { buf: MemBuffer::new(req), max_rhs: max_rhs.max(1) }
+    }
+
+    /// Writes the compliance columns of node `node_idx` into `out`: for each of its $p$ DOFs
+    /// ($p$ = [`DofMap::dofs_per_node`]) the column $K_{ff}^{-1} e$ of a unit load, over all DOFs
+    /// (zero at constrained ones), one after another ($p \cdot N$ values, $N$ = all DOFs). A node
+    /// with constrained DOFs gets zero columns. `rhs` is $n_{free} \times p$ scratch. Allocates
+    /// nothing; panics only on a programming error (`out`, `rhs` or `scratch` of the wrong size).
+    pub fn node_columns_into(&self, node_idx: usize, out: &mut [f64], rhs: &mut Mat<f64>, scratch: &mut CholeskyScratch) {
+        let dofs = &self.dofs;
+        let (per, n_dofs) = (dofs.dofs_per_node(), dofs.n_dofs());
+        assert_eq!(out.len(), per * n_dofs, "out holds {per} full columns");
+        out.fill(0.0);
+        if (0..per).any(|axis| dofs.free_index(per * node_idx + axis).is_none()) {
+            return;
+        }
+        rhs.fill(0.0);
+        for axis in 0..per {
+            let f = dofs.free_index(per * node_idx + axis).expect("checked above");
+            rhs[(f, axis)] = 1.0;
+        }
+        self.solve_in_place(rhs.as_mut(), scratch);
+        for axis in 0..per {
+            let col = &mut out[axis * n_dofs..(axis + 1) * n_dofs];
+            for (f, &d) in dofs.free_dofs().iter().enumerate() {
+                col[d] = rhs[(f, axis)];
+            }
+        }
     }
 
     /// Solves $K_{ff} X = B$ in place for the columns of `rhs` (free-DOF numbering). Allocates

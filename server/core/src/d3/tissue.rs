@@ -144,25 +144,7 @@ impl TetTissueModel {
         if node_idx >= n_nodes {
             return Err(TetTissueError::UnknownNode { node_idx, n_nodes });
         }
-        let n_dofs = self.n_dofs();
-        assert_eq!(out.len(), 3 * n_dofs, "out holds three full columns");
-        out.fill(0.0);
-        if self.fixed[node_idx] {
-            return Ok(());
-        }
-        let dofs = self.chol.dofs();
-        scratch.rhs.fill(0.0);
-        for axis in 0..3 {
-            let f = dofs.free_index(3 * node_idx + axis).expect("a free node has free DOFs");
-            scratch.rhs[(f, axis)] = 1.0;
-        }
-        self.chol.solve_in_place(scratch.rhs.as_mut(), &mut scratch.chol);
-        for axis in 0..3 {
-            let col = &mut out[axis * n_dofs..(axis + 1) * n_dofs];
-            for (f, &d) in dofs.free_dofs().iter().enumerate() {
-                col[d] = scratch.rhs[(f, axis)];
-            }
-        }
+        self.chol.node_columns_into(node_idx, out, &mut scratch.rhs, &mut scratch.chol);
         Ok(())
     }
 
