@@ -505,6 +505,14 @@ pub struct TickRecord {
     /// Columns computed by the prefetch just before this step (it streams the sparse factor
     /// through the caches, so the step after it starts cold).
     pub columns_before: u64,
+    /// Nanoseconds in each stage of the step ([`needlesim_core::sim::STAGE_NAMES`]).
+    pub stage_ns: [u64; needlesim_core::sim::N_STAGES],
+}
+
+/// Nanoseconds on a monotonic clock since its first reading: the step's stage clock.
+fn monotonic_ns() -> u64 {
+    static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+    START.get_or_init(Instant::now).elapsed().as_nanos() as u64
 }
 
 /// One (motion, mesh) case.
@@ -735,6 +743,7 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
         wall_s: 0.0,
         failed: None,
     };
+    run.sim_mut().set_stage_clock(Some(monotonic_ns));
     let mut counters = ThreadCounters::open();
     let turning = script.phases.iter().position(|p| p.name == "turn").map(|i| {
         let end = script.phases.get(i + 1).map_or(script.poses.len(), |p| p.first_tick);
@@ -806,6 +815,7 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
             cpu_wait_ns: delta(before.wait_ns, after.wait_ns),
             page_faults: delta(before.page_faults, after.page_faults),
             columns_before,
+            stage_ns: out.stage_ns,
         });
         res.d_max = res.d_max.max(d);
         if k == script.deepest_tick {
@@ -940,6 +950,7 @@ fn record_json(r: &TickRecord, phase: &str) -> Value {
         "stick_slip_changes": r.stick_slip_changes, "captures": r.captures, "releases": r.releases,
         "deferrals": r.deferrals, "shape_passes": r.shape_passes, "d": r.d, "cpu_wait_s": r.cpu_wait_ns as f64 * 1e-9,
         "page_faults": r.page_faults, "columns_before": r.columns_before,
+        "stage_us": needlesim_core::sim::STAGE_NAMES.iter().zip(r.stage_ns).map(|(name, ns)| (name.to_string(), json!(ns as f64 * 1e-3))).collect::<serde_json::Map<_, _>>(),
     })
 }
 

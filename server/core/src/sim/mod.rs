@@ -55,6 +55,7 @@
 mod active_set;
 mod capture;
 mod divergence;
+mod drift;
 mod error;
 mod flexible;
 mod frames;
@@ -76,6 +77,7 @@ pub use divergence::DivergenceBounds;
 pub use error::{Divergence, SimError};
 pub use output::{LocalCondition, NeedleNodeOut, SimStats, StateSnapshot, StepOutput, TargetOut};
 pub use params::{ContactModel, SimParams, TargetParams, param_limits};
+
 pub use state::NodeState;
 
 use frames::Geometry;
@@ -106,6 +108,36 @@ pub struct Simulation {
     state: State,
     scratch: Scratch,
     out: StepOutput,
+    /// The clock [`StepOutput::stage_ns`] is read from (none: the stages are not timed).
+    stage_clock: Option<StageClock>,
+}
+
+/// A monotonic clock in nanoseconds, injected by a benchmark to time the step's stages
+/// ([`Simulation::set_stage_clock`]); the core itself reads no clock.
+pub type StageClock = fn() -> u64;
+
+/// The stages [`StepOutput::stage_ns`] reports, in step order.
+pub const STAGE_NAMES: [&str; N_STAGES] = [
+    "pose and frames",
+    "release",
+    "capture",
+    "friction and active set",
+    "flexible shape passes",
+    "divergence check",
+    "output",
+    "cache sweep",
+];
+/// Number of timed stages.
+pub const N_STAGES: usize = 8;
+
+/// Records the end of stage `k` into `out[k]` as the time since `*last`.
+#[inline]
+fn lap(clock: Option<StageClock>, last: &mut u64, out: &mut [u64; N_STAGES], k: usize) {
+    if let Some(now) = clock {
+        let t = now();
+        out[k] = t.saturating_sub(*last);
+        *last = t;
+    }
 }
 
 impl Simulation {
@@ -138,9 +170,10 @@ impl Simulation {
             diverged: None,
             updates_at_tick_start: 0,
             columns_lru: state::ColumnLru::new(n_nodes),
+            drift: drift::DriftCheck::default(),
         };
         let scratch = Scratch::new(&model, &params);
-        Ok(Self { model, params, setup, state, scratch, out })
+        Ok(Self { model, params, setup, state, scratch, out, stage_clock: None })
     }
 
     /// The tissue model.
@@ -262,8 +295,11 @@ impl Simulation {
     /// exceed [`DivergenceBounds`] — the output is then not written, and every later step fails
     /// the same way (checked in $O(d)$, plus the shape's joints for a flexible needle).
     pub fn step(&mut self, commanded: BasePose) -> Result<&StepOutput, SimError> {
-        let Self { model, params, setup, state: st, scratch: sc, out } = self;
+        let Self { model, params, setup, state: st, scratch: sc, out, stage_clock } = self;
         let ctx = Ctx { model, params, setup };
+        let clock = *stage_clock;
+        let mut t_last = clock.map_or(0, |now| now());
+        let mut stage_ns = [0u64; N_STAGES];
         if let Some(d) = st.diverged {
             return Err(d.into());
         }
@@ -277,16 +313,20 @@ impl Simulation {
         st.updates_at_tick_start = us.n_pivots + us.n_rotations + us.n_added + us.n_removed;
         let clamped = frames::apply_pose(params, commanded, &mut st.pose, &mut st.ws, st.flex.as_mut())?;
         frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
+        lap(clock, &mut t_last, &mut stage_ns, 0);
         capture::release_withdrawn(s_tip, &mut st.ws, &mut st.stats)?;
+        lap(clock, &mut t_last, &mut stage_ns, 1);
         match params.contact {
             ContactModel::Nodes => capture::capture(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip)?,
             ContactModel::MaterialPoints { spacing_m } => {
                 capture::capture_points(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip, spacing_m)?
             }
         }
+        lap(clock, &mut t_last, &mut stage_ns, 2);
         let geo = Geometry::new(params, st.pose, st.flex.as_ref());
         active_set::update_friction(params, &geo, &mut st.ws, &mut sc.active_set.order, false, 0.0);
         let (mut iterations, mut converged) = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
+        lap(clock, &mut t_last, &mut stage_ns, 3);
         // A flexible needle comes to equilibrium with the tick's forces; where that moves it off
         // the linearised prediction by more than SHAPE_GAP_TOL_M, the tissue is solved again on
         // the new shape (a bounded Picard iteration).
@@ -303,19 +343,50 @@ impl Simulation {
             converged &= conv;
             st.stats.shape_passes += 1;
         }
+        lap(clock, &mut t_last, &mut stage_ns, 4);
         let geo = Geometry::new(params, st.pose, st.flex.as_ref());
         if let Err((what, value, bound)) = divergence::check(&setup.bounds, &geo, &st.ws) {
             let d = Diverged { tick: st.tick, what, value, bound };
             st.diverged = Some(d);
             return Err(d.into());
         }
+        lap(clock, &mut t_last, &mut stage_ns, 5);
         output::write_output(&ctx, st, out, iterations, converged, clamped);
+        lap(clock, &mut t_last, &mut stage_ns, 6);
         touch_and_sweep(params, model.mesh().nodes_m(), st, out);
+        if st.tick % param_limits::HYBRID_CHECK_EVERY_TICKS == param_limits::HYBRID_CHECK_EVERY_TICKS - 1 {
+            let checked = drift::check_one(&mut st.ws, &st.cache, &mut st.drift);
+            st.stats.hybrid_checks += (checked != drift::Checked::Nothing) as u64;
+            st.stats.hybrid_rebuilds += (checked == drift::Checked::Rebuilt) as u64;
+            st.stats.hybrid_rebuild_failures += (checked == drift::Checked::RebuildFailed) as u64;
+        }
+        lap(clock, &mut t_last, &mut stage_ns, 7);
+        out.stage_ns = stage_ns;
         st.tick += 1;
         st.stats.ticks += 1;
         st.stats.clamped_ticks += clamped as u64;
         st.stats.unconverged_ticks += (!converged) as u64;
         Ok(out)
+    }
+
+    /// Times the stages of every following step with `clock` into [`StepOutput::stage_ns`]
+    /// (none: untimed, all zero). For benchmarks; the step's results do not depend on it.
+    pub fn set_stage_clock(&mut self, clock: Option<StageClock>) {
+        self.stage_clock = clock;
+        self.out.stage_ns = [0; N_STAGES];
+    }
+
+    /// The largest relative residual of the hybrid matrix's solution found by the step's
+    /// round-off checks so far (`drift.rs`; [`SimStats::hybrid_checks`] of them).
+    pub fn hybrid_max_residual(&self) -> f64 {
+        self.state.drift.max_residual
+    }
+
+    /// Sets the residual above which a check rebuilds the hybrid matrix (default
+    /// [`param_limits::HYBRID_DRIFT_TOL`]); a negative value rebuilds at every check, which
+    /// tests use to exercise the rebuild.
+    pub fn set_hybrid_drift_tol(&mut self, tol: f64) {
+        self.state.drift.tol = tol;
     }
 
     /// The local stiffness the device feels: the 3 × 3 Jacobian

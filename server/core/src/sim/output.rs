@@ -85,6 +85,9 @@ pub struct StepOutput {
     pub converged: bool,
     /// The commanded pose was clamped this tick.
     pub clamped: bool,
+    /// Nanoseconds spent in each stage of the step ([`super::STAGE_NAMES`]), when a benchmark
+    /// injected a clock ([`super::Simulation::set_stage_clock`]); zero otherwise.
+    pub stage_ns: [u64; super::N_STAGES],
 }
 
 /// Counters over the simulation's life ([`super::Simulation::stats`]).
@@ -139,6 +142,15 @@ pub struct SimStats {
     pub bevel_flips: u64,
     /// Extra solves of the working set on a settled needle shape (flexible needle).
     pub shape_passes: u64,
+    /// Contacts whose compliance relation was checked against the hybrid matrix's solution
+    /// (`drift.rs`, one every [`param_limits::HYBRID_CHECK_EVERY_TICKS`] ticks).
+    pub hybrid_checks: u64,
+    /// Rebuilds of the hybrid matrix after a check found it drifted past
+    /// [`param_limits::HYBRID_DRIFT_TOL`] (not expected; each one $O(d^3)$ and allocating).
+    pub hybrid_rebuilds: u64,
+    /// Rebuilds that the solver refused (a contact's columns missing, or $C_{PP}$ not positive
+    /// definite); the old hybrid matrix stays in use.
+    pub hybrid_rebuild_failures: u64,
 }
 
 impl SimStats {

@@ -220,4 +220,10 @@ pub mod param_limits {
     /// working set's `max_needle_nodes` it makes the cache's bound
     /// ([`crate::sim::SimParams::max_cached_nodes`]).
     pub const CACHE_LOOKAHEAD_NODES: usize = MAX_APPROACHING;
+    /// Ticks between two checks of the hybrid matrix's round-off drift (one working contact
+    /// each, round robin; `drift.rs`): $O(d)$ block reads every 16 ticks.
+    pub const HYBRID_CHECK_EVERY_TICKS: u64 = 16;
+    /// Relative residual of a contact's compliance relation above which the hybrid matrix is
+    /// rebuilt from scratch (`drift.rs`).
+    pub const HYBRID_DRIFT_TOL: f64 = 1e-9;
 }

@@ -213,6 +213,8 @@ pub(super) struct State {
     pub updates_at_tick_start: u64,
     /// The cache's use stamps and eviction sweep.
     pub columns_lru: ColumnLru,
+    /// The hybrid matrix's round-off check (`drift.rs`).
+    pub drift: super::drift::DriftCheck,
 }
 
 /// When each node's cached columns were last used, for eviction: `stamp[j]` is 1 + the last
