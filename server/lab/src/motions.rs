@@ -592,9 +592,9 @@ impl CaseResult {
         t.sort_by(f64::total_cmp);
         [pct(&t, 0.5), pct(&t, 0.99), pct(&t, 1.0)]
     }
-    /// The slowest ticks, slowest first.
-    pub fn worst(&self, k: usize) -> Vec<TickRecord> {
-        let mut w = self.ticks.clone();
+    /// The slowest ticks, slowest first (all, or only those no other process preempted).
+    pub fn worst(&self, k: usize, unpreempted: bool) -> Vec<TickRecord> {
+        let mut w: Vec<TickRecord> = self.ticks.iter().filter(|r| !unpreempted || r.cpu_wait_ns == 0).cloned().collect();
         w.sort_by(|a, b| b.step_s.total_cmp(&a.step_s));
         w.truncate(k);
         w
@@ -964,8 +964,9 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
             let [p50, p99, p999, max] = c.step_quantiles();
             let [j50, j99, jmax] = c.jacobian_quantiles();
             let s = &c.stats;
-            let worst: Vec<Value> =
-                c.worst(WORST_TICKS).iter().map(|r| record_json(r, script_of(c.motion).map_or("", |sc| sc.phase_of(r.tick)))).collect();
+            let phase = |r: &TickRecord| script_of(c.motion).map_or("", |sc| sc.phase_of(r.tick));
+            let worst: Vec<Value> = c.worst(WORST_TICKS, false).iter().map(|r| record_json(r, phase(r))).collect();
+            let worst_unpreempted: Vec<Value> = c.worst(WORST_TICKS, true).iter().map(|r| record_json(r, phase(r))).collect();
             let unconverged: Vec<Value> = c
                 .ticks
                 .iter()
@@ -1007,7 +1008,7 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
                 "theta_range_rad": [num(c.theta_range_rad[0]), num(c.theta_range_rad[1])],
                 "tip_x_range_m": [num(c.tip_x_range_m[0]), num(c.tip_x_range_m[1])],
                 "load_avg_1min": [num(c.load_avg[0]), num(c.load_avg[1])], "wall_s": c.wall_s,
-                "worst_ticks": worst, "unconverged": unconverged, "prefetched_nodes_by_phase": by_phase, "misses": c.misses(), "notes": c.notes(), "failed": c.failed,
+                "worst_ticks": worst, "worst_unpreempted_ticks": worst_unpreempted, "unconverged": unconverged, "prefetched_nodes_by_phase": by_phase, "misses": c.misses(), "notes": c.notes(), "failed": c.failed,
             });
             let overflows = json!({
                 "capacity_drops": s.capacity_drops, "capture_overflow": s.capture_overflow,

@@ -54,7 +54,17 @@ fn check_counts(c: &CaseResult) {
     // The quantiles are ordered.
     let [p50, p99, p999, max] = c.step_quantiles();
     assert!(p50 <= p99 && p99 <= p999 && p999 <= max, "{name}");
-    assert_eq!(c.worst(1)[0].step_s, max, "{name}");
+    assert_eq!(c.worst(1, false)[0].step_s, max, "{name}");
+    // The stages are timed: inside the step, so together no longer than it.
+    for r in c.worst(3, true) {
+        let stages_s = r.stage_ns.iter().sum::<u64>() as f64 * 1e-9;
+        assert!(
+            r.cpu_wait_ns == 0 && stages_s > 0.0 && stages_s <= r.step_s,
+            "{name} tick {}: stages {stages_s} s, step {} s",
+            r.tick,
+            r.step_s
+        );
+    }
 }
 
 fn check_motion(c: &CaseResult) {
