@@ -78,6 +78,9 @@ enum Command {
         /// this many GB: bevel on 400×400 needs about 21 GB.
         #[arg(long)]
         max_column_gb: Option<f64>,
+        /// Also write every tick of every case (counters and stage times) as CSV to this file.
+        #[arg(long)]
+        ticks_csv: Option<PathBuf>,
     },
 }
 
@@ -88,20 +91,23 @@ fn main() -> ExitCode {
         .init();
     let result = match Cli::parse().command {
         Command::Bench { quick, json, plot, sizes, no_scipy } => run_bench(bench::BenchOptions { quick, sizes, plot, no_scipy }, json),
-        Command::Motions { quick, json, sizes, motions, contact, spacing_mm, prefetch_per_tick, json_out, max_column_gb } => run_motions(
-            motions::MotionOptions {
-                quick,
-                sizes,
-                motions,
-                contact,
-                spacing_m: spacing_mm * 1e-3,
-                prefetch_nodes_per_tick: prefetch_per_tick,
-                progress: true,
-                max_column_bytes: max_column_gb.map(|gb| (gb * 1e9) as usize),
-            },
-            json,
-            json_out,
-        ),
+        Command::Motions { quick, json, sizes, motions, contact, spacing_mm, prefetch_per_tick, json_out, max_column_gb, ticks_csv } => {
+            run_motions(
+                motions::MotionOptions {
+                    quick,
+                    sizes,
+                    motions,
+                    contact,
+                    spacing_m: spacing_mm * 1e-3,
+                    prefetch_nodes_per_tick: prefetch_per_tick,
+                    progress: true,
+                    max_column_bytes: max_column_gb.map(|gb| (gb * 1e9) as usize),
+                },
+                json,
+                json_out,
+                ticks_csv,
+            )
+        }
         Command::Identify { command } => identify::run(command),
     };
     match result {
@@ -123,8 +129,11 @@ fn run_bench(opts: bench::BenchOptions, json: bool) -> Result<()> {
     Ok(())
 }
 
-fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBuf>) -> Result<()> {
+fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBuf>, ticks_csv: Option<PathBuf>) -> Result<()> {
     let suite = motions::run_suite(&opts)?;
+    if let Some(path) = ticks_csv {
+        std::fs::write(&path, motions::ticks_csv(&suite)).with_context(|| format!("cannot write {}", path.display()))?;
+    }
     let value = motions::to_json(&suite, &opts);
     if let Some(path) = json_out {
         std::fs::write(&path, serde_json::to_string_pretty(&value)?).with_context(|| format!("cannot write {}", path.display()))?;

@@ -954,6 +954,51 @@ fn record_json(r: &TickRecord, phase: &str) -> Value {
     })
 }
 
+/// Every tick of every case as CSV: the case, the tick and its phase, the step time, the
+/// counters of [`TickRecord`] and the time of each stage ([`needlesim_core::sim::STAGE_NAMES`]).
+pub fn ticks_csv(suite: &Suite) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::from(
+        "motion,mesh,tick,phase,step_us,cpu_wait_us,page_faults,columns_before,active_set_iterations,pivots,rotations,stick_slip_changes,captures,releases,deferrals,shape_passes,d",
+    );
+    for name in needlesim_core::sim::STAGE_NAMES {
+        let _ = write!(out, ",{}_us", name.replace(' ', "_"));
+    }
+    out.push('\n');
+    for c in &suite.cases {
+        let script = suite.scripts.iter().find(|s| s.motion == c.motion);
+        for r in &c.ticks {
+            let phase = script.map_or("", |sc| sc.phase_of(r.tick));
+            let _ = write!(
+                out,
+                "{},{}x{},{},{phase},{:.3},{:.3},{},{},{},{},{},{},{},{},{},{},{}",
+                c.motion.name(),
+                c.n,
+                c.n,
+                r.tick,
+                r.step_s * 1e6,
+                r.cpu_wait_ns as f64 * 1e-3,
+                r.page_faults,
+                r.columns_before,
+                r.active_set_iterations,
+                r.pivots,
+                r.rotations,
+                r.stick_slip_changes,
+                r.captures,
+                r.releases,
+                r.deferrals,
+                r.shape_passes,
+                r.d
+            );
+            for ns in r.stage_ns {
+                let _ = write!(out, ",{:.3}", ns as f64 * 1e-3);
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
 /// The suite as one JSON object.
 pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
     let script_of = |m: Motion| suite.scripts.iter().find(|s| s.motion == m);
