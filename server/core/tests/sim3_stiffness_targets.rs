@@ -372,3 +372,41 @@ fn bad_targets_are_refused_naming_them() {
     }
     assert!(Simulation3::new(model, params_with(vec![good; MAX_TARGETS])).is_ok());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Timing (not asserted): `cargo test --release -p needlesim-core --test sim3_stiffness_targets
+// -- --ignored --nocapture timing`.
+
+fn percentiles(mut v: Vec<f64>) -> String {
+    v.sort_by(f64::total_cmp);
+    let q = |p: f64| v[((v.len() - 1) as f64 * p).round() as usize];
+    format!("n {} p50 {:.2} p99 {:.2} p99.9 {:.2} max {:.2} µs", v.len(), q(0.5), q(0.99), q(0.999), v[v.len() - 1])
+}
+
+/// Step time with [`MAX_TARGETS`] targets and the time of a warm wrench-stiffness call, over the
+/// insertion, hold, turn and withdrawal on the 21³ cube phantom.
+#[test]
+#[ignore = "timing: run in release, on a quiet machine"]
+fn timing_of_the_stiffness_and_of_steps_with_targets() {
+    let targets: Vec<Target3> = (0..MAX_TARGETS)
+        .map(|k| Target3 { centre_m: [0.03 + 0.003 * k as f64, 0.05, 0.02 + 0.004 * k as f64], radius_m: 0.002, name_idx: k })
+        .collect();
+    let mut sim = Simulation3::new(box_phantom3(21), params_with(targets)).unwrap();
+    let (mut t_step, mut t_k, mut max_points) = (Vec::new(), Vec::new(), 0);
+    for (_, pose) in poses(sim.pose()) {
+        let t0 = std::time::Instant::now();
+        sim.step(pose).unwrap();
+        t_step.push(t0.elapsed().as_secs_f64() * 1e6);
+        let n = sim.output().contacts.len();
+        max_points = max_points.max(n);
+        if n > 0 {
+            let t0 = std::time::Instant::now();
+            std::hint::black_box(sim.wrench_stiffness().unwrap());
+            t_k.push(t0.elapsed().as_secs_f64() * 1e6);
+        }
+        sim.prefetch_columns(usize::MAX).unwrap();
+    }
+    println!("21³ phantom, {MAX_TARGETS} targets, up to {max_points} points");
+    println!("step: {}", percentiles(t_step));
+    println!("wrench_stiffness: {}", percentiles(t_k));
+}

@@ -44,7 +44,7 @@ pub struct Sim3Params {
 impl Sim3Params {
     /// The defaults for a needle of `needle_length_m` in a one-region tissue: 2 mm spacing,
     /// the phantom's [`RegionNeedleParams::default`], 1 kHz, 256 contacts, 20 mm lookahead,
-    /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes.
+    /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes, no targets.
     pub fn new(needle_length_m: f64, initial_pose: BasePose3) -> Self {
         Self {
             needle_length_m,
