@@ -46,6 +46,10 @@
 //! evicted). The tissue factorisation is never touched. All per-step storage is sized in
 //! [`Simulation3::new`]: a warm step allocates nothing. [`Simulation3::snapshot`] gives the static
 //! problem the last step solved in the terms of the 3D exchange format's `points`.
+//!
+//! Besides: the stiffness of the base wrench for a device's local model
+//! ([`Simulation3::wrench_stiffness`], [`stiffness`]), and targets moving with the tissue, hit
+//! or miss latched, updated after stage 7 ([`targets`]).
 
 mod params;
 mod pose;

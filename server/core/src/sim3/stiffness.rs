@@ -47,7 +47,7 @@
 //! cached node columns, sixteen node blocks each) and, per column of $K$, two products with $W$
 //! and one with $H_{PP}$: $O(d^2)$ for $d = 3m$, in scratch sized in
 //! [`Simulation3::new`] ($(3\,m_{max})^2$ doubles for $W$, as much as the solver's $H$): a warm
-//! call allocates nothing. The compliance is read through [`super::targets::point_block`].
+//! call allocates nothing. The compliance is read through `targets::point_block` (one routing point, [`crate::sim3::targets`]).
 
 use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedError};

@@ -10,7 +10,7 @@
 //! are the point forces $f_j$). $C_{ab}$ (node $a$'s displacement per unit force on node $b$)
 //! comes from node $b$'s cached columns, which every working point's nodes have: no column is
 //! computed, $O(d)$ per target per tick. All compliance reads of the 3D simulation's targets and
-//! wrench stiffness go through [`node_block`], the one place to route them to another store; a
+//! wrench stiffness go through `node_block`, the one place to route them to another store; a
 //! store that keeps only some rows of each column (rather than dense columns) must keep the
 //! rows of the targets' nodes (pin them), or the displaced centres cannot be computed.
 //!
