@@ -410,3 +410,22 @@ fn timing_of_the_stiffness_and_of_steps_with_targets() {
     println!("step: {}", percentiles(t_step));
     println!("wrench_stiffness: {}", percentiles(t_k));
 }
+
+/// Targets observe only: the same run with and without them gives the same wrench and points
+/// bit for bit, and the stiffness call changes nothing either.
+#[test]
+fn targets_and_the_stiffness_change_nothing_in_the_simulation() {
+    let t = Target3 { centre_m: [ENTRY[0], ENTRY[1], 0.07], radius_m: 0.002, name_idx: 0 };
+    let mut with = Simulation3::new(box_phantom3(7), params_with(vec![t; 4])).unwrap();
+    let mut without = Simulation3::new(box_phantom3(7), params_with(Vec::new())).unwrap();
+    for (k, (_, pose)) in poses(with.pose()).into_iter().enumerate().take(2500) {
+        step(&mut with, pose);
+        step(&mut without, pose);
+        if k % 7 == 0 && !with.output().contacts.is_empty() {
+            with.wrench_stiffness().unwrap();
+        }
+        let (a, b) = (with.output(), without.output());
+        assert_eq!((a.base_force_n, a.base_torque_nm, &a.contacts), (b.base_force_n, b.base_torque_nm, &b.contacts), "tick {k}");
+    }
+    assert!(with.stats().captures >= 2);
+}
