@@ -46,9 +46,15 @@
 //! evicted). The tissue factorisation is never touched. All per-step storage is sized in
 //! [`Simulation3::new`]: a warm step allocates nothing. [`Simulation3::snapshot`] gives the static
 //! problem the last step solved in the terms of the 3D exchange format's `points`.
+//!
+//! Besides: the stiffness of the base wrench for a device's local model
+//! ([`Simulation3::wrench_stiffness`], [`stiffness`]), and targets moving with the tissue, hit
+//! or miss latched, updated after stage 7 ([`targets`]).
 
 mod params;
 mod pose;
+pub mod stiffness;
+pub mod targets;
 
 use std::sync::Arc;
 
@@ -62,6 +68,8 @@ use crate::needle::RegionNeedleParams;
 
 pub use params::Sim3Params;
 pub use pose::{BasePose3, PoseError, UNIT_QUATERNION_TOL, unit_axis};
+pub use stiffness::WrenchStiffness3;
+pub use targets::{MAX_TARGETS, Target3, TargetOut3, TargetState3, TargetsOut3};
 
 /// Fixed-point iterations locating the material point at a deformed position.
 const LOCATE_ITERATIONS: usize = 8;
@@ -178,6 +186,9 @@ pub struct StepOutput3 {
     pub approaching: Vec<usize>,
     pub active_set_iterations: usize,
     pub converged: bool,
+    /// The targets ([`Sim3Params::targets`]): displaced centres, distances, latched states
+    /// ([`targets`]).
+    pub targets: TargetsOut3,
 }
 
 /// One point of [`Snapshot3`], in the exchange format's terms (`points`: `x`, `frame`, `ut`,
@@ -278,13 +289,18 @@ pub struct Simulation3 {
     column_buf: Vec<f64>,
     column_scratch: TetColumnScratch,
     out: StepOutput3,
+    /// Scratch of [`Simulation3::wrench_stiffness`].
+    stiffness: stiffness::StiffnessScratch,
+    /// The targets' located centres and latch bookkeeping.
+    targets: targets::TargetTracker,
 }
 
 impl Simulation3 {
     /// Validates the parameters against the model and sizes all per-step storage.
     ///
     /// Errors: [`SimError3::InvalidParams`] for a parameter out of range
-    /// ([`Sim3Params::validate`]) or a number of region parameters other than the mesh's.
+    /// ([`Sim3Params::validate`]), a number of region parameters other than the mesh's, or a
+    /// target whose centre lies outside the mesh (naming it).
     pub fn new(model: Arc<TetTissueModel>, params: Sim3Params) -> Result<Self, SimError3> {
         let mesh = model.mesh();
         params.validate(mesh.region_names().len().max(1)).map_err(SimError3::InvalidParams)?;
@@ -296,7 +312,8 @@ impl Simulation3 {
         let mut cache = ComplianceCache3::for_nodes(n_nodes);
         cache.reserve(params.max_cached_nodes.min(n_nodes) + 16);
         let pose = params.initial_pose;
-        let out = StepOutput3 {
+        let targets = targets::TargetTracker::new(&model, &params.targets)?;
+        let mut out = StepOutput3 {
             tick: 0,
             time_s: 0.0,
             pose,
@@ -310,7 +327,9 @@ impl Simulation3 {
             approaching: Vec::with_capacity(MAX_APPROACHING),
             active_set_iterations: 0,
             converged: true,
+            targets: TargetsOut3::default(),
         };
+        targets.initial_output(out.tip_m, pose.axis(), &mut out.targets);
         Ok(Self {
             tet_diam_m,
             sample_step_m: 0.25 * min_diam,
@@ -328,6 +347,8 @@ impl Simulation3 {
             column_buf: vec![0.0; 9 * n_nodes],
             column_scratch: model.column_scratch(),
             out,
+            stiffness: stiffness::StiffnessScratch::with_capacity(cap),
+            targets,
             model,
             params,
         })
@@ -502,6 +523,7 @@ impl Simulation3 {
         self.solver.solve();
         // 7. Output.
         self.write_output(&frame, clamped, iterations, converged);
+        self.update_targets(&frame);
         self.tick += 1;
         Ok(&self.out)
     }

@@ -3,6 +3,7 @@
 use crate::needle::RegionNeedleParams;
 
 use super::pose::BasePose3;
+use super::targets::{MAX_TARGETS, Target3};
 
 /// Everything the 3D simulation needs besides the tissue model.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,12 +36,15 @@ pub struct Sim3Params {
     /// Nodes whose columns the cache holds at most; inserting past it evicts the least recently
     /// used node not in use.
     pub max_cached_nodes: usize,
+    /// Targets, spheres moving with the tissue (at most [`MAX_TARGETS`]; default none):
+    /// [`crate::sim3::targets`].
+    pub targets: Vec<Target3>,
 }
 
 impl Sim3Params {
     /// The defaults for a needle of `needle_length_m` in a one-region tissue: 2 mm spacing,
     /// the phantom's [`RegionNeedleParams::default`], 1 kHz, 256 contacts, 20 mm lookahead,
-    /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes.
+    /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes, no targets.
     pub fn new(needle_length_m: f64, initial_pose: BasePose3) -> Self {
         Self {
             needle_length_m,
@@ -54,6 +58,7 @@ impl Sim3Params {
             max_base_step_rad: 0.05,
             max_active_set_iterations: 20,
             max_cached_nodes: 4096,
+            targets: Vec::new(),
         }
     }
 
@@ -84,6 +89,25 @@ impl Sim3Params {
         }
         for (k, r) in self.regions.iter().enumerate() {
             r.validate(&format!("{k}"))?;
+        }
+        self.validate_targets()?;
+        Ok(())
+    }
+
+    /// The targets: at most [`MAX_TARGETS`], finite centres, finite radii > 0 (the message names
+    /// the target's index). Whether a centre lies in the mesh is checked by
+    /// [`crate::sim3::Simulation3::new`].
+    fn validate_targets(&self) -> Result<(), String> {
+        if self.targets.len() > MAX_TARGETS {
+            return Err(format!("targets: {} given, at most {MAX_TARGETS}", self.targets.len()));
+        }
+        for (k, t) in self.targets.iter().enumerate() {
+            if !t.centre_m.iter().all(|v| v.is_finite()) {
+                return Err(format!("targets[{k}]: centre_m = {:?} must be finite", t.centre_m));
+            }
+            if !(t.radius_m.is_finite() && t.radius_m > 0.0) {
+                return Err(format!("targets[{k}]: radius_m = {} must be finite and > 0", t.radius_m));
+            }
         }
         Ok(())
     }
