@@ -3,7 +3,8 @@
 //! and rebuilds $H$ from scratch when it does not.
 //!
 //! Every [`param_limits::HYBRID_CHECK_EVERY_TICKS`] ticks, one working contact $a$ (round robin)
-//! is checked against the forces and displacements the tick wrote out:
+//! is checked against the solver's own solution (its prescribed values and the unknowns its last
+//! solve gave, in world components):
 //! $$r_a = u_a - \sum_{b \in \mathcal{W}} W_{ab} f_b, \qquad
 //!   \rho_a = \frac{\lVert r_a \rVert_\infty}{\max\big(\lVert u_a \rVert_\infty,\ \max_i \sum_b \lvert W_{ab}\rvert_{i\cdot} \lvert f_b \rvert\big)},$$
 //! with $W_{ab}$ the world compliance block of the two contacts (from the column cache), so a
@@ -18,6 +19,8 @@
 //! [`param_limits::HYBRID_DRIFT_TOL`]: super::param_limits::HYBRID_DRIFT_TOL
 
 use crate::compliance::ComplianceCache;
+use crate::ids::{Axis, Slot};
+use crate::mixed::Condition;
 
 use super::param_limits::HYBRID_DRIFT_TOL;
 use super::state::WorkingSet;
@@ -31,24 +34,45 @@ pub(super) struct DriftCheck {
     pub max_residual: f64,
     /// The rebuild threshold ([`HYBRID_DRIFT_TOL`] unless a test set another).
     pub tol: f64,
+    /// The recomputed unknowns $y = H x$, capacity the solver's DOFs.
+    pub y: Vec<f64>,
 }
 
-impl Default for DriftCheck {
-    fn default() -> Self {
-        Self { cursor: 0, max_residual: 0.0, tol: HYBRID_DRIFT_TOL }
+impl DriftCheck {
+    /// A check for a working set of up to `cap` contacts (2 DOFs each).
+    pub fn new(cap: usize) -> Self {
+        Self { cursor: 0, max_residual: 0.0, tol: HYBRID_DRIFT_TOL, y: Vec::with_capacity(2 * cap) }
     }
 }
 
 /// The relative residual $\rho_a$ of contact `slot_idx` (see the module documentation); `None`
 /// when a block is not cached (a contact whose columns were evicted: not expected, the cache
 /// keeps working contacts' columns) or the row carries nothing (no force, no displacement).
-pub(super) fn row_residual(ws: &WorkingSet, cache: &ComplianceCache, slot_idx: usize) -> Option<f64> {
-    let contacts = ws.solver.contacts();
+/// The unknowns are recomputed as $y = H x$ from the prescribed values into `y` (capacity: the
+/// solver's DOFs), so a prescribed value changed after the last solve (the bevel force's update)
+/// does not read as drift; $O(d^2)$.
+pub(super) fn row_residual(ws: &WorkingSet, cache: &ComplianceCache, slot_idx: usize, y: &mut Vec<f64>) -> Option<f64> {
+    let solver = &ws.solver;
+    let contacts = solver.contacts();
     let a = contacts.get(slot_idx)?;
+    let d = solver.n_dofs();
+    let x = |k: usize| solver.prescribed_value(Slot::new(k / 2), Axis::of_local_dof::<2>(k));
+    y.clear();
+    y.extend((0..d).map(|i| (0..d).map(|j| solver.hybrid(i, j) * x(j)).sum::<f64>()));
+    // Local (u, f) of DOF k: the prescribed one from x, the other from y.
+    let local = |k: usize| match solver.condition(Slot::new(k / 2), Axis::of_local_dof::<2>(k)) {
+        Condition::Displacement => (x(k), y[k]),
+        Condition::Force => (y[k], x(k)),
+    };
+    let world = |slot: usize, v: [f64; 2]| {
+        let fr = solver.frame(Slot::new(slot));
+        [fr[0][0] * v[0] + fr[1][0] * v[1], fr[0][1] * v[0] + fr[1][1] * v[1]]
+    };
     let mut wf = [0.0f64; 2];
     let mut scale = [0.0f64; 2];
-    for (b, f) in contacts.iter().zip(&ws.f_world) {
+    for (k, b) in contacts.iter().enumerate() {
         let w = cache.contact_block(a, b)?;
+        let f = world(k, [local(2 * k).1, local(2 * k + 1).1]);
         for r in 0..2 {
             for c in 0..2 {
                 wf[r] += w[r][c] * f[c];
@@ -56,7 +80,7 @@ pub(super) fn row_residual(ws: &WorkingSet, cache: &ComplianceCache, slot_idx: u
             }
         }
     }
-    let u = ws.u_world[slot_idx];
+    let u = world(slot_idx, [local(2 * slot_idx).0, local(2 * slot_idx + 1).0]);
     let denom = scale[0].max(scale[1]).max(u[0].abs()).max(u[1].abs());
     if denom <= 0.0 || !denom.is_finite() {
         return None;
@@ -87,7 +111,7 @@ pub(super) fn check_one(ws: &mut WorkingSet, cache: &ComplianceCache, drift: &mu
     }
     let slot_idx = drift.cursor % d;
     drift.cursor = (slot_idx + 1) % d;
-    let Some(rho) = row_residual(ws, cache, slot_idx) else { return Checked::Nothing };
+    let Some(rho) = row_residual(ws, cache, slot_idx, &mut drift.y) else { return Checked::Nothing };
     drift.max_residual = drift.max_residual.max(rho);
     if rho <= drift.tol {
         return Checked::Fine;
@@ -257,15 +281,21 @@ mod tests {
         assert_eq!(a.stats().hybrid_rebuilds, 0);
         assert!(worst < 1e-9, "forces differ by {worst:e} after rebuilds");
 
-        // A force off by 1e-6 of its size in the written-out state is a residual of that size.
+        // Compliance the hybrid matrix no longer matches (as when H drifts from C): one node's
+        // columns scaled by 1 + 1e-5 is a residual of about that size.
         let ws = &mut a.state.ws;
         assert!(ws.len() > 2, "the session ended with {} contacts", ws.len());
-        let before = row_residual(ws, &a.state.cache, 1).unwrap();
+        let mut y = Vec::new();
+        let before = row_residual(ws, &a.state.cache, 1, &mut y).unwrap();
         assert!(before < 1e-9, "{before:e}");
-        ws.f_world[1][0] *= 1.0 + 1e-5;
-        let after = row_residual(ws, &a.state.cache, 1).unwrap();
+        let node = ws.solver.contacts()[1].terms().next().unwrap().0.index();
+        let cache = &mut a.state.cache;
+        let mut columns: Vec<f64> = (0..2).flat_map(|c| cache.column(node, c).unwrap().to_vec()).collect();
+        columns.iter_mut().for_each(|v| *v *= 1.0 + 1e-5);
+        cache.insert(node, &columns);
+        let after = row_residual(ws, &a.state.cache, 1, &mut y).unwrap();
         assert!(after > 1e-7, "a perturbed force gave a residual of only {after:e}");
-        let mut check = DriftCheck { cursor: 1, ..DriftCheck::default() };
+        let mut check = DriftCheck { cursor: 1, ..DriftCheck::new(48) };
         assert_eq!(check_one(ws, &a.state.cache, &mut check), Checked::Rebuilt);
         assert_eq!(check.cursor, 2 % ws.len());
     }

@@ -170,7 +170,7 @@ impl Simulation {
             diverged: None,
             updates_at_tick_start: 0,
             columns_lru: state::ColumnLru::new(n_nodes),
-            drift: drift::DriftCheck::default(),
+            drift: drift::DriftCheck::new(cap),
         };
         let scratch = Scratch::new(&model, &params);
         Ok(Self { model, params, setup, state, scratch, out, stage_clock: None })
