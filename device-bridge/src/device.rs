@@ -44,10 +44,14 @@ pub trait Device {
 
 /// A trajectory CSV, linearly interpolated (orientations by slerp), optionally replayed in a
 /// loop: the 2D `t_s,x_m,y_m,theta_rad` or the 3D `t_s,x_m,y_m,z_m,qw,qx,qy,qz` (both parsed by
-/// needlesim-trajectory, chosen by the header line).
+/// needlesim-trajectory, chosen by the header line), either with an optional last column
+/// `buttons` (the button mask, an unsigned integer, held from its row until the next: a step, not
+/// interpolated).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
     inner: Inner,
+    /// `(t_s, buttons)` per row when the CSV has the `buttons` column, else empty.
+    buttons: Vec<(f64, u32)>,
     /// Replay from the start after the end (else hold the last pose).
     pub looped: bool,
 }
@@ -72,12 +76,27 @@ impl Trajectory {
     pub fn parse(text: &str, name: &str, looped: bool) -> Result<Self> {
         let header = text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#')).unwrap_or("");
         let compact: String = header.chars().filter(|c| !c.is_whitespace()).collect();
+        let (poses, buttons) = if compact.ends_with(",buttons") { split_buttons(text, name)? } else { (text.to_owned(), vec![]) };
         let inner = if compact.starts_with("t_s,x_m,y_m,z_m") {
-            Inner::Spatial(needlesim_trajectory::Trajectory3::parse_csv(text).map_err(|e| anyhow!("{name}: {e}"))?)
+            Inner::Spatial(needlesim_trajectory::Trajectory3::parse_csv(&poses).map_err(|e| anyhow!("{name}: {e}"))?)
         } else {
-            Inner::Planar(needlesim_trajectory::Trajectory::parse_csv(text).map_err(|e| anyhow!("{name}: {e}"))?)
+            Inner::Planar(needlesim_trajectory::Trajectory::parse_csv(&poses).map_err(|e| anyhow!("{name}: {e}"))?)
         };
-        Ok(Self { inner, looped })
+        Ok(Self { inner, buttons, looped })
+    }
+
+    /// The button mask at `t_s` (the last row at or before it; the first row's before the start; 0
+    /// without a `buttons` column).
+    pub fn buttons_at(&self, t_s: f64) -> u32 {
+        let t = self.wrap(t_s);
+        let k = self.buttons.partition_point(|(tr, _)| *tr <= t);
+        self.buttons.get(k.saturating_sub(1)).map_or(0, |b| b.1)
+    }
+
+    /// `t_s` mapped into the trajectory's span when looped.
+    fn wrap(&self, t_s: f64) -> f64 {
+        let (t0, d) = (self.span_s().0, self.duration_s());
+        if self.looped && d > 0.0 && t_s > t0 + d { t0 + (t_s - t0).rem_euclid(d) } else { t_s }
     }
 
     /// True for a 3D trajectory.
@@ -101,11 +120,7 @@ impl Trajectory {
     /// Pose and velocity (slope of the segment: linear, m/s, and angular, rad/s, world frame) at
     /// time `t_s` (before the start: the first pose, at rest).
     pub fn sample(&self, t_s: f64) -> (Pose6, [f64; 6]) {
-        let (t0, d) = (self.span_s().0, self.duration_s());
-        let mut t = t_s;
-        if self.looped && d > 0.0 && t > t0 + d {
-            t = t0 + (t - t0).rem_euclid(d);
-        }
+        let t = self.wrap(t_s);
         match &self.inner {
             Inner::Planar(tr) => {
                 let (q, v) = tr.pose_and_velocity_at(t);
@@ -117,6 +132,35 @@ impl Trajectory {
             }
         }
     }
+}
+
+/// Splits the last column, `buttons`, off a trajectory CSV: (the CSV without it, `(t_s, buttons)`
+/// per data row). Blank and `#` lines are kept as they are (so line numbers in the pose parser's
+/// errors stay right); a row's t_s is its first field (the pose parser checks it), its buttons an
+/// unsigned integer (else an error naming the line).
+fn split_buttons(text: &str, name: &str) -> Result<(String, Vec<(f64, u32)>)> {
+    let mut out = String::with_capacity(text.len());
+    let mut buttons = Vec::new();
+    let mut header_seen = false;
+    for (i, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            out.push_str(line);
+        } else {
+            let (rest, last) = line.rsplit_once(',').ok_or_else(|| anyhow!("{name}: trajectory line {}: no buttons column", i + 1))?;
+            out.push_str(rest);
+            if header_seen {
+                let b = last.trim().parse::<u32>().map_err(|_| {
+                    anyhow!("{name}: trajectory line {}: column buttons: `{}` is not an unsigned integer", i + 1, last.trim())
+                })?;
+                let t_s = rest.split(',').next().and_then(|v| v.trim().parse::<f64>().ok()).unwrap_or(f64::NAN);
+                buttons.push((t_s, b));
+            }
+            header_seen = true;
+        }
+        out.push('\n');
+    }
+    Ok((out, buttons))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -146,7 +190,7 @@ impl Device for ScriptedDevice {
     }
     fn read_pose(&mut self, t_s: f64) -> Result<DeviceState> {
         let (pose, _) = self.traj.sample(t_s);
-        Ok(DeviceState { pose, buttons: 0 })
+        Ok(DeviceState { pose, buttons: self.traj.buttons_at(t_s) })
     }
     fn write_force(&mut self, wrench: [f64; 6]) -> Result<()> {
         self.last_force = wrench;
@@ -257,7 +301,7 @@ impl Device for VirtualOperator {
         if !s.q.position_m.iter().chain(&s.q.orientation).chain(&s.v).all(|x| x.is_finite()) {
             bail!("virtual operator diverged at t = {t_s} s (q = {:?}, v = {:?})", s.q, s.v);
         }
-        Ok(DeviceState { pose: s.q, buttons: 0 })
+        Ok(DeviceState { pose: s.q, buttons: self.traj.buttons_at(t_s) })
     }
     fn write_force(&mut self, wrench: [f64; 6]) -> Result<()> {
         self.state.rendered = wrench;
@@ -525,6 +569,21 @@ mod tests {
         assert!((v[5] - std::f64::consts::FRAC_PI_2).abs() < 1e-12 && (v[2] - 0.03).abs() < 1e-15, "{v:?}");
         let e = Trajectory::parse("t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,0,2,0,0,0\n", "bad3.csv", false).unwrap_err().to_string();
         assert!(e.starts_with("bad3.csv: trajectory line 2: the quaternion"), "{e}");
+    }
+
+    #[test]
+    fn a_buttons_column_is_read_in_3d_and_in_2d() {
+        let text = "t_s,x_m,y_m,z_m,qw,qx,qy,qz,buttons\n# press at 1 s\n0,0,0,0,1,0,0,0,0\n1,0.01,0,0,1,0,0,0,1\n2,0.02,0,0,1,0,0,0,0\n";
+        let mut d = ScriptedDevice::new(Trajectory::parse(text, "b3.csv", false).unwrap());
+        let at = |d: &mut ScriptedDevice, t: f64| d.read_pose(t).unwrap();
+        assert_eq!((at(&mut d, 0.5).buttons, at(&mut d, 1.0).buttons, at(&mut d, 1.9).buttons, at(&mut d, 2.5).buttons), (0, 1, 1, 0));
+        assert!((at(&mut d, 1.5).pose.position_m[0] - 0.015).abs() < 1e-15);
+        let t2 = Trajectory::parse("t_s,x_m,y_m,theta_rad,buttons\n0,0,0,0,2\n1,0.01,0,0,0\n", "b2.csv", false).unwrap();
+        assert_eq!((t2.buttons_at(-1.0), t2.buttons_at(0.2), t2.buttons_at(1.0)), (2, 2, 0));
+        let e = Trajectory::parse("t_s,x_m,y_m,z_m,qw,qx,qy,qz,buttons\n0,0,0,0,1,0,0,0,x\n", "bad.csv", false).unwrap_err().to_string();
+        assert_eq!(e, "bad.csv: trajectory line 2: column buttons: `x` is not an unsigned integer");
+        // Without the column: no buttons.
+        assert_eq!(Trajectory::parse(TRAJ3, "t3", false).unwrap().buttons_at(0.5), 0);
     }
 
     #[test]

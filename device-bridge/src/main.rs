@@ -14,6 +14,16 @@
 //! ramps the force out, the zero wrench is written, and the bridge exits with status 1 and a
 //! message naming the cause.
 //!
+//! # 2D and 3D sessions
+//!
+//! Everything in the loop is 6-DOF (`render.rs`, `device.rs`): the channel's header says the
+//! session's dimension, and a 2D session is the same path restricted to the plane (the channel
+//! carries its pose and wrench through the planar embedding of `needlesim_channel::spatial`). Only
+//! the outputs differ: for a 2D session the report's `final_pose` is `[x, y, θ]` and its
+//! `stiffness` the 3 × 3 `∂(Fx, Fy, τ)/∂(x, y, θ)`, and the trace has the 2D columns; for a 3D
+//! one `final_pose` is `[x, y, z, qw, qx, qy, qz]`, `stiffness` the 6 × 6 row-major, and the trace
+//! the 6-DOF columns. The report's `dimension` says which. The remote link serves 2D sessions.
+//!
 //! # Phase-aligned with the session's ticks (`--phase-lead-us`, shared memory only)
 //!
 //! The session publishes its tick phase on the channel (tick k due at `origin + k·period` on
@@ -162,7 +172,9 @@ struct Cli {
     /// Print the report as one JSON object on stdout (else a summary on stderr).
     #[arg(long)]
     json: bool,
-    /// Write a CSV row per period (t_s, pose, server force, rendered wrench, gain) to this file.
+    /// Write a CSV row per period (t_s, pose, server force, rendered wrench, gain) to this file: for a
+    /// 2D session `x_m,y_m,theta_rad` and `(Fx, Fy, τ)`; for a 3D one `x_m,y_m,z_m,qw,qx,qy,qz` and
+    /// the six wrench components (N, N·m, world).
     #[arg(long, value_name = "CSV")]
     trace: Option<PathBuf>,
 }

@@ -983,3 +983,58 @@ fn the_bridge_refuses_a_channel_of_the_previous_layout() {
     assert!(err.contains("layout version 2 (2D pose and wrench, tick phase), this bridge speaks 3 (6-DOF pose"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The virtual operator (a 6-axis spring–damper hand) follows a 3D path against the fake 3D tissue
+/// through the real bridge and comes to rest where, on every axis, its grip balances the rendered
+/// wrench: `kp_i e_i + w_i = 0`, with `e = δ(q_ref, q)` the pose error (default grip 300 N/m,
+/// 0.3 N·m/rad; at rest the damping terms vanish).
+#[test]
+fn virtual_operator_in_3d_rests_where_its_grip_balances_the_rendered_wrench() {
+    let dir = temp_dir("virtual3d");
+    let chan = dir.join("session.shm");
+    let traj = dir.join("traj3.csv");
+    let (s, c) = (0.05f64.sin(), 0.05f64.cos());
+    std::fs::write(&traj, format!("t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n0.5,0.003,-0.002,0.004,{c},0,{s},0\n")).unwrap();
+    let trace = dir.join("trace.csv");
+    let mut server = DeviceChannel::create_with_dimension(&chan, Dimension::Three).unwrap();
+    let quit = Arc::new(AtomicBool::new(false));
+    let q2 = quit.clone();
+    let session = std::thread::spawn(move || {
+        let r = fake_session_3d(&mut server, &q2);
+        (server, r)
+    });
+    let out = bridge(&[
+        "--channel",
+        chan.to_str().unwrap(),
+        "--device",
+        "virtual",
+        "--trajectory",
+        traj.to_str().unwrap(),
+        "--seconds",
+        "2.5",
+        "--max-force-n",
+        "1000",
+        "--max-torque-nm",
+        "1000",
+        "--json",
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    quit.store(true, Ordering::Relaxed);
+    let _ = session.join().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json = String::from_utf8(out.stdout).unwrap();
+    eprintln!("{json}");
+    let rows = read_trace3(&trace);
+    let last = rows.last().unwrap();
+    let e = pose_delta([0.003, -0.002, 0.004], [c, 0.0, s, 0.0], last.p, last.q);
+    let kp = [300.0, 300.0, 300.0, 0.3, 0.3, 0.3];
+    for i in 0..6 {
+        let (grip, w) = (kp[i] * e[i], last.wrench[i]);
+        let scale = if i < 3 { 0.01 } else { 1e-4 };
+        assert!((grip + w).abs() < 0.05 * w.abs() + scale, "axis {i}: grip {grip} vs rendered {w} (pose error {e:?})");
+    }
+    // The tissue pushed it off the path (so the balance above is not trivially 0 = 0).
+    assert!(last.wrench[..3].iter().map(|v| v * v).sum::<f64>().sqrt() > 0.3, "{:?}", last.wrench);
+    let _ = std::fs::remove_dir_all(&dir);
+}
