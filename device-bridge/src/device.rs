@@ -477,7 +477,11 @@ impl Device for PluginDevice {
                 let code = unsafe { read_pose6(self.dev, pose.position_m.as_mut_ptr(), pose.orientation.as_mut_ptr(), &mut buttons) };
                 if code == 0 {
                     pose.orientation = quat_normalize(pose.orientation).ok_or_else(|| {
-                        anyhow!("plug-in {}: nsd_read_pose6 gave the orientation {:?}, not a rotation", self.path.display(), pose.orientation)
+                        anyhow!(
+                            "plug-in {}: nsd_read_pose6 gave the orientation {:?}, not a rotation",
+                            self.path.display(),
+                            pose.orientation
+                        )
                     })?;
                 }
                 (code, "nsd_read_pose6", pose)

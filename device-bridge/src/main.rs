@@ -285,8 +285,9 @@ impl Report {
         } else {
             self.final_pose.position_m.iter().chain(&self.final_pose.orientation).copied().collect()
         };
-        let stiffness: Option<Vec<f64>> =
-            self.last_stiffness.map(|k| if planar { restrict_planar_stiffness(&k).to_vec() } else { k.iter().flatten().copied().collect() });
+        let stiffness: Option<Vec<f64>> = self
+            .last_stiffness
+            .map(|k| if planar { restrict_planar_stiffness(&k).to_vec() } else { k.iter().flatten().copied().collect() });
         if json {
             println!(
                 "{{\"device\":{},\"periods\":{},\"missed_periods\":{},\"fresh_forces\":{},\"watchdog_periods\":{},\"limited_periods\":{},\

@@ -427,8 +427,18 @@ mod tests {
     #[test]
     fn local_model_renders_the_6x6_for_a_6dof_offset() {
         let mut rnd = rng(3);
-        let k: [[f64; 6]; 6] =
-            std::array::from_fn(|r| std::array::from_fn(|c| rnd() * if r < 3 { if c < 3 { 500.0 } else { 2.0 } } else if c < 3 { 2.0 } else { 0.05 }));
+        let k: [[f64; 6]; 6] = std::array::from_fn(|r| {
+            std::array::from_fn(|c| {
+                rnd()
+                    * if r < 3 {
+                        if c < 3 { 500.0 } else { 2.0 }
+                    } else if c < 3 {
+                        2.0
+                    } else {
+                        0.05
+                    }
+            })
+        });
         let base = Pose6 { position_m: [0.01, 0.02, -0.05], orientation: quat_normalize([0.8, 0.2, -0.4, 0.1]).unwrap() };
         let w_s = [0.3, -0.1, 0.7, 0.002, -0.001, 0.003];
         let s = ServerSample { wrench: w_s, stiffness: k, base };
@@ -529,7 +539,11 @@ mod tests {
         let p = RenderParams { coupling_k: kc, coupling_b: [0.0; 6], max_force_n: 1e9, max_torque_nm: 1e9, ..no_coupling() };
         let mut r = Renderer::new(p);
         let base = Pose6 { position_m: [0.0, 0.0, 0.1], orientation: quat_normalize([0.9, 0.1, 0.3, -0.2]).unwrap() };
-        let s = ServerSample { wrench: [0.0; 6], stiffness: std::array::from_fn(|i| std::array::from_fn(|j| if i == j { -kt[i] } else { 0.0 })), base };
+        let s = ServerSample {
+            wrench: [0.0; 6],
+            stiffness: std::array::from_fn(|i| std::array::from_fn(|j| if i == j { -kt[i] } else { 0.0 })),
+            base,
+        };
         let d = [0.001, -0.002, 0.0005, 0.01, -0.005, 0.02];
         let (pp, qq) = pose_apply(base.position_m, base.orientation, d);
         let out = r.update(&Pose6 { position_m: pp, orientation: qq }, Some(&s));
@@ -547,7 +561,9 @@ mod tests {
         let mut r = Renderer::new(p);
         let s = ServerSample::planar([0.3, 0.2, 0.01], &[1000.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], [0.0; 3]);
         assert_eq!(update2(&mut r, [0.1, 0.1, 0.1], Some(&s)), [0.3, 0.2, 0.01]);
-        let m = |rows: [[f64; 3]; 3]| -> [[f64; 6]; 6] { std::array::from_fn(|r| std::array::from_fn(|c| if r < 3 && c < 3 { rows[r][c] } else { 0.0 })) };
+        let m = |rows: [[f64; 3]; 3]| -> [[f64; 6]; 6] {
+            std::array::from_fn(|r| std::array::from_fn(|c| if r < 3 && c < 3 { rows[r][c] } else { 0.0 }))
+        };
         assert_eq!(solve(&m([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]]), &[1.0; 6], 3), None);
         let x = solve(&m([[2.0, 0.0, 0.0], [0.0, 4.0, 1.0], [0.0, 1.0, 3.0]]), &[2.0, 5.0, 4.0, 9.0, 9.0, 9.0], 3).unwrap();
         assert!(close(x, [1.0, 1.0, 1.0, 0.0, 0.0, 0.0], 1e-14), "{x:?}");

@@ -786,7 +786,15 @@ fn scripted_3d_trajectory_renders_the_6x6_against_a_fake_3d_session() {
     let traj = dir.join("traj3.csv");
     // To 4 mm, −3 mm, 2 mm and 0.2 rad about (1, 2, 2)/3 over 1 s, then hold.
     let (s, c) = (0.1f64.sin(), 0.1f64.cos());
-    let text = format!("t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n1,0.004,-0.003,0.002,{c},{},{},{}\n2,0.004,-0.003,0.002,{c},{},{},{}\n", s / 3.0, 2.0 * s / 3.0, 2.0 * s / 3.0, s / 3.0, 2.0 * s / 3.0, 2.0 * s / 3.0);
+    let text = format!(
+        "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n1,0.004,-0.003,0.002,{c},{},{},{}\n2,0.004,-0.003,0.002,{c},{},{},{}\n",
+        s / 3.0,
+        2.0 * s / 3.0,
+        2.0 * s / 3.0,
+        s / 3.0,
+        2.0 * s / 3.0,
+        2.0 * s / 3.0
+    );
     std::fs::write(&traj, &text).unwrap();
     let trace = dir.join("trace.csv");
     let mut server = DeviceChannel::create_with_dimension(&chan, Dimension::Three).unwrap();
@@ -829,8 +837,7 @@ fn scripted_3d_trajectory_renders_the_6x6_against_a_fake_3d_session() {
     let want = needlesim_trajectory::Trajectory3::parse_csv(&text).unwrap().samples.last().unwrap().1;
     let got = last_pose.expect("the session read poses");
     assert_eq!((got.position_m, got.orientation), (want.position_m, want.quat_wxyz));
-    let final_pose: Vec<f64> =
-        json_field(&json, "final_pose").trim_matches(['[', ']']).split(',').map(|v| v.parse().unwrap()).collect();
+    let final_pose: Vec<f64> = json_field(&json, "final_pose").trim_matches(['[', ']']).split(',').map(|v| v.parse().unwrap()).collect();
     assert_eq!(final_pose, want.position_m.iter().chain(&want.quat_wxyz).copied().collect::<Vec<_>>());
     // The local model in 3D, at every pose of the path (rows at full gain).
     let rows = read_trace3(&trace);
@@ -961,7 +968,10 @@ fn plugin_abi_2_loads_and_an_unknown_version_is_refused() {
     let future = build_plugin("example_device6.c", "libexample_device_abi7.so", &["-DEXAMPLE_ABI_VERSION=7"]);
     let e = PluginDevice::open(&future, "").err().unwrap().to_string();
     assert!(
-        e.contains(&format!("plug-in {}: unknown ABI version 7 (nsd_abi_version); this bridge loads ABI 2 (6-DOF) and ABI 1 (2D)", future.display())),
+        e.contains(&format!(
+            "plug-in {}: unknown ABI version 7 (nsd_abi_version); this bridge loads ABI 2 (6-DOF) and ABI 1 (2D)",
+            future.display()
+        )),
         "{e}"
     );
 }

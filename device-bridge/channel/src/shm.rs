@@ -562,13 +562,7 @@ impl DevicePose {
     }
     fn decode(w: &[u64; POSE_WORDS]) -> Self {
         let f = |i: usize| f64::from_bits(w[i]);
-        Self {
-            t_ns: w[0],
-            position_m: [f(1), f(2), f(3)],
-            orientation: [f(4), f(5), f(6), f(7)],
-            buttons: w[8] as u32,
-            counter: w[9],
-        }
+        Self { t_ns: w[0], position_m: [f(1), f(2), f(3)], orientation: [f(4), f(5), f(6), f(7)], buttons: w[8] as u32, counter: w[9] }
     }
 }
 
@@ -582,7 +576,13 @@ impl ServerForce {
         let mut w = [0u64; FORCE_WORDS];
         w[0] = self.t_ns;
         w[1] = self.tick;
-        let floats = self.force_n.iter().chain(&self.torque_nm).chain(self.stiffness.iter().flatten()).chain(&self.base_position_m).chain(&self.base_orientation);
+        let floats = self
+            .force_n
+            .iter()
+            .chain(&self.torque_nm)
+            .chain(self.stiffness.iter().flatten())
+            .chain(&self.base_position_m)
+            .chain(&self.base_orientation);
         for (d, s) in w[2..51].iter_mut().zip(floats) {
             *d = s.to_bits();
         }
@@ -1376,7 +1376,13 @@ mod tests {
         assert!(!device.server_alive(10));
 
         for k in 1..=3u64 {
-            let pose = DevicePose { t_ns: monotonic_ns(), position_m: [0.1 * k as f64, -0.2, 0.05], orientation: crate::spatial::quat_normalize([0.5, -0.5, 0.25, 0.7]).unwrap(), buttons: 0b101, counter: 999 };
+            let pose = DevicePose {
+                t_ns: monotonic_ns(),
+                position_m: [0.1 * k as f64, -0.2, 0.05],
+                orientation: crate::spatial::quat_normalize([0.5, -0.5, 0.25, 0.7]).unwrap(),
+                buttons: 0b101,
+                counter: 999,
+            };
             assert_eq!(device.write_pose_from_device(&pose).unwrap(), k);
             let s = server.read_pose_from_rt();
             assert!(s.fresh());
@@ -1499,7 +1505,10 @@ mod tests {
         let _server2 = DeviceChannel::create(&version).unwrap();
         patch(&version, 8, &7u32.to_le_bytes());
         let msg = DeviceChannel::attach(&version).err().unwrap().to_string();
-        assert!(msg.contains(&version.display().to_string()) && msg.contains("layout version 7 (unknown to this build), this bridge speaks 3"), "{msg}");
+        assert!(
+            msg.contains(&version.display().to_string()) && msg.contains("layout version 7 (unknown to this build), this bridge speaks 3"),
+            "{msg}"
+        );
 
         let zeros = temp_path("zeros");
         std::fs::write(&zeros, [0u8; CHANNEL_SIZE as usize]).unwrap();
@@ -1541,14 +1550,13 @@ mod tests {
         let e = DeviceChannel::attach(&path).err().unwrap();
         assert!(matches!(e, ShmError::WrongVersion { found: 2, expected: 3, .. }), "{e}");
         let msg = e.to_string();
-        assert!(
-            msg.contains("layout version 2 (2D pose and wrench, tick phase), this bridge speaks 3 (6-DOF pose"),
-            "{msg}"
-        );
+        assert!(msg.contains("layout version 2 (2D pose and wrench, tick phase), this bridge speaks 3 (6-DOF pose"), "{msg}");
         // Version 1 likewise; a same-size file with another version is named too.
         old[8..12].copy_from_slice(&1u32.to_le_bytes());
         std::fs::write(&path, &old).unwrap();
-        assert!(DeviceChannel::attach(&path).err().unwrap().to_string().contains("layout version 1 (2D pose and wrench), this bridge speaks 3"));
+        assert!(
+            DeviceChannel::attach(&path).err().unwrap().to_string().contains("layout version 1 (2D pose and wrench), this bridge speaks 3")
+        );
         // A server creating over the old file re-initialises it in the new layout.
         let server = DeviceChannel::create_with_dimension(&path, Dimension::Three).unwrap();
         assert_eq!(std::fs::metadata(&path).unwrap().len(), CHANNEL_SIZE);

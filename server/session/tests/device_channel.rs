@@ -20,9 +20,7 @@ fn drive_buttons(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64, butt
     while start.elapsed().as_secs_f64() < secs {
         let a = start.elapsed().as_secs_f64() / secs;
         let y = from_y + (to_y - from_y) * a;
-        device
-            .write_pose_from_device(&DevicePose::planar(monotonic_ns(), [0.05, y, -std::f64::consts::FRAC_PI_2], buttons(a)))
-            .unwrap();
+        device.write_pose_from_device(&DevicePose::planar(monotonic_ns(), [0.05, y, -std::f64::consts::FRAC_PI_2], buttons(a))).unwrap();
         let f = device.read_force_from_device();
         if f.fresh() {
             last = f.value;
