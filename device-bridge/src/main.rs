@@ -392,7 +392,8 @@ fn open_device(cli: &Cli) -> Result<Box<dyn Device>> {
 
 /// The link to the session: the shared-memory channel or the gRPC remote link.
 enum Link {
-    Shm(DeviceEnd),
+    /// Boxed: the end holds the last force (with its 6 × 6), much larger than the remote link.
+    Shm(Box<DeviceEnd>),
     Remote(RemoteLink),
 }
 
@@ -741,7 +742,7 @@ fn main() {
     install_signal_handlers();
     // The link first: a missing or stale channel, an unreachable server never touches the device.
     let link = match (&cli.channel, &cli.server) {
-        (Some(path), _) => DeviceChannel::attach(path).map(Link::Shm).map_err(anyhow::Error::from),
+        (Some(path), _) => DeviceChannel::attach(path).map(|end| Link::Shm(Box::new(end))).map_err(anyhow::Error::from),
         (None, Some(url)) => {
             if !(cli.inject_rtt_ms.is_finite() && cli.inject_rtt_ms >= 0.0) {
                 eprintln!("needlesim-bridge: --inject-rtt-ms must be non-negative, got {}", cli.inject_rtt_ms);

@@ -310,10 +310,11 @@ pub fn solve(a: &[[f64; 6]; 6], b: &[f64; 6], n: usize) -> Option<[f64; 6]> {
         if d == 0.0 {
             return None;
         }
+        let pivot_row = m[col];
         for r in col + 1..n {
             let f = m[r][col] / d;
-            for c in col..n {
-                m[r][c] -= f * m[col][c];
+            for (v, p) in m[r][col..n].iter_mut().zip(&pivot_row[col..n]) {
+                *v -= f * p;
             }
             x[r] -= f * x[col];
         }

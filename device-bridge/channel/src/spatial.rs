@@ -163,10 +163,10 @@ mod tests {
         // ∂Fx/∂θ is K[0][5]; ∂τ/∂y is K[5][1]; nothing outside the planar axes.
         assert_eq!(k[0][5], j[2]);
         assert_eq!(k[5][1], j[7]);
-        for r in 0..6 {
-            for c in 0..6 {
+        for (r, row) in k.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
                 if !(PLANAR_AXES.contains(&r) && PLANAR_AXES.contains(&c)) {
-                    assert_eq!(k[r][c], 0.0, "K[{r}][{c}]");
+                    assert_eq!(*v, 0.0, "K[{r}][{c}]");
                 }
             }
         }
