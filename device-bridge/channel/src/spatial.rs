@@ -186,6 +186,23 @@ mod tests {
         }
     }
 
+    /// The perturbation's rotation is in world coordinates (`R ← exp(δθ̂)R`), not the body's: a base
+    /// turned 90° about z and then 0.1 rad about world x (quaternion written out by hand,
+    /// `q_x(0.1)·q_z(π/2) = (c₁c₂, s₁c₂, −s₁s₂, c₁s₂)`) differs from it by δθ = (0.1, 0, 0); in the
+    /// body frame the same turn would read (0, −0.1, 0).
+    #[test]
+    fn the_rotation_of_a_perturbation_is_in_world_coordinates() {
+        let (s1, c1) = 0.05f64.sin_cos();
+        let (s2, c2) = std::f64::consts::FRAC_PI_4.sin_cos();
+        let qb = [c2, 0.0, 0.0, s2];
+        let qa = [c1 * c2, s1 * c2, -s1 * s2, c1 * s2];
+        let d = pose_delta([0.0; 3], qa, [0.0; 3], qb);
+        let expect = [0.0, 0.0, 0.0, 0.1, 0.0, 0.0];
+        assert!(d.iter().zip(&expect).all(|(a, b)| (a - b).abs() < 1e-15), "{d:?}");
+        let (_, q) = pose_apply([0.0; 3], qb, expect);
+        assert!(q.iter().zip(&qa).all(|(a, b)| (a - b).abs() < 1e-15), "{q:?} vs {qa:?}");
+    }
+
     #[test]
     fn exp_and_log_invert_and_delta_inverts_apply() {
         let mut r = rng(17);
