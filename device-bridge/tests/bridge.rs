@@ -1048,3 +1048,59 @@ fn virtual_operator_in_3d_rests_where_its_grip_balances_the_rendered_wrench() {
     assert!(last.wrench[..3].iter().map(|v| v * v).sum::<f64>().sqrt() > 0.3, "{:?}", last.wrench);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A force-only ("3-DOF") ABI 2 plug-in in a 3D session: the bridge renders the force–position
+/// block of the 6×6 alone, `F = F_s + K_Fp (p_d − p_s)`, and never a torque.
+#[test]
+fn a_force_only_plugin_gets_the_force_position_block_and_no_torque() {
+    let dir = temp_dir("force-only");
+    let chan = dir.join("session.shm");
+    let trace = dir.join("trace.csv");
+    let mut server = DeviceChannel::create_with_dimension(&chan, Dimension::Three).unwrap();
+    let quit = Arc::new(AtomicBool::new(false));
+    let q2 = quit.clone();
+    let session = std::thread::spawn(move || {
+        let r = fake_session_3d(&mut server, &q2);
+        (server, r)
+    });
+    // Moving and turning, so that the rotation block would show if it were used.
+    let config = "x0=0.004 y0=-0.002 z0=0.006 vx=0.003 ax=0 ay=1 az=0 th0=0.2 om=0.5 dof=3";
+    let out = bridge(&[
+        "--channel",
+        chan.to_str().unwrap(),
+        "--device",
+        "plugin",
+        "--plugin",
+        example_plugin6().to_str().unwrap(),
+        "--plugin-config",
+        config,
+        "--seconds",
+        "0.8",
+        "--coupling-k",
+        "0",
+        "--coupling-k-rot",
+        "0",
+        "--max-force-n",
+        "1000",
+        "--json",
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    quit.store(true, Ordering::Relaxed);
+    let _ = session.join().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let rows = read_trace3(&trace);
+    let (bp, _) = base3();
+    let k = k6();
+    let full: Vec<_> = rows.iter().filter(|r| r.gain == 1.0).collect();
+    assert!(full.len() > 300, "{} rows at full gain", full.len());
+    for r in &full {
+        assert_eq!(&r.wrench[3..], &[0.0; 3], "t {}: a torque was sent to a force-only device", r.t_s);
+        let want: [f64; 3] = std::array::from_fn(|i| W0[i] + (0..3).map(|j| k[i][j] * (r.p[j] - bp[j])).sum::<f64>());
+        assert!(r.wrench[..3].iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-9), "t {}: {:?} vs {want:?}", r.t_s, r.wrench);
+        // The full 6×6 would differ by the rotation block's share: the check above tells them apart.
+        let full6 = expected_wrench3(r.p, r.q);
+        assert!((0..3).any(|i| (full6[i] - want[i]).abs() > 1e-4), "t {}: the rotation block contributes nothing here", r.t_s);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
