@@ -1,25 +1,26 @@
 //! Haptic devices behind one trait: a scripted trajectory, a simulated operator's hand on a device,
-//! and real devices through a C plug-in (`include/needlesim_device.h`).
+//! and real devices through a C plug-in (`include/needlesim_device.h`, ABI 2 for 6-DOF devices,
+//! ABI 1 for 2D ones).
+//!
+//! Every device speaks 6-DOF (poses [`Pose6`], wrenches `(Fx, Fy, Fz, τx, τy, τz)` in N and N·m,
+//! world frame; the conventions of `needlesim_channel::spatial`). A 2D device (a 2D trajectory,
+//! an ABI 1 plug-in) is the same path restricted to the plane: its pose `(x, y, θ)` is embedded as
+//! `(x, y, 0)` and a rotation θ about +z, and it is sent the planar part `(Fx, Fy, τz)` of the wrench.
 
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
+use needlesim_channel::spatial::{quat_exp, quat_mul, quat_normalize, wrench_to_planar};
+
+use crate::render::{DeviceOutput, Pose6};
 
 /// What a device reports each period.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DeviceState {
-    pub x_m: f64,
-    pub y_m: f64,
-    pub theta_rad: f64,
+    pub pose: Pose6,
     /// A bit per button, 1 = pressed.
     pub buttons: u32,
-}
-
-impl DeviceState {
-    pub fn pose(&self) -> [f64; 3] {
-        [self.x_m, self.y_m, self.theta_rad]
-    }
 }
 
 /// A haptic device, driven from one thread at the device rate.
@@ -27,8 +28,13 @@ pub trait Device {
     fn name(&self) -> &str;
     /// The pose at `t_s` seconds since the loop started (devices with their own clock may ignore it).
     fn read_pose(&mut self, t_s: f64) -> Result<DeviceState>;
-    /// Command this wrench (Fx N, Fy N, τ N·m) until the next call.
-    fn write_force(&mut self, wrench: [f64; 3]) -> Result<()>;
+    /// Command this wrench `(Fx, Fy, Fz, τx, τy, τz)` (N, N·m, world) until the next call; a
+    /// device renders the components it can (a 2D device the planar ones, a force-only one the force).
+    fn write_force(&mut self, wrench: [f64; 6]) -> Result<()>;
+    /// What the device renders (the axes the safety layer works on).
+    fn output(&self) -> DeviceOutput {
+        DeviceOutput::Wrench
+    }
     /// Release the device (idempotent). The bridge writes a zero force before.
     fn close(&mut self);
 }
@@ -36,13 +42,24 @@ pub trait Device {
 // ---------------------------------------------------------------------------------------------
 // Trajectory
 
-/// A trajectory CSV (`t_s,x_m,y_m,theta_rad`, parsed by needlesim-trajectory), linearly
-/// interpolated, optionally replayed in a loop.
+/// A trajectory CSV, linearly interpolated (orientations by slerp), optionally replayed in a
+/// loop: the 2D `t_s,x_m,y_m,theta_rad` or the 3D `t_s,x_m,y_m,z_m,qw,qx,qy,qz` (both parsed by
+/// needlesim-trajectory, chosen by the header line), either with an optional last column
+/// `buttons` (the button mask, an unsigned integer, held from its row until the next: a step, not
+/// interpolated).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
-    inner: needlesim_trajectory::Trajectory,
+    inner: Inner,
+    /// `(t_s, buttons)` per row when the CSV has the `buttons` column, else empty.
+    buttons: Vec<(f64, u32)>,
     /// Replay from the start after the end (else hold the last pose).
     pub looped: bool,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Inner {
+    Planar(needlesim_trajectory::Trajectory),
+    Spatial(needlesim_trajectory::Trajectory3),
 }
 
 impl Trajectory {
@@ -53,27 +70,97 @@ impl Trajectory {
         Self::parse(&text, &path.display().to_string(), looped)
     }
 
-    /// Parses CSV text; `name` leads error messages (`name: trajectory line N: …`).
+    /// Parses CSV text; `name` leads error messages (`name: trajectory line N: …`). The first line
+    /// that is neither blank nor a `#` comment decides: a header starting `t_s,x_m,y_m,z_m` is the
+    /// 3D form, anything else is read as the 2D form (whose errors then say what it expected).
     pub fn parse(text: &str, name: &str, looped: bool) -> Result<Self> {
-        let inner = needlesim_trajectory::Trajectory::parse_csv(text).map_err(|e| anyhow!("{name}: {e}"))?;
-        Ok(Self { inner, looped })
+        let header = text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#')).unwrap_or("");
+        let compact: String = header.chars().filter(|c| !c.is_whitespace()).collect();
+        let (poses, buttons) = if compact.ends_with(",buttons") { split_buttons(text, name)? } else { (text.to_owned(), vec![]) };
+        let inner = if compact.starts_with("t_s,x_m,y_m,z_m") {
+            Inner::Spatial(needlesim_trajectory::Trajectory3::parse_csv(&poses).map_err(|e| anyhow!("{name}: {e}"))?)
+        } else {
+            Inner::Planar(needlesim_trajectory::Trajectory::parse_csv(&poses).map_err(|e| anyhow!("{name}: {e}"))?)
+        };
+        Ok(Self { inner, buttons, looped })
+    }
+
+    /// The button mask at `t_s` (the last row at or before it; the first row's before the start; 0
+    /// without a `buttons` column).
+    pub fn buttons_at(&self, t_s: f64) -> u32 {
+        let t = self.wrap(t_s);
+        let k = self.buttons.partition_point(|(tr, _)| *tr <= t);
+        self.buttons.get(k.saturating_sub(1)).map_or(0, |b| b.1)
+    }
+
+    /// `t_s` mapped into the trajectory's span when looped.
+    fn wrap(&self, t_s: f64) -> f64 {
+        let (t0, d) = (self.span_s().0, self.duration_s());
+        if self.looped && d > 0.0 && t_s > t0 + d { t0 + (t_s - t0).rem_euclid(d) } else { t_s }
+    }
+
+    /// True for a 3D trajectory.
+    pub fn is_spatial(&self) -> bool {
+        matches!(self.inner, Inner::Spatial(_))
+    }
+
+    fn span_s(&self) -> (f64, f64) {
+        match &self.inner {
+            Inner::Planar(t) => t.span_s(),
+            Inner::Spatial(t) => t.span_s(),
+        }
     }
 
     /// Duration from the first to the last row (s).
     pub fn duration_s(&self) -> f64 {
-        self.inner.duration_s()
+        let (t0, t1) = self.span_s();
+        t1 - t0
     }
 
-    /// Pose and velocity (slope of the segment) at time `t_s` (before the start: the first pose, at rest).
-    pub fn sample(&self, t_s: f64) -> ([f64; 3], [f64; 3]) {
-        let (t0, d) = (self.inner.span_s().0, self.duration_s());
-        let mut t = t_s;
-        if self.looped && d > 0.0 && t > t0 + d {
-            t = t0 + (t - t0).rem_euclid(d);
+    /// Pose and velocity (slope of the segment: linear, m/s, and angular, rad/s, world frame) at
+    /// time `t_s` (before the start: the first pose, at rest).
+    pub fn sample(&self, t_s: f64) -> (Pose6, [f64; 6]) {
+        let t = self.wrap(t_s);
+        match &self.inner {
+            Inner::Planar(tr) => {
+                let (q, v) = tr.pose_and_velocity_at(t);
+                (Pose6::planar([q.x_m, q.y_m, q.theta_rad]), [v.x_m, v.y_m, 0.0, 0.0, 0.0, v.theta_rad])
+            }
+            Inner::Spatial(tr) => {
+                let (q, v, w) = tr.pose_and_velocity_at(t);
+                (Pose6 { position_m: q.position_m, orientation: q.quat_wxyz }, [v[0], v[1], v[2], w[0], w[1], w[2]])
+            }
         }
-        let (q, v) = self.inner.pose_and_velocity_at(t);
-        ([q.x_m, q.y_m, q.theta_rad], [v.x_m, v.y_m, v.theta_rad])
     }
+}
+
+/// Splits the last column, `buttons`, off a trajectory CSV: (the CSV without it, `(t_s, buttons)`
+/// per data row). Blank and `#` lines are kept as they are (so line numbers in the pose parser's
+/// errors stay right); a row's t_s is its first field (the pose parser checks it), its buttons an
+/// unsigned integer (else an error naming the line).
+fn split_buttons(text: &str, name: &str) -> Result<(String, Vec<(f64, u32)>)> {
+    let mut out = String::with_capacity(text.len());
+    let mut buttons = Vec::new();
+    let mut header_seen = false;
+    for (i, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            out.push_str(line);
+        } else {
+            let (rest, last) = line.rsplit_once(',').ok_or_else(|| anyhow!("{name}: trajectory line {}: no buttons column", i + 1))?;
+            out.push_str(rest);
+            if header_seen {
+                let b = last.trim().parse::<u32>().map_err(|_| {
+                    anyhow!("{name}: trajectory line {}: column buttons: `{}` is not an unsigned integer", i + 1, last.trim())
+                })?;
+                let t_s = rest.split(',').next().and_then(|v| v.trim().parse::<f64>().ok()).unwrap_or(f64::NAN);
+                buttons.push((t_s, b));
+            }
+            header_seen = true;
+        }
+        out.push('\n');
+    }
+    Ok((out, buttons))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -84,16 +171,16 @@ impl Trajectory {
 pub struct ScriptedDevice {
     traj: Trajectory,
     /// The last wrench written.
-    pub last_force: [f64; 3],
+    pub last_force: [f64; 6],
     /// How many wrenches were written.
     pub force_writes: u64,
-    /// The largest |(Fx, Fy)| written.
+    /// The largest |F| written.
     pub max_force_n: f64,
 }
 
 impl ScriptedDevice {
     pub fn new(traj: Trajectory) -> Self {
-        Self { traj, last_force: [0.0; 3], force_writes: 0, max_force_n: 0.0 }
+        Self { traj, last_force: [0.0; 6], force_writes: 0, max_force_n: 0.0 }
     }
 }
 
@@ -102,40 +189,50 @@ impl Device for ScriptedDevice {
         "scripted"
     }
     fn read_pose(&mut self, t_s: f64) -> Result<DeviceState> {
-        let (q, _) = self.traj.sample(t_s);
-        Ok(DeviceState { x_m: q[0], y_m: q[1], theta_rad: q[2], buttons: 0 })
+        let (pose, _) = self.traj.sample(t_s);
+        Ok(DeviceState { pose, buttons: self.traj.buttons_at(t_s) })
     }
-    fn write_force(&mut self, wrench: [f64; 3]) -> Result<()> {
+    fn write_force(&mut self, wrench: [f64; 6]) -> Result<()> {
         self.last_force = wrench;
         self.force_writes += 1;
-        self.max_force_n = self.max_force_n.max(wrench[0].hypot(wrench[1]));
+        self.max_force_n = self.max_force_n.max(force_norm(&wrench));
         Ok(())
     }
     fn close(&mut self) {}
 }
 
+/// |F| of a wrench (N).
+pub fn force_norm(w: &[f64; 6]) -> f64 {
+    (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt()
+}
+
 // ---------------------------------------------------------------------------------------------
 // Virtual operator
 
-/// The simulated hand + device: per axis (x, y translational; θ rotational)
-/// `m·a = kp (q_ref − q) + kd (v_ref − v) + w_rendered − b·v`, integrated by semi-implicit Euler
-/// (`v ← v + Δt·a`, then `q ← q + Δt·v`) once per `read_pose`, with Δt the time since the previous call.
+/// The simulated hand + device, a spring–damper following the trajectory on each of the six axes
+/// (x, y, z translational; rotations about x, y, z in world):
+/// `m·a = kp e + kd (v_ref − v) + w_rendered − b·v`, with `e = δ(q_ref, q)` the pose error
+/// (translation, m, and world rotation vector, rad: `needlesim_channel::spatial::pose_delta`) and
+/// `v` the linear and angular velocity (world), integrated by semi-implicit Euler once per
+/// `read_pose` with Δt the time since the previous call: `v ← v + Δt·a`, then `p ← p + Δt·v_lin`,
+/// `R ← exp(Δt·ω̂) R`. On a 2D trajectory only the planar axes ever move.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OperatorParams {
-    /// Mass (kg) in x and y, rotational inertia (kg·m²) in θ.
-    pub mass: [f64; 3],
-    /// Damping: N·s/m in x, y; N·m·s/rad in θ.
-    pub damping: [f64; 3],
-    /// PD proportional gains: N/m in x, y; N·m/rad in θ.
-    pub kp: [f64; 3],
-    /// PD derivative gains: N·s/m in x, y; N·m·s/rad in θ.
-    pub kd: [f64; 3],
+    /// Mass (kg) on x, y, z; rotational inertia (kg·m²) about x, y, z.
+    pub mass: [f64; 6],
+    /// Damping: N·s/m on x, y, z; N·m·s/rad about x, y, z.
+    pub damping: [f64; 6],
+    /// PD proportional gains: N/m; N·m/rad.
+    pub kp: [f64; 6],
+    /// PD derivative gains: N·s/m; N·m·s/rad.
+    pub kd: [f64; 6],
 }
 
 impl Default for OperatorParams {
     fn default() -> Self {
         // A hand holding a desktop device: 0.3 kg, a 300 N/m grip, critically damped-ish.
-        Self { mass: [0.3, 0.3, 1e-4], damping: [2.0, 2.0, 1e-3], kp: [300.0, 300.0, 0.3], kd: [15.0, 15.0, 0.01] }
+        let ax = |t: f64, r: f64| [t, t, t, r, r, r];
+        Self { mass: ax(0.3, 1e-4), damping: ax(2.0, 1e-3), kp: ax(300.0, 0.3), kd: ax(15.0, 0.01) }
     }
 }
 
@@ -143,12 +240,13 @@ impl Default for OperatorParams {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct OperatorState {
     pub t_s: f64,
-    pub q: [f64; 3],
-    pub v: [f64; 3],
+    pub q: Pose6,
+    /// Linear (m/s) and angular (rad/s) velocity, world.
+    pub v: [f64; 6],
     /// The wrench last rendered on it.
-    pub rendered: [f64; 3],
+    pub rendered: [f64; 6],
     /// The PD wrench of the last step.
-    pub pd: [f64; 3],
+    pub pd: [f64; 6],
 }
 
 #[derive(Debug, Clone)]
@@ -186,21 +284,26 @@ impl Device for VirtualOperator {
         let dt = t_s - s.t_s;
         if dt > 0.0 {
             let (q_ref, v_ref) = self.traj.sample(t_s);
+            let e = q_ref.delta_from(&s.q);
             let p = &self.params;
-            for i in 0..3 {
-                s.pd[i] = p.kp[i] * (q_ref[i] - s.q[i]) + p.kd[i] * (v_ref[i] - s.v[i]);
+            for i in 0..6 {
+                s.pd[i] = p.kp[i] * e[i] + p.kd[i] * (v_ref[i] - s.v[i]);
                 let a = (s.pd[i] + s.rendered[i] - p.damping[i] * s.v[i]) / p.mass[i];
                 s.v[i] += dt * a;
-                s.q[i] += dt * s.v[i];
             }
+            for i in 0..3 {
+                s.q.position_m[i] += dt * s.v[i];
+            }
+            let turn = quat_exp([dt * s.v[3], dt * s.v[4], dt * s.v[5]]);
+            s.q.orientation = quat_normalize(quat_mul(turn, s.q.orientation)).unwrap_or(s.q.orientation);
             s.t_s = t_s;
         }
-        if !s.q.iter().chain(&s.v).all(|x| x.is_finite()) {
+        if !s.q.position_m.iter().chain(&s.q.orientation).chain(&s.v).all(|x| x.is_finite()) {
             bail!("virtual operator diverged at t = {t_s} s (q = {:?}, v = {:?})", s.q, s.v);
         }
-        Ok(DeviceState { x_m: s.q[0], y_m: s.q[1], theta_rad: s.q[2], buttons: 0 })
+        Ok(DeviceState { pose: s.q, buttons: self.traj.buttons_at(t_s) })
     }
-    fn write_force(&mut self, wrench: [f64; 3]) -> Result<()> {
+    fn write_force(&mut self, wrench: [f64; 6]) -> Result<()> {
         self.state.rendered = wrench;
         Ok(())
     }
@@ -210,23 +313,38 @@ impl Device for VirtualOperator {
 // ---------------------------------------------------------------------------------------------
 // Plug-in
 
-/// The ABI version this bridge speaks (`NSD_ABI_VERSION` in `include/needlesim_device.h`).
-pub const PLUGIN_ABI_VERSION: c_int = 1;
+/// The ABI version this bridge speaks natively (`NSD_ABI_VERSION` in `include/needlesim_device.h`):
+/// 6-DOF pose in, force and optional torque out.
+pub const PLUGIN_ABI_VERSION: c_int = 2;
+/// The 2D ABI (`NSD_ABI_VERSION_PLANAR`), still loaded and driven through the planar mapping.
+pub const PLUGIN_ABI_VERSION_PLANAR: c_int = 1;
 
 type AbiVersionFn = unsafe extern "C" fn() -> c_int;
 type OpenFn = unsafe extern "C" fn(*const c_char) -> *mut c_void;
-type ReadPoseFn = unsafe extern "C" fn(*mut c_void, *mut f64, *mut f64, *mut f64, *mut u32) -> c_int;
-type WriteForceFn = unsafe extern "C" fn(*mut c_void, f64, f64, f64) -> c_int;
 type CloseFn = unsafe extern "C" fn(*mut c_void);
 type LastErrorFn = unsafe extern "C" fn(*mut c_void) -> *const c_char;
+type ReadPoseFn = unsafe extern "C" fn(*mut c_void, *mut f64, *mut f64, *mut f64, *mut u32) -> c_int;
+type WriteForceFn = unsafe extern "C" fn(*mut c_void, f64, f64, f64) -> c_int;
+type ReadPose6Fn = unsafe extern "C" fn(*mut c_void, *mut f64, *mut f64, *mut u32) -> c_int;
+type WriteWrenchFn = unsafe extern "C" fn(*mut c_void, *const f64, *const f64) -> c_int;
+type OutputDofFn = unsafe extern "C" fn(*mut c_void) -> c_int;
 
-/// A device in a shared library implementing `include/needlesim_device.h`.
+/// The entry points of one ABI version.
+#[derive(Clone, Copy)]
+enum Abi {
+    /// ABI 1: the planar pose `(x, y, θ)` and wrench `(Fx, Fy, τ)`.
+    Planar { read_pose: ReadPoseFn, write_force: WriteForceFn },
+    /// ABI 2: 6-DOF pose, force and torque (a force-only device ignores the torque).
+    Spatial { read_pose6: ReadPose6Fn, write_wrench: WriteWrenchFn },
+}
+
+/// A device in a shared library implementing `include/needlesim_device.h` (ABI 2, or the 2D ABI 1).
 pub struct PluginDevice {
     path: PathBuf,
     name: String,
     dev: *mut c_void,
-    read_pose: ReadPoseFn,
-    write_force: WriteForceFn,
+    abi: Abi,
+    output: DeviceOutput,
     close: CloseFn,
     last_error: LastErrorFn,
     // Last field: dropped (dlclose) after everything that points into it.
@@ -234,30 +352,47 @@ pub struct PluginDevice {
 }
 
 impl PluginDevice {
-    /// Loads `path`, checks `nsd_abi_version()`, and calls `nsd_open(config)`.
+    /// Loads `path`, checks `nsd_abi_version()` (2, or 1 for a 2D plug-in; any other version is
+    /// refused naming it), looks up that version's functions, calls `nsd_open(config)` and, for
+    /// ABI 2, `nsd_output_dof(dev)` (3: force only, 6: force and torque; anything else is refused).
     pub fn open(path: impl AsRef<Path>, config: &str) -> Result<Self> {
         let path = path.as_ref().to_path_buf();
         let p = path.display().to_string();
         // SAFETY: loading a library runs its initialisers; the user chose to trust this plug-in.
         let lib = unsafe { libloading::Library::new(&path) }.with_context(|| format!("plug-in {p}: cannot load"))?;
+        let sym = |name: &str| format!("plug-in {p}: missing symbol {name} (see include/needlesim_device.h)");
         // SAFETY: the types are those of the header; a library exporting these names with other
         // signatures breaks the plug-in contract.
-        let (abi, open, read_pose, write_force, close, last_error) = unsafe {
-            let sym = |name: &str| format!("plug-in {p}: missing symbol {name} (see include/needlesim_device.h)");
+        let abi_version = unsafe { *lib.get::<AbiVersionFn>(b"nsd_abi_version\0").with_context(|| sym("nsd_abi_version"))? };
+        // SAFETY: plug-in calls per the ABI.
+        let version = unsafe { abi_version() };
+        // SAFETY: as above.
+        let (abi, output_dof, open, close, last_error) = unsafe {
+            let abi = match version {
+                PLUGIN_ABI_VERSION => Abi::Spatial {
+                    read_pose6: *lib.get::<ReadPose6Fn>(b"nsd_read_pose6\0").with_context(|| sym("nsd_read_pose6"))?,
+                    write_wrench: *lib.get::<WriteWrenchFn>(b"nsd_write_wrench\0").with_context(|| sym("nsd_write_wrench"))?,
+                },
+                PLUGIN_ABI_VERSION_PLANAR => Abi::Planar {
+                    read_pose: *lib.get::<ReadPoseFn>(b"nsd_read_pose\0").with_context(|| sym("nsd_read_pose"))?,
+                    write_force: *lib.get::<WriteForceFn>(b"nsd_write_force\0").with_context(|| sym("nsd_write_force"))?,
+                },
+                other => bail!(
+                    "plug-in {p}: unknown ABI version {other} (nsd_abi_version); this bridge loads ABI {PLUGIN_ABI_VERSION} (6-DOF) and ABI {PLUGIN_ABI_VERSION_PLANAR} (2D)"
+                ),
+            };
+            let output_dof = match abi {
+                Abi::Spatial { .. } => Some(*lib.get::<OutputDofFn>(b"nsd_output_dof\0").with_context(|| sym("nsd_output_dof"))?),
+                Abi::Planar { .. } => None,
+            };
             (
-                *lib.get::<AbiVersionFn>(b"nsd_abi_version\0").with_context(|| sym("nsd_abi_version"))?,
+                abi,
+                output_dof,
                 *lib.get::<OpenFn>(b"nsd_open\0").with_context(|| sym("nsd_open"))?,
-                *lib.get::<ReadPoseFn>(b"nsd_read_pose\0").with_context(|| sym("nsd_read_pose"))?,
-                *lib.get::<WriteForceFn>(b"nsd_write_force\0").with_context(|| sym("nsd_write_force"))?,
                 *lib.get::<CloseFn>(b"nsd_close\0").with_context(|| sym("nsd_close"))?,
                 *lib.get::<LastErrorFn>(b"nsd_last_error\0").with_context(|| sym("nsd_last_error"))?,
             )
         };
-        // SAFETY: plug-in calls per the ABI.
-        let version = unsafe { abi() };
-        if version != PLUGIN_ABI_VERSION {
-            bail!("plug-in {p}: ABI version {version}, this bridge speaks {PLUGIN_ABI_VERSION}");
-        }
         let c = CString::new(config).map_err(|_| anyhow!("plug-in {p}: the config string contains a NUL byte"))?;
         // SAFETY: a valid NUL-terminated string that outlives the call.
         let dev = unsafe { open(c.as_ptr()) };
@@ -266,8 +401,29 @@ impl PluginDevice {
             let msg = unsafe { error_string(last_error(std::ptr::null_mut())) };
             bail!("plug-in {p}: nsd_open failed: {msg}");
         }
+        let output = match output_dof {
+            // SAFETY: dev is open.
+            Some(f) => match unsafe { f(dev) } {
+                3 => DeviceOutput::ForceOnly,
+                6 => DeviceOutput::Wrench,
+                other => {
+                    // SAFETY: dev is open and not used afterwards.
+                    unsafe { close(dev) };
+                    bail!("plug-in {p}: nsd_output_dof returned {other}, expected 3 (force only) or 6 (force and torque)");
+                }
+            },
+            None => DeviceOutput::Wrench,
+        };
         let name = format!("plugin:{}", path.file_name().map_or(p.clone(), |f| f.to_string_lossy().into_owned()));
-        Ok(Self { path, name, dev, read_pose, write_force, close, last_error, lib })
+        Ok(Self { path, name, dev, abi, output, close, last_error, lib })
+    }
+
+    /// The ABI version the plug-in reported (1 or 2).
+    pub fn abi_version(&self) -> c_int {
+        match self.abi {
+            Abi::Planar { .. } => PLUGIN_ABI_VERSION_PLANAR,
+            Abi::Spatial { .. } => PLUGIN_ABI_VERSION,
+        }
     }
 
     /// The device handle (for extra, plug-in specific exports such as the example's `nsd_example_last_force`).
@@ -306,24 +462,62 @@ impl Device for PluginDevice {
         if self.dev.is_null() {
             bail!("plug-in {}: read after close", self.path.display());
         }
-        let mut s = DeviceState::default();
-        // SAFETY: dev is open; the out-pointers are valid for the call.
-        let code = unsafe { (self.read_pose)(self.dev, &mut s.x_m, &mut s.y_m, &mut s.theta_rad, &mut s.buttons) };
+        let mut buttons = 0u32;
+        let (code, call, pose) = match self.abi {
+            Abi::Planar { read_pose, .. } => {
+                let mut q = [0.0f64; 3];
+                let [x, y, th] = &mut q;
+                // SAFETY: dev is open; the out-pointers are valid for the call.
+                let code = unsafe { read_pose(self.dev, x, y, th, &mut buttons) };
+                (code, "nsd_read_pose", Pose6::planar(q))
+            }
+            Abi::Spatial { read_pose6, .. } => {
+                let mut pose = Pose6::default();
+                // SAFETY: dev is open; 3 and 4 doubles, and the buttons, valid for the call.
+                let code = unsafe { read_pose6(self.dev, pose.position_m.as_mut_ptr(), pose.orientation.as_mut_ptr(), &mut buttons) };
+                if code == 0 {
+                    pose.orientation = quat_normalize(pose.orientation).ok_or_else(|| {
+                        anyhow!(
+                            "plug-in {}: nsd_read_pose6 gave the orientation {:?}, not a rotation",
+                            self.path.display(),
+                            pose.orientation
+                        )
+                    })?;
+                }
+                (code, "nsd_read_pose6", pose)
+            }
+        };
         if code != 0 {
-            return Err(self.error("nsd_read_pose", code));
+            return Err(self.error(call, code));
         }
-        Ok(s)
+        if !pose.position_m.iter().all(|v| v.is_finite()) {
+            bail!("plug-in {}: {call} gave the position {:?}", self.path.display(), pose.position_m);
+        }
+        Ok(DeviceState { pose, buttons })
     }
-    fn write_force(&mut self, w: [f64; 3]) -> Result<()> {
+    fn write_force(&mut self, w: [f64; 6]) -> Result<()> {
         if self.dev.is_null() {
             bail!("plug-in {}: write after close", self.path.display());
         }
-        // SAFETY: dev is open.
-        let code = unsafe { (self.write_force)(self.dev, w[0], w[1], w[2]) };
+        let (code, call) = match self.abi {
+            Abi::Planar { write_force, .. } => {
+                let [fx, fy, tau] = wrench_to_planar(w);
+                // SAFETY: dev is open.
+                (unsafe { write_force(self.dev, fx, fy, tau) }, "nsd_write_force")
+            }
+            Abi::Spatial { write_wrench, .. } => {
+                let (f, t) = ([w[0], w[1], w[2]], [w[3], w[4], w[5]]);
+                // SAFETY: dev is open; two arrays of 3 doubles valid for the call.
+                (unsafe { write_wrench(self.dev, f.as_ptr(), t.as_ptr()) }, "nsd_write_wrench")
+            }
+        };
         if code != 0 {
-            return Err(self.error("nsd_write_force", code));
+            return Err(self.error(call, code));
         }
         Ok(())
+    }
+    fn output(&self) -> DeviceOutput {
+        self.output
     }
     fn close(&mut self) {
         if !self.dev.is_null() {
@@ -345,18 +539,55 @@ mod tests {
     use super::*;
 
     const TRAJ: &str = "t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,0.01,-0.02,0.1\n2,0.01,-0.02,0.1\n";
+    /// 3D: along +x then a quarter turn about z (qw = qz = √½).
+    const TRAJ3: &str = "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n1,0.01,-0.02,0.03,0.7071067811865476,0,0,0.7071067811865476\n";
+
+    fn planar(p: &Pose6) -> [f64; 3] {
+        p.to_planar()
+    }
 
     #[test]
     fn trajectory_interpolates_holds_and_loops() {
         let t = Trajectory::parse(TRAJ, "t.csv", false).unwrap();
+        assert!(!t.is_spatial());
         let (q, v) = t.sample(0.5);
-        assert!((q[0] - 0.005).abs() < 1e-15 && (q[1] + 0.01).abs() < 1e-15 && (q[2] - 0.05).abs() < 1e-15);
-        assert!((v[0] - 0.01).abs() < 1e-15);
-        assert_eq!(t.sample(-1.0), ([0.0; 3], [0.0; 3]));
-        assert_eq!(t.sample(5.0).0, [0.01, -0.02, 0.1]);
+        let q = planar(&q);
+        assert!((q[0] - 0.005).abs() < 1e-15 && (q[1] + 0.01).abs() < 1e-15 && (q[2] - 0.05).abs() < 1e-15, "{q:?}");
+        assert!((v[0] - 0.01).abs() < 1e-15 && (v[5] - 0.1).abs() < 1e-15 && v[2] == 0.0, "{v:?}");
+        assert_eq!(t.sample(-1.0), (Pose6::default(), [0.0; 6]));
+        let end = planar(&t.sample(5.0).0);
+        assert!((end[0] - 0.01).abs() < 1e-15 && (end[1] + 0.02).abs() < 1e-15 && (end[2] - 0.1).abs() < 1e-15, "{end:?}");
         let l = Trajectory::parse(TRAJ, "t.csv", true).unwrap();
-        let (q, _) = l.sample(2.5);
+        let q = planar(&l.sample(2.5).0);
         assert!((q[0] - 0.005).abs() < 1e-15, "{q:?}");
+    }
+
+    #[test]
+    fn a_3d_trajectory_is_read_and_interpolated() {
+        let t = Trajectory::parse(TRAJ3, "t3.csv", false).unwrap();
+        assert!(t.is_spatial());
+        let (q, v) = t.sample(0.5);
+        assert!((q.position_m[0] - 0.005).abs() < 1e-15 && (q.position_m[2] - 0.015).abs() < 1e-15, "{q:?}");
+        // Half of the quarter turn: 45° about z, at π/2 rad/s.
+        assert!((q.to_planar()[2] - std::f64::consts::FRAC_PI_4).abs() < 1e-12, "{q:?}");
+        assert!((v[5] - std::f64::consts::FRAC_PI_2).abs() < 1e-12 && (v[2] - 0.03).abs() < 1e-15, "{v:?}");
+        let e = Trajectory::parse("t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,0,2,0,0,0\n", "bad3.csv", false).unwrap_err().to_string();
+        assert!(e.starts_with("bad3.csv: trajectory line 2: the quaternion"), "{e}");
+    }
+
+    #[test]
+    fn a_buttons_column_is_read_in_3d_and_in_2d() {
+        let text = "t_s,x_m,y_m,z_m,qw,qx,qy,qz,buttons\n# press at 1 s\n0,0,0,0,1,0,0,0,0\n1,0.01,0,0,1,0,0,0,1\n2,0.02,0,0,1,0,0,0,0\n";
+        let mut d = ScriptedDevice::new(Trajectory::parse(text, "b3.csv", false).unwrap());
+        let at = |d: &mut ScriptedDevice, t: f64| d.read_pose(t).unwrap();
+        assert_eq!((at(&mut d, 0.5).buttons, at(&mut d, 1.0).buttons, at(&mut d, 1.9).buttons, at(&mut d, 2.5).buttons), (0, 1, 1, 0));
+        assert!((at(&mut d, 1.5).pose.position_m[0] - 0.015).abs() < 1e-15);
+        let t2 = Trajectory::parse("t_s,x_m,y_m,theta_rad,buttons\n0,0,0,0,2\n1,0.01,0,0,0\n", "b2.csv", false).unwrap();
+        assert_eq!((t2.buttons_at(-1.0), t2.buttons_at(0.2), t2.buttons_at(1.0)), (2, 2, 0));
+        let e = Trajectory::parse("t_s,x_m,y_m,z_m,qw,qx,qy,qz,buttons\n0,0,0,0,1,0,0,0,x\n", "bad.csv", false).unwrap_err().to_string();
+        assert_eq!(e, "bad.csv: trajectory line 2: column buttons: `x` is not an unsigned integer");
+        // Without the column: no buttons.
+        assert_eq!(Trajectory::parse(TRAJ3, "t3", false).unwrap().buttons_at(0.5), 0);
     }
 
     #[test]
@@ -375,9 +606,10 @@ mod tests {
     #[test]
     fn scripted_records_forces_and_ignores_them() {
         let mut d = ScriptedDevice::new(Trajectory::parse(TRAJ, "t", false).unwrap());
-        d.write_force([3.0, 4.0, 0.1]).unwrap();
-        assert_eq!(d.read_pose(1.0).unwrap().pose(), [0.01, -0.02, 0.1]);
-        assert_eq!((d.last_force, d.force_writes, d.max_force_n), ([3.0, 4.0, 0.1], 1, 5.0));
+        d.write_force([3.0, 4.0, 12.0, 0.0, 0.0, 0.1]).unwrap();
+        let q = d.read_pose(1.0).unwrap().pose.to_planar();
+        assert!((q[0] - 0.01).abs() < 1e-15 && (q[1] + 0.02).abs() < 1e-15 && (q[2] - 0.1).abs() < 1e-15, "{q:?}");
+        assert_eq!((d.last_force, d.force_writes, d.max_force_n), ([3.0, 4.0, 12.0, 0.0, 0.0, 0.1], 1, 13.0));
     }
 
     #[test]
@@ -388,15 +620,41 @@ mod tests {
         for k in 0..=2000 {
             d.read_pose(k as f64 * 1e-3).unwrap();
         }
-        assert!((d.state().q[0] - 0.02).abs() < 1e-4, "{:?}", d.state());
+        assert!((d.state().q.position_m[0] - 0.02).abs() < 1e-4, "{:?}", d.state());
         // A constant resisting force F settles at q_ref + F/(kp) (static balance kp·e = F).
         let mut d = VirtualOperator::new(traj, p);
         for k in 0..=4000 {
             d.read_pose(k as f64 * 1e-3).unwrap();
-            d.write_force([-1.5, 0.0, 0.0]).unwrap();
+            d.write_force([-1.5, 0.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
         }
         let expect = 0.02 - 1.5 / p.kp[0];
-        assert!((d.state().q[0] - expect).abs() < 1e-5, "{:?} vs {expect}", d.state());
-        assert_eq!(d.state().rendered, [-1.5, 0.0, 0.0]);
+        assert!((d.state().q.position_m[0] - expect).abs() < 1e-5, "{:?} vs {expect}", d.state());
+        assert_eq!(d.state().rendered, [-1.5, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    }
+
+    /// In 3D the hand follows a 3D path (position and a quarter turn) and a torque about z holds
+    /// it back by τ/kp_rot, a force along z by F/kp.
+    #[test]
+    fn virtual_operator_follows_a_3d_path_and_yields_to_a_3d_wrench() {
+        let traj = Trajectory::parse(TRAJ3, "t3", false).unwrap();
+        let p = OperatorParams::default();
+        let mut d = VirtualOperator::new(traj.clone(), p);
+        for k in 0..=3000 {
+            d.read_pose(k as f64 * 1e-3).unwrap();
+        }
+        let q = d.state().q;
+        assert!((q.position_m[2] - 0.03).abs() < 1e-4 && (q.position_m[1] + 0.02).abs() < 1e-4, "{q:?}");
+        assert!((q.to_planar()[2] - std::f64::consts::FRAC_PI_2).abs() < 1e-3, "{q:?}");
+        let mut d = VirtualOperator::new(traj, p);
+        let (fz, tz) = (0.9, -0.006);
+        for k in 0..=6000 {
+            d.read_pose(k as f64 * 1e-3).unwrap();
+            d.write_force([0.0, 0.0, fz, 0.0, 0.0, tz]).unwrap();
+        }
+        let q = d.state().q;
+        assert!((q.position_m[2] - (0.03 + fz / p.kp[2])).abs() < 1e-5, "{q:?}");
+        assert!((q.to_planar()[2] - (std::f64::consts::FRAC_PI_2 + tz / p.kp[5])).abs() < 1e-4, "{q:?}");
+        let n: f64 = q.orientation.iter().map(|v| v * v).sum();
+        assert!((n - 1.0).abs() < 1e-12);
     }
 }

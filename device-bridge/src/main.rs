@@ -14,6 +14,16 @@
 //! ramps the force out, the zero wrench is written, and the bridge exits with status 1 and a
 //! message naming the cause.
 //!
+//! # 2D and 3D sessions
+//!
+//! Everything in the loop is 6-DOF (`render.rs`, `device.rs`): the channel's header says the
+//! session's dimension, and a 2D session is the same path restricted to the plane (the channel
+//! carries its pose and wrench through the planar embedding of `needlesim_channel::spatial`). Only
+//! the outputs differ: for a 2D session the report's `final_pose` is `[x, y, θ]` and its
+//! `stiffness` the 3 × 3 `∂(Fx, Fy, τ)/∂(x, y, θ)`, and the trace has the 2D columns; for a 3D
+//! one `final_pose` is `[x, y, z, qw, qx, qy, qz]`, `stiffness` the 6 × 6 row-major, and the trace
+//! the 6-DOF columns. The report's `dimension` says which. The remote link serves 2D sessions.
+//!
 //! # Phase-aligned with the session's ticks (`--phase-lead-us`, shared memory only)
 //!
 //! The session publishes its tick phase on the channel (tick k due at `origin + k·period` on
@@ -42,11 +52,12 @@ use std::time::Duration;
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, ValueEnum};
-use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
+use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm};
 use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
-use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
+use needlesim_bridge::render::{Pose6, RenderParams, Renderer, ServerSample};
 use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, Dimension, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
+use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum DeviceKind {
@@ -89,7 +100,8 @@ struct Cli {
     render: RenderMode,
     #[arg(long, value_enum)]
     device: DeviceKind,
-    /// Trajectory CSV (`t_s,x_m,y_m,theta_rad`) for the scripted and virtual devices.
+    /// Trajectory CSV for the scripted and virtual devices: 3D `t_s,x_m,y_m,z_m,qw,qx,qy,qz` or 2D
+    /// `t_s,x_m,y_m,theta_rad` (told apart by the header; a 2D path drives a 3D session in its xy plane).
     #[arg(long, value_name = "CSV")]
     trajectory: Option<PathBuf>,
     /// Replay the trajectory in a loop instead of holding its last pose.
@@ -120,7 +132,7 @@ struct Cli {
     /// Stop after this many seconds (default: until Ctrl-C / SIGTERM).
     #[arg(long, value_name = "S")]
     seconds: Option<f64>,
-    /// Limit on |(Fx, Fy)| sent to the device (N).
+    /// Limit on |F| sent to the device (N).
     #[arg(long, value_name = "F", default_value_t = 5.0)]
     max_force_n: f64,
     /// Limit on |τ| sent to the device (N·m).
@@ -133,34 +145,36 @@ struct Cli {
     /// Duration of the ramp to zero (and back) (ms).
     #[arg(long, value_name = "MS", default_value_t = 50.0)]
     ramp_ms: f64,
-    /// Virtual-coupling stiffness in x and y (N/m); 0 (with --coupling-k-rot 0) disables the coupling.
+    /// Virtual-coupling stiffness in x, y and z (N/m); 0 (with --coupling-k-rot 0) disables the coupling.
     #[arg(long, value_name = "N_PER_M", default_value_t = 2000.0)]
     coupling_k: f64,
-    /// Virtual-coupling stiffness in θ (N·m/rad).
+    /// Virtual-coupling stiffness about x, y and z (N·m/rad).
     #[arg(long, value_name = "NM_PER_RAD", default_value_t = 2.0)]
     coupling_k_rot: f64,
-    /// Virtual-coupling damping in x and y (N·s/m).
+    /// Virtual-coupling damping in x, y and z (N·s/m).
     #[arg(long, value_name = "NS_PER_M", default_value_t = 2.0)]
     coupling_b: f64,
-    /// Virtual-coupling damping in θ (N·m·s/rad).
+    /// Virtual-coupling damping about x, y and z (N·m·s/rad).
     #[arg(long, value_name = "NMS_PER_RAD", default_value_t = 0.002)]
     coupling_b_rot: f64,
-    /// Virtual operator (--device virtual): mass in x and y (kg).
+    /// Virtual operator (--device virtual): mass in x, y and z (kg).
     #[arg(long, value_name = "KG")]
     operator_mass: Option<f64>,
-    /// Virtual operator: damping in x and y (N·s/m).
+    /// Virtual operator: damping in x, y and z (N·s/m).
     #[arg(long, value_name = "NS_PER_M")]
     operator_damping: Option<f64>,
-    /// Virtual operator: PD proportional gain (grip stiffness) in x and y (N/m).
+    /// Virtual operator: PD proportional gain (grip stiffness) in x, y and z (N/m).
     #[arg(long, value_name = "N_PER_M")]
     operator_kp: Option<f64>,
-    /// Virtual operator: PD derivative gain in x and y (N·s/m).
+    /// Virtual operator: PD derivative gain in x, y and z (N·s/m).
     #[arg(long, value_name = "NS_PER_M")]
     operator_kd: Option<f64>,
     /// Print the report as one JSON object on stdout (else a summary on stderr).
     #[arg(long)]
     json: bool,
-    /// Write a CSV row per period (t_s, pose, server force, rendered wrench, gain) to this file.
+    /// Write a CSV row per period (t_s, pose, server force, rendered wrench, gain) to this file: for a
+    /// 2D session `x_m,y_m,theta_rad` and `(Fx, Fy, τ)`; for a 3D one `x_m,y_m,z_m,qw,qx,qy,qz` and
+    /// the six wrench components (N, N·m, world).
     #[arg(long, value_name = "CSV")]
     trace: Option<PathBuf>,
 }
@@ -214,13 +228,15 @@ struct Report {
     last_counter: u64,
     last_tick: Option<u64>,
     max_rendered_force_n: f64,
-    final_pose: [f64; 3],
+    final_pose: Pose6,
+    /// The session's dimension (2 or 3): the report and the trace give 2D or 6-DOF values.
+    dimension: u32,
     exit: String,
     link: String,
     render: String,
     inject_rtt_ms: f64,
     dropped_poses: u64,
-    last_stiffness: Option<[f64; 9]>,
+    last_stiffness: Option<[[f64; 6]; 6]>,
 }
 
 fn percentile_us(v: &mut [u64], p: f64) -> Option<f64> {
@@ -262,13 +278,23 @@ impl Report {
             percentile_us(&mut self.pose_to_force_ns, 1.0),
         ];
         let age = [percentile_us(&mut self.force_age_ns, 0.5), percentile_us(&mut self.force_age_ns, 0.99)];
+        // A 2D session: (x, y, θ) and the 3×3 ∂(Fx, Fy, τ)/∂(x, y, θ); 3D: (x, y, z, qw, qx, qy, qz) and the 6×6, row-major.
+        let planar = self.dimension != 3;
+        let final_pose: Vec<f64> = if planar {
+            self.final_pose.to_planar().to_vec()
+        } else {
+            self.final_pose.position_m.iter().chain(&self.final_pose.orientation).copied().collect()
+        };
+        let stiffness: Option<Vec<f64>> = self
+            .last_stiffness
+            .map(|k| if planar { restrict_planar_stiffness(&k).to_vec() } else { k.iter().flatten().copied().collect() });
         if json {
             println!(
                 "{{\"device\":{},\"periods\":{},\"missed_periods\":{},\"fresh_forces\":{},\"watchdog_periods\":{},\"limited_periods\":{},\
                  \"pose_counter\":{},\"last_server_tick\":{},\"pose_to_force_us\":{{\"p50\":{},\"p99\":{},\"p999\":{},\"max\":{}}},\
                  \"force_age_us\":{{\"p50\":{},\"p99\":{}}},\"aligned\":{},\"answered_poses\":{},\"unanswered_poses\":{},\
                  \"answered_in_period\":{},\"waits_timed_out\":{},\
-                 \"max_rendered_force_n\":{},\"final_pose\":[{},{},{}],\"final_wrench\":[0,0,0],\"link\":{},\"render\":{},\"inject_rtt_ms\":{},\
+                 \"max_rendered_force_n\":{},\"dimension\":{},\"final_pose\":[{}],\"final_wrench\":[{}],\"link\":{},\"render\":{},\"inject_rtt_ms\":{},\
                  \"dropped_poses\":{},\"stiffness\":{},\"exit\":{}}}",
                 json_str(&self.device),
                 self.periods,
@@ -290,15 +316,14 @@ impl Report {
                 self.answered_in_period,
                 self.waits_timed_out,
                 self.max_rendered_force_n,
-                self.final_pose[0],
-                self.final_pose[1],
-                self.final_pose[2],
+                self.dimension,
+                final_pose.iter().map(|v| json_num(Some(*v))).collect::<Vec<_>>().join(","),
+                if planar { "0,0,0" } else { "0,0,0,0,0,0" },
                 json_str(&self.link),
                 json_str(&self.render),
                 self.inject_rtt_ms,
                 self.dropped_poses,
-                self.last_stiffness
-                    .map_or("null".into(), |j| format!("[{}]", j.iter().map(|v| json_num(Some(*v))).collect::<Vec<_>>().join(","))),
+                stiffness.map_or("null".into(), |j| format!("[{}]", j.iter().map(|v| json_num(Some(*v))).collect::<Vec<_>>().join(","))),
                 json_str(&self.exit),
             );
         } else {
@@ -324,7 +349,7 @@ impl Report {
                 f(age[1]),
                 self.exit
             );
-            if let Some(j) = self.last_stiffness {
+            if let Some(j) = self.last_stiffness.filter(|_| planar).map(|k| restrict_planar_stiffness(&k)) {
                 eprintln!(
                     "needlesim-bridge: last stiffness J = ∂(Fx,Fy,τ)/∂(x,y,θ): [{:.1} {:.1} {:.4}; {:.1} {:.1} {:.4}; {:.4} {:.4} {:.5}]",
                     j[0], j[1], j[2], j[3], j[4], j[5], j[6], j[7], j[8]
@@ -343,13 +368,12 @@ fn open_device(cli: &Cli) -> Result<Box<dyn Device>> {
         DeviceKind::Scripted => Box::new(ScriptedDevice::new(traj()?)),
         DeviceKind::Virtual => {
             let mut p = OperatorParams::default();
-            let set = |arr: &mut [f64; 3], v: Option<f64>, name: &str, positive: bool| -> Result<()> {
+            let set = |arr: &mut [f64; 6], v: Option<f64>, name: &str, positive: bool| -> Result<()> {
                 if let Some(v) = v {
                     if !(v.is_finite() && if positive { v > 0.0 } else { v >= 0.0 }) {
                         bail!("--{name} must be {}, got {v}", if positive { "positive" } else { "non-negative" });
                     }
-                    arr[0] = v;
-                    arr[1] = v;
+                    arr[..3].fill(v);
                 }
                 Ok(())
             };
@@ -368,7 +392,8 @@ fn open_device(cli: &Cli) -> Result<Box<dyn Device>> {
 
 /// The link to the session: the shared-memory channel or the gRPC remote link.
 enum Link {
-    Shm(DeviceEnd),
+    /// Boxed: the end holds the last force (with its 6 × 6), much larger than the remote link.
+    Shm(Box<DeviceEnd>),
     Remote(RemoteLink),
 }
 
@@ -380,7 +405,7 @@ struct Exchange {
     tick: Option<u64>,
     /// The last value seen (fresh or not), for the trace: tick, wrench.
     last_tick: u64,
-    last_wrench: [f64; 3],
+    last_wrench: [f64; 6],
     /// The link is gone (channel re-created/closed, remote stream failed).
     lost: bool,
 }
@@ -434,15 +459,33 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
         max_torque_nm: cli.max_torque_nm,
         watchdog_periods,
         ramp_s: cli.ramp_ms * 1e-3,
-        coupling_k: if last_force { [0.0; 3] } else { [cli.coupling_k, cli.coupling_k, cli.coupling_k_rot] },
-        coupling_b: if last_force { [0.0; 3] } else { [cli.coupling_b, cli.coupling_b, cli.coupling_b_rot] },
+        coupling_k: if last_force { [0.0; 6] } else { RenderParams::per_axis(cli.coupling_k, cli.coupling_k_rot) },
+        coupling_b: if last_force { [0.0; 6] } else { RenderParams::per_axis(cli.coupling_b, cli.coupling_b_rot) },
+        output: device.output(),
     };
+    // What the session is: a 3D one gets 6-DOF traces; the remote link serves 2D sessions.
+    report.dimension = match link {
+        Link::Shm(channel) => match channel.session_dimension() {
+            Some(d) => d as u32,
+            None => bail!("device channel: the session's dimension in the header is neither 2 nor 3"),
+        },
+        Link::Remote(_) => Dimension::Two as u32,
+    };
+    let planar = report.dimension != 3;
     let mut renderer = Renderer::new(params);
     let mut trace = match &cli.trace {
         Some(p) => {
             let f = std::fs::File::create(p).with_context(|| format!("--trace {}: cannot create", p.display()))?;
             let mut w = std::io::BufWriter::new(f);
-            writeln!(w, "t_s,counter,x_m,y_m,theta_rad,fresh,tick,server_fx_n,server_fy_n,server_torque_nm,fx_n,fy_n,torque_nm,gain")?;
+            if planar {
+                writeln!(w, "t_s,counter,x_m,y_m,theta_rad,fresh,tick,server_fx_n,server_fy_n,server_torque_nm,fx_n,fy_n,torque_nm,gain")?;
+            } else {
+                writeln!(
+                    w,
+                    "t_s,counter,x_m,y_m,z_m,qw,qx,qy,qz,fresh,tick,server_fx_n,server_fy_n,server_fz_n,server_tx_nm,server_ty_nm,server_tz_nm,\
+                     fx_n,fy_n,fz_n,tx_nm,ty_nm,tz_nm,gain"
+                )?;
+            }
             Some(w)
         }
         None => None,
@@ -508,16 +551,15 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
         report.periods += 1;
 
         let state = device.read_pose(t_s)?;
-        report.final_pose = state.pose();
+        report.final_pose = state.pose;
         let buttons_before = prev_buttons.replace(state.buttons);
         let t_pose = monotonic_ns();
         let ex = match link {
             Link::Shm(channel) => {
                 let pose = DevicePose {
                     t_ns: t_pose,
-                    x_m: state.x_m,
-                    y_m: state.y_m,
-                    theta_rad: state.theta_rad,
+                    position_m: state.pose.position_m,
+                    orientation: state.pose.orientation,
                     buttons: state.buttons,
                     counter: 0,
                 };
@@ -565,7 +607,7 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                     fresh: fresh.as_ref().map(ServerSample::from),
                     tick: fresh.map(|f| f.tick),
                     last_tick: sv.tick,
-                    last_wrench: [sv.force_n[0], sv.force_n[1], sv.torque_nm],
+                    last_wrench: sv.wrench(),
                     lost: matches!(sample.status, ReadStatus::Stale | ReadStatus::Broken) || !channel.is_current(),
                 }
             }
@@ -575,7 +617,7 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                 if state.buttons & 1 != 0 && buttons_before.is_some_and(|b| b & 1 == 0) {
                     remote.request_flip();
                 }
-                if let Some(c) = remote.send_pose(state.pose(), t_pose) {
+                if let Some(c) = remote.send_pose(state.pose.to_planar(), t_pose) {
                     report.last_counter = c;
                 }
                 report.dropped_poses = remote.dropped_poses;
@@ -589,8 +631,8 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                         last_echo_seq = r.pose_seq;
                         report.pose_to_force_ns.push(t_seen.saturating_sub(r.client_time_ns));
                     }
-                    if report.last_stiffness.is_none() && r.sample.stiffness.iter().any(|&v| v != 0.0) {
-                        let j = r.sample.stiffness;
+                    if report.last_stiffness.is_none() && r.sample.stiffness.iter().flatten().any(|&v| v != 0.0) {
+                        let j = restrict_planar_stiffness(&r.sample.stiffness);
                         tracing::info!(
                             "first stiffness at the needle base: J = [{:.1} {:.1} {:.4}; {:.1} {:.1} {:.4}; {:.4} {:.4} {:.5}]",
                             j[0],
@@ -620,38 +662,59 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
             report.last_tick = Some(t);
         }
         // The naive scheme: the last wrench as it came, no J term.
-        let server = ex.fresh.map(|s| if last_force { ServerSample { stiffness: [0.0; 9], ..s } } else { s });
-        let out = renderer.update(state.pose(), server.as_ref());
+        let server = ex.fresh.map(|s| if last_force { ServerSample { stiffness: [[0.0; 6]; 6], ..s } } else { s });
+        let out = renderer.update(&state.pose, server.as_ref());
         // Counted once a first force arrived (before it the output is zero for want of data, not the watchdog).
         if out.periods_since_fresh > watchdog_periods && report.fresh_forces > 0 {
             report.watchdog_periods += 1;
         }
         report.limited_periods += out.limited as u64;
-        report.max_rendered_force_n = report.max_rendered_force_n.max(out.wrench[0].hypot(out.wrench[1]));
+        report.max_rendered_force_n = report.max_rendered_force_n.max(force_norm(&out.wrench));
         device.write_force(out.wrench)?;
         if let Some(w) = trace.as_mut() {
-            writeln!(
-                w,
-                "{t_s},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                report.last_counter,
-                state.x_m,
-                state.y_m,
-                state.theta_rad,
-                ex.fresh.is_some() as u8,
-                ex.last_tick,
-                ex.last_wrench[0],
-                ex.last_wrench[1],
-                ex.last_wrench[2],
-                out.wrench[0],
-                out.wrench[1],
-                out.wrench[2],
-                out.gain
-            )?;
+            let fresh = ex.fresh.is_some() as u8;
+            if planar {
+                let [x, y, th] = state.pose.to_planar();
+                let (sw, rw) = (wrench_to_planar(ex.last_wrench), wrench_to_planar(out.wrench));
+                writeln!(
+                    w,
+                    "{t_s},{},{x},{y},{th},{fresh},{},{},{},{},{},{},{},{}",
+                    report.last_counter, ex.last_tick, sw[0], sw[1], sw[2], rw[0], rw[1], rw[2], out.gain
+                )?;
+            } else {
+                let (p, q, sw, rw) = (state.pose.position_m, state.pose.orientation, ex.last_wrench, out.wrench);
+                writeln!(
+                    w,
+                    "{t_s},{},{},{},{},{},{},{},{},{fresh},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    report.last_counter,
+                    p[0],
+                    p[1],
+                    p[2],
+                    q[0],
+                    q[1],
+                    q[2],
+                    q[3],
+                    ex.last_tick,
+                    sw[0],
+                    sw[1],
+                    sw[2],
+                    sw[3],
+                    sw[4],
+                    sw[5],
+                    rw[0],
+                    rw[1],
+                    rw[2],
+                    rw[3],
+                    rw[4],
+                    rw[5],
+                    out.gain
+                )?;
+            }
         }
         // A re-created or closed channel, a failed remote link: let the watchdog ramp the force out, then stop.
         if ex.lost {
             let since = *stale_since.get_or_insert(report.periods);
-            if out.wrench == [0.0; 3] || report.periods - since > watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1 {
+            if out.wrench == [0.0; 6] || report.periods - since > watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1 {
                 if let Some(w) = trace.as_mut() {
                     w.flush()?;
                 }
@@ -679,7 +742,7 @@ fn main() {
     install_signal_handlers();
     // The link first: a missing or stale channel, an unreachable server never touches the device.
     let link = match (&cli.channel, &cli.server) {
-        (Some(path), _) => DeviceChannel::attach(path).map(Link::Shm).map_err(anyhow::Error::from),
+        (Some(path), _) => DeviceChannel::attach(path).map(|end| Link::Shm(Box::new(end))).map_err(anyhow::Error::from),
         (None, Some(url)) => {
             if !(cli.inject_rtt_ms.is_finite() && cli.inject_rtt_ms >= 0.0) {
                 eprintln!("needlesim-bridge: --inject-rtt-ms must be non-negative, got {}", cli.inject_rtt_ms);
@@ -737,7 +800,7 @@ fn main() {
     };
     let result = run(&cli, &mut link, device.as_mut(), &mut report);
     // Never leave a haptic device pushing: zero first, whatever happened.
-    if let Err(e) = device.write_force([0.0; 3]) {
+    if let Err(e) = device.write_force([0.0; 6]) {
         eprintln!("needlesim-bridge: writing the final zero force failed: {e:#}");
     }
     device.close();

@@ -206,15 +206,18 @@ fn pose_of(p: Option<&pb::Pose2>) -> [f64; 3] {
     p.map_or([0.0; 3], |p| [p.x_m, p.y_m, p.theta_rad])
 }
 
-/// A response to a sample; a response without a (complete) stiffness keeps the previous Jacobian.
+/// A response to a sample (a 2D session: the planar wrench, 3×3 stiffness and base embedded in
+/// the 6-DOF sample); a response without a (complete) stiffness keeps the previous Jacobian
+/// (`∂(Fx, Fy, τ)/∂(x, y, θ)`, row-major).
 pub fn sample_from_response(r: &pb::ControlResponse, prev_stiffness: [f64; 9]) -> ServerSample {
     let f = r.force_n.unwrap_or_default();
-    let stiffness = if r.stiffness.len() == 9 && r.stiffness.iter().all(|v| v.is_finite()) {
-        std::array::from_fn(|i| r.stiffness[i])
-    } else {
-        prev_stiffness
-    };
-    ServerSample { wrench: [f.x, f.y, r.torque_nm], stiffness, base: pose_of(r.base.as_ref()) }
+    let stiffness = planar_stiffness_of(r).unwrap_or(prev_stiffness);
+    ServerSample::planar([f.x, f.y, r.torque_nm], &stiffness, pose_of(r.base.as_ref()))
+}
+
+/// The response's 3×3 stiffness, if complete and finite.
+fn planar_stiffness_of(r: &pb::ControlResponse) -> Option<[f64; 9]> {
+    (r.stiffness.len() == 9 && r.stiffness.iter().all(|v| v.is_finite())).then(|| std::array::from_fn(|i| r.stiffness[i]))
 }
 
 async fn stream_task(
@@ -285,7 +288,7 @@ async fn stream_task(
                     let (_, r) = line.pop_front().expect("front exists");
                     counter += 1;
                     let sample = sample_from_response(&r, stiffness);
-                    stiffness = sample.stiffness;
+                    stiffness = planar_stiffness_of(&r).unwrap_or(stiffness);
                     let v = RemoteSample {
                         counter,
                         sample,

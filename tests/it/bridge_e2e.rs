@@ -458,7 +458,7 @@ async fn issue_13_a_changed_channel_file_spares_the_server_and_ends_the_bridge_a
     // mapping, or by the watcher's size check if that runs first.)
     let cases: [(&str, &[&str]); 5] = [
         ("truncate", &["was truncated under the mapping", "is now 0 bytes"]),
-        ("shrink", &["is now 256 bytes, expected 512"]),
+        ("shrink", &["is now 256 bytes, expected 768"]),
         ("garbage", &["header was overwritten"]),
         ("delete", &["was deleted"]),
         ("replace", &["was replaced by another file"]),

@@ -40,7 +40,7 @@ fn main() {
             let dt = t.elapsed();
             assert!(f.fresh());
             f_ns.push(dt.as_nanos() as u64);
-            pose.x_m = i as f64;
+            pose.position_m[0] = i as f64;
             let t = Instant::now();
             device.write_pose_from_device(&pose).unwrap();
             let p = server.read_pose_from_rt();
@@ -74,7 +74,7 @@ fn main() {
             server.write_force_from_rt(&force);
             loop {
                 let s = server.read_pose_from_rt();
-                if s.fresh() && s.value.unwrap().x_m == i as f64 {
+                if s.fresh() && s.value.unwrap().position_m[0] == i as f64 {
                     break;
                 }
                 std::hint::spin_loop();

@@ -8,3 +8,4 @@
 pub mod rt;
 pub mod schedule;
 pub mod shm;
+pub mod spatial;

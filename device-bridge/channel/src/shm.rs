@@ -6,40 +6,53 @@
 //! device → server ([`DevicePose`]) and server → device ([`ServerForce`]). Neither side ever
 //! blocks: a read retries a bounded number of times and otherwise returns the last good value.
 //!
-//! # Layout (little-endian, [`LAYOUT_VERSION`] 2, [`CHANNEL_SIZE`] = 512 bytes)
+//! # Layout (little-endian, [`LAYOUT_VERSION`] 3, [`CHANNEL_SIZE`] = 768 bytes)
 //!
 //! Every field is a naturally aligned `u32`/`u64` accessed only through atomics; `f64`s are stored
 //! as their bit patterns, `u32`s of the slots in the low half of a `u64` word. Blocks are 128-byte
-//! aligned so the two slots never share a cache line (nor an adjacent-line prefetch pair).
+//! aligned so the two slots never share a cache line (nor an adjacent-line prefetch pair). Frames,
+//! units and the pose perturbation of the stiffness are those of [`crate::spatial`].
 //!
 //! | offset | size | field |
 //! |-------:|-----:|-------|
 //! | 0   | 8 | magic `b"NDLSIMv1"` |
 //! | 8   | 4 | layout version (`u32`) |
 //! | 12  | 4 | reserved (0) |
-//! | 16  | 8 | total size in bytes (`u64`, 512) |
+//! | 16  | 8 | total size in bytes (`u64`, 768) |
 //! | 24  | 8 | generation (`u64`, random, never 0; 0 while `create` is initialising) |
 //! | 32  | 4 | creator pid (`u32`) |
 //! | 36  | 4 | attacher pid (`u32`, 0 when no bridge is attached) |
 //! | 40  | 4 | closed (`u32`, 1 once the server end was dropped) |
-//! | 44  | 4 | reserved (0) |
+//! | 44  | 4 | session dimension (`u32`, 2 or 3: [`Dimension`]) |
 //! | 48  | 8 | tick origin (`u64`): `CLOCK_MONOTONIC` ns of the session's tick 0 deadline; 0 until published |
 //! | 56  | 8 | tick period (`u64`, ns; valid once the origin is not 0) |
 //! | 64  | 64 | reserved (0) |
 //! | 128 | 8 | pose slot: sequence (odd while being written, even when done, 0 = never written) |
 //! | 136 | 8 | pose slot: generation of the writer |
-//! | 144 | 48 | pose: `t_ns`, `x_m`, `y_m`, `theta_rad`, `buttons`, `counter` (one `u64` word each) |
-//! | 192 | 64 | reserved (0) |
+//! | 144 | 80 | pose: `t_ns`, `position_m[3]` (m, world), `orientation[4]` (unit quaternion w, x, y, z: body → world), `buttons`, `counter` (one `u64` word each) |
+//! | 224 | 32 | reserved (0) |
 //! | 256 | 8 | force slot: sequence |
 //! | 264 | 8 | force slot: generation of the writer |
-//! | 272 | 152 | force: `t_ns`, `tick`, `force_n[2]`, `torque_nm`, `stiffness[9]` (row-major), `base[3]`, `state`, `pose_counter` |
-//! | 424 | 88 | reserved (0) |
+//! | 272 | 424 | force: `t_ns`, `tick`, `force_n[3]` (N, world, on the base point), `torque_nm[3]` (N·m, world, about the base point), `stiffness[36]` (6×6 row-major, `∂(F, τ)/∂(δp, δθ)`: N/m, N/rad, N·m/m, N·m/rad), `base_position_m[3]`, `base_orientation[4]` (the pose the wrench was computed at), `state`, `pose_counter` |
+//! | 696 | 72 | reserved (0) |
 //!
 //! Version 2 added the tick phase (the session's tick deadlines are `origin + k·period` on
 //! `CLOCK_MONOTONIC`: [`ServerEnd::publish_schedule_from_rt`], [`DeviceEnd::server_schedule`]), so
 //! that a bridge can write each pose just before the tick that uses it, and the force's
 //! `pose_counter` (the counter of the device pose the force was computed from), so that a bridge
 //! knows which of its poses a force answers.
+//!
+//! Version 3 (the 6-DOF channel of issue 17, which calls it "layout version 2": the number 2 was
+//! already taken by the tick phase) replaced the planar pose `(x, y, θ)` and wrench `(Fx, Fy, τ)`
+//! with a 6-DOF pose (position + unit quaternion) and wrench (force + torque), the 3×3 stiffness
+//! with the 6×6 and the planar base with a 6-DOF one, and added the session's dimension. A 2D
+//! session rides on it unchanged in behaviour through the planar embedding of [`crate::spatial`]
+//! ([`DevicePose::planar`], [`DevicePose::to_planar`], [`ServerForce::set_planar`],
+//! [`ServerForce::to_planar`]). Peers of different versions refuse each other at attach: this
+//! build's [`DeviceChannel::attach`] recognises a file of version 1 or 2 (magic and version, though
+//! its size differs) and fails with [`ShmError::WrongVersion`] naming both versions; a bridge of an
+//! earlier release attaching to a version-3 file fails on its size check ("file is 768 bytes,
+//! expected 512"), never reading the new layout as the old.
 //!
 //! # Freshness and stale state
 //!
@@ -116,7 +129,7 @@
 use std::fs::{File, OpenOptions};
 use std::io;
 use std::mem::{offset_of, size_of};
-use std::os::unix::fs::{MetadataExt, OpenOptionsExt, PermissionsExt};
+use std::os::unix::fs::{FileExt, MetadataExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, AtomicUsize, Ordering, fence};
@@ -127,7 +140,7 @@ use memmap2::{MmapOptions, MmapRaw};
 /// The 8 magic bytes at offset 0.
 pub const MAGIC: [u8; 8] = *b"NDLSIMv1";
 /// The layout version at offset 8; bump it on any change of the layout.
-pub const LAYOUT_VERSION: u32 = 2;
+pub const LAYOUT_VERSION: u32 = 3;
 /// The size of the channel file in bytes.
 pub const CHANNEL_SIZE: u64 = size_of::<Layout>() as u64;
 /// How many times a read retries while the writer is mid-write before giving up (≈ a few µs).
@@ -158,8 +171,9 @@ pub enum ShmError {
     /// `attach`: the first 8 bytes are not [`MAGIC`] (not a needlesim channel, or another layout family).
     #[error("device channel {path}: wrong magic {found:?}, expected {expected:?}", found = String::from_utf8_lossy(found), expected = String::from_utf8_lossy(&MAGIC))]
     WrongMagic { path: PathBuf, found: [u8; 8] },
-    /// `attach`: the layout version differs (server and bridge built from different layouts).
-    #[error("device channel {path}: layout version {found}, this bridge speaks {expected}")]
+    /// `attach`: the layout version differs (server and bridge built from different layouts; an
+    /// earlier layout is recognised by its magic and version even though its size differs).
+    #[error("device channel {path}: layout version {found} ({}), this bridge speaks {expected} ({}): server and bridge are from different releases", layout_name(*found), layout_name(*expected))]
     WrongVersion { path: PathBuf, found: u32, expected: u32 },
     /// `attach`: the header's size field disagrees with [`CHANNEL_SIZE`] although the file length matches.
     #[error("device channel {path}: header says {found} bytes, expected {expected}")]
@@ -179,6 +193,16 @@ pub enum ShmError {
     /// `create`/`attach`: the file changed under the new mapping while it was being set up (e.g. truncated).
     #[error("device channel {path}: {cause}")]
     Broken { path: PathBuf, cause: Broken },
+}
+
+/// What a layout version carried, for [`ShmError::WrongVersion`].
+fn layout_name(version: u32) -> &'static str {
+    match version {
+        1 => "2D pose and wrench",
+        2 => "2D pose and wrench, tick phase",
+        3 => "6-DOF pose, wrench and 6x6 stiffness, session dimension",
+        _ => "unknown to this build",
+    }
 }
 
 /// The channel is stale (the server re-created it, with a new generation, or closed it: re-attach)
@@ -233,38 +257,131 @@ impl Broken {
     }
 }
 
-/// The device's pose, written by the bridge once per device sample.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// The dimension of the session behind a channel (header field): what the bridge drives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dimension {
+    /// A 2D session: it reads the planar part of the pose (x, y and the twist about z; see
+    /// [`crate::spatial`]) and answers with the planar wrench and stiffness embedded in the 6-DOF fields.
+    Two = 2,
+    /// A 3D session: the full 6-DOF pose and wrench.
+    Three = 3,
+}
+
+impl Dimension {
+    fn from_u32(v: u32) -> Option<Self> {
+        match v {
+            2 => Some(Self::Two),
+            3 => Some(Self::Three),
+            _ => None,
+        }
+    }
+}
+
+/// The device's pose, written by the bridge once per device sample (frames and units: [`crate::spatial`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DevicePose {
     /// `CLOCK_MONOTONIC` of the writer when sampled, ns ([`monotonic_ns`]).
     pub t_ns: u64,
-    pub x_m: f64,
-    pub y_m: f64,
-    pub theta_rad: f64,
+    /// The base point (the hand) in the world frame, m.
+    pub position_m: [f64; 3],
+    /// Unit quaternion `(w, x, y, z)`: the needle's body frame → world.
+    pub orientation: [f64; 4],
+    /// A bit per button, 1 = pressed.
     pub buttons: u32,
     /// Incremented by every write (stamped by [`DeviceEnd::write_pose_from_device`]; the caller's
     /// value is ignored): a counter that stops advancing means a dead bridge.
     pub counter: u64,
 }
 
-/// The force the tissue exerts, written by the session's real-time thread once per tick.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+impl Default for DevicePose {
+    /// At the origin, identity orientation, no button, time and counter 0.
+    fn default() -> Self {
+        Self { t_ns: 0, position_m: [0.0; 3], orientation: crate::spatial::IDENTITY, buttons: 0, counter: 0 }
+    }
+}
+
+impl DevicePose {
+    /// The 2D pose `(x_m, y_m, theta_rad)` embedded as `(x, y, 0)` and a rotation θ about +z.
+    pub fn planar(t_ns: u64, q: [f64; 3], buttons: u32) -> Self {
+        let (position_m, orientation) = crate::spatial::pose_from_planar(q);
+        Self { t_ns, position_m, orientation, buttons, counter: 0 }
+    }
+
+    /// The 2D pose `(x_m, y_m, theta_rad)`: x, y and the twist about z ([`crate::spatial::pose_to_planar`]).
+    pub fn to_planar(&self) -> [f64; 3] {
+        crate::spatial::pose_to_planar(self.position_m, self.orientation)
+    }
+}
+
+/// The wrench the tissue exerts, written by the session's real-time thread once per tick
+/// (frames and units: [`crate::spatial`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ServerForce {
     /// `CLOCK_MONOTONIC` of the writer, ns.
     pub t_ns: u64,
     /// The real-time loop's tick.
     pub tick: u64,
-    pub force_n: [f64; 2],
-    pub torque_nm: f64,
-    /// 3×3 Jacobian of (Fx, Fy, τ) with respect to (x, y, θ), row-major.
-    pub stiffness: [f64; 9],
-    /// The pose (x, y, θ) the force was computed at.
-    pub base: [f64; 3],
+    /// Force on the base point, world frame, N.
+    pub force_n: [f64; 3],
+    /// Torque about the base point, world frame, N·m.
+    pub torque_nm: [f64; 3],
+    /// `K = ∂(F, τ)/∂δ` with `δ = (δp, δθ)` the perturbation of the base pose (translation, m, and
+    /// a world rotation vector applied as `R ← exp(δθ̂)R`, rad): `stiffness[row][col]`, rows
+    /// (Fx, Fy, Fz, τx, τy, τz), columns (δx, δy, δz, δθx, δθy, δθz); blocks in N/m, N/rad, N·m/m, N·m/rad.
+    pub stiffness: [[f64; 6]; 6],
+    /// The base pose the wrench was computed at: position (m, world) …
+    pub base_position_m: [f64; 3],
+    /// … and orientation (unit quaternion `(w, x, y, z)`).
+    pub base_orientation: [f64; 4],
     /// [`ServerForce::STATE_OK`], [`ServerForce::STATE_DEVICE_STALE`] or [`ServerForce::STATE_CLOSING`].
     pub state: u32,
     /// The [`DevicePose::counter`] of the device pose this force was computed from; 0 when the
     /// tick used no device pose (a client's pose, or the needle held).
     pub pose_counter: u64,
+}
+
+impl Default for ServerForce {
+    /// Zero wrench and stiffness at the origin (identity orientation), state OK, tick and counter 0.
+    fn default() -> Self {
+        Self {
+            t_ns: 0,
+            tick: 0,
+            force_n: [0.0; 3],
+            torque_nm: [0.0; 3],
+            stiffness: [[0.0; 6]; 6],
+            base_position_m: [0.0; 3],
+            base_orientation: crate::spatial::IDENTITY,
+            state: Self::STATE_OK,
+            pose_counter: 0,
+        }
+    }
+}
+
+impl ServerForce {
+    /// Sets the wrench, stiffness and base pose from their 2D forms: wrench `(Fx, Fy, τ)` (N, N,
+    /// N·m), stiffness `∂(Fx, Fy, τ)/∂(x, y, θ)` (3×3 row-major) and base `(x, y, θ)` (the planar
+    /// embedding of [`crate::spatial`]; every other component 0).
+    pub fn set_planar(&mut self, wrench: [f64; 3], stiffness: &[f64; 9], base: [f64; 3]) {
+        self.force_n = [wrench[0], wrench[1], 0.0];
+        self.torque_nm = [0.0, 0.0, wrench[2]];
+        self.stiffness = crate::spatial::embed_planar_stiffness(stiffness);
+        (self.base_position_m, self.base_orientation) = crate::spatial::pose_from_planar(base);
+    }
+
+    /// The 2D forms: (wrench `(Fx, Fy, τz)`, stiffness 3×3 on (x, y, θz), base `(x, y, θ)`), the inverse of [`Self::set_planar`].
+    pub fn to_planar(&self) -> ([f64; 3], [f64; 9], [f64; 3]) {
+        (
+            [self.force_n[0], self.force_n[1], self.torque_nm[2]],
+            crate::spatial::restrict_planar_stiffness(&self.stiffness),
+            crate::spatial::pose_to_planar(self.base_position_m, self.base_orientation),
+        )
+    }
+
+    /// The wrench `(Fx, Fy, Fz, τx, τy, τz)`.
+    pub fn wrench(&self) -> [f64; 6] {
+        let (f, t) = (self.force_n, self.torque_nm);
+        [f[0], f[1], f[2], t[0], t[1], t[2]]
+    }
 }
 
 impl ServerForce {
@@ -339,13 +456,13 @@ struct Header {
     creator_pid: AtomicU32,
     attacher_pid: AtomicU32,
     closed: AtomicU32,
-    _reserved1: AtomicU32,
+    dimension: AtomicU32,
     tick_origin_ns: AtomicU64,
     tick_period_ns: AtomicU64,
 }
 
-const POSE_WORDS: usize = 6;
-const FORCE_WORDS: usize = 19;
+const POSE_WORDS: usize = 10;
+const FORCE_WORDS: usize = 53;
 
 #[repr(C, align(128))]
 struct Slot<const N: usize> {
@@ -362,7 +479,7 @@ struct Layout {
 }
 
 const _: () = {
-    assert!(size_of::<Layout>() == 512);
+    assert!(size_of::<Layout>() == 768);
     assert!(offset_of!(Layout, header) == 0);
     assert!(offset_of!(Header, version) == 8);
     assert!(offset_of!(Header, total_size) == 16);
@@ -370,6 +487,7 @@ const _: () = {
     assert!(offset_of!(Header, creator_pid) == 32);
     assert!(offset_of!(Header, attacher_pid) == 36);
     assert!(offset_of!(Header, closed) == 40);
+    assert!(offset_of!(Header, dimension) == 44);
     assert!(offset_of!(Header, tick_origin_ns) == 48);
     assert!(offset_of!(Header, tick_period_ns) == 56);
     assert!(offset_of!(Layout, pose) == 128);
@@ -428,37 +546,48 @@ impl<const N: usize> Slot<N> {
 }
 
 impl DevicePose {
+    /// Words: `t_ns`, `position_m[3]`, `orientation[4]`, `buttons`, `counter`.
     fn encode(&self, counter: u64) -> [u64; POSE_WORDS] {
-        [self.t_ns, self.x_m.to_bits(), self.y_m.to_bits(), self.theta_rad.to_bits(), self.buttons as u64, counter]
+        let mut w = [0u64; POSE_WORDS];
+        w[0] = self.t_ns;
+        for (d, s) in w[1..4].iter_mut().zip(&self.position_m) {
+            *d = s.to_bits();
+        }
+        for (d, s) in w[4..8].iter_mut().zip(&self.orientation) {
+            *d = s.to_bits();
+        }
+        w[8] = self.buttons as u64;
+        w[9] = counter;
+        w
     }
     fn decode(w: &[u64; POSE_WORDS]) -> Self {
-        Self {
-            t_ns: w[0],
-            x_m: f64::from_bits(w[1]),
-            y_m: f64::from_bits(w[2]),
-            theta_rad: f64::from_bits(w[3]),
-            buttons: w[4] as u32,
-            counter: w[5],
-        }
+        let f = |i: usize| f64::from_bits(w[i]);
+        Self { t_ns: w[0], position_m: [f(1), f(2), f(3)], orientation: [f(4), f(5), f(6), f(7)], buttons: w[8] as u32, counter: w[9] }
     }
 }
 
+/// The pose slot's word holding the counter.
+const POSE_COUNTER_WORD: usize = 9;
+
 impl ServerForce {
+    /// Words: `t_ns`, `tick`, `force_n[3]`, `torque_nm[3]`, `stiffness[36]` (row-major),
+    /// `base_position_m[3]`, `base_orientation[4]`, `state`, `pose_counter`.
     fn encode(&self) -> [u64; FORCE_WORDS] {
         let mut w = [0u64; FORCE_WORDS];
         w[0] = self.t_ns;
         w[1] = self.tick;
-        w[2] = self.force_n[0].to_bits();
-        w[3] = self.force_n[1].to_bits();
-        w[4] = self.torque_nm.to_bits();
-        for (d, s) in w[5..14].iter_mut().zip(&self.stiffness) {
+        let floats = self
+            .force_n
+            .iter()
+            .chain(&self.torque_nm)
+            .chain(self.stiffness.iter().flatten())
+            .chain(&self.base_position_m)
+            .chain(&self.base_orientation);
+        for (d, s) in w[2..51].iter_mut().zip(floats) {
             *d = s.to_bits();
         }
-        for (d, s) in w[14..17].iter_mut().zip(&self.base) {
-            *d = s.to_bits();
-        }
-        w[17] = self.state as u64;
-        w[18] = self.pose_counter;
+        w[51] = self.state as u64;
+        w[52] = self.pose_counter;
         w
     }
     fn decode(w: &[u64; FORCE_WORDS]) -> Self {
@@ -466,12 +595,13 @@ impl ServerForce {
         Self {
             t_ns: w[0],
             tick: w[1],
-            force_n: [f(2), f(3)],
-            torque_nm: f(4),
-            stiffness: std::array::from_fn(|i| f(5 + i)),
-            base: [f(14), f(15), f(16)],
-            state: w[17] as u32,
-            pose_counter: w[18],
+            force_n: [f(2), f(3), f(4)],
+            torque_nm: [f(5), f(6), f(7)],
+            stiffness: std::array::from_fn(|r| std::array::from_fn(|c| f(8 + 6 * r + c))),
+            base_position_m: [f(44), f(45), f(46)],
+            base_orientation: [f(47), f(48), f(49), f(50)],
+            state: w[51] as u32,
+            pose_counter: w[52],
         }
     }
 }
@@ -811,8 +941,15 @@ impl DeviceChannel {
     /// with a new random generation. A file left by a crashed server (or any file at the path) is
     /// truncated and re-initialised in place, so a bridge still attached to it sees the new
     /// generation and reports itself stale. Errors: [`ShmError::Io`] (open: missing directory,
-    /// symlink, no permission; `fchmod`; `set_len`; `mmap`).
+    /// symlink, no permission; `fchmod`; `set_len`; `mmap`). The channel of a 2D session
+    /// ([`Dimension::Two`]); see [`Self::create_with_dimension`].
     pub fn create(path: impl AsRef<Path>) -> Result<ServerEnd, ShmError> {
+        Self::create_with_dimension(path, Dimension::Two)
+    }
+
+    /// [`Self::create`] for a session of `dimension`, published in the header for the bridge
+    /// ([`DeviceEnd::session_dimension`]).
+    pub fn create_with_dimension(path: impl AsRef<Path>, dimension: Dimension) -> Result<ServerEnd, ShmError> {
         let path = path.as_ref();
         let file = OpenOptions::new()
             .read(true)
@@ -835,7 +972,7 @@ impl DeviceChannel {
         l.header.total_size.store(CHANNEL_SIZE, Ordering::Relaxed);
         l.header.creator_pid.store(std::process::id(), Ordering::Relaxed);
         l.header.attacher_pid.store(0, Ordering::Relaxed);
-        l.header._reserved1.store(0, Ordering::Relaxed);
+        l.header.dimension.store(dimension as u32, Ordering::Relaxed);
         l.header.tick_origin_ns.store(0, Ordering::Relaxed);
         l.header.tick_period_ns.store(0, Ordering::Relaxed);
         l.pose.reset();
@@ -865,6 +1002,14 @@ impl DeviceChannel {
             }
         })?;
         let len = file.metadata().map_err(io_err(path, "fstat"))?.len();
+        // A channel of an earlier layout (another size): name both versions rather than the sizes.
+        let mut head = [0u8; 12];
+        if len != CHANNEL_SIZE && len >= 12 && file.read_exact_at(&mut head, 0).is_ok() && head[..8] == MAGIC {
+            let found = u32::from_le_bytes([head[8], head[9], head[10], head[11]]);
+            if (1..LAYOUT_VERSION).contains(&found) {
+                return Err(ShmError::WrongVersion { path: path.to_path_buf(), found, expected: LAYOUT_VERSION });
+            }
+        }
         if len != CHANNEL_SIZE {
             return Err(ShmError::WrongSize { path: path.to_path_buf(), found: len, expected: CHANNEL_SIZE });
         }
@@ -908,7 +1053,7 @@ impl DeviceChannel {
         // Continue the pose counter of an earlier bridge of this generation, so it stays monotonic.
         let mut buf = [0u64; POSE_WORDS];
         let counter = match mapped.layout().pose.read(&mut buf) {
-            RawRead::Ok(_, g) if g == generation => buf[5],
+            RawRead::Ok(_, g) if g == generation => buf[POSE_COUNTER_WORD],
             _ => 0,
         };
         mapped.generation = generation;
@@ -1078,6 +1223,12 @@ impl DeviceEnd {
         (origin != 0 && period != 0).then(|| (Duration::from_nanos(origin), Duration::from_nanos(period)))
     }
 
+    /// The dimension of the session behind the channel (what the bridge drives); `None` for a
+    /// value this layout does not define (a garbled header).
+    pub fn session_dimension(&self) -> Option<Dimension> {
+        Dimension::from_u32(self.m.layout().header.dimension.load(Ordering::Relaxed))
+    }
+
     /// The counter the next successful write will stamp, minus one (the last one written).
     pub fn pose_counter(&self) -> u64 {
         self.counter
@@ -1172,14 +1323,19 @@ mod tests {
         OpenOptions::new().write(true).open(path).unwrap().write_all_at(bytes, offset).unwrap();
     }
 
+    fn at_x(x_m: f64) -> DevicePose {
+        DevicePose { position_m: [x_m, 0.0, 0.0], ..Default::default() }
+    }
+
     fn force(tick: u64) -> ServerForce {
         ServerForce {
             t_ns: monotonic_ns(),
             tick,
-            force_n: [1.5, -2.5],
-            torque_nm: 0.25,
-            stiffness: std::array::from_fn(|i| i as f64 * 10.0 + tick as f64),
-            base: [0.01, 0.02, 0.3],
+            force_n: [1.5, -2.5, 0.75],
+            torque_nm: [0.25, -0.125, 0.0625],
+            stiffness: std::array::from_fn(|r| std::array::from_fn(|c| (6 * r + c) as f64 * 10.0 + tick as f64)),
+            base_position_m: [0.01, 0.02, -0.03],
+            base_orientation: crate::spatial::quat_normalize([0.9, 0.1, -0.2, 0.3]).unwrap(),
             state: ServerForce::STATE_OK,
             pose_counter: tick + 7,
         }
@@ -1220,7 +1376,13 @@ mod tests {
         assert!(!device.server_alive(10));
 
         for k in 1..=3u64 {
-            let pose = DevicePose { t_ns: monotonic_ns(), x_m: 0.1 * k as f64, y_m: -0.2, theta_rad: 0.3, buttons: 0b101, counter: 999 };
+            let pose = DevicePose {
+                t_ns: monotonic_ns(),
+                position_m: [0.1 * k as f64, -0.2, 0.05],
+                orientation: crate::spatial::quat_normalize([0.5, -0.5, 0.25, 0.7]).unwrap(),
+                buttons: 0b101,
+                counter: 999,
+            };
             assert_eq!(device.write_pose_from_device(&pose).unwrap(), k);
             let s = server.read_pose_from_rt();
             assert!(s.fresh());
@@ -1260,7 +1422,7 @@ mod tests {
         let mut old_server = DeviceChannel::create(&path).unwrap();
         let mut old_device = DeviceChannel::attach(&path).unwrap();
         old_server.write_force_from_rt(&force(7));
-        old_device.write_pose_from_device(&DevicePose { x_m: 1.0, ..Default::default() }).unwrap();
+        old_device.write_pose_from_device(&at_x(1.0)).unwrap();
         let old_generation = old_server.generation();
         std::mem::forget(old_server); // crash: no cleanup, the mapping and the file stay
         assert!(path.exists());
@@ -1291,14 +1453,14 @@ mod tests {
 
         // A late write from a bridge of the old generation (raced past its is_current check) is ignored.
         // SAFETY-free way to simulate it: write into the slot with the old generation directly.
-        old_device.m.layout().pose.write(old_generation, &DevicePose { x_m: 9.0, ..Default::default() }.encode(5));
+        old_device.m.layout().pose.write(old_generation, &at_x(9.0).encode(5));
         assert!(!server.read_pose_from_rt().fresh());
 
         // The new pair works.
-        device.write_pose_from_device(&DevicePose { x_m: 2.0, ..Default::default() }).unwrap();
+        device.write_pose_from_device(&at_x(2.0)).unwrap();
         let s = server.read_pose_from_rt();
         assert!(s.fresh());
-        assert_eq!(s.value.unwrap().x_m, 2.0);
+        assert_eq!(s.value.unwrap().position_m[0], 2.0);
         drop(old_device); // must not detach the new bridge
         assert_eq!(server.attacher_pid(), Some(std::process::id()));
     }
@@ -1331,7 +1493,7 @@ mod tests {
         let short = temp_path("short");
         std::fs::write(&short, b"NDLSIMv1 too short").unwrap();
         let msg = DeviceChannel::attach(&short).err().unwrap().to_string();
-        assert!(msg.contains(&short.display().to_string()) && msg.contains("is 18 bytes, expected 512"), "{msg}");
+        assert!(msg.contains(&short.display().to_string()) && msg.contains("is 18 bytes, expected 768"), "{msg}");
 
         let magic = temp_path("magic");
         let _server = DeviceChannel::create(&magic).unwrap();
@@ -1343,10 +1505,13 @@ mod tests {
         let _server2 = DeviceChannel::create(&version).unwrap();
         patch(&version, 8, &7u32.to_le_bytes());
         let msg = DeviceChannel::attach(&version).err().unwrap().to_string();
-        assert!(msg.contains(&version.display().to_string()) && msg.contains("layout version 7, this bridge speaks 2"), "{msg}");
+        assert!(
+            msg.contains(&version.display().to_string()) && msg.contains("layout version 7 (unknown to this build), this bridge speaks 3"),
+            "{msg}"
+        );
 
         let zeros = temp_path("zeros");
-        std::fs::write(&zeros, [0u8; 512]).unwrap();
+        std::fs::write(&zeros, [0u8; CHANNEL_SIZE as usize]).unwrap();
         let msg = DeviceChannel::attach(&zeros).err().unwrap().to_string();
         assert!(msg.contains(&zeros.display().to_string()) && msg.contains("not initialised yet"), "{msg}");
 
@@ -1371,6 +1536,68 @@ mod tests {
         }
     }
 
+    /// A channel file of the 2D-only layout (version 2, 512 bytes, as a server of the previous
+    /// release creates it, or leaves behind in /dev/shm): refused naming both versions, not the sizes.
+    #[test]
+    fn a_channel_of_the_previous_layout_is_refused_naming_both_versions() {
+        let path = temp_path("layout-v2");
+        let mut old = vec![0u8; 512];
+        old[..8].copy_from_slice(&MAGIC);
+        old[8..12].copy_from_slice(&2u32.to_le_bytes());
+        old[16..24].copy_from_slice(&512u64.to_le_bytes());
+        old[24..32].copy_from_slice(&0x1234u64.to_le_bytes());
+        std::fs::write(&path, &old).unwrap();
+        let e = DeviceChannel::attach(&path).err().unwrap();
+        assert!(matches!(e, ShmError::WrongVersion { found: 2, expected: 3, .. }), "{e}");
+        let msg = e.to_string();
+        assert!(msg.contains("layout version 2 (2D pose and wrench, tick phase), this bridge speaks 3 (6-DOF pose"), "{msg}");
+        // Version 1 likewise; a same-size file with another version is named too.
+        old[8..12].copy_from_slice(&1u32.to_le_bytes());
+        std::fs::write(&path, &old).unwrap();
+        assert!(
+            DeviceChannel::attach(&path).err().unwrap().to_string().contains("layout version 1 (2D pose and wrench), this bridge speaks 3")
+        );
+        // A server creating over the old file re-initialises it in the new layout.
+        let server = DeviceChannel::create_with_dimension(&path, Dimension::Three).unwrap();
+        assert_eq!(std::fs::metadata(&path).unwrap().len(), CHANNEL_SIZE);
+        let device = DeviceChannel::attach(&path).unwrap();
+        assert_eq!(device.session_dimension(), Some(Dimension::Three));
+        drop(device);
+        drop(server);
+        let _server2d = DeviceChannel::create(&path).unwrap();
+        assert_eq!(DeviceChannel::attach(&path).unwrap().session_dimension(), Some(Dimension::Two));
+    }
+
+    /// A 6-DOF pose and wrench cross the channel bit for bit, and the 2D forms round-trip through it.
+    #[test]
+    fn six_dof_values_and_the_planar_forms_cross_intact() {
+        let path = temp_path("6dof");
+        let mut server = DeviceChannel::create_with_dimension(&path, Dimension::Three).unwrap();
+        let mut device = DeviceChannel::attach(&path).unwrap();
+        let q = crate::spatial::quat_normalize([0.3, -0.6, 0.2, 0.7]).unwrap();
+        let pose = DevicePose { t_ns: 42, position_m: [0.011, -0.022, 0.033], orientation: q, buttons: 0b11, counter: 0 };
+        device.write_pose_from_device(&pose).unwrap();
+        let got = server.read_pose_from_rt().value.unwrap();
+        assert_eq!(got, DevicePose { counter: 1, ..pose });
+        let f = force(9);
+        server.write_force_from_rt(&f);
+        assert_eq!(device.read_force_from_device().value.unwrap(), f);
+
+        // 2D through the 6-DOF fields.
+        let planar = DevicePose::planar(7, [0.05, -0.01, -1.2], 1);
+        device.write_pose_from_device(&planar).unwrap();
+        let back = server.read_pose_from_rt().value.unwrap().to_planar();
+        assert_eq!(&back[..2], &[0.05, -0.01]);
+        assert!((back[2] + 1.2).abs() < 1e-15, "{back:?}");
+        let mut f2 = ServerForce::default();
+        let j: [f64; 9] = std::array::from_fn(|i| i as f64 - 4.5);
+        f2.set_planar([0.5, -0.25, 0.002], &j, [0.05, -0.01, -1.2]);
+        server.write_force_from_rt(&f2);
+        let (w, k, base) = device.read_force_from_device().value.unwrap().to_planar();
+        assert_eq!((w, k), ([0.5, -0.25, 0.002], j));
+        assert!((base[2] + 1.2).abs() < 1e-15 && base[..2] == [0.05, -0.01], "{base:?}");
+    }
+
     #[test]
     fn file_mode_is_0600_even_over_an_existing_file() {
         let path = temp_path("mode");
@@ -1390,19 +1617,19 @@ mod tests {
         let path = temp_path("odd");
         let mut server = DeviceChannel::create(&path).unwrap();
         let mut device = DeviceChannel::attach(&path).unwrap();
-        device.write_pose_from_device(&DevicePose { x_m: 1.0, ..Default::default() }).unwrap();
+        device.write_pose_from_device(&at_x(1.0)).unwrap();
         assert!(server.read_pose_from_rt().fresh());
         server.m.layout().pose.seq.fetch_add(1, Ordering::Relaxed); // odd: a write in progress forever
         let s = server.read_pose_from_rt();
         assert_eq!(s.status, ReadStatus::Contended);
-        assert_eq!(s.value.unwrap().x_m, 1.0);
+        assert_eq!(s.value.unwrap().position_m[0], 1.0);
         drop(device);
         let mut device = DeviceChannel::attach(&path).unwrap();
         assert_eq!(device.pose_counter(), 0); // the slot was mid-write: counter not readable, restart
-        device.write_pose_from_device(&DevicePose { x_m: 2.0, ..Default::default() }).unwrap();
+        device.write_pose_from_device(&at_x(2.0)).unwrap();
         let s = server.read_pose_from_rt();
         assert!(s.fresh());
-        assert_eq!(s.value.unwrap().x_m, 2.0);
+        assert_eq!(s.value.unwrap().position_m[0], 2.0);
     }
 
     #[test]
@@ -1483,7 +1710,7 @@ mod tests {
     }
 
     fn pose(x_m: f64) -> DevicePose {
-        DevicePose { t_ns: monotonic_ns(), x_m, y_m: 0.1, theta_rad: 0.2, buttons: 0, counter: 0 }
+        DevicePose::planar(monotonic_ns(), [x_m, 0.1, 0.2], 0)
     }
 
     /// Every change to a live channel's file: neither end faults (this test process survives the
@@ -1525,16 +1752,16 @@ mod tests {
             // From now on: broken, nothing read, the last good values kept.
             let s = server.read_pose_from_rt();
             assert_eq!(s.status, ReadStatus::Broken, "{m:?}");
-            assert_eq!(s.value.map(|p| p.x_m), Some(1.0), "{m:?}");
+            assert_eq!(s.value.map(|p| p.position_m[0]), Some(1.0), "{m:?}");
             assert!(!server.device_alive(u64::MAX), "{m:?}");
             server.write_force_from_rt(&force(3));
             let f = device.read_force_from_device();
             assert_eq!(f.status, ReadStatus::Broken, "{m:?}");
             // The accesses found truncation and garbage at once; the others only the watcher (a
             // shrink within the first page, a grown, deleted or replaced file still share memory).
-            // (A shrink to 256 bytes zeroed the force slot's tail of the page: the next write
-            // restarted the sequence at 2, the sequence already accepted, so it was not fresh.)
-            let last_tick = if matches!(m, Mutation::TruncateToZero | Mutation::GarbageFill | Mutation::ShrinkToHalf) { 1 } else { 2 };
+            // (A shrink to half, 384 bytes, keeps the force slot's sequence and tick, which lie
+            // below the new end of file, in the still-shared page: the write of tick 2 arrives.)
+            let last_tick = if matches!(m, Mutation::TruncateToZero | Mutation::GarbageFill) { 1 } else { 2 };
             assert_eq!(f.value.map(|f| f.tick), Some(last_tick), "{m:?}");
             assert!(!device.is_current() && !device.server_alive(u64::MAX), "{m:?}");
             assert!(!device.closed_or_recreated(), "{m:?}: broken is not the normal end of a channel");

@@ -43,7 +43,7 @@ fn cross_process_poses_are_never_torn() {
                 fresh += 1;
                 let p = s.value.unwrap();
                 let c = p.counter as f64;
-                assert!(p.x_m == c && p.y_m == c && p.theta_rad == c && p.buttons == p.counter as u32, "torn read: {p:?}");
+                assert!(p.position_m == [c; 3] && p.orientation == [c; 4] && p.buttons == p.counter as u32, "torn read: {p:?}");
                 assert!(p.counter > last, "counter went back: {} after {last}", p.counter);
                 last = p.counter;
             }
@@ -78,7 +78,7 @@ fn cross_process_ping_pong_both_slots() {
     let mut server = DeviceChannel::create(&path).unwrap();
     let mut child = Command::new(env!("CARGO_BIN_EXE_shm-probe")).args(["echo", path.to_str().unwrap()]).spawn().unwrap();
     wait_attached(&server, child.id());
-    let mut force = ServerForce { stiffness: [1.0; 9], ..Default::default() };
+    let mut force = ServerForce { stiffness: [[1.0; 6]; 6], ..Default::default() };
     let t0 = Instant::now();
     for tick in 1..=ROUNDS {
         force.tick = tick;
@@ -86,7 +86,7 @@ fn cross_process_ping_pong_both_slots() {
         server.write_force_from_rt(&force);
         loop {
             let s = server.read_pose_from_rt();
-            if s.fresh() && s.value.unwrap().x_m == tick as f64 {
+            if s.fresh() && s.value.unwrap().position_m[0] == tick as f64 {
                 break;
             }
             assert!(t0.elapsed() < Duration::from_secs(60), "no echo of tick {tick}");
@@ -130,7 +130,7 @@ fn issue_13_a_truncated_channel_kills_neither_process() {
     let t0 = Instant::now();
     for tick in 1..=50u64 {
         server.write_force_from_rt(&ServerForce { tick, t_ns: monotonic_ns(), ..Default::default() });
-        while !(server.read_pose_from_rt().value.is_some_and(|p| p.x_m == tick as f64)) {
+        while !(server.read_pose_from_rt().value.is_some_and(|p| p.position_m[0] == tick as f64)) {
             assert!(t0.elapsed() < Duration::from_secs(30), "no echo of tick {tick}");
             std::hint::spin_loop();
         }

@@ -1,4 +1,5 @@
-/* An example needlesim device plug-in (see ../../include/needlesim_device.h): a "device" whose pose moves
+/* An example needlesim device plug-in of the 2D ABI, version 1 (see ../../include/needlesim_device.h; the
+ * 6-DOF example is example_device6.c): a "device" whose pose moves
  * along a straight line over time, q(t) = q0 + v t (t from nsd_open), which records the forces it is sent.
  * config: space-separated key=value: x0 y0 th0 (m, rad), vx vy om (m/s, rad/s),
  * record=PATH (on close, write "fx fy tau writes" of the last force to PATH), fail=1 (nsd_open fails).
@@ -21,7 +22,7 @@ static double now_s(void) {
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
-int nsd_abi_version(void) { return NSD_ABI_VERSION; }
+int nsd_abi_version(void) { return NSD_ABI_VERSION_PLANAR; }
 void* nsd_open(const char* config) {
     Dev* d = calloc(1, sizeof(Dev));
     char buf[1024], *tok, *save = NULL;

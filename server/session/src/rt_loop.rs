@@ -178,7 +178,9 @@ impl RtLoop {
             } else if sample.fresh()
                 && let Some(p) = sample.value
             {
-                *pose = BasePose::new(p.x_m, p.y_m, p.theta_rad);
+                // A 2D session takes the planar part of the 6-DOF pose (x, y, the twist about z).
+                let [x_m, y_m, theta_rad] = p.to_planar();
+                *pose = BasePose::new(x_m, y_m, theta_rad);
                 self.device_pose_counter = p.counter;
                 // Button 0 pressed (rising edge): flip the bevel.
                 if let Some(prev) = self.last_buttons
@@ -278,13 +280,9 @@ impl RtLoop {
         self.record.device_stale = device_stale;
         if let Some(dev) = self.device.as_mut() {
             let r = &self.record;
-            dev.write_force_from_rt(&needlesim_channel::shm::ServerForce {
+            let mut force = needlesim_channel::shm::ServerForce {
                 t_ns: needlesim_channel::shm::monotonic_ns(),
                 tick: r.tick,
-                force_n: r.force_n,
-                torque_nm: r.torque_nm,
-                stiffness: self.stiffness,
-                base: [r.base.x_m, r.base.y_m, r.base.theta_rad],
                 state: if device_stale {
                     needlesim_channel::shm::ServerForce::STATE_DEVICE_STALE
                 } else {
@@ -292,7 +290,11 @@ impl RtLoop {
                 },
                 // The device pose this force answers (none when the tick did not step on it).
                 pose_counter: if stepped { self.device_pose_counter } else { 0 },
-            });
+                ..Default::default()
+            };
+            // The 2D wrench, stiffness and base embedded in the channel's 6-DOF fields.
+            force.set_planar([r.force_n[0], r.force_n[1], r.torque_nm], &self.stiffness, [r.base.x_m, r.base.y_m, r.base.theta_rad]);
+            dev.write_force_from_rt(&force);
         }
         for k in 0..self.sim.output().evicted.len() {
             let node = self.sim.output().evicted[k];

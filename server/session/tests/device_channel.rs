@@ -20,16 +20,7 @@ fn drive_buttons(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64, butt
     while start.elapsed().as_secs_f64() < secs {
         let a = start.elapsed().as_secs_f64() / secs;
         let y = from_y + (to_y - from_y) * a;
-        device
-            .write_pose_from_device(&DevicePose {
-                t_ns: monotonic_ns(),
-                x_m: 0.05,
-                y_m: y,
-                theta_rad: -std::f64::consts::FRAC_PI_2,
-                buttons: buttons(a),
-                counter: 0,
-            })
-            .unwrap();
+        device.write_pose_from_device(&DevicePose::planar(monotonic_ns(), [0.05, y, -std::f64::consts::FRAC_PI_2], buttons(a))).unwrap();
         let f = device.read_force_from_device();
         if f.fresh() {
             last = f.value;
@@ -58,11 +49,11 @@ fn device_drives_goes_stale_and_reattaches() {
     let (origin, period) = device.server_schedule().expect("the tick phase is published");
     assert_eq!(period, Duration::from_millis(1));
     assert!(origin.as_nanos() as u64 <= monotonic_ns(), "tick 0 is in the past");
-    assert!((f.base[1] - 0.165).abs() < 0.002, "the server used the device's pose: {:?}", f.base);
+    assert!((f.base_position_m[1] - 0.165).abs() < 0.002, "the server used the device's pose: {:?}", f.base_position_m);
     let axial = -f.force_n[1]; // the needle points down: axial = -Fy
     assert!(axial < -0.1, "the tissue resists the insertion: {f:?}");
     // Lateral stiffness (x pose → Fx) restores: negative.
-    assert!(f.stiffness[0] < 0.0, "stiffness {:?}", f.stiffness);
+    assert!(f.stiffness[0][0] < 0.0, "stiffness {:?}", f.stiffness);
     let rec = session.latest_record();
     assert!(!rec.device_stale);
 
@@ -77,7 +68,7 @@ fn device_drives_goes_stale_and_reattaches() {
     std::thread::sleep(Duration::from_millis(100));
     let held = session.latest_record();
     assert!(held.device_stale, "the device is marked stale");
-    assert!((held.base.y_m - f.base[1]).abs() < 0.002, "the needle is held where the device left it: {:?}", held.base);
+    assert!((held.base.y_m - f.base_position_m[1]).abs() < 0.002, "the needle is held where the device left it: {:?}", held.base);
     assert_eq!(session.counters.device_stale_events.load(Ordering::Relaxed), 1);
     let t1 = held.tick;
     let t0 = Instant::now();
@@ -160,7 +151,7 @@ fn issue_13_a_changed_channel_file_leaves_its_session_and_the_others_ticking() {
         let _ = device.watch().check_file();
         assert_eq!(device.broken(), Some(cause), "[{kind}]");
         assert_eq!(device.read_force_from_device().status, ReadStatus::Broken, "[{kind}]");
-        assert!(device.write_pose_from_device(&DevicePose { y_m: 0.15, ..Default::default() }).is_err(), "[{kind}]");
+        assert!(device.write_pose_from_device(&DevicePose::planar(0, [0.0, 0.15, 0.0], 0)).is_err(), "[{kind}]");
 
         std::thread::sleep(Duration::from_millis(100));
         let held = session.latest_record();
@@ -210,7 +201,7 @@ fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
         }
     };
     let write = |device: &mut DeviceEnd, (x_m, y_m): (f64, f64)| {
-        let p = DevicePose { t_ns: monotonic_ns(), x_m, y_m, theta_rad: -std::f64::consts::FRAC_PI_2, buttons: 0, counter: 0 };
+        let p = DevicePose::planar(monotonic_ns(), [x_m, y_m, -std::f64::consts::FRAC_PI_2], 0);
         device.write_pose_from_device(&p).unwrap();
     };
     // Where a sticky needle diverges depends chaotically on the path's pace: each attempt is a
@@ -249,8 +240,8 @@ fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
         let f = device.read_force_from_device();
         if let (true, Some(f)) = (f.fresh(), f.value) {
             fresh += 1;
-            assert_eq!((f.force_n, f.torque_nm), ([0.0; 2], 0.0), "zero force after the fault: {f:?}");
-            assert_eq!(f.stiffness, [0.0; 9], "zero stiffness after the fault");
+            assert_eq!((f.force_n, f.torque_nm), ([0.0; 3], [0.0; 3]), "zero force after the fault: {f:?}");
+            assert_eq!(f.stiffness, [[0.0; 6]; 6], "zero stiffness after the fault");
         }
         std::thread::sleep(Duration::from_micros(500));
     }

@@ -36,16 +36,7 @@ fn real_time_ticks_allocate_nothing_after_warm_up() {
     while start.elapsed().as_secs_f64() < secs + 0.3 {
         let t = start.elapsed().as_secs_f64().min(secs);
         let p = BasePose::new(0.05, 0.205 - 0.05 * t / secs, -std::f64::consts::FRAC_PI_2);
-        device
-            .write_pose_from_device(&DevicePose {
-                t_ns: monotonic_ns(),
-                x_m: p.x_m,
-                y_m: p.y_m,
-                theta_rad: p.theta_rad,
-                buttons: 0,
-                counter: 0,
-            })
-            .unwrap();
+        device.write_pose_from_device(&DevicePose::planar(monotonic_ns(), [p.x_m, p.y_m, p.theta_rad], 0)).unwrap();
         forces += device.read_force_from_device().fresh() as u64;
         while all.try_recv().is_ok() {}
         let _ = latest.borrow_and_update();

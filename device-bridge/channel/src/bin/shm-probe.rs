@@ -35,7 +35,7 @@ fn main() {
             }
             for _ in 0..n {
                 let c = (device.pose_counter() + 1) as f64;
-                let pose = DevicePose { t_ns: monotonic_ns(), x_m: c, y_m: c, theta_rad: c, buttons: c as u32, counter: 0 };
+                let pose = DevicePose { t_ns: monotonic_ns(), position_m: [c; 3], orientation: [c; 4], buttons: c as u32, counter: 0 };
                 device.write_pose_from_device(&pose).expect("channel went stale");
             }
         }
@@ -55,7 +55,7 @@ fn main() {
                     break;
                 }
                 if f.fresh() {
-                    let pose = DevicePose { t_ns: monotonic_ns(), x_m: force.tick as f64, ..Default::default() };
+                    let pose = DevicePose { t_ns: monotonic_ns(), position_m: [force.tick as f64, 0.0, 0.0], ..Default::default() };
                     if device.write_pose_from_device(&pose).is_err() {
                         if let Some(b) = device.broken() {
                             eprintln!("shm-probe: channel broken: {b}");
