@@ -368,3 +368,120 @@ impl ContactBlocks<3> for ComplianceStore3 {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::d3::SparseCompliance;
+    use crate::sim3::Sim3BlockWorker;
+    use rand::rngs::SmallRng;
+    use rand::{Rng, SeedableRng};
+
+    /// Seeded random sequences of requests (some answered at once, some left pending across
+    /// rounds as a worker thread would), explicit evictions, pins and unpins on a 5³ cube with
+    /// 12 slots: after every round the worker's mirror holds the store's node in every pending
+    /// and ready slot, every block between ready nodes equals $Y_v^\top Y_w$ computed directly
+    /// ([`SparseCompliance::block`]), and no pinned node lost its slot.
+    #[test]
+    fn random_requests_evictions_and_pins_keep_the_store_and_the_worker_consistent() {
+        let model = crate::fixtures::box_phantom3(5);
+        let n = model.mesh().n_nodes();
+        let cap = 12;
+        let mut exact = SparseCompliance::new(&model);
+        for seed in [1u64, 2, 3] {
+            let mut rng = SmallRng::seed_from_u64(seed);
+            let mut store = NodeBlockStore::new(n, cap);
+            let mut worker = Sim3BlockWorker::new(model.clone(), cap).unwrap();
+            let (mut stamp, mut pinned) = (vec![0u64; n], vec![false; n]);
+            let mut queue: Vec<BlockRequest> = Vec::new();
+            let (mut evictions, mut checked, mut deferred_rounds) = (0, 0, 0);
+            for round in 1..=150u64 {
+                for _ in 0..rng.random_range(1..5) {
+                    let v = rng.random_range(0..n);
+                    if model.is_fixed(v) || store.contains(v) || store.is_pending(v) {
+                        continue;
+                    }
+                    let Some(slot) = store.choose_slot(|j| !pinned[j], |j| stamp[j]) else { continue };
+                    let (req, evicted) = store.reserve(v, slot).unwrap();
+                    if let Some(e) = evicted {
+                        assert!(!pinned[e], "pinned node {e} evicted");
+                        evictions += 1;
+                    }
+                    stamp[v] = round;
+                    queue.push(req);
+                }
+                if rng.random_bool(0.1) {
+                    let ready: Vec<usize> = (0..cap).filter_map(|s| store.ready_node_in_slot(s)).filter(|&v| !pinned[v]).collect();
+                    if let Some(&v) = ready.get(rng.random_range(0..ready.len().max(1))) {
+                        store.evict(v);
+                    }
+                }
+                if rng.random_bool(0.2) {
+                    let ready: Vec<usize> = (0..cap).filter_map(|s| store.ready_node_in_slot(s)).collect();
+                    if let Some(&v) = ready.get(rng.random_range(0..ready.len().max(1))) {
+                        pinned[v] = !pinned[v] && pinned.iter().filter(|&&p| p).count() < cap / 2;
+                    }
+                }
+                if rng.random_bool(0.5) {
+                    for p in worker.compute(&queue).unwrap() {
+                        store.insert(p).unwrap();
+                    }
+                    queue.clear();
+                } else {
+                    deferred_rounds += 1;
+                }
+                for s in 0..cap {
+                    if let Some(v) = store.node_in_slot(s)
+                        && !queue.iter().any(|r| r.slot == s)
+                    {
+                        assert_eq!(worker.node_in_slot(s), Some(v), "seed {seed} round {round}: slot {s}");
+                    }
+                }
+                for v in (0..n).filter(|&v| pinned[v]) {
+                    assert!(store.contains(v), "pinned node {v} lost");
+                }
+                for sa in 0..cap {
+                    for sb in 0..cap {
+                        let (Some(a), Some(b)) = (store.ready_node_in_slot(sa), store.ready_node_in_slot(sb)) else { continue };
+                        let got = store.block(a, b).unwrap();
+                        let want = exact.block(a, b).unwrap();
+                        let scale = (exact.block(a, a).unwrap()[0][0] * exact.block(b, b).unwrap()[0][0]).sqrt();
+                        for r in 0..3 {
+                            for c in 0..3 {
+                                assert!((got[r][c] - want[r][c]).abs() <= 1e-12 * scale, "seed {seed} round {round}: C[{a},{b}]");
+                            }
+                        }
+                        checked += 1;
+                    }
+                }
+            }
+            assert!(evictions > 20 && deferred_rounds > 20 && checked > 1000, "{evictions} evictions, {deferred_rounds}, {checked}");
+        }
+    }
+
+    /// Payloads out of order, twice, or of the wrong length are refused by name and change
+    /// nothing; an evicted pending slot refuses its payload.
+    #[test]
+    fn bad_payloads_are_refused() {
+        let mut store = NodeBlockStore::new(10, 4);
+        let (r1, _) = store.reserve(3, 0).unwrap();
+        let (r2, _) = store.reserve(5, 1).unwrap();
+        let p = |r: BlockRequest, len: usize| BlockPayload { node_idx: r.node_idx, slot: r.slot, blocks: vec![[[1.0; 3]; 3]; len] };
+        assert_eq!(store.insert(&p(r1, 3)), Err(BlockStoreError::WrongLength { node_idx: 3, got: 3, cap: 4 }));
+        store.insert(&p(r1, 4)).unwrap();
+        assert_eq!(store.insert(&p(r1, 4)), Err(BlockStoreError::NotPending { node_idx: 3, slot: 0 }));
+        assert!(store.contains(3) && !store.contains(5) && store.is_pending(5));
+        store.evict(5);
+        assert_eq!(store.insert(&p(r2, 4)), Err(BlockStoreError::NotPending { node_idx: 5, slot: 1 }));
+        assert_eq!(store.len(), 1);
+        assert!(matches!(store.reserve(10, 2), Err(BlockStoreError::UnknownNode { node_idx: 10, n_nodes: 10 })));
+    }
+
+    /// The worker can move to its own thread.
+    #[test]
+    fn the_worker_is_send() {
+        fn send<T: Send>() {}
+        send::<Sim3BlockWorker>();
+        send::<BlockPayload>();
+    }
+}
