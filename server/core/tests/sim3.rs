@@ -397,6 +397,17 @@ fn bad_poses_and_parameters_are_refused_by_name() {
     let e = Simulation3::new(model.clone(), p).err().unwrap().to_string();
     assert!(e.contains("spacing_m"), "{e}");
     let mut p = box_phantom3_params(ENTRY, 0.005);
+    p.max_block_nodes = 8;
+    let e = Simulation3::new(model.clone(), p).err().unwrap().to_string();
+    assert!(e.contains("max_block_nodes"), "{e}");
+    // The store follows the mesh size unless chosen; calls for the other store are refused.
+    assert_eq!(StoreKind3::Auto.resolve(19_999), StoreKind3::Columns);
+    assert_eq!(StoreKind3::Auto.resolve(20_000), StoreKind3::NodeBlocks);
+    assert_eq!(StoreKind3::Columns.resolve(1_000_000), StoreKind3::Columns);
+    let e = sim.requests_into(4, &mut Vec::new()).unwrap_err();
+    assert!(matches!(e, SimError3::WrongStore { call: "requests_into", .. }), "{e}");
+    assert!(sim.block_worker().is_err());
+    let mut p = box_phantom3_params(ENTRY, 0.005);
     p.regions.push(Default::default());
     assert!(Simulation3::new(model, p).err().unwrap().to_string().contains("regions"));
 }

@@ -1131,6 +1131,24 @@ mod tests {
         assert_eq!(SparseCompliance::from_factor(&chol2).unwrap_err(), SparseComplianceError::NotThreeDofsPerNode { dofs_per_node: 2 });
     }
 
+    /// A view rebuilt from its pattern ([`SparseFactorView::with_pattern`]) computes the same rows
+    /// bit for bit; the pattern of another factor is refused.
+    #[test]
+    fn a_view_from_its_pattern_is_the_same_view() {
+        let m = model([3, 2, 2]);
+        let view = SparseFactorView::new(m.cholesky()).unwrap();
+        let pattern = view.pattern();
+        let again = SparseFactorView::with_pattern(m.cholesky(), &pattern).unwrap();
+        let nodes: Vec<usize> = (0..m.mesh().n_nodes()).filter(|&v| !m.is_fixed(v)).collect();
+        let (mut a, mut b) = (vec![NodeRows::default(); nodes.len()], vec![NodeRows::default(); nodes.len()]);
+        view.rows_batch_into(&nodes, &mut view.scratch(), &mut a).unwrap();
+        again.rows_batch_into(&nodes, &mut again.scratch(), &mut b).unwrap();
+        assert!(!a[0].is_empty());
+        assert_eq!(a, b);
+        let other = model([2, 2, 2]);
+        assert_eq!(SparseFactorView::with_pattern(other.cholesky(), &pattern).unwrap_err(), SparseComplianceError::PatternMismatch);
+    }
+
     /// `rows_into` reuses its output's storage: a second node with a reach no longer than the
     /// first's keeps the buffers (no allocation), and the scratch is left zeroed.
     #[test]

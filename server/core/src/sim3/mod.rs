@@ -148,7 +148,8 @@ pub struct Sim3Stats {
     pub releases: u64,
     pub stick_to_slip: u64,
     pub slip_to_stick: u64,
-    /// Ticks a due capture waited for its nodes' columns.
+    /// Ticks a due capture waited for its nodes' columns (with node blocks: for the blocks of
+    /// its nodes or of the tetrahedra its fixed point passed through).
     pub column_deferrals: u64,
     /// Captures refused because their conditions were dependent on the others' (not expected
     /// with the distance rule).

@@ -29,6 +29,13 @@
 //! slot is the caller's rule (the simulation: least recently used, never a pinned node, never one
 //! used by the last step).
 
+//!
+//! **Reads beyond the working points** (a target's displacement
+//! $u_T = \sum_k N_{T,k} \sum_i C_{v_{T,k}\, \cdot} P_i^\top f_i$): [`ComplianceStore3::block`]
+//! serves $C_{ab}$ from either store; with node blocks both nodes must be cached, so the reader
+//! pins the nodes it needs ([`super::Simulation3::pin_node`]): a pinned node is requested before
+//! the approaching ones and never gives its slot up.
+
 use crate::compliance::{ComplianceCache3, ContactBlocks};
 use crate::contact::ContactPoint;
 
