@@ -28,7 +28,6 @@
 //! read, and are overwritten when the slot is requested again. Which ready node gives up its
 //! slot is the caller's rule (the simulation: least recently used, never a pinned node, never one
 //! used by the last step).
-
 //!
 //! **Reads beyond the working points** (a target's displacement
 //! $u_T = \sum_k N_{T,k} \sum_i C_{v_{T,k}\, \cdot} P_i^\top f_i$): [`ComplianceStore3::block`]
