@@ -383,6 +383,24 @@ impl<const D: usize> ComplianceCache<D> {
     }
 }
 
+/// What the mixed solver reads of the compliance: the world-frame block between two contacts,
+/// $W_{ab} = P_a C P_b^\top$ ($D \times D$, displacement of `a` per unit force on `b`), `None`
+/// when the store lacks what it needs. Implemented by the column cache
+/// ([`ComplianceCache::contact_block`]) and by the 3D node-block store
+/// ([`crate::sim3::NodeBlockStore`]); [`crate::mixed::MixedSolver`]'s methods are generic over it
+/// (monomorphised, no dynamic dispatch on the hot path).
+pub trait ContactBlocks<const D: usize> {
+    /// The block $W_{ab}$, or `None` when a node's data is missing.
+    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; D]; D]>;
+}
+
+impl<const D: usize> ContactBlocks<D> for ComplianceCache<D> {
+    #[inline]
+    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; D]; D]> {
+        ComplianceCache::contact_block(self, a, b)
+    }
+}
+
 /// A shareable tissue model.
 pub type SharedTissue = Arc<TissueModel>;
 

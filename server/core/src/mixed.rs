@@ -51,7 +51,7 @@
 //! ([`MixedSolver::add_contact_in_frame`]); removing one pivots its displacement-prescribed DOFs
 //! to $F$ (zero force) and drops it.
 //!
-//! **Dimension as a const generic.** `MixedSolver<D>` (and [`ComplianceCache<D>`]) take the
+//! **Dimension as a const generic.** `MixedSolver<D>` (and [`ComplianceCache<D>`](crate::compliance::ComplianceCache)) take the
 //! dimension as a const generic, `D` ∈ {2, 3}, rather than a runtime field: the per-slot blocks
 //! are `[[f64; D]; D]` arrays, so every $D$-loop is unrolled and the 2D code monomorphises to the
 //! same 2 × 2 arithmetic as before (bit for bit: same operations in the same order), with no
@@ -63,9 +63,15 @@
 //! the generic one ([`MixedSolver::add_contact_in_frame`], [`MixedSolver::set_frame`]); local
 //! components are named by [`Axis`] (`Axial`, `Lateral` and, in 3D, `Binormal`).
 //!
+//! **Compliance source.** The solver reads the compliance only as contact blocks
+//! $W_{ab} = P_a C P_b^\top$ when it borders $H$ or rebuilds it, through the trait
+//! [`ContactBlocks`]: the column cache [`ComplianceCache`](crate::compliance::ComplianceCache) in 2D and 3D, or the 3D node-block
+//! store of large meshes ([`crate::sim3::NodeBlockStore`]). The methods that read it are generic
+//! over the store, monomorphised (the 2D code is the same as with the cache type written out).
+//!
 //! Nothing here allocates after [`MixedSolver::with_capacity`].
 
-use crate::compliance::ComplianceCache;
+use crate::compliance::ContactBlocks;
 use crate::contact::ContactPoint;
 use crate::ids::{Axis, NodeIdx, Slot};
 
@@ -449,7 +455,12 @@ impl<const D: usize> MixedSolver<D> {
     /// [`MixedError::NonFinite`] or [`MixedError::NotARotation`] for a frame that is not a
     /// finite rotation, [`MixedError::AlreadyWorking`] when the node has a slot,
     /// [`MixedError::NotCached`] when its columns are missing; the state is then unchanged.
-    pub fn add_contact_in_frame(&mut self, cache: &ComplianceCache<D>, contact: ContactPoint, frame: Block<D>) -> Result<Slot, MixedError> {
+    pub fn add_contact_in_frame<C: ContactBlocks<D> + ?Sized>(
+        &mut self,
+        cache: &C,
+        contact: ContactPoint,
+        frame: Block<D>,
+    ) -> Result<Slot, MixedError> {
         if self.n_nodes == self.cap_nodes {
             return Err(MixedError::Full { cap_nodes: self.cap_nodes });
         }
@@ -459,7 +470,13 @@ impl<const D: usize> MixedSolver<D> {
 
     /// Borders $H$ with a new slot (formulas in [`MixedSolver::add_contact_in_frame`]); `frame`
     /// is valid, `angle_rad` is kept for 2D.
-    fn border(&mut self, cache: &ComplianceCache<D>, contact: ContactPoint, frame: Block<D>, angle_rad: f64) -> Result<Slot, MixedError> {
+    fn border<C: ContactBlocks<D> + ?Sized>(
+        &mut self,
+        cache: &C,
+        contact: ContactPoint,
+        frame: Block<D>,
+        angle_rad: f64,
+    ) -> Result<Slot, MixedError> {
         if self.n_nodes == self.cap_nodes {
             return Err(MixedError::Full { cap_nodes: self.cap_nodes });
         }
@@ -894,7 +911,7 @@ impl<const D: usize> MixedSolver<D> {
     /// for the $O(d^2)$ updates, $O(d^3)$ and allocating, never called inside a real-time step.
     ///
     /// Errors: those of [`MixedSolver::hybrid_from_scratch`].
-    pub fn rebuild(&mut self, cache: &ComplianceCache<D>) -> Result<(), MixedError> {
+    pub fn rebuild<C: ContactBlocks<D> + ?Sized>(&mut self, cache: &C) -> Result<(), MixedError> {
         let h = self.hybrid_from_scratch(cache)?;
         let d = self.n_dofs();
         for i in 0..d {
@@ -912,7 +929,7 @@ impl<const D: usize> MixedSolver<D> {
     /// Errors: [`MixedError::NotCached`] when a contact's columns are missing,
     /// [`MixedError::SingularPivot`] (naming the first displacement-prescribed DOF, pivot 0)
     /// when $C_{PP}$ is not positive definite.
-    pub fn hybrid_from_scratch(&self, cache: &ComplianceCache<D>) -> Result<faer::Mat<f64>, MixedError> {
+    pub fn hybrid_from_scratch<C: ContactBlocks<D> + ?Sized>(&self, cache: &C) -> Result<faer::Mat<f64>, MixedError> {
         let d = self.n_dofs();
         let mut cl = faer::Mat::<f64>::zeros(d, d);
         for a in 0..self.n_nodes {
@@ -973,7 +990,7 @@ impl MixedSolver<2> {
     /// Adds mesh node `node_idx` to the working set ([`MixedSolver::add_contact`] of the node).
     ///
     /// Errors: those of [`MixedSolver::add_contact`].
-    pub fn add_node(&mut self, cache: &ComplianceCache<2>, node_idx: NodeIdx, angle_rad: f64) -> Result<Slot, MixedError> {
+    pub fn add_node<C: ContactBlocks<2> + ?Sized>(&mut self, cache: &C, node_idx: NodeIdx, angle_rad: f64) -> Result<Slot, MixedError> {
         self.add_contact(cache, ContactPoint::node(node_idx), angle_rad)
     }
 
@@ -985,7 +1002,12 @@ impl MixedSolver<2> {
     /// [`MixedError::NonFinite`] for a non-finite angle, [`MixedError::AlreadyWorking`] when the
     /// node has a slot, [`MixedError::NotCached`] when its columns are missing; the state is then
     /// unchanged.
-    pub fn add_contact(&mut self, cache: &ComplianceCache<2>, contact: ContactPoint, angle_rad: f64) -> Result<Slot, MixedError> {
+    pub fn add_contact<C: ContactBlocks<2> + ?Sized>(
+        &mut self,
+        cache: &C,
+        contact: ContactPoint,
+        angle_rad: f64,
+    ) -> Result<Slot, MixedError> {
         if self.n_nodes == self.cap_nodes {
             return Err(MixedError::Full { cap_nodes: self.cap_nodes });
         }
@@ -1142,6 +1164,7 @@ pub fn world_to_local(v: [f64; 2], angle_rad: f64) -> [f64; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::compliance::ComplianceCache;
     use crate::ids::{Axis, NodeIdx, Slot};
     use crate::statics::{NodeCondition, StaticProblem};
     use rand::rngs::SmallRng;

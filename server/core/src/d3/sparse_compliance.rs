@@ -43,6 +43,8 @@
 //! the ordering: [`nested_dissection_order`] gives shorter reaches and less fill than faer's AMD
 //! on box grids. No I/O.
 
+use std::borrow::Cow;
+
 use crate::d3::locate::PointLocation;
 use crate::d3::tissue::TetTissueModel;
 use crate::factor::SparseCholesky;
@@ -58,6 +60,9 @@ pub enum SparseComplianceError {
     /// A node asked for (rows, node block, or a point's element node) does not exist.
     #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
     UnknownNode { node_idx: usize, n_nodes: usize },
+    /// [`SparseFactorView::with_pattern`] was given the pattern of another factor.
+    #[error("the factor pattern belongs to another factor")]
+    PatternMismatch,
 }
 
 /// The compliance rows $Y_v$ of one node on its reach (see the module documentation): the
@@ -126,6 +131,23 @@ pub struct SparseRowsScratch {
     tmp: Vec<f64>,
 }
 
+/// The structure of a [`SparseFactorView`] without the factor's values (see
+/// [`SparseFactorView::pattern`]): owned, so a worker holding the model in an `Arc` keeps it and
+/// borrows a view per call ([`SparseFactorView::with_pattern`]).
+#[derive(Debug, Clone)]
+pub struct FactorPattern {
+    free_of_dof: Vec<usize>,
+    col_of_free: Vec<usize>,
+    sn_of_col: Vec<usize>,
+    sn_begin: Vec<usize>,
+    sn_val: Vec<usize>,
+    sn_pat: Vec<usize>,
+    pattern: Vec<usize>,
+    sn_parent: Vec<usize>,
+    n_nodes: usize,
+    supernodal: bool,
+}
+
 /// An immutable, walkable view of a [`SparseCholesky`] factor of a 3D model: per supernode its
 /// first column, value offset, row pattern below the diagonal block and parent in the supernode
 /// elimination tree. `Sync`: one view can serve several threads, each with its own scratch.
@@ -135,21 +157,21 @@ pub struct SparseFactorView<'f> {
     /// Jacobi scale per free DOF.
     scale: &'f [f64],
     /// Free index of each global DOF (`usize::MAX` when fixed).
-    free_of_dof: Vec<usize>,
+    free_of_dof: Cow<'f, [usize]>,
     /// Factor column of each free DOF ($\mathrm{inv}(i)$).
-    col_of_free: Vec<usize>,
+    col_of_free: Cow<'f, [usize]>,
     /// Supernode of each factor column.
-    sn_of_col: Vec<usize>,
+    sn_of_col: Cow<'f, [usize]>,
     /// First column of each supernode, plus $n_\mathrm{free}$.
-    sn_begin: Vec<usize>,
+    sn_begin: Cow<'f, [usize]>,
     /// Offset of each supernode's column-major block in `l_values`, plus its end.
-    sn_val: Vec<usize>,
+    sn_val: Cow<'f, [usize]>,
     /// Offset of each supernode's pattern in `pattern`, plus its end.
-    sn_pat: Vec<usize>,
+    sn_pat: Cow<'f, [usize]>,
     /// Row patterns below the diagonal blocks, in the order of the blocks' rows.
-    pattern: Vec<usize>,
+    pattern: Cow<'f, [usize]>,
     /// Parent supernode (`usize::MAX` for a root).
-    sn_parent: Vec<usize>,
+    sn_parent: Cow<'f, [usize]>,
     n_nodes: usize,
     supernodal: bool,
 }
@@ -210,16 +232,64 @@ impl<'f> SparseFactorView<'f> {
         Ok(Self {
             l_values: chol.l_values(),
             scale: chol.scale(),
-            free_of_dof,
-            col_of_free,
-            sn_of_col,
-            sn_begin,
-            sn_val,
-            sn_pat,
-            pattern,
-            sn_parent,
+            free_of_dof: Cow::Owned(free_of_dof),
+            col_of_free: Cow::Owned(col_of_free),
+            sn_of_col: Cow::Owned(sn_of_col),
+            sn_begin: Cow::Owned(sn_begin),
+            sn_val: Cow::Owned(sn_val),
+            sn_pat: Cow::Owned(sn_pat),
+            pattern: Cow::Owned(pattern),
+            sn_parent: Cow::Owned(sn_parent),
             n_nodes: n_dofs / 3,
             supernodal,
+        })
+    }
+
+    /// The walkable structure of this view without the factor's values (owned, `Send`), from
+    /// which [`SparseFactorView::with_pattern`] rebuilds a view of the same factor in $O(1)$:
+    /// for a worker that owns the model (`Arc`) and cannot keep a borrowing view.
+    pub fn pattern(&self) -> FactorPattern {
+        FactorPattern {
+            free_of_dof: self.free_of_dof.to_vec(),
+            col_of_free: self.col_of_free.to_vec(),
+            sn_of_col: self.sn_of_col.to_vec(),
+            sn_begin: self.sn_begin.to_vec(),
+            sn_val: self.sn_val.to_vec(),
+            sn_pat: self.sn_pat.to_vec(),
+            pattern: self.pattern.to_vec(),
+            sn_parent: self.sn_parent.to_vec(),
+            n_nodes: self.n_nodes,
+            supernodal: self.supernodal,
+        }
+    }
+
+    /// The view of `chol` with the structure `pattern` taken from [`SparseFactorView::pattern`]
+    /// of the same factor, borrowed: $O(1)$, no allocation.
+    ///
+    /// Errors: [`SparseComplianceError::PatternMismatch`] when `pattern` does not fit `chol`
+    /// (another factor: different numbers of DOFs, free DOFs or factor values).
+    pub fn with_pattern(chol: &'f SparseCholesky, pattern: &'f FactorPattern) -> Result<Self, SparseComplianceError> {
+        let dofs = chol.dofs();
+        let fits = dofs.dofs_per_node() == 3
+            && pattern.free_of_dof.len() == dofs.n_dofs()
+            && pattern.col_of_free.len() == dofs.n_free()
+            && pattern.sn_val.last().copied() == Some(chol.l_values().len());
+        if !fits {
+            return Err(SparseComplianceError::PatternMismatch);
+        }
+        Ok(Self {
+            l_values: chol.l_values(),
+            scale: chol.scale(),
+            free_of_dof: Cow::Borrowed(&pattern.free_of_dof),
+            col_of_free: Cow::Borrowed(&pattern.col_of_free),
+            sn_of_col: Cow::Borrowed(&pattern.sn_of_col),
+            sn_begin: Cow::Borrowed(&pattern.sn_begin),
+            sn_val: Cow::Borrowed(&pattern.sn_val),
+            sn_pat: Cow::Borrowed(&pattern.sn_pat),
+            pattern: Cow::Borrowed(&pattern.pattern),
+            sn_parent: Cow::Borrowed(&pattern.sn_parent),
+            n_nodes: pattern.n_nodes,
+            supernodal: pattern.supernodal,
         })
     }
 
@@ -1059,6 +1129,24 @@ mod tests {
         let constrained: Vec<bool> = (0..m.n_dofs()).map(|d| m.is_fixed(d / 3)).collect();
         let chol2 = SparseCholesky::new(m.stiffness(), DofMap::with_dofs_per_node(&constrained, 2)).unwrap();
         assert_eq!(SparseCompliance::from_factor(&chol2).unwrap_err(), SparseComplianceError::NotThreeDofsPerNode { dofs_per_node: 2 });
+    }
+
+    /// A view rebuilt from its pattern ([`SparseFactorView::with_pattern`]) computes the same rows
+    /// bit for bit; the pattern of another factor is refused.
+    #[test]
+    fn a_view_from_its_pattern_is_the_same_view() {
+        let m = model([3, 2, 2]);
+        let view = SparseFactorView::new(m.cholesky()).unwrap();
+        let pattern = view.pattern();
+        let again = SparseFactorView::with_pattern(m.cholesky(), &pattern).unwrap();
+        let nodes: Vec<usize> = (0..m.mesh().n_nodes()).filter(|&v| !m.is_fixed(v)).collect();
+        let (mut a, mut b) = (vec![NodeRows::default(); nodes.len()], vec![NodeRows::default(); nodes.len()]);
+        view.rows_batch_into(&nodes, &mut view.scratch(), &mut a).unwrap();
+        again.rows_batch_into(&nodes, &mut again.scratch(), &mut b).unwrap();
+        assert!(!a[0].is_empty());
+        assert_eq!(a, b);
+        let other = model([2, 2, 2]);
+        assert_eq!(SparseFactorView::with_pattern(other.cholesky(), &pattern).unwrap_err(), SparseComplianceError::PatternMismatch);
     }
 
     /// `rows_into` reuses its output's storage: a second node with a reach no longer than the

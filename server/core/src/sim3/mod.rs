@@ -43,7 +43,21 @@
 //! Columns are filled between steps by [`Simulation3::prefetch_columns`] (the nodes of the
 //! tetrahedra on the axis ahead of the tip, the next point's first) or [`Simulation3::insert_columns`]
 //! (a worker's); the cache is bounded ([`Sim3Params::max_cached_nodes`], least recently used
-//! evicted). The tissue factorisation is never touched. All per-step storage is sized in
+//! evicted).
+//!
+//! On large meshes ([`StoreKind3`], chosen in [`Sim3Params::store`]) the compliance is a
+//! [`NodeBlockStore`] instead: the $3 \times 3$ blocks $C_{vw}$ among at most
+//! [`Sim3Params::max_block_nodes`] nodes, filled by a [`Sim3BlockWorker`] from sparse compliance
+//! rows. Between steps [`Simulation3::requests_into`] hands out the nodes wanted (pinned nodes,
+//! then the approaching ones) with the slots they get (the least recently used node that is
+//! neither pinned nor used by the last step gives its slot up), the worker answers
+//! ([`Sim3BlockWorker::compute`]) and [`Simulation3::insert_payload`] copies each answer in
+//! ($O(M)$, no solve); [`Simulation3::prefetch_blocks`] does the three on one thread. Everything a
+//! step reads of the compliance is a contact block: the working points' blocks for the mixed
+//! solver, and $u(X) = \sum_i W_{X i} f_i$ in the capture's fixed point, which needs the blocks of
+//! the iterate's nodes too: when they are not ready the capture waits (counted in
+//! [`Sim3Stats::column_deferrals`]). Nodes that must stay (a target's, for instance) are pinned
+//! ([`Simulation3::pin_node`]): never evicted, requested first. The tissue factorisation is never touched. All per-step storage is sized in
 //! [`Simulation3::new`]: a warm step allocates nothing. [`Simulation3::snapshot`] gives the static
 //! problem the last step solved in the terms of the 3D exchange format's `points`.
 //!
@@ -54,22 +68,27 @@
 mod params;
 mod pose;
 pub mod stiffness;
+mod store;
 pub mod targets;
+mod worker;
 
 use std::sync::Arc;
 
-use crate::compliance::ComplianceCache3;
+use crate::compliance::{ComplianceCache3, ContactBlocks};
 use crate::contact::ContactPoint;
 use crate::d3::locate::{BARYCENTRIC_TOL, barycentric};
+use crate::d3::sparse_compliance::SparseComplianceError;
 use crate::d3::{TetColumnScratch, TetTissueError, TetTissueModel};
 use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedError, MixedSolver3};
 use crate::needle::RegionNeedleParams;
 
-pub use params::Sim3Params;
+pub use params::{AUTO_BLOCKS_MIN_NODES, Sim3Params, StoreKind3};
 pub use pose::{BasePose3, PoseError, UNIT_QUATERNION_TOL, unit_axis};
 pub use stiffness::WrenchStiffness3;
+pub use store::{Block3, BlockPayload, BlockRequest, BlockStoreError, ComplianceStore3, NodeBlockStore};
 pub use targets::{MAX_TARGETS, Target3, TargetOut3, TargetState3, TargetsOut3};
+pub use worker::{ROWS_BATCH, Sim3BlockWorker, WorkerStats};
 
 /// Fixed-point iterations locating the material point at a deformed position.
 const LOCATE_ITERATIONS: usize = 8;
@@ -101,6 +120,20 @@ pub enum SimError3 {
     /// stay).
     #[error(transparent)]
     Tissue(#[from] TetTissueError),
+    /// A call that needs the other compliance store ([`StoreKind3`]): `call` names it.
+    #[error("Simulation3::{call} needs the {needs} store; this simulation uses {has}")]
+    WrongStore { call: &'static str, needs: &'static str, has: &'static str },
+    /// At [`Simulation3::insert_payload`]: a payload that does not answer the oldest pending
+    /// request (see [`NodeBlockStore`]'s protocol).
+    #[error(transparent)]
+    Blocks(#[from] BlockStoreError),
+    /// At [`Simulation3::prefetch_blocks`] or [`Simulation3::block_worker`]: the worker refused
+    /// a request or the factor.
+    #[error(transparent)]
+    Sparse(#[from] SparseComplianceError),
+    /// At [`Simulation3::pin_node`]: the node does not exist.
+    #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
+    UnknownNode { node_idx: usize, n_nodes: usize },
 }
 
 /// The state of a contact point.
@@ -123,7 +156,8 @@ pub struct Sim3Stats {
     pub releases: u64,
     pub stick_to_slip: u64,
     pub slip_to_stick: u64,
-    /// Ticks a due capture waited for its nodes' columns.
+    /// Ticks a due capture waited for its nodes' columns (with node blocks: for the blocks of
+    /// its nodes or of the tetrahedra its fixed point passed through).
     pub column_deferrals: u64,
     /// Captures refused because their conditions were dependent on the others' (not expected
     /// with the distance rule).
@@ -278,7 +312,10 @@ pub struct Simulation3 {
     pose: BasePose3,
     solver: MixedSolver3,
     pts: Vec<Point>,
-    cache: ComplianceCache3,
+    cache: ComplianceStore3,
+    /// Nodes never evicted ([`Simulation3::pin_node`]).
+    pinned: Vec<bool>,
+    pins: Vec<usize>,
     /// 1 + the last tick a node's columns were used (0: never).
     stamp: Vec<u64>,
     last_tip_region: Option<usize>,
@@ -287,7 +324,7 @@ pub struct Simulation3 {
     order: Vec<Slot>,
     changes: Vec<(Slot, Change)>,
     column_buf: Vec<f64>,
-    column_scratch: TetColumnScratch,
+    column_scratch: Option<TetColumnScratch>,
     out: StepOutput3,
     /// Scratch of [`Simulation3::wrench_stiffness`].
     stiffness: stiffness::StiffnessScratch,
@@ -309,8 +346,14 @@ impl Simulation3 {
         let max_diam_m = tet_diam_m.iter().copied().fold(0.0, f64::max);
         let n_nodes = mesh.n_nodes();
         let cap = params.max_contacts;
-        let mut cache = ComplianceCache3::for_nodes(n_nodes);
-        cache.reserve(params.max_cached_nodes.min(n_nodes) + 16);
+        let (cache, column_buf) = match params.store.resolve(n_nodes) {
+            StoreKind3::NodeBlocks => (ComplianceStore3::Blocks(NodeBlockStore::new(n_nodes, params.max_block_nodes)), Vec::new()),
+            _ => {
+                let mut c = ComplianceCache3::for_nodes(n_nodes);
+                c.reserve(params.max_cached_nodes.min(n_nodes) + 16);
+                (ComplianceStore3::Columns(c), vec![0.0; 9 * n_nodes])
+            }
+        };
         let pose = params.initial_pose;
         let targets = targets::TargetTracker::new(&model, &params.targets)?;
         let mut out = StepOutput3 {
@@ -330,7 +373,7 @@ impl Simulation3 {
             targets: TargetsOut3::default(),
         };
         targets.initial_output(out.tip_m, pose.axis(), &mut out.targets);
-        Ok(Self {
+        let mut sim = Self {
             tet_diam_m,
             sample_step_m: 0.25 * min_diam,
             max_diam_m,
@@ -338,20 +381,29 @@ impl Simulation3 {
             solver: MixedSolver3::with_capacity(cap),
             pts: Vec::with_capacity(cap),
             cache,
+            pinned: vec![false; n_nodes],
+            pins: Vec::new(),
             stamp: vec![0; n_nodes],
             last_tip_region: None,
             tick: 0,
             stats: Sim3Stats::default(),
             order: Vec::with_capacity(cap),
             changes: Vec::with_capacity(cap),
-            column_buf: vec![0.0; 9 * n_nodes],
-            column_scratch: model.column_scratch(),
+            column_buf,
+            column_scratch: None,
             out,
             stiffness: stiffness::StiffnessScratch::with_capacity(cap),
             targets,
             model,
             params,
-        })
+        };
+        // A target's displaced centre reads C(target node, working node): with node blocks both
+        // must be cached, so the targets' (free) nodes are pinned.
+        let target_nodes: Vec<usize> = sim.targets.nodes().filter(|&v| !sim.model.is_fixed(v)).collect();
+        for v in target_nodes {
+            sim.pin_node(v)?;
+        }
+        Ok(sim)
     }
 
     /// The tissue model.
@@ -378,8 +430,8 @@ impl Simulation3 {
     pub fn solver(&self) -> &MixedSolver3 {
         &self.solver
     }
-    /// The column cache.
-    pub fn cache(&self) -> &ComplianceCache3 {
+    /// The compliance store (columns or node blocks).
+    pub fn cache(&self) -> &ComplianceStore3 {
         &self.cache
     }
     /// The number of the next tick.
@@ -390,18 +442,24 @@ impl Simulation3 {
     /// Computes (allocating, outside any step) the columns of up to `max_nodes` of the nodes the
     /// last step reported as approaching, nearest first. Returns how many it computed.
     ///
-    /// Errors: [`SimError3::Tissue`] when a column solve fails (those before it stay).
+    /// Errors: [`SimError3::Tissue`] when a column solve fails (those before it stay);
+    /// [`SimError3::WrongStore`] with node blocks (use [`Simulation3::prefetch_blocks`]).
     pub fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, SimError3> {
+        self.columns_mut("prefetch_columns")?;
         let mut n = 0;
-        for k in 0..self.out.approaching.len() {
-            let node = self.out.approaching[k];
+        // The pinned nodes first, then the approaching ones.
+        for k in 0..self.pins.len() + self.out.approaching.len() {
+            let node = if k < self.pins.len() { self.pins[k] } else { self.out.approaching[k - self.pins.len()] };
             if n == max_nodes {
                 break;
             }
             if !self.cache.contains(node) {
-                self.model.compliance_columns_into(node, &mut self.column_buf, &mut self.column_scratch)?;
+                let scratch = self.column_scratch.get_or_insert_with(|| self.model.column_scratch());
+                self.model.compliance_columns_into(node, &mut self.column_buf, scratch)?;
                 self.make_room();
-                self.cache.insert(node, &self.column_buf);
+                if let ComplianceStore3::Columns(c) = &mut self.cache {
+                    c.insert(node, &self.column_buf);
+                }
                 self.stamp[node] = self.tick + 1;
                 n += 1;
             }
@@ -412,32 +470,55 @@ impl Simulation3 {
     /// Stores the columns of `node_idx` computed elsewhere
     /// ([`TetTissueModel::compliance_columns_into`], length $9n$); in a full cache they replace
     /// the least recently used node's, which is returned.
-    pub fn insert_columns(&mut self, node_idx: usize, columns: &[f64]) -> Option<usize> {
-        let evicted = if self.cache.contains(node_idx) { None } else { self.make_room() };
-        self.cache.insert(node_idx, columns);
+    ///
+    /// Errors: [`SimError3::WrongStore`] with node blocks.
+    pub fn insert_columns(&mut self, node_idx: usize, columns: &[f64]) -> Result<Option<usize>, SimError3> {
+        let evicted = if self.columns_mut("insert_columns")?.contains(node_idx) { None } else { self.make_room() };
+        self.columns_mut("insert_columns")?.insert(node_idx, columns);
         self.stamp[node_idx] = self.tick + 1;
-        evicted
+        Ok(evicted)
     }
 
-    /// Evicts the least recently used cached node that the last step did not use, when the
-    /// cache is full.
+    fn columns_mut(&mut self, call: &'static str) -> Result<&mut ComplianceCache3, SimError3> {
+        match &mut self.cache {
+            ComplianceStore3::Columns(c) => Ok(c),
+            ComplianceStore3::Blocks(_) => Err(SimError3::WrongStore { call, needs: "columns", has: "node-block" }),
+        }
+    }
+
+    fn blocks_mut(&mut self, call: &'static str) -> Result<&mut NodeBlockStore, SimError3> {
+        match &mut self.cache {
+            ComplianceStore3::Blocks(b) => Ok(b),
+            ComplianceStore3::Columns(_) => Err(SimError3::WrongStore { call, needs: "node-block", has: "columns" }),
+        }
+    }
+
+    /// Whether node `j` may give up its cached data: not pinned, not used by the last step.
+    fn evictable(&self, j: usize) -> bool {
+        !self.pinned[j] && self.stamp[j] < self.tick
+    }
+
+    /// Evicts the least recently used cached node that the last step did not use and that is
+    /// not pinned, when the column cache is full.
     fn make_room(&mut self) -> Option<usize> {
-        if self.cache.len() < self.params.max_cached_nodes {
+        let ComplianceStore3::Columns(cache) = &self.cache else { return None };
+        if cache.len() < self.params.max_cached_nodes {
             return None;
         }
-        let in_use = self.tick;
         let mut victim: Option<(usize, u64)> = None;
-        for slot in 0..self.cache.n_slots() {
-            if let Some(j) = self.cache.node_in_slot(slot) {
+        for slot in 0..cache.n_slots() {
+            if let Some(j) = cache.node_in_slot(slot) {
                 let s = self.stamp[j];
-                if s < in_use && victim.is_none_or(|(_, v)| s < v) {
+                if self.evictable(j) && victim.is_none_or(|(_, v)| s < v) {
                     victim = Some((j, s));
                 }
             }
         }
         match victim {
             Some((j, _)) => {
-                self.cache.evict(j);
+                if let ComplianceStore3::Columns(c) = &mut self.cache {
+                    c.evict(j);
+                }
                 self.stats.columns_evicted += 1;
                 Some(j)
             }
@@ -446,6 +527,111 @@ impl Simulation3 {
                 None
             }
         }
+    }
+
+    /// Pins `node_idx`: its compliance data is never evicted, and it is fetched before the
+    /// approaching nodes ([`Simulation3::prefetch_columns`], [`Simulation3::requests_into`]).
+    /// For what a step reads beyond the working points (a target's element nodes: with node
+    /// blocks, $C_{vw}$ needs both nodes cached). Idempotent; allocates (between steps).
+    ///
+    /// Errors: [`SimError3::UnknownNode`].
+    pub fn pin_node(&mut self, node_idx: usize) -> Result<(), SimError3> {
+        let n_nodes = self.pinned.len();
+        if node_idx >= n_nodes {
+            return Err(SimError3::UnknownNode { node_idx, n_nodes });
+        }
+        if !self.pinned[node_idx] {
+            self.pinned[node_idx] = true;
+            self.pins.push(node_idx);
+        }
+        Ok(())
+    }
+
+    /// Unpins `node_idx` (it may be evicted again); nothing for an unknown or unpinned node.
+    pub fn unpin_node(&mut self, node_idx: usize) {
+        if self.pinned.get(node_idx).copied().unwrap_or(false) {
+            self.pinned[node_idx] = false;
+            self.pins.retain(|&v| v != node_idx);
+        }
+    }
+
+    /// Whether `node_idx` is pinned.
+    pub fn is_pinned(&self, node_idx: usize) -> bool {
+        self.pinned.get(node_idx).copied().unwrap_or(false)
+    }
+
+    /// With node blocks: up to `max_nodes` requests for the worker, appended to `out` (cleared
+    /// first), for the pinned nodes not cached, then the approaching ones (nearest first); each
+    /// reserves its slot ([`NodeBlockStore::reserve`]: an empty one, else the least recently
+    /// used node's that is neither pinned nor used by the last step, evicted now; when there is
+    /// none, counted in [`Sim3Stats::cache_over_cap`] and the list ends). Nodes already
+    /// requested are not requested again. Returns how many. Allocates nothing when `out` has
+    /// room.
+    ///
+    /// Errors: [`SimError3::WrongStore`] with columns.
+    pub fn requests_into(&mut self, max_nodes: usize, out: &mut Vec<BlockRequest>) -> Result<usize, SimError3> {
+        self.blocks_mut("requests_into")?;
+        out.clear();
+        let n_pins = self.pins.len();
+        for k in 0..n_pins + self.out.approaching.len() {
+            if out.len() == max_nodes {
+                break;
+            }
+            let node = if k < n_pins { self.pins[k] } else { self.out.approaching[k - n_pins] };
+            let ComplianceStore3::Blocks(store) = &self.cache else { unreachable!("checked above") };
+            if self.model.is_fixed(node) || store.contains(node) || store.is_pending(node) {
+                continue;
+            }
+            let Some(slot) = store.choose_slot(|j| self.evictable(j), |j| self.stamp[j]) else {
+                self.stats.cache_over_cap += 1;
+                break;
+            };
+            let (req, evicted) = self.blocks_mut("requests_into")?.reserve(node, slot)?;
+            if evicted.is_some() {
+                self.stats.columns_evicted += 1;
+            }
+            self.stamp[node] = self.tick + 1;
+            out.push(req);
+        }
+        Ok(out.len())
+    }
+
+    /// With node blocks: applies a worker's answer (payloads in the order of the requests),
+    /// $O(M)$ copies, no solve, no allocation.
+    ///
+    /// Errors: [`SimError3::WrongStore`] with columns; [`SimError3::Blocks`] for a payload that
+    /// answers no pending request (nothing changes).
+    pub fn insert_payload(&mut self, payload: &BlockPayload) -> Result<(), SimError3> {
+        self.blocks_mut("insert_payload")?.insert(payload)?;
+        Ok(())
+    }
+
+    /// A worker for this simulation's node-block store (same model, same number of slots).
+    ///
+    /// Errors: [`SimError3::WrongStore`] with columns; [`SimError3::Sparse`] passed on from
+    /// [`Sim3BlockWorker::new`].
+    pub fn block_worker(&self) -> Result<Sim3BlockWorker, SimError3> {
+        let ComplianceStore3::Blocks(store) = &self.cache else {
+            return Err(SimError3::WrongStore { call: "block_worker", needs: "node-block", has: "columns" });
+        };
+        Ok(Sim3BlockWorker::new(Arc::clone(&self.model), store.cap())?)
+    }
+
+    /// With node blocks, on this thread between steps: [`Simulation3::requests_into`] (up to
+    /// `max_nodes`), [`Sim3BlockWorker::compute`], [`Simulation3::insert_payload`]. Returns how
+    /// many nodes it inserted. Allocates (the request list).
+    ///
+    /// Errors: those of the three.
+    pub fn prefetch_blocks(&mut self, worker: &mut Sim3BlockWorker, max_nodes: usize) -> Result<usize, SimError3> {
+        let mut reqs = Vec::new();
+        self.requests_into(max_nodes, &mut reqs)?;
+        if reqs.is_empty() {
+            return Ok(0);
+        }
+        for p in worker.compute(&reqs)? {
+            self.insert_payload(p)?;
+        }
+        Ok(reqs.len())
     }
 
     /// The static problem the last step solved: per working point its reference position,
@@ -551,25 +737,27 @@ impl Simulation3 {
     }
 
     /// The displacement of any contact from the working forces of the last solve,
-    /// $u_q = \sum_w W_{qw} f_w$ (needs only the working points' columns). $O(d)$.
-    fn contact_displacement(&self, q: &ContactPoint) -> [f64; 3] {
+    /// $u_q = \sum_w W_{qw} f_w$ (with columns it needs the working points' columns, with node
+    /// blocks also `q`'s nodes); `None` when a block is missing. $O(d)$.
+    fn contact_displacement(&self, q: &ContactPoint) -> Option<[f64; 3]> {
         let mut u = [0.0; 3];
         for p in &self.pts {
-            let Some(b) = self.cache.contact_block(q, &p.contact) else { continue };
+            let b = self.cache.contact_block(q, &p.contact)?;
             for r in 0..3 {
                 u[r] += b[r][0] * p.f_world[0] + b[r][1] * p.f_world[1] + b[r][2] * p.f_world[2];
             }
         }
-        u
+        Some(u)
     }
 
     /// The material point $X$ at deformed position `p_m`: the fixed point of $X = p - u(X)$
-    /// from $X_0 = p - u_0$; `None` when it lies outside the mesh.
-    fn material_point_at(&self, p_m: [f64; 3], u0: [f64; 3]) -> Option<(ContactPoint, [f64; 3])> {
+    /// from $X_0 = p - u_0$; `Ok(None)` when it lies outside the mesh, `Err(c)` when the
+    /// displacement at an iterate `c` needs blocks that are not cached.
+    fn material_point_at(&self, p_m: [f64; 3], u0: [f64; 3]) -> Result<Option<(ContactPoint, [f64; 3])>, ContactPoint> {
         let mut x = sub(p_m, u0);
         let tol = 1e-12 * self.sample_step_m;
         let mesh = self.model.mesh();
-        let mut loc = self.model.locate(x).ok()?;
+        let Ok(mut loc) = self.model.locate(x) else { return Ok(None) };
         for it in 0..LOCATE_ITERATIONS {
             if it > 0 {
                 // The iterate usually stays in its tetrahedron: one barycentric test rather than
@@ -578,19 +766,20 @@ impl Simulation3 {
                 if w.iter().all(|&v| v >= -BARYCENTRIC_TOL) {
                     loc.weights = w;
                 } else {
-                    loc = self.model.locate(x).ok()?;
+                    let Ok(l) = self.model.locate(x) else { return Ok(None) };
+                    loc = l;
                 }
             }
             let c = ContactPoint::in_tetrahedron(loc.tet_idx, loc.nodes, loc.weights);
-            let next = sub(p_m, self.contact_displacement(&c));
+            let next = sub(p_m, self.contact_displacement(&c).ok_or(c)?);
             let moved = dist(next, x);
             x = next;
             if moved <= tol {
                 break;
             }
         }
-        let loc = self.model.locate(x).ok()?;
-        Some((ContactPoint::in_tetrahedron(loc.tet_idx, loc.nodes, loc.weights), x))
+        let Ok(loc) = self.model.locate(x) else { return Ok(None) };
+        Ok(Some((ContactPoint::in_tetrahedron(loc.tet_idx, loc.nodes, loc.weights), x)))
     }
 
     fn push_approaching(&mut self, node: usize) {
@@ -678,14 +867,27 @@ impl Simulation3 {
         let s_prev_tip = dot(t, sub(prev_tip, base));
         let advancing = len - s_prev_tip > 1e-9;
         let due = !has_tip && advancing && s_distal.is_none_or(|s| len - s >= self.params.spacing_m);
-        let mut candidate = if due { self.material_point_at(prev_tip, u_d) } else { None };
+        let mut missing: Option<ContactPoint> = None;
+        let mut candidate = if due {
+            self.material_point_at(prev_tip, u_d).unwrap_or_else(|c| {
+                missing = Some(c);
+                None
+            })
+        } else {
+            None
+        };
         if let Some((c, x)) = candidate {
             let diam = |c: &ContactPoint| c.tet_idx().map_or(0.0, |k| self.tet_diam_m[k]);
             if self.pts.iter().any(|p| dist(p.x_ref_m, x) <= diam(&c).max(diam(&p.contact)) * (1.0 + 1e-9)) {
                 candidate = None;
             }
         }
-        self.update_approaching(candidate.map(|c| c.0), u_d, frame);
+        self.update_approaching(candidate.map(|c| c.0).or(missing), u_d, frame);
+        if missing.is_some() {
+            // Node blocks: the fixed point needed a tetrahedron whose nodes are not cached.
+            self.stats.column_deferrals += 1;
+            return Ok(());
+        }
         let Some((contact, x)) = candidate else { return Ok(()) };
         if self.pts.len() == self.params.max_contacts {
             self.stats.capacity_drops += 1;

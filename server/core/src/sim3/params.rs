@@ -39,12 +39,52 @@ pub struct Sim3Params {
     /// Targets, spheres moving with the tissue (at most [`MAX_TARGETS`]; default none):
     /// [`crate::sim3::targets`].
     pub targets: Vec<Target3>,
+    /// Which compliance store the simulation reads ([`StoreKind3`]).
+    pub store: StoreKind3,
+    /// Slots of the node-block store $M$ (its block matrix takes $72 M^2$ bytes): nodes cached
+    /// at most with [`StoreKind3::NodeBlocks`]; a request past it takes the least recently used
+    /// node's slot that is neither pinned nor in use.
+    pub max_block_nodes: usize,
+}
+
+/// The compliance store of a 3D simulation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StoreKind3 {
+    /// [`StoreKind3::NodeBlocks`] from [`AUTO_BLOCKS_MIN_NODES`] mesh nodes up, else
+    /// [`StoreKind3::Columns`].
+    #[default]
+    Auto,
+    /// Full compliance columns per cached node ($72 n$ bytes each), computed by
+    /// [`super::Simulation3::prefetch_columns`] or handed in by
+    /// [`super::Simulation3::insert_columns`].
+    Columns,
+    /// Node blocks among at most [`Sim3Params::max_block_nodes`] nodes, from sparse compliance
+    /// rows computed by a [`super::Sim3BlockWorker`] ([`super::Simulation3::requests_into`],
+    /// [`super::Simulation3::insert_payload`]).
+    NodeBlocks,
+}
+
+/// Mesh size from which [`StoreKind3::Auto`] uses node blocks: at 20,000 nodes a column set is
+/// 1.4 MB and costs about 0.2 s to solve, against rows of a few ms and blocks of a few µs
+/// (BENCHMARKS.md, "3D on large meshes").
+pub const AUTO_BLOCKS_MIN_NODES: usize = 20_000;
+
+impl StoreKind3 {
+    /// The store used on a mesh of `n_nodes` nodes ([`StoreKind3::Auto`] resolved).
+    pub fn resolve(self, n_nodes: usize) -> StoreKind3 {
+        match self {
+            StoreKind3::Auto if n_nodes >= AUTO_BLOCKS_MIN_NODES => StoreKind3::NodeBlocks,
+            StoreKind3::Auto => StoreKind3::Columns,
+            k => k,
+        }
+    }
 }
 
 impl Sim3Params {
     /// The defaults for a needle of `needle_length_m` in a one-region tissue: 2 mm spacing,
     /// the phantom's [`RegionNeedleParams::default`], 1 kHz, 256 contacts, 20 mm lookahead,
-    /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes, no targets.
+    /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes with columns, 384 with node blocks,
+    /// the store chosen by mesh size ([`StoreKind3::Auto`]), no targets.
     pub fn new(needle_length_m: f64, initial_pose: BasePose3) -> Self {
         Self {
             needle_length_m,
@@ -59,6 +99,8 @@ impl Sim3Params {
             max_active_set_iterations: 20,
             max_cached_nodes: 4096,
             targets: Vec::new(),
+            store: StoreKind3::Auto,
+            max_block_nodes: 384,
         }
     }
 
@@ -79,6 +121,9 @@ impl Sim3Params {
         }
         if !(1..=1000).contains(&self.max_active_set_iterations) {
             return Err(format!("max_active_set_iterations = {} must be in 1..=1000", self.max_active_set_iterations));
+        }
+        if !(16..=2048).contains(&self.max_block_nodes) {
+            return Err(format!("max_block_nodes = {} must be in 16..=2048", self.max_block_nodes));
         }
         if self.max_cached_nodes < 16 {
             return Err(format!("max_cached_nodes = {} must be ≥ 16", self.max_cached_nodes));

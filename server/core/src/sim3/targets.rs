@@ -10,9 +10,9 @@
 //! are the point forces $f_j$). $C_{ab}$ (node $a$'s displacement per unit force on node $b$)
 //! comes from node $b$'s cached columns, which every working point's nodes have: no column is
 //! computed, $O(d)$ per target per tick. All compliance reads of the 3D simulation's targets and
-//! wrench stiffness go through `node_block`, the one place to route them to another store; a
-//! store that keeps only some rows of each column (rather than dense columns) must keep the
-//! rows of the targets' nodes (pin them), or the displaced centres cannot be computed.
+//! wrench stiffness go through `node_block`, which reads either store ([`ComplianceStore3`]); with
+//! node blocks $C_{ab}$ needs both nodes cached, so the simulation pins the targets' free nodes
+//! ([`super::Simulation3::pin_node`]).
 //!
 //! **Latching.** With $c'$ the displaced centre, $p$ the tip, $r$ the radius and
 //! $s_c = t \cdot (c' - x_b)$ the centre's coordinate along the needle axis from the base (the
@@ -30,7 +30,7 @@
 //! stays until [`Simulation3::reset_targets`] or a new simulation; the displaced centre and the
 //! distance keep being updated.
 
-use crate::compliance::ComplianceCache3;
+use super::store::ComplianceStore3;
 use crate::contact::ContactPoint;
 use crate::d3::TetTissueModel;
 
@@ -121,13 +121,13 @@ impl TargetsOut3 {
 /// `b`, from `b`'s cached columns; `None` when they are not cached. The only compliance read of
 /// this module and of [`super::stiffness`].
 #[inline]
-pub(super) fn node_block(cache: &ComplianceCache3, a: usize, b: usize) -> Option<[[f64; 3]; 3]> {
+pub(super) fn node_block(cache: &ComplianceStore3, a: usize, b: usize) -> Option<[[f64; 3]; 3]> {
     cache.block(a, b)
 }
 
 /// The compliance block between two contacts, $W_{ab} = \sum_i\sum_j N_{a,i}N_{b,j}\,C_{ij}$, from
 /// [`node_block`]; `None` when a node of `b` is not cached.
-pub(super) fn point_block(cache: &ComplianceCache3, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; 3]; 3]> {
+pub(super) fn point_block(cache: &ComplianceStore3, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; 3]; 3]> {
     let mut out = [[0.0; 3]; 3];
     for (j, wj) in b.terms() {
         for (i, wi) in a.terms() {
@@ -153,6 +153,12 @@ pub(super) struct TargetTracker {
 }
 
 impl TargetTracker {
+    /// The nodes of the targets' tetrahedra: pinned in the simulation's store, so that the
+    /// blocks the displaced centres need are there with node blocks too.
+    pub(super) fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.contacts.iter().flat_map(|c| c.terms().map(|(n, _)| n.index()))
+    }
+
     /// Locates every target's centre. Errors: [`SimError3::InvalidParams`] naming the target whose
     /// centre lies outside the mesh.
     pub(super) fn new(model: &TetTissueModel, specs: &[Target3]) -> Result<Self, SimError3> {
@@ -234,7 +240,7 @@ impl Simulation3 {
 
 /// $u(X_c) = \sum_j W_{cj} f_j$ over the working points (a point whose columns are missing, which
 /// the cache's eviction rule excludes for points in use, contributes nothing).
-fn target_displacement(cache: &ComplianceCache3, target: &ContactPoint, pts: &[Point]) -> [f64; 3] {
+fn target_displacement(cache: &ComplianceStore3, target: &ContactPoint, pts: &[Point]) -> [f64; 3] {
     let mut u = [0.0; 3];
     for p in pts {
         let Some(b) = point_block(cache, target, &p.contact) else { continue };
