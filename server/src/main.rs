@@ -184,22 +184,20 @@ fn main() -> ExitCode {
     let limits = MeshLimits { max_nodes: cli.limits.max_nodes, max_triangles: cli.limits.max_triangles };
     let result = match cli.command {
         Some(Command::Solve { scenario, output }) => solve(&scenario, output.as_deref(), &limits),
-        Some(Command::Simulate { scene, trajectory, output, dump_state, dump_at, max_ticks }) => {
-            match is_3d_scene(&scene) {
-                Ok(true) => run_simulate3(
-                    &scene,
-                    trajectory.as_deref(),
-                    output.as_deref(),
-                    dump_state.as_deref(),
-                    dump_at.as_deref().unwrap_or_default(),
-                    max_ticks,
-                    &limits,
-                ),
-                Ok(false) if dump_at.is_some() => Err(anyhow::anyhow!("--dump-at is for 3D scenes (dim = 3); scene '{scene}' is 2D")),
-                Ok(false) => run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits),
-                Err(e) => Err(e),
-            }
-        }
+        Some(Command::Simulate { scene, trajectory, output, dump_state, dump_at, max_ticks }) => match is_3d_scene(&scene) {
+            Ok(true) => run_simulate3(
+                &scene,
+                trajectory.as_deref(),
+                output.as_deref(),
+                dump_state.as_deref(),
+                dump_at.as_deref().unwrap_or_default(),
+                max_ticks,
+                &limits,
+            ),
+            Ok(false) if dump_at.is_some() => Err(anyhow::anyhow!("--dump-at is for 3D scenes (dim = 3); scene '{scene}' is 2D")),
+            Ok(false) => run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits),
+            Err(e) => Err(e),
+        },
         Some(Command::Plan(args)) => run_plan(&args, &limits),
         Some(Command::Summary) => summary(&limits),
         Some(Command::Serve(args)) => run_serve(args, &limits),
@@ -314,9 +312,11 @@ fn run_simulate3(
     let traj = match (trajectory, &scene.trajectory) {
         (Some(p), _) => {
             let text = std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?;
-            if text.lines().find(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty()).is_some_and(|h| {
-                h.split(',').map(str::trim).eq(["t_s", "x_m", "y_m", "theta_rad"])
-            }) {
+            if text
+                .lines()
+                .find(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
+                .is_some_and(|h| h.split(',').map(str::trim).eq(["t_s", "x_m", "y_m", "theta_rad"]))
+            {
                 anyhow::bail!(
                     "--trajectory {}: a 2D trajectory (t_s,x_m,y_m,theta_rad) for the 3D scene '{}': a 3D scene needs t_s,x_m,y_m,z_m,qw,qx,qy,qz",
                     p.display(),

@@ -10,8 +10,8 @@ use std::process::Command;
 
 use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
 use needlesim_core::sim3::{BasePose3, PointState3, Simulation3, Snapshot3};
-use needlesim_tests::{TempDir, python, read_json, run, text, validation_dir, write_json};
 use needlesim_scene::exchange3d::scenario_from_snapshot;
+use needlesim_tests::{TempDir, python, read_json, run, text, validation_dir, write_json};
 use serde_json::Value;
 
 const ENTRY: [f64; 3] = [0.0513, 0.0487, 0.1];

@@ -155,7 +155,15 @@ fn resolve_and_compare(dump: &Path) -> Result<Vec<(String, f64)>, String> {
     if !o.status.success() {
         failures.push(format!("compare.py --tol {TOL_POINT_REACTIONS:e} failed:\n{out}{err}"));
     }
-    for m in ["disp_rel_l2", "disp_rel_max", "reactions_rel_max", "energy_rel", "stress_rel_max", "point_reactions_rel_max", "point_compliance_rel_fro"] {
+    for m in [
+        "disp_rel_l2",
+        "disp_rel_max",
+        "reactions_rel_max",
+        "energy_rel",
+        "stress_rel_max",
+        "point_reactions_rel_max",
+        "point_compliance_rel_fro",
+    ] {
         match metrics.iter().find(|(n, _)| n == m) {
             None => failures.push(format!("compare.py did not report {m}:\n{out}")),
             Some((_, v)) => {
@@ -247,17 +255,15 @@ fn every_3d_example_dumps_states_the_reference_resolves() {
         for what in ["mid-insertion", "after-rotation", "withdrawal"] {
             assert!(labels.contains(&format!("{ex} {what}").as_str()), "{ex}: a {what} dump in {labels:?}");
         }
-        assert!(
-            dumps.iter().any(|d| d.0.starts_with(ex) && d.3.iter().any(|s| s == "slipping")),
-            "{ex}: a dump with slipping points"
-        );
+        assert!(dumps.iter().any(|d| d.0.starts_with(ex) && d.3.iter().any(|s| s == "slipping")), "{ex}: a dump with slipping points");
     }
 }
 
 /// A number after `key = ` in the shipped scene file (the first such line).
 fn scene_number(path: &Path, key: &str) -> f64 {
     let text = std::fs::read_to_string(path).unwrap();
-    let line = text.lines().find(|l| l.trim_start().starts_with(&format!("{key} ="))).unwrap_or_else(|| panic!("no {key} in {}", path.display()));
+    let line =
+        text.lines().find(|l| l.trim_start().starts_with(&format!("{key} ="))).unwrap_or_else(|| panic!("no {key} in {}", path.display()));
     line.split('=').nth(1).unwrap().split('#').next().unwrap().trim().parse().unwrap()
 }
 

@@ -38,9 +38,7 @@ use std::time::Instant;
 use needlesim_core::d3::assembly::{element_stiffness, element_stresses_pa, tet_dofs};
 use needlesim_core::d3::{PointLocation, TetTissueModel};
 use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simulation3};
-use needlesim_scene::exchange3d::{
-    PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, scenario_from_snapshot,
-};
+use needlesim_scene::exchange3d::{PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, scenario_from_snapshot};
 use needlesim_scene::{Scene3d, Trajectory3};
 
 /// Why a 3D run failed; each names what.
@@ -380,8 +378,11 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
     let mats = model.materials();
     let n_dofs = model.n_dofs();
     let snap = sim.snapshot();
-    let locs =
-        snap.points.iter().map(|p| model.locate(p.x_m).map_err(|e| anyhow::anyhow!("needle point at {:?}: {e}", p.x_m))).collect::<Result<Vec<_>, _>>()?;
+    let locs = snap
+        .points
+        .iter()
+        .map(|p| model.locate(p.x_m).map_err(|e| anyhow::anyhow!("needle point at {:?}: {e}", p.x_m)))
+        .collect::<Result<Vec<_>, _>>()?;
     // The columns of every point node: the simulation's cached ones, computed if evicted.
     let mut computed: HashMap<usize, Vec<f64>> = HashMap::new();
     let mut scratch = model.column_scratch();
