@@ -123,6 +123,10 @@ pub fn base_pose3(p: &needlesim_scene::Pose3) -> Result<BasePose3, String> {
     BasePose3::new(p.position_m, p.quat_wxyz).map_err(|e| e.to_string())
 }
 
+/// What [`run3`] returns: the simulation after the last tick, the summary, and the dumped
+/// states as `(tick, scenario)` in tick order.
+pub type Run3Output = (Simulation3, RunSummary3, Vec<(u64, Scenario3)>);
+
 /// The CSV header for a scene's targets.
 pub fn csv_header3(target_names: &[String]) -> String {
     let mut h = String::from(
@@ -192,7 +196,7 @@ impl TargetTracker {
                 if nj == 0.0 {
                     continue;
                 }
-                for r in 0..3 {
+                for (r, ur) in u.iter_mut().enumerate() {
                     let col = &t.cols[j][r * t.n_dofs..(r + 1) * t.n_dofs];
                     let mut v = 0.0;
                     for (l, (_, f)) in locs.iter().zip(points) {
@@ -204,7 +208,7 @@ impl TargetTracker {
                             }
                         }
                     }
-                    u[r] += nj * v;
+                    *ur += nj * v;
                 }
             }
             *o = u;
@@ -231,7 +235,7 @@ pub fn run3(
     max_ticks: u64,
     dump_ticks: &[u64],
     mut csv: Option<&mut String>,
-) -> Result<(Simulation3, RunSummary3, Vec<(u64, Scenario3)>), Run3Error> {
+) -> Result<Run3Output, Run3Error> {
     let rate = scene.tick_rate_hz;
     let (t0, t1) = traj.span_s();
     let last_k = ((t1 - t0) * rate).round() as u64;
@@ -372,6 +376,7 @@ pub fn dump_state(scene: &Scene3d, sim: &Simulation3) -> anyhow::Result<Scenario
 }
 
 /// The simulation's answer to its own static problem `sc` (module docs).
+#[allow(clippy::needless_range_loop)] // symmetric (i, j) index pairs of W
 fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<ScenarioResult3> {
     let model = sim.model();
     let mesh = model.mesh();
@@ -397,7 +402,7 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
     }
     let column = |n: usize, c: usize| -> &[f64] {
         match sim.cache().column(n, c) {
-            Some(col) if computed.get(&n).is_none() => col,
+            Some(col) if !computed.contains_key(&n) => col,
             _ => &computed[&n][c * n_dofs..(c + 1) * n_dofs],
         }
     };
