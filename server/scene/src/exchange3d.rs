@@ -508,8 +508,8 @@ mod tests {
         for ((pr, p), np) in r.point_reactions.iter().zip(&snap.points).zip(back.needle_points.as_ref().unwrap()) {
             let f = p.f_n.unwrap_or([0.0; 3]);
             let total = [pr.rx + f[0], pr.ry + f[1], pr.rz + f[2]];
-            for k in 0..3 {
-                ef = ef.max((total[k] - np.force[k]).abs());
+            for (k, t) in total.iter().enumerate() {
+                ef = ef.max((t - np.force[k]).abs());
                 eu = eu.max((pr.u[k] - np.u[k]).abs());
                 sf = sf.max(np.force[k].abs());
                 su = su.max(np.u[k].abs());
