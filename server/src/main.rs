@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use needlesim_core::MeshLimits;
 
-use needlesim_offline::{plan, simulate};
+use needlesim_offline::{plan, simulate, simulate3};
 use needlesim_scene::{self as scene, exchange};
 use needlesim_server::{grpc, serve};
 
@@ -114,12 +114,15 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
-    /// Run a scripted insertion through the real-time step function, offline.
+    /// Run a scripted insertion through the real-time step function, offline (2D, or 3D for a
+    /// scene with `dim = 3`).
     Simulate {
-        /// A scene TOML file, or a shipped example's name (paper-phantom, fig3-target).
+        /// A scene TOML file, or a shipped example's name (paper-phantom, fig3-target; 3D:
+        /// cube-phantom-3d, brachy-3d, fig3-target-3d).
         #[arg(long)]
         scene: String,
-        /// The base trajectory CSV (t_s,x_m,y_m,theta_rad); defaults to the example's own.
+        /// The base trajectory CSV (2D: t_s,x_m,y_m,theta_rad; 3D: t_s,x_m,y_m,z_m,qw,qx,qy,qz);
+        /// defaults to the scene's own.
         #[arg(long)]
         trajectory: Option<PathBuf>,
         /// Where to write the time series CSV (standard output when absent).
@@ -128,6 +131,10 @@ enum Command {
         /// Write the final state as a static problem in the validation exchange format.
         #[arg(long)]
         dump_state: Option<PathBuf>,
+        /// 3D scenes: also dump the state at these ticks (the CSV's `tick` column), one file
+        /// per tick, `state-<tick>.json` in the directory of --dump-state.
+        #[arg(long, value_delimiter = ',', value_name = "TICK,...")]
+        dump_at: Option<Vec<u64>>,
         /// The longest run, in ticks (the server's Simulate limit by default): a trajectory
         /// lasting longer is an error naming its last line.
         #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS)]
@@ -177,9 +184,20 @@ fn main() -> ExitCode {
     let limits = MeshLimits { max_nodes: cli.limits.max_nodes, max_triangles: cli.limits.max_triangles };
     let result = match cli.command {
         Some(Command::Solve { scenario, output }) => solve(&scenario, output.as_deref(), &limits),
-        Some(Command::Simulate { scene, trajectory, output, dump_state, max_ticks }) => {
-            run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits)
-        }
+        Some(Command::Simulate { scene, trajectory, output, dump_state, dump_at, max_ticks }) => match is_3d_scene(&scene) {
+            Ok(true) => run_simulate3(
+                &scene,
+                trajectory.as_deref(),
+                output.as_deref(),
+                dump_state.as_deref(),
+                dump_at.as_deref().unwrap_or_default(),
+                max_ticks,
+                &limits,
+            ),
+            Ok(false) if dump_at.is_some() => Err(anyhow::anyhow!("--dump-at is for 3D scenes (dim = 3); scene '{scene}' is 2D")),
+            Ok(false) => run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits),
+            Err(e) => Err(e),
+        },
         Some(Command::Plan(args)) => run_plan(&args, &limits),
         Some(Command::Summary) => summary(&limits),
         Some(Command::Serve(args)) => run_serve(args, &limits),
@@ -260,6 +278,122 @@ fn run_simulate(
     if let Some(p) = dump {
         let state = simulate::dump_state(&scene, &sim);
         std::fs::write(p, serde_json::to_string(&state)?).with_context(|| format!("cannot write {}", p.display()))?;
+    }
+    Ok(())
+}
+
+/// Whether a scene spec names a 3D scene: a shipped 3D example, or a file whose `dim` is 3.
+fn is_3d_scene(spec: &str) -> Result<bool> {
+    if scene::EXAMPLES3D.iter().any(|e| e.0 == spec) {
+        return Ok(true);
+    }
+    let path = std::path::Path::new(spec);
+    if !path.is_file() {
+        return Ok(false);
+    }
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    Ok(scene::scene_dim(&text).with_context(|| format!("scene {}", path.display()))? == 3)
+}
+
+/// `simulate` for a 3D scene ([`simulate3`]).
+fn run_simulate3(
+    scene_spec: &str,
+    trajectory: Option<&std::path::Path>,
+    output: Option<&std::path::Path>,
+    dump: Option<&std::path::Path>,
+    dump_at: &[u64],
+    max_ticks: u64,
+    limits: &MeshLimits,
+) -> Result<()> {
+    if !dump_at.is_empty() && dump.is_none() {
+        anyhow::bail!("--dump-at needs --dump-state (its files go next to it, state-<tick>.json)");
+    }
+    let scene = scene::load_scene3d(scene_spec, limits)?;
+    let traj = match (trajectory, &scene.trajectory) {
+        (Some(p), _) => {
+            let text = std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?;
+            if text
+                .lines()
+                .find(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
+                .is_some_and(|h| h.split(',').map(str::trim).eq(["t_s", "x_m", "y_m", "theta_rad"]))
+            {
+                anyhow::bail!(
+                    "--trajectory {}: a 2D trajectory (t_s,x_m,y_m,theta_rad) for the 3D scene '{}': a 3D scene needs t_s,x_m,y_m,z_m,qw,qx,qy,qz",
+                    p.display(),
+                    scene.name
+                );
+            }
+            scene::Trajectory3::parse_csv(&text).with_context(|| format!("--trajectory {}", p.display()))?
+        }
+        (None, Some(t)) => t.clone(),
+        (None, None) => anyhow::bail!("--trajectory is needed: 3D scene '{scene_spec}' names no trajectory file"),
+    };
+    let mut ticks: Vec<u64> = dump_at.to_vec();
+    let last_k = ((traj.span_s().1 - traj.span_s().0) * scene.tick_rate_hz).round() as u64;
+    if dump.is_some() {
+        ticks.push(last_k);
+    }
+    ticks.sort_unstable();
+    ticks.dedup();
+    let mut csv = String::new();
+    let t0 = std::time::Instant::now();
+    let (_sim, summary, dumps) = simulate3::run3(&scene, &traj, max_ticks, &ticks, Some(&mut csv))?;
+    let mut times = summary.step_times_s.clone();
+    times.sort_by(f64::total_cmp);
+    let pct = |q: f64| times.get(((times.len() as f64 - 1.0) * q).round() as usize).copied().unwrap_or(0.0) * 1e6;
+    tracing::info!(
+        scene = %scene.name,
+        n_nodes = scene.mesh.n_nodes(),
+        n_tets = scene.mesh.n_tets(),
+        ticks = summary.ticks,
+        factorise_s = summary.factorise_s,
+        step_p50_us = pct(0.5),
+        step_p99_us = pct(0.99),
+        step_max_us = pct(1.0),
+        max_points = summary.max_points,
+        column_deferrals = summary.column_deferrals,
+        prefetched_columns = summary.prefetched_columns,
+        clamped_ticks = summary.clamped_ticks,
+        unconverged_ticks = summary.unconverged_ticks,
+        numeric_factorisations = summary.numeric_factorisations,
+        wall_s = t0.elapsed().as_secs_f64(),
+        "simulated"
+    );
+    let rate = scene.tick_rate_hz;
+    for t in &summary.targets {
+        let u = t.displacement_at_closest_m;
+        eprintln!(
+            "target '{}' (radius {:.2} mm): closest tip approach {:.3} mm at tick {} (t = {:.3} s), the centre displaced by {:.3} mm there ({:.3}, {:.3}, {:.3}) mm, at most {:.3} mm over the run; tip to the undeformed centre there {:.3} mm: {}",
+            t.name,
+            t.radius_m * 1e3,
+            t.closest_distance_m * 1e3,
+            t.closest_tick,
+            traj.span_s().0 + t.closest_tick as f64 / rate,
+            (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt() * 1e3,
+            u[0] * 1e3,
+            u[1] * 1e3,
+            u[2] * 1e3,
+            t.max_displacement_m * 1e3,
+            t.rigid_distance_at_closest_m * 1e3,
+            if t.hit { "hit" } else { "missed" }
+        );
+    }
+    match output {
+        Some(p) => std::fs::write(p, &csv).with_context(|| format!("cannot write {}", p.display()))?,
+        None => print!("{csv}"),
+    }
+    if let Some(p) = dump {
+        let dir = p.parent().unwrap_or(std::path::Path::new(""));
+        for (k, state) in &dumps {
+            let json = serde_json::to_string(state)?;
+            if *k == last_k {
+                std::fs::write(p, &json).with_context(|| format!("cannot write {}", p.display()))?;
+            }
+            if dump_at.contains(k) {
+                let f = dir.join(format!("state-{k}.json"));
+                std::fs::write(&f, &json).with_context(|| format!("cannot write {}", f.display()))?;
+            }
+        }
     }
     Ok(())
 }

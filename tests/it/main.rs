@@ -20,5 +20,6 @@ mod scenes3d;
 mod server_e2e;
 mod sim3;
 mod simulate;
+mod simulate3;
 mod validation;
 mod web;

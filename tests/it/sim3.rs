@@ -10,41 +10,16 @@ use std::process::Command;
 
 use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
 use needlesim_core::sim3::{BasePose3, PointState3, Simulation3, Snapshot3};
+use needlesim_scene::exchange3d::scenario_from_snapshot;
 use needlesim_tests::{TempDir, python, read_json, run, text, validation_dir, write_json};
-use serde_json::{Value, json};
+use serde_json::Value;
 
 const ENTRY: [f64; 3] = [0.0513, 0.0487, 0.1];
 
-/// The snapshot as a 3D exchange scenario on the phantom.
+/// The snapshot as a 3D exchange scenario on the phantom (the library's conversion, the one
+/// `simulate --dump-state` uses).
 fn scenario(sim: &Simulation3, snap: &Snapshot3, name: &str) -> Value {
-    let mesh = sim.model().mesh();
-    let points: Vec<Value> = snap
-        .points
-        .iter()
-        .map(|p| {
-            let mut o = json!({"x": p.x_m, "frame": p.frame});
-            let m = o.as_object_mut().unwrap();
-            for (k, v) in [("ut", p.ut), ("un", p.un), ("ub", p.ub)] {
-                if let Some(v) = v {
-                    m.insert(k.into(), json!(v));
-                }
-            }
-            if let Some(f) = p.f_n {
-                m.insert("f".into(), json!(f));
-            }
-            o
-        })
-        .collect();
-    json!({
-        "name": name,
-        "dim": 3,
-        "nodes": mesh.nodes_m(),
-        "tetrahedra": mesh.tets(),
-        "E": 30e3,
-        "nu": 0.45,
-        "fixed_nodes": mesh.boundary_set("bottom").unwrap(),
-        "points": points,
-    })
+    serde_json::to_value(scenario_from_snapshot(sim.model(), snap, None, name)).expect("a scenario serialises")
 }
 
 fn reference_solve3(scenario: &Path, out: PathBuf) -> Value {

@@ -7,5 +7,6 @@
 pub mod driver;
 pub mod plan;
 pub mod simulate;
+pub mod simulate3;
 
 pub use driver::{DEFAULT_MAX_TICKS, DEFAULT_PREFETCH_NODES_PER_TICK, RunError, RunOptions, RunTotals, Script, ScriptedRun, Tick};

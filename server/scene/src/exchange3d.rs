@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use anyhow::{Context, Result, bail};
 use needlesim_core::Material;
 use needlesim_core::d3::{PointCondition, TetMaterials, TetMesh, TetMeshLimits, TetNodeCondition, TetStaticProblem, TetTissueModel};
+use needlesim_core::sim3::{PointState3, Snapshot3};
 use serde::{Deserialize, Serialize};
 
 /// A 3D static problem. Node ids are 0-based; tetrahedra may have either orientation.
@@ -43,6 +44,27 @@ pub struct Scenario3 {
     pub working_points: Option<Vec<[f64; 3]>>,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub output_stresses: bool,
+    /// A dumped simulation state (`simulate --dump-state`): each of `points` with the
+    /// simulation's state and answer there. Ignored by the solvers.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub needle_points: Option<Vec<NeedlePoint3>>,
+    /// A dumped simulation state: the simulation's own answer to this problem in the 3D result
+    /// format (compare it with the reference's by compare.py). Ignored by the solvers.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simulation_result: Option<Box<ScenarioResult3>>,
+}
+
+/// One needle point of a dumped simulation state, in the order of `points`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeedlePoint3 {
+    /// `stuck`, `slipping` or `tip`.
+    pub state: String,
+    /// The simulation's total force of the needle on the tissue there (constraint plus `f`),
+    /// world, N.
+    pub force: [f64; 3],
+    /// The simulation's displacement there, world, m.
+    pub u: [f64; 3],
 }
 
 /// Prescribed world components; a missing or null component is free.
@@ -332,6 +354,52 @@ pub fn solve_scenario3(sc: &Scenario3, limits: &TetMeshLimits) -> Result<Scenari
     Ok(result)
 }
 
+/// The name of a point state in dumped states (`needle_points[].state`).
+pub fn point_state_name(s: PointState3) -> &'static str {
+    match s {
+        PointState3::Stuck => "stuck",
+        PointState3::Slipping => "slipping",
+        PointState3::Tip => "tip",
+    }
+}
+
+/// The static problem a 3D simulation tick solved ([`Snapshot3`], from
+/// `Simulation3::snapshot`) as a scenario on the simulation's tissue `model`: its nodes and
+/// tetrahedra, materials (`E`, `nu`, and `E_elem`, `nu_elem` when the tetrahedra differ), its
+/// fixed nodes, and one `points` entry per needle point: reference position `x`, frame rows
+/// `[t, n, b]`, the prescribed components (`ut` for a stuck point or the tip's, `un`, `ub`
+/// always) and the friction `f` (world, N) of a slipping one. The simulation's state and
+/// answer at each point go to `needle_points` (in the order of `points`) when `states` is
+/// given (one per point, in the snapshot's order). `working_points`, `output_stresses` and
+/// `simulation_result` are left for the caller.
+pub fn scenario_from_snapshot(model: &TetTissueModel, snap: &Snapshot3, states: Option<&[PointState3]>, name: &str) -> Scenario3 {
+    let mesh = model.mesh();
+    let mats = model.materials().material_of_tet();
+    let uniform = mats.windows(2).all(|w| w[0] == w[1]);
+    let first = mats.first().copied().unwrap_or(Material { young_modulus_pa: 0.0, poisson_ratio: 0.0 });
+    Scenario3 {
+        name: Some(name.to_owned()),
+        description: Some(format!("a 3D needle simulation's static problem at tick {}", snap.tick)),
+        dim: 3,
+        nodes: mesh.nodes_m().to_vec(),
+        tetrahedra: mesh.tets().iter().map(|t| t.map(|i| i as i64)).collect(),
+        young_modulus_pa: first.young_modulus_pa,
+        nu: first.poisson_ratio,
+        young_modulus_elem_pa: (!uniform).then(|| mats.iter().map(|m| m.young_modulus_pa).collect()),
+        nu_elem: (!uniform).then(|| mats.iter().map(|m| m.poisson_ratio).collect()),
+        fixed_nodes: (0..mesh.n_nodes()).filter(|&n| model.is_fixed(n)).map(|n| n as i64).collect(),
+        points: snap.points.iter().map(|p| Point3 { x: p.x_m, frame: p.frame, ut: p.ut, un: p.un, ub: p.ub, f: p.f_n }).collect(),
+        needle_points: states.map(|st| {
+            snap.points
+                .iter()
+                .zip(st)
+                .map(|(p, &s)| NeedlePoint3 { state: point_state_name(s).to_owned(), force: p.force_n, u: p.u_m })
+                .collect()
+        }),
+        ..Scenario3::default()
+    }
+}
+
 /// The first value of a 3D result that is not finite, named.
 fn first_non_finite(r: &ScenarioResult3) -> Option<String> {
     let fin = |v: &[Option<f64>]| v.iter().flatten().all(|x| x.is_finite());
@@ -409,5 +477,46 @@ mod tests {
         assert!(e.contains("Poisson ratio"), "{e}");
         let e = serde_json::from_str::<Scenario3>(&TWO_TETS.replace("\"dim\": 3", "\"dim\": 3, \"plane\": \"strain\"")).unwrap_err();
         assert!(e.to_string().contains("unknown field `plane`"), "{e}");
+    }
+
+    /// A simulation's snapshot, converted, solved by the exchange solver: the point reactions
+    /// plus the friction are the simulation's contact forces and the point displacements its
+    /// displacements; the JSON round trip keeps the problem.
+    #[test]
+    fn a_snapshot_converts_to_the_problem_the_simulation_solved() {
+        use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
+        use needlesim_core::sim3::{BasePose3, Simulation3};
+        let mut sim = Simulation3::new(box_phantom3(7), box_phantom3_params([0.0513, 0.0487, 0.1], 0.005)).unwrap();
+        let start = sim.pose();
+        for k in 1..=2500 {
+            let p = start.position_m;
+            sim.step(BasePose3::from_rotation([p[0], p[1], p[2] - 2e-5 * k as f64], start.orientation)).unwrap();
+            sim.prefetch_columns(usize::MAX).unwrap();
+        }
+        let snap = sim.snapshot();
+        let states: Vec<PointState3> = sim.output().contacts.iter().map(|c| c.state).collect();
+        assert!(snap.points.len() >= 2, "the needle holds points: {states:?}");
+        assert!(states.contains(&PointState3::Slipping), "{states:?}");
+        let sc = scenario_from_snapshot(sim.model(), &snap, Some(&states), "snap");
+        assert_eq!(sc.fixed_nodes.len(), 49, "the bottom face of a 7x7x7 grid");
+        assert!(sc.young_modulus_elem_pa.is_none(), "one material");
+        let back: Scenario3 = serde_json::from_str(&serde_json::to_string(&sc).unwrap()).unwrap();
+        assert_eq!(back.needle_points, sc.needle_points);
+        assert_eq!(back.points.len(), snap.points.len());
+        let r = solve_scenario3(&back, &TetMeshLimits::default()).unwrap();
+        let (mut ef, mut eu, mut sf, mut su) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for ((pr, p), np) in r.point_reactions.iter().zip(&snap.points).zip(back.needle_points.as_ref().unwrap()) {
+            let f = p.f_n.unwrap_or([0.0; 3]);
+            let total = [pr.rx + f[0], pr.ry + f[1], pr.rz + f[2]];
+            for (k, t) in total.iter().enumerate() {
+                ef = ef.max((t - np.force[k]).abs());
+                eu = eu.max((pr.u[k] - np.u[k]).abs());
+                sf = sf.max(np.force[k].abs());
+                su = su.max(np.u[k].abs());
+            }
+        }
+        assert!(sf > 0.0 && su > 0.0);
+        assert!(ef / sf <= 1e-8, "point forces differ by {:e} relative", ef / sf);
+        assert!(eu / su <= 1e-9, "point displacements differ by {:e} relative", eu / su);
     }
 }

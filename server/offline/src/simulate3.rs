@@ -1,0 +1,591 @@
+//! The scripted `simulate` command for 3D scenes: a [`Trajectory3`] through the 3D step
+//! function ([`Simulation3`]) at the scene's tick rate, a per-tick CSV, states dumped in the 3D
+//! exchange format at chosen ticks with the simulation's own answer, and each target's
+//! displacement and closest approach.
+//!
+//! **The run.** Tick $k = 0, 1, \dots, K$ steps the base pose of the trajectory at
+//! $t = t_0 + k / f_{tick}$, $K = \mathrm{round}((t_{end} - t_0) f_{tick})$; between steps the
+//! columns of the nodes ahead of the tip are computed ([`Simulation3::prefetch_columns`], all
+//! of them), so the step never computes a column: a new point whose columns are missing waits a
+//! tick and is counted in [`RunSummary3::column_deferrals`].
+//!
+//! **Dumped states** ([`dump_state`]): the static problem the tick solved
+//! ([`scenario_from_snapshot`]) with `working_points` at the needle's points and
+//! `output_stresses`, so that fem_ref3d.py answers displacements, reactions, energy, stresses,
+//! point reactions and the point compliance; and in `simulation_result` the simulation's own
+//! answer in the 3D result format: the field its point forces $f_i$ (total: constraint plus
+//! friction) cause, $u = C P^\top f$, from the columns $C$ of the points' nodes (those the
+//! simulation cached, computed only if evicted), the support reactions
+//! $r = (K u - P^\top f)_{fixed}$, the energy $\tfrac12 u^\top K u$ and the stresses from $u$,
+//! the point reactions $f_i - f^{fr}_i$ and displacements, and $W = P C P^\top$.
+//!
+//! **Targets.** A target sphere moves with the tissue: its centre at tick $k$ is
+//! $c_k = c + u_k(c)$. The displacement at the centre is exact for the tick's static problem
+//! and cheap every tick: $u(c) = \sum_j N_j(c)\, u_{n_j}$ over the nodes $n_j$ of the
+//! tetrahedron holding $c$, and by the symmetry of $C$,
+//! $$u_{n_j} = C_{n_j,:} P^\top f = \sum_i \sum_{l} N_{il}\, C_{n_{il}, n_j}^{\top\!\!\!\!\;}\; f_i ,$$
+//! i.e. the columns of the target's 4 nodes (12 solves, once, before the run) read at the rows
+//! of each point's nodes: $O(\text{points})$ per tick, no solve. So the closest approach
+//! $\min_k |x^{tip}_k - c_k|$ is taken over every tick, not over candidates; a target is hit
+//! when it is at most the radius. (The same field as the exact static solve of the dumped
+//! problem: the unit test checks it against [`solve_scenario3`].)
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::sync::Arc;
+use std::time::Instant;
+
+use needlesim_core::d3::assembly::{element_stiffness, element_stresses_pa, tet_dofs};
+use needlesim_core::d3::{PointLocation, TetTissueModel};
+use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simulation3};
+use needlesim_scene::exchange3d::{PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, scenario_from_snapshot};
+use needlesim_scene::{Scene3d, Trajectory3};
+
+/// Why a 3D run failed; each names what.
+#[derive(Debug, thiserror::Error)]
+pub enum Run3Error {
+    /// Before the run: the trajectory lasts more ticks than allowed.
+    #[error(
+        "the trajectory lasts {span_s} s, {ticks} ticks at {rate_hz} Hz, over the limit of {max_ticks} ticks (--max-ticks); its last sample is at t = {end_s} s"
+    )]
+    TooLong { span_s: f64, ticks: u64, rate_hz: f64, max_ticks: u64, end_s: f64 },
+    /// Before the run: a pose of the trajectory is not a valid base pose.
+    #[error("the trajectory's first pose: {0}")]
+    Pose(String),
+    /// Before the run: the tissue does not factorise or the parameters are refused.
+    #[error("the 3D simulation cannot start: {0:#}")]
+    Setup(anyhow::Error),
+    /// During the run: a step or a column solve failed at a tick.
+    #[error("tick {tick} (t = {t_s} s): {source}")]
+    Step { tick: u64, t_s: f64, source: SimError3 },
+    /// A dump tick outside the run.
+    #[error("--dump-at {tick}: the run has ticks 0..={last}")]
+    DumpTick { tick: u64, last: u64 },
+    /// A target centre or a needle point outside the mesh (a scene that passed validation
+    /// cannot cause it), or a column solve for the target failed.
+    #[error("{0}")]
+    Tissue(String),
+}
+
+/// A target's record over a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TargetReport3 {
+    pub name: String,
+    pub radius_m: f64,
+    /// The undeformed centre, m.
+    pub center_m: [f64; 3],
+    /// The tick of the closest approach of the tip to the displaced centre.
+    pub closest_tick: u64,
+    /// The closest approach, m.
+    pub closest_distance_m: f64,
+    /// The centre's displacement at that tick, m.
+    pub displacement_at_closest_m: [f64; 3],
+    /// The largest displacement magnitude of the centre over the run, m.
+    pub max_displacement_m: f64,
+    /// The distance from the tip to the *undeformed* centre at the closest tick, m: what the
+    /// aim would have reached in rigid tissue.
+    pub rigid_distance_at_closest_m: f64,
+    /// Whether the tip came within the radius.
+    pub hit: bool,
+}
+
+/// What a run produced besides the CSV and the dumps.
+#[derive(Debug, Clone, Default)]
+pub struct RunSummary3 {
+    pub ticks: u64,
+    pub clamped_ticks: u64,
+    /// Ticks at which a new point waited for its columns (admitted later).
+    pub column_deferrals: u64,
+    pub prefetched_columns: u64,
+    pub unconverged_ticks: u64,
+    pub numeric_factorisations: u64,
+    pub max_points: usize,
+    pub targets: Vec<TargetReport3>,
+    /// Step compute times, seconds, one per tick.
+    pub step_times_s: Vec<f64>,
+    /// Factorisation time, s.
+    pub factorise_s: f64,
+}
+
+/// The 3D simulation parameters of a scene: its needle, regions and tick rate; the base starts at
+/// `initial`.
+pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
+    let mut p = Sim3Params::new(scene.needle.length_m, initial);
+    p.spacing_m = scene.needle.contact_spacing_m;
+    p.regions = scene.regions.iter().map(|r| r.needle).collect();
+    p.tick_rate_hz = scene.tick_rate_hz;
+    p.max_contacts = scene.needle.max_points;
+    p
+}
+
+/// A trajectory pose as the simulation's base pose.
+pub fn base_pose3(p: &needlesim_scene::Pose3) -> Result<BasePose3, String> {
+    BasePose3::new(p.position_m, p.quat_wxyz).map_err(|e| e.to_string())
+}
+
+/// What [`run3`] returns: the simulation after the last tick, the summary, and the dumped
+/// states as `(tick, scenario)` in tick order.
+pub type Run3Output = (Simulation3, RunSummary3, Vec<(u64, Scenario3)>);
+
+/// The CSV header for a scene's targets.
+pub fn csv_header3(target_names: &[String]) -> String {
+    let mut h = String::from(
+        "tick,t_s,x_m,y_m,z_m,qw,qx,qy,qz,fx_n,fy_n,fz_n,torque_x_nm,torque_y_nm,torque_z_nm,f_axial_n,tip_x_m,tip_y_m,tip_z_m,inserted_m,n_points,n_stuck,n_slipping,n_tip",
+    );
+    for n in target_names {
+        let _ = write!(h, ",target_{n}_distance_m,target_{n}_x_m,target_{n}_y_m,target_{n}_z_m,target_{n}_hit");
+    }
+    h
+}
+
+/// The columns of the 4 nodes of the tetrahedron holding a target centre, for
+/// [`TargetTracker`].
+struct TargetColumns {
+    loc: PointLocation,
+    /// Per node j: 3 columns (x, y, z) over all DOFs, component-major.
+    cols: Vec<Vec<f64>>,
+    n_dofs: usize,
+}
+
+/// Evaluates the tissue displacement at target centres from the needle points' forces
+/// (module docs), every tick, without a solve.
+struct TargetTracker {
+    targets: Vec<TargetColumns>,
+    /// Located needle points by the bits of their reference position.
+    located: HashMap<[u64; 3], PointLocation>,
+}
+
+impl TargetTracker {
+    fn new(model: &TetTissueModel, centres: &[[f64; 3]]) -> Result<Self, Run3Error> {
+        let n_dofs = model.n_dofs();
+        let mut scratch = model.column_scratch();
+        let mut targets = Vec::with_capacity(centres.len());
+        for (k, &c) in centres.iter().enumerate() {
+            let loc = model.locate(c).map_err(|e| Run3Error::Tissue(format!("target {k}: {e}")))?;
+            let mut cols = Vec::with_capacity(4);
+            for &n in &loc.nodes {
+                let mut buf = vec![0.0; 3 * n_dofs];
+                model.compliance_columns_into(n, &mut buf, &mut scratch).map_err(|e| Run3Error::Tissue(format!("target {k}: {e}")))?;
+                cols.push(buf);
+            }
+            targets.push(TargetColumns { loc, cols, n_dofs });
+        }
+        Ok(Self { targets, located: HashMap::new() })
+    }
+
+    fn locate(&mut self, model: &TetTissueModel, x: [f64; 3]) -> Result<PointLocation, Run3Error> {
+        let key = x.map(f64::to_bits);
+        if let Some(l) = self.located.get(&key) {
+            return Ok(*l);
+        }
+        let l = model.locate(x).map_err(|e| Run3Error::Tissue(format!("a needle point at {x:?}: {e}")))?;
+        self.located.insert(key, l);
+        Ok(l)
+    }
+
+    /// The displacement of each target centre under point forces `(x_ref, f)` (world, N).
+    fn displacements(&mut self, model: &TetTissueModel, points: &[([f64; 3], [f64; 3])], out: &mut [[f64; 3]]) -> Result<(), Run3Error> {
+        let mut locs = Vec::with_capacity(points.len());
+        for (x, _) in points {
+            locs.push(self.locate(model, *x)?);
+        }
+        for (t, o) in self.targets.iter().zip(out.iter_mut()) {
+            let mut u = [0.0; 3];
+            for j in 0..4 {
+                let nj = t.loc.weights[j];
+                if nj == 0.0 {
+                    continue;
+                }
+                for (r, ur) in u.iter_mut().enumerate() {
+                    let col = &t.cols[j][r * t.n_dofs..(r + 1) * t.n_dofs];
+                    let mut v = 0.0;
+                    for (l, (_, f)) in locs.iter().zip(points) {
+                        for m in 0..4 {
+                            let w = l.weights[m];
+                            if w != 0.0 {
+                                let base = 3 * l.nodes[m];
+                                v += w * (col[base] * f[0] + col[base + 1] * f[1] + col[base + 2] * f[2]);
+                            }
+                        }
+                    }
+                    *ur += nj * v;
+                }
+            }
+            *o = u;
+        }
+        Ok(())
+    }
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// Runs `traj` through a new 3D simulation of `scene` (module docs), appending each tick's row
+/// to `csv` (when given) and dumping the state at each tick of `dump_ticks` (sorted or not;
+/// returned as `(tick, scenario)` in tick order). A trajectory of more than `max_ticks` ticks
+/// is refused before anything runs.
+pub fn run3(
+    scene: &Scene3d,
+    traj: &Trajectory3,
+    max_ticks: u64,
+    dump_ticks: &[u64],
+    mut csv: Option<&mut String>,
+) -> Result<Run3Output, Run3Error> {
+    let rate = scene.tick_rate_hz;
+    let (t0, t1) = traj.span_s();
+    let last_k = ((t1 - t0) * rate).round() as u64;
+    if last_k > max_ticks {
+        return Err(Run3Error::TooLong { span_s: t1 - t0, ticks: last_k + 1, rate_hz: rate, max_ticks, end_s: t1 });
+    }
+    if let Some(&bad) = dump_ticks.iter().find(|&&k| k > last_k) {
+        return Err(Run3Error::DumpTick { tick: bad, last: last_k });
+    }
+    let initial = base_pose3(&traj.samples[0].1).map_err(Run3Error::Pose)?;
+    let started = Instant::now();
+    let model = Arc::new(scene.tissue_model().map_err(Run3Error::Setup)?);
+    let factorise_s = started.elapsed().as_secs_f64();
+    let mut sim = Simulation3::new(model.clone(), sim3_params(scene, initial)).map_err(|e| Run3Error::Setup(e.into()))?;
+    let centres: Vec<[f64; 3]> = scene.targets.iter().map(|t| t.center_m).collect();
+    let mut tracker = TargetTracker::new(&model, &centres)?;
+    let mut reports: Vec<TargetReport3> = scene
+        .targets
+        .iter()
+        .map(|t| TargetReport3 {
+            name: t.name.clone(),
+            radius_m: t.radius_m,
+            center_m: t.center_m,
+            closest_tick: 0,
+            closest_distance_m: f64::INFINITY,
+            displacement_at_closest_m: [0.0; 3],
+            max_displacement_m: 0.0,
+            rigid_distance_at_closest_m: f64::INFINITY,
+            hit: false,
+        })
+        .collect();
+    if let Some(c) = csv.as_deref_mut() {
+        let names: Vec<String> = scene.targets.iter().map(|t| t.name.clone()).collect();
+        c.push_str(&csv_header3(&names));
+        c.push('\n');
+    }
+    let mut summary = RunSummary3 { step_times_s: Vec::with_capacity(last_k as usize + 1), factorise_s, ..Default::default() };
+    let mut dumps = Vec::new();
+    let mut forces: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(scene.needle.max_points);
+    let mut u_targets = vec![[0.0; 3]; centres.len()];
+    for k in 0..=last_k {
+        let t_s = t0 + k as f64 / rate;
+        let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| Run3Error::Step {
+            tick: k,
+            t_s,
+            source: SimError3::InvalidParams(format!("the trajectory's pose: {e}")),
+        })?;
+        let s = Instant::now();
+        sim.step(pose).map_err(|source| Run3Error::Step { tick: k, t_s, source })?;
+        summary.step_times_s.push(s.elapsed().as_secs_f64());
+        summary.prefetched_columns += sim.prefetch_columns(usize::MAX).map_err(|source| Run3Error::Step { tick: k, t_s, source })? as u64;
+        let out = sim.output();
+        summary.max_points = summary.max_points.max(out.contacts.len());
+        forces.clear();
+        forces.extend(out.contacts.iter().map(|c| (c.x_ref_m, c.force_n)));
+        tracker.displacements(&model, &forces, &mut u_targets)?;
+        for ((r, u), tg) in reports.iter_mut().zip(&u_targets).zip(&scene.targets) {
+            let moved = add(tg.center_m, *u);
+            let d = dist(out.tip_m, moved);
+            r.max_displacement_m = r.max_displacement_m.max(dist(*u, [0.0; 3]));
+            if d < r.closest_distance_m {
+                r.closest_distance_m = d;
+                r.closest_tick = k;
+                r.displacement_at_closest_m = *u;
+                r.rigid_distance_at_closest_m = dist(out.tip_m, tg.center_m);
+            }
+            r.hit |= d <= tg.radius_m;
+        }
+        if let Some(c) = csv.as_deref_mut() {
+            write_csv_row3(c, k, t_s, out, &reports, &u_targets);
+        }
+        if dump_ticks.contains(&k) {
+            dumps.push((k, dump_state(scene, &sim).map_err(|e| Run3Error::Tissue(format!("tick {k}: {e:#}")))?));
+        }
+    }
+    let st = sim.stats();
+    summary.ticks = last_k + 1;
+    summary.clamped_ticks = st.clamped_ticks;
+    summary.column_deferrals = st.column_deferrals;
+    summary.unconverged_ticks = st.unconverged_ticks;
+    summary.numeric_factorisations = model.cholesky().n_numeric_factorisations();
+    summary.targets = reports;
+    Ok((sim, summary, dumps))
+}
+
+/// One CSV row ([`csv_header3`]'s columns).
+fn write_csv_row3(c: &mut String, k: u64, t_s: f64, out: &needlesim_core::sim3::StepOutput3, reports: &[TargetReport3], u: &[[f64; 3]]) {
+    let p = out.pose.position_m;
+    let q = out.pose.orientation.quaternion();
+    let (f, m) = (out.base_force_n, out.base_torque_nm);
+    let count = |s: PointState3| out.contacts.iter().filter(|c| c.state == s).count();
+    let _ = write!(
+        c,
+        "{k},{t_s:.6},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{},{},{},{}",
+        p[0],
+        p[1],
+        p[2],
+        q.w,
+        q.i,
+        q.j,
+        q.k,
+        f[0],
+        f[1],
+        f[2],
+        m[0],
+        m[1],
+        m[2],
+        out.axial_force_n,
+        out.tip_m[0],
+        out.tip_m[1],
+        out.tip_m[2],
+        out.inserted_length_m,
+        out.contacts.len(),
+        count(PointState3::Stuck),
+        count(PointState3::Slipping),
+        count(PointState3::Tip),
+    );
+    for (r, u) in reports.iter().zip(u) {
+        let moved = add(r.center_m, *u);
+        let _ = write!(c, ",{:e},{},{},{},{}", dist(out.tip_m, moved), moved[0], moved[1], moved[2], r.hit as u8);
+    }
+    c.push('\n');
+}
+
+/// The state of `sim` as a 3D scenario with the simulation's own answer (module docs).
+pub fn dump_state(scene: &Scene3d, sim: &Simulation3) -> anyhow::Result<Scenario3> {
+    let model = sim.model();
+    let snap = sim.snapshot();
+    let states: Vec<PointState3> = sim.output().contacts.iter().map(|c| c.state).collect();
+    let mut sc = scenario_from_snapshot(model, &snap, Some(&states), &format!("{}-tick-{}", scene.name, snap.tick));
+    sc.description = Some(format!("needlesim-server simulate --dump-state: {} at tick {}", scene.name, snap.tick));
+    sc.output_stresses = true;
+    if !snap.points.is_empty() {
+        sc.working_points = Some(snap.points.iter().map(|p| p.x_m).collect());
+    }
+    sc.simulation_result = Some(Box::new(simulation_result(sim, &sc)?));
+    Ok(sc)
+}
+
+/// The simulation's answer to its own static problem `sc` (module docs).
+#[allow(clippy::needless_range_loop)] // symmetric (i, j) index pairs of W
+fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<ScenarioResult3> {
+    let model = sim.model();
+    let mesh = model.mesh();
+    let mats = model.materials();
+    let n_dofs = model.n_dofs();
+    let snap = sim.snapshot();
+    let locs = snap
+        .points
+        .iter()
+        .map(|p| model.locate(p.x_m).map_err(|e| anyhow::anyhow!("needle point at {:?}: {e}", p.x_m)))
+        .collect::<Result<Vec<_>, _>>()?;
+    // The columns of every point node: the simulation's cached ones, computed if evicted.
+    let mut computed: HashMap<usize, Vec<f64>> = HashMap::new();
+    let mut scratch = model.column_scratch();
+    for l in &locs {
+        for &n in &l.nodes {
+            if !(0..3).all(|c| sim.cache().column(n, c).is_some()) && !computed.contains_key(&n) {
+                let mut buf = vec![0.0; 3 * n_dofs];
+                model.compliance_columns_into(n, &mut buf, &mut scratch)?;
+                computed.insert(n, buf);
+            }
+        }
+    }
+    let column = |n: usize, c: usize| -> &[f64] {
+        match sim.cache().column(n, c) {
+            Some(col) if !computed.contains_key(&n) => col,
+            _ => &computed[&n][c * n_dofs..(c + 1) * n_dofs],
+        }
+    };
+    // u = C Pᵀ f and Pᵀ f.
+    let mut u = vec![0.0; n_dofs];
+    let mut pf = vec![0.0; n_dofs];
+    for (l, p) in locs.iter().zip(&snap.points) {
+        for m in 0..4 {
+            let w = l.weights[m];
+            if w == 0.0 {
+                continue;
+            }
+            for c in 0..3 {
+                let fc = w * p.force_n[c];
+                pf[3 * l.nodes[m] + c] += fc;
+                if fc != 0.0 {
+                    for (o, x) in u.iter_mut().zip(column(l.nodes[m], c)) {
+                        *o += x * fc;
+                    }
+                }
+            }
+        }
+    }
+    // K u element by element: the reactions at the fixed nodes and the energy.
+    let mut ku = vec![0.0; n_dofs];
+    for t in 0..mesh.n_tets() {
+        let k = element_stiffness(mesh, mats, t);
+        let dofs = tet_dofs(&mesh.tets()[t]);
+        for (a, &da) in dofs.iter().enumerate() {
+            ku[da] += (0..12).map(|b| k[a][b] * u[dofs[b]]).sum::<f64>();
+        }
+    }
+    let energy = 0.5 * u.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
+    let reactions = sc
+        .fixed_nodes
+        .iter()
+        .map(|&n| {
+            let n = n as usize;
+            let r = |c: usize| Some(ku[3 * n + c] - pf[3 * n + c]);
+            Reaction3 { node: n, rx: r(0), ry: r(1), rz: r(2) }
+        })
+        .collect();
+    let point_reactions = snap
+        .points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let f = p.f_n.unwrap_or([0.0; 3]);
+            let r = [p.force_n[0] - f[0], p.force_n[1] - f[1], p.force_n[2] - f[2]];
+            let local = |a: usize, given: Option<f64>| given.map(|_| p.frame[a][0] * r[0] + p.frame[a][1] * r[1] + p.frame[a][2] * r[2]);
+            PointReaction3 { point: i, rx: r[0], ry: r[1], rz: r[2], rt: local(0, p.ut), rn: local(1, p.un), rb: local(2, p.ub), u: p.u_m }
+        })
+        .collect();
+    // W = P C Pᵀ from the same columns.
+    let np = locs.len();
+    let d = 3 * np;
+    let mut w = vec![vec![0.0; d]; d];
+    for (b, lb) in locs.iter().enumerate() {
+        for j in 0..4 {
+            let wj = lb.weights[j];
+            if wj == 0.0 {
+                continue;
+            }
+            for c in 0..3 {
+                let col = column(lb.nodes[j], c);
+                for (a, la) in locs.iter().enumerate() {
+                    for r in 0..3 {
+                        let v: f64 = (0..4).map(|i| la.weights[i] * col[3 * la.nodes[i] + r]).sum();
+                        w[3 * a + r][3 * b + c] += wj * v;
+                    }
+                }
+            }
+        }
+    }
+    for i in 0..d {
+        for j in 0..i {
+            let v = 0.5 * (w[i][j] + w[j][i]);
+            w[i][j] = v;
+            w[j][i] = v;
+        }
+    }
+    Ok(ScenarioResult3 {
+        name: sc.name.clone().unwrap_or_default(),
+        dim: 3,
+        n_nodes: mesh.n_nodes(),
+        n_tetrahedra: mesh.n_tets(),
+        max_abs_displacement: u.iter().fold(0.0, |m, v| m.max(v.abs())),
+        element_stresses_voigt: Some(element_stresses_pa(mesh, mats, &u)),
+        displacements: u.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        reactions,
+        reactions_local: vec![],
+        point_reactions,
+        strain_energy: energy,
+        compliance: None,
+        point_compliance: (np > 0).then(|| PointCompliance3 {
+            working_points: snap.points.iter().map(|p| p.x_m).collect(),
+            dof_order: "[ux(p0), uy(p0), uz(p0), ux(p1), ...]".to_owned(),
+            matrix: w,
+        }),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use needlesim_scene::exchange3d::solve_scenario3;
+
+    const SCENE: &str = r#"
+dim = 3
+name = "small"
+fixed = ["bottom"]
+[mesh]
+type = "box"
+nx = 13
+ny = 13
+nz = 13
+size_m = [0.06, 0.06, 0.06]
+[[regions]]
+name = "gel"
+young_modulus_pa = 20e3
+poisson_ratio = 0.45
+friction_n_per_m = 20
+[needle]
+length_m = 0.1
+contact_spacing_m = 0.002
+base_m = [0.0311, 0.0297, 0.165]
+base_quat = [0.7071067811865475, 0.0, 0.7071067811865475, 0.0]
+[[targets]]
+name = "t"
+center_m = [0.031, 0.0305, 0.02]
+radius_m = 0.001
+"#;
+    const TRAJ: &str = "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0.0311,0.0297,0.165,0.7071067811865475,0,0.7071067811865475,0\n3.5,0.0311,0.0297,0.13,0.7071067811865475,0,0.7071067811865475,0\n";
+
+    fn scene() -> Scene3d {
+        needlesim_scene::parse_scene3d(SCENE, std::path::Path::new("."), &needlesim_core::MeshLimits::default()).unwrap()
+    }
+
+    /// The target displacement from the columns equals the exact static solve of the dumped
+    /// problem, interpolated at the centre; the dumped simulation result equals that solve.
+    #[test]
+    fn target_displacement_and_dumped_answer_equal_the_static_solve() {
+        let sc = scene();
+        let traj = Trajectory3::parse_csv(TRAJ).unwrap();
+        let mut csv = String::new();
+        let (sim, summary, dumps) = run3(&sc, &traj, 10_000, &[2000, 3500], Some(&mut csv)).unwrap();
+        assert_eq!(summary.ticks, 3501);
+        assert_eq!(dumps.iter().map(|d| d.0).collect::<Vec<_>>(), vec![2000, 3500]);
+        assert_eq!(csv.lines().count(), 3502);
+        let (_, state) = &dumps[1];
+        let n_points: Vec<&str> = csv.lines().skip(1).step_by(250).map(|l| l.split(',').nth(20).unwrap()).collect();
+        assert!(state.points.len() >= 3, "the needle holds points: {n_points:?}");
+        let exact = solve_scenario3(state, &needlesim_core::d3::TetMeshLimits::default()).unwrap();
+        let ours = state.simulation_result.as_ref().unwrap();
+        let rel = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+            let e = a.iter().zip(b).flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs())).fold(0.0, f64::max);
+            e / b.iter().flat_map(|q| q.iter().map(|v| v.abs())).fold(0.0, f64::max)
+        };
+        let e = rel(&ours.displacements, &exact.displacements);
+        assert!(e <= 1e-9, "displacements differ by {e:e}");
+        assert!((ours.strain_energy - exact.strain_energy).abs() <= 1e-9 * exact.strain_energy.abs());
+        // The target's centre from the last row of the CSV against the exact field there.
+        let loc = sim.model().locate(sc.targets[0].center_m).unwrap();
+        let u_exact: [f64; 3] = std::array::from_fn(|c| (0..4).map(|j| loc.weights[j] * exact.displacements[loc.nodes[j]][c]).sum());
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let last: Vec<f64> = csv.lines().last().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+        let col = |n: &str| header.iter().position(|h| *h == n).unwrap();
+        let moved = [last[col("target_t_x_m")], last[col("target_t_y_m")], last[col("target_t_z_m")]];
+        let scale = u_exact.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(scale > 1e-7, "the target moved: {u_exact:?}");
+        for c in 0..3 {
+            let got = moved[c] - sc.targets[0].center_m[c];
+            assert!((got - u_exact[c]).abs() <= 1e-9 * scale + 1e-15, "component {c}: {got} vs {}", u_exact[c]);
+        }
+        assert!(summary.targets[0].closest_distance_m.is_finite());
+    }
+
+    #[test]
+    fn a_dump_tick_past_the_run_is_refused() {
+        let traj = Trajectory3::parse_csv(TRAJ).unwrap();
+        let e = run3(&scene(), &traj, 10_000, &[9999], None).err().unwrap().to_string();
+        assert!(e.contains("--dump-at 9999") && e.contains("0..=3500"), "{e}");
+        let e = run3(&scene(), &traj, 100, &[], None).err().unwrap().to_string();
+        assert!(e.contains("over the limit of 100 ticks"), "{e}");
+    }
+}
