@@ -19,16 +19,12 @@
 //! $r = (K u - P^\top f)_{fixed}$, the energy $\tfrac12 u^\top K u$ and the stresses from $u$,
 //! the point reactions $f_i - f^{fr}_i$ and displacements, and $W = P C P^\top$.
 //!
-//! **Targets.** A target sphere moves with the tissue: its centre at tick $k$ is
-//! $c_k = c + u_k(c)$. The displacement at the centre is exact for the tick's static problem
-//! and cheap every tick: $u(c) = \sum_j N_j(c)\, u_{n_j}$ over the nodes $n_j$ of the
-//! tetrahedron holding $c$, and by the symmetry of $C$,
-//! $$u_{n_j} = C_{n_j,:} P^\top f = \sum_i \sum_{l} N_{il}\, C_{n_{il}, n_j}^{\top\!\!\!\!\;}\; f_i ,$$
-//! i.e. the columns of the target's 4 nodes (12 solves, once, before the run) read at the rows
-//! of each point's nodes: $O(\text{points})$ per tick, no solve. So the closest approach
-//! $\min_k |x^{tip}_k - c_k|$ is taken over every tick, not over candidates; a target is hit
-//! when it is at most the radius. (The same field as the exact static solve of the dumped
-//! problem: the unit test checks it against [`solve_scenario3`].)
+//! **Targets.** A target sphere moves with the tissue: the simulation tracks each one
+//! ([`Sim3Params::targets`], `needlesim_core::sim3::targets`: the centre's displacement from the
+//! points' forces every tick, $O(\text{points})$, exact for the tick's static problem; hit
+//! latched when the tip comes within the radius). The run keeps the closest approach over every
+//! tick and the displacement there. (The unit test checks the displaced centre against the exact
+//! static solve of the dumped problem, [`solve_scenario3`].)
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -36,8 +32,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use needlesim_core::d3::assembly::{element_stiffness, element_stresses_pa, tet_dofs};
-use needlesim_core::d3::{PointLocation, TetTissueModel};
-use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simulation3};
+use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simulation3, Target3, TargetState3};
 use needlesim_scene::exchange3d::{PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, scenario_from_snapshot};
 use needlesim_scene::{Scene3d, Trajectory3};
 
@@ -115,6 +110,7 @@ pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
     p.regions = scene.regions.iter().map(|r| r.needle).collect();
     p.tick_rate_hz = scene.tick_rate_hz;
     p.max_contacts = scene.needle.max_points;
+    p.targets = scene.targets.iter().enumerate().map(|(k, t)| Target3 { centre_m: t.center_m, radius_m: t.radius_m, name_idx: k }).collect();
     p
 }
 
@@ -138,91 +134,8 @@ pub fn csv_header3(target_names: &[String]) -> String {
     h
 }
 
-/// The columns of the 4 nodes of the tetrahedron holding a target centre, for
-/// [`TargetTracker`].
-struct TargetColumns {
-    loc: PointLocation,
-    /// Per node j: 3 columns (x, y, z) over all DOFs, component-major.
-    cols: Vec<Vec<f64>>,
-    n_dofs: usize,
-}
-
-/// Evaluates the tissue displacement at target centres from the needle points' forces
-/// (module docs), every tick, without a solve.
-struct TargetTracker {
-    targets: Vec<TargetColumns>,
-    /// Located needle points by the bits of their reference position.
-    located: HashMap<[u64; 3], PointLocation>,
-}
-
-impl TargetTracker {
-    fn new(model: &TetTissueModel, centres: &[[f64; 3]]) -> Result<Self, Run3Error> {
-        let n_dofs = model.n_dofs();
-        let mut scratch = model.column_scratch();
-        let mut targets = Vec::with_capacity(centres.len());
-        for (k, &c) in centres.iter().enumerate() {
-            let loc = model.locate(c).map_err(|e| Run3Error::Tissue(format!("target {k}: {e}")))?;
-            let mut cols = Vec::with_capacity(4);
-            for &n in &loc.nodes {
-                let mut buf = vec![0.0; 3 * n_dofs];
-                model.compliance_columns_into(n, &mut buf, &mut scratch).map_err(|e| Run3Error::Tissue(format!("target {k}: {e}")))?;
-                cols.push(buf);
-            }
-            targets.push(TargetColumns { loc, cols, n_dofs });
-        }
-        Ok(Self { targets, located: HashMap::new() })
-    }
-
-    fn locate(&mut self, model: &TetTissueModel, x: [f64; 3]) -> Result<PointLocation, Run3Error> {
-        let key = x.map(f64::to_bits);
-        if let Some(l) = self.located.get(&key) {
-            return Ok(*l);
-        }
-        let l = model.locate(x).map_err(|e| Run3Error::Tissue(format!("a needle point at {x:?}: {e}")))?;
-        self.located.insert(key, l);
-        Ok(l)
-    }
-
-    /// The displacement of each target centre under point forces `(x_ref, f)` (world, N).
-    fn displacements(&mut self, model: &TetTissueModel, points: &[([f64; 3], [f64; 3])], out: &mut [[f64; 3]]) -> Result<(), Run3Error> {
-        let mut locs = Vec::with_capacity(points.len());
-        for (x, _) in points {
-            locs.push(self.locate(model, *x)?);
-        }
-        for (t, o) in self.targets.iter().zip(out.iter_mut()) {
-            let mut u = [0.0; 3];
-            for j in 0..4 {
-                let nj = t.loc.weights[j];
-                if nj == 0.0 {
-                    continue;
-                }
-                for (r, ur) in u.iter_mut().enumerate() {
-                    let col = &t.cols[j][r * t.n_dofs..(r + 1) * t.n_dofs];
-                    let mut v = 0.0;
-                    for (l, (_, f)) in locs.iter().zip(points) {
-                        for m in 0..4 {
-                            let w = l.weights[m];
-                            if w != 0.0 {
-                                let base = 3 * l.nodes[m];
-                                v += w * (col[base] * f[0] + col[base + 1] * f[1] + col[base + 2] * f[2]);
-                            }
-                        }
-                    }
-                    *ur += nj * v;
-                }
-            }
-            *o = u;
-        }
-        Ok(())
-    }
-}
-
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 /// Runs `traj` through a new 3D simulation of `scene` (module docs), appending each tick's row
@@ -250,8 +163,6 @@ pub fn run3(
     let model = Arc::new(scene.tissue_model().map_err(Run3Error::Setup)?);
     let factorise_s = started.elapsed().as_secs_f64();
     let mut sim = Simulation3::new(model.clone(), sim3_params(scene, initial)).map_err(|e| Run3Error::Setup(e.into()))?;
-    let centres: Vec<[f64; 3]> = scene.targets.iter().map(|t| t.center_m).collect();
-    let mut tracker = TargetTracker::new(&model, &centres)?;
     let mut reports: Vec<TargetReport3> = scene
         .targets
         .iter()
@@ -274,8 +185,6 @@ pub fn run3(
     }
     let mut summary = RunSummary3 { step_times_s: Vec::with_capacity(last_k as usize + 1), factorise_s, ..Default::default() };
     let mut dumps = Vec::new();
-    let mut forces: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(scene.needle.max_points);
-    let mut u_targets = vec![[0.0; 3]; centres.len()];
     for k in 0..=last_k {
         let t_s = t0 + k as f64 / rate;
         let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| Run3Error::Step {
@@ -289,23 +198,18 @@ pub fn run3(
         summary.prefetched_columns += sim.prefetch_columns(usize::MAX).map_err(|source| Run3Error::Step { tick: k, t_s, source })? as u64;
         let out = sim.output();
         summary.max_points = summary.max_points.max(out.contacts.len());
-        forces.clear();
-        forces.extend(out.contacts.iter().map(|c| (c.x_ref_m, c.force_n)));
-        tracker.displacements(&model, &forces, &mut u_targets)?;
-        for ((r, u), tg) in reports.iter_mut().zip(&u_targets).zip(&scene.targets) {
-            let moved = add(tg.center_m, *u);
-            let d = dist(out.tip_m, moved);
-            r.max_displacement_m = r.max_displacement_m.max(dist(*u, [0.0; 3]));
-            if d < r.closest_distance_m {
-                r.closest_distance_m = d;
+        for (r, t) in reports.iter_mut().zip(out.targets.as_slice()) {
+            r.max_displacement_m = r.max_displacement_m.max(dist(t.displacement_m, [0.0; 3]));
+            if t.distance_m < r.closest_distance_m {
+                r.closest_distance_m = t.distance_m;
                 r.closest_tick = k;
-                r.displacement_at_closest_m = *u;
-                r.rigid_distance_at_closest_m = dist(out.tip_m, tg.center_m);
+                r.displacement_at_closest_m = t.displacement_m;
+                r.rigid_distance_at_closest_m = dist(out.tip_m, r.center_m);
             }
-            r.hit |= d <= tg.radius_m;
+            r.hit = t.state == TargetState3::Hit;
         }
         if let Some(c) = csv.as_deref_mut() {
-            write_csv_row3(c, k, t_s, out, &reports, &u_targets);
+            write_csv_row3(c, k, t_s, out);
         }
         if dump_ticks.contains(&k) {
             dumps.push((k, dump_state(scene, &sim).map_err(|e| Run3Error::Tissue(format!("tick {k}: {e:#}")))?));
@@ -322,7 +226,7 @@ pub fn run3(
 }
 
 /// One CSV row ([`csv_header3`]'s columns).
-fn write_csv_row3(c: &mut String, k: u64, t_s: f64, out: &needlesim_core::sim3::StepOutput3, reports: &[TargetReport3], u: &[[f64; 3]]) {
+fn write_csv_row3(c: &mut String, k: u64, t_s: f64, out: &needlesim_core::sim3::StepOutput3) {
     let p = out.pose.position_m;
     let q = out.pose.orientation.quaternion();
     let (f, m) = (out.base_force_n, out.base_torque_nm);
@@ -353,9 +257,8 @@ fn write_csv_row3(c: &mut String, k: u64, t_s: f64, out: &needlesim_core::sim3::
         count(PointState3::Slipping),
         count(PointState3::Tip),
     );
-    for (r, u) in reports.iter().zip(u) {
-        let moved = add(r.center_m, *u);
-        let _ = write!(c, ",{:e},{},{},{},{}", dist(out.tip_m, moved), moved[0], moved[1], moved[2], r.hit as u8);
+    for t in out.targets.as_slice() {
+        let _ = write!(c, ",{:e},{},{},{},{}", t.distance_m, t.centre_m[0], t.centre_m[1], t.centre_m[2], (t.state == TargetState3::Hit) as u8);
     }
     c.push('\n');
 }
@@ -388,12 +291,14 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
         .iter()
         .map(|p| model.locate(p.x_m).map_err(|e| anyhow::anyhow!("needle point at {:?}: {e}", p.x_m)))
         .collect::<Result<Vec<_>, _>>()?;
-    // The columns of every point node: the simulation's cached ones, computed if evicted.
+    // The columns of every point node: the simulation's cached ones (with a column store),
+    // computed if evicted or with node blocks.
+    let cached = |n: usize, c: usize| sim.cache().columns().and_then(|cc| cc.column(n, c));
     let mut computed: HashMap<usize, Vec<f64>> = HashMap::new();
     let mut scratch = model.column_scratch();
     for l in &locs {
         for &n in &l.nodes {
-            if !(0..3).all(|c| sim.cache().column(n, c).is_some()) && !computed.contains_key(&n) {
+            if !(0..3).all(|c| cached(n, c).is_some()) && !computed.contains_key(&n) {
                 let mut buf = vec![0.0; 3 * n_dofs];
                 model.compliance_columns_into(n, &mut buf, &mut scratch)?;
                 computed.insert(n, buf);
@@ -401,7 +306,7 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
         }
     }
     let column = |n: usize, c: usize| -> &[f64] {
-        match sim.cache().column(n, c) {
+        match cached(n, c) {
             Some(col) if !computed.contains_key(&n) => col,
             _ => &computed[&n][c * n_dofs..(c + 1) * n_dofs],
         }
