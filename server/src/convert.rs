@@ -191,6 +191,8 @@ pub fn session_stats(st: &StatsSnapshot) -> pb::SessionStats {
         column_deferrals: st.column_deferrals,
         columns_evicted: st.columns_evicted,
         budget_exhausted_ticks: st.budget_exhausted_ticks,
+        hybrid_checks: st.hybrid_checks,
+        hybrid_rebuilds: st.hybrid_rebuilds,
         rejected_poses: st.rejected_poses,
         clamped_ticks: st.clamped_ticks,
         faulted: st.fault.is_some(),

@@ -55,4 +55,7 @@ async fn issue_15_a_live_session_holds_the_tissue_at_material_points() {
         .into_inner();
     assert_eq!(stats.column_misses, 0, "no column computed inside a tick: {stats:?}");
     assert_eq!(stats.budget_exhausted_ticks, 0, "{stats:?}");
+    // Issue 19: the working solver's hybrid matrix was checked for round-off drift and never
+    // needed a rebuild.
+    assert!(stats.hybrid_checks > 0 && stats.hybrid_rebuilds == 0, "{stats:?}");
 }

@@ -359,7 +359,9 @@ async fn one_port_serves_metrics_static_files_and_grpc_web() {
     assert!(ticks > 100.0, "{ticks_line}");
     assert!(metrics.contains("needlesim_tick_compute_p99_seconds{"), "{metrics}");
     // Issue 15's counters of the column cache and the per-tick budget.
-    for name in ["column_deferrals", "columns_evicted", "budget_exhausted_ticks", "dropped_eviction_notices"] {
+    for name in
+        ["column_deferrals", "columns_evicted", "budget_exhausted_ticks", "dropped_eviction_notices", "hybrid_checks", "hybrid_rebuilds"]
+    {
         assert!(metrics.contains(&format!("needlesim_{name}{{")), "{name}: {metrics}");
     }
     // A static file of web/.

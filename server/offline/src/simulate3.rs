@@ -110,7 +110,8 @@ pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
     p.regions = scene.regions.iter().map(|r| r.needle).collect();
     p.tick_rate_hz = scene.tick_rate_hz;
     p.max_contacts = scene.needle.max_points;
-    p.targets = scene.targets.iter().enumerate().map(|(k, t)| Target3 { centre_m: t.center_m, radius_m: t.radius_m, name_idx: k }).collect();
+    p.targets =
+        scene.targets.iter().enumerate().map(|(k, t)| Target3 { centre_m: t.center_m, radius_m: t.radius_m, name_idx: k }).collect();
     p
 }
 
@@ -258,7 +259,8 @@ fn write_csv_row3(c: &mut String, k: u64, t_s: f64, out: &needlesim_core::sim3::
         count(PointState3::Tip),
     );
     for t in out.targets.as_slice() {
-        let _ = write!(c, ",{:e},{},{},{},{}", t.distance_m, t.centre_m[0], t.centre_m[1], t.centre_m[2], (t.state == TargetState3::Hit) as u8);
+        let _ =
+            write!(c, ",{:e},{},{},{},{}", t.distance_m, t.centre_m[0], t.centre_m[1], t.centre_m[2], (t.state == TargetState3::Hit) as u8);
     }
     c.push('\n');
 }

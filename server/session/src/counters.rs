@@ -17,6 +17,9 @@ pub struct SessionCounters {
     /// `SimStats::column_deferrals` and `SimStats::budget_exhausted_ticks`, as of the last tick.
     pub column_deferrals: AtomicU64,
     pub budget_exhausted_ticks: AtomicU64,
+    /// `SimStats::hybrid_checks` and `SimStats::hybrid_rebuilds`, as of the last tick.
+    pub hybrid_checks: AtomicU64,
+    pub hybrid_rebuilds: AtomicU64,
     /// Eviction notices the real-time thread could not queue to the column worker (its ring was
     /// full): the renderer keeps that node's copy until the node is computed again.
     pub dropped_eviction_notices: AtomicU64,
@@ -100,6 +103,8 @@ pub struct StatsSnapshot {
     pub column_deferrals: u64,
     pub columns_evicted: u64,
     pub budget_exhausted_ticks: u64,
+    pub hybrid_checks: u64,
+    pub hybrid_rebuilds: u64,
     pub rejected_poses: u64,
     pub clamped_ticks: u64,
     /// See [`SessionCounters::fanout_wakes`], [`SessionCounters::fanout_timeouts`], [`SessionCounters::spin_ns`].

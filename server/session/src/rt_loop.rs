@@ -305,6 +305,8 @@ impl RtLoop {
         self.counters.columns_evicted.store(st.columns_evicted, Ordering::Relaxed);
         self.counters.column_deferrals.store(st.column_deferrals, Ordering::Relaxed);
         self.counters.budget_exhausted_ticks.store(st.budget_exhausted_ticks, Ordering::Relaxed);
+        self.counters.hybrid_checks.store(st.hybrid_checks, Ordering::Relaxed);
+        self.counters.hybrid_rebuilds.store(st.hybrid_rebuilds, Ordering::Relaxed);
         self.counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);
         if self.sim.output().needle_nodes.len() > MAX_RECORD_NODES {
             self.counters.records_truncated.fetch_add(1, Ordering::Relaxed);

@@ -290,6 +290,8 @@ impl Session {
             column_deferrals: c.column_deferrals.load(Ordering::Relaxed),
             columns_evicted: c.columns_evicted.load(Ordering::Relaxed),
             budget_exhausted_ticks: c.budget_exhausted_ticks.load(Ordering::Relaxed),
+            hybrid_checks: c.hybrid_checks.load(Ordering::Relaxed),
+            hybrid_rebuilds: c.hybrid_rebuilds.load(Ordering::Relaxed),
             rejected_poses: c.rejected_poses.load(Ordering::Relaxed),
             clamped_ticks: c.clamped_ticks.load(Ordering::Relaxed),
             fanout_wakes: c.fanout_wakes.load(Ordering::Relaxed),
