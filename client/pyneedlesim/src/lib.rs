@@ -45,8 +45,8 @@ fn solve<'py>(py: Python<'py>, scenario: &Bound<'py, PyAny>) -> PyResult<Bound<'
         (scenario.extract::<String>()?, "the scenario".to_owned())
     } else {
         let path: PathBuf = scenario.extract()?;
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| errors::ScenarioError::new_err(format!("cannot read {}: {e}", path.display())))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| errors::ScenarioError::new_err(format!("cannot read {}: {e}", path.display())))?;
         (text, path.display().to_string())
     };
     let result = py
@@ -67,6 +67,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(sim::tick_poses, m)?)?;
     m.add_class::<scene::PyScene>()?;
     m.add_class::<scene::Target>()?;
     m.add_class::<sim::PySimulation>()?;

@@ -59,11 +59,7 @@ pub fn load(spec: &str) -> anyhow::Result<SceneKind> {
         if !path.exists() {
             let d2: Vec<&str> = EXAMPLES.iter().map(|e| e.0).collect();
             let d3: Vec<&str> = EXAMPLES3D.iter().map(|e| e.0).collect();
-            anyhow::bail!(
-                "scene '{spec}' is neither a file nor a shipped example (examples: {}; 3D: {})",
-                d2.join(", "),
-                d3.join(", ")
-            );
+            anyhow::bail!("scene '{spec}' is neither a file nor a shipped example (examples: {}; 3D: {})", d2.join(", "), d3.join(", "));
         }
         let text = std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
         needlesim_scene::scene_dim(&text).map_err(|e| e.context(format!("scene {}", path.display())))?
@@ -185,11 +181,9 @@ impl PyScene {
                 .iter()
                 .map(|t| Target { name: t.name.clone(), center_m: t.center_m.to_vec(), radius_m: t.radius_m })
                 .collect(),
-            SceneKind::D3 { scene, .. } => scene
-                .targets
-                .iter()
-                .map(|t| Target { name: t.name.clone(), center_m: t.center_m.to_vec(), radius_m: t.radius_m })
-                .collect(),
+            SceneKind::D3 { scene, .. } => {
+                scene.targets.iter().map(|t| Target { name: t.name.clone(), center_m: t.center_m.to_vec(), radius_m: t.radius_m }).collect()
+            }
         }
     }
 

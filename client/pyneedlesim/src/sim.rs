@@ -19,7 +19,7 @@ use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
 use needlesim_core::sim::{NodeState, Simulation, StepOutput};
 use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3};
-use needlesim_offline::{DEFAULT_PREFETCH_NODES_PER_TICK, simulate};
+use needlesim_offline::{DEFAULT_PREFETCH_NODES_PER_TICK, RunOptions, Script, ScriptedRun, simulate};
 use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
@@ -71,7 +71,7 @@ pub struct StepResult {
     /// 2 or 3.
     #[pyo3(get)]
     dim: usize,
-    /// The tick's index (the first step is tick 1 in 2D and 0 in 3D, as the core numbers them).
+    /// The tick's index, from 0 (the first step's).
     #[pyo3(get)]
     tick: u64,
     /// The simulation's time, s (tick / tick rate).
@@ -427,7 +427,8 @@ impl RunResult {
         self.series.step_times_s.clone().into_pyarray(py)
     }
     fn __repr__(&self) -> String {
-        format!("RunResult(dim={}, ticks={}, stopped_early={})", self.dim, self.ticks, self.stopped_early)
+        let stopped = if self.stopped_early { "True" } else { "False" };
+        format!("RunResult(dim={}, ticks={}, stopped_early={stopped})", self.dim, self.ticks)
     }
 }
 
@@ -527,8 +528,7 @@ fn read_trajectory(py: Python<'_>, scene: &SceneKind, obj: Option<&Bound<'_, PyA
     };
     let (text, label) = if obj.is_instance_of::<pyo3::types::PyString>() || obj.hasattr("__fspath__")? {
         let path: PathBuf = obj.extract()?;
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| TrajectoryError::new_err(format!("cannot read {}: {e}", path.display())))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| TrajectoryError::new_err(format!("cannot read {}: {e}", path.display())))?;
         (text, path.display().to_string())
     } else {
         let np = py.import("numpy")?;
@@ -611,14 +611,18 @@ fn run3(
     }
     let last_k = last_k_f as u64;
     let first = traj.samples[0].1;
-    let initial = BasePose3::new(first.position_m, first.quat_wxyz).map_err(|e| Run3Failure::Trajectory(format!("the trajectory's first pose: {e}")))?;
+    let initial = BasePose3::new(first.position_m, first.quat_wxyz)
+        .map_err(|e| Run3Failure::Trajectory(format!("the trajectory's first pose: {e}")))?;
     let mut sim = Simulation3::new(tissue.clone(), sim3_params(scene, initial)).map_err(|e| Run3Failure::Setup(sim3_error(&e)))?;
     let mut prefetched = 0u64;
     for k in 0..=last_k {
         let t_s = t0 + k as f64 / rate;
         let p = traj.pose_at(t_s);
-        let pose = BasePose3::new(p.position_m, p.quat_wxyz)
-            .map_err(|e| Run3Failure::Step { k, t_s, source: SimError3::Pose { tick: sim.tick(), source: e } })?;
+        let pose = BasePose3::new(p.position_m, p.quat_wxyz).map_err(|e| Run3Failure::Step {
+            k,
+            t_s,
+            source: SimError3::Pose { tick: sim.tick(), source: e },
+        })?;
         let started = Instant::now();
         let stepped = sim.step(pose).map(|_| ());
         let step_s = started.elapsed().as_secs_f64();
@@ -647,7 +651,8 @@ impl PySimulation {
             SceneKind::D3 { scene: s, tissue } => {
                 let initial = match initial_pose.as_deref() {
                     Some(v) => pose3(v, 0)?,
-                    None => BasePose3::new(s.initial_pose.position_m, s.initial_pose.quat_wxyz).map_err(|source| sim3_error(&SimError3::Pose { tick: 0, source }))?,
+                    None => BasePose3::new(s.initial_pose.position_m, s.initial_pose.quat_wxyz)
+                        .map_err(|source| sim3_error(&SimError3::Pose { tick: 0, source }))?,
                 };
                 let sim = py.detach(|| new_sim3(s, tissue, initial))?;
                 SimKind::D3 { sim: Box::new(sim), prefetch_due: false }
@@ -899,5 +904,66 @@ impl PySimulation {
             _ => (0, "?"),
         };
         format!("Simulation(scene={name:?}, dim={}, tick={tick})", self.scene.dim())
+    }
+}
+
+/// tick_poses(scene, trajectory=None, *, max_ticks=DEFAULT_MAX_TICKS)
+/// --
+///
+/// The base pose of each tick of a scripted run, as :meth:`Simulation.run` and
+/// ``needlesim-server simulate`` command them: the trajectory sampled at the scene's tick rate
+/// from its first sample's time to its last. Returns ``(t_s, poses)``: shape (ticks,) and
+/// (ticks, 3) in 2D (x_m, y_m, theta_rad), (ticks, 7) in 3D (x_m, y_m, z_m, qw, qx, qy, qz).
+/// Stepping ``Simulation(scene, initial_pose=poses[0])`` through them reproduces the run.
+///
+/// ``trajectory`` is as for :meth:`Simulation.run`. Raises TrajectoryError.
+#[pyfunction]
+#[pyo3(signature = (scene, trajectory=None, *, max_ticks=simulate::DEFAULT_MAX_TICKS))]
+pub fn tick_poses<'py>(
+    py: Python<'py>,
+    scene: PyRef<'_, PyScene>,
+    trajectory: Option<&Bound<'py, PyAny>>,
+    max_ticks: u64,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    let kind = scene.inner.clone();
+    let traj = read_trajectory(py, &kind, trajectory)?;
+    match (&*kind, traj) {
+        (SceneKind::D2(s), Traj::D2(traj)) => {
+            let opts = RunOptions { max_ticks, ..RunOptions::default() };
+            // The driver's own sampling (ScriptedRun::pose_at_tick), not a copy of it.
+            let run = ScriptedRun::new(s.tissue.clone(), s.params.clone(), Script::trajectory(&traj), opts).map_err(|e| run_error(&e))?;
+            let n = run.ticks_total();
+            let rate = s.params.tick_rate_hz;
+            let t: Vec<f64> = (0..n).map(|k| run.t0_s() + k as f64 / rate).collect();
+            let p: Vec<f64> = (0..n)
+                .flat_map(|k| {
+                    let b = run.pose_at_tick(k);
+                    [b.x_m, b.y_m, b.theta_rad]
+                })
+                .collect();
+            Ok((t.into_pyarray(py), array2(py, n as usize, 3, &p)))
+        }
+        (SceneKind::D3 { scene: s, .. }, Traj::D3(traj)) => {
+            let rate = s.tick_rate_hz;
+            let (t0, t1) = traj.span_s();
+            let last_k = ((t1 - t0) * rate).round();
+            if !(last_k <= max_ticks as f64) {
+                return Err(TrajectoryError::new_err(format!(
+                    "the trajectory lasts {} s, {last_k} ticks at {rate} Hz, over the limit of {max_ticks} ticks; its last sample is at t = {t1} s",
+                    t1 - t0
+                )));
+            }
+            let n = last_k as usize + 1;
+            let t: Vec<f64> = (0..n).map(|k| t0 + k as f64 / rate).collect();
+            let p: Vec<f64> = t
+                .iter()
+                .flat_map(|&t| {
+                    let q = traj.pose_at(t);
+                    [q.position_m[0], q.position_m[1], q.position_m[2], q.quat_wxyz[0], q.quat_wxyz[1], q.quat_wxyz[2], q.quat_wxyz[3]]
+                })
+                .collect();
+            Ok((t.into_pyarray(py), array2(py, n, 7, &p)))
+        }
+        _ => Err(NeedlesimError::new_err("internal: the trajectory's dimension differs from the scene's")),
     }
 }

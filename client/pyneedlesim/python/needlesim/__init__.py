@@ -35,6 +35,7 @@ from ._native import (
     __version__,
     load_scene,
     solve,
+    tick_poses,
 )
 
 __all__ = [
@@ -54,4 +55,5 @@ __all__ = [
     "__version__",
     "load_scene",
     "solve",
+    "tick_poses",
 ]
