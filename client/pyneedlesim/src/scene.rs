@@ -13,12 +13,12 @@ use pyo3::prelude::*;
 
 use crate::errors::{SceneError, scene_error};
 
-/// A loaded scene of either dimension.
+/// A loaded scene of either dimension (boxed: the two differ much in size).
 pub enum SceneKind {
     /// A 2D scene: its tissue model is factorised by the loader.
-    D2(Scene),
+    D2(Box<Scene>),
     /// A 3D scene and its factorised tissue model.
-    D3 { scene: Scene3d, tissue: Arc<TetTissueModel> },
+    D3 { scene: Box<Scene3d>, tissue: Arc<TetTissueModel> },
 }
 
 impl SceneKind {
@@ -65,11 +65,11 @@ pub fn load(spec: &str) -> anyhow::Result<SceneKind> {
         needlesim_scene::scene_dim(&text).map_err(|e| e.context(format!("scene {}", path.display())))?
     };
     if dim == 2 {
-        return Ok(SceneKind::D2(needlesim_scene::load_scene(spec, &limits)?));
+        return Ok(SceneKind::D2(Box::new(needlesim_scene::load_scene(spec, &limits)?)));
     }
     let scene = needlesim_scene::load_scene3d(spec, &limits)?;
     let tissue = Arc::new(scene.tissue_model().map_err(|e| e.context(format!("scene {}", scene.name)))?);
-    Ok(SceneKind::D3 { scene, tissue })
+    Ok(SceneKind::D3 { scene: Box::new(scene), tissue })
 }
 
 /// A target of a scene: a disc (2D) or a sphere (3D) that moves with the tissue.

@@ -561,7 +561,7 @@ struct Progress<'a> {
 
 impl Progress<'_> {
     fn tick(&mut self, done: u64) -> ControlFlow<()> {
-        if self.every == 0 || (done % self.every != 0 && done != self.total) {
+        if self.every == 0 || (!done.is_multiple_of(self.every) && done != self.total) {
             return ControlFlow::Continue(());
         }
         let r = Python::attach(|py| -> PyResult<()> {
@@ -578,6 +578,20 @@ impl Progress<'_> {
                 ControlFlow::Break(())
             }
         }
+    }
+}
+
+/// The last tick of a 3D run of `traj` at `rate_hz`, `K = round((t1 - t0) rate)`; an error
+/// message when it is over `max_ticks`.
+fn last_tick3(traj: &Trajectory3, rate_hz: f64, max_ticks: u64) -> Result<u64, String> {
+    let (t0, t1) = traj.span_s();
+    let last_k = ((t1 - t0) * rate_hz).round();
+    match last_k.partial_cmp(&(max_ticks as f64)) {
+        Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal) => Ok(last_k as u64),
+        _ => Err(format!(
+            "the trajectory lasts {} s, {last_k} ticks at {rate_hz} Hz, over the limit of {max_ticks} ticks; its last sample is at t = {t1} s",
+            t1 - t0
+        )),
     }
 }
 
@@ -601,15 +615,8 @@ fn run3(
     progress: &mut Progress<'_>,
 ) -> Result<(Simulation3, u64), Run3Failure> {
     let rate = scene.tick_rate_hz;
-    let (t0, t1) = traj.span_s();
-    let last_k_f = ((t1 - t0) * rate).round();
-    if !(last_k_f <= max_ticks as f64) {
-        return Err(Run3Failure::Trajectory(format!(
-            "the trajectory lasts {} s, {last_k_f} ticks at {rate} Hz, over the limit of {max_ticks} ticks; its last sample is at t = {t1} s",
-            t1 - t0
-        )));
-    }
-    let last_k = last_k_f as u64;
+    let t0 = traj.span_s().0;
+    let last_k = last_tick3(traj, rate, max_ticks).map_err(Run3Failure::Trajectory)?;
     let first = traj.samples[0].1;
     let initial = BasePose3::new(first.position_m, first.quat_wxyz)
         .map_err(|e| Run3Failure::Trajectory(format!("the trajectory's first pose: {e}")))?;
@@ -907,6 +914,9 @@ impl PySimulation {
     }
 }
 
+/// `tick_poses`' result: the tick times and the poses.
+type TickPoses<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
+
 /// tick_poses(scene, trajectory=None, *, max_ticks=DEFAULT_MAX_TICKS)
 /// --
 ///
@@ -924,7 +934,7 @@ pub fn tick_poses<'py>(
     scene: PyRef<'_, PyScene>,
     trajectory: Option<&Bound<'py, PyAny>>,
     max_ticks: u64,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+) -> PyResult<TickPoses<'py>> {
     let kind = scene.inner.clone();
     let traj = read_trajectory(py, &kind, trajectory)?;
     match (&*kind, traj) {
@@ -945,15 +955,8 @@ pub fn tick_poses<'py>(
         }
         (SceneKind::D3 { scene: s, .. }, Traj::D3(traj)) => {
             let rate = s.tick_rate_hz;
-            let (t0, t1) = traj.span_s();
-            let last_k = ((t1 - t0) * rate).round();
-            if !(last_k <= max_ticks as f64) {
-                return Err(TrajectoryError::new_err(format!(
-                    "the trajectory lasts {} s, {last_k} ticks at {rate} Hz, over the limit of {max_ticks} ticks; its last sample is at t = {t1} s",
-                    t1 - t0
-                )));
-            }
-            let n = last_k as usize + 1;
+            let t0 = traj.span_s().0;
+            let n = last_tick3(&traj, rate, max_ticks).map_err(TrajectoryError::new_err)? as usize + 1;
             let t: Vec<f64> = (0..n).map(|k| t0 + k as f64 / rate).collect();
             let p: Vec<f64> = t
                 .iter()
