@@ -24,9 +24,6 @@ use pyo3::types::{PyDict, PyString};
 
 use crate::errors::scenario_error;
 
-/// solve(scenario, /)
-/// --
-///
 /// Solves a static problem in the exchange format (2D, or 3D with ``"dim": 3``) as
 /// ``needlesim-server solve`` does and returns its result as a dict (displacements,
 /// reactions, strain energy, …; the format of the validation suite).

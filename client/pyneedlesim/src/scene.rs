@@ -242,9 +242,6 @@ impl PyScene {
     }
 }
 
-/// load_scene(scene, /)
-/// --
-///
 /// Loads a scene: the name of a shipped example (2D: paper-phantom, fig3-target,
 /// fig4-steering, bevel-tip; 3D: cube-phantom-3d, brachy-3d, fig3-target-3d), as
 /// ``needlesim-server simulate --scene`` accepts, or the path (str or os.PathLike) of a scene

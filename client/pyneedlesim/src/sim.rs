@@ -437,9 +437,6 @@ enum SimKind {
     D3 { sim: Box<Simulation3>, prefetch_due: bool },
 }
 
-/// Simulation(scene, initial_pose=None)
-/// --
-///
 /// One needle in a scene's tissue, 2D or 3D as the scene is. The base starts at
 /// ``initial_pose`` (``scene.initial_pose`` when None): (x_m, y_m, theta_rad) in 2D,
 /// (x_m, y_m, z_m, qw, qx, qy, qz) in 3D (a unit quaternion, scalar first; the needle points
@@ -680,9 +677,6 @@ impl PySimulation {
         PyScene { inner: self.scene.clone() }
     }
 
-    /// step(pose, /)
-    /// --
-    ///
     /// Advances one tick towards the commanded base pose and returns what the tick did
     /// (a :class:`StepResult`). ``pose`` is 3 numbers (x_m, y_m, theta_rad) in 2D, 7 numbers
     /// (x_m, y_m, z_m, qw, qx, qy, qz) in 3D; a jump larger than the scene's per-tick limit
@@ -726,9 +720,6 @@ impl PySimulation {
         }
     }
 
-    /// run(trajectory=None, *, progress=None, progress_every=1000, max_ticks=DEFAULT_MAX_TICKS)
-    /// --
-    ///
     /// Runs a scripted insertion as ``needlesim-server simulate`` does and returns its time
     /// series (a :class:`RunResult`, one row per tick, the same numbers as that command's CSV).
     /// The run starts afresh at the trajectory's first pose and ticks at the scene's rate from
@@ -828,9 +819,6 @@ impl PySimulation {
         }
     }
 
-    /// snapshot()
-    /// --
-    ///
     /// The static problem the last step solved, as a dict of NumPy arrays.
     ///
     /// 2D: ``node_idx`` (int64), ``is_point`` (bool: a material point, else a mesh node),
@@ -881,9 +869,6 @@ impl PySimulation {
         Ok(d)
     }
 
-    /// dump_state()
-    /// --
-    ///
     /// The current state as a static problem in the exchange format (a dict, as
     /// ``needlesim-server simulate --dump-state`` writes it): the mesh, materials, support, the
     /// needle's conditions and loads, with the solver's own displacements
@@ -917,9 +902,6 @@ impl PySimulation {
 /// `tick_poses`' result: the tick times and the poses.
 type TickPoses<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
 
-/// tick_poses(scene, trajectory=None, *, max_ticks=DEFAULT_MAX_TICKS)
-/// --
-///
 /// The base pose of each tick of a scripted run, as :meth:`Simulation.run` and
 /// ``needlesim-server simulate`` command them: the trajectory sampled at the scene's tick rate
 /// from its first sample's time to its last. Returns ``(t_s, poses)``: shape (ticks,) and
