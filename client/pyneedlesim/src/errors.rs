@@ -90,11 +90,13 @@ pub fn sim_error(e: &SimError) -> PyErr {
     }
 }
 
-/// A 3D simulation error: a rejected pose is a [`PoseError`], the rest [`SimulationError`]s.
+/// A 3D simulation error: a rejected pose is a [`PoseError`], every other variant (parameters,
+/// the working solver, a column solve, and the column stores' errors as they are added) a
+/// [`SimulationError`].
 pub fn sim3_error(e: &SimError3) -> PyErr {
     match e {
         SimError3::Pose { .. } => PoseError::new_err(chain(e)),
-        SimError3::InvalidParams(_) | SimError3::Mixed(_) | SimError3::Tissue(_) => SimulationError::new_err(chain(e)),
+        _ => SimulationError::new_err(chain(e)),
     }
 }
 
