@@ -16,6 +16,7 @@ mod identify_fit;
 mod identify_track;
 mod plan;
 mod python_client;
+mod python_package;
 mod scenes3d;
 mod server_e2e;
 mod sim3;

@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 
 use needlesim_core::sim::{LocalCondition, Simulation, StateSnapshot, StepOutput};
 
-use crate::driver::{RunError, RunOptions, Script, ScriptedRun};
+use crate::driver::{RunError, RunOptions, Script, ScriptedRun, Tick};
 
 use needlesim_scene::exchange::{Load, PointCondition, PrescribedLocal, Scenario};
 use needlesim_scene::{Scene, Trajectory};
@@ -26,6 +26,8 @@ pub struct RunSummary {
     pub numeric_factorisations: u64,
     /// Step compute times, seconds, one per tick.
     pub step_times_s: Vec<f64>,
+    /// Whether the observer of [`run_observed`] ended the run before the trajectory's end.
+    pub stopped_early: bool,
 }
 
 /// The CSV header for a scene's targets.
@@ -44,7 +46,22 @@ pub fn csv_header(target_names: &[String]) -> String {
 /// steps, as a worker would. A trajectory longer than `max_ticks` is an error naming its last
 /// line; a failed step (a diverged solve, a pose that is not finite, …) stops the run with an
 /// error naming the tick and time ([`RunError`]).
-pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mut String>) -> Result<(Simulation, RunSummary), RunError> {
+pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, csv: Option<&mut String>) -> Result<(Simulation, RunSummary), RunError> {
+    run_observed(scene, traj, max_ticks, csv, |_, _| ControlFlow::Continue(()))
+}
+
+/// [`run`], calling `observe` with each tick and its step's output after the CSV row is written
+/// (before the columns for the next tick are computed): the Python package's `Simulation.run`
+/// collects its time series and reports progress here. `ControlFlow::Break` ends the run after
+/// that tick, without error ([`RunSummary::stopped_early`]); the simulation returned is then in
+/// that tick's state.
+pub fn run_observed(
+    scene: &Scene,
+    traj: &Trajectory,
+    max_ticks: u64,
+    mut csv: Option<&mut String>,
+    mut observe: impl FnMut(&Tick, &StepOutput) -> ControlFlow<()>,
+) -> Result<(Simulation, RunSummary), RunError> {
     let opts = RunOptions { max_ticks, ..RunOptions::default() };
     let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::trajectory(traj), opts)?;
     let rate = scene.params.tick_rate_hz;
@@ -55,7 +72,7 @@ pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mu
         c.push('\n');
     }
     let mut clamp_run_start: Option<u64> = None;
-    run.run(|tick, sim| {
+    let totals = run.run(|tick, sim| {
         let out = sim.output();
         let k = tick.k;
         summary.step_times_s.push(tick.step_s);
@@ -75,18 +92,19 @@ pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, mut csv: Option<&mu
         if let Some(c) = csv.as_deref_mut() {
             write_csv_row(c, out, t0);
         }
-        ControlFlow::Continue(())
+        observe(tick, out)
     })?;
     if let Some(s) = clamp_run_start {
         tracing::warn!("the pose was clamped from t = {:.4} s to the end of the trajectory", t0 + s as f64 / rate);
     }
-    let (sim, totals) = run.finish()?;
+    let (sim, finished) = run.finish()?;
     let st = sim.stats();
     summary.ticks = st.ticks;
     summary.clamped_ticks = st.clamped_ticks;
     summary.column_misses = st.column_misses;
     summary.column_deferrals = st.column_deferrals;
-    summary.prefetched_columns = totals.prefetched_columns;
+    summary.prefetched_columns = finished.prefetched_columns;
+    summary.stopped_early = totals.stopped_early;
     summary.unconverged_ticks = st.unconverged_ticks;
     summary.numeric_factorisations = sim.model().cholesky().n_numeric_factorisations();
     Ok((sim, summary))

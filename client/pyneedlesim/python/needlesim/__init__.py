@@ -1,0 +1,59 @@
+"""needlesim: real-time needle insertion simulation, from Python.
+
+Load a scene (a shipped example by name, or a scene TOML file, 2D or 3D), step a simulation
+with base poses and read forces, tip, contacts and targets as NumPy arrays, run a whole
+scripted insertion (the GIL released, progress reported), and solve static problems of the
+exchange format::
+
+    import needlesim
+    scene = needlesim.load_scene("paper-phantom")
+    sim = needlesim.Simulation(scene)
+    r = sim.step((0.05, 0.2049, -1.5707963267948966))  # x_m, y_m, theta_rad
+    print(r.force_n, r.tip_m)
+    run = sim.run(progress=lambda done, total: print(done, "/", total))
+    print(run.force_n[-1], run.inserted_length_m.max())
+
+Errors raise subclasses of NeedlesimError (SceneError, TrajectoryError, PoseError,
+SimulationError, ScenarioError) with the Rust messages. The numerics are the Rust crates'
+(the compiled module needlesim._native); this package adds no numerics of its own.
+"""
+
+from ._native import (
+    CONTACT_STATES,
+    DEFAULT_MAX_TICKS,
+    NeedlesimError,
+    PoseError,
+    RunResult,
+    Scene,
+    ScenarioError,
+    SceneError,
+    Simulation,
+    SimulationError,
+    StepResult,
+    Target,
+    TrajectoryError,
+    __version__,
+    load_scene,
+    solve,
+    tick_poses,
+)
+
+__all__ = [
+    "CONTACT_STATES",
+    "DEFAULT_MAX_TICKS",
+    "NeedlesimError",
+    "PoseError",
+    "RunResult",
+    "Scene",
+    "ScenarioError",
+    "SceneError",
+    "Simulation",
+    "SimulationError",
+    "StepResult",
+    "Target",
+    "TrajectoryError",
+    "__version__",
+    "load_scene",
+    "solve",
+    "tick_poses",
+]

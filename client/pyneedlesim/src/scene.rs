@@ -1,0 +1,260 @@
+//! `needlesim.Scene` and `needlesim.load_scene`: a 2D or 3D scene loaded (and its tissue
+//! factorised) once, shared by the simulations made from it.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use needlesim_core::MeshLimits;
+use needlesim_core::d3::TetTissueModel;
+use needlesim_core::sim3::{BasePose3, Sim3Params};
+use needlesim_scene::{EXAMPLES, EXAMPLES3D, Scene, Scene3d};
+use numpy::{IntoPyArray, PyArray1, PyArray2, ndarray::Array2};
+use pyo3::prelude::*;
+
+use crate::errors::{SceneError, scene_error};
+
+/// A loaded scene of either dimension (boxed: the two differ much in size).
+pub enum SceneKind {
+    /// A 2D scene: its tissue model is factorised by the loader.
+    D2(Box<Scene>),
+    /// A 3D scene and its factorised tissue model.
+    D3 { scene: Box<Scene3d>, tissue: Arc<TetTissueModel> },
+}
+
+impl SceneKind {
+    /// 2 or 3.
+    pub fn dim(&self) -> usize {
+        match self {
+            SceneKind::D2(_) => 2,
+            SceneKind::D3 { .. } => 3,
+        }
+    }
+}
+
+/// The 3D simulation parameters of a scene: its needle, regions and tick rate, the base
+/// starting at `initial`; the rest [`Sim3Params::new`]'s defaults (the scene's `[limits]` are not
+/// applied, as in the 3D `simulate` command being written alongside, whose
+/// `needlesim_offline::simulate3::sim3_params` is the same function and replaces this one once
+/// merged).
+pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
+    let mut p = Sim3Params::new(scene.needle.length_m, initial);
+    p.spacing_m = scene.needle.contact_spacing_m;
+    p.regions = scene.regions.iter().map(|r| r.needle).collect();
+    p.tick_rate_hz = scene.tick_rate_hz;
+    p.max_contacts = scene.needle.max_points;
+    p
+}
+
+/// Loads a scene as `needlesim-server simulate --scene SPEC` does: a shipped example's name
+/// (2D or 3D), else a TOML file whose `dim` key (2 when absent) picks the loader. 3D tissues
+/// are factorised here.
+pub fn load(spec: &str) -> anyhow::Result<SceneKind> {
+    let limits = MeshLimits::default();
+    let dim = if EXAMPLES.iter().any(|e| e.0 == spec) {
+        2
+    } else if EXAMPLES3D.iter().any(|e| e.0 == spec) {
+        3
+    } else {
+        let path = Path::new(spec);
+        if !path.exists() {
+            let d2: Vec<&str> = EXAMPLES.iter().map(|e| e.0).collect();
+            let d3: Vec<&str> = EXAMPLES3D.iter().map(|e| e.0).collect();
+            anyhow::bail!("scene '{spec}' is neither a file nor a shipped example (examples: {}; 3D: {})", d2.join(", "), d3.join(", "));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
+        needlesim_scene::scene_dim(&text).map_err(|e| e.context(format!("scene {}", path.display())))?
+    };
+    if dim == 2 {
+        return Ok(SceneKind::D2(Box::new(needlesim_scene::load_scene(spec, &limits)?)));
+    }
+    let scene = needlesim_scene::load_scene3d(spec, &limits)?;
+    let tissue = Arc::new(scene.tissue_model().map_err(|e| e.context(format!("scene {}", scene.name)))?);
+    Ok(SceneKind::D3 { scene: Box::new(scene), tissue })
+}
+
+/// A target of a scene: a disc (2D) or a sphere (3D) that moves with the tissue.
+#[pyclass(module = "needlesim", frozen, get_all)]
+pub struct Target {
+    /// The target's name, as in the scene file.
+    pub name: String,
+    /// Its undeformed centre, m (length 2 or 3).
+    pub center_m: Vec<f64>,
+    /// Its radius, m: the tip within it is a hit.
+    pub radius_m: f64,
+}
+
+#[pymethods]
+impl Target {
+    fn __repr__(&self) -> String {
+        format!("Target(name={:?}, center_m={:?}, radius_m={})", self.name, self.center_m, self.radius_m)
+    }
+}
+
+/// A loaded scene: the tissue (mesh, materials, fixed nodes; its stiffness factorised), the
+/// needle, the targets and, for a shipped example or a 3D scene naming one, its own base
+/// trajectory. Made by :func:`needlesim.load_scene`; immutable, shared by the simulations made
+/// from it (pickling is not supported: a worker loads the scene by name or path).
+#[pyclass(module = "needlesim", name = "Scene", frozen)]
+pub struct PyScene {
+    pub inner: Arc<SceneKind>,
+}
+
+fn array2<T: numpy::Element>(py: Python<'_>, rows: usize, cols: usize, v: Vec<T>) -> Bound<'_, PyArray2<T>> {
+    Array2::from_shape_vec((rows, cols), v).expect("rows × cols values").into_pyarray(py)
+}
+
+#[pymethods]
+impl PyScene {
+    /// 2 for a triangle-mesh scene, 3 for a tetrahedral one.
+    #[getter]
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+
+    /// The scene's name.
+    #[getter]
+    fn name(&self) -> String {
+        match &*self.inner {
+            SceneKind::D2(s) => s.name.clone(),
+            SceneKind::D3 { scene, .. } => scene.name.clone(),
+        }
+    }
+
+    /// Ticks per second of its simulations, Hz.
+    #[getter]
+    fn tick_rate_hz(&self) -> f64 {
+        match &*self.inner {
+            SceneKind::D2(s) => s.params.tick_rate_hz,
+            SceneKind::D3 { scene, .. } => scene.tick_rate_hz,
+        }
+    }
+
+    /// The mesh's node coordinates (reference configuration), m: float64 array of shape
+    /// (n_nodes, dim). A new copy at each access.
+    #[getter]
+    fn nodes_m<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        match &*self.inner {
+            SceneKind::D2(s) => {
+                let n = s.tissue.mesh().nodes_m();
+                array2(py, n.len(), 2, n.iter().flatten().copied().collect())
+            }
+            SceneKind::D3 { scene, .. } => {
+                let n = scene.mesh.nodes_m();
+                array2(py, n.len(), 3, n.iter().flatten().copied().collect())
+            }
+        }
+    }
+
+    /// The mesh's elements as node indices: int64 array of shape (n_elements, 3) for
+    /// triangles (2D) or (n_elements, 4) for tetrahedra (3D).
+    #[getter]
+    fn elements<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        match &*self.inner {
+            SceneKind::D2(s) => {
+                let t = s.tissue.mesh().triangles();
+                array2(py, t.len(), 3, t.iter().flatten().map(|&i| i as i64).collect())
+            }
+            SceneKind::D3 { scene, .. } => {
+                let t = scene.mesh.tets();
+                array2(py, t.len(), 4, t.iter().flatten().map(|&i| i as i64).collect())
+            }
+        }
+    }
+
+    /// The nodes held fixed (the support), sorted: int64 array.
+    #[getter]
+    fn fixed_nodes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        let f = match &*self.inner {
+            SceneKind::D2(s) => &s.fixed_nodes,
+            SceneKind::D3 { scene, .. } => &scene.fixed_nodes,
+        };
+        f.iter().map(|&i| i as i64).collect::<Vec<_>>().into_pyarray(py)
+    }
+
+    /// The scene's targets, in the file's order.
+    #[getter]
+    fn targets(&self) -> Vec<Target> {
+        match &*self.inner {
+            SceneKind::D2(s) => s
+                .params
+                .targets
+                .iter()
+                .map(|t| Target { name: t.name.clone(), center_m: t.center_m.to_vec(), radius_m: t.radius_m })
+                .collect(),
+            SceneKind::D3 { scene, .. } => {
+                scene.targets.iter().map(|t| Target { name: t.name.clone(), center_m: t.center_m.to_vec(), radius_m: t.radius_m }).collect()
+            }
+        }
+    }
+
+    /// The base pose before the first step: (x_m, y_m, theta_rad) in 2D,
+    /// (x_m, y_m, z_m, qw, qx, qy, qz) in 3D, as a float64 array.
+    #[getter]
+    fn initial_pose<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        match &*self.inner {
+            SceneKind::D2(s) => {
+                let p = s.params.initial_pose;
+                vec![p.x_m, p.y_m, p.theta_rad].into_pyarray(py)
+            }
+            SceneKind::D3 { scene, .. } => {
+                let p = scene.initial_pose;
+                let mut v = p.position_m.to_vec();
+                v.extend(p.quat_wxyz);
+                v.into_pyarray(py)
+            }
+        }
+    }
+
+    /// The scene's own base trajectory (a shipped example's, or the file a 3D scene names), as
+    /// its samples: float64 array of shape (n, 4) with columns t_s, x_m, y_m, theta_rad (2D) or
+    /// (n, 8) with t_s, x_m, y_m, z_m, qw, qx, qy, qz (3D); None when the scene has none.
+    #[getter]
+    fn trajectory<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+        match &*self.inner {
+            SceneKind::D2(s) => {
+                let Some(text) = s.example_trajectory else { return Ok(None) };
+                let t = needlesim_scene::Trajectory::parse_csv(text).map_err(|e| crate::errors::trajectory_error(&e))?;
+                let v: Vec<f64> = t.samples.iter().flat_map(|(t, p)| [*t, p.x_m, p.y_m, p.theta_rad]).collect();
+                Ok(Some(array2(py, t.samples.len(), 4, v)))
+            }
+            SceneKind::D3 { scene, .. } => Ok(scene.trajectory.as_ref().map(|t| {
+                let v: Vec<f64> = t
+                    .samples
+                    .iter()
+                    .flat_map(|(t, p)| {
+                        let mut r = vec![*t];
+                        r.extend(p.position_m);
+                        r.extend(p.quat_wxyz);
+                        r
+                    })
+                    .collect();
+                array2(py, t.samples.len(), 8, v)
+            })),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        let (n_nodes, n_el) = match &*self.inner {
+            SceneKind::D2(s) => (s.tissue.mesh().n_nodes(), s.tissue.mesh().n_triangles()),
+            SceneKind::D3 { scene, .. } => (scene.mesh.n_nodes(), scene.mesh.n_tets()),
+        };
+        format!("Scene(name={:?}, dim={}, nodes={n_nodes}, elements={n_el})", self.name(), self.dim())
+    }
+}
+
+/// Loads a scene: the name of a shipped example (2D: paper-phantom, fig3-target,
+/// fig4-steering, bevel-tip; 3D: cube-phantom-3d, brachy-3d, fig3-target-3d), as
+/// ``needlesim-server simulate --scene`` accepts, or the path (str or os.PathLike) of a scene
+/// TOML file, 2D or 3D by its ``dim`` key. The tissue's stiffness is factorised here (seconds
+/// for a large 3D mesh; the GIL is released meanwhile).
+///
+/// Raises SceneError naming what is wrong (a path that is neither a file nor an example, an
+/// invalid TOML, a value out of range, a mesh over the limits).
+#[pyfunction]
+pub fn load_scene(py: Python<'_>, scene: PathBuf) -> PyResult<PyScene> {
+    let Some(spec) = scene.to_str().map(str::to_owned) else {
+        return Err(SceneError::new_err(format!("scene path {} is not valid UTF-8", scene.display())));
+    };
+    let kind = py.detach(move || load(&spec)).map_err(scene_error)?;
+    Ok(PyScene { inner: Arc::new(kind) })
+}
