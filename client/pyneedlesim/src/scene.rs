@@ -6,7 +6,6 @@ use std::sync::Arc;
 
 use needlesim_core::MeshLimits;
 use needlesim_core::d3::TetTissueModel;
-use needlesim_core::sim3::{BasePose3, Sim3Params};
 use needlesim_scene::{EXAMPLES, EXAMPLES3D, Scene, Scene3d};
 use numpy::{IntoPyArray, PyArray1, PyArray2, ndarray::Array2};
 use pyo3::prelude::*;
@@ -31,19 +30,7 @@ impl SceneKind {
     }
 }
 
-/// The 3D simulation parameters of a scene: its needle, regions and tick rate, the base
-/// starting at `initial`; the rest [`Sim3Params::new`]'s defaults (the scene's `[limits]` are not
-/// applied, as in the 3D `simulate` command being written alongside, whose
-/// `needlesim_offline::simulate3::sim3_params` is the same function and replaces this one once
-/// merged).
-pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
-    let mut p = Sim3Params::new(scene.needle.length_m, initial);
-    p.spacing_m = scene.needle.contact_spacing_m;
-    p.regions = scene.regions.iter().map(|r| r.needle).collect();
-    p.tick_rate_hz = scene.tick_rate_hz;
-    p.max_contacts = scene.needle.max_points;
-    p
-}
+pub use needlesim_offline::simulate3::sim3_params;
 
 /// Loads a scene as `needlesim-server simulate --scene SPEC` does: a shipped example's name
 /// (2D or 3D), else a TOML file whose `dim` key (2 when absent) picks the loader. 3D tissues

@@ -874,19 +874,20 @@ impl PySimulation {
     /// needle's conditions and loads, with the solver's own displacements
     /// (``solver_displacements``) and needle nodes. :func:`needlesim.solve` re-solves it.
     ///
-    /// 2D only for now: a 3D simulation raises NotImplementedError (its exchange-format dump
-    /// is being added to the 3D ``simulate``); use :meth:`snapshot` there.
+    /// In 3D the 3D exchange format (``"dim": 3``: tetrahedra, material points with frames and
+    /// conditions, and the simulation's own answer under ``simulation_result``), as
+    /// ``needlesim-server simulate --dump-state`` writes it for a 3D scene.
     fn dump_state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        match (&self.kind, &*self.scene) {
-            (SimKind::D2 { sim, .. }, SceneKind::D2(scene)) => {
-                let state = simulate::dump_state(scene, sim);
-                let text = serde_json::to_string(&state).map_err(|e| NeedlesimError::new_err(e.to_string()))?;
-                py.import("json")?.call_method1("loads", (text,))
+        let text = match (&self.kind, &*self.scene) {
+            (SimKind::D2 { sim, .. }, SceneKind::D2(scene)) => serde_json::to_string(&simulate::dump_state(scene, sim)),
+            (SimKind::D3 { sim, .. }, SceneKind::D3 { scene, .. }) => {
+                let state = needlesim_offline::simulate3::dump_state(scene, sim).map_err(|e| SimulationError::new_err(format!("{e:#}")))?;
+                serde_json::to_string(&state)
             }
-            _ => Err(pyo3::exceptions::PyNotImplementedError::new_err(
-                "dump_state of a 3D simulation: the 3D exchange-format dump is not available yet; use snapshot()",
-            )),
+            _ => unreachable!("a simulation is built from its scene's dimension"),
         }
+        .map_err(|e| NeedlesimError::new_err(e.to_string()))?;
+        py.import("json")?.call_method1("loads", (text,))
     }
 
     fn __repr__(&self) -> String {
