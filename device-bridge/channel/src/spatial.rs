@@ -132,15 +132,11 @@ pub fn pose_apply(pb: [f64; 3], qb: [f64; 4], d: [f64; 6]) -> ([f64; 3], [f64; 4
 mod tests {
     use super::*;
 
-    /// Seeded splitmix64 in [-1, 1).
+    /// Seeded uniform samples in [-1, 1).
     fn rng(seed: u64) -> impl FnMut() -> f64 {
-        let mut z = seed;
-        move || {
-            z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut x = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((x ^ (x >> 31)) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
+        use rand::{Rng, SeedableRng};
+        let mut g = rand::rngs::SmallRng::seed_from_u64(seed);
+        move || g.random_range(-1.0..1.0)
     }
 
     #[test]
