@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use needlesim_tests::{TempDir, bin, compare, python, read_json, repo_root, run, text, validation_dir, write_json};
+use needlesim_tests::{TempDir, bin, compare, python, read_json, repo_root, report_metrics, run, text, validation_dir, write_json};
 
 /// The validation README's tolerances.
 const TOL: f64 = 1e-9;
@@ -125,19 +125,6 @@ fn turn_trajectory(p0: [f64; 3], q0: [f64; 4], length_m: f64, depth_m: f64, angl
         s.push_str(&row(ts, p, q));
     }
     s
-}
-
-/// The metrics of a compare.py report, by name.
-fn report_metrics(report: &str) -> Vec<(String, f64)> {
-    report
-        .lines()
-        .filter_map(|l| {
-            let mut it = l.split_whitespace();
-            let name = it.next()?;
-            let v: f64 = it.next()?.parse().ok()?;
-            Some((name.to_owned(), v))
-        })
-        .collect()
 }
 
 /// Re-solves a dump with fem_ref3d.py, compares its `simulation_result` with compare.py, and

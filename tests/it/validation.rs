@@ -5,7 +5,9 @@ use std::process::Command;
 
 use needlesim_core::MeshLimits;
 use needlesim_core::msh::parse_msh;
-use needlesim_tests::{TempDir, compare, max_rel_error, pairs, python, read_json, run, server_solve, text, validation_dir, write_json};
+use needlesim_tests::{
+    TempDir, compare, max_rel_error, pairs, python, read_json, report_metrics, run, server_solve, text, validation_dir, write_json,
+};
 use serde_json::{Value, json};
 
 /// The tolerance of the validation README: same mesh, same elements, a direct solver.
@@ -304,19 +306,6 @@ fn expected_metrics3(reference: &Value) -> Vec<&'static str> {
         }
     }
     m
-}
-
-/// The metrics of a compare.py report, by name.
-fn report_metrics(report: &str) -> Vec<(String, f64)> {
-    report
-        .lines()
-        .filter_map(|l| {
-            let mut it = l.split_whitespace();
-            let name = it.next()?;
-            let v: f64 = it.next()?.parse().ok()?;
-            Some((name.to_owned(), v))
-        })
-        .collect()
 }
 
 /// compare.py over a 3D result: every metric the reference allows is reported, within 1e-9, and

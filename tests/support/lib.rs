@@ -120,6 +120,19 @@ pub fn compare(reference: &Path, candidate: &Path, tol: f64) -> Output {
 }
 
 /// Reads a JSON file.
+/// The metrics of a compare.py report, by name.
+pub fn report_metrics(report: &str) -> Vec<(String, f64)> {
+    report
+        .lines()
+        .filter_map(|l| {
+            let mut it = l.split_whitespace();
+            let name = it.next()?;
+            let v: f64 = it.next()?.parse().ok()?;
+            Some((name.to_owned(), v))
+        })
+        .collect()
+}
+
 pub fn read_json(path: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
