@@ -18,7 +18,13 @@ SimulationError, ScenarioError) with the Rust messages. The numerics are the Rus
 (the compiled module needlesim._native); this package adds no numerics of its own.
 """
 
-from ._native import (
+from pkgutil import extend_path
+
+# The gRPC client's stubs (client/python/generate.py) are the sub-package needlesim.v1 in a
+# directory of their own (PYTHONPATH): this package lets them in, so both import together.
+__path__ = extend_path(__path__, __name__)
+
+from ._native import (  # noqa: E402
     CONTACT_STATES,
     DEFAULT_MAX_TICKS,
     NeedlesimError,
