@@ -18,7 +18,7 @@ use std::time::Instant;
 use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
 use needlesim_core::sim::{NodeState, Simulation, StepOutput};
-use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3};
+use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
 use needlesim_offline::{DEFAULT_PREFETCH_NODES_PER_TICK, RunOptions, Script, ScriptedRun, simulate};
 use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use numpy::ndarray::{Array2, Array3};
@@ -165,9 +165,9 @@ impl StepResult {
             contact_reference_m: c.iter().flat_map(|p| p.x_ref_m).collect(),
             contact_positions_m: c.iter().flat_map(|p| p.x_m).collect(),
             contact_forces_n: c.iter().flat_map(|p| p.force_n).collect(),
-            target_distances_m: vec![],
-            target_positions_m: vec![],
-            target_hits: vec![],
+            target_distances_m: out.targets.as_slice().iter().map(|t| t.distance_m).collect(),
+            target_positions_m: out.targets.as_slice().iter().flat_map(|t| t.centre_m).collect(),
+            target_hits: out.targets.as_slice().iter().map(|t| t.state == TargetState3::Hit).collect(),
         }
     }
 
@@ -221,17 +221,17 @@ impl StepResult {
     fn contact_forces_n<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         array2(py, self.n_contacts(), self.dim, &self.contact_forces_n)
     }
-    /// Each target's distance from the tip, m (2D; empty in 3D, whose step does not track targets).
+    /// Each target's distance from the tip to its displaced centre, m.
     #[getter]
     fn target_distances_m<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.target_distances_m.clone().into_pyarray(py)
     }
-    /// Each target's displaced centre, m: shape (n_targets, dim) (2D; empty in 3D).
+    /// Each target's displaced centre, m: shape (n_targets, dim).
     #[getter]
     fn target_positions_m<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         array2(py, self.target_hits.len(), self.dim, &self.target_positions_m)
     }
-    /// Whether the tip is within each target (2D; empty in 3D).
+    /// Whether each target has been hit (the tip within its radius at some tick; latched).
     #[getter]
     fn target_hits<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
         self.target_hits.clone().into_pyarray(py)
@@ -349,6 +349,11 @@ impl Series {
         self.tip_m.extend(out.tip_m);
         self.inserted_length_m.push(out.inserted_length_m);
         self.counts.extend([count(PointState3::Stuck), count(PointState3::Slipping), count(PointState3::Tip)]);
+        for t in out.targets.as_slice() {
+            self.target_distances_m.push(t.distance_m);
+            self.target_positions_m.extend(t.centre_m);
+            self.target_hits.push(t.state == TargetState3::Hit);
+        }
         self.step_times_s.push(step_s);
     }
 
@@ -406,7 +411,7 @@ impl RunResult {
     fn contact_counts<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
         array2(py, self.series.rows(), 3, &self.series.counts)
     }
-    /// Each target's distance from the tip, m: shape (ticks, n_targets) (2D; n_targets = 0 in 3D).
+    /// Each target's distance from the tip to its displaced centre, m: shape (ticks, n_targets).
     #[getter]
     fn target_distances_m<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         array2(py, self.series.rows(), self.series.n_targets, &self.series.target_distances_m)
@@ -416,7 +421,7 @@ impl RunResult {
     fn target_positions_m<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
         array3(py, (self.series.rows(), self.series.n_targets, self.dim), &self.series.target_positions_m)
     }
-    /// Whether the tip is within each target: bool array (ticks, n_targets).
+    /// Whether each target has been hit by that tick (latched): bool array (ticks, n_targets).
     #[getter]
     fn target_hits<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<bool>> {
         array2(py, self.series.rows(), self.series.n_targets, &self.series.target_hits)
@@ -782,7 +787,7 @@ impl PySimulation {
             (SceneKind::D3 { scene: s, tissue }, Traj::D3(traj)) => {
                 let (t0, t1) = traj.span_s();
                 let total = ((t1 - t0) * s.tick_rate_hz).round().min(max_ticks as f64) as u64 + 1;
-                let mut series = Series::with_capacity(3, 0, total as usize);
+                let mut series = Series::with_capacity(3, s.targets.len(), total as usize);
                 let mut prog = Progress { callback: progress.as_ref(), every: progress_every, total, error: None };
                 let r = py.detach(|| run3(s, tissue, &traj, max_ticks, &mut series, &mut prog));
                 let (sim, prefetched) = r.map_err(|f| match f {

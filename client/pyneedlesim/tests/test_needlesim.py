@@ -229,6 +229,26 @@ def needlesim_example_toml():
         return f.read()
 
 
+def test_3d_run_equals_the_simulate_command_and_misses_the_fig3_target(tmp_path):
+    cli = simulate_cli(tmp_path, "fig3-target-3d")
+    scene = needlesim.load_scene("fig3-target-3d")
+    names = [t.name for t in scene.targets]
+    assert names, "the 3D Fig. 3 scene has a target"
+    run = needlesim.Simulation(scene).run()
+    assert run.ticks == len(cli["t_s"]) and not run.stopped_early
+    for c, axis in enumerate("xyz"):
+        assert_close(f"f{axis}_n", run.force_n[:, c], cli[f"f{axis}_n"])
+        assert_close(f"tip_{axis}_m", run.tip_m[:, c], cli[f"tip_{axis}_m"])
+    for j, n in enumerate(names):
+        assert_close(f"target {n} distance", run.target_distances_m[:, j], cli[f"target_{n}_distance_m"])
+        for c, axis in enumerate("xyz"):
+            assert_close(f"target {n} {axis}", run.target_positions_m[:, j, c], cli[f"target_{n}_{axis}_m"])
+        assert_close(f"target {n} hit", run.target_hits[:, j].astype(float), cli[f"target_{n}_hit"])
+        # Aimed straight at it, the needle misses: the tissue carried the target away.
+        assert not run.target_hits[-1, j]
+        assert run.target_distances_m[:, j].min() > scene.targets[j].radius_m
+
+
 def test_3d_stepping_on_the_cube_force_grows_with_depth():
     scene = needlesim.load_scene("cube-phantom-3d")
     assert scene.dim == 3 and scene.nodes_m.shape[1] == 3 and scene.elements.shape[1] == 4
