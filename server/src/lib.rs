@@ -6,6 +6,7 @@
 //! `bench` and `identify` commands are needlesim-lab's.
 
 pub mod access;
+pub mod agones;
 pub mod convert;
 pub mod grpc;
 pub mod grpc_identify;

@@ -9,7 +9,7 @@ use needlesim_core::MeshLimits;
 
 use needlesim_offline::{plan, simulate, simulate3};
 use needlesim_scene::{self as scene, exchange};
-use needlesim_server::{grpc, serve};
+use needlesim_server::{agones, grpc, serve};
 
 #[derive(Parser)]
 #[command(name = "needlesim-server", version, about = "Real-time needle insertion simulator: server and offline tools")]
@@ -98,6 +98,9 @@ struct ServeArgs {
     /// per session every tick: 150 µs at 1 kHz is 15 % of a core per session.
     #[arg(long, value_name = "US", default_value_t = needlesim_session::DEFAULT_SPIN_MARGIN.as_micros() as u64)]
     spin_margin_us: u64,
+    /// The Agones game-server integration (`--agones` and its options; README "Running a fleet").
+    #[command(flatten)]
+    fleet: agones::AgonesArgs,
 }
 
 #[derive(Subcommand)]
@@ -509,6 +512,7 @@ fn read_admin_token(path: &std::path::Path) -> Result<String> {
 fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
     needlesim_session::set_rt_priority(args.rt_priority);
     needlesim_session::set_spin_margin(std::time::Duration::from_micros(args.spin_margin_us));
+    let fleet = args.fleet.config((args.default_scene != "none").then_some(args.default_scene.as_str()))?;
     let config = serve::ServeConfig {
         listen: args.listen,
         data_dir: args.data_dir,
@@ -531,20 +535,12 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
+    if let Some(cfg) = fleet {
+        return runtime.block_on(serve::serve_with(config, |state| agones::start(cfg, state)));
+    }
     runtime.block_on(serve::serve(config, async {
         // Ctrl-C or SIGTERM: close every session (its device channel file is removed too).
-        let mut term = tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()).ok();
-        tokio::select! {
-            _ = tokio::signal::ctrl_c() => {}
-            _ = async {
-                match term.as_mut() {
-                    Some(t) => {
-                        t.recv().await;
-                    }
-                    None => std::future::pending::<()>().await,
-                }
-            } => {}
-        }
+        agones::terminate_signal().await;
         tracing::info!("shutting down");
     }))
 }

@@ -206,6 +206,15 @@ async fn play_demo(session: Arc<needlesim_session::Session>, traj: needlesim_sce
 
 /// Runs the server until `shutdown` resolves. Prints `listening on ADDR` once bound.
 pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Output = ()> + Send + 'static) -> Result<()> {
+    serve_with(config, |_| shutdown).await
+}
+
+/// As [`serve`], with the shutdown future made from the server's state once it listens (the
+/// Agones integration sends Ready then, and drains before it resolves).
+pub async fn serve_with<F>(config: ServeConfig, shutdown: impl FnOnce(SharedState) -> F) -> Result<()>
+where
+    F: std::future::Future<Output = ()> + Send + 'static,
+{
     std::fs::create_dir_all(&config.data_dir).with_context(|| format!("cannot create the data directory {}", config.data_dir.display()))?;
     let state = ServerState::with_admin_token(config.limits.clone(), config.data_dir.clone(), config.admin_token.as_deref());
     let mut demo_session = None;
@@ -293,6 +302,7 @@ pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Outpu
     }
     drop(demo_session);
     drop(default_session);
+    let shutdown = shutdown(state.clone());
     let result =
         server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(TcpListenerStream::new(listener), shutdown).await;
     let closing = state.clone();

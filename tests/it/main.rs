@@ -11,6 +11,7 @@ mod bridge_e2e;
 mod cli;
 mod cli_errors;
 mod contact_points;
+mod fleet;
 mod flexible_e2e;
 mod identify_fit;
 mod identify_track;

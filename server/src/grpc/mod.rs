@@ -16,7 +16,7 @@ pub use simulate::SERIES_CHUNK_ROWS;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::pin::Pin;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, RwLock};
 
 use needlesim_core::MeshLimits;
@@ -86,6 +86,8 @@ pub struct ServerState {
     pub jobs: Arc<JobLimiter>,
     /// The SHA-256 of the admin token (`serve --admin-token-file`), which opens every recording.
     admin_token_sha256: Option<crate::access::TokenDigest>,
+    /// Set by [`ServerState::begin_drain`] (issue 22, `agones.rs`): new sessions are refused.
+    draining: AtomicBool,
 }
 
 /// A place among the `max_sessions` sessions, held while a session starts; given back when
@@ -118,6 +120,7 @@ impl ServerState {
             data_dir,
             admin_token_sha256: admin_token.map(crate::access::token_digest),
             jobs,
+            draining: AtomicBool::new(false),
         })
     }
 
@@ -125,11 +128,29 @@ impl ServerState {
     /// the sessions lock): concurrent creates never exceed `max_sessions`.
     pub fn reserve_session_slot(&self) -> Result<SessionSlot, Status> {
         let sessions = self.sessions.write().expect("sessions lock");
+        if self.draining.load(Ordering::Acquire) {
+            return Err(Status::unavailable(
+                "the server is draining for shutdown: running sessions finish, new ones are refused; ask the allocator for another server",
+            ));
+        }
         if sessions.len() + self.pending_sessions.load(Ordering::Acquire) >= self.limits.max_sessions {
             return Err(Status::resource_exhausted(format!("the server runs its limit of {} sessions", self.limits.max_sessions)));
         }
         self.pending_sessions.fetch_add(1, Ordering::AcqRel);
         Ok(SessionSlot { pending: self.pending_sessions.clone(), armed: true })
+    }
+
+    /// Drain (server shutdown, issue 22): from now on new sessions are refused with UNAVAILABLE;
+    /// running ones go on. Set under the sessions lock, so no reservation slips past it.
+    pub fn begin_drain(&self) {
+        let _sessions = self.sessions.write().expect("sessions lock");
+        self.draining.store(true, Ordering::Release);
+    }
+
+    /// Sessions running plus those being started.
+    pub fn session_count(&self) -> usize {
+        let sessions = self.sessions.read().expect("sessions lock");
+        sessions.len() + self.pending_sessions.load(Ordering::Acquire)
     }
 
     /// Where device channels are created: tmpfs (/dev/shm) when there is one, else the data dir.
