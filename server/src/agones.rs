@@ -192,7 +192,12 @@ impl SdkClient {
         let status = resp.status();
         if !status.is_success() {
             let text = resp.into_body().collect().await.map(|b| String::from_utf8_lossy(&b.to_bytes()).into_owned()).unwrap_or_default();
-            return Err(AgonesError::Status { method, path: path.to_owned(), status: status.as_u16(), body: text.chars().take(300).collect() });
+            return Err(AgonesError::Status {
+                method,
+                path: path.to_owned(),
+                status: status.as_u16(),
+                body: text.chars().take(300).collect(),
+            });
         }
         Ok(resp)
     }
@@ -202,7 +207,11 @@ impl SdkClient {
         let timeout = || AgonesError::Timeout { method: method.clone(), path: path.to_owned() };
         let exchange = async {
             let resp = self.send(method.clone(), path, body).await?;
-            let bytes = resp.into_body().collect().await.map_err(|source| AgonesError::Http { method: method.clone(), path: path.to_owned(), source })?;
+            let bytes = resp.into_body().collect().await.map_err(|source| AgonesError::Http {
+                method: method.clone(),
+                path: path.to_owned(),
+                source,
+            })?;
             Ok(bytes.to_bytes())
         };
         tokio::time::timeout(CALL_TIMEOUT, exchange).await.map_err(|_| timeout())?

@@ -217,12 +217,12 @@ fn sid(s: &pb::CreateSessionResponse) -> String {
 
 async fn close(ch: &tonic::transport::Channel, s: &pb::CreateSessionResponse) {
     let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-    c.close_session(with_token(pb::CloseSessionRequest { session_id: sid(&s) }, &s.controller_token)).await.expect("close");
+    c.close_session(with_token(pb::CloseSessionRequest { session_id: sid(s) }, &s.controller_token)).await.expect("close");
 }
 
 async fn ticks(ch: &tonic::transport::Channel, s: &pb::CreateSessionResponse) -> u64 {
     let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-    let st = c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(&s) }, &s.observer_token)).await.expect("stats");
+    let st = c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(s) }, &s.observer_token)).await.expect("stats");
     st.into_inner().ticks
 }
 
@@ -430,7 +430,9 @@ async fn capacity() {
     };
     println!("{cores} cores; server {}; rt-priority {rt_priority}; {seconds} s per row", server_bin.display());
     load("before");
-    println!("| sessions | ticks/s (min) | missed deadlines | lateness p99 / p99.9 (µs, worst) | compute p99 (µs, worst) | server CPU (cores) | CPU per session | RSS per session (MiB) |");
+    println!(
+        "| sessions | ticks/s (min) | missed deadlines | lateness p99 / p99.9 (µs, worst) | compute p99 (µs, worst) | server CPU (cores) | CPU per session | RSS per session (MiB) |"
+    );
     println!("|---|---|---|---|---|---|---|---|");
     for &n in &counts {
         let data = TempDir::new("capacity");
@@ -489,7 +491,9 @@ async fn capacity() {
         let mut before = Vec::new();
         for s in &sessions {
             let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-            before.push(c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(&s) }, &s.observer_token)).await.unwrap().into_inner());
+            before.push(
+                c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(s) }, &s.observer_token)).await.unwrap().into_inner(),
+            );
         }
         let (cpu0, w0) = (cpu_s(pid), Instant::now());
         tokio::time::sleep(Duration::from_secs_f64(seconds)).await;
@@ -497,7 +501,9 @@ async fn capacity() {
         let mut after = Vec::new();
         for s in &sessions {
             let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-            after.push(c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(&s) }, &s.observer_token)).await.unwrap().into_inner());
+            after.push(
+                c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(s) }, &s.observer_token)).await.unwrap().into_inner(),
+            );
         }
         stop.store(true, std::sync::atomic::Ordering::Relaxed);
         for d in drivers {
@@ -551,14 +557,24 @@ fn manifests_validate() {
     let files = manifests();
     let (ok, report) = validate(&files);
     assert!(ok, "{report}");
-    let kinds: Vec<String> = files.iter().flat_map(|f| std::fs::read_to_string(f).unwrap().lines().filter_map(|l| l.strip_prefix("kind: ").map(str::to_owned)).collect::<Vec<_>>()).collect();
+    let kinds: Vec<String> = files
+        .iter()
+        .flat_map(|f| {
+            std::fs::read_to_string(f).unwrap().lines().filter_map(|l| l.strip_prefix("kind: ").map(str::to_owned)).collect::<Vec<_>>()
+        })
+        .collect();
     for k in ["Fleet", "FleetAutoscaler", "GameServerAllocation", "Role", "RoleBinding", "ServiceAccount", "Deployment", "Service"] {
         assert!(kinds.iter().any(|x| x == k), "no {k} in deploy/k8s ({kinds:?})");
     }
     assert!(report.contains("5 Kubernetes") && report.contains("3 Agones"), "{report}");
     let broken = [
         ("fleet.yaml", "capacity: 8", "capacity: 6", "!= --max-sessions"),
-        ("fleet.yaml", "                  cpu: \"8\"\n                  memory: 2Gi\n                limits:", "                  cpu: \"4\"\n                  memory: 2Gi\n                limits:", "requests must equal limits"),
+        (
+            "fleet.yaml",
+            "                  cpu: \"8\"\n                  memory: 2Gi\n                limits:",
+            "                  cpu: \"4\"\n                  memory: 2Gi\n                limits:",
+            "requests must equal limits",
+        ),
         ("fleet.yaml", "runAsUser: 10001", "runAsUser: nobody", "runAsUser"),
         ("fleet.yaml", "                - --agones\n", "", "without --agones"),
         ("fleet.yaml", "portPolicy: Dynamic", "portPolicy: Random", "portPolicy"),
@@ -635,7 +651,13 @@ fn the_dockerfile_builds_what_the_readme_runs() {
     let dir = if profile == "dev" { "debug".to_owned() } else { profile };
     // The binaries those packages declare, from cargo's metadata.
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let out = needlesim_tests::run(Command::new(cargo).current_dir(repo_root()).args(["metadata", "--no-deps", "--format-version", "1", "--offline"]));
+    let out = needlesim_tests::run(Command::new(cargo).current_dir(repo_root()).args([
+        "metadata",
+        "--no-deps",
+        "--format-version",
+        "1",
+        "--offline",
+    ]));
     assert!(out.status.success(), "cargo metadata: {}", String::from_utf8_lossy(&out.stderr));
     let meta: Value = serde_json::from_slice(&out.stdout).unwrap();
     let mut bins: Vec<String> = meta["packages"]
@@ -643,7 +665,15 @@ fn the_dockerfile_builds_what_the_readme_runs() {
         .unwrap()
         .iter()
         .filter(|p| packages.iter().any(|n| p["name"] == n.as_str()))
-        .flat_map(|p| p["targets"].as_array().unwrap().iter().filter(|t| t["kind"][0] == "bin").map(|t| t["name"].as_str().unwrap().to_owned()).collect::<Vec<_>>())
+        .flat_map(|p| {
+            p["targets"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|t| t["kind"][0] == "bin")
+                .map(|t| t["name"].as_str().unwrap().to_owned())
+                .collect::<Vec<_>>()
+        })
         .collect();
     bins.sort();
     assert!(!bins.is_empty(), "the packages {packages:?} declare no binary");
