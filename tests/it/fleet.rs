@@ -434,6 +434,7 @@ async fn capacity() {
         "| sessions | ticks/s (min) | missed deadlines | lateness p99 / p99.9 (µs, worst) | compute p99 (µs, worst) | server CPU (cores) | CPU per session | RSS per session (MiB) |"
     );
     println!("|---|---|---|---|---|---|---|---|");
+    let mut base_rss_mib = 0.0f64;
     for &n in &counts {
         let data = TempDir::new("capacity");
         let mut child = Command::new(&server_bin)
@@ -463,6 +464,7 @@ async fn capacity() {
             sessions.push(create(&ch).await.expect("create a session"));
         }
         let rss1 = rss_bytes(pid);
+        base_rss_mib = base_rss_mib.max(rss0 as f64 / (1 << 20) as f64);
         let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
         let mut drivers = Vec::new();
         for (i, s) in sessions.iter().enumerate() {
@@ -491,9 +493,8 @@ async fn capacity() {
         let mut before = Vec::new();
         for s in &sessions {
             let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-            before.push(
-                c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(s) }, &s.observer_token)).await.unwrap().into_inner(),
-            );
+            let st = c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(s) }, &s.observer_token)).await.unwrap().into_inner();
+            before.push((Instant::now(), st));
         }
         let (cpu0, w0) = (cpu_s(pid), Instant::now());
         tokio::time::sleep(Duration::from_secs_f64(seconds)).await;
@@ -501,19 +502,23 @@ async fn capacity() {
         let mut after = Vec::new();
         for s in &sessions {
             let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
-            after.push(
-                c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(s) }, &s.observer_token)).await.unwrap().into_inner(),
-            );
+            let st = c.get_stats(with_token(pb::GetSessionRequest { session_id: sid(s) }, &s.observer_token)).await.unwrap().into_inner();
+            after.push((Instant::now(), st));
         }
         stop.store(true, std::sync::atomic::Ordering::Relaxed);
         for d in drivers {
             let _ = d.await;
         }
-        let min_rate = before.iter().zip(&after).map(|(b, a)| (a.ticks - b.ticks) as f64 / wall).fold(f64::INFINITY, f64::min);
-        let missed: u64 = before.iter().zip(&after).map(|(b, a)| a.missed_deadlines - b.missed_deadlines).sum();
-        let ticks: u64 = before.iter().zip(&after).map(|(b, a)| a.ticks - b.ticks).sum();
-        let worst = |f: fn(&pb::SessionStats) -> f64| after.iter().map(f).fold(0.0, f64::max);
-        let faulted = after.iter().filter(|a| a.faulted).count();
+        // Each session's rate over its own window, between its two snapshots.
+        let min_rate = before
+            .iter()
+            .zip(&after)
+            .map(|((tb, b), (ta, a))| (a.ticks - b.ticks) as f64 / ta.duration_since(*tb).as_secs_f64())
+            .fold(f64::INFINITY, f64::min);
+        let missed: u64 = before.iter().zip(&after).map(|((_, b), (_, a))| a.missed_deadlines - b.missed_deadlines).sum();
+        let ticks: u64 = before.iter().zip(&after).map(|((_, b), (_, a))| a.ticks - b.ticks).sum();
+        let worst = |f: fn(&pb::SessionStats) -> f64| after.iter().map(|(_, a)| f(a)).fold(0.0, f64::max);
+        let faulted = after.iter().filter(|(_, a)| a.faulted).count();
         let cpu = (cpu1 - cpu0) / wall;
         println!(
             "| {n} | {min_rate:.0} | {missed} of {ticks} ({:.3} %){} | {:.0} / {:.0} | {:.0} | {cpu:.2} | {:.2} | {:.1} |",
@@ -528,7 +533,87 @@ async fn capacity() {
         let _ = child.kill();
         let _ = child.wait();
     }
+    println!("the server without sessions: RSS up to {base_rss_mib:.1} MiB");
     load("after");
+    observer_bandwidth(&server_bin, &traj, seconds.min(5.0)).await;
+}
+
+/// Network per observer: one paper-phantom session driven as in [`capacity`], watched by
+/// `Observe` at 30 and 60 Hz with and without every node's displacement; the gRPC payload per
+/// second (each message's encoded length plus gRPC's 5-byte frame header; HTTP/2 and TCP add a
+/// few per cent).
+async fn observer_bandwidth(server_bin: &std::path::Path, traj: &std::sync::Arc<needlesim_scene::Trajectory>, seconds: f64) {
+    use prost::Message;
+    let data = TempDir::new("observers");
+    let mut child = Command::new(server_bin)
+        .args(["serve", "--listen", "127.0.0.1:0", "--default-scene", "none", "--data-dir"])
+        .arg(data.path())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("the release server starts");
+    let mut out = BufReader::new(child.stdout.take().unwrap());
+    let mut line = String::new();
+    let addr = loop {
+        line.clear();
+        assert!(out.read_line(&mut line).unwrap() > 0, "the server did not start");
+        if let Some(a) = line.trim().strip_prefix("listening on ") {
+            break a.to_owned();
+        }
+    };
+    let ch = tonic::transport::Channel::from_shared(format!("http://{addr}")).unwrap().connect().await.unwrap();
+    let s = create(&ch).await.expect("create a session");
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let driver = {
+        let (ch, s, traj, stop) = (ch.clone(), s.clone(), traj.clone(), stop.clone());
+        tokio::spawn(async move {
+            let mut c = pb::control_service_client::ControlServiceClient::new(ch);
+            let (t0, t1) = traj.span_s();
+            let start = Instant::now();
+            let mut every = tokio::time::interval(Duration::from_millis(10));
+            while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                every.tick().await;
+                let p = traj.pose_at(t0 + start.elapsed().as_secs_f64() % (t1 - t0));
+                let req = pb::SetPoseRequest {
+                    session_id: sid(&s),
+                    base: Some(pb::Pose2 { x_m: p.x_m, y_m: p.y_m, theta_rad: p.theta_rad }),
+                    client_id: "driver".into(),
+                    take_over: false,
+                };
+                let _ = c.set_pose(with_token(req, &s.controller_token)).await;
+            }
+        })
+    };
+    println!("| observer | frames/s | payload (kB/s) |");
+    println!("|---|---|---|");
+    for (rate_hz, displacements) in [(30.0, false), (60.0, false), (30.0, true), (60.0, true)] {
+        let mut c = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+        let req = pb::ObserveRequest { session_id: sid(&s), rate_hz, include_displacements: displacements };
+        let mut stream = c.observe(with_token(req, &s.observer_token)).await.expect("observe").into_inner();
+        let _ = stream.message().await; // the first frame, before timing
+        let (mut frames, mut bytes) = (0u64, 0u64);
+        let start = Instant::now();
+        while start.elapsed().as_secs_f64() < seconds {
+            match tokio::time::timeout(Duration::from_secs(1), stream.message()).await {
+                Ok(Ok(Some(f))) => {
+                    frames += 1;
+                    bytes += f.encoded_len() as u64 + 5;
+                }
+                _ => break,
+            }
+        }
+        let wall = start.elapsed().as_secs_f64();
+        println!(
+            "| {rate_hz:.0} Hz{} | {:.1} | {:.1} |",
+            if displacements { ", every node's displacement" } else { "" },
+            frames as f64 / wall,
+            bytes as f64 / wall / 1e3
+        );
+    }
+    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+    let _ = driver.await;
+    let _ = child.kill();
+    let _ = child.wait();
 }
 
 /// The YAML files of deploy/k8s/.
@@ -571,8 +656,8 @@ fn manifests_validate() {
         ("fleet.yaml", "capacity: 8", "capacity: 6", "!= --max-sessions"),
         (
             "fleet.yaml",
-            "                  cpu: \"8\"\n                  memory: 2Gi\n                limits:",
             "                  cpu: \"4\"\n                  memory: 2Gi\n                limits:",
+            "                  cpu: \"2\"\n                  memory: 2Gi\n                limits:",
             "requests must equal limits",
         ),
         ("fleet.yaml", "runAsUser: 10001", "runAsUser: nobody", "runAsUser"),
