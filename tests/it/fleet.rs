@@ -18,7 +18,7 @@ use serde_json::Value;
 const HEALTH_MS: u64 = 200;
 const STALL_MS: u64 = 300;
 /// How long the test's SIGUSR2 blocks the real-time thread.
-const STALL_FOR_MS: u64 = 2500;
+const STALL_FOR_MS: u64 = 3000;
 
 fn now_s() -> f64 {
     SystemTime::now().duration_since(UNIX_EPOCH).expect("after 1970").as_secs_f64()
@@ -239,15 +239,20 @@ fn rt_tid(pid: u32, session_id: &str) -> u32 {
     panic!("no thread named {want} in {}", dir.display());
 }
 
-/// Sends SIGUSR2 to one thread (tgkill; std has no call for it, so through Python's ctypes).
-fn tgkill_usr2(pid: u32, tid: u32) {
-    let script = "import ctypes, os, platform, signal, sys\n\
+/// Sends SIGUSR2 to one thread (tgkill; std has no call for it, so through Python's ctypes):
+/// the time it was sent (UNIX seconds, taken just before the system call: Python's start-up under
+/// load does not count).
+fn tgkill_usr2(pid: u32, tid: u32) -> f64 {
+    let script = "import ctypes, os, platform, signal, sys, time\n\
                   nr = {'x86_64': 234, 'aarch64': 131}[platform.machine()]\n\
                   libc = ctypes.CDLL(None, use_errno=True)\n\
+                  t = time.time()\n\
                   r = libc.syscall(nr, int(sys.argv[1]), int(sys.argv[2]), int(signal.SIGUSR2))\n\
+                  print(repr(t))\n\
                   sys.exit(0 if r == 0 else 'tgkill: ' + os.strerror(ctypes.get_errno()))";
-    let st = Command::new(python()).args(["-c", script, &pid.to_string(), &tid.to_string()]).status().expect("python runs");
-    assert!(st.success(), "tgkill failed");
+    let out = needlesim_tests::run(Command::new(python()).args(["-c", script, &pid.to_string(), &tid.to_string()]));
+    assert!(out.status.success(), "tgkill failed: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).trim().parse().expect("the time the signal was sent")
 }
 
 fn gaps(t: &[f64]) -> Vec<f64> {
@@ -314,9 +319,9 @@ async fn agones_lifecycle_health_counters_and_drain() {
     let pid = server.child.id();
     let tid = rt_tid(pid, &sid(&a));
     tokio::time::sleep(Duration::from_millis(500)).await;
-    let t_stall = now_s();
-    tgkill_usr2(pid, tid);
-    tokio::time::sleep(Duration::from_millis(STALL_FOR_MS + 1200)).await;
+    let t_stall = tgkill_usr2(pid, tid);
+    let left = STALL_FOR_MS as f64 * 1e-3 - (now_s() - t_stall);
+    tokio::time::sleep(Duration::from_secs_f64(left.max(0.0) + 1.2)).await;
     let health = sdk.times("/health");
     let quiet_from = t_stall + (STALL_MS + HEALTH_MS + 150) as f64 * 1e-3;
     let quiet_to = t_stall + (STALL_FOR_MS - 100) as f64 * 1e-3;
