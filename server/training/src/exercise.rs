@@ -49,12 +49,36 @@ pub type ExerciseFiles = &'static [(&'static str, &'static str)];
 
 /// The shipped exercises (server/scenes/exercises/), embedded.
 pub const EXERCISES: &[(&str, &str, ExerciseFiles)] = &[
-    ("biopsy-2d", include_str!("../../scenes/exercises/biopsy-2d.toml"), &[("biopsy-2d.csv", include_str!("../../scenes/exercises/biopsy-2d.csv"))]),
-    ("brachy-2d", include_str!("../../scenes/exercises/brachy-2d.toml"), &[BLOCK_2D, ("brachy-2d.csv", include_str!("../../scenes/exercises/brachy-2d.csv"))]),
-    ("spare-2d", include_str!("../../scenes/exercises/spare-2d.toml"), &[BLOCK_2D, ("spare-2d.csv", include_str!("../../scenes/exercises/spare-2d.csv"))]),
-    ("biopsy-3d", include_str!("../../scenes/exercises/biopsy-3d.toml"), &[("biopsy-3d.csv", include_str!("../../scenes/exercises/biopsy-3d.csv"))]),
-    ("brachy-3d", include_str!("../../scenes/exercises/brachy-3d.toml"), &[BLOCK_3D, ("brachy-3d.csv", include_str!("../../scenes/exercises/brachy-3d.csv"))]),
-    ("spare-3d", include_str!("../../scenes/exercises/spare-3d.toml"), &[BLOCK_3D, ("spare-3d.csv", include_str!("../../scenes/exercises/spare-3d.csv"))]),
+    (
+        "biopsy-2d",
+        include_str!("../../scenes/exercises/biopsy-2d.toml"),
+        &[("biopsy-2d.csv", include_str!("../../scenes/exercises/biopsy-2d.csv"))],
+    ),
+    (
+        "brachy-2d",
+        include_str!("../../scenes/exercises/brachy-2d.toml"),
+        &[BLOCK_2D, ("brachy-2d.csv", include_str!("../../scenes/exercises/brachy-2d.csv"))],
+    ),
+    (
+        "spare-2d",
+        include_str!("../../scenes/exercises/spare-2d.toml"),
+        &[BLOCK_2D, ("spare-2d.csv", include_str!("../../scenes/exercises/spare-2d.csv"))],
+    ),
+    (
+        "biopsy-3d",
+        include_str!("../../scenes/exercises/biopsy-3d.toml"),
+        &[("biopsy-3d.csv", include_str!("../../scenes/exercises/biopsy-3d.csv"))],
+    ),
+    (
+        "brachy-3d",
+        include_str!("../../scenes/exercises/brachy-3d.toml"),
+        &[BLOCK_3D, ("brachy-3d.csv", include_str!("../../scenes/exercises/brachy-3d.csv"))],
+    ),
+    (
+        "spare-3d",
+        include_str!("../../scenes/exercises/spare-3d.toml"),
+        &[BLOCK_3D, ("spare-3d.csv", include_str!("../../scenes/exercises/spare-3d.csv"))],
+    ),
 ];
 
 const BLOCK_2D: (&str, &str) = ("block-2d.toml", include_str!("../../scenes/exercises/block-2d.toml"));
@@ -310,7 +334,8 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
             }
             (None, Some(c)) => {
                 let centre = point(&key("center_m"), c, dim)?;
-                let r = positive(&key("radius_m"), t.radius_m.ok_or_else(|| invalid(key("radius_m"), "missing (a new target needs one)"))?)?;
+                let r =
+                    positive(&key("radius_m"), t.radius_m.ok_or_else(|| invalid(key("radius_m"), "missing (a new target needs one)"))?)?;
                 let name = t.name.clone().ok_or_else(|| invalid(key("name"), "missing (a new target needs one)"))?;
                 (name, TargetSource::New { center_m: centre, radius_m: r }, Some(r))
             }
@@ -375,7 +400,11 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
     let w = &f.weights;
     let weight = |key: &str, v: Option<f64>, d: f64| -> Result<f64, ExerciseError> {
         let v = v.unwrap_or(d);
-        if v.is_finite() && (0.0..=1e3).contains(&v) { Ok(v) } else { Err(invalid(format!("weights.{key}"), format!("{v} must be in [0, 1000]"))) }
+        if v.is_finite() && (0.0..=1e3).contains(&v) {
+            Ok(v)
+        } else {
+            Err(invalid(format!("weights.{key}"), format!("{v} must be in [0, 1000]")))
+        }
     };
     let weights = Weights {
         accuracy: weight("accuracy", w.accuracy, 4.0)?,
@@ -432,13 +461,20 @@ mod tests {
     fn errors_name_the_key() {
         let base = "name = \"x\"\nscene = \"fig3-target\"\n";
         assert!(err(&format!("{base}[[targets]]\nscene_target = \"biopsy\"\ntolerance_m = -1\n")).starts_with("targets[0].tolerance_m:"));
-        assert!(err(&format!("{base}[[spare]]\nname = \"v\"\nshape = \"sphere\"\ncenter_m = [0.0, 0.0, 0.0]\nradius_m = 0.01\n"))
-            .starts_with("spare[0].center_m: has 3 values, the scene is 2D"));
+        assert!(
+            err(&format!("{base}[[spare]]\nname = \"v\"\nshape = \"sphere\"\ncenter_m = [0.0, 0.0, 0.0]\nradius_m = 0.01\n"))
+                .starts_with("spare[0].center_m: has 3 values, the scene is 2D")
+        );
         assert!(err(&format!("{base}[[spare]]\nname = \"v\"\nshape = \"cone\"\n")).starts_with("spare[0].shape:"));
-        assert!(err(&format!("{base}[[spare]]\nname = \"v\"\nshape = \"box\"\nmin_m = [0.0, 0.0]\nmax_m = [0.01, -0.01]\n"))
-            .starts_with("spare[0].max_m:"));
+        assert!(
+            err(&format!("{base}[[spare]]\nname = \"v\"\nshape = \"box\"\nmin_m = [0.0, 0.0]\nmax_m = [0.01, -0.01]\n"))
+                .starts_with("spare[0].max_m:")
+        );
         assert!(err(&format!("{base}[limits]\nreinsertions = -1\n")).starts_with("limits.reinsertions:"));
-        assert!(err(&format!("{base}[weights]\naccuracy = 0\nefficiency = 0\npath = 0\nforce = 0\nsafety = 0\ntime = 0\n")).starts_with("weights:"));
+        assert!(
+            err(&format!("{base}[weights]\naccuracy = 0\nefficiency = 0\npath = 0\nforce = 0\nsafety = 0\ntime = 0\n"))
+                .starts_with("weights:")
+        );
         assert!(err(&format!("{base}[metrics]\nredirect_threshold_m = nan\n")).starts_with("metrics.redirect_threshold_m:"));
         assert!(err(&format!("{base}[[targets]]\nname = \"t\"\n")).starts_with("targets[0].scene_target: missing"));
         assert!(err("name = \"x\"\nscene = \"no-such-scene.toml\"\n").starts_with("scene: 'no-such-scene.toml' is not a shipped scene"));

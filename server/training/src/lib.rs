@@ -8,6 +8,7 @@
 //! [`sample::Sample`] from each tick's output (one `Copy` struct, no allocation), `push` it,
 //! call `place()` when the trainee declares "placed", read `score()` at the observers' rate.
 
+pub mod cli;
 pub mod exercise;
 pub mod geometry;
 pub mod metrics;

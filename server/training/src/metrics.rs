@@ -3,15 +3,18 @@
 //! with the score available at any time ([`MetricsTracker::score`]) and a final result
 //! ([`MetricsTracker::finish`]).
 //!
-//! Notation: samples $k = 0 \dots K$ at times $t_k$, tip $x_k$, axis $a_k$, inserted length
-//! $\ell_k$, axial force $F_k$ ([`Sample`]). The needle is *in the tissue* at $k$ when
-//! $\ell_k > 0$: $\mathrm{in}_k \Leftrightarrow \ell_k > 0$, $\mathrm{in}_{-1} = $ false.
+//! Notation: samples $k = 0 \dots K$ at times $t_k$, tip $x_k$, axis $a_k$, contacts $n_k$,
+//! axial force $F_k$ ([`Sample`]). The needle is *in the tissue* at $k$ when it holds a
+//! contact: $\mathrm{in}_k \Leftrightarrow n_k > 0$, $\mathrm{in}_{-1} = $ false. An insertion
+//! starts at the first sample $k_0$ in the tissue; its entry point is $E = x_{k_0}$ and the
+//! depth is $d_k = (x_k - E)\cdot a_k$ (along the needle; the simulation's inserted length lags
+//! it with node capture, so it is not used).
 //!
 //! - **Time** $T = t_K - t_0$.
 //! - **Insertions** $N_{ins} = \#\{k : \mathrm{in}_k \wedge \neg\mathrm{in}_{k-1}\}$ (the tip
 //!   enters the tissue); reinsertions $N_{ins} - 1$ (none before the first).
 //! - **Redirections** (within one insertion; $w$ = `redirect_threshold_m`, 5 mm by default):
-//!   the depth is $d_k = \ell_k$. Advancing, the peak is $P = \max d$ since the last
+//!   with the depth $d_k$ above: advancing, the peak is $P = \max d$ since the last
 //!   re-advance; when $d_k < P - w$ the needle is withdrawing, with trough $V = \min d$ since;
 //!   when then $d_k > V + w$ one redirection is counted and it advances again with $P = d_k$.
 //!   So a redirection is a withdrawal by more than $w$ followed by a re-advance by more than
@@ -21,10 +24,10 @@
 //!   $\bar F = \frac{1}{|I|}\sum_{k\in I} |F_k|$ over $I = \{k : \mathrm{in}_k\}$ (0 if empty).
 //! - **Targeting error.** When "placed" is declared at sample $k$ ([`MetricsTracker::place`]),
 //!   the not yet placed target whose displaced centre $c_{i,k}$ is nearest the tip is placed,
-//!   with error $e_i = |x_k - c_{i,k}|$ and depth $\ell_k$; it is *on target* when
+//!   with error $e_i = |x_k - c_{i,k}|$ and depth $d_k$; it is *on target* when
 //!   $e_i \le \tau_i$ (its tolerance).
 //! - **Structures touched.** Structure $j$'s clearance at $k$ is the minimum signed distance
-//!   over the inserted shaft, $c_{j,k} = \min_{0\le s\le \ell_k} \phi_j(x_k - s a_k)$
+//!   over the inserted shaft, $c_{j,k} = \min_{0\le s\le \max(d_k, 0)} \phi_j(x_k - s a_k)$
 //!   ([`crate::geometry`]); over the run $c_j = \min_{k\in I} c_{j,k}$ ($+\infty$ if $I$ is
 //!   empty), the intrusion depth $\delta_j = \max(0, -c_j)$, touched when $c_j \le 0$, and the
 //!   number of samples touching it.
@@ -93,7 +96,7 @@ pub struct Placement {
     /// $e_i$, m.
     pub error_m: f64,
     pub on_target: bool,
-    /// Inserted length at the placement, m.
+    /// Depth $d_k$ at the placement, m.
     pub depth_m: f64,
     pub tip_m: [f64; 3],
     /// The displaced target centre, m.
@@ -194,6 +197,8 @@ pub struct MetricsTracker {
     t_first_s: f64,
     last: Option<Sample>,
     phase: Phase,
+    entry_m: [f64; 3],
+    depth_m: f64,
     insertions: u32,
     redirections: u32,
     path_m: f64,
@@ -219,6 +224,8 @@ impl MetricsTracker {
             t_first_s: 0.0,
             last: None,
             phase: Phase::Out,
+            entry_m: [0.0; 3],
+            depth_m: 0.0,
             insertions: 0,
             redirections: 0,
             path_m: 0.0,
@@ -227,12 +234,21 @@ impl MetricsTracker {
             in_tissue_samples: 0,
             max_depth_m: 0.0,
             extra_placements: 0,
-            
         }
     }
 
     pub fn spec(&self) -> &TrackerSpec {
         &self.spec
+    }
+
+    /// The depth $d_k$ of the last sample (0 outside the tissue), m.
+    pub fn depth_m(&self) -> f64 {
+        self.depth_m
+    }
+
+    /// Whether the last sample was in the tissue.
+    pub fn in_tissue(&self) -> bool {
+        self.phase != Phase::Out
     }
 
     /// Takes one tick's sample (module docs for what each metric does with it).
@@ -241,10 +257,15 @@ impl MetricsTracker {
             self.t_first_s = s.t_s;
         }
         self.samples += 1;
-        let inside = s.inserted_m > 0.0;
+        let inside = s.contacts > 0;
         let was_inside = self.phase != Phase::Out;
         let w = self.spec.redirect_threshold_m;
-        let d = s.inserted_m;
+        if inside && !was_inside {
+            self.entry_m = s.tip_m;
+        }
+        let e = self.entry_m;
+        let d = if inside { (0..3).map(|i| (s.tip_m[i] - e[i]) * s.axis[i]).sum::<f64>() } else { 0.0 };
+        self.depth_m = d;
         self.phase = match (inside, self.phase) {
             (false, _) => Phase::Out,
             (true, Phase::Out) => {
@@ -275,7 +296,7 @@ impl MetricsTracker {
             self.sum_force_n += s.axial_force_n.abs();
             self.max_depth_m = self.max_depth_m.max(d);
             for (st, structure) in self.structs.iter_mut().zip(&self.spec.structures) {
-                let (c, _) = structure.shape.segment_clearance(s.tip_m, s.axis, d, self.spec.dims);
+                let (c, _) = structure.shape.segment_clearance(s.tip_m, s.axis, d.max(0.0), self.spec.dims);
                 st.min_clearance_m = st.min_clearance_m.min(c);
                 if c <= 0.0 {
                     st.touching += 1;
@@ -314,7 +335,14 @@ impl MetricsTracker {
             self.extra_placements += 1;
             return Err(PlaceError::AllPlaced(self.spec.targets.len()));
         };
-        let p = Placement { t_s: s.t_s, error_m: e, on_target: e <= self.spec.targets[i].tolerance_m, depth_m: s.inserted_m, tip_m: s.tip_m, centre_m: c };
+        let p = Placement {
+            t_s: s.t_s,
+            error_m: e,
+            on_target: e <= self.spec.targets[i].tolerance_m,
+            depth_m: self.depth_m,
+            tip_m: s.tip_m,
+            centre_m: c,
+        };
         self.placements[i] = Some(p);
         Ok((i, p))
     }
@@ -354,12 +382,21 @@ impl MetricsTracker {
         let sub = SubScores { accuracy, efficiency, path, force, safety, time };
         let w = &self.spec.weights;
         let wsum = w.accuracy + w.efficiency + w.path + w.force + w.safety + w.time;
-        let weighted = (w.accuracy * accuracy + w.efficiency * efficiency + w.path * path + w.force * force + w.safety * safety + w.time * time) / wsum;
+        let weighted =
+            (w.accuracy * accuracy + w.efficiency * efficiency + w.path * path + w.force * force + w.safety * safety + w.time * time)
+                / wsum;
         let time_exceeded = t > l.time_s;
         let reinsertions_exceeded = reinsertions > l.reinsertions;
         let peak_force_exceeded = self.peak_force_n > l.peak_force_n;
         let penalty = l.penalty * (time_exceeded as u8 + reinsertions_exceeded as u8 + peak_force_exceeded as u8) as f64;
-        Score { sub, time_exceeded, reinsertions_exceeded, peak_force_exceeded, penalty, total: (100.0 * weighted - penalty).clamp(0.0, 100.0) }
+        Score {
+            sub,
+            time_exceeded,
+            reinsertions_exceeded,
+            peak_force_exceeded,
+            penalty,
+            total: (100.0 * weighted - penalty).clamp(0.0, 100.0),
+        }
     }
 
     fn mean_force_n(&self) -> f64 {
@@ -442,8 +479,9 @@ impl Trace {
         Self { capacity, stride: 1, seen: 0, points: Vec::with_capacity(capacity), last: None }
     }
 
-    pub fn push(&mut self, s: &Sample) {
-        let p = TracePoint { t_s: s.t_s, depth_m: s.inserted_m, axial_force_n: s.axial_force_n, tip_m: s.tip_m };
+    /// Takes a sample with its depth (the tracker's [`MetricsTracker::depth_m`], 0 outside).
+    pub fn push(&mut self, s: &Sample, depth_m: f64) {
+        let p = TracePoint { t_s: s.t_s, depth_m, axial_force_n: s.axial_force_n, tip_m: s.tip_m };
         if self.seen.is_multiple_of(self.stride) {
             if self.points.len() == self.capacity {
                 let mut k = 0;
@@ -495,7 +533,7 @@ mod tests {
 
     /// A needle along +x entering the tissue at x = 0: depth d, tip at (d, 0, 0).
     fn sample(t: f64, d: f64, f: f64) -> Sample {
-        let mut s = Sample::new(t, [d, 0.0, 0.0], [1.0, 0.0, 0.0], d.max(0.0), f);
+        let mut s = Sample::new(t, [d, 0.0, 0.0], [1.0, 0.0, 0.0], d.max(0.0), (d >= 0.0) as u32, f);
         s.push_target([0.03, 0.001, 0.0]);
         s.push_target([0.05, 0.0, 0.0]);
         s
@@ -503,7 +541,8 @@ mod tests {
 
     #[test]
     fn counts_insertions_redirections_path_and_forces_by_the_definitions() {
-        let sphere = Structure { name: "v".into(), shape: Shape::Sphere { centre_m: [0.02, 0.004, 0.0], radius_m: 0.003 }, margin_m: 0.002 };
+        let sphere =
+            Structure { name: "v".into(), shape: Shape::Sphere { centre_m: [0.02, 0.004, 0.0], radius_m: 0.003 }, margin_m: 0.002 };
         let mut m = MetricsTracker::new(spec(vec![sphere]));
         // depths (mm): out, in to 20, back to 14 (6 mm withdrawal: withdrawing), forward to 20
         // (6 mm re-advance: one redirection), back 4 mm and forward (no), out, in again to 10.
@@ -514,10 +553,12 @@ mod tests {
         }
         let r = m.metrics();
         assert_eq!((r.insertions, r.reinsertions, r.redirections), (2, 1, 1));
-        // In tissue (d > 0): 5,10,20,14,17,20,16,20 then 3,10. Path: 5+10+6+3+3+4+4 = 35 mm, then 7 mm.
-        assert!((r.path_length_m - 0.042).abs() < 1e-15, "{}", r.path_length_m);
+        // In tissue (d >= 0): 0,5,10,20,14,17,20,16,20,0 (entry at 0), then 3,10 (entry at 3).
+        // Path: 5+5+10+6+3+3+4+4+20 = 60 mm, then 7 mm.
+        assert!((r.path_length_m - 0.067).abs() < 1e-15, "{}", r.path_length_m);
+        assert!((r.max_depth_m - 0.020).abs() < 1e-15);
         assert_eq!(r.peak_axial_force_n, 2.5);
-        let mean = (0.5 + 1.0 + 1.5 + 0.5 + 0.5 + 2.5 + 0.2 + 0.4 + 0.3 + 0.6) / 10.0;
+        let mean = (0.5 + 1.0 + 1.5 + 0.5 + 0.5 + 2.5 + 0.2 + 0.4 + 0.3 + 0.6) / 12.0;
         assert!((r.mean_axial_force_n - mean).abs() < 1e-15);
         assert_eq!(r.time_s, 6.5);
         // The sphere (centre (20, 4) mm, r 3 mm): the shaft along y = 0 passes 4 mm from the centre: clearance 1 mm.
@@ -559,7 +600,7 @@ mod tests {
     fn the_trace_is_bounded_and_evenly_strided() {
         let mut t = Trace::new(8);
         for k in 0..100 {
-            t.push(&sample(k as f64, 0.0, 0.0));
+            t.push(&sample(k as f64, 0.0, 0.0), 0.0);
         }
         let p = t.points();
         assert!(p.len() <= 9);

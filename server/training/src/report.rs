@@ -140,7 +140,9 @@ fn path_plot(run: &ExerciseRun) -> PlotResult {
         }
         for t in &run.targets {
             let c = mm(t.centre_m);
-            chart.draw_series([Circle::new(c, (t.tolerance_m * 1e3 * px_per_mm).max(2.0) as i32, GREEN.stroke_width(1))]).map_err(|x| e(&x))?;
+            chart
+                .draw_series([Circle::new(c, (t.tolerance_m * 1e3 * px_per_mm).max(2.0) as i32, GREEN.stroke_width(1))])
+                .map_err(|x| e(&x))?;
             chart.draw_series([Circle::new(c, 3, GREEN.filled())]).map_err(|x| e(&x))?;
         }
         chart.draw_series(LineSeries::new(path.iter().copied(), BLUE.stroke_width(2))).map_err(|x| e(&x))?;
@@ -154,7 +156,12 @@ fn path_plot(run: &ExerciseRun) -> PlotResult {
 }
 
 fn row(html: &mut String, key: &str, label: &str, value: f64, unit: &str, scale: f64) {
-    let _ = writeln!(html, "<tr><th>{}</th><td data-metric=\"{key}\" data-value=\"{value:e}\">{:.4}</td><td>{unit}</td></tr>", esc(label), value * scale);
+    let _ = writeln!(
+        html,
+        "<tr><th>{}</th><td data-metric=\"{key}\" data-value=\"{value:e}\">{:.4}</td><td>{unit}</td></tr>",
+        esc(label),
+        value * scale
+    );
 }
 
 /// The report's HTML (module docs). An error only if a plot cannot be drawn.
@@ -169,15 +176,9 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
     );
     let _ = writeln!(h, "<h1>After-action report: {}</h1>", esc(&run.exercise));
     let _ = writeln!(h, "<p>{}</p>", esc(&run.description));
-    let _ = writeln!(
-        h,
-        "<p>Scene <code>{}</code> ({}D), {} ticks at {} Hz.</p>",
-        esc(&run.scene),
-        run.dim,
-        run.ticks,
-        run.tick_rate_hz
-    );
-    let _ = writeln!(h, "<p class=\"score\">Score <span data-metric=\"score\" data-value=\"{:e}\">{:.1}</span> / 100</p>", s.total, s.total);
+    let _ = writeln!(h, "<p>Scene <code>{}</code> ({}D), {} ticks at {} Hz.</p>", esc(&run.scene), run.dim, run.ticks, run.tick_rate_hz);
+    let _ =
+        writeln!(h, "<p class=\"score\">Score <span data-metric=\"score\" data-value=\"{:e}\">{:.1}</span> / 100</p>", s.total, s.total);
     h.push_str("<h2>Metrics</h2>\n<table id=\"metrics\">\n<tr><th>metric</th><th>value</th><th>unit</th></tr>\n");
     row(&mut h, "time_s", "time", m.time_s, "s", 1.0);
     row(&mut h, "insertions", "insertions", m.insertions as f64, "", 1.0);
@@ -201,7 +202,11 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
     h.push_str("</table>\n<h2>Targets</h2>\n<table id=\"targets\">\n<tr><th>target</th><th>tolerance (mm)</th><th>placed at (s)</th><th>error (mm)</th><th>on target</th><th>closest approach (mm)</th></tr>\n");
     for (i, t) in m.targets.iter().enumerate() {
         let (at, err, on) = match &t.placement {
-            Some(p) => (format!("{:.3}", p.t_s), format!("<td data-metric=\"target_{i}_error_m\" data-value=\"{:e}\">{:.4}</td>", p.error_m, p.error_m * 1e3), if p.on_target { "yes" } else { "no" }),
+            Some(p) => (
+                format!("{:.3}", p.t_s),
+                format!("<td data-metric=\"target_{i}_error_m\" data-value=\"{:e}\">{:.4}</td>", p.error_m, p.error_m * 1e3),
+                if p.on_target { "yes" } else { "no" },
+            ),
             None => ("—".into(), "<td>not placed</td>".into(), "no"),
         };
         let _ = writeln!(

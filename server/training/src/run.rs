@@ -17,7 +17,7 @@ use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use serde::Serialize;
 
 use crate::exercise::{Exercise, SceneRef, Structure, TargetSource};
-use crate::metrics::{ExerciseResult, MetricsTracker, Placement, TrackedTarget, Trace, TracePoint, TrackerSpec};
+use crate::metrics::{ExerciseResult, MetricsTracker, Placement, Trace, TracePoint, TrackedTarget, TrackerSpec};
 use crate::sample::Sample;
 
 /// How many points the report's curves keep at most ([`Trace`]).
@@ -80,7 +80,10 @@ pub struct ExerciseRun {
 }
 
 /// Scene targets as (name, reference centre, radius).
-fn resolve_targets(ex: &Exercise, scene_targets: &[(String, [f64; 3], f64)]) -> Result<(Vec<TrackedTarget>, Vec<TargetGeometry>, Vec<([f64; 3], f64)>), ExerciseRunError> {
+fn resolve_targets(
+    ex: &Exercise,
+    scene_targets: &[(String, [f64; 3], f64)],
+) -> Result<(Vec<TrackedTarget>, Vec<TargetGeometry>, Vec<([f64; 3], f64)>), ExerciseRunError> {
     let mut tracked = Vec::new();
     let mut geom = Vec::new();
     let mut added = Vec::new();
@@ -89,7 +92,9 @@ fn resolve_targets(ex: &Exercise, scene_targets: &[(String, [f64; 3], f64)]) -> 
             if *r <= 0.0 {
                 return Err(ExerciseRunError::Target {
                     key: "targets".into(),
-                    message: format!("none given, and the scene's target '{name}' has no radius to take as tolerance: list it with tolerance_m"),
+                    message: format!(
+                        "none given, and the scene's target '{name}' has no radius to take as tolerance: list it with tolerance_m"
+                    ),
                 });
             }
             tracked.push(TrackedTarget { name: name.clone(), sample_idx: i, tolerance_m: *r });
@@ -122,7 +127,11 @@ fn resolve_targets(ex: &Exercise, scene_targets: &[(String, [f64; 3], f64)]) -> 
                 if idx >= crate::sample::MAX_SAMPLE_TARGETS {
                     return Err(ExerciseRunError::Target {
                         key: format!("targets[{k}]"),
-                        message: format!("the scene has {} targets: at most {} in all", scene_targets.len(), crate::sample::MAX_SAMPLE_TARGETS),
+                        message: format!(
+                            "the scene has {} targets: at most {} in all",
+                            scene_targets.len(),
+                            crate::sample::MAX_SAMPLE_TARGETS
+                        ),
                     });
                 }
                 added.push((*center_m, *radius_m));
@@ -148,7 +157,7 @@ struct Feeder<'a> {
 impl Feeder<'_> {
     fn push(&mut self, s: &Sample) {
         self.tracker.push(s);
-        self.trace.push(s);
+        self.trace.push(s, self.tracker.depth_m());
         self.ticks += 1;
         // A placement time on a tick's time counts at that tick (times printed to 1 µs).
         while self.next < self.placed_at_s.len() && self.placed_at_s[self.next] <= s.t_s + 1e-9 {
@@ -173,7 +182,10 @@ pub fn run_exercise(
     let csv = trajectory_csv.or(ex.trajectory_csv.as_deref()).ok_or_else(|| ExerciseRunError::NoTrajectory(ex.name.clone()))?;
     let placed = placed_at_s.unwrap_or(&ex.placed_at_s);
     if let Some(w) = placed.windows(2).find(|w| w[1] < w[0]) {
-        return Err(ExerciseRunError::Target { key: "placed-at".into(), message: format!("times must increase ({} after {})", w[1], w[0]) });
+        return Err(ExerciseRunError::Target {
+            key: "placed-at".into(),
+            message: format!("times must increase ({} after {})", w[1], w[0]),
+        });
     }
     let make_spec = |targets: Vec<TrackedTarget>| TrackerSpec {
         dims: ex.dim as usize,
@@ -186,10 +198,13 @@ pub fn run_exercise(
     if ex.dim == 2 {
         let mut scene: Scene = match &ex.scene {
             SceneRef::Shipped(n) => needlesim_scene::load_scene(n, limits),
-            SceneRef::File { file, text, base_dir } => needlesim_scene::parse_scene(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}"))),
+            SceneRef::File { file, text, base_dir } => {
+                needlesim_scene::parse_scene(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
+            }
         }
         .map_err(ExerciseRunError::Scene)?;
-        let scene_targets: Vec<_> = scene.params.targets.iter().map(|t| (t.name.clone(), [t.center_m[0], t.center_m[1], 0.0], t.radius_m)).collect();
+        let scene_targets: Vec<_> =
+            scene.params.targets.iter().map(|t| (t.name.clone(), [t.center_m[0], t.center_m[1], 0.0], t.radius_m)).collect();
         let (tracked, geom, added) = resolve_targets(ex, &scene_targets)?;
         for (i, (c, r)) in added.into_iter().enumerate() {
             scene.params.targets.push(TargetParams { name: format!("exercise-{i}"), center_m: [c[0], c[1]], radius_m: r });
@@ -217,7 +232,9 @@ pub fn run_exercise(
     } else {
         let scene: Scene3d = match &ex.scene {
             SceneRef::Shipped(n) => needlesim_scene::load_scene3d(n, limits),
-            SceneRef::File { file, text, base_dir } => needlesim_scene::parse_scene3d(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}"))),
+            SceneRef::File { file, text, base_dir } => {
+                needlesim_scene::parse_scene3d(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
+            }
         }
         .map_err(ExerciseRunError::Scene)?;
         let scene_targets: Vec<_> = scene.targets.iter().map(|t| (t.name.clone(), t.center_m, t.radius_m)).collect();
@@ -241,7 +258,8 @@ pub fn run_exercise(
         for (i, (c, r)) in added.into_iter().enumerate() {
             params.targets.push(Target3 { centre_m: c, radius_m: r, name_idx: scene_targets.len() + i });
         }
-        let mut sim = Simulation3::new(model, params).map_err(|e| ExerciseRunError::Simulation(format!("the 3D simulation cannot start: {e}")))?;
+        let mut sim =
+            Simulation3::new(model, params).map_err(|e| ExerciseRunError::Simulation(format!("the 3D simulation cannot start: {e}")))?;
         let mut f = Feeder {
             tracker: MetricsTracker::new(make_spec(tracked)),
             trace: Trace::new(TRACE_CAPACITY),

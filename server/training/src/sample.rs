@@ -31,8 +31,12 @@ pub struct Sample {
     pub tip_m: [f64; 3],
     /// Unit direction of the needle at the tip (base → tip).
     pub axis: [f64; 3],
-    /// Inserted length: shaft from the most proximal contact to the tip, m (0 outside the tissue).
+    /// Inserted length as the simulation reports it: shaft from the most proximal contact to the
+    /// tip, m (informative: with node capture it lags the tip's depth; the metrics measure depth
+    /// from the entry point instead).
     pub inserted_m: f64,
+    /// Contacts the needle holds (stuck, slipping, tip): the needle is in the tissue when > 0.
+    pub contacts: u32,
     /// Axial force of the tissue on the needle, N, positive resisting insertion (module docs).
     pub axial_force_n: f64,
     /// Force of the tissue on the needle base, world, N.
@@ -43,12 +47,13 @@ pub struct Sample {
 
 impl Sample {
     /// A sample with no targets (tests, synthetic streams).
-    pub fn new(t_s: f64, tip_m: [f64; 3], axis: [f64; 3], inserted_m: f64, axial_force_n: f64) -> Self {
+    pub fn new(t_s: f64, tip_m: [f64; 3], axis: [f64; 3], inserted_m: f64, contacts: u32, axial_force_n: f64) -> Self {
         Self {
             t_s,
             tip_m,
             axis,
             inserted_m,
+            contacts,
             axial_force_n,
             base_force_n: [0.0; 3],
             n_targets: 0,
@@ -80,6 +85,7 @@ impl Sample {
             [out.tip_m[0], out.tip_m[1], 0.0],
             [a.cos(), a.sin(), 0.0],
             out.inserted_length_m,
+            (out.n_stuck + out.n_slipping + out.n_tip) as u32,
             -out.force_axial_n,
         );
         s.base_force_n = [out.force_n[0], out.force_n[1], 0.0];
@@ -96,7 +102,7 @@ impl Sample {
         let q = out.pose.orientation.quaternion();
         let (w, x, y, z) = (q.w, q.i, q.j, q.k);
         let axis = [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)];
-        let mut s = Self::new(t_s, out.tip_m, axis, out.inserted_length_m, out.axial_force_n);
+        let mut s = Self::new(t_s, out.tip_m, axis, out.inserted_length_m, out.contacts.len() as u32, out.axial_force_n);
         s.base_force_n = out.base_force_n;
         for t in out.targets.as_slice().iter().take(MAX_SAMPLE_TARGETS) {
             s.targets[s.n_targets] = SampleTarget { centre_m: t.centre_m, distance_m: t.distance_m };
