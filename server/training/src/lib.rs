@@ -15,6 +15,7 @@ pub mod metrics;
 pub mod report;
 pub mod run;
 pub mod sample;
+pub mod ultrasound;
 
 pub use exercise::{EXERCISES, Exercise, ExerciseError, load_exercise, parse_exercise};
 pub use metrics::{ExerciseResult, Metrics, MetricsTracker, PlaceError, Score, Trace, TrackerSpec};

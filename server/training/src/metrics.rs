@@ -46,7 +46,7 @@
 //! structure's margin);
 //! time $s_T = \mathrm{clamp}(2(1 - T / T_{lim}), 0, 1)$.
 //! Total $S = \mathrm{clamp}\big(100\,\frac{\sum_m w_m s_m}{\sum_m w_m} - p\,(\mathbb 1[T > T_{lim}]
-//! + \mathbb 1[N_{ins} - 1 > R_{lim}] + \mathbb 1[F_{peak} > F_{lim}]), 0, 100\big)$,
+//! \;{+}\; \mathbb 1[N_{ins} - 1 > R_{lim}] \;{+}\; \mathbb 1[F_{peak} > F_{lim}]), 0, 100\big)$,
 //! $p$ the limits' `penalty`. Before the end it is the score so far (unplaced targets count 0).
 
 use serde::Serialize;

@@ -1,0 +1,343 @@
+//! A simulated B-mode ultrasound slice (pure): the deformed tissue of a 2D triangle mesh in the
+//! probe's image plane (in 2D the slice is the tissue plane) → an 8-bit gray image.
+//!
+//! **Geometry.** The image has `width × height` pixels of `pixel_m`; pixel $(i, j)$'s centre is
+//! $o + (i + \frac12) p\, e_u + (j + \frac12) p\, e_v$ ($o$ the probe's corner, $e_u$ lateral,
+//! $e_v$ the beam's depth direction). Each deformed triangle (nodes $x_a = X_a + u_a$) is
+//! rasterised: a pixel inside it with barycentric weights $\lambda$ (of the deformed triangle)
+//! sits at the material point $X = \sum_a \lambda_a X_a$ of region $r$ — exact for linear
+//! elements, whose map $X \mapsto X + u$ is affine per triangle.
+//!
+//! **Echo.** Speckle is a function of the material point, so it moves with the tissue:
+//! value noise on a lattice of `speckle_m` cells in reference coordinates, $s(X) \in [0, 1)$
+//! (a hash of the lattice corners, bilinear in between), times the region's echogenicity $g_r$.
+//! A pixel whose 4-neighbour lies in another region (or outside) is an interface: $+0.5$.
+//! Inside a target (material distance $|X - C| < R$ from its reference centre) the echo is
+//! scaled by 0.25 (hypoechoic, moving with the tissue). The needle (a segment, world) is a
+//! bright line (pixels within `needle_halfwidth_px` of it: 1.0), and every pixel deeper along
+//! $e_v$ than the needle in its column is in its acoustic shadow: $\times 0.3$. The image is
+//! $\min(1, \cdot) \times 255$, 0 outside the tissue.
+//!
+//! Cost: $O(\text{triangles} + \text{pixels})$ per image (the triangles' pixel boxes), no
+//! allocation beyond the image and two per-pixel buffers ([`UltrasoundScratch`]), for the
+//! observers' side of a session (never the real-time thread).
+
+/// The probe's image plane and resolution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Probe {
+    /// The image's corner (pixel (0, 0)'s outer corner), world, m.
+    pub origin_m: [f64; 2],
+    /// Lateral unit vector (image columns).
+    pub e_u: [f64; 2],
+    /// Depth unit vector (image rows, the beam direction).
+    pub e_v: [f64; 2],
+    pub pixel_m: f64,
+    pub width: usize,
+    pub height: usize,
+}
+
+/// What the slice shows besides the tissue.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SliceScene<'a> {
+    /// Echogenicity per region (indexes the triangles' regions), about 0.3–1.
+    pub region_gain: &'a [f64],
+    /// Targets: reference centre, radius (m).
+    pub targets: &'a [([f64; 2], f64)],
+    /// The needle's inserted segment, world (base side, tip), if any.
+    pub needle_m: Option<([f64; 2], [f64; 2])>,
+    pub needle_halfwidth_px: f64,
+    /// Speckle lattice cell, m (about the wavelength: 0.2–0.5 mm).
+    pub speckle_m: f64,
+    pub seed: u64,
+}
+
+/// An 8-bit gray image, row-major.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GrayImage8 {
+    pub width: usize,
+    pub height: usize,
+    pub pixels: Vec<u8>,
+}
+
+/// Per-pixel buffers, reusable between images.
+#[derive(Debug, Default)]
+pub struct UltrasoundScratch {
+    value: Vec<f32>,
+    region: Vec<i32>,
+}
+
+fn hash(ix: i64, iy: i64, seed: u64) -> f64 {
+    let mut z = seed ^ (ix as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ (iy as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// The speckle $s(X)$ (module docs).
+pub fn speckle(x_ref: [f64; 2], cell_m: f64, seed: u64) -> f64 {
+    let (fx, fy) = (x_ref[0] / cell_m, x_ref[1] / cell_m);
+    let (ix, iy) = (fx.floor(), fy.floor());
+    let (tx, ty) = (fx - ix, fy - iy);
+    let (ix, iy) = (ix as i64, iy as i64);
+    let a = hash(ix, iy, seed) * (1.0 - tx) + hash(ix + 1, iy, seed) * tx;
+    let b = hash(ix, iy + 1, seed) * (1.0 - tx) + hash(ix + 1, iy + 1, seed) * tx;
+    a * (1.0 - ty) + b * ty
+}
+
+/// Renders the slice (module docs). `nodes_ref_m`, `u_m`: reference positions and
+/// displacements per node; `triangles` with `regions` per triangle. Triangles naming a node out
+/// of range are skipped.
+pub fn render_slice(
+    nodes_ref_m: &[[f64; 2]],
+    u_m: &[[f64; 2]],
+    triangles: &[[usize; 3]],
+    regions: &[usize],
+    scene: &SliceScene<'_>,
+    probe: &Probe,
+    scratch: &mut UltrasoundScratch,
+) -> GrayImage8 {
+    let (w, h) = (probe.width, probe.height);
+    let n = w * h;
+    scratch.value.clear();
+    scratch.value.resize(n, 0.0);
+    scratch.region.clear();
+    scratch.region.resize(n, -1);
+    let to_px = |q: [f64; 2]| {
+        let d = [q[0] - probe.origin_m[0], q[1] - probe.origin_m[1]];
+        (
+            (d[0] * probe.e_u[0] + d[1] * probe.e_u[1]) / probe.pixel_m - 0.5,
+            (d[0] * probe.e_v[0] + d[1] * probe.e_v[1]) / probe.pixel_m - 0.5,
+        )
+    };
+    for (t, tri) in triangles.iter().enumerate() {
+        if tri.iter().any(|&a| a >= nodes_ref_m.len() || a >= u_m.len()) {
+            continue;
+        }
+        let p: [(f64, f64); 3] = std::array::from_fn(|k| {
+            let a = tri[k];
+            to_px([nodes_ref_m[a][0] + u_m[a][0], nodes_ref_m[a][1] + u_m[a][1]])
+        });
+        let det = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1);
+        if det.abs() < 1e-12 {
+            continue;
+        }
+        let (x0, x1) = (p.iter().map(|q| q.0).fold(f64::INFINITY, f64::min), p.iter().map(|q| q.0).fold(f64::NEG_INFINITY, f64::max));
+        let (y0, y1) = (p.iter().map(|q| q.1).fold(f64::INFINITY, f64::min), p.iter().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max));
+        let (i0, i1) = (x0.ceil().max(0.0) as usize, (x1.floor().min(w as f64 - 1.0)).max(-1.0));
+        let (j0, j1) = (y0.ceil().max(0.0) as usize, (y1.floor().min(h as f64 - 1.0)).max(-1.0));
+        if i1 < 0.0 || j1 < 0.0 {
+            continue;
+        }
+        let region = regions.get(t).copied().unwrap_or(0);
+        let gain = scene.region_gain.get(region).copied().unwrap_or(0.6);
+        for j in j0..=j1 as usize {
+            for i in i0..=i1 as usize {
+                let (x, y) = (i as f64, j as f64);
+                let l1 = ((x - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (y - p[0].1)) / det;
+                let l2 = ((p[1].0 - p[0].0) * (y - p[0].1) - (x - p[0].0) * (p[1].1 - p[0].1)) / det;
+                let l0 = 1.0 - l1 - l2;
+                if l0 < -1e-12 || l1 < -1e-12 || l2 < -1e-12 {
+                    continue;
+                }
+                let (a, b, c) = (nodes_ref_m[tri[0]], nodes_ref_m[tri[1]], nodes_ref_m[tri[2]]);
+                let xr = [l0 * a[0] + l1 * b[0] + l2 * c[0], l0 * a[1] + l1 * b[1] + l2 * c[1]];
+                let mut v = speckle(xr, scene.speckle_m, scene.seed) * gain;
+                if scene.targets.iter().any(|(cen, r)| (xr[0] - cen[0]).powi(2) + (xr[1] - cen[1]).powi(2) < r * r) {
+                    v *= 0.25;
+                }
+                scratch.value[j * w + i] = v as f32;
+                scratch.region[j * w + i] = region as i32;
+            }
+        }
+    }
+    let mut out = vec![0u8; n];
+    for j in 0..h {
+        for i in 0..w {
+            let k = j * w + i;
+            let r = scratch.region[k];
+            if r < 0 {
+                continue;
+            }
+            let mut v = scratch.value[k];
+            let other = |ii: isize, jj: isize| {
+                if ii < 0 || jj < 0 || ii >= w as isize || jj >= h as isize {
+                    return false;
+                }
+                scratch.region[jj as usize * w + ii as usize] != r
+            };
+            let (ii, jj) = (i as isize, j as isize);
+            if other(ii - 1, jj) || other(ii + 1, jj) || other(ii, jj - 1) || other(ii, jj + 1) {
+                v += 0.5;
+            }
+            out[k] = (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        }
+    }
+    if let Some((a, b)) = scene.needle_m {
+        let (pa, pb) = (to_px(a), to_px(b));
+        let (dx, dy) = (pb.0 - pa.0, pb.1 - pa.1);
+        let len2 = dx * dx + dy * dy;
+        // Per column, the shallowest needle pixel: deeper pixels are in its shadow.
+        for i in 0..w {
+            let mut top: Option<usize> = None;
+            for j in 0..h {
+                let (x, y) = (i as f64, j as f64);
+                let s = if len2 > 0.0 { (((x - pa.0) * dx + (y - pa.1) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                let d = ((x - pa.0 - s * dx).powi(2) + (y - pa.1 - s * dy).powi(2)).sqrt();
+                if d <= scene.needle_halfwidth_px {
+                    out[j * w + i] = 255;
+                    top.get_or_insert(j);
+                } else if top.is_some() && scratch.region[j * w + i] >= 0 {
+                    out[j * w + i] = (out[j * w + i] as f32 * 0.3).round() as u8;
+                }
+            }
+        }
+    }
+    GrayImage8 { width: w, height: h, pixels: out }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A structured grid of `nx × ny` cells over `[0, w] × [0, h]`, two regions split at mid-height.
+    fn grid(nx: usize, ny: usize, w: f64, h: f64) -> (Vec<[f64; 2]>, Vec<[usize; 3]>, Vec<usize>) {
+        let mut nodes = Vec::new();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                nodes.push([w * i as f64 / nx as f64, h * j as f64 / ny as f64]);
+            }
+        }
+        let (mut tris, mut regions) = (Vec::new(), Vec::new());
+        for j in 0..ny {
+            for i in 0..nx {
+                let a = j * (nx + 1) + i;
+                let r = usize::from(j >= ny / 2);
+                tris.push([a, a + 1, a + nx + 2]);
+                tris.push([a, a + nx + 2, a + nx + 1]);
+                regions.extend([r, r]);
+            }
+        }
+        (nodes, tris, regions)
+    }
+
+    fn probe() -> Probe {
+        // 0.1 mm pixels over the middle of a 40 × 30 mm block, depth downwards (−y).
+        Probe { origin_m: [0.005, 0.025], e_u: [1.0, 0.0], e_v: [0.0, -1.0], pixel_m: 1e-4, width: 160, height: 160 }
+    }
+
+    fn ncc(a: &[u8], b: &[u8], w: usize, h: usize, dx: isize, dy: isize, margin: usize) -> f64 {
+        let (mut sa, mut sb, mut sab, mut saa, mut sbb, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        for j in margin..h - margin {
+            for i in margin..w - margin {
+                let x = a[j * w + i] as f64;
+                let y = b[(j as isize + dy) as usize * w + (i as isize + dx) as usize] as f64;
+                sa += x;
+                sb += y;
+                sab += x * y;
+                saa += x * x;
+                sbb += y * y;
+                n += 1.0;
+            }
+        }
+        let cov = sab / n - sa * sb / (n * n);
+        cov / ((saa / n - (sa / n).powi(2)) * (sbb / n - (sb / n).powi(2))).sqrt()
+    }
+
+    #[test]
+    fn speckle_follows_an_imposed_displacement_within_a_pixel() {
+        let (nodes, tris, regions) = grid(40, 30, 0.04, 0.03);
+        let scene =
+            SliceScene { region_gain: &[0.8, 0.8], targets: &[], needle_m: None, needle_halfwidth_px: 1.0, speckle_m: 3e-4, seed: 7 };
+        let p = probe();
+        let mut scratch = UltrasoundScratch::default();
+        let still = render_slice(&nodes, &vec![[0.0; 2]; nodes.len()], &tris, &regions, &scene, &p, &mut scratch);
+        for shift_px in [[2.4, -1.7], [-3.6, 0.8], [0.3, 4.2]] {
+            // World shift: lateral +x, depth −y.
+            let u = [shift_px[0] * p.pixel_m, -shift_px[1] * p.pixel_m];
+            let moved = render_slice(&nodes, &vec![u; nodes.len()], &tris, &regions, &scene, &p, &mut scratch);
+            let mut best = (f64::NEG_INFINITY, 0, 0);
+            for dy in -6..=6 {
+                for dx in -6..=6 {
+                    let c = ncc(&still.pixels, &moved.pixels, p.width, p.height, dx, dy, 10);
+                    if c > best.0 {
+                        best = (c, dx, dy);
+                    }
+                }
+            }
+            assert!(
+                (best.1 as f64 - shift_px[0]).abs() <= 1.0 && (best.2 as f64 - shift_px[1]).abs() <= 1.0,
+                "imposed {shift_px:?} px, correlation peak at ({}, {}) (r = {:.3})",
+                best.1,
+                best.2,
+                best.0
+            );
+            assert!(best.0 > 0.5, "the peak correlation {:.3} is weak", best.0);
+        }
+    }
+
+    #[test]
+    fn needle_is_bright_with_a_shadow_target_darker_interface_brighter() {
+        let (nodes, tris, regions) = grid(40, 30, 0.04, 0.03);
+        let p = probe();
+        let u = vec![[0.0; 2]; nodes.len()];
+        let mut scratch = UltrasoundScratch::default();
+        let base =
+            SliceScene { region_gain: &[0.7, 0.7], targets: &[], needle_m: None, needle_halfwidth_px: 1.0, speckle_m: 3e-4, seed: 3 };
+        let plain = render_slice(&nodes, &u, &tris, &regions, &base, &p, &mut scratch);
+        // A horizontal needle at y = 20 mm (row 49.5) over columns 0..80.
+        let with = SliceScene { needle_m: Some(([0.005, 0.02], [0.013, 0.02])), ..base.clone() };
+        let img = render_slice(&nodes, &u, &tris, &regions, &with, &p, &mut scratch);
+        let mean = |im: &GrayImage8, cols: std::ops::Range<usize>, rows: std::ops::Range<usize>| {
+            let mut s = 0.0;
+            let mut n = 0.0;
+            for j in rows.clone() {
+                for i in cols.clone() {
+                    s += im.pixels[j * im.width + i] as f64;
+                    n += 1.0;
+                }
+            }
+            s / n
+        };
+        assert_eq!(img.pixels[50 * p.width + 40], 255, "the needle line");
+        assert!(mean(&img, 10..70, 60..70) < 0.4 * mean(&plain, 10..70, 60..70), "the shadow below the needle");
+        // A target of radius 2 mm at (12, 15) mm.
+        let with = SliceScene { targets: &[([0.012, 0.015], 0.002)], ..base.clone() };
+        let img = render_slice(&nodes, &u, &tris, &regions, &with, &p, &mut scratch);
+        // (12, 15) mm: column 70, row 100.
+        assert!(mean(&img, 62..78, 92..108) < 0.4 * mean(&plain, 62..78, 92..108), "the target is darker");
+        // The interface between the regions at y = 15 mm (row 100): brighter than the rows around it.
+        let two = SliceScene { region_gain: &[0.5, 0.5], ..base.clone() };
+        let img = render_slice(&nodes, &u, &tris, &regions, &two, &p, &mut scratch);
+        assert!(mean(&img, 0..160, 99..101) > mean(&img, 0..160, 80..90) + 60.0, "the interface");
+    }
+
+    /// The cost of a 256 × 256 slice of a 41 × 25 grid (issue 20's observers' side). Run with
+    /// `cargo test -p needlesim-training --release -- --ignored --nocapture slice_cost`.
+    #[test]
+    #[ignore]
+    fn slice_cost() {
+        let (nodes, tris, regions) = grid(40, 24, 0.1, 0.06);
+        let p = Probe { origin_m: [0.0, 0.06], e_u: [1.0, 0.0], e_v: [0.0, -1.0], pixel_m: 0.1 / 256.0, width: 256, height: 154 };
+        let scene = SliceScene {
+            region_gain: &[0.7, 0.5],
+            targets: &[([0.058, 0.028], 0.0015)],
+            needle_m: Some(([0.02, 0.06], [0.058, 0.028])),
+            needle_halfwidth_px: 1.0,
+            speckle_m: 3e-4,
+            seed: 1,
+        };
+        let u = vec![[1e-4, -2e-4]; nodes.len()];
+        let mut scratch = UltrasoundScratch::default();
+        let mut times = Vec::new();
+        for _ in 0..300 {
+            let t = std::time::Instant::now();
+            let img = render_slice(&nodes, &u, &tris, &regions, &scene, &p, &mut scratch);
+            times.push(t.elapsed().as_secs_f64() * 1e6);
+            assert_eq!(img.pixels.len(), 256 * 154);
+        }
+        times.sort_by(f64::total_cmp);
+        let pct = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize];
+        println!("slice 256x154, {} triangles: p50 {:.0} us, p99 {:.0} us, max {:.0} us", tris.len(), pct(0.5), pct(0.99), pct(1.0));
+    }
+}
