@@ -79,11 +79,12 @@ pub struct ExerciseRun {
     pub refused_placements: Vec<(f64, String)>,
 }
 
+/// The resolved targets: the tracker's, the report's, and those the exercise adds to the
+/// simulation (centre, radius).
+type Resolved = (Vec<TrackedTarget>, Vec<TargetGeometry>, Vec<([f64; 3], f64)>);
+
 /// Scene targets as (name, reference centre, radius).
-fn resolve_targets(
-    ex: &Exercise,
-    scene_targets: &[(String, [f64; 3], f64)],
-) -> Result<(Vec<TrackedTarget>, Vec<TargetGeometry>, Vec<([f64; 3], f64)>), ExerciseRunError> {
+fn resolve_targets(ex: &Exercise, scene_targets: &[(String, [f64; 3], f64)]) -> Result<Resolved, ExerciseRunError> {
     let mut tracked = Vec::new();
     let mut geom = Vec::new();
     let mut added = Vec::new();
