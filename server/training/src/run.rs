@@ -303,3 +303,33 @@ fn finish(ex: &Exercise, scene: String, rate: f64, targets: Vec<crate::run::Targ
 pub fn read_trajectory(path: &Path) -> Result<String, ExerciseRunError> {
     std::fs::read_to_string(path).map_err(|e| ExerciseRunError::Trajectory(format!("cannot read {}: {e}", path.display())))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exercise::parse_exercise;
+
+    #[test]
+    fn a_target_the_exercise_adds_moves_like_the_scene_target_at_the_same_place() {
+        let text = "name = \"t\"\nscene = \"fig3-target\"\n[[targets]]\nscene_target = \"biopsy\"\ntolerance_m = 0.002\n\
+                    [[targets]]\nname = \"copy\"\ncenter_m = [0.05830222215594891, 0.027860619515673035]\nradius_m = 0.0015\ntolerance_m = 0.002\n";
+        let ex = parse_exercise(text, Path::new(".")).unwrap();
+        let csv = include_str!("../../scenes/exercises/biopsy-2d.csv");
+        let run = run_exercise(&ex, Some(csv), Some(&[6.0, 6.0]), 100_000, &MeshLimits::default()).unwrap();
+        assert_eq!(run.placements.len(), 2);
+        let (a, b) = (run.placements[0].1, run.placements[1].1);
+        assert_eq!(a.t_s, b.t_s);
+        assert!((a.error_m - b.error_m).abs() < 1e-12, "{} vs {}", a.error_m, b.error_m);
+        // Both moved with the tissue: the error is not the distance to the undeformed centre.
+        let rigid = crate::sample::dist3(a.tip_m, [0.05830222215594891, 0.027860619515673035, 0.0]);
+        assert!((a.error_m - rigid).abs() > 1e-3, "error {} vs rigid {rigid}", a.error_m);
+    }
+
+    #[test]
+    fn scene_target_names_and_missing_tolerances_are_checked_against_the_scene() {
+        let csv = include_str!("../../scenes/exercises/biopsy-2d.csv");
+        let ex = parse_exercise("name = \"t\"\nscene = \"fig3-target\"\n[[targets]]\nscene_target = \"nope\"\n", Path::new(".")).unwrap();
+        let e = run_exercise(&ex, Some(csv), Some(&[]), 100_000, &MeshLimits::default()).unwrap_err().to_string();
+        assert_eq!(e, "targets[0].scene_target: 'nope' is not a target of the scene (its targets: biopsy)");
+    }
+}
