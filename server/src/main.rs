@@ -238,7 +238,7 @@ fn main() -> ExitCode {
                 &limits,
             )
         }
-        Some(Command::Exercise(ExerciseCommand::List)) => Ok(print!("{}", needlesim_training::cli::list())),
+        Some(Command::Exercise(ExerciseCommand::List)) => needlesim_training::cli::list_command(),
         Some(Command::Summary) => summary(&limits),
         Some(Command::Serve(args)) => run_serve(args, &limits),
         None => run_serve(cli.serve, &limits),

@@ -58,3 +58,9 @@ pub fn list() -> String {
     }
     s
 }
+
+/// `exercise list`: prints [`list`].
+pub fn list_command() -> anyhow::Result<()> {
+    print!("{}", list());
+    Ok(())
+}
