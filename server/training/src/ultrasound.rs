@@ -1,5 +1,6 @@
-//! A simulated B-mode ultrasound slice (pure): the deformed tissue of a 2D triangle mesh in the
-//! probe's image plane (in 2D the slice is the tissue plane) → an 8-bit gray image.
+//! A simulated B-mode ultrasound slice (pure): the deformed tissue in the probe's image plane →
+//! an 8-bit gray image; a 2D triangle mesh ([`render_slice`]: the slice is the tissue plane) or
+//! a 3D tetrahedral mesh cut by a movable probe plane ([`render_slice_3d`]).
 //!
 //! **Geometry.** The image has `width × height` pixels of `pixel_m`; pixel $(i, j)$'s centre is
 //! $o + (i + \frac12) p\, e_u + (j + \frac12) p\, e_v$ ($o$ the probe's corner, $e_u$ lateral,
@@ -151,6 +152,14 @@ pub fn render_slice(
             }
         }
     }
+    let needle_px = scene.needle_m.map(|(a, b)| (to_px(a), to_px(b)));
+    shade(w, h, needle_px, scene.needle_halfwidth_px, scratch)
+}
+
+/// The shared second pass (module docs): interfaces, the needle (a segment in pixel
+/// coordinates) and its shadow, quantisation.
+fn shade(w: usize, h: usize, needle_px: Option<((f64, f64), (f64, f64))>, halfwidth_px: f64, scratch: &UltrasoundScratch) -> GrayImage8 {
+    let n = w * h;
     let mut out = vec![0u8; n];
     for j in 0..h {
         for i in 0..w {
@@ -173,8 +182,7 @@ pub fn render_slice(
             out[k] = (v.clamp(0.0, 1.0) * 255.0).round() as u8;
         }
     }
-    if let Some((a, b)) = scene.needle_m {
-        let (pa, pb) = (to_px(a), to_px(b));
+    if let Some((pa, pb)) = needle_px {
         let (dx, dy) = (pb.0 - pa.0, pb.1 - pa.1);
         let len2 = dx * dx + dy * dy;
         // Per column, the shallowest needle pixel: deeper pixels are in its shadow.
@@ -184,7 +192,7 @@ pub fn render_slice(
                 let (x, y) = (i as f64, j as f64);
                 let s = if len2 > 0.0 { (((x - pa.0) * dx + (y - pa.1) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
                 let d = ((x - pa.0 - s * dx).powi(2) + (y - pa.1 - s * dy).powi(2)).sqrt();
-                if d <= scene.needle_halfwidth_px {
+                if d <= halfwidth_px {
                     out[j * w + i] = 255;
                     top.get_or_insert(j);
                 } else if top.is_some() && scratch.region[j * w + i] >= 0 {
@@ -194,6 +202,165 @@ pub fn render_slice(
         }
     }
     GrayImage8 { width: w, height: h, pixels: out }
+}
+
+/// A probe plane in 3D: the image plane through `origin_m` spanned by the orthonormal `e_u`
+/// (lateral) and `e_v` (depth); the needle is drawn where it lies within `thickness_m / 2` of
+/// the plane (the beam's elevation thickness).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Probe3 {
+    pub origin_m: [f64; 3],
+    pub e_u: [f64; 3],
+    pub e_v: [f64; 3],
+    pub pixel_m: f64,
+    pub width: usize,
+    pub height: usize,
+    pub thickness_m: f64,
+}
+
+/// What a 3D slice shows besides the tissue ([`SliceScene`] in 3D).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SliceScene3<'a> {
+    pub region_gain: &'a [f64],
+    /// Targets: reference centre, radius (m).
+    pub targets: &'a [([f64; 3], f64)],
+    /// The needle's inserted segment, world (base side, tip), if any.
+    pub needle_m: Option<([f64; 3], [f64; 3])>,
+    pub needle_halfwidth_px: f64,
+    pub speckle_m: f64,
+    pub seed: u64,
+}
+
+fn hash3(ix: i64, iy: i64, iz: i64, seed: u64) -> f64 {
+    hash(ix, iy ^ iz.wrapping_mul(0x2545_F491_4F6C_DD1D), seed ^ 0x5851_F42D_4C95_7F2D)
+}
+
+/// The 3D speckle: trilinear value noise on `cell_m` cells of the reference coordinates.
+pub fn speckle3(x_ref: [f64; 3], cell_m: f64, seed: u64) -> f64 {
+    let f = [x_ref[0] / cell_m, x_ref[1] / cell_m, x_ref[2] / cell_m];
+    let i = [f[0].floor(), f[1].floor(), f[2].floor()];
+    let t = [f[0] - i[0], f[1] - i[1], f[2] - i[2]];
+    let i = [i[0] as i64, i[1] as i64, i[2] as i64];
+    let mut v = 0.0;
+    for c in 0..8 {
+        let (dx, dy, dz) = (c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        let w = (if dx == 1 { t[0] } else { 1.0 - t[0] })
+            * (if dy == 1 { t[1] } else { 1.0 - t[1] })
+            * (if dz == 1 { t[2] } else { 1.0 - t[2] });
+        v += w * hash3(i[0] + dx as i64, i[1] + dy as i64, i[2] + dz as i64, seed);
+    }
+    v
+}
+
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Renders the slice of a deformed tetrahedral mesh in the probe plane (module docs; each
+/// deformed tetrahedron the plane crosses is sampled at the pixels of its projected box,
+/// barycentric weights of the deformed tetrahedron giving the material point).
+pub fn render_slice_3d(
+    nodes_ref_m: &[[f64; 3]],
+    u_m: &[[f64; 3]],
+    tets: &[[usize; 4]],
+    regions: &[usize],
+    scene: &SliceScene3<'_>,
+    probe: &Probe3,
+    scratch: &mut UltrasoundScratch,
+) -> GrayImage8 {
+    let (w, h) = (probe.width, probe.height);
+    scratch.value.clear();
+    scratch.value.resize(w * h, 0.0);
+    scratch.region.clear();
+    scratch.region.resize(w * h, -1);
+    let normal = cross3(probe.e_u, probe.e_v);
+    let to_px = |q: [f64; 3]| {
+        let d = sub3(q, probe.origin_m);
+        (dot3(d, probe.e_u) / probe.pixel_m - 0.5, dot3(d, probe.e_v) / probe.pixel_m - 0.5)
+    };
+    for (t, tet) in tets.iter().enumerate() {
+        if tet.iter().any(|&a| a >= nodes_ref_m.len() || a >= u_m.len()) {
+            continue;
+        }
+        let y: [[f64; 3]; 4] = std::array::from_fn(|k| {
+            let a = tet[k];
+            [nodes_ref_m[a][0] + u_m[a][0], nodes_ref_m[a][1] + u_m[a][1], nodes_ref_m[a][2] + u_m[a][2]]
+        });
+        let d: [f64; 4] = std::array::from_fn(|k| dot3(sub3(y[k], probe.origin_m), normal));
+        if d.iter().all(|&x| x > 0.0) || d.iter().all(|&x| x < 0.0) {
+            continue;
+        }
+        // Barycentric weights: [l1, l2, l3] = M^{-1} (q - y0), M = [y1-y0, y2-y0, y3-y0] by columns.
+        let (c1, c2, c3) = (sub3(y[1], y[0]), sub3(y[2], y[0]), sub3(y[3], y[0]));
+        let det = dot3(c1, cross3(c2, c3));
+        if det.abs() < 1e-18 {
+            continue;
+        }
+        let rows = [cross3(c2, c3), cross3(c3, c1), cross3(c1, c2)];
+        let px: [(f64, f64); 4] = std::array::from_fn(|k| to_px(y[k]));
+        let (x0, x1) = px.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+        let (y0, y1) = px.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        if x1 < 0.0 || y1 < 0.0 || x0 > w as f64 - 1.0 || y0 > h as f64 - 1.0 {
+            continue;
+        }
+        let (i0, i1) = (x0.ceil().max(0.0) as usize, x1.floor().min(w as f64 - 1.0) as usize);
+        let (j0, j1) = (y0.ceil().max(0.0) as usize, y1.floor().min(h as f64 - 1.0) as usize);
+        let region = regions.get(t).copied().unwrap_or(0);
+        let gain = scene.region_gain.get(region).copied().unwrap_or(0.6);
+        let xr: [[f64; 3]; 4] = std::array::from_fn(|k| nodes_ref_m[tet[k]]);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let (a, b) = ((i as f64 + 0.5) * probe.pixel_m, (j as f64 + 0.5) * probe.pixel_m);
+                let q = [
+                    probe.origin_m[0] + a * probe.e_u[0] + b * probe.e_v[0],
+                    probe.origin_m[1] + a * probe.e_u[1] + b * probe.e_v[1],
+                    probe.origin_m[2] + a * probe.e_u[2] + b * probe.e_v[2],
+                ];
+                let r = sub3(q, y[0]);
+                let l = [dot3(rows[0], r) / det, dot3(rows[1], r) / det, dot3(rows[2], r) / det];
+                let l0 = 1.0 - l[0] - l[1] - l[2];
+                if l0 < -1e-12 || l.iter().any(|&x| x < -1e-12) {
+                    continue;
+                }
+                let lam = [l0, l[0], l[1], l[2]];
+                let x: [f64; 3] = std::array::from_fn(|c| (0..4).map(|k| lam[k] * xr[k][c]).sum());
+                let mut v = speckle3(x, scene.speckle_m, scene.seed) * gain;
+                if scene.targets.iter().any(|(cen, rad)| dot3(sub3(x, *cen), sub3(x, *cen)) < rad * rad) {
+                    v *= 0.25;
+                }
+                scratch.value[j * w + i] = v as f32;
+                scratch.region[j * w + i] = region as i32;
+            }
+        }
+    }
+    // The needle where it lies within half the thickness of the plane: clip, then project.
+    let needle_px = scene.needle_m.and_then(|(a, b)| {
+        let (da, db) = (dot3(sub3(a, probe.origin_m), normal), dot3(sub3(b, probe.origin_m), normal));
+        let half = 0.5 * probe.thickness_m;
+        let (mut s0, mut s1) = (0.0f64, 1.0f64);
+        let dd = db - da;
+        if dd.abs() < 1e-15 {
+            if da.abs() > half {
+                return None;
+            }
+        } else {
+            let (ta, tb) = ((-half - da) / dd, (half - da) / dd);
+            s0 = s0.max(ta.min(tb));
+            s1 = s1.min(ta.max(tb));
+            if s0 > s1 {
+                return None;
+            }
+        }
+        let at = |s: f64| [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])];
+        Some((to_px(at(s0)), to_px(at(s1))))
+    });
+    shade(w, h, needle_px, scene.needle_halfwidth_px, scratch)
 }
 
 #[cfg(test)]
@@ -310,6 +477,78 @@ mod tests {
         let two = SliceScene { region_gain: &[0.5, 0.5], ..base.clone() };
         let img = render_slice(&nodes, &u, &tris, &regions, &two, &p, &mut scratch);
         assert!(mean(&img, 0..160, 99..101) > mean(&img, 0..160, 80..90) + 60.0, "the interface");
+    }
+
+    /// A box of `n³` cubes of side `a`, 6 Kuhn tetrahedra each (sharing the cube diagonal).
+    fn cube(n: usize, a: f64) -> (Vec<[f64; 3]>, Vec<[usize; 4]>) {
+        let id = |i: usize, j: usize, k: usize| (k * (n + 1) + j) * (n + 1) + i;
+        let mut nodes = Vec::new();
+        for k in 0..=n {
+            for j in 0..=n {
+                for i in 0..=n {
+                    nodes.push([i as f64 * a, j as f64 * a, k as f64 * a]);
+                }
+            }
+        }
+        let mut tets = Vec::new();
+        for k in 0..n {
+            for j in 0..n {
+                for i in 0..n {
+                    let v = |b: usize| id(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1));
+                    for p in [[1, 3], [1, 5], [2, 3], [2, 6], [4, 5], [4, 6]] {
+                        tets.push([v(0), v(p[0]), v(p[1]), v(7)]);
+                    }
+                }
+            }
+        }
+        (nodes, tets)
+    }
+
+    #[test]
+    fn speckle_3d_follows_an_in_plane_displacement_within_a_pixel() {
+        let (nodes, tets) = cube(12, 0.002);
+        let regions = vec![0; tets.len()];
+        // The plane z = 11.3 mm, lateral +x, depth +y, 0.1 mm pixels over the middle.
+        let p = Probe3 {
+            origin_m: [0.004, 0.004, 0.0113],
+            e_u: [1.0, 0.0, 0.0],
+            e_v: [0.0, 1.0, 0.0],
+            pixel_m: 1e-4,
+            width: 160,
+            height: 160,
+            thickness_m: 1e-3,
+        };
+        let scene = SliceScene3 { region_gain: &[0.8], targets: &[], needle_m: None, needle_halfwidth_px: 1.0, speckle_m: 3e-4, seed: 11 };
+        let mut scratch = UltrasoundScratch::default();
+        let still = render_slice_3d(&nodes, &vec![[0.0; 3]; nodes.len()], &tets, &regions, &scene, &p, &mut scratch);
+        assert!(still.pixels.iter().all(|&v| v > 0), "the plane lies inside the box: every pixel is tissue");
+        for shift_px in [[2.4, -1.7], [-3.6, 0.8]] {
+            let u = [shift_px[0] * p.pixel_m, shift_px[1] * p.pixel_m, 0.0];
+            let moved = render_slice_3d(&nodes, &vec![u; nodes.len()], &tets, &regions, &scene, &p, &mut scratch);
+            let mut best = (f64::NEG_INFINITY, 0, 0);
+            for dy in -6..=6 {
+                for dx in -6..=6 {
+                    let c = ncc(&still.pixels, &moved.pixels, p.width, p.height, dx, dy, 10);
+                    if c > best.0 {
+                        best = (c, dx, dy);
+                    }
+                }
+            }
+            assert!(
+                (best.1 as f64 - shift_px[0]).abs() <= 1.0 && (best.2 as f64 - shift_px[1]).abs() <= 1.0 && best.0 > 0.5,
+                "imposed {shift_px:?} px, peak at ({}, {}) r = {:.3}",
+                best.1,
+                best.2,
+                best.0
+            );
+        }
+        // A needle in the plane is drawn; one 1 mm out of it (beyond half the 1 mm thickness) is not.
+        let needle = |z: f64| SliceScene3 { needle_m: Some(([0.004, 0.008, z], [0.012, 0.008, z])), ..scene.clone() };
+        let zero = vec![[0.0; 3]; nodes.len()];
+        let on = render_slice_3d(&nodes, &zero, &tets, &regions, &needle(0.0113), &p, &mut scratch);
+        let off = render_slice_3d(&nodes, &zero, &tets, &regions, &needle(0.0123), &p, &mut scratch);
+        assert_eq!(on.pixels[40 * p.width + 40], 255);
+        assert_eq!(off, still);
     }
 
     /// The cost of a 256 × 256 slice of a 41 × 25 grid (issue 20's observers' side). Run with
