@@ -551,7 +551,8 @@ mod tests {
         assert_eq!(off, still);
     }
 
-    /// The cost of a 256 × 256 slice of a 41 × 25 grid (issue 20's observers' side). Run with
+    /// The cost of a 256 × 154 slice of a 41 × 25 grid and of a 256 × 256 slice of 48,000
+    /// tetrahedra (issue 20's observers' side). Run with
     /// `cargo test -p needlesim-training --release -- --ignored --nocapture slice_cost`.
     #[test]
     #[ignore]
@@ -576,7 +577,50 @@ mod tests {
             assert_eq!(img.pixels.len(), 256 * 154);
         }
         times.sort_by(f64::total_cmp);
-        let pct = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize];
-        println!("slice 256x154, {} triangles: p50 {:.0} us, p99 {:.0} us, max {:.0} us", tris.len(), pct(0.5), pct(0.99), pct(1.0));
+        let pct = |t: &[f64], q: f64| t[((t.len() - 1) as f64 * q).round() as usize];
+        println!(
+            "2D slice 256x154, {} triangles: p50 {:.0} us, p99 {:.0} us, max {:.0} us",
+            tris.len(),
+            pct(&times, 0.5),
+            pct(&times, 0.99),
+            pct(&times, 1.0)
+        );
+        // 3D: a 60 mm cube of 20³ cells (48,000 tetrahedra), a 256 × 256 plane through it at 30°.
+        let (nodes, tets) = cube(20, 0.003);
+        let regions = vec![0; tets.len()];
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let p = Probe3 {
+            origin_m: [0.002, 0.03, 0.002],
+            e_u: [c, 0.0, s],
+            e_v: [-s, 0.0, c],
+            pixel_m: 0.05 / 256.0,
+            width: 256,
+            height: 256,
+            thickness_m: 1e-3,
+        };
+        let scene = SliceScene3 {
+            region_gain: &[0.7],
+            targets: &[([0.03, 0.03, 0.03], 0.003)],
+            needle_m: Some(([0.0, 0.03, 0.0], [0.03, 0.03, 0.03])),
+            needle_halfwidth_px: 1.0,
+            speckle_m: 3e-4,
+            seed: 1,
+        };
+        let u = vec![[1e-4, 0.0, -2e-4]; nodes.len()];
+        let mut times = Vec::new();
+        for _ in 0..100 {
+            let t = std::time::Instant::now();
+            let img = render_slice_3d(&nodes, &u, &tets, &regions, &scene, &p, &mut scratch);
+            times.push(t.elapsed().as_secs_f64() * 1e6);
+            assert_eq!(img.pixels.len(), 256 * 256);
+        }
+        times.sort_by(f64::total_cmp);
+        println!(
+            "3D slice 256x256, {} tetrahedra: p50 {:.0} us, p99 {:.0} us, max {:.0} us",
+            tets.len(),
+            pct(&times, 0.5),
+            pct(&times, 0.99),
+            pct(&times, 1.0)
+        );
     }
 }
