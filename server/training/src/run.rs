@@ -171,6 +171,69 @@ impl Feeder<'_> {
     }
 }
 
+fn tracker_spec(ex: &Exercise, targets: Vec<TrackedTarget>) -> TrackerSpec {
+    TrackerSpec {
+        dims: ex.dim as usize,
+        targets,
+        structures: ex.spare.clone(),
+        limits: ex.limits,
+        weights: ex.weights,
+        redirect_threshold_m: ex.redirect_threshold_m,
+    }
+}
+
+/// A 2D exercise ready to simulate: its scene with the exercise's added targets appended to
+/// `scene.params.targets`, the tracker's spec (sample target indices into those), and the
+/// targets' geometry for the report. What a live session created from an exercise starts from.
+pub struct Prepared2d {
+    pub scene: Scene,
+    pub spec: TrackerSpec,
+    pub targets: Vec<TargetGeometry>,
+}
+
+/// Loads a 2D exercise's scene and resolves its targets ([`Prepared2d`]).
+pub fn prepare_2d(ex: &Exercise, limits: &MeshLimits) -> Result<Prepared2d, ExerciseRunError> {
+    let mut scene: Scene = match &ex.scene {
+        SceneRef::Shipped(n) => needlesim_scene::load_scene(n, limits),
+        SceneRef::File { file, text, base_dir } => {
+            needlesim_scene::parse_scene(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
+        }
+    }
+    .map_err(ExerciseRunError::Scene)?;
+    let scene_targets: Vec<_> =
+        scene.params.targets.iter().map(|t| (t.name.clone(), [t.center_m[0], t.center_m[1], 0.0], t.radius_m)).collect();
+    let (tracked, geom, added) = resolve_targets(ex, &scene_targets)?;
+    for (i, (c, r)) in added.into_iter().enumerate() {
+        scene.params.targets.push(TargetParams { name: format!("exercise-{i}"), center_m: [c[0], c[1]], radius_m: r });
+    }
+    Ok(Prepared2d { scene, spec: tracker_spec(ex, tracked), targets: geom })
+}
+
+/// A 3D exercise ready to simulate: its scene, the tracker's spec, the targets' geometry, and
+/// the targets the exercise adds, to append to `Sim3Params::targets` after the scene's.
+pub struct Prepared3d {
+    pub scene: Scene3d,
+    pub spec: TrackerSpec,
+    pub targets: Vec<TargetGeometry>,
+    pub added_targets: Vec<Target3>,
+}
+
+/// Loads a 3D exercise's scene and resolves its targets ([`Prepared3d`]).
+pub fn prepare_3d(ex: &Exercise, limits: &MeshLimits) -> Result<Prepared3d, ExerciseRunError> {
+    let scene: Scene3d = match &ex.scene {
+        SceneRef::Shipped(n) => needlesim_scene::load_scene3d(n, limits),
+        SceneRef::File { file, text, base_dir } => {
+            needlesim_scene::parse_scene3d(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
+        }
+    }
+    .map_err(ExerciseRunError::Scene)?;
+    let scene_targets: Vec<_> = scene.targets.iter().map(|t| (t.name.clone(), t.center_m, t.radius_m)).collect();
+    let (tracked, geom, added) = resolve_targets(ex, &scene_targets)?;
+    let added_targets =
+        added.into_iter().enumerate().map(|(i, (c, r))| Target3 { centre_m: c, radius_m: r, name_idx: scene_targets.len() + i }).collect();
+    Ok(Prepared3d { scene, spec: tracker_spec(ex, tracked), targets: geom, added_targets })
+}
+
 /// Runs `ex` scripted: `trajectory_csv` (or the exercise's own), "placed" declared at
 /// `placed_at_s` (or the exercise's own when `None`).
 pub fn run_exercise(
@@ -188,35 +251,15 @@ pub fn run_exercise(
             message: format!("times must increase ({} after {})", w[1], w[0]),
         });
     }
-    let make_spec = |targets: Vec<TrackedTarget>| TrackerSpec {
-        dims: ex.dim as usize,
-        targets,
-        structures: ex.spare.clone(),
-        limits: ex.limits,
-        weights: ex.weights,
-        redirect_threshold_m: ex.redirect_threshold_m,
-    };
     if ex.dim == 2 {
-        let mut scene: Scene = match &ex.scene {
-            SceneRef::Shipped(n) => needlesim_scene::load_scene(n, limits),
-            SceneRef::File { file, text, base_dir } => {
-                needlesim_scene::parse_scene(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
-            }
-        }
-        .map_err(ExerciseRunError::Scene)?;
-        let scene_targets: Vec<_> =
-            scene.params.targets.iter().map(|t| (t.name.clone(), [t.center_m[0], t.center_m[1], 0.0], t.radius_m)).collect();
-        let (tracked, geom, added) = resolve_targets(ex, &scene_targets)?;
-        for (i, (c, r)) in added.into_iter().enumerate() {
-            scene.params.targets.push(TargetParams { name: format!("exercise-{i}"), center_m: [c[0], c[1]], radius_m: r });
-        }
+        let Prepared2d { scene, spec, targets: geom } = prepare_2d(ex, limits)?;
         let traj = Trajectory::parse_csv(csv).map_err(|e| ExerciseRunError::Trajectory(e.to_string()))?;
         let end_s = traj.span_s().1;
         if let Some(&t) = placed.iter().find(|&&t| t > end_s + 1e-9) {
             return Err(ExerciseRunError::PlacementAfterEnd { t_s: t, end_s });
         }
         let mut f = Feeder {
-            tracker: MetricsTracker::new(make_spec(tracked)),
+            tracker: MetricsTracker::new(spec),
             trace: Trace::new(TRACE_CAPACITY),
             placed_at_s: placed,
             next: 0,
@@ -231,15 +274,7 @@ pub fn run_exercise(
         .map_err(|e| ExerciseRunError::Simulation(format!("{e:#}")))?;
         Ok(finish(ex, scene.name.clone(), scene.params.tick_rate_hz, geom, f))
     } else {
-        let scene: Scene3d = match &ex.scene {
-            SceneRef::Shipped(n) => needlesim_scene::load_scene3d(n, limits),
-            SceneRef::File { file, text, base_dir } => {
-                needlesim_scene::parse_scene3d(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
-            }
-        }
-        .map_err(ExerciseRunError::Scene)?;
-        let scene_targets: Vec<_> = scene.targets.iter().map(|t| (t.name.clone(), t.center_m, t.radius_m)).collect();
-        let (tracked, geom, added) = resolve_targets(ex, &scene_targets)?;
+        let Prepared3d { scene, spec, targets: geom, added_targets } = prepare_3d(ex, limits)?;
         let traj = Trajectory3::parse_csv(csv).map_err(|e| ExerciseRunError::Trajectory(e.to_string()))?;
         let (t0, t1) = traj.span_s();
         if let Some(&t) = placed.iter().find(|&&t| t > t1 + 1e-9) {
@@ -256,13 +291,11 @@ pub fn run_exercise(
         let initial = base_pose3(&traj.samples[0].1).map_err(|e| ExerciseRunError::Trajectory(format!("the first pose: {e}")))?;
         let model = Arc::new(scene.tissue_model().map_err(ExerciseRunError::Scene)?);
         let mut params = sim3_params(&scene, initial);
-        for (i, (c, r)) in added.into_iter().enumerate() {
-            params.targets.push(Target3 { centre_m: c, radius_m: r, name_idx: scene_targets.len() + i });
-        }
+        params.targets.extend(added_targets);
         let mut sim =
             Simulation3::new(model, params).map_err(|e| ExerciseRunError::Simulation(format!("the 3D simulation cannot start: {e}")))?;
         let mut f = Feeder {
-            tracker: MetricsTracker::new(make_spec(tracked)),
+            tracker: MetricsTracker::new(spec),
             trace: Trace::new(TRACE_CAPACITY),
             placed_at_s: placed,
             next: 0,
