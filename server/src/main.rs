@@ -145,6 +145,34 @@ enum Command {
     },
     /// Plan an insertion that reaches a target despite the tissue deformation it causes.
     Plan(PlanArgs),
+    /// Training exercises (needlesim-training): `run` one scripted, `list` the shipped ones.
+    #[command(subcommand)]
+    Exercise(ExerciseCommand),
+}
+
+#[derive(Subcommand)]
+enum ExerciseCommand {
+    /// Run an exercise scripted: metrics, score and the after-action report.
+    Run {
+        /// An exercise TOML file, or a shipped exercise's name (`exercise list`).
+        exercise: String,
+        /// The base trajectory CSV (defaults to the exercise's own).
+        #[arg(long)]
+        trajectory: Option<PathBuf>,
+        /// Times (s) at which "placed" is declared (defaults to the exercise's own).
+        #[arg(long, value_delimiter = ',', value_name = "T1,T2,...")]
+        placed_at: Option<Vec<f64>>,
+        /// Where to write the after-action report (HTML).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Where to write the metrics (JSON).
+        #[arg(long)]
+        json: Option<PathBuf>,
+        #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS)]
+        max_ticks: u64,
+    },
+    /// List the shipped exercises.
+    List,
 }
 
 /// `plan`'s arguments; absent ones take the scene's planning example's values (server/scenes/fig3-plan.toml).
@@ -202,6 +230,18 @@ fn main() -> ExitCode {
             Err(e) => Err(e),
         },
         Some(Command::Plan(args)) => run_plan(&args, &limits),
+        Some(Command::Exercise(ExerciseCommand::Run { exercise, trajectory, placed_at, output, json, max_ticks })) => {
+            needlesim_training::cli::run_command(
+                &exercise,
+                trajectory.as_deref(),
+                placed_at.as_deref(),
+                output.as_deref(),
+                json.as_deref(),
+                max_ticks,
+                &limits,
+            )
+        }
+        Some(Command::Exercise(ExerciseCommand::List)) => needlesim_training::cli::list_command(),
         Some(Command::Summary) => summary(&limits),
         Some(Command::Serve(args)) => run_serve(args, &limits),
         None => run_serve(cli.serve, &limits),

@@ -23,5 +23,6 @@ mod server_e2e;
 mod sim3;
 mod simulate;
 mod simulate3;
+mod training;
 mod validation;
 mod web;

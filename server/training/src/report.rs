@@ -1,0 +1,260 @@
+//! The after-action report: one self-contained HTML file (no external URL, no script) with the
+//! score, the metrics table (each value in a cell with a `data-metric` attribute naming the
+//! metric, for machines), the placements, the structures, and three inline SVG plots drawn with
+//! plotters' SVG backend: axial force against time, axial force against depth, and the tip's
+//! path against the targets (reference centre, tolerance circle, displaced centre at placement)
+//! and the structures to spare (2D: the x–y plane; 3D: the two world axes along which the path,
+//! targets and structures spread most).
+
+use std::fmt::Write as _;
+
+use plotters::prelude::*;
+
+use crate::geometry::Shape;
+use crate::run::ExerciseRun;
+
+/// Escapes text for HTML.
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+type PlotResult = Result<String, String>;
+
+fn bounds(pts: impl Iterator<Item = (f64, f64)>) -> ((f64, f64), (f64, f64)) {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for (x, y) in pts {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        return ((0.0, 1.0), (0.0, 1.0));
+    }
+    let pad = |a: f64, b: f64| {
+        let m = ((b - a) * 0.05).max(1e-9);
+        (a - m, b + m)
+    };
+    (pad(x0, x1), pad(y0, y1))
+}
+
+fn line_plot(title: &str, x_desc: &str, y_desc: &str, pts: &[(f64, f64)], marks: &[(f64, f64)]) -> PlotResult {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (640, 360)).into_drawing_area();
+        let e = |e: &dyn std::fmt::Display| e.to_string();
+        root.fill(&WHITE).map_err(|x| e(&x))?;
+        let ((x0, x1), (y0, y1)) = bounds(pts.iter().copied());
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|x| e(&x))?;
+        chart.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw().map_err(|x| e(&x))?;
+        chart.draw_series(LineSeries::new(pts.iter().copied(), BLUE.stroke_width(2))).map_err(|x| e(&x))?;
+        chart.draw_series(marks.iter().map(|&p| Circle::new(p, 5, RED.filled()))).map_err(|x| e(&x))?;
+        root.present().map_err(|x| e(&x))?;
+    }
+    Ok(svg)
+}
+
+/// The two world axes the drawing spreads most along (x, y in 2D).
+fn view_axes(run: &ExerciseRun) -> (usize, usize) {
+    if run.dim == 2 {
+        return (0, 1);
+    }
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    let mut add = |p: [f64; 3]| {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    };
+    run.trace.iter().filter(|p| p.depth_m > 0.0).for_each(|p| add(p.tip_m));
+    run.targets.iter().for_each(|t| add(t.centre_m));
+    let mut axes = [0usize, 1, 2];
+    axes.sort_by(|&a, &b| (hi[b] - lo[b]).partial_cmp(&(hi[a] - lo[a])).unwrap_or(std::cmp::Ordering::Equal));
+    let (a, b) = (axes[0].min(axes[1]), axes[0].max(axes[1]));
+    (a, b)
+}
+
+fn path_plot(run: &ExerciseRun) -> PlotResult {
+    let (a, b) = view_axes(run);
+    let names = ["x", "y", "z"];
+    let mm = |p: [f64; 3]| (p[a] * 1e3, p[b] * 1e3);
+    let path: Vec<(f64, f64)> = run.trace.iter().filter(|p| p.depth_m > 0.0).map(|p| mm(p.tip_m)).collect();
+    let mut all = path.clone();
+    for t in &run.targets {
+        let (x, y) = mm(t.centre_m);
+        let r = t.tolerance_m.max(t.radius_m) * 1e3;
+        all.extend([(x - r, y - r), (x + r, y + r)]);
+    }
+    for s in &run.structures {
+        match s.shape {
+            Shape::Sphere { centre_m, radius_m } => {
+                let (x, y) = mm(centre_m);
+                let r = radius_m * 1e3;
+                all.extend([(x - r, y - r), (x + r, y + r)]);
+            }
+            Shape::Box { min_m, max_m } => all.extend([mm(min_m), mm(max_m)]),
+        }
+    }
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (640, 520)).into_drawing_area();
+        let e = |e: &dyn std::fmt::Display| e.to_string();
+        root.fill(&WHITE).map_err(|x| e(&x))?;
+        let ((x0, x1), (y0, y1)) = bounds(all.iter().copied());
+        // Equal scales: widen the narrower range.
+        let (w, h) = (x1 - x0, y1 - y0);
+        let aspect = 560.0 / 440.0;
+        let (x0, x1, y0, y1) = if w / h > aspect {
+            let c = 0.5 * (y0 + y1);
+            (x0, x1, c - 0.5 * w / aspect, c + 0.5 * w / aspect)
+        } else {
+            let c = 0.5 * (x0 + x1);
+            (c - 0.5 * h * aspect, c + 0.5 * h * aspect, y0, y1)
+        };
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Needle tip path against targets and structures", ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|x| e(&x))?;
+        chart.configure_mesh().x_desc(format!("{} (mm)", names[a])).y_desc(format!("{} (mm)", names[b])).draw().map_err(|x| e(&x))?;
+        let px_per_mm = 560.0 / (x1 - x0);
+        for s in &run.structures {
+            let style = RGBColor(200, 120, 0).mix(0.35).filled();
+            match s.shape {
+                Shape::Sphere { centre_m, radius_m } => {
+                    chart.draw_series([Circle::new(mm(centre_m), (radius_m * 1e3 * px_per_mm) as i32, style)]).map_err(|x| e(&x))?;
+                }
+                Shape::Box { min_m, max_m } => {
+                    chart.draw_series([Rectangle::new([mm(min_m), mm(max_m)], style)]).map_err(|x| e(&x))?;
+                }
+            }
+        }
+        for t in &run.targets {
+            let c = mm(t.centre_m);
+            chart
+                .draw_series([Circle::new(c, (t.tolerance_m * 1e3 * px_per_mm).max(2.0) as i32, GREEN.stroke_width(1))])
+                .map_err(|x| e(&x))?;
+            chart.draw_series([Circle::new(c, 3, GREEN.filled())]).map_err(|x| e(&x))?;
+        }
+        chart.draw_series(LineSeries::new(path.iter().copied(), BLUE.stroke_width(2))).map_err(|x| e(&x))?;
+        for (_, p) in &run.placements {
+            chart.draw_series([Cross::new(mm(p.centre_m), 5, RED.stroke_width(2))]).map_err(|x| e(&x))?;
+            chart.draw_series([Circle::new(mm(p.tip_m), 4, BLUE.filled())]).map_err(|x| e(&x))?;
+        }
+        root.present().map_err(|x| e(&x))?;
+    }
+    Ok(svg)
+}
+
+fn row(html: &mut String, key: &str, label: &str, value: f64, unit: &str, scale: f64) {
+    let _ = writeln!(
+        html,
+        "<tr><th>{}</th><td data-metric=\"{key}\" data-value=\"{value:e}\">{:.4}</td><td>{unit}</td></tr>",
+        esc(label),
+        value * scale
+    );
+}
+
+/// The report's HTML (module docs). An error only if a plot cannot be drawn.
+pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
+    let m = &run.result.metrics;
+    let s = &run.result.score;
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>After-action report: {}</title>\n<style>\nbody{{font-family:sans-serif;margin:2em;max-width:1400px}}table{{border-collapse:collapse;margin:1em 0}}th,td{{border:1px solid #bbb;padding:3px 8px;text-align:left}}td[data-metric]{{text-align:right}}.plots{{display:flex;flex-wrap:wrap;gap:1em}}.score{{font-size:2em}}\n</style>\n</head>\n<body>\n",
+        esc(&run.exercise)
+    );
+    let _ = writeln!(h, "<h1>After-action report: {}</h1>", esc(&run.exercise));
+    let _ = writeln!(h, "<p>{}</p>", esc(&run.description));
+    let _ = writeln!(h, "<p>Scene <code>{}</code> ({}D), {} ticks at {} Hz.</p>", esc(&run.scene), run.dim, run.ticks, run.tick_rate_hz);
+    let _ =
+        writeln!(h, "<p class=\"score\">Score <span data-metric=\"score\" data-value=\"{:e}\">{:.1}</span> / 100</p>", s.total, s.total);
+    h.push_str("<h2>Metrics</h2>\n<table id=\"metrics\">\n<tr><th>metric</th><th>value</th><th>unit</th></tr>\n");
+    row(&mut h, "time_s", "time", m.time_s, "s", 1.0);
+    row(&mut h, "insertions", "insertions", m.insertions as f64, "", 1.0);
+    row(&mut h, "reinsertions", "reinsertions", m.reinsertions as f64, "", 1.0);
+    row(&mut h, "redirections", "redirections", m.redirections as f64, "", 1.0);
+    row(&mut h, "path_length_m", "path length in tissue", m.path_length_m, "mm", 1e3);
+    row(&mut h, "max_depth_m", "deepest insertion", m.max_depth_m, "mm", 1e3);
+    row(&mut h, "peak_axial_force_n", "peak axial force", m.peak_axial_force_n, "N", 1.0);
+    row(&mut h, "mean_axial_force_n", "mean axial force in tissue", m.mean_axial_force_n, "N", 1.0);
+    for (k, v) in [
+        ("accuracy", s.sub.accuracy),
+        ("efficiency", s.sub.efficiency),
+        ("path", s.sub.path),
+        ("force", s.sub.force),
+        ("safety", s.sub.safety),
+        ("time", s.sub.time),
+    ] {
+        row(&mut h, &format!("sub_{k}"), &format!("sub-score: {k}"), v, "", 1.0);
+    }
+    row(&mut h, "penalty", "penalty (limits exceeded)", s.penalty, "points", 1.0);
+    h.push_str("</table>\n<h2>Targets</h2>\n<table id=\"targets\">\n<tr><th>target</th><th>tolerance (mm)</th><th>placed at (s)</th><th>error (mm)</th><th>on target</th><th>closest approach (mm)</th></tr>\n");
+    for (i, t) in m.targets.iter().enumerate() {
+        let (at, err, on) = match &t.placement {
+            Some(p) => (
+                format!("{:.3}", p.t_s),
+                format!("<td data-metric=\"target_{i}_error_m\" data-value=\"{:e}\">{:.4}</td>", p.error_m, p.error_m * 1e3),
+                if p.on_target { "yes" } else { "no" },
+            ),
+            None => ("—".into(), "<td>not placed</td>".into(), "no"),
+        };
+        let _ = writeln!(
+            h,
+            "<tr><th>{}</th><td>{:.3}</td><td>{at}</td>{err}<td>{on}</td><td>{:.4}</td></tr>",
+            esc(&t.name),
+            t.tolerance_m * 1e3,
+            t.closest_m * 1e3
+        );
+    }
+    h.push_str("</table>\n");
+    if !m.structures.is_empty() {
+        h.push_str("<h2>Structures to spare</h2>\n<table id=\"structures\">\n<tr><th>structure</th><th>min clearance (mm)</th><th>intrusion depth (mm)</th><th>touched</th><th>samples touching</th></tr>\n");
+        for (j, st) in m.structures.iter().enumerate() {
+            let c = st.min_clearance_m.map_or("—".to_owned(), |c| format!("{:.4}", c * 1e3));
+            let _ = writeln!(
+                h,
+                "<tr><th>{}</th><td data-metric=\"structure_{j}_clearance_m\" data-value=\"{:e}\">{c}</td><td data-metric=\"structure_{j}_intrusion_m\" data-value=\"{:e}\">{:.4}</td><td>{}</td><td>{}</td></tr>",
+                esc(&st.name),
+                st.min_clearance_m.unwrap_or(f64::INFINITY),
+                st.intrusion_depth_m,
+                st.intrusion_depth_m * 1e3,
+                if st.touched { "yes" } else { "no" },
+                st.touching_samples
+            );
+        }
+        h.push_str("</table>\n");
+    }
+    if !run.refused_placements.is_empty() {
+        h.push_str("<h2>Refused declarations</h2>\n<ul>\n");
+        for (t, why) in &run.refused_placements {
+            let _ = writeln!(h, "<li>t = {t:.3} s: {}</li>", esc(why));
+        }
+        h.push_str("</ul>\n");
+    }
+    let ft: Vec<(f64, f64)> = run.trace.iter().map(|p| (p.t_s, p.axial_force_n)).collect();
+    let fd: Vec<(f64, f64)> = run.trace.iter().map(|p| (p.depth_m * 1e3, p.axial_force_n)).collect();
+    let place_t: Vec<(f64, f64)> = run.placements.iter().map(|(_, p)| (p.t_s, nearest(&ft, p.t_s))).collect();
+    h.push_str("<h2>Curves</h2>\n<div class=\"plots\">\n");
+    h.push_str(&line_plot("Axial force against time (red: placements)", "t (s)", "axial force (N)", &ft, &place_t)?);
+    h.push('\n');
+    h.push_str(&line_plot("Axial force against depth", "inserted length (mm)", "axial force (N)", &fd, &[])?);
+    h.push('\n');
+    h.push_str(&path_plot(run)?);
+    h.push_str("\n</div>\n<p>Path plot: blue, the tip inside the tissue; green, targets at their reference centres with their tolerance circles; red crosses, the displaced centres at each placement (blue dots, the tip there); orange, structures to spare.</p>\n</body>\n</html>\n");
+    Ok(h)
+}
+
+fn nearest(pts: &[(f64, f64)], t: f64) -> f64 {
+    pts.iter().min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs())).map_or(0.0, |p| p.1)
+}

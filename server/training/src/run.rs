@@ -1,0 +1,368 @@
+//! Scripted exercise runs: an exercise resolved against its scene (targets looked up or added
+//! to the simulation, tolerances defaulted to radii), a base trajectory through the scene's
+//! simulation — 2D through needlesim-offline's `simulate` driver, 3D through the same loop as
+//! `simulate3::run3` (step, then every column ahead of the tip) — each tick's output turned into
+//! a [`Sample`] for the [`MetricsTracker`] and the report's [`Trace`], and "placed" declared at
+//! the first tick at or after each given time.
+
+use std::ops::ControlFlow;
+use std::path::Path;
+use std::sync::Arc;
+
+use needlesim_core::mesh::MeshLimits;
+use needlesim_core::sim::TargetParams;
+use needlesim_core::sim3::{Simulation3, Target3};
+use needlesim_offline::simulate3::{base_pose3, sim3_params};
+use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
+use serde::Serialize;
+
+use crate::exercise::{Exercise, SceneRef, Structure, TargetSource};
+use crate::metrics::{ExerciseResult, MetricsTracker, Placement, Trace, TracePoint, TrackedTarget, TrackerSpec};
+use crate::sample::Sample;
+
+/// How many points the report's curves keep at most ([`Trace`]).
+pub const TRACE_CAPACITY: usize = 4096;
+
+/// Why a scripted exercise run failed; each names what.
+#[derive(Debug, thiserror::Error)]
+pub enum ExerciseRunError {
+    /// The exercise's scene does not load.
+    #[error("scene: {0:#}")]
+    Scene(anyhow::Error),
+    /// An exercise target does not fit the scene (`key` is the exercise's TOML key).
+    #[error("{key}: {message}")]
+    Target { key: String, message: String },
+    /// The trajectory CSV is refused (line and column named).
+    #[error("trajectory: {0}")]
+    Trajectory(String),
+    /// No trajectory: neither given nor shipped with the exercise.
+    #[error("no trajectory: give --trajectory (exercise '{0}' ships none)")]
+    NoTrajectory(String),
+    /// A placement time after the trajectory's end.
+    #[error("placed at t = {t_s} s: after the trajectory's end at t = {end_s} s")]
+    PlacementAfterEnd { t_s: f64, end_s: f64 },
+    /// The simulation failed (too long a run, a failed step: the tick is named).
+    #[error("{0}")]
+    Simulation(String),
+}
+
+/// A target as drawn in the report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TargetGeometry {
+    pub name: String,
+    /// Reference (undeformed) centre, m.
+    pub centre_m: [f64; 3],
+    pub radius_m: f64,
+    pub tolerance_m: f64,
+}
+
+/// A finished scripted run.
+#[derive(Debug, Clone, Serialize)]
+pub struct ExerciseRun {
+    pub exercise: String,
+    pub description: String,
+    pub scene: String,
+    pub dim: u8,
+    pub ticks: u64,
+    pub tick_rate_hz: f64,
+    pub result: ExerciseResult,
+    /// The targets in the tracker's order.
+    pub targets: Vec<TargetGeometry>,
+    #[serde(skip)]
+    pub structures: Vec<Structure>,
+    /// The report's curves (bounded, [`TRACE_CAPACITY`]).
+    #[serde(skip)]
+    pub trace: Vec<TracePoint>,
+    /// The placements in the order declared: (target index, placement).
+    pub placements: Vec<(usize, Placement)>,
+    /// Declarations refused (every target placed already), with the time.
+    pub refused_placements: Vec<(f64, String)>,
+}
+
+/// The resolved targets: the tracker's, the report's, and those the exercise adds to the
+/// simulation (centre, radius).
+type Resolved = (Vec<TrackedTarget>, Vec<TargetGeometry>, Vec<([f64; 3], f64)>);
+
+/// Scene targets as (name, reference centre, radius).
+fn resolve_targets(ex: &Exercise, scene_targets: &[(String, [f64; 3], f64)]) -> Result<Resolved, ExerciseRunError> {
+    let mut tracked = Vec::new();
+    let mut geom = Vec::new();
+    let mut added = Vec::new();
+    if ex.targets.is_empty() {
+        for (i, (name, c, r)) in scene_targets.iter().enumerate() {
+            if *r <= 0.0 {
+                return Err(ExerciseRunError::Target {
+                    key: "targets".into(),
+                    message: format!(
+                        "none given, and the scene's target '{name}' has no radius to take as tolerance: list it with tolerance_m"
+                    ),
+                });
+            }
+            tracked.push(TrackedTarget { name: name.clone(), sample_idx: i, tolerance_m: *r });
+            geom.push(TargetGeometry { name: name.clone(), centre_m: *c, radius_m: *r, tolerance_m: *r });
+        }
+    }
+    for (k, t) in ex.targets.iter().enumerate() {
+        match &t.source {
+            TargetSource::Scene(s) => {
+                let Some(i) = scene_targets.iter().position(|x| &x.0 == s) else {
+                    let names: Vec<&str> = scene_targets.iter().map(|x| x.0.as_str()).collect();
+                    return Err(ExerciseRunError::Target {
+                        key: format!("targets[{k}].scene_target"),
+                        message: format!("'{s}' is not a target of the scene (its targets: {})", names.join(", ")),
+                    });
+                };
+                let (_, c, r) = scene_targets[i];
+                let tol = if t.tolerance_m.is_nan() { r } else { t.tolerance_m };
+                if tol <= 0.0 {
+                    return Err(ExerciseRunError::Target {
+                        key: format!("targets[{k}].tolerance_m"),
+                        message: format!("missing, and the scene's target '{s}' has no radius to take instead"),
+                    });
+                }
+                tracked.push(TrackedTarget { name: t.name.clone(), sample_idx: i, tolerance_m: tol });
+                geom.push(TargetGeometry { name: t.name.clone(), centre_m: c, radius_m: r, tolerance_m: tol });
+            }
+            TargetSource::New { center_m, radius_m } => {
+                let idx = scene_targets.len() + added.len();
+                if idx >= crate::sample::MAX_SAMPLE_TARGETS {
+                    return Err(ExerciseRunError::Target {
+                        key: format!("targets[{k}]"),
+                        message: format!(
+                            "the scene has {} targets: at most {} in all",
+                            scene_targets.len(),
+                            crate::sample::MAX_SAMPLE_TARGETS
+                        ),
+                    });
+                }
+                added.push((*center_m, *radius_m));
+                tracked.push(TrackedTarget { name: t.name.clone(), sample_idx: idx, tolerance_m: t.tolerance_m });
+                geom.push(TargetGeometry { name: t.name.clone(), centre_m: *center_m, radius_m: *radius_m, tolerance_m: t.tolerance_m });
+            }
+        }
+    }
+    Ok((tracked, geom, added))
+}
+
+/// Feeds samples to the tracker and trace and declares placements on schedule.
+struct Feeder<'a> {
+    tracker: MetricsTracker,
+    trace: Trace,
+    placed_at_s: &'a [f64],
+    next: usize,
+    placements: Vec<(usize, Placement)>,
+    refused: Vec<(f64, String)>,
+    ticks: u64,
+}
+
+impl Feeder<'_> {
+    fn push(&mut self, s: &Sample) {
+        self.tracker.push(s);
+        self.trace.push(s, self.tracker.depth_m());
+        self.ticks += 1;
+        // A placement time on a tick's time counts at that tick (times printed to 1 µs).
+        while self.next < self.placed_at_s.len() && self.placed_at_s[self.next] <= s.t_s + 1e-9 {
+            match self.tracker.place() {
+                Ok(p) => self.placements.push(p),
+                Err(e) => self.refused.push((s.t_s, e.to_string())),
+            }
+            self.next += 1;
+        }
+    }
+}
+
+fn tracker_spec(ex: &Exercise, targets: Vec<TrackedTarget>) -> TrackerSpec {
+    TrackerSpec {
+        dims: ex.dim as usize,
+        targets,
+        structures: ex.spare.clone(),
+        limits: ex.limits,
+        weights: ex.weights,
+        redirect_threshold_m: ex.redirect_threshold_m,
+    }
+}
+
+/// A 2D exercise ready to simulate: its scene with the exercise's added targets appended to
+/// `scene.params.targets`, the tracker's spec (sample target indices into those), and the
+/// targets' geometry for the report. What a live session created from an exercise starts from.
+pub struct Prepared2d {
+    pub scene: Scene,
+    pub spec: TrackerSpec,
+    pub targets: Vec<TargetGeometry>,
+}
+
+/// Loads a 2D exercise's scene and resolves its targets ([`Prepared2d`]).
+pub fn prepare_2d(ex: &Exercise, limits: &MeshLimits) -> Result<Prepared2d, ExerciseRunError> {
+    let mut scene: Scene = match &ex.scene {
+        SceneRef::Shipped(n) => needlesim_scene::load_scene(n, limits),
+        SceneRef::File { file, text, base_dir } => {
+            needlesim_scene::parse_scene(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
+        }
+    }
+    .map_err(ExerciseRunError::Scene)?;
+    let scene_targets: Vec<_> =
+        scene.params.targets.iter().map(|t| (t.name.clone(), [t.center_m[0], t.center_m[1], 0.0], t.radius_m)).collect();
+    let (tracked, geom, added) = resolve_targets(ex, &scene_targets)?;
+    for (i, (c, r)) in added.into_iter().enumerate() {
+        scene.params.targets.push(TargetParams { name: format!("exercise-{i}"), center_m: [c[0], c[1]], radius_m: r });
+    }
+    Ok(Prepared2d { scene, spec: tracker_spec(ex, tracked), targets: geom })
+}
+
+/// A 3D exercise ready to simulate: its scene, the tracker's spec, the targets' geometry, and
+/// the targets the exercise adds, to append to `Sim3Params::targets` after the scene's.
+pub struct Prepared3d {
+    pub scene: Scene3d,
+    pub spec: TrackerSpec,
+    pub targets: Vec<TargetGeometry>,
+    pub added_targets: Vec<Target3>,
+}
+
+/// Loads a 3D exercise's scene and resolves its targets ([`Prepared3d`]).
+pub fn prepare_3d(ex: &Exercise, limits: &MeshLimits) -> Result<Prepared3d, ExerciseRunError> {
+    let scene: Scene3d = match &ex.scene {
+        SceneRef::Shipped(n) => needlesim_scene::load_scene3d(n, limits),
+        SceneRef::File { file, text, base_dir } => {
+            needlesim_scene::parse_scene3d(text, base_dir, limits).map_err(|e| e.context(format!("scene {file}")))
+        }
+    }
+    .map_err(ExerciseRunError::Scene)?;
+    let scene_targets: Vec<_> = scene.targets.iter().map(|t| (t.name.clone(), t.center_m, t.radius_m)).collect();
+    let (tracked, geom, added) = resolve_targets(ex, &scene_targets)?;
+    let added_targets =
+        added.into_iter().enumerate().map(|(i, (c, r))| Target3 { centre_m: c, radius_m: r, name_idx: scene_targets.len() + i }).collect();
+    Ok(Prepared3d { scene, spec: tracker_spec(ex, tracked), targets: geom, added_targets })
+}
+
+/// Runs `ex` scripted: `trajectory_csv` (or the exercise's own), "placed" declared at
+/// `placed_at_s` (or the exercise's own when `None`).
+pub fn run_exercise(
+    ex: &Exercise,
+    trajectory_csv: Option<&str>,
+    placed_at_s: Option<&[f64]>,
+    max_ticks: u64,
+    limits: &MeshLimits,
+) -> Result<ExerciseRun, ExerciseRunError> {
+    let csv = trajectory_csv.or(ex.trajectory_csv.as_deref()).ok_or_else(|| ExerciseRunError::NoTrajectory(ex.name.clone()))?;
+    let placed = placed_at_s.unwrap_or(&ex.placed_at_s);
+    if let Some(w) = placed.windows(2).find(|w| w[1] < w[0]) {
+        return Err(ExerciseRunError::Target {
+            key: "placed-at".into(),
+            message: format!("times must increase ({} after {})", w[1], w[0]),
+        });
+    }
+    if ex.dim == 2 {
+        let Prepared2d { scene, spec, targets: geom } = prepare_2d(ex, limits)?;
+        let traj = Trajectory::parse_csv(csv).map_err(|e| ExerciseRunError::Trajectory(e.to_string()))?;
+        let end_s = traj.span_s().1;
+        if let Some(&t) = placed.iter().find(|&&t| t > end_s + 1e-9) {
+            return Err(ExerciseRunError::PlacementAfterEnd { t_s: t, end_s });
+        }
+        let mut f = Feeder {
+            tracker: MetricsTracker::new(spec),
+            trace: Trace::new(TRACE_CAPACITY),
+            placed_at_s: placed,
+            next: 0,
+            placements: vec![],
+            refused: vec![],
+            ticks: 0,
+        };
+        needlesim_offline::simulate::run_observed(&scene, &traj, max_ticks, None, |tick, out| {
+            f.push(&Sample::from_2d(out, tick.t_s));
+            ControlFlow::Continue(())
+        })
+        .map_err(|e| ExerciseRunError::Simulation(format!("{e:#}")))?;
+        Ok(finish(ex, scene.name.clone(), scene.params.tick_rate_hz, geom, f))
+    } else {
+        let Prepared3d { scene, spec, targets: geom, added_targets } = prepare_3d(ex, limits)?;
+        let traj = Trajectory3::parse_csv(csv).map_err(|e| ExerciseRunError::Trajectory(e.to_string()))?;
+        let (t0, t1) = traj.span_s();
+        if let Some(&t) = placed.iter().find(|&&t| t > t1 + 1e-9) {
+            return Err(ExerciseRunError::PlacementAfterEnd { t_s: t, end_s: t1 });
+        }
+        let rate = scene.tick_rate_hz;
+        let last_k = ((t1 - t0) * rate).round() as u64;
+        if last_k > max_ticks {
+            return Err(ExerciseRunError::Simulation(format!(
+                "the trajectory lasts {} ticks at {rate} Hz, over the limit of {max_ticks} ticks (--max-ticks)",
+                last_k + 1
+            )));
+        }
+        let initial = base_pose3(&traj.samples[0].1).map_err(|e| ExerciseRunError::Trajectory(format!("the first pose: {e}")))?;
+        let model = Arc::new(scene.tissue_model().map_err(ExerciseRunError::Scene)?);
+        let mut params = sim3_params(&scene, initial);
+        params.targets.extend(added_targets);
+        let mut sim =
+            Simulation3::new(model, params).map_err(|e| ExerciseRunError::Simulation(format!("the 3D simulation cannot start: {e}")))?;
+        let mut f = Feeder {
+            tracker: MetricsTracker::new(spec),
+            trace: Trace::new(TRACE_CAPACITY),
+            placed_at_s: placed,
+            next: 0,
+            placements: vec![],
+            refused: vec![],
+            ticks: 0,
+        };
+        for k in 0..=last_k {
+            let t_s = t0 + k as f64 / rate;
+            let fail = |e: &dyn std::fmt::Display| ExerciseRunError::Simulation(format!("tick {k} (t = {t_s} s): {e}"));
+            let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| fail(&e))?;
+            sim.step(pose).map_err(|e| fail(&e))?;
+            sim.prefetch_columns(usize::MAX).map_err(|e| fail(&e))?;
+            f.push(&Sample::from_3d(sim.output(), t_s));
+        }
+        Ok(finish(ex, scene.name.clone(), rate, geom, f))
+    }
+}
+
+fn finish(ex: &Exercise, scene: String, rate: f64, targets: Vec<crate::run::TargetGeometry>, f: Feeder<'_>) -> ExerciseRun {
+    ExerciseRun {
+        exercise: ex.name.clone(),
+        description: ex.description.clone(),
+        scene,
+        dim: ex.dim,
+        ticks: f.ticks,
+        tick_rate_hz: rate,
+        trace: f.trace.points(),
+        result: f.tracker.finish(),
+        targets,
+        structures: ex.spare.clone(),
+        placements: f.placements,
+        refused_placements: f.refused,
+    }
+}
+
+/// Reads a trajectory file for [`run_exercise`] (a helper for the command line).
+pub fn read_trajectory(path: &Path) -> Result<String, ExerciseRunError> {
+    std::fs::read_to_string(path).map_err(|e| ExerciseRunError::Trajectory(format!("cannot read {}: {e}", path.display())))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exercise::parse_exercise;
+
+    #[test]
+    fn a_target_the_exercise_adds_moves_like_the_scene_target_at_the_same_place() {
+        let text = "name = \"t\"\nscene = \"fig3-target\"\n[[targets]]\nscene_target = \"biopsy\"\ntolerance_m = 0.002\n\
+                    [[targets]]\nname = \"copy\"\ncenter_m = [0.05830222215594891, 0.027860619515673035]\nradius_m = 0.0015\ntolerance_m = 0.002\n";
+        let ex = parse_exercise(text, Path::new(".")).unwrap();
+        let csv = include_str!("../../scenes/exercises/biopsy-2d.csv");
+        let run = run_exercise(&ex, Some(csv), Some(&[6.0, 6.0]), 100_000, &MeshLimits::default()).unwrap();
+        assert_eq!(run.placements.len(), 2);
+        let (a, b) = (run.placements[0].1, run.placements[1].1);
+        assert_eq!(a.t_s, b.t_s);
+        assert!((a.error_m - b.error_m).abs() < 1e-12, "{} vs {}", a.error_m, b.error_m);
+        // Both moved with the tissue: the error is not the distance to the undeformed centre.
+        let rigid = crate::sample::dist3(a.tip_m, [0.05830222215594891, 0.027860619515673035, 0.0]);
+        assert!((a.error_m - rigid).abs() > 1e-3, "error {} vs rigid {rigid}", a.error_m);
+    }
+
+    #[test]
+    fn scene_target_names_and_missing_tolerances_are_checked_against_the_scene() {
+        let csv = include_str!("../../scenes/exercises/biopsy-2d.csv");
+        let ex = parse_exercise("name = \"t\"\nscene = \"fig3-target\"\n[[targets]]\nscene_target = \"nope\"\n", Path::new(".")).unwrap();
+        let e = run_exercise(&ex, Some(csv), Some(&[]), 100_000, &MeshLimits::default()).unwrap_err().to_string();
+        assert_eq!(e, "targets[0].scene_target: 'nope' is not a target of the scene (its targets: biopsy)");
+    }
+}
