@@ -255,8 +255,12 @@ pub(crate) struct FanOut {
 pub(crate) enum FieldMaker {
     /// 2D: every node's, from the contacts' columns the column worker keeps for rendering.
     Two { render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>, n_dofs: usize },
-    /// 3D: the boundary surface's nodes' ([`crate::surface`]).
+    /// 3D: the boundary surface's nodes' ([`crate::surface`]); computed on a thread of its own
+    /// (its column solves take milliseconds: they must not hold up the records), which the
+    /// fan-out starts and hands the latest record (a full hand-over is skipped).
     Three(crate::surface::SurfaceField3),
+    /// The running 3D field thread's inbox.
+    ThreeThread(std::sync::mpsc::SyncSender<Arc<TickRecord>>),
 }
 
 /// How often the fan-out computes the displacement field while someone wants it.
@@ -264,6 +268,23 @@ const FIELD_PERIOD: Duration = Duration::from_millis(8);
 
 impl FanOut {
     pub(crate) fn run(mut self) {
+        if let FieldMaker::Three(_) = &self.field_maker {
+            let (tx, rx) = std::sync::mpsc::sync_channel::<Arc<TickRecord>>(1);
+            let FieldMaker::Three(mut maker) = std::mem::replace(&mut self.field_maker, FieldMaker::ThreeThread(tx)) else {
+                unreachable!()
+            };
+            let field_tx = self.field_tx.clone();
+            let spawned = std::thread::Builder::new().name(format!("field-{}", self.session_id)).spawn(move || {
+                // Ends when the fan-out drops its sender.
+                while let Ok(rec) = rx.recv() {
+                    let field = Field { tick: rec.tick, displacement_m: maker.field(&rec.d3) };
+                    field_tx.send_replace(Arc::new(field));
+                }
+            });
+            if let Err(e) = spawned {
+                tracing::error!(session = %self.session_id, "cannot start the surface field thread: {e}; no surface displacements");
+            }
+        }
         let mut last_field = Instant::now() - FIELD_PERIOD;
         let mut field_tick = None;
         let mut latest: Option<Arc<TickRecord>> = None;
@@ -297,11 +318,17 @@ impl FanOut {
                 {
                     last_field = Instant::now();
                     field_tick = Some(rec.tick);
-                    let field = match &mut self.field_maker {
-                        FieldMaker::Two { render_columns, n_dofs } => field_for(rec, render_columns, *n_dofs),
-                        FieldMaker::Three(f) => Field { tick: rec.tick, displacement_m: f.field(&rec.d3) },
-                    };
-                    self.field_tx.send_replace(Arc::new(field));
+                    match &mut self.field_maker {
+                        FieldMaker::Two { render_columns, n_dofs } => {
+                            let field = field_for(rec, render_columns, *n_dofs);
+                            self.field_tx.send_replace(Arc::new(field));
+                        }
+                        FieldMaker::ThreeThread(tx) => {
+                            // Busy: this record is skipped, the thread takes a later one.
+                            let _ = tx.try_send(rec.clone());
+                        }
+                        FieldMaker::Three(_) => {}
+                    }
                 }
             }
             if !any
