@@ -76,6 +76,9 @@ pub struct WrongDimension {
     pub session: u8,
 }
 
+/// Starts a session's compliance worker thread (given its doorbell and the stop flag).
+type SpawnWorker = Box<dyn FnOnce(Arc<Doorbell>, Arc<AtomicBool>) -> std::io::Result<JoinHandle<()>> + Send>;
+
 /// What [`Session::launch`] needs besides the simulation.
 struct Launch {
     id: String,
@@ -86,7 +89,7 @@ struct Launch {
     has_bevel: bool,
     device: Option<needlesim_channel::shm::ServerEnd>,
     /// Starts the compliance worker (its bell, the stop flag).
-    worker: Box<dyn FnOnce(Arc<Doorbell>, Arc<AtomicBool>) -> std::io::Result<JoinHandle<()>> + Send>,
+    worker: SpawnWorker,
     field_maker: FieldMaker,
 }
 

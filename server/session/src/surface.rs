@@ -142,6 +142,6 @@ impl SurfaceField3 {
                 }
             }
         }
-        Some(out.into())
+        Some(out)
     }
 }
