@@ -480,7 +480,7 @@ pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Res
 
 /// The scene of a new session: 2D or 3D.
 pub enum SessionScene {
-    Two(Scene),
+    Two(Box<Scene>),
     Three(Box<Scene3d>),
 }
 
@@ -496,7 +496,7 @@ pub fn session_scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits
             Ok(SessionScene::Three(Box::new(scene)))
         }
         Some(pb::scene_source::Source::Uploaded3d(u)) => uploaded_scene3d(u, limits).map(|s| SessionScene::Three(Box::new(s))),
-        _ => scene_from_pb(src, limits).map(SessionScene::Two),
+        _ => scene_from_pb(src, limits).map(|s| SessionScene::Two(Box::new(s))),
     }
 }
 
