@@ -719,6 +719,8 @@ mod tests {
             stiffness: (0..9).map(|i| -10.0 * f64::from(i) - t).collect(),
             faulted: false,
             fault: String::new(),
+            d3: None,
+            surface_displacement_m: vec![],
         }
     }
 

@@ -20,6 +20,7 @@ mod python_client;
 mod python_package;
 mod scenes3d;
 mod server_e2e;
+mod session3d;
 mod sim3;
 mod simulate;
 mod simulate3;

@@ -281,3 +281,18 @@ pub async fn create_example_session(ch: &tonic::transport::Channel, example: &st
     .expect("create a session")
     .into_inner()
 }
+
+/// The current frame of a session: the first frame of a fresh 60 Hz observer stream (5 s at most).
+pub async fn latest_frame(ch: &tonic::transport::Channel, session_id: &str, observer_token: &str) -> needlesim_proto::v1::Frame {
+    use needlesim_proto::v1 as pb;
+    use tokio_stream::StreamExt;
+    let mut c = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+    let req =
+        with_token(pb::ObserveRequest { session_id: session_id.to_owned(), rate_hz: 60.0, include_displacements: false }, observer_token);
+    let mut stream = c.observe(req).await.expect("Observe").into_inner();
+    tokio::time::timeout(std::time::Duration::from_secs(5), stream.next())
+        .await
+        .expect("a frame within 5 s")
+        .expect("the stream yields a frame")
+        .expect("the frame is not an error")
+}
