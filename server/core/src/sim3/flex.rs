@@ -21,10 +21,15 @@
 //! working set (Gaussian elimination, $O(|N|^3)$; the 2D coupling's low-rank updates after pivots
 //! are not carried over yet). A stiff rod ($G \to 0$) gives $v = g$: the rigid needle.
 //!
-//! **Bevel.** The tip's point carries a prescribed lateral force along its frame's $n$ —
-//! the tip link's $n$, which turns with the base's roll (the rod is torsionally rigid) —
-//! $f_n = -s_b\,\beta\,\max(f_t, 0)$ on the tissue (the needle is pushed towards $s_b n$), updated
-//! from the tip's axial force within the active-set iteration; $u_b$ stays prescribed.
+//! **Bevel.** While the tip cuts (it advanced along its tangent this tick inside the tissue) the
+//! tissue pushes it sideways with $P = s_b\,\beta\,f_c$ along the tip link's $n$ — which turns
+//! with the base's roll, the rod being torsionally rigid — $f_c$ the cutting force of the region
+//! the tip is in (the axial force the tip cuts with) and $\beta$ the bevel force ratio. It is a
+//! follower load at the tip of the rod in the shape's equilibrium and in $G$'s geometric
+//! stiffness; the held points carry its reaction. (Not through the tip's material point: in 3D
+//! a point is carried by the tip only for the few ticks until it is cut, every
+//! tetrahedron diameter — 3 % of the ticks on the 21³ cube — so a force there would act
+//! intermittently.) A change of $P$ enters at the next shape pass.
 //!
 //! **Shape.** After the active set the rod is brought to equilibrium with the working forces
 //! (follower loads at the points' current arc lengths); when that moves a displacement-held point
@@ -53,6 +58,10 @@ pub(super) struct Flex3 {
     pub rod: Rod3,
     pub bevel_ratio: f64,
     pub bevel_side: f64,
+    /// The bevel's lateral force on the tip this tick, N along the tip link's $n$.
+    pub tip_load_n: f64,
+    /// The bevel force the reference shape is in equilibrium with.
+    tip_load_ref_n: f64,
     cap: usize,
     /// $G$ over the lateral DOFs $2i + c$ (row-major, stride $2\,$cap) and what it was computed for.
     g: Vec<f64>,
@@ -77,15 +86,17 @@ impl Flex3 {
     pub fn new(f: &FlexibleNeedle, base_m: V3, frame: Frame3, cap: usize) -> Self {
         let n2 = 2 * cap;
         Self {
-            rod: Rod3::new(f, base_m, frame, cap),
+            rod: Rod3::new(f, base_m, frame, cap + 1),
             bevel_ratio: f.bevel_force_ratio,
             bevel_side: f.bevel_side,
+            tip_load_n: 0.0,
+            tip_load_ref_n: 0.0,
             cap,
             g: vec![0.0; n2 * n2],
             g_for: None,
             shape_version: 0,
             points: Vec::with_capacity(cap),
-            loads: Vec::with_capacity(cap),
+            loads: Vec::with_capacity(cap + 1),
             n_dofs: Vec::with_capacity(n2),
             k_dofs: Vec::with_capacity(n2),
             m: vec![0.0; n2 * n2],
@@ -156,22 +167,6 @@ impl Flex3 {
         }
     }
 
-    /// The bevel tip's lateral force from its axial force; returns the largest change (N).
-    pub fn update_bevel(&self, solver: &mut MixedSolver3, pts: &[Point]) -> f64 {
-        if self.bevel_ratio == 0.0 {
-            return 0.0;
-        }
-        let mut change: f64 = 0.0;
-        for slot in Slot::all(pts.len()) {
-            if pts[slot.index()].state == PointState3::Tip && solver.condition(slot, Axis::Lateral) == Condition::Force {
-                let v = -self.bevel_side * self.bevel_ratio * solver.force_local(slot)[Axis::Axial.index()].max(0.0);
-                change = change.max((v - solver.prescribed_value(slot, Axis::Lateral)).abs());
-                solver.set_value(slot, Axis::Lateral, v);
-            }
-        }
-        change
-    }
-
     /// Recomputes $G$ when the slots, frames, shape or tick changed.
     fn ensure_g(&mut self, solver: &MixedSolver3, pts: &[Point], tick: u64) {
         let st = solver.stats();
@@ -194,6 +189,9 @@ impl Flex3 {
                 -(fr[0] * f[0][2] + fr[1] * f[1][2] + fr[2] * f[2][2]),
             ];
             self.loads.push((s, self.rod.to_link_frame(s, w)));
+        }
+        if self.tip_load_ref_n != 0.0 {
+            self.loads.push((self.rod.length_m(), [0.0, self.tip_load_ref_n, 0.0]));
         }
         let stride = 2 * self.cap;
         self.rod.tangent_compliance_into(&self.points, &self.loads, &mut self.g, stride);
@@ -273,6 +271,10 @@ impl Flex3 {
             let fw = solver.force_world(slot);
             self.loads.push((s, self.rod.to_link_frame(s, [-fw[0], -fw[1], -fw[2]])));
         }
+        if self.tip_load_n != 0.0 {
+            self.loads.push((len, [0.0, self.tip_load_n, 0.0]));
+        }
+        self.tip_load_ref_n = self.tip_load_n;
         let loads = std::mem::take(&mut self.loads);
         if !self.rod.update_shape(loads.iter().copied(), true) {
             self.shape_unconverged += 1;

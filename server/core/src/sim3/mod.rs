@@ -733,6 +733,13 @@ impl Simulation3 {
             }
         };
         self.capture(prev_tip, &axis_pose, &axis_frame)?;
+        // The bevel cuts sideways while the tip advances inside the tissue ([`flex`]).
+        if let Some(fx) = self.flex.as_mut() {
+            let advance = dot(axis_frame[0], sub(fx.rod.tip_m(), prev_tip));
+            let inside = !self.pts.is_empty();
+            let cut = self.params.regions[self.last_tip_region.unwrap_or(0)].cutting_force_n;
+            fx.tip_load_n = if inside && advance > 1e-9 { fx.bevel_side * fx.bevel_ratio * cut } else { 0.0 };
+        }
         // 5, 6. Friction and active set.
         self.update_friction(&frame, false, 0.0);
         let (mut iterations, mut converged) = self.resolve_active_set(&frame)?;
@@ -983,11 +990,9 @@ impl Simulation3 {
         let entering = self.pts.is_empty() || self.last_tip_region != Some(region);
         let rp: RegionNeedleParams = self.params.regions[region];
         let slot = self.solver.add_contact_in_frame(&self.cache, contact, *frame)?;
-        let bevel = self.flex.as_ref().is_some_and(|f| f.bevel_ratio > 0.0);
-        let lateral = if bevel { (Condition::Force, 0.0) } else { (Condition::Displacement, -dot(frame[1], d)) };
         let r = self
             .solver
-            .set_condition(slot, Axis::Lateral, lateral.0, lateral.1)
+            .set_condition(slot, Axis::Lateral, Condition::Displacement, -dot(frame[1], d))
             .and_then(|()| self.solver.set_condition(slot, Axis::Binormal, Condition::Displacement, -dot(frame[2], d)))
             .and_then(|()| self.solver.set_condition(slot, Axis::Axial, Condition::Displacement, len - dot(t, d)));
         match r {
@@ -1082,11 +1087,7 @@ impl Simulation3 {
             let total: f64 = self.pts.iter().map(|p| p.friction_n).sum();
             let tol = FRICTION_TOL * total.max(1e-12);
             for _ in 0..FRICTION_SWEEPS {
-                let mut change = self.update_friction(frame, true, tol);
-                if let Some(fx) = &self.flex {
-                    change = change.max(fx.update_bevel(&mut self.solver, &self.pts));
-                }
-                if change <= tol {
+                if self.update_friction(frame, true, tol) <= tol {
                     break;
                 }
                 self.solve_working();
@@ -1120,11 +1121,6 @@ impl Simulation3 {
                 match change {
                     Change::Puncture => {
                         let u_t = self.solver.displacement_local(slot)[Axis::Axial];
-                        if self.solver.condition(slot, Axis::Lateral) == Condition::Force {
-                            // A bevel tip's point leaves the tip: back on the shaft, held where it is.
-                            let u_n = self.solver.displacement_local(slot)[Axis::Lateral];
-                            self.solver.set_condition(slot, Axis::Lateral, Condition::Displacement, u_n)?;
-                        }
                         let p = &mut self.pts[slot.index()];
                         p.state = PointState3::Slipping;
                         p.slip_sign = 1.0;
