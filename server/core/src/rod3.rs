@@ -155,6 +155,29 @@ fn joint_omegas(prev: &Frame3, alpha: f64, beta: f64) -> [V3; 2] {
     [to_world(prev, jl([0.0, 1.0, 0.0])), to_world(prev, jl([0.0, 0.0, 1.0]))]
 }
 
+/// The roll $\varphi$ of frame `new` about its axis relative to `old` swung onto that axis by
+/// the smallest rotation: $n_{new} = \cos\varphi\,n_{sw} + \sin\varphi\,b_{sw}$. Exactly 0 when the
+/// frames are equal.
+fn roll_between(old: &Frame3, new: &Frame3) -> f64 {
+    if old == new {
+        return 0.0;
+    }
+    let (a, b) = (old[0], new[0]);
+    let c = dot(a, b);
+    if c <= -1.0 + 1e-12 {
+        // The axis reversed: no unique swing; treat as a pure swing.
+        return 0.0;
+    }
+    let k = cross(a, b);
+    let swing = |v: V3| {
+        let kv = cross(k, v);
+        let kkv = dot(k, v) / (1.0 + c);
+        [v[0] * c + kv[0] + kkv * k[0], v[1] * c + kv[1] + kkv * k[1], v[2] * c + kv[2] + kkv * k[2]]
+    };
+    let (n_sw, b_sw) = (swing(old[1]), swing(old[2]));
+    dot(new[1], b_sw).atan2(dot(new[1], n_sw))
+}
+
 /// One load on the rod during an update.
 #[derive(Debug, Clone, Copy)]
 struct Load {
@@ -299,8 +322,22 @@ impl Rod3 {
         }
     }
 
-    /// Moves the clamp; the shape moves with it rigidly (the bending angles stay).
+    /// Moves the clamp. The new base frame is the old one swung (the smallest rotation taking
+    /// the old axis to the new) and then rolled about the new axis by $\varphi$: the swing moves
+    /// the shape with the clamp rigidly; the roll turns the shaft about its own centreline —
+    /// torsionally rigid, every frame rolls by $\varphi$ about its tangent and the centreline
+    /// stays where the swing put it — so the bending angles turn by $-\varphi$ in their
+    /// $(n, b)$ plane ($\alpha' = \alpha\cos\varphi + \beta\sin\varphi$,
+    /// $\beta' = -\alpha\sin\varphi + \beta\cos\varphi$; the transport of a Bishop frame commutes
+    /// with a constant roll).
     pub fn set_base(&mut self, base_m: V3, base_frame: Frame3) {
+        let roll = roll_between(&self.base_frame, &base_frame);
+        if roll != 0.0 {
+            let (sn, cs) = roll.sin_cos();
+            for b in self.bend.iter_mut() {
+                *b = [b[0] * cs + b[1] * sn, -b[0] * sn + b[1] * cs];
+            }
+        }
         self.base_m = base_m;
         self.base_frame = base_frame;
         self.rebuild();
@@ -807,18 +844,38 @@ mod tests {
         assert!((g0[last] - g[last]).abs() > 0.05 * g[last].abs(), "unloaded {} loaded {}", g0[last], g[last]);
     }
 
+    /// Swinging the base (turning its axis) moves the bent shape with it rigidly; rolling it
+    /// about its own axis leaves the centreline where it is and rolls every frame about its
+    /// tangent by the same angle.
     #[test]
-    fn moving_the_base_moves_the_shape_rigidly() {
+    fn a_swing_moves_the_shape_rigidly_and_a_roll_turns_the_shaft_in_place() {
         let mut r = Rod3::new(&needle(0.03, 40), [0.0; 3], oblique_frame(), 8);
         r.update_shape([(0.1, [0.0, 0.5, 0.2])].into_iter(), true);
-        let before = r.tip_m();
         let (b0, f0) = r.base();
-        // Turn the base by 90° about its own t: the tip turns about the axis through the base.
+        let pts0 = r.points_m().to_vec();
+        let frames0 = r.link_frames().to_vec();
+        // A roll by 90° about t: n -> b, b -> -n.
         let f1 = [f0[0], f0[2], scale(-1.0, f0[1])];
         r.set_base(b0, f1);
-        let after = r.tip_m();
-        let lb = to_local(&f0, before);
-        let la = to_local(&f1, after);
+        for (k, (p, q)) in r.points_m().iter().zip(&pts0).enumerate() {
+            assert!(dot(sub(*p, *q), sub(*p, *q)).sqrt() < 1e-15, "joint {k} moved");
+        }
+        for (f, g) in r.link_frames().iter().zip(&frames0) {
+            // Rolled by 90° about the (unchanged) tangent: n' = b, b' = -n.
+            for c in 0..3 {
+                assert!((f[0][c] - g[0][c]).abs() < 1e-14 && (f[1][c] - g[2][c]).abs() < 1e-14 && (f[2][c] + g[1][c]).abs() < 1e-14);
+            }
+        }
+        // A swing: the base axis turned by 0.3 rad about n; the shape turns with it.
+        let q = UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(Vector3::new(f1[1][0], f1[1][1], f1[1][2])), 0.3);
+        let rot = |v: V3| {
+            let w = q * Vector3::new(v[0], v[1], v[2]);
+            [w.x, w.y, w.z]
+        };
+        let f2 = [rot(f1[0]), rot(f1[1]), rot(f1[2])];
+        let before = r.tip_m();
+        r.set_base(b0, f2);
+        let (lb, la) = (to_local(&f1, before), to_local(&f2, r.tip_m()));
         for c in 0..3 {
             assert!((la[c] - lb[c]).abs() < 1e-15, "{la:?} {lb:?}");
         }
