@@ -33,6 +33,7 @@ pub mod mesh;
 pub mod mixed;
 pub mod msh;
 pub mod needle;
+pub mod rod3;
 pub mod sim;
 pub mod sim3;
 pub mod spatial;

@@ -110,6 +110,9 @@ pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
     p.regions = scene.regions.iter().map(|r| r.needle).collect();
     p.tick_rate_hz = scene.tick_rate_hz;
     p.max_contacts = scene.needle.max_points;
+    if let Some(f) = scene.needle.flexible {
+        p.needle = needlesim_core::sim3::NeedleShape3::Flexible(f);
+    }
     p.targets =
         scene.targets.iter().enumerate().map(|(k, t)| Target3 { centre_m: t.center_m, radius_m: t.radius_m, name_idx: k }).collect();
     p

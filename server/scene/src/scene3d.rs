@@ -12,10 +12,14 @@
 //!   first claim the tetrahedra whose centroid lies in their `sphere` or `cuboid`), or
 //!   `type = "msh"` with `file` (Gmsh MSH 2.2/4.1 with tetrahedra, relative to the scene file:
 //!   physical volumes are the regions, matched by name, physical surfaces the boundary sets);
-//! * `[needle]` is rigid: `length_m`, `gauge` or `diameter_m`, `contact_spacing_m`, `max_points`,
+//! * `[needle]`: `length_m`, `gauge` or `diameter_m`, `contact_spacing_m`, `max_points`,
 //!   the base position `base_m = [x, y, z]` and its orientation, either `base_quat = [w, x, y, z]`
 //!   (canonical; unit norm) or `base_axis = [x, y, z]` (unit shaft direction, base to tip) with
-//!   `base_roll_rad` about it (conventions: [`needlesim_trajectory::pose3`]);
+//!   `base_roll_rad` about it (conventions: [`needlesim_trajectory::pose3`]); rigid by default,
+//!   `model = "flexible"` makes it an elastic rod ([`needlesim_core::rod3`]) with `gauge` (its
+//!   stainless steel EI) or `flexural_rigidity_nm2`, `n_links` (default: 2 mm links, 16..=400),
+//!   and a bevel tip with `bevel_force_ratio` (default 0: symmetric) and `bevel_side` (±1,
+//!   default +1: towards the base frame's $n$);
 //! * `[[targets]]` are spheres: `center_m = [x, y, z]`, `radius_m`;
 //! * `trajectory = "file.csv"` (optional, relative to the scene file): a
 //!   `t_s,x_m,y_m,z_m,qw,qx,qy,qz` base trajectory ([`Trajectory3`]).
@@ -157,6 +161,26 @@ pub struct Needle3dSpec {
     pub base_axis: Option<[f64; 3]>,
     /// … and the roll about it, rad (default 0).
     pub base_roll_rad: Option<f64>,
+    /// `"rigid"` (default) or `"flexible"`.
+    #[serde(default)]
+    pub model: Needle3dModel,
+    /// Flexible: the flexural rigidity EI, N·m² (instead of the gauge's).
+    pub flexural_rigidity_nm2: Option<f64>,
+    /// Flexible: links of the discrete rod (default: 2 mm long, 16..=400).
+    pub n_links: Option<usize>,
+    /// Flexible: the bevel's lateral over axial tip force (default 0: a symmetric tip).
+    pub bevel_force_ratio: Option<f64>,
+    /// Flexible: the bevel's side, +1 towards the base frame's n, −1 away (default +1).
+    pub bevel_side: Option<f64>,
+}
+
+/// The needle model of a 3D scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Needle3dModel {
+    #[default]
+    Rigid,
+    Flexible,
 }
 
 /// Default [`Needle3dSpec::max_points`]: a 0.128 m inserted length at 2 mm.
@@ -201,13 +225,15 @@ pub struct Region3d {
     pub needle: RegionNeedleParams,
 }
 
-/// The rigid needle of a loaded scene.
+/// The needle of a loaded scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Needle3d {
     pub length_m: f64,
     pub diameter_m: f64,
     pub contact_spacing_m: f64,
     pub max_points: usize,
+    /// A flexible (and bevel-tip) needle's rod; `None` for a rigid needle.
+    pub flexible: Option<needlesim_core::needle::FlexibleNeedle>,
 }
 
 /// A target sphere (it moves with the tissue in the simulation).
@@ -425,7 +451,65 @@ fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
     if !finite(&n.base_m) {
         bail!("needle.base_m = {:?}: must be finite", n.base_m);
     }
-    Ok(Needle3d { length_m: n.length_m, diameter_m, contact_spacing_m: spacing, max_points: n.max_points })
+    Ok(Needle3d { length_m: n.length_m, diameter_m, contact_spacing_m: spacing, max_points: n.max_points, flexible: flexible(n)? })
+}
+
+/// The flexible needle's rod from `model = "flexible"` and its keys; those keys with a rigid
+/// needle are an error naming them.
+fn flexible(n: &Needle3dSpec) -> Result<Option<needlesim_core::needle::FlexibleNeedle>> {
+    use needlesim_core::needle::FlexibleNeedle;
+    if n.model == Needle3dModel::Rigid {
+        for (key, given) in [
+            ("flexural_rigidity_nm2", n.flexural_rigidity_nm2.is_some()),
+            ("n_links", n.n_links.is_some()),
+            ("bevel_force_ratio", n.bevel_force_ratio.is_some()),
+            ("bevel_side", n.bevel_side.is_some()),
+        ] {
+            if given {
+                bail!("needle.{key} is for a flexible needle: add model = \"flexible\"");
+            }
+        }
+        return Ok(None);
+    }
+    let mut f = FlexibleNeedle::gauge17_steel(n.length_m);
+    match (n.gauge, n.flexural_rigidity_nm2) {
+        (Some(_), Some(_)) => bail!("needle: give either gauge or flexural_rigidity_nm2, not both"),
+        (Some(g), None) => {
+            let Some(&(_, od, id)) = GAUGES.iter().find(|(gg, _, _)| *gg == g) else {
+                bail!("needle.gauge = {g} is not in the table (16, 17, 18, 20, 21, 22, 25); give flexural_rigidity_nm2 instead");
+            };
+            f.flexural_rigidity_nm2 = crate::STEEL_E_PA * FlexibleNeedle::tube_second_moment_m4(od, id);
+        }
+        (None, Some(ei)) => {
+            if !(ei.is_finite() && ei > 0.0) {
+                bail!("needle.flexural_rigidity_nm2 = {ei}: must be finite and > 0");
+            }
+            f.flexural_rigidity_nm2 = ei;
+        }
+        (None, None) => {
+            let (_, od, id) = GAUGES.iter().find(|(g, _, _)| *g == 18).copied().expect("18 G is in the table");
+            f.flexural_rigidity_nm2 = crate::STEEL_E_PA * FlexibleNeedle::tube_second_moment_m4(od, id);
+        }
+    }
+    if let Some(k) = n.n_links {
+        if !(1..=400).contains(&k) {
+            bail!("needle.n_links = {k}: must be in 1..=400");
+        }
+        f.n_links = k;
+    }
+    if let Some(b) = n.bevel_force_ratio {
+        if !(b.is_finite() && (0.0..=10.0).contains(&b)) {
+            bail!("needle.bevel_force_ratio = {b}: must be finite, ≥ 0 and at most 10");
+        }
+        f.bevel_force_ratio = b;
+    }
+    if let Some(side) = n.bevel_side {
+        if side != 1.0 && side != -1.0 {
+            bail!("needle.bevel_side = {side}: must be +1 or -1");
+        }
+        f.bevel_side = side;
+    }
+    Ok(Some(f))
 }
 
 fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &SceneLimits) -> Result<Scene3d> {
@@ -703,7 +787,7 @@ mod tests {
         assert_eq!((cube.mesh.n_nodes(), cube.mesh.n_tets()), (21 * 21 * 21, 6 * 20 * 20 * 20));
         assert_eq!(cube.fixed_nodes.len(), 21 * 21);
         assert!(cube.fixed_nodes.iter().all(|&n| cube.mesh.nodes_m()[n][2] == 0.0));
-        assert_eq!(cube.needle, Needle3d { length_m: 0.1, diameter_m: 1.270e-3, contact_spacing_m: 0.002, max_points: 64 });
+        assert_eq!(cube.needle, Needle3d { length_m: 0.1, diameter_m: 1.270e-3, contact_spacing_m: 0.002, max_points: 64, flexible: None });
         assert_eq!(cube.regions[0].material.young_modulus_pa, 30e3);
         assert!(matches!(cube.mesh_source, MeshSource3d::Box { n: [21, 21, 21], .. }));
         let s = std::f64::consts::FRAC_1_SQRT_2;
@@ -772,6 +856,23 @@ mod tests {
         assert_eq!(model.n_dofs(), 3 * 216);
     }
 
+    /// `model = "flexible"` gives the rod: a gauge's EI (its tube), or EI directly, the bevel
+    /// keys, 2 mm links by default.
+    #[test]
+    fn flexible_and_bevel_needles_parse() {
+        use needlesim_core::needle::FlexibleNeedle;
+        let s =
+            parse(&small_cube("gauge = 18", "gauge = 22\nmodel = \"flexible\"\nbevel_force_ratio = 0.4\nbevel_side = -1"), None).unwrap();
+        let f = s.needle.flexible.expect("a flexible needle");
+        let (_, od, id) = crate::GAUGES.iter().find(|g| g.0 == 22).copied().unwrap();
+        assert_eq!(f.flexural_rigidity_nm2, crate::STEEL_E_PA * FlexibleNeedle::tube_second_moment_m4(od, id));
+        assert_eq!((f.length_m, f.n_links, f.bevel_force_ratio, f.bevel_side), (0.1, 50, 0.4, -1.0));
+        let s = parse(&small_cube("gauge = 18", "model = \"flexible\"\nflexural_rigidity_nm2 = 0.002\nn_links = 20"), None).unwrap();
+        let f = s.needle.flexible.unwrap();
+        assert_eq!((f.flexural_rigidity_nm2, f.n_links, f.bevel_force_ratio), (0.002, 20, 0.0));
+        assert_eq!(parse(&small_cube("gauge = 18", "gauge = 18\nmodel = \"rigid\""), None).unwrap().needle.flexible, None);
+    }
+
     #[test]
     fn bad_values_name_the_key() {
         let q = "base_quat = [0.7071067811865475, 0.0, 0.7071067811865475, 0.0]";
@@ -792,7 +893,23 @@ mod tests {
             ("gauge = 18", "diameter_m = 0", "needle.diameter_m = 0: must be finite, > 0"),
             ("contact_spacing_m = 0.002", "contact_spacing_m = 0", "needle.contact_spacing_m = 0: must be between"),
             ("max_points = 64", "max_points = 0", "needle.max_points = 0: must be in 1..=4096"),
-            ("gauge = 18", "gauge = 18\nmodel = \"flexible\"", "unknown field `model`"),
+            ("gauge = 18", "gauge = 18\nstiffness = 1.0", "unknown field `stiffness`"),
+            ("gauge = 18", "gauge = 18\nmodel = \"bendy\"", "unknown variant `bendy`, expected `rigid` or `flexible`"),
+            (
+                "gauge = 18",
+                "gauge = 18\nbevel_force_ratio = 0.3",
+                "needle.bevel_force_ratio is for a flexible needle: add model = \"flexible\"",
+            ),
+            (
+                "gauge = 18",
+                "gauge = 18\nmodel = \"flexible\"\nflexural_rigidity_nm2 = 0.01",
+                "needle: give either gauge or flexural_rigidity_nm2",
+            ),
+            ("gauge = 18", "model = \"flexible\"\nflexural_rigidity_nm2 = -1", "needle.flexural_rigidity_nm2 = -1: must be finite and > 0"),
+            ("gauge = 18", "gauge = 19\nmodel = \"flexible\"", "needle.gauge = 19 is not in the table"),
+            ("gauge = 18", "gauge = 18\nmodel = \"flexible\"\nn_links = 0", "needle.n_links = 0: must be in 1..=400"),
+            ("gauge = 18", "gauge = 18\nmodel = \"flexible\"\nbevel_force_ratio = -0.1", "needle.bevel_force_ratio = -0.1: must be finite"),
+            ("gauge = 18", "gauge = 18\nmodel = \"flexible\"\nbevel_side = 0.5", "needle.bevel_side = 0.5: must be +1 or -1"),
             ("nx = 6", "nx = 1", "mesh.nx = 1: must be at least 2"),
             ("size_m = [0.1, 0.1, 0.1]", "size_m = [0.1, -0.1, 0.1]", "mesh.size_m = [0.1, -0.1, 0.1]: must be finite and > 0"),
             ("type = \"box\"", "type = \"grid\"", "unknown variant `grid`, expected `box` or `msh`"),

@@ -65,6 +65,7 @@
 //! ([`Simulation3::wrench_stiffness`], [`stiffness`]), and targets moving with the tissue, hit
 //! or miss latched, updated after stage 7 ([`targets`]).
 
+mod flex;
 mod params;
 mod pose;
 pub mod stiffness;
@@ -83,7 +84,8 @@ use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedError, MixedSolver3};
 use crate::needle::RegionNeedleParams;
 
-pub use params::{AUTO_BLOCKS_MIN_NODES, Sim3Params, StoreKind3};
+pub use flex::{FRAME_TOL as FLEX_FRAME_TOL, SHAPE_GAP_TOL_M, SHAPE_PASSES};
+pub use params::{AUTO_BLOCKS_MIN_NODES, NeedleShape3, Sim3Params, StoreKind3};
 pub use pose::{BasePose3, PoseError, UNIT_QUATERNION_TOL, unit_axis};
 pub use stiffness::WrenchStiffness3;
 pub use store::{Block3, BlockPayload, BlockRequest, BlockStoreError, ComplianceStore3, NodeBlockStore};
@@ -278,6 +280,10 @@ struct Point {
     region: usize,
     f_world: [f64; 3],
     u_world: [f64; 3],
+    /// Flexible needle: the lateral values $g$ that put the point on the reference shape, and
+    /// the force (its frame) the reference shape is in equilibrium with ([`flex`]).
+    lat_ref_m: [f64; 2],
+    f_ref_local_n: [f64; 3],
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -334,6 +340,8 @@ pub struct Simulation3 {
     stiffness: stiffness::StiffnessScratch,
     /// The targets' located centres and latch bookkeeping.
     targets: targets::TargetTracker,
+    /// The flexible needle ([`flex`]); `None` for a rigid one.
+    flex: Option<flex::Flex3>,
 }
 
 impl Simulation3 {
@@ -360,6 +368,7 @@ impl Simulation3 {
         };
         let pose = params.initial_pose;
         let targets = targets::TargetTracker::new(&model, &params.targets)?;
+        let flex = params.needle.flexible().map(|f| flex::Flex3::new(f, pose.position_m, pose.frame(), cap));
         let mut out = StepOutput3 {
             tick: 0,
             time_s: 0.0,
@@ -398,6 +407,7 @@ impl Simulation3 {
             out,
             stiffness: stiffness::StiffnessScratch::with_capacity(cap),
             targets,
+            flex,
             model,
             params,
         };
@@ -695,40 +705,116 @@ impl Simulation3 {
     pub fn step(&mut self, commanded: BasePose3) -> Result<&StepOutput3, SimError3> {
         commanded.check().map_err(|source| SimError3::Pose { tick: self.tick, source })?;
         let len = self.params.needle_length_m;
-        let prev_tip = self.pose.point_at(len);
+        let prev_tip = match &self.flex {
+            None => self.pose.point_at(len),
+            Some(fx) => fx.rod.tip_m(),
+        };
         let (pose, clamped) = self.pose.clamped_towards(&commanded, self.params.max_base_step_m, self.params.max_base_step_rad);
         if clamped {
             self.stats.clamped_ticks += 1;
         }
+        let turned = pose.orientation != self.pose.orientation;
         self.pose = pose;
         let frame = pose.frame();
         // 2. Frames and prescribed values.
-        for slot in Slot::all(self.pts.len()) {
-            self.solver.set_frame(slot, frame)?;
+        if let Some(fx) = self.flex.as_mut() {
+            fx.rod.set_base(pose.position_m, frame);
+            fx.refresh_frames(&mut self.solver, &self.pts, turned)?;
+            fx.set_values(&mut self.solver, &mut self.pts);
+        } else {
+            for slot in Slot::all(self.pts.len()) {
+                self.solver.set_frame(slot, frame)?;
+            }
+            self.set_prescribed_values(&frame);
         }
-        self.set_prescribed_values(&frame);
         // 3. Release of the points the tip withdrew past.
         for k in (0..self.pts.len()).rev() {
             let p = self.pts[k];
-            if p.state != PointState3::Tip && dot(frame[0], sub(add(p.x_ref_m, p.u_world), pose.position_m)) > len {
+            let beyond = match &self.flex {
+                None => dot(frame[0], sub(add(p.x_ref_m, p.u_world), pose.position_m)) > len,
+                Some(fx) => fx.arc_of(&p, &self.solver.frame(Slot::new(k)), add(p.x_ref_m, p.u_world)) > len,
+            };
+            if p.state != PointState3::Tip && beyond {
                 self.remove(Slot::new(k))?;
                 self.stats.releases += 1;
             }
         }
-        // 4. Capture.
-        self.capture(prev_tip, &frame)?;
+        // 4. Capture, along the tip's tangent (a rigid needle's axis).
+        let (axis_pose, axis_frame) = match &self.flex {
+            None => (pose, frame),
+            Some(fx) => {
+                let tf = fx.rod.tip_frame();
+                let tip = fx.rod.tip_m();
+                let base_v = [tip[0] - len * tf[0][0], tip[1] - len * tf[0][1], tip[2] - len * tf[0][2]];
+                (BasePose3::from_rotation(base_v, quaternion_of_frame(&tf)), tf)
+            }
+        };
+        self.capture(prev_tip, &axis_pose, &axis_frame)?;
+        // The bevel cuts sideways while the tip advances inside the tissue ([`flex`]).
+        if let Some(fx) = self.flex.as_mut() {
+            let advance = dot(axis_frame[0], sub(fx.rod.tip_m(), prev_tip));
+            let inside = !self.pts.is_empty();
+            let cut = self.params.regions[self.last_tip_region.unwrap_or(0)].cutting_force_n;
+            fx.tip_load_n = if inside && advance > 1e-9 { fx.bevel_side * fx.bevel_ratio * cut } else { 0.0 };
+        }
         // 5, 6. Friction and active set.
         self.update_friction(&frame, false, 0.0);
-        let (iterations, converged) = self.resolve_active_set(&frame)?;
+        let (mut iterations, mut converged) = self.resolve_active_set(&frame)?;
+        // A flexible needle comes to equilibrium with the tick's forces; where that moves it
+        // off the held points, the active set is solved again on the new shape.
+        for pass in 1..=flex::SHAPE_PASSES {
+            let Some(fx) = self.flex.as_mut() else { break };
+            let gap = fx.settle(&self.solver, &mut self.pts);
+            if gap <= flex::SHAPE_GAP_TOL_M || pass == flex::SHAPE_PASSES {
+                break;
+            }
+            fx.shape_passes += 1;
+            fx.refresh_frames(&mut self.solver, &self.pts, false)?;
+            fx.set_values(&mut self.solver, &mut self.pts);
+            let (it, conv) = self.resolve_active_set(&frame)?;
+            iterations += it;
+            converged = conv;
+        }
         if !converged {
             self.stats.unconverged_ticks += 1;
         }
         self.solver.solve();
         // 7. Output.
         self.write_output(&frame, clamped, iterations, converged);
-        self.update_targets(&frame);
+        let target_frame = if self.flex.is_some() { axis_frame_now(self) } else { frame };
+        self.update_targets(&target_frame);
         self.tick += 1;
         Ok(&self.out)
+    }
+
+    /// The arc coordinate of slot's reference position in its frame (a displacement's axial
+    /// component adds to it): $t\cdot(X - x_b)$ for a rigid needle, [`flex::Flex3::ref_arc`]
+    /// for a flexible one.
+    fn ref_arc(&self, slot: Slot, frame: &[[f64; 3]; 3], base: [f64; 3]) -> f64 {
+        let p = &self.pts[slot.index()];
+        match &self.flex {
+            None => dot(frame[0], sub(p.x_ref_m, base)),
+            Some(fx) => fx.ref_arc(p, &self.solver.frame(slot)),
+        }
+    }
+
+    /// Solves the working set: plainly for a rigid needle, coupled to the rod for a flexible one.
+    fn solve_working(&mut self) {
+        match self.flex.as_mut() {
+            None => self.solver.solve(),
+            Some(fx) => fx.solve(&mut self.solver, &self.pts, self.tick),
+        }
+    }
+
+    /// The flexible needle's rod (`None` for a rigid needle): its shape, frames and counters.
+    pub fn rod(&self) -> Option<&crate::rod3::Rod3> {
+        self.flex.as_ref().map(|f| &f.rod)
+    }
+
+    /// Flexible needle: (shape passes beyond the first, shape updates that did not converge)
+    /// over the simulation's life; `None` for a rigid needle.
+    pub fn shape_stats(&self) -> Option<(u64, u64)> {
+        self.flex.as_ref().map(|f| (f.shape_passes, f.shape_unconverged))
     }
 
     fn remove(&mut self, slot: Slot) -> Result<(), MixedError> {
@@ -820,12 +906,12 @@ impl Simulation3 {
     /// [`LOOKAHEAD_SAMPLES_PER_TICK`] samples per tick, round robin (a point location costs
     /// microseconds: the whole segment each tick would cost tens), and the candidate point's
     /// nodes go first. Sorted nearest first. $O(\text{list})$, no allocation.
-    fn update_approaching(&mut self, candidate: Option<ContactPoint>, u_d: [f64; 3], frame: &[[f64; 3]; 3]) {
+    fn update_approaching(&mut self, candidate: Option<ContactPoint>, u_d: [f64; 3], axis_pose: &BasePose3, frame: &[[f64; 3]; 3]) {
         let len = self.params.needle_length_m;
         let look = self.params.lookahead_m;
         let h = self.sample_step_m;
         let band = self.max_diam_m;
-        let base = self.pose.position_m;
+        let base = axis_pose.position_m;
         let model = Arc::clone(&self.model);
         let nodes_m = model.mesh().nodes_m();
         let t = frame[0];
@@ -845,7 +931,7 @@ impl Simulation3 {
             let n = ((look + 4.0 * h) / h).ceil() as u64 + 1;
             for k in 0..LOOKAHEAD_SAMPLES_PER_TICK {
                 let i = (LOOKAHEAD_SAMPLES_PER_TICK * self.tick + k) % n;
-                let q = sub(self.pose.point_at(len - 4.0 * h + i as f64 * h), u_d);
+                let q = sub(axis_pose.point_at(len - 4.0 * h + i as f64 * h), u_d);
                 if let Ok(loc) = self.model.locate(q) {
                     for node in loc.nodes {
                         self.push_approaching(node);
@@ -873,9 +959,9 @@ impl Simulation3 {
     }
 
     /// Stage 4 (module docs), and the approaching nodes.
-    fn capture(&mut self, prev_tip: [f64; 3], frame: &[[f64; 3]; 3]) -> Result<(), SimError3> {
+    fn capture(&mut self, prev_tip: [f64; 3], axis_pose: &BasePose3, frame: &[[f64; 3]; 3]) -> Result<(), SimError3> {
         let len = self.params.needle_length_m;
-        let base = self.pose.position_m;
+        let base = axis_pose.position_m;
         let t = frame[0];
         let has_tip = self.pts.iter().any(|p| p.state == PointState3::Tip);
         let distal = (0..self.pts.len()).max_by(|&a, &b| self.pts[a].s_prev_m.total_cmp(&self.pts[b].s_prev_m));
@@ -899,7 +985,7 @@ impl Simulation3 {
                 candidate = None;
             }
         }
-        self.update_approaching(candidate.map(|c| c.0).or(missing), u_d, frame);
+        self.update_approaching(candidate.map(|c| c.0).or(missing), u_d, axis_pose, frame);
         if missing.is_some() {
             // Node blocks: the fixed point needed a tetrahedron whose nodes are not cached.
             self.stats.column_deferrals += 1;
@@ -953,6 +1039,8 @@ impl Simulation3 {
             region,
             f_world: [0.0; 3],
             u_world: sub(prev_tip, x),
+            lat_ref_m: [-dot(frame[1], d), -dot(frame[2], d)],
+            f_ref_local_n: [0.0; 3],
         });
         self.stats.captures += 1;
         Ok(())
@@ -969,7 +1057,7 @@ impl Simulation3 {
         let base = self.pose.position_m;
         self.order.clear();
         for slot in Slot::all(self.pts.len()) {
-            let s0 = dot(frame[0], sub(self.pts[slot.index()].x_ref_m, base));
+            let s0 = self.ref_arc(slot, frame, base);
             let u_t = if current { self.solver.displacement_local(slot)[Axis::Axial] } else { 0.0 };
             let p = &mut self.pts[slot.index()];
             p.s_work_m = match p.state {
@@ -1012,20 +1100,20 @@ impl Simulation3 {
         let base = self.pose.position_m;
         let max_iter = self.params.max_active_set_iterations;
         for iter in 1..=max_iter {
-            self.solver.solve();
+            self.solve_working();
             let total: f64 = self.pts.iter().map(|p| p.friction_n).sum();
             let tol = FRICTION_TOL * total.max(1e-12);
             for _ in 0..FRICTION_SWEEPS {
                 if self.update_friction(frame, true, tol) <= tol {
                     break;
                 }
-                self.solver.solve();
+                self.solve_working();
             }
             self.changes.clear();
             for slot in Slot::all(self.pts.len()) {
                 let p = self.pts[slot.index()];
                 let f_t = self.solver.force_local(slot)[Axis::Axial];
-                let s_now = dot(frame[0], sub(p.x_ref_m, base)) + self.solver.displacement_local(slot)[Axis::Axial];
+                let s_now = self.ref_arc(slot, frame, base) + self.solver.displacement_local(slot)[Axis::Axial];
                 let change = match p.state {
                     PointState3::Tip if f_t > p.release_force_n => Some(Change::Puncture),
                     PointState3::Tip if f_t <= 0.0 => Some(Change::LetGo),
@@ -1046,7 +1134,7 @@ impl Simulation3 {
             self.changes.sort_unstable_by_key(|c| std::cmp::Reverse(c.0));
             for i in 0..self.changes.len() {
                 let (slot, change) = self.changes[i];
-                let s0 = dot(frame[0], sub(self.pts[slot.index()].x_ref_m, base));
+                let s0 = self.ref_arc(slot, frame, base);
                 match change {
                     Change::Puncture => {
                         let u_t = self.solver.displacement_local(slot)[Axis::Axial];
@@ -1093,7 +1181,10 @@ impl Simulation3 {
         out.time_s = self.tick as f64 / self.params.tick_rate_hz;
         out.pose = self.pose;
         out.clamped = clamped;
-        out.tip_m = self.pose.point_at(len);
+        out.tip_m = match &self.flex {
+            None => self.pose.point_at(len),
+            Some(fx) => fx.rod.tip_m(),
+        };
         out.active_set_iterations = iterations;
         out.converged = converged;
         out.contacts.clear();
@@ -1109,7 +1200,13 @@ impl Simulation3 {
             let neg = [-f[0], -f[1], -f[2]];
             force = add(force, neg);
             torque = add(torque, cross(r, neg));
-            let s = dot(frame[0], r);
+            let (s, point_frame) = match &self.flex {
+                None => (dot(frame[0], r), *frame),
+                Some(fx) => {
+                    let pf = self.solver.frame(slot);
+                    (fx.arc_of(p, &pf, x), pf)
+                }
+            };
             p.s_prev_m = s;
             s_min = s_min.min(s);
             for n in p.contact.nodes() {
@@ -1117,7 +1214,7 @@ impl Simulation3 {
             }
             out.contacts.push(ContactOut3 {
                 state: p.state,
-                frame: *frame,
+                frame: point_frame,
                 x_ref_m: p.x_ref_m,
                 x_m: x,
                 force_n: f,
@@ -1133,4 +1230,15 @@ impl Simulation3 {
 
 fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// The unit quaternion of a frame with rows $[t, n, b]$ (the rotation whose columns they are).
+fn quaternion_of_frame(f: &[[f64; 3]; 3]) -> nalgebra::UnitQuaternion<f64> {
+    let m = nalgebra::Matrix3::new(f[0][0], f[1][0], f[2][0], f[0][1], f[1][1], f[2][1], f[0][2], f[1][2], f[2][2]);
+    nalgebra::UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(m))
+}
+
+/// The tip's frame of a flexible needle (the axis the targets' "ahead" is measured along).
+fn axis_frame_now(sim: &Simulation3) -> [[f64; 3]; 3] {
+    sim.flex.as_ref().map_or_else(|| sim.pose.frame(), |f| f.rod.tip_frame())
 }

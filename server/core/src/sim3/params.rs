@@ -1,6 +1,6 @@
 //! The parameters of the 3D simulation ([`Sim3Params`]) and their validation.
 
-use crate::needle::RegionNeedleParams;
+use crate::needle::{FlexibleNeedle, RegionNeedleParams};
 
 use super::pose::BasePose3;
 use super::targets::{MAX_TARGETS, Target3};
@@ -45,6 +45,32 @@ pub struct Sim3Params {
     /// at most with [`StoreKind3::NodeBlocks`]; a request past it takes the least recently used
     /// node's slot that is neither pinned nor in use.
     pub max_block_nodes: usize,
+    /// The needle: rigid (the default) or a flexible rod, optionally with a bevel tip
+    /// ([`NeedleShape3`]).
+    pub needle: NeedleShape3,
+}
+
+/// The needle of a 3D simulation.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum NeedleShape3 {
+    /// A straight rigid needle (every point in the base pose's frame).
+    #[default]
+    Rigid,
+    /// An elastic rod clamped at the base pose ([`crate::rod3`]) coupled to the points through
+    /// its tangent lateral compliance, with a bevel tip when
+    /// [`FlexibleNeedle::bevel_force_ratio`] > 0 ([`super::flex`]). Its `length_m` must equal
+    /// [`Sim3Params::needle_length_m`].
+    Flexible(FlexibleNeedle),
+}
+
+impl NeedleShape3 {
+    /// The flexible needle's parameters, if it is one.
+    pub fn flexible(&self) -> Option<&FlexibleNeedle> {
+        match self {
+            NeedleShape3::Rigid => None,
+            NeedleShape3::Flexible(f) => Some(f),
+        }
+    }
 }
 
 /// The compliance store of a 3D simulation.
@@ -101,6 +127,7 @@ impl Sim3Params {
             targets: Vec::new(),
             store: StoreKind3::Auto,
             max_block_nodes: 384,
+            needle: NeedleShape3::Rigid,
         }
     }
 
@@ -136,6 +163,29 @@ impl Sim3Params {
             r.validate(&format!("{k}"))?;
         }
         self.validate_targets()?;
+        self.validate_needle()
+    }
+
+    /// A flexible needle: its length equal to `needle_length_m`, EI finite and > 0, 1..=400
+    /// links, a bevel force ratio finite and ≥ 0, a bevel side of ±1 (the message names the
+    /// field).
+    fn validate_needle(&self) -> Result<(), String> {
+        let Some(f) = self.needle.flexible() else { return Ok(()) };
+        if f.length_m != self.needle_length_m {
+            return Err(format!("needle.length_m = {} must equal needle_length_m = {}", f.length_m, self.needle_length_m));
+        }
+        if !(f.flexural_rigidity_nm2.is_finite() && f.flexural_rigidity_nm2 > 0.0) {
+            return Err(format!("needle.flexural_rigidity_nm2 = {} must be finite and > 0", f.flexural_rigidity_nm2));
+        }
+        if !(1..=400).contains(&f.n_links) {
+            return Err(format!("needle.n_links = {} must be in 1..=400", f.n_links));
+        }
+        if !(f.bevel_force_ratio.is_finite() && f.bevel_force_ratio >= 0.0) {
+            return Err(format!("needle.bevel_force_ratio = {} must be finite and ≥ 0", f.bevel_force_ratio));
+        }
+        if f.bevel_side != 1.0 && f.bevel_side != -1.0 {
+            return Err(format!("needle.bevel_side = {} must be +1 or -1", f.bevel_side));
+        }
         Ok(())
     }
 
