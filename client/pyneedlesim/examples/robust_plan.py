@@ -8,11 +8,11 @@ here the tissue's Young's modulus and friction are each uncertain by +-20 % (uni
 and we ask how often each plan hits, and pick a plan that hits more often:
 
 1. the nominal plan (the Rust planner, the nominal tissue);
-2. the robust plan: the nominal plan rotated about its entry point to the angle whose sampled hit
-   rate is highest on *training* samples (seed 1);
+2. the robust plan: the nominal plan rotated about its entry point and inserted deeper, to the
+   aim and depth whose sampled hit rate is highest on *training* samples (seed 1);
 3. both evaluated on *fresh* samples (seed 2, 500 by default), with Wilson 95 % intervals;
-4. a PNG: the training hit rate against the aim's lateral offset, the two hit probabilities with
-   their intervals, and the distributions of the closest approach.
+4. a PNG: the training hit rate over the aim's lateral offset and the extra depth, the two hit
+   probabilities with their intervals, and the distributions of the closest approach.
 
     python client/pyneedlesim/examples/robust_plan.py --samples 500 --train 100 --out robust_plan.png
     python client/pyneedlesim/examples/robust_plan.py --workers 2   # on a Dask LocalCluster
@@ -70,11 +70,10 @@ print(
 
 # %% The robust plan (training samples, seed 1)
 rp = robust_plan(SCENE, TARGET, unc, seed=1, n_train=args.train, nominal=nominal, client=client)
-reach_m = float(np.hypot(*np.subtract(nominal["plan"]["entry_m"], nominal["target_center_m"])))
 print(
-    f"robust plan: rotated {np.degrees(rp.angle_offset_rad):+.3f} deg (aim {rp.angle_offset_rad * reach_m * 1e3:+.2f} mm across); "
-    f"training hit rate {rp.grid_hit_rate.max():.3f} against {np.interp(0.0, rp.grid_offsets_rad, rp.grid_hit_rate):.3f} nominal "
-    f"({args.train} samples)"
+    f"robust plan: aim {rp.lateral_offset_m * 1e3:+.2f} mm across ({np.degrees(rp.angle_offset_rad):+.3f} deg), "
+    f"{rp.extra_depth_m * 1e3:.1f} mm deeper; training hit rate {rp.grid_hit_rate.max():.3f} against "
+    f"{rp.nominal_training_hit_rate:.3f} nominal ({args.train} samples)"
 )
 
 # %% Both on fresh samples (seed 2)
@@ -97,12 +96,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))
-u_mm = rp.grid_offsets_rad * reach_m * 1e3
-ax[0].plot(u_mm, rp.grid_hit_rate, color="k")
-ax[0].axvline(0.0, color="tab:blue", ls="--", label="nominal plan")
-ax[0].axvline(rp.angle_offset_rad * reach_m * 1e3, color="tab:orange", ls="--", label="robust plan")
-ax[0].set(xlabel="aim offset across the target (mm)", ylabel="hit rate", title=f"training samples ({args.train}, seed 1)", ylim=(0, 1.02))
-ax[0].legend()
+u_mm, dd_mm = rp.grid_offsets_m * 1e3, rp.extra_depths_m * 1e3
+im = ax[0].pcolormesh(u_mm, dd_mm, rp.grid_hit_rate.T, shading="nearest", cmap="viridis", vmin=0, vmax=1)
+fig.colorbar(im, ax=ax[0], label="training hit rate")
+ax[0].plot([0.0], [0.0], "o", color="tab:blue", mec="w", ms=9, label="nominal plan")
+ax[0].plot([rp.lateral_offset_m * 1e3], [rp.extra_depth_m * 1e3], "*", color="tab:orange", mec="w", ms=14, label="robust plan")
+ax[0].set(xlabel="aim offset across the target (mm)", ylabel="extra depth (mm)", title=f"training samples ({args.train}, seed 1)")
+ax[0].legend(loc="upper left")
 names = ["nominal", "robust"]
 evs = [ev_nominal, ev_robust]
 p = [e.hit_probability for e in evs]
@@ -131,6 +131,8 @@ if args.json:
                 "rel": args.rel,
                 "radius_m": radius_m,
                 "robust_angle_offset_rad": rp.angle_offset_rad,
+                "robust_lateral_offset_m": rp.lateral_offset_m,
+                "robust_extra_depth_m": rp.extra_depth_m,
                 "nominal": {"hits": ev_nominal.hits, "interval": ev_nominal.interval, "closest_m": ev_nominal.closest_m.tolist()},
                 "robust": {"hits": ev_robust.hits, "interval": ev_robust.interval, "closest_m": ev_robust.closest_m.tolist()},
                 "eval_s": eval_s,

@@ -106,7 +106,8 @@ def test_wilson_interval_is_the_textbook_one():
 
 
 def test_a_sweep_on_a_dask_cluster_of_two_processes_equals_the_serial_sweep_bit_for_bit(nominal):
-    distributed = pytest.importorskip("dask.distributed")
+    import dask.distributed as distributed  # tests/run installs it (pinned)
+
     base = np.array(nominal["trajectory"])
     trajs = [base, rotate_trajectory(base, nominal["plan"]["entry_m"], 0.01)]
     unc = Uncertainty(0.2, 0.2)

@@ -17,10 +17,11 @@ one. Here:
   the scale factors and the trajectories (a few hundred bytes), so workers need only this
   package;
 - :func:`robust_plan` rotates the nominal plan about its entry point by candidate angles (the
-  planner's own family of aims: the entry fixed, the aim moved across the target), sweeps them
-  over *training* samples, interpolates each sample's closest approach between the candidates,
-  and picks the angle with the highest sampled hit rate (ties: the smallest mean closest
-  approach) -- a direct estimate of the quantity to maximise, with no model of the tissue;
+  planner's own family of aims: the entry fixed, the aim moved across the target) and inserts
+  it deeper by candidate extra depths, sweeps them over *training* samples, interpolates each
+  sample's closest approach between the aims, and picks the aim and depth with the highest
+  sampled hit rate (ties: the shallowest, then the smallest mean closest approach) -- a direct
+  estimate of the quantity to maximise, with no model of the tissue;
 - :func:`evaluate` compares plans on *fresh* samples (another seed, so the choice's optimism on
   its training samples does not leak into the figure), with Wilson confidence intervals.
 """
@@ -74,25 +75,42 @@ class Uncertainty:
         return {"young_modulus_pa": float(e), "friction_n_per_m": float(f)}
 
 
-def closest_approaches(scene: str, target: str, trajectories: Sequence[np.ndarray], scale: Optional[dict] = None) -> np.ndarray:
+def closest_approaches(
+    scene: str,
+    target: str,
+    trajectories: Sequence[np.ndarray],
+    scale: Optional[dict] = None,
+    until_s: Optional[Sequence[float]] = None,
+) -> np.ndarray:
     """The closest approach of the tip to ``target`` (m) along each trajectory, in the scene
-    ``scene`` (a name or path) loaded with ``scale``: one float per trajectory. One scene load
-    (and factorisation) serves every trajectory."""
+    ``scene`` (a name or path) loaded with ``scale``: shape (len(trajectories),). With
+    ``until_s``, the closest approach over the ticks up to each of those times (on the
+    trajectory's clock): shape (len(trajectories), len(until_s)). One scene load (and
+    factorisation) serves every trajectory."""
     sc = load_scene(scene, scale=scale)
     names = [t.name for t in sc.targets]
     if target not in names:
         raise ValueError(f"target {target!r} is not in scene {sc.name!r} (targets: {', '.join(names)})")
     j = names.index(target)
-    out = np.empty(len(trajectories))
+    cuts = None if until_s is None else np.asarray(until_s, dtype=float)
+    out = np.empty((len(trajectories),) if cuts is None else (len(trajectories), cuts.size))
     for i, traj in enumerate(trajectories):
         run = Simulation(sc).run(np.asarray(traj, dtype=float))
-        out[i] = run.target_distances_m[:, j].min()
+        d = run.target_distances_m[:, j]
+        if cuts is None:
+            out[i] = d.min()
+        else:
+            running = np.minimum.accumulate(d)
+            k = np.searchsorted(run.t_s, cuts, side="right") - 1
+            if k.min() < 0:
+                raise ValueError(f"until_s: {cuts.min()} s is before the trajectory's start ({run.t_s[0]} s)")
+            out[i] = running[k]
     return out
 
 
-def _sample_unit(scene: str, target: str, trajectories: list, uncertainty: Uncertainty, seed: int, index: int) -> np.ndarray:
+def _sample_unit(scene: str, target: str, trajectories: list, uncertainty: Uncertainty, seed: int, index: int, until_s=None) -> np.ndarray:
     """One work unit of a sweep: sample ``index`` of ``seed``, every trajectory."""
-    return closest_approaches(scene, target, trajectories, uncertainty.scale(seed, index))
+    return closest_approaches(scene, target, trajectories, uncertainty.scale(seed, index), until_s)
 
 
 def work_unit_args(scene: str, target: str, trajectories: Sequence[np.ndarray], uncertainty: Uncertainty, seed: int, index: int) -> tuple:
@@ -110,9 +128,11 @@ def sweep(
     n: int,
     client: Any = None,
     progress: Any = None,
+    until_s: Optional[Sequence[float]] = None,
 ) -> np.ndarray:
     """The closest approach (m) of each trajectory under samples ``0..n-1`` of ``seed``: shape
-    (n, len(trajectories)), row ``i`` from sample ``i`` whoever computed it.
+    (n, len(trajectories)), row ``i`` from sample ``i`` whoever computed it; with ``until_s``
+    (see :func:`closest_approaches`) shape (n, len(trajectories), len(until_s)).
 
     ``client``: a ``dask.distributed.Client`` to run the samples on (one task per sample), or
     None to run them here, one after another. ``progress(done, n)`` is called as samples finish
@@ -124,15 +144,16 @@ def sweep(
     if client is None:
         rows = []
         for i in range(n):
-            rows.append(_sample_unit(scene, target, trajs, uncertainty, seed, i))
+            rows.append(_sample_unit(scene, target, trajs, uncertainty, seed, i, until_s))
             if progress is not None:
                 progress(i + 1, n)
     else:
         # One task per sample; gathered in the order of the futures, i.e. of the sample index,
         # whichever worker ran them and in whatever order they finished.
-        futures = [client.submit(_sample_unit, scene, target, trajs, uncertainty, seed, i, pure=False) for i in range(n)]
+        futures = [client.submit(_sample_unit, scene, target, trajs, uncertainty, seed, i, until_s, pure=False) for i in range(n)]
         rows = client.gather(futures)
-    return np.array(rows, dtype=float).reshape(n, len(trajs))
+    shape = (n, len(trajs)) if until_s is None else (n, len(trajs), len(until_s))
+    return np.array(rows, dtype=float).reshape(shape)
 
 
 def rotate_trajectory(trajectory: np.ndarray, pivot_m: Sequence[float], angle_rad: float) -> np.ndarray:
@@ -145,6 +166,22 @@ def rotate_trajectory(trajectory: np.ndarray, pivot_m: Sequence[float], angle_ra
     t[:, 1] = pivot_m[0] + c * dx - s * dy
     t[:, 2] = pivot_m[1] + s * dx + c * dy
     t[:, 3] += angle_rad
+    return t
+
+
+def deepen_trajectory(trajectory: np.ndarray, extra_m: float) -> np.ndarray:
+    """A plan's trajectory (:func:`needlesim.plan`'s: a straight advance from row 0 to row 1 at
+    constant speed, then holds) advancing ``extra_m`` further along its axis at the same speed,
+    the holds shifted by the extra time."""
+    t = np.array(trajectory, dtype=float)
+    if t.shape[0] < 2 or t.shape[1] != 4:
+        raise ValueError(f"trajectory: a plan's (n >= 2 rows of t_s, x_m, y_m, theta_rad), not shape {t.shape}")
+    speed = math.hypot(t[1, 1] - t[0, 1], t[1, 2] - t[0, 2]) / (t[1, 0] - t[0, 0])
+    dt = extra_m / speed
+    th = t[1, 3]
+    end = t[1, 1:3] + extra_m * np.array([math.cos(th), math.sin(th)])
+    t[1:, 0] += dt
+    t[1:, 1:3] = end
     return t
 
 
@@ -200,15 +237,22 @@ class RobustPlan:
     nominal: dict
     #: The robust plan's trajectory (rows t_s, x_m, y_m, theta_rad).
     trajectory: np.ndarray
-    #: Its rotation from the nominal plan about the entry point, rad.
+    #: Its rotation from the nominal plan about the entry point, rad, and its aim's lateral
+    #: offset at the target's distance, m.
     angle_offset_rad: float
-    #: The candidates' rotations, rad, and their closest approaches on the training samples,
-    #: shape (n_train, n_candidates).
-    candidate_offsets_rad: np.ndarray
+    lateral_offset_m: float
+    #: How much deeper than the nominal plan it inserts, m.
+    extra_depth_m: float
+    #: The candidates: aims (lateral offsets, m) x extra depths (m); their closest approaches on
+    #: the training samples, shape (n_train, n_aims, n_depths).
+    candidate_offsets_m: np.ndarray
+    extra_depths_m: np.ndarray
     training_closest_m: np.ndarray
-    #: The interpolated hit rate on the training samples over ``grid_offsets_rad``.
-    grid_offsets_rad: np.ndarray
+    #: The training hit rate on the fine grid of aims ``grid_offsets_m`` (rows) x extra depths.
+    grid_offsets_m: np.ndarray
     grid_hit_rate: np.ndarray
+    #: The training hit rate of the nominal plan (aim 0, extra depth 0).
+    nominal_training_hit_rate: float
 
 
 def robust_plan(
@@ -219,43 +263,63 @@ def robust_plan(
     seed: int,
     n_train: int,
     lateral_offsets_m: Sequence[float] = tuple(np.linspace(-2e-3, 2e-3, 9)),
+    extra_depths_m: Sequence[float] = tuple(np.linspace(0.0, 6e-3, 13)),
     nominal: Optional[dict] = None,
     client: Any = None,
 ) -> RobustPlan:
-    """A plan maximising the probability of a hit under ``uncertainty``.
+    """A plan maximising the probability of a hit under ``uncertainty``: an aim and a depth.
 
-    The candidates rotate the nominal plan (``nominal``, else :func:`needlesim.plan` of the
+    The candidate aims rotate the nominal plan (``nominal``, else :func:`needlesim.plan` of the
     scene) about its entry point so that its aim moves across the target by
-    ``lateral_offsets_m`` (at the target's distance from the entry; include 0, the nominal).
-    Each is simulated under training samples ``0..n_train-1`` of ``seed``; each sample's closest
-    approach is interpolated linearly between neighbouring candidates on a grid 20 times finer,
-    and the chosen rotation maximises the fraction of samples with a closest approach under the
-    radius, ties broken by the smallest mean closest approach.
+    ``lateral_offsets_m`` (at the target's distance from the entry; include 0, the nominal) --
+    the planner's own family of aims, the entry fixed. The candidate depths go
+    ``extra_depths_m`` beyond the nominal depth (include 0): a softer or more adherent tissue
+    pushes the target further along the needle. Each aim is simulated to the deepest depth under
+    training samples ``0..n_train-1`` of ``seed``, and the closest approach of each shallower
+    depth is read off the same run (the ticks until the shallower plan would stop: the same
+    poses, without its final 0.2 s hold). Each sample's closest approach is interpolated
+    linearly between neighbouring aims on a grid 10 times finer; the plan is the grid point of
+    highest hit rate, ties broken by the smallest extra depth (as deep as needed, no deeper),
+    then by the smallest mean closest approach. The choice is an estimate on the training
+    samples: evaluate it on fresh ones (:func:`evaluate`).
     """
     if nominal is None:
         nominal = plan(load_scene(scene), target)
     entry = nominal["plan"]["entry_m"]
     reach = math.dist(entry, nominal["target_center_m"])
-    offsets = np.array(sorted(float(u) for u in lateral_offsets_m)) / reach
-    if offsets.size < 2:
-        raise ValueError("lateral_offsets_m: at least two candidates are needed")
+    offsets = np.array(sorted(float(u) for u in lateral_offsets_m))
+    depths = np.array(sorted(float(d) for d in extra_depths_m))
+    if offsets.size < 2 or depths.size < 1 or depths[0] < 0:
+        raise ValueError("lateral_offsets_m: at least two; extra_depths_m: at least one, none negative")
     base = np.asarray(nominal["trajectory"], dtype=float)
-    cands = [rotate_trajectory(base, entry, a) for a in offsets]
-    d = sweep(scene, target, cands, uncertainty, seed=seed, n=n_train, client=client)
-    grid = np.linspace(offsets[0], offsets[-1], 20 * (offsets.size - 1) + 1)
-    dg = np.array([np.interp(grid, offsets, row) for row in d]).reshape(n_train, grid.size)
-    rate = (dg < nominal["target_radius_m"]).mean(axis=0)
+    deepest = deepen_trajectory(base, float(depths[-1]))
+    cands = [rotate_trajectory(deepest, entry, u / reach) for u in offsets]
+    until = base[1, 0] + depths / nominal["speed_m_s"]
+    d = sweep(scene, target, cands, uncertainty, seed=seed, n=n_train, client=client, until_s=until)
+    grid = np.linspace(offsets[0], offsets[-1], 10 * (offsets.size - 1) + 1)
+    # dg[s, g, k]: sample s, aim grid[g], depth k.
+    dg = np.stack([np.stack([np.interp(grid, offsets, d[s_, :, k]) for k in range(depths.size)], axis=1) for s_ in range(n_train)])
+    radius = nominal["target_radius_m"]
+    rate = (dg < radius).mean(axis=0)
     mean = dg.mean(axis=0)
-    best = np.flatnonzero(rate == rate.max())
-    k = int(best[np.argmin(mean[best])])
+    g_idx, k_idx = np.meshgrid(np.arange(grid.size), np.arange(depths.size), indexing="ij")
+    best = np.flatnonzero(rate.ravel() == rate.max())
+    key = np.lexsort((mean.ravel()[best], k_idx.ravel()[best]))  # by depth, then mean distance
+    g, k = int(g_idx.ravel()[best[key[0]]]), int(k_idx.ravel()[best[key[0]]])
+    angle = float(grid[g]) / reach
+    j0 = int(np.argmin(np.abs(offsets)))
     return RobustPlan(
         nominal=nominal,
-        trajectory=rotate_trajectory(base, entry, float(grid[k])),
-        angle_offset_rad=float(grid[k]),
-        candidate_offsets_rad=offsets,
+        trajectory=rotate_trajectory(deepen_trajectory(base, float(depths[k])), entry, angle),
+        angle_offset_rad=angle,
+        lateral_offset_m=float(grid[g]),
+        extra_depth_m=float(depths[k]),
+        candidate_offsets_m=offsets,
+        extra_depths_m=depths,
         training_closest_m=d,
-        grid_offsets_rad=grid,
+        grid_offsets_m=grid,
         grid_hit_rate=rate,
+        nominal_training_hit_rate=float((d[:, j0, 0] < radius).mean()) if offsets[j0] == 0.0 else float("nan"),
     )
 
 
