@@ -52,8 +52,8 @@ def test_scale_errors_name_the_key_and_the_factor():
         needlesim.load_scene(SCENE, scale={"young_modulus": 1.1})
     with pytest.raises(needlesim.SceneError, match=r"the factor of 'friction_n_per_m' is -1"):
         needlesim.load_scene(SCENE, scale={"friction_n_per_m": -1.0})
-    # A scaled value out of its range is refused by the loader's own check, naming the key.
-    with pytest.raises(needlesim.SceneError, match=r"poisson_ratio"):
+    # A scaled value out of its range is refused by the loader's own check (0.45 x 1.2 = 0.54).
+    with pytest.raises(needlesim.SceneError, match=r"scene fig3-target scaled: .*Poisson ratio ν = 0.54 must be"):
         needlesim.load_scene(SCENE, scale={"poisson_ratio": 1.2})
     with pytest.raises(needlesim.SceneError, match=r"2D scenes only"):
         needlesim.load_scene("cube-phantom-3d", scale={"young_modulus_pa": 1.1})
@@ -102,7 +102,7 @@ def test_wilson_interval_is_the_textbook_one():
     assert abs(lo - (c - h)) < 1e-15 and abs(hi - (c + h)) < 1e-15
     assert abs(lo - 0.2553) < 5e-4 and abs(hi - 0.3662) < 5e-4
     lo, hi = wilson_interval(10, 10)
-    assert hi == 1.0 and 0.69 < lo < 0.73  # never the degenerate [1, 1] of the Wald interval
+    assert abs(hi - 1.0) < 1e-15 and 0.69 < lo < 0.73  # never the degenerate [1, 1] of the Wald interval
 
 
 def test_a_sweep_on_a_dask_cluster_of_two_processes_equals_the_serial_sweep_bit_for_bit(nominal):
@@ -111,7 +111,7 @@ def test_a_sweep_on_a_dask_cluster_of_two_processes_equals_the_serial_sweep_bit_
     base = np.array(nominal["trajectory"])
     trajs = [base, rotate_trajectory(base, nominal["plan"]["entry_m"], 0.01)]
     unc = Uncertainty(0.2, 0.2)
-    n = 12
+    n = 8
     serial = sweep(SCENE, TARGET, trajs, unc, seed=5, n=n)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
@@ -122,7 +122,7 @@ def test_a_sweep_on_a_dask_cluster_of_two_processes_equals_the_serial_sweep_bit_
     # The samples differ from one another (the sweep is not n copies of one run), and each row is
     # the closest approach of that sample's tissue.
     assert np.unique(serial[:, 0]).size == n
-    i = 9
+    i = 5
     assert np.array_equal(serial[i], closest_approaches(SCENE, TARGET, trajs, unc.scale(5, i)))
     # What a worker receives per sample: the scene's name, the factors' seed and index, the
     # trajectories (a few hundred bytes).
