@@ -49,7 +49,11 @@ unc = Uncertainty(young_modulus_rel=args.rel, friction_rel=args.rel, distributio
 
 client = cluster = None
 if args.scheduler or args.workers > 0:
+    import dask
     from dask.distributed import Client, LocalCluster
+
+    # Generous connection timeouts: on a loaded machine a worker process takes a while to start.
+    dask.config.set({"distributed.comm.timeouts.connect": "300s", "distributed.comm.timeouts.tcp": "300s"})
 
     if args.scheduler:
         client = Client(args.scheduler)

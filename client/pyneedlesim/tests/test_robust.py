@@ -106,6 +106,7 @@ def test_wilson_interval_is_the_textbook_one():
 
 
 def test_a_sweep_on_a_dask_cluster_of_two_processes_equals_the_serial_sweep_bit_for_bit(nominal):
+    import dask
     import dask.distributed as distributed  # tests/run installs it (pinned)
 
     base = np.array(nominal["trajectory"])
@@ -113,7 +114,10 @@ def test_a_sweep_on_a_dask_cluster_of_two_processes_equals_the_serial_sweep_bit_
     unc = Uncertainty(0.2, 0.2)
     n = 8
     serial = sweep(SCENE, TARGET, trajs, unc, seed=5, n=n)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+    # Generous connection timeouts: on a loaded machine a worker process takes a minute to start.
+    with dask.config.set({"distributed.comm.timeouts.connect": "300s", "distributed.comm.timeouts.tcp": "300s"}), distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
         with distributed.Client(cluster) as client:
             parallel = sweep(SCENE, TARGET, trajs, unc, seed=5, n=n, client=client)
             workers = set(client.run(os.getpid).values())
