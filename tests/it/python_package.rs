@@ -1,7 +1,10 @@
 //! The Python package `needlesim` (client/pyneedlesim: PyO3, built by maturin and installed into
 //! the test venv by tests/run) through its pytest suite, client/pyneedlesim/tests: stepping and
 //! `Simulation.run` from Python against the real `needlesim-server simulate` binary's CSV to
-//! 1e-12, the typed exceptions and their messages, 3D stepping on the shipped cube, `help()`.
+//! 1e-12, the typed exceptions and their messages, 3D stepping on the shipped cube, `help()`;
+//! planning under tissue uncertainty (test_robust.py): the planner from Python, scaled scenes,
+//! a sweep on a Dask LocalCluster of 2 worker processes equal to the serial one bit for bit,
+//! and the robust-planning example writing its PNG.
 
 use std::process::Command;
 

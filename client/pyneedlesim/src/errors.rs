@@ -52,6 +52,13 @@ create_exception!(
     "A static problem in the exchange format is refused (unreadable, not valid JSON of the format, \
      bad node indices, a mesh over the limits) or its solve failed."
 );
+create_exception!(
+    needlesim,
+    PlanError,
+    NeedlesimError,
+    "A planning request is refused (the message starts with the field that is wrong: target, entry, \
+     angles_deg, speed_mm_s, tolerance_fraction) or a simulated candidate failed."
+);
 
 /// An error and its causes, `outer: cause: cause`, as anyhow's `{:#}` prints them.
 pub fn chain(e: &(dyn std::error::Error + 'static)) -> String {

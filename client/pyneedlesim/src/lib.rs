@@ -3,8 +3,8 @@
 //! crates without re-implementing them: scenes (`needlesim_scene::load_scene`,
 //! `load_scene3d`), the 2D and 3D simulations (`needlesim_core::sim::Simulation`,
 //! `needlesim_core::sim3::Simulation3`), the scripted run of the `simulate` command
-//! (`needlesim_offline::simulate::run_observed`) and the static solve of the exchange format
-//! (`needlesim_scene::exchange::solve_any`). Typed Rust errors become the exceptions of
+//! (`needlesim_offline::simulate::run_observed`), the planner (`needlesim_offline::plan`) and the
+//! static solve of the exchange format (`needlesim_scene::exchange::solve_any`). Typed Rust errors become the exceptions of
 //! [`errors`], with the Rust messages. Long calls (loading a 3D scene, a run, a solve) release
 //! the GIL.
 //!
@@ -12,6 +12,7 @@
 //! Python-side features (sampling, distributed sweeps) are to be added.
 
 mod errors;
+mod plan;
 mod scene;
 mod sim;
 
@@ -64,6 +65,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
     m.add_function(wrap_pyfunction!(sim::tick_poses, m)?)?;
     m.add_class::<scene::PyScene>()?;
     m.add_class::<scene::Target>()?;
@@ -76,6 +78,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PoseError", py.get_type::<errors::PoseError>())?;
     m.add("SimulationError", py.get_type::<errors::SimulationError>())?;
     m.add("ScenarioError", py.get_type::<errors::ScenarioError>())?;
+    m.add("PlanError", py.get_type::<errors::PlanError>())?;
     m.add("CONTACT_STATES", sim::CONTACT_STATES.to_vec())?;
     m.add("DEFAULT_MAX_TICKS", needlesim_offline::DEFAULT_MAX_TICKS)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -1,5 +1,6 @@
 //! `needlesim.Scene` and `needlesim.load_scene`: a 2D or 3D scene loaded (and its tissue
-//! factorised) once, shared by the simulations made from it.
+//! factorised) once, shared by the simulations made from it; a 2D scene's region values can be
+//! scaled at load (`scale=`, e.g. a sampled Young's modulus for planning under uncertainty).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -35,7 +36,7 @@ pub use needlesim_offline::simulate3::sim3_params;
 /// Loads a scene as `needlesim-server simulate --scene SPEC` does: a shipped example's name
 /// (2D or 3D), else a TOML file whose `dim` key (2 when absent) picks the loader. 3D tissues
 /// are factorised here.
-pub fn load(spec: &str) -> anyhow::Result<SceneKind> {
+pub fn load(spec: &str, scale: &[(String, f64)]) -> anyhow::Result<SceneKind> {
     let limits = MeshLimits::default();
     let dim = if EXAMPLES.iter().any(|e| e.0 == spec) {
         2
@@ -51,12 +52,69 @@ pub fn load(spec: &str) -> anyhow::Result<SceneKind> {
         let text = std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
         needlesim_scene::scene_dim(&text).map_err(|e| e.context(format!("scene {}", path.display())))?
     };
-    if dim == 2 {
+    if dim == 2 && scale.is_empty() {
         return Ok(SceneKind::D2(Box::new(needlesim_scene::load_scene(spec, &limits)?)));
+    }
+    if dim == 2 {
+        return Ok(SceneKind::D2(Box::new(load_scaled(spec, scale, &limits)?)));
+    }
+    if !scale.is_empty() {
+        anyhow::bail!("scale: scaling region values is supported for 2D scenes only; '{spec}' is a 3D scene");
     }
     let scene = needlesim_scene::load_scene3d(spec, &limits)?;
     let tissue = Arc::new(scene.tissue_model().map_err(|e| e.context(format!("scene {}", scene.name)))?);
     Ok(SceneKind::D3 { scene: Box::new(scene), tissue })
+}
+
+/// The region keys `scale=` may multiply (numbers of every `[[regions]]` entry of a 2D scene).
+pub const SCALABLE_REGION_KEYS: [&str; 8] = [
+    "young_modulus_pa",
+    "poisson_ratio",
+    "friction_n_per_m",
+    "static_friction_ratio",
+    "tip_peak_ratio",
+    "tip_peak_width_m",
+    "puncture_force_n",
+    "cutting_force_n",
+];
+
+/// A 2D scene (an example's name or a TOML file) with the region values `scale` names multiplied
+/// by its factors in every region, then loaded as the file would be: the TOML is parsed, edited
+/// and written back (floats print shortest round-trip, so a factor of 1 changes nothing), and the
+/// loader checks the scaled values as it checks a file's.
+fn load_scaled(spec: &str, scale: &[(String, f64)], limits: &MeshLimits) -> anyhow::Result<Scene> {
+    use anyhow::Context as _;
+    let (text, base_dir, example_csv) = match EXAMPLES.iter().find(|e| e.0 == spec) {
+        Some((_, toml_text, csv)) => ((*toml_text).to_owned(), PathBuf::from("server/scenes"), Some(*csv)),
+        None => {
+            let path = Path::new(spec);
+            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+            (text, path.parent().unwrap_or(Path::new(".")).to_path_buf(), None)
+        }
+    };
+    let mut table: toml::Table = text.parse().with_context(|| format!("scene {spec}"))?;
+    let Some(regions) = table.get_mut("regions").and_then(|r| r.as_array_mut()) else {
+        anyhow::bail!("scale: scene {spec} has no [[regions]] to scale");
+    };
+    for (key, factor) in scale {
+        if !SCALABLE_REGION_KEYS.contains(&key.as_str()) {
+            anyhow::bail!("scale: '{key}' is not a region value that can be scaled (one of: {})", SCALABLE_REGION_KEYS.join(", "));
+        }
+        if !(factor.is_finite() && *factor > 0.0) {
+            anyhow::bail!("scale: the factor of '{key}' is {factor}; it must be finite and > 0");
+        }
+        for (k, region) in regions.iter_mut().enumerate() {
+            let value = region.get(key.as_str()).and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)));
+            let Some(value) = value else {
+                anyhow::bail!("scale: regions[{k}] of scene {spec} does not set {key} as a number; write it in the scene to scale it");
+            };
+            region.as_table_mut().expect("a [[regions]] entry is a table").insert(key.clone(), toml::Value::Float(value * factor));
+        }
+    }
+    let scaled = toml::to_string(&table).context("writing the scaled scene")?;
+    let mut scene = needlesim_scene::parse_scene(&scaled, &base_dir, limits).with_context(|| format!("scene {spec} scaled"))?;
+    scene.example_trajectory = example_csv;
+    Ok(scene)
 }
 
 /// A target of a scene: a disc (2D) or a sphere (3D) that moves with the tissue.
@@ -235,13 +293,23 @@ impl PyScene {
 /// TOML file, 2D or 3D by its ``dim`` key. The tissue's stiffness is factorised here (seconds
 /// for a large 3D mesh; the GIL is released meanwhile).
 ///
+/// ``scale`` (2D scenes): a dict of region keys to factors, each key's value multiplied by its
+/// factor in every region before the scene is built, e.g. ``{"young_modulus_pa": 1.1,
+/// "friction_n_per_m": 0.9}`` for a tissue 10 % stiffer with 10 % less friction (keys:
+/// young_modulus_pa, poisson_ratio, friction_n_per_m, static_friction_ratio, tip_peak_ratio,
+/// tip_peak_width_m, puncture_force_n, cutting_force_n; the scene must write the key in each
+/// region). The scaled values are checked as a file's are.
+///
 /// Raises SceneError naming what is wrong (a path that is neither a file nor an example, an
-/// invalid TOML, a value out of range, a mesh over the limits).
+/// invalid TOML, a value out of range, a mesh over the limits, a key that cannot be scaled, a
+/// factor that is not finite and positive).
 #[pyfunction]
-pub fn load_scene(py: Python<'_>, scene: PathBuf) -> PyResult<PyScene> {
+#[pyo3(signature = (scene, *, scale=None))]
+pub fn load_scene(py: Python<'_>, scene: PathBuf, scale: Option<std::collections::BTreeMap<String, f64>>) -> PyResult<PyScene> {
     let Some(spec) = scene.to_str().map(str::to_owned) else {
         return Err(SceneError::new_err(format!("scene path {} is not valid UTF-8", scene.display())));
     };
-    let kind = py.detach(move || load(&spec)).map_err(scene_error)?;
+    let scale: Vec<(String, f64)> = scale.unwrap_or_default().into_iter().collect();
+    let kind = py.detach(move || load(&spec, &scale)).map_err(scene_error)?;
     Ok(PyScene { inner: Arc::new(kind) })
 }

@@ -3,7 +3,8 @@
 Load a scene (a shipped example by name, or a scene TOML file, 2D or 3D), step a simulation
 with base poses and read forces, tip, contacts and targets as NumPy arrays, run a whole
 scripted insertion (the GIL released, progress reported), and solve static problems of the
-exchange format::
+exchange format; plan an insertion (``plan``) and plan it robustly under tissue uncertainty,
+serially or on a Dask cluster (the sub-module ``needlesim.robust``)::
 
     import needlesim
     scene = needlesim.load_scene("paper-phantom")
@@ -14,8 +15,9 @@ exchange format::
     print(run.force_n[-1], run.inserted_length_m.max())
 
 Errors raise subclasses of NeedlesimError (SceneError, TrajectoryError, PoseError,
-SimulationError, ScenarioError) with the Rust messages. The numerics are the Rust crates'
-(the compiled module needlesim._native); this package adds no numerics of its own.
+SimulationError, ScenarioError, PlanError) with the Rust messages. The simulation's numerics are the Rust crates' (the compiled module
+needlesim._native); needlesim.robust adds the sampling and the statistics of planning under
+uncertainty.
 """
 
 from pkgutil import extend_path
@@ -28,6 +30,7 @@ from ._native import (  # noqa: E402
     CONTACT_STATES,
     DEFAULT_MAX_TICKS,
     NeedlesimError,
+    PlanError,
     PoseError,
     RunResult,
     Scene,
@@ -40,6 +43,7 @@ from ._native import (  # noqa: E402
     TrajectoryError,
     __version__,
     load_scene,
+    plan,
     solve,
     tick_poses,
 )
@@ -48,6 +52,7 @@ __all__ = [
     "CONTACT_STATES",
     "DEFAULT_MAX_TICKS",
     "NeedlesimError",
+    "PlanError",
     "PoseError",
     "RunResult",
     "Scene",
@@ -60,6 +65,7 @@ __all__ = [
     "TrajectoryError",
     "__version__",
     "load_scene",
+    "plan",
     "solve",
     "tick_poses",
 ]

@@ -34,6 +34,9 @@ class PoseError(NeedlesimError):
 class SimulationError(NeedlesimError):
     """The simulation could not be built, or a step failed (a diverged solve faults it)."""
 
+class PlanError(NeedlesimError):
+    """A planning request is refused (the message starts with the field) or a candidate failed."""
+
 class ScenarioError(NeedlesimError):
     """A static problem of the exchange format is refused or its solve failed."""
 
@@ -184,7 +187,22 @@ class Simulation:
     def snapshot(self) -> dict[str, Any]: ...
     def dump_state(self) -> dict[str, Any]: ...
 
-def load_scene(scene: Union[str, os.PathLike[str]]) -> Scene: ...
+def load_scene(scene: Union[str, os.PathLike[str]], *, scale: Optional[dict[str, float]] = None) -> Scene:
+    """A shipped example by name or a scene TOML file; ``scale`` multiplies region values of a
+    2D scene (e.g. ``{"young_modulus_pa": 1.1}``) before it is built."""
+
+def plan(
+    scene: Scene,
+    target: str,
+    *,
+    entry_m: Optional[Sequence[Sequence[float]]] = None,
+    angles_deg: Optional[Sequence[float]] = None,
+    speed_mm_s: Optional[float] = None,
+    threads: int = 0,
+    tolerance_fraction: float = 0.2,
+    max_iterations: int = 8,
+) -> dict[str, Any]:
+    """The planner of ``needlesim-server plan`` (2D): the plan as the command's JSON, a dict."""
 def tick_poses(
     scene: Scene, trajectory: TrajectoryLike = None, *, max_ticks: int = ...
 ) -> tuple[F64Array, F64Array]: ...
