@@ -2,8 +2,14 @@
 //
 // Conventions, for integrators:
 // - SI units; every physical field names its unit (x_m, force_n, torque_nm, time_s).
-// - The tissue is 2D today: positions are (x, y) in metres, angles are counter-clockwise radians,
-//   x right, y up. 3D will arrive as new fields and messages, never by changing these.
+// - 2D: positions are (x, y) in metres, angles are counter-clockwise radians, x right, y up.
+// - 3D (sessions of 3D scenes; SessionInfo.dimension = 3; driven through Control3/SetPose3):
+//   positions (x, y, z) in metres in the
+//   world frame of the scene (right-handed; the shipped examples have z up), orientations as unit
+//   quaternions (w, x, y, z) taking the needle's body frame to the world frame, the needle's
+//   shaft along the body's +x axis from the base to the tip. 3D arrives as new fields and messages
+//   (the `*3` fields below); every 2D field keeps its meaning, and a 3D session fills the 2D
+//   fields of its frames with their planar part (x, y and the twist about z) for 2D-only clients.
 // - A session is a simulated tissue with one needle, stepped by a real-time thread at its tick
 //   rate. Creating one returns a controller token (to drive the needle) and an observer token (to
 //   watch). Send the token in the request metadata as `authorization: Bearer <token>`.
@@ -23,7 +29,7 @@ import type { Message } from "@bufbuild/protobuf";
  * Describes the file needlesim/v1/needlesim.proto.
  */
 export const file_needlesim_v1_needlesim: GenFile = /*@__PURE__*/
-  fileDesc("ChxuZWVkbGVzaW0vdjEvbmVlZGxlc2ltLnByb3RvEgxuZWVkbGVzaW0udjEiNAoFUG9zZTISCwoDeF9tGAEgASgBEgsKA3lfbRgCIAEoARIRCgl0aGV0YV9yYWQYAyABKAEiHAoEVmVjMhIJCgF4GAEgASgBEgkKAXkYAiABKAEiYAoETWVzaBIRCglub2RlX3h5X20YASADKAESFgoOdHJpYW5nbGVfbm9kZXMYAiADKA0SFwoPdHJpYW5nbGVfcmVnaW9uGAMgAygNEhQKDHJlZ2lvbl9uYW1lcxgEIAMoCSLlAQoGUmVnaW9uEgwKBG5hbWUYASABKAkSGAoQeW91bmdfbW9kdWx1c19wYRgCIAEoARIVCg1wb2lzc29uX3JhdGlvGAMgASgBEhgKEGZyaWN0aW9uX25fcGVyX20YBCABKAESHQoVc3RhdGljX2ZyaWN0aW9uX3JhdGlvGAUgASgBEhYKDnRpcF9wZWFrX3JhdGlvGAYgASgBEhgKEHRpcF9wZWFrX3dpZHRoX20YByABKAESGAoQcHVuY3R1cmVfZm9yY2VfbhgIIAEoARIXCg9jdXR0aW5nX2ZvcmNlX24YCSABKAEiTgoGVGFyZ2V0EgwKBG5hbWUYASABKAkSJAoIY2VudGVyX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIQCghyYWRpdXNfbRgDIAEoASLqAgoNVXBsb2FkZWRTY2VuZRIMCgRuYW1lGAEgASgJEiAKBG1lc2gYAiABKAsyEi5uZWVkbGVzaW0udjEuTWVzaBIlCgdyZWdpb25zGAMgAygLMhQubmVlZGxlc2ltLnYxLlJlZ2lvbhITCgtmaXhlZF9ub2RlcxgEIAMoDRINCgVwbGFuZRgFIAEoCRITCgt0aGlja25lc3NfbRgGIAEoARIXCg9uZWVkbGVfbGVuZ3RoX20YByABKAESKAoLbmVlZGxlX2Jhc2UYCCABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISGAoQY2FwdHVyZV9yYWRpdXNfbRgJIAEoARIlCgd0YXJnZXRzGAogAygLMhQubmVlZGxlc2ltLnYxLlRhcmdldBIUCgx0aWNrX3JhdGVfaHoYCyABKAESGQoRY29udGFjdF9zcGFjaW5nX20YDCABKAESFAoMbm9kZV9jYXB0dXJlGA0gASgIInEKC1NjZW5lU291cmNlEhEKB2V4YW1wbGUYASABKAlIABIUCgpzY2VuZV90b21sGAIgASgJSAASLwoIdXBsb2FkZWQYAyABKAsyGy5uZWVkbGVzaW0udjEuVXBsb2FkZWRTY2VuZUgAQggKBnNvdXJjZSJ+ChRDcmVhdGVTZXNzaW9uUmVxdWVzdBIoCgVzY2VuZRgBIAEoCzIZLm5lZWRsZXNpbS52MS5TY2VuZVNvdXJjZRIUCgx0aWNrX3JhdGVfaHoYAiABKAESDgoGcmVjb3JkGAMgASgIEhYKDmRldmljZV9jaGFubmVsGAQgASgIInUKFUNyZWF0ZVNlc3Npb25SZXNwb25zZRIqCgdzZXNzaW9uGAEgASgLMhkubmVlZGxlc2ltLnYxLlNlc3Npb25JbmZvEhgKEGNvbnRyb2xsZXJfdG9rZW4YAiABKAkSFgoOb2JzZXJ2ZXJfdG9rZW4YAyABKAkiFQoTTGlzdFNlc3Npb25zUmVxdWVzdCJDChRMaXN0U2Vzc2lvbnNSZXNwb25zZRIrCghzZXNzaW9ucxgBIAMoCzIZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbyInChFHZXRTZXNzaW9uUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIikKE0Nsb3NlU2Vzc2lvblJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSIWChRDbG9zZVNlc3Npb25SZXNwb25zZSKoAgoLU2Vzc2lvbkluZm8SEgoKc2Vzc2lvbl9pZBgBIAEoCRISCgpzY2VuZV9uYW1lGAIgASgJEg8KB25fbm9kZXMYAyABKA0SEwoLbl90cmlhbmdsZXMYBCABKA0SFAoMdGlja19yYXRlX2h6GAUgASgBEhcKD2NyZWF0ZWRfdW5peF9tcxgGIAEoBBIMCgR0aWNrGAcgASgEEhMKC25fb2JzZXJ2ZXJzGAggASgNEhEKCXJlY29yZGluZxgJIAEoCRIUCgx0YXJnZXRfbmFtZXMYCiADKAkSGwoTZGV2aWNlX2NoYW5uZWxfcGF0aBgLIAEoCRIUCgxkZXZpY2Vfc3RhbGUYDCABKAgSHQoVZGV2aWNlX2NoYW5uZWxfYnJva2VuGA0gASgIIoAECgxTZXNzaW9uU3RhdHMSDQoFdGlja3MYASABKAQSFgoOY29tcHV0ZV9wNTBfdXMYAiABKAESFgoOY29tcHV0ZV9wOTlfdXMYAyABKAESFwoPY29tcHV0ZV9wOTk5X3VzGAQgASgBEhYKDmNvbXB1dGVfbWF4X3VzGAUgASgBEhcKD2xhdGVuZXNzX3A1MF91cxgGIAEoARIXCg9sYXRlbmVzc19wOTlfdXMYByABKAESGAoQbGF0ZW5lc3NfcDk5OV91cxgIIAEoARIYChBtaXNzZWRfZGVhZGxpbmVzGAkgASgEEhgKEHN1cGVyc2VkZWRfcG9zZXMYCiABKAQSFwoPZHJvcHBlZF9yZWNvcmRzGAsgASgEEhUKDWNvbHVtbl9taXNzZXMYDCABKAQSFgoOcmVqZWN0ZWRfcG9zZXMYDSABKAQSFQoNY2xhbXBlZF90aWNrcxgOIAEoBBIYChBjb2x1bW5fZGVmZXJyYWxzGA8gASgEEhcKD2NvbHVtbnNfZXZpY3RlZBgQIAEoBBIeChZidWRnZXRfZXhoYXVzdGVkX3RpY2tzGBEgASgEEhUKDWh5YnJpZF9jaGVja3MYEiABKAQSFwoPaHlicmlkX3JlYnVpbGRzGBMgASgEEg8KB2ZhdWx0ZWQYFCABKAgSDQoFZmF1bHQYFSABKAkiTAoQRmxpcEJldmVsUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEhEKCWNsaWVudF9pZBgCIAEoCRIRCgl0YWtlX292ZXIYAyABKAgiLAoRRmxpcEJldmVsUmVzcG9uc2USFwoPZmxpcHNfcmVxdWVzdGVkGAEgASgEIpMBCg5Db250cm9sUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEiEKBGJhc2UYAiABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISFgoOY2xpZW50X3RpbWVfbnMYAyABKAQSCwoDc2VxGAQgASgEEhIKCmZsaXBfYmV2ZWwYBSABKAgSEQoJdGFrZV9vdmVyGAYgASgIIm0KDlNldFBvc2VSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkSIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIRCgljbGllbnRfaWQYAyABKAkSEQoJdGFrZV9vdmVyGAQgASgIIskDCg9Db250cm9sUmVzcG9uc2USDAoEdGljaxgBIAEoBBIOCgZ0aW1lX3MYAiABKAESIwoHZm9yY2VfbhgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhEKCXRvcnF1ZV9ubRgEIAEoARIVCg1mb3JjZV9heGlhbF9uGAUgASgBEhcKD2ZvcmNlX2xhdGVyYWxfbhgGIAEoARIhCgRiYXNlGAcgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiEKBXRpcF9tGAggASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCSABKAESDwoHbl9zdHVjaxgKIAEoDRISCgpuX3NsaXBwaW5nGAsgASgNEg0KBW5fdGlwGAwgASgNEhAKCHBvc2Vfc2VxGA0gASgEEhYKDmNsaWVudF90aW1lX25zGA4gASgEEhEKCXN0aWZmbmVzcxgPIAMoARIqCg5uZWVkbGVfc2hhcGVfbRgQIAMoCzISLm5lZWRsZXNpbS52MS5WZWMyEhIKCmJldmVsX3NpZGUYESABKAESDwoHZmF1bHRlZBgUIAEoCBINCgVmYXVsdBgVIAEoCSJUCg5PYnNlcnZlUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEg8KB3JhdGVfaHoYAiABKAESHQoVaW5jbHVkZV9kaXNwbGFjZW1lbnRzGAMgASgIIqcBCgpOZWVkbGVOb2RlEgwKBG5vZGUYASABKA0SJgoFc3RhdGUYAiABKA4yFy5uZWVkbGVzaW0udjEuTm9kZVN0YXRlEiYKCnBvc2l0aW9uX20YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIjCgdmb3JjZV9uGAQgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISFgoObWF0ZXJpYWxfcG9pbnQYBSABKAgiZAoLVGFyZ2V0U3RhdGUSDAoEbmFtZRgBIAEoCRImCgpwb3NpdGlvbl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEgoKZGlzdGFuY2VfbRgDIAEoARILCgNoaXQYBCABKAgihAQKBUZyYW1lEgwKBHRpY2sYASABKAQSDgoGdGltZV9zGAIgASgBEiEKBGJhc2UYAyABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISIwoHZm9yY2VfbhgEIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhEKCXRvcnF1ZV9ubRgFIAEoARIVCg1mb3JjZV9heGlhbF9uGAYgASgBEhcKD2ZvcmNlX2xhdGVyYWxfbhgHIAEoARIhCgV0aXBfbRgIIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhkKEWluc2VydGVkX2xlbmd0aF9tGAkgASgBEi4KDG5lZWRsZV9ub2RlcxgKIAMoCzIYLm5lZWRsZXNpbS52MS5OZWVkbGVOb2RlEioKB3RhcmdldHMYCyADKAsyGS5uZWVkbGVzaW0udjEuVGFyZ2V0U3RhdGUSGwoTbm9kZV9kaXNwbGFjZW1lbnRfbRgMIAMoARIUCgxtaXNzZWRfdGlja3MYDSABKAQSEgoKY29tcHV0ZV91cxgOIAEoARIRCglzdGlmZm5lc3MYDyADKAESKgoObmVlZGxlX3NoYXBlX20YECADKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpiZXZlbF9zaWRlGBEgASgBEg8KB2ZhdWx0ZWQYFCABKAgSDQoFZmF1bHQYFSABKAkiQgoQVHJhamVjdG9yeVNhbXBsZRILCgN0X3MYASABKAESIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMiKBAQoPU2ltdWxhdGVSZXF1ZXN0EigKBXNjZW5lGAEgASgLMhkubmVlZGxlc2ltLnYxLlNjZW5lU291cmNlEjIKCnRyYWplY3RvcnkYAiADKAsyHi5uZWVkbGVzaW0udjEuVHJhamVjdG9yeVNhbXBsZRIQCghkZWNpbWF0ZRgDIAEoDSI7ChBTaW11bGF0ZVByb2dyZXNzEhIKCnRpY2tzX2RvbmUYASABKAQSEwoLdGlja3NfdG90YWwYAiABKAQiwQIKCVNlcmllc1JvdxILCgN0X3MYASABKAESIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIjCgdmb3JjZV9uGAMgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJdG9ycXVlX25tGAQgASgBEhUKDWZvcmNlX2F4aWFsX24YBSABKAESFwoPZm9yY2VfbGF0ZXJhbF9uGAYgASgBEiEKBXRpcF9tGAcgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCCABKAESDwoHbl9zdHVjaxgJIAEoDRISCgpuX3NsaXBwaW5nGAogASgNEg0KBW5fdGlwGAsgASgNEioKB3RhcmdldHMYDCADKAsyGS5uZWVkbGVzaW0udjEuVGFyZ2V0U3RhdGUiNAoLU2VyaWVzQ2h1bmsSJQoEcm93cxgBIAMoCzIXLm5lZWRsZXNpbS52MS5TZXJpZXNSb3cingEKDlNpbXVsYXRlUmVzdWx0EiUKBHJvd3MYASADKAsyFy5uZWVkbGVzaW0udjEuU2VyaWVzUm93Eg0KBXRpY2tzGAIgASgEEg4KBndhbGxfcxgDIAEoARITCgtzdGVwX3A1MF91cxgEIAEoARITCgtzdGVwX3A5OV91cxgFIAEoARIcChRmaW5hbF9kaXNwbGFjZW1lbnRfbRgGIAMoASKsAQoQU2ltdWxhdGVSZXNwb25zZRIyCghwcm9ncmVzcxgBIAEoCzIeLm5lZWRsZXNpbS52MS5TaW11bGF0ZVByb2dyZXNzSAASLgoGcmVzdWx0GAIgASgLMhwubmVlZGxlc2ltLnYxLlNpbXVsYXRlUmVzdWx0SAASKwoGc2VyaWVzGAMgASgLMhkubmVlZGxlc2ltLnYxLlNlcmllc0NodW5rSABCBwoFZXZlbnQiKwoVU3RhcnRSZWNvcmRpbmdSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkiKgoUU3RvcFJlY29yZGluZ1JlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSJpCg1SZWNvcmRpbmdJbmZvEgwKBG5hbWUYASABKAkSEgoKc2Vzc2lvbl9pZBgCIAEoCRISCgpzaXplX2J5dGVzGAMgASgEEhAKCG1lc3NhZ2VzGAQgASgEEhAKCGZpbmlzaGVkGAUgASgIIhcKFUxpc3RSZWNvcmRpbmdzUmVxdWVzdCJJChZMaXN0UmVjb3JkaW5nc1Jlc3BvbnNlEi8KCnJlY29yZGluZ3MYASADKAsyGy5uZWVkbGVzaW0udjEuUmVjb3JkaW5nSW5mbyIoChhEb3dubG9hZFJlY29yZGluZ1JlcXVlc3QSDAoEbmFtZRgBIAEoCSIuCg5SZWNvcmRpbmdDaHVuaxIMCgRkYXRhGAEgASgMEg4KBm9mZnNldBgCIAEoBCpqCglOb2RlU3RhdGUSGgoWTk9ERV9TVEFURV9VTlNQRUNJRklFRBAAEhQKEE5PREVfU1RBVEVfU1RVQ0sQARIXChNOT0RFX1NUQVRFX1NMSVBQSU5HEAISEgoOTk9ERV9TVEFURV9USVAQAzLrAwoOU2Vzc2lvblNlcnZpY2USWAoNQ3JlYXRlU2Vzc2lvbhIiLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVxdWVzdBojLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVzcG9uc2USVQoMTGlzdFNlc3Npb25zEiEubmVlZGxlc2ltLnYxLkxpc3RTZXNzaW9uc1JlcXVlc3QaIi5uZWVkbGVzaW0udjEuTGlzdFNlc3Npb25zUmVzcG9uc2USSAoKR2V0U2Vzc2lvbhIfLm5lZWRsZXNpbS52MS5HZXRTZXNzaW9uUmVxdWVzdBoZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbxI+CgdHZXRNZXNoEh8ubmVlZGxlc2ltLnYxLkdldFNlc3Npb25SZXF1ZXN0GhIubmVlZGxlc2ltLnYxLk1lc2gSRwoIR2V0U3RhdHMSHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaGi5uZWVkbGVzaW0udjEuU2Vzc2lvblN0YXRzElUKDENsb3NlU2Vzc2lvbhIhLm5lZWRsZXNpbS52MS5DbG9zZVNlc3Npb25SZXF1ZXN0GiIubmVlZGxlc2ltLnYxLkNsb3NlU2Vzc2lvblJlc3BvbnNlMvIBCg5Db250cm9sU2VydmljZRJKCgdDb250cm9sEhwubmVlZGxlc2ltLnYxLkNvbnRyb2xSZXF1ZXN0Gh0ubmVlZGxlc2ltLnYxLkNvbnRyb2xSZXNwb25zZSgBMAESRgoHU2V0UG9zZRIcLm5lZWRsZXNpbS52MS5TZXRQb3NlUmVxdWVzdBodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2USTAoJRmxpcEJldmVsEh4ubmVlZGxlc2ltLnYxLkZsaXBCZXZlbFJlcXVlc3QaHy5uZWVkbGVzaW0udjEuRmxpcEJldmVsUmVzcG9uc2UyUAoOT2JzZXJ2ZVNlcnZpY2USPgoHT2JzZXJ2ZRIcLm5lZWRsZXNpbS52MS5PYnNlcnZlUmVxdWVzdBoTLm5lZWRsZXNpbS52MS5GcmFtZTABMmAKEVNpbXVsYXRpb25TZXJ2aWNlEksKCFNpbXVsYXRlEh0ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUmVxdWVzdBoeLm5lZWRsZXNpbS52MS5TaW11bGF0ZVJlc3BvbnNlMAEy8gIKEFJlY29yZGluZ1NlcnZpY2USUgoOU3RhcnRSZWNvcmRpbmcSIy5uZWVkbGVzaW0udjEuU3RhcnRSZWNvcmRpbmdSZXF1ZXN0GhsubmVlZGxlc2ltLnYxLlJlY29yZGluZ0luZm8SUAoNU3RvcFJlY29yZGluZxIiLm5lZWRsZXNpbS52MS5TdG9wUmVjb3JkaW5nUmVxdWVzdBobLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdJbmZvElsKDkxpc3RSZWNvcmRpbmdzEiMubmVlZGxlc2ltLnYxLkxpc3RSZWNvcmRpbmdzUmVxdWVzdBokLm5lZWRsZXNpbS52MS5MaXN0UmVjb3JkaW5nc1Jlc3BvbnNlElsKEURvd25sb2FkUmVjb3JkaW5nEiYubmVlZGxlc2ltLnYxLkRvd25sb2FkUmVjb3JkaW5nUmVxdWVzdBocLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdDaHVuazABYgZwcm90bzM");
+  fileDesc("ChxuZWVkbGVzaW0vdjEvbmVlZGxlc2ltLnByb3RvEgxuZWVkbGVzaW0udjEiNAoFUG9zZTISCwoDeF9tGAEgASgBEgsKA3lfbRgCIAEoARIRCgl0aGV0YV9yYWQYAyABKAEiHAoEVmVjMhIJCgF4GAEgASgBEgkKAXkYAiABKAEiJwoEVmVjMxIJCgF4GAEgASgBEgkKAXkYAiABKAESCQoBehgDIAEoASI4CgpRdWF0ZXJuaW9uEgkKAXcYASABKAESCQoBeBgCIAEoARIJCgF5GAMgASgBEgkKAXoYBCABKAEiXgoFUG9zZTMSJgoKcG9zaXRpb25fbRgBIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEi0KC29yaWVudGF0aW9uGAIgASgLMhgubmVlZGxlc2ltLnYxLlF1YXRlcm5pb24iUAoPVXBsb2FkZWRTY2VuZTNkEhIKCnNjZW5lX3RvbWwYASABKAkSFgoObWVzaF9maWxlX25hbWUYAiABKAkSEQoJbWVzaF90ZXh0GAMgASgJImAKBE1lc2gSEQoJbm9kZV94eV9tGAEgAygBEhYKDnRyaWFuZ2xlX25vZGVzGAIgAygNEhcKD3RyaWFuZ2xlX3JlZ2lvbhgDIAMoDRIUCgxyZWdpb25fbmFtZXMYBCADKAki5QEKBlJlZ2lvbhIMCgRuYW1lGAEgASgJEhgKEHlvdW5nX21vZHVsdXNfcGEYAiABKAESFQoNcG9pc3Nvbl9yYXRpbxgDIAEoARIYChBmcmljdGlvbl9uX3Blcl9tGAQgASgBEh0KFXN0YXRpY19mcmljdGlvbl9yYXRpbxgFIAEoARIWCg50aXBfcGVha19yYXRpbxgGIAEoARIYChB0aXBfcGVha193aWR0aF9tGAcgASgBEhgKEHB1bmN0dXJlX2ZvcmNlX24YCCABKAESFwoPY3V0dGluZ19mb3JjZV9uGAkgASgBIk4KBlRhcmdldBIMCgRuYW1lGAEgASgJEiQKCGNlbnRlcl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEAoIcmFkaXVzX20YAyABKAEi6gIKDVVwbG9hZGVkU2NlbmUSDAoEbmFtZRgBIAEoCRIgCgRtZXNoGAIgASgLMhIubmVlZGxlc2ltLnYxLk1lc2gSJQoHcmVnaW9ucxgDIAMoCzIULm5lZWRsZXNpbS52MS5SZWdpb24SEwoLZml4ZWRfbm9kZXMYBCADKA0SDQoFcGxhbmUYBSABKAkSEwoLdGhpY2tuZXNzX20YBiABKAESFwoPbmVlZGxlX2xlbmd0aF9tGAcgASgBEigKC25lZWRsZV9iYXNlGAggASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhgKEGNhcHR1cmVfcmFkaXVzX20YCSABKAESJQoHdGFyZ2V0cxgKIAMoCzIULm5lZWRsZXNpbS52MS5UYXJnZXQSFAoMdGlja19yYXRlX2h6GAsgASgBEhkKEWNvbnRhY3Rfc3BhY2luZ19tGAwgASgBEhQKDG5vZGVfY2FwdHVyZRgNIAEoCCKmAQoLU2NlbmVTb3VyY2USEQoHZXhhbXBsZRgBIAEoCUgAEhQKCnNjZW5lX3RvbWwYAiABKAlIABIvCgh1cGxvYWRlZBgDIAEoCzIbLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lSAASMwoKdXBsb2FkZWQzZBgEIAEoCzIdLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lM2RIAEIICgZzb3VyY2UiQgoHU3VyZmFjZRIQCghub2RlX2lkcxgBIAMoDRISCgpub2RlX3h5el9tGAIgAygBEhEKCXRyaWFuZ2xlcxgDIAMoDSJ+ChRDcmVhdGVTZXNzaW9uUmVxdWVzdBIoCgVzY2VuZRgBIAEoCzIZLm5lZWRsZXNpbS52MS5TY2VuZVNvdXJjZRIUCgx0aWNrX3JhdGVfaHoYAiABKAESDgoGcmVjb3JkGAMgASgIEhYKDmRldmljZV9jaGFubmVsGAQgASgIInUKFUNyZWF0ZVNlc3Npb25SZXNwb25zZRIqCgdzZXNzaW9uGAEgASgLMhkubmVlZGxlc2ltLnYxLlNlc3Npb25JbmZvEhgKEGNvbnRyb2xsZXJfdG9rZW4YAiABKAkSFgoOb2JzZXJ2ZXJfdG9rZW4YAyABKAkiFQoTTGlzdFNlc3Npb25zUmVxdWVzdCJDChRMaXN0U2Vzc2lvbnNSZXNwb25zZRIrCghzZXNzaW9ucxgBIAMoCzIZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbyInChFHZXRTZXNzaW9uUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIikKE0Nsb3NlU2Vzc2lvblJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSIWChRDbG9zZVNlc3Npb25SZXNwb25zZSLRAgoLU2Vzc2lvbkluZm8SEgoKc2Vzc2lvbl9pZBgBIAEoCRISCgpzY2VuZV9uYW1lGAIgASgJEg8KB25fbm9kZXMYAyABKA0SEwoLbl90cmlhbmdsZXMYBCABKA0SFAoMdGlja19yYXRlX2h6GAUgASgBEhcKD2NyZWF0ZWRfdW5peF9tcxgGIAEoBBIMCgR0aWNrGAcgASgEEhMKC25fb2JzZXJ2ZXJzGAggASgNEhEKCXJlY29yZGluZxgJIAEoCRIUCgx0YXJnZXRfbmFtZXMYCiADKAkSGwoTZGV2aWNlX2NoYW5uZWxfcGF0aBgLIAEoCRIUCgxkZXZpY2Vfc3RhbGUYDCABKAgSHQoVZGV2aWNlX2NoYW5uZWxfYnJva2VuGA0gASgIEhEKCWRpbWVuc2lvbhgOIAEoDRIUCgxuX3RldHJhaGVkcmEYDyABKA0igAQKDFNlc3Npb25TdGF0cxINCgV0aWNrcxgBIAEoBBIWCg5jb21wdXRlX3A1MF91cxgCIAEoARIWCg5jb21wdXRlX3A5OV91cxgDIAEoARIXCg9jb21wdXRlX3A5OTlfdXMYBCABKAESFgoOY29tcHV0ZV9tYXhfdXMYBSABKAESFwoPbGF0ZW5lc3NfcDUwX3VzGAYgASgBEhcKD2xhdGVuZXNzX3A5OV91cxgHIAEoARIYChBsYXRlbmVzc19wOTk5X3VzGAggASgBEhgKEG1pc3NlZF9kZWFkbGluZXMYCSABKAQSGAoQc3VwZXJzZWRlZF9wb3NlcxgKIAEoBBIXCg9kcm9wcGVkX3JlY29yZHMYCyABKAQSFQoNY29sdW1uX21pc3NlcxgMIAEoBBIWCg5yZWplY3RlZF9wb3NlcxgNIAEoBBIVCg1jbGFtcGVkX3RpY2tzGA4gASgEEhgKEGNvbHVtbl9kZWZlcnJhbHMYDyABKAQSFwoPY29sdW1uc19ldmljdGVkGBAgASgEEh4KFmJ1ZGdldF9leGhhdXN0ZWRfdGlja3MYESABKAQSFQoNaHlicmlkX2NoZWNrcxgSIAEoBBIXCg9oeWJyaWRfcmVidWlsZHMYEyABKAQSDwoHZmF1bHRlZBgUIAEoCBINCgVmYXVsdBgVIAEoCSJMChBGbGlwQmV2ZWxSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkSEQoJY2xpZW50X2lkGAIgASgJEhEKCXRha2Vfb3ZlchgDIAEoCCIsChFGbGlwQmV2ZWxSZXNwb25zZRIXCg9mbGlwc19yZXF1ZXN0ZWQYASABKAQikwEKDkNvbnRyb2xSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkSIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIWCg5jbGllbnRfdGltZV9ucxgDIAEoBBILCgNzZXEYBCABKAQSEgoKZmxpcF9iZXZlbBgFIAEoCBIRCgl0YWtlX292ZXIYBiABKAgigQEKD0NvbnRyb2xSZXF1ZXN0MxISCgpzZXNzaW9uX2lkGAEgASgJEiIKBWJhc2UzGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UzEhYKDmNsaWVudF90aW1lX25zGAMgASgEEgsKA3NlcRgEIAEoBBIRCgl0YWtlX292ZXIYBSABKAgibQoOU2V0UG9zZVJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhEKCWNsaWVudF9pZBgDIAEoCRIRCgl0YWtlX292ZXIYBCABKAgibwoPU2V0UG9zZVJlcXVlc3QzEhIKCnNlc3Npb25faWQYASABKAkSIgoFYmFzZTMYAiABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTMSEQoJY2xpZW50X2lkGAMgASgJEhEKCXRha2Vfb3ZlchgEIAEoCCLqAwoPQ29udHJvbFJlc3BvbnNlEgwKBHRpY2sYASABKAQSDgoGdGltZV9zGAIgASgBEiMKB2ZvcmNlX24YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIRCgl0b3JxdWVfbm0YBCABKAESFQoNZm9yY2VfYXhpYWxfbhgFIAEoARIXCg9mb3JjZV9sYXRlcmFsX24YBiABKAESIQoEYmFzZRgHIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIhCgV0aXBfbRgIIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhkKEWluc2VydGVkX2xlbmd0aF9tGAkgASgBEg8KB25fc3R1Y2sYCiABKA0SEgoKbl9zbGlwcGluZxgLIAEoDRINCgVuX3RpcBgMIAEoDRIQCghwb3NlX3NlcRgNIAEoBBIWCg5jbGllbnRfdGltZV9ucxgOIAEoBBIRCglzdGlmZm5lc3MYDyADKAESKgoObmVlZGxlX3NoYXBlX20YECADKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpiZXZlbF9zaWRlGBEgASgBEg8KB2ZhdWx0ZWQYFCABKAgSDQoFZmF1bHQYFSABKAkSHwoCZDMYFiABKAsyEy5uZWVkbGVzaW0udjEuVGljazMiqAEKCENvbnRhY3QzEiYKBXN0YXRlGAEgASgOMhcubmVlZGxlc2ltLnYxLk5vZGVTdGF0ZRImCgpwb3NpdGlvbl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzMSJwoLcmVmZXJlbmNlX20YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIjCgdmb3JjZV9uGAQgASgLMhIubmVlZGxlc2ltLnYxLlZlYzMihQEKDFRhcmdldFNwaGVyZRIMCgRuYW1lGAEgASgJEiQKCGNlbnRlcl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzMSEAoIcmFkaXVzX20YAyABKAESEgoKZGlzdGFuY2VfbRgEIAEoARILCgNoaXQYBSABKAgSDgoGbWlzc2VkGAYgASgIIsYCCgVUaWNrMxIhCgRiYXNlGAEgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UzEiMKB2ZvcmNlX24YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIlCgl0b3JxdWVfbm0YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIVCg1heGlhbF9mb3JjZV9uGAQgASgBEiEKBXRpcF9tGAUgASgLMhIubmVlZGxlc2ltLnYxLlZlYzMSKgoObmVlZGxlX3NoYXBlX20YBiADKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIoCghjb250YWN0cxgHIAMoCzIWLm5lZWRsZXNpbS52MS5Db250YWN0MxIrCgd0YXJnZXRzGAggAygLMhoubmVlZGxlc2ltLnYxLlRhcmdldFNwaGVyZRIRCglzdGlmZm5lc3MYCSADKAEiVAoOT2JzZXJ2ZVJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIPCgdyYXRlX2h6GAIgASgBEh0KFWluY2x1ZGVfZGlzcGxhY2VtZW50cxgDIAEoCCKnAQoKTmVlZGxlTm9kZRIMCgRub2RlGAEgASgNEiYKBXN0YXRlGAIgASgOMhcubmVlZGxlc2ltLnYxLk5vZGVTdGF0ZRImCgpwb3NpdGlvbl9tGAMgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISIwoHZm9yY2VfbhgEIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhYKDm1hdGVyaWFsX3BvaW50GAUgASgIImQKC1RhcmdldFN0YXRlEgwKBG5hbWUYASABKAkSJgoKcG9zaXRpb25fbRgCIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhIKCmRpc3RhbmNlX20YAyABKAESCwoDaGl0GAQgASgIIsUECgVGcmFtZRIMCgR0aWNrGAEgASgEEg4KBnRpbWVfcxgCIAEoARIhCgRiYXNlGAMgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiMKB2ZvcmNlX24YBCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIRCgl0b3JxdWVfbm0YBSABKAESFQoNZm9yY2VfYXhpYWxfbhgGIAEoARIXCg9mb3JjZV9sYXRlcmFsX24YByABKAESIQoFdGlwX20YCCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIZChFpbnNlcnRlZF9sZW5ndGhfbRgJIAEoARIuCgxuZWVkbGVfbm9kZXMYCiADKAsyGC5uZWVkbGVzaW0udjEuTmVlZGxlTm9kZRIqCgd0YXJnZXRzGAsgAygLMhkubmVlZGxlc2ltLnYxLlRhcmdldFN0YXRlEhsKE25vZGVfZGlzcGxhY2VtZW50X20YDCADKAESFAoMbWlzc2VkX3RpY2tzGA0gASgEEhIKCmNvbXB1dGVfdXMYDiABKAESEQoJc3RpZmZuZXNzGA8gAygBEioKDm5lZWRsZV9zaGFwZV9tGBAgAygLMhIubmVlZGxlc2ltLnYxLlZlYzISEgoKYmV2ZWxfc2lkZRgRIAEoARIPCgdmYXVsdGVkGBQgASgIEg0KBWZhdWx0GBUgASgJEh8KAmQzGBYgASgLMhMubmVlZGxlc2ltLnYxLlRpY2szEh4KFnN1cmZhY2VfZGlzcGxhY2VtZW50X20YFyADKAEiQgoQVHJhamVjdG9yeVNhbXBsZRILCgN0X3MYASABKAESIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMiKBAQoPU2ltdWxhdGVSZXF1ZXN0EigKBXNjZW5lGAEgASgLMhkubmVlZGxlc2ltLnYxLlNjZW5lU291cmNlEjIKCnRyYWplY3RvcnkYAiADKAsyHi5uZWVkbGVzaW0udjEuVHJhamVjdG9yeVNhbXBsZRIQCghkZWNpbWF0ZRgDIAEoDSI7ChBTaW11bGF0ZVByb2dyZXNzEhIKCnRpY2tzX2RvbmUYASABKAQSEwoLdGlja3NfdG90YWwYAiABKAQiwQIKCVNlcmllc1JvdxILCgN0X3MYASABKAESIQoEYmFzZRgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMhIjCgdmb3JjZV9uGAMgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJdG9ycXVlX25tGAQgASgBEhUKDWZvcmNlX2F4aWFsX24YBSABKAESFwoPZm9yY2VfbGF0ZXJhbF9uGAYgASgBEiEKBXRpcF9tGAcgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCCABKAESDwoHbl9zdHVjaxgJIAEoDRISCgpuX3NsaXBwaW5nGAogASgNEg0KBW5fdGlwGAsgASgNEioKB3RhcmdldHMYDCADKAsyGS5uZWVkbGVzaW0udjEuVGFyZ2V0U3RhdGUiNAoLU2VyaWVzQ2h1bmsSJQoEcm93cxgBIAMoCzIXLm5lZWRsZXNpbS52MS5TZXJpZXNSb3cingEKDlNpbXVsYXRlUmVzdWx0EiUKBHJvd3MYASADKAsyFy5uZWVkbGVzaW0udjEuU2VyaWVzUm93Eg0KBXRpY2tzGAIgASgEEg4KBndhbGxfcxgDIAEoARITCgtzdGVwX3A1MF91cxgEIAEoARITCgtzdGVwX3A5OV91cxgFIAEoARIcChRmaW5hbF9kaXNwbGFjZW1lbnRfbRgGIAMoASKsAQoQU2ltdWxhdGVSZXNwb25zZRIyCghwcm9ncmVzcxgBIAEoCzIeLm5lZWRsZXNpbS52MS5TaW11bGF0ZVByb2dyZXNzSAASLgoGcmVzdWx0GAIgASgLMhwubmVlZGxlc2ltLnYxLlNpbXVsYXRlUmVzdWx0SAASKwoGc2VyaWVzGAMgASgLMhkubmVlZGxlc2ltLnYxLlNlcmllc0NodW5rSABCBwoFZXZlbnQiKwoVU3RhcnRSZWNvcmRpbmdSZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkiKgoUU3RvcFJlY29yZGluZ1JlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSJpCg1SZWNvcmRpbmdJbmZvEgwKBG5hbWUYASABKAkSEgoKc2Vzc2lvbl9pZBgCIAEoCRISCgpzaXplX2J5dGVzGAMgASgEEhAKCG1lc3NhZ2VzGAQgASgEEhAKCGZpbmlzaGVkGAUgASgIIhcKFUxpc3RSZWNvcmRpbmdzUmVxdWVzdCJJChZMaXN0UmVjb3JkaW5nc1Jlc3BvbnNlEi8KCnJlY29yZGluZ3MYASADKAsyGy5uZWVkbGVzaW0udjEuUmVjb3JkaW5nSW5mbyIoChhEb3dubG9hZFJlY29yZGluZ1JlcXVlc3QSDAoEbmFtZRgBIAEoCSIuCg5SZWNvcmRpbmdDaHVuaxIMCgRkYXRhGAEgASgMEg4KBm9mZnNldBgCIAEoBCpqCglOb2RlU3RhdGUSGgoWTk9ERV9TVEFURV9VTlNQRUNJRklFRBAAEhQKEE5PREVfU1RBVEVfU1RVQ0sQARIXChNOT0RFX1NUQVRFX1NMSVBQSU5HEAISEgoOTk9ERV9TVEFURV9USVAQAzKxBAoOU2Vzc2lvblNlcnZpY2USWAoNQ3JlYXRlU2Vzc2lvbhIiLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVxdWVzdBojLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVzcG9uc2USVQoMTGlzdFNlc3Npb25zEiEubmVlZGxlc2ltLnYxLkxpc3RTZXNzaW9uc1JlcXVlc3QaIi5uZWVkbGVzaW0udjEuTGlzdFNlc3Npb25zUmVzcG9uc2USSAoKR2V0U2Vzc2lvbhIfLm5lZWRsZXNpbS52MS5HZXRTZXNzaW9uUmVxdWVzdBoZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbxI+CgdHZXRNZXNoEh8ubmVlZGxlc2ltLnYxLkdldFNlc3Npb25SZXF1ZXN0GhIubmVlZGxlc2ltLnYxLk1lc2gSRwoIR2V0U3RhdHMSHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaGi5uZWVkbGVzaW0udjEuU2Vzc2lvblN0YXRzElUKDENsb3NlU2Vzc2lvbhIhLm5lZWRsZXNpbS52MS5DbG9zZVNlc3Npb25SZXF1ZXN0GiIubmVlZGxlc2ltLnYxLkNsb3NlU2Vzc2lvblJlc3BvbnNlEkQKCkdldFN1cmZhY2USHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaFS5uZWVkbGVzaW0udjEuU3VyZmFjZTKKAwoOQ29udHJvbFNlcnZpY2USSgoHQ29udHJvbBIcLm5lZWRsZXNpbS52MS5Db250cm9sUmVxdWVzdBodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UoATABEkYKB1NldFBvc2USHC5uZWVkbGVzaW0udjEuU2V0UG9zZVJlcXVlc3QaHS5uZWVkbGVzaW0udjEuQ29udHJvbFJlc3BvbnNlEkwKCUZsaXBCZXZlbBIeLm5lZWRsZXNpbS52MS5GbGlwQmV2ZWxSZXF1ZXN0Gh8ubmVlZGxlc2ltLnYxLkZsaXBCZXZlbFJlc3BvbnNlEkwKCENvbnRyb2wzEh0ubmVlZGxlc2ltLnYxLkNvbnRyb2xSZXF1ZXN0MxodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UoATABEkgKCFNldFBvc2UzEh0ubmVlZGxlc2ltLnYxLlNldFBvc2VSZXF1ZXN0MxodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UyUAoOT2JzZXJ2ZVNlcnZpY2USPgoHT2JzZXJ2ZRIcLm5lZWRsZXNpbS52MS5PYnNlcnZlUmVxdWVzdBoTLm5lZWRsZXNpbS52MS5GcmFtZTABMmAKEVNpbXVsYXRpb25TZXJ2aWNlEksKCFNpbXVsYXRlEh0ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUmVxdWVzdBoeLm5lZWRsZXNpbS52MS5TaW11bGF0ZVJlc3BvbnNlMAEy8gIKEFJlY29yZGluZ1NlcnZpY2USUgoOU3RhcnRSZWNvcmRpbmcSIy5uZWVkbGVzaW0udjEuU3RhcnRSZWNvcmRpbmdSZXF1ZXN0GhsubmVlZGxlc2ltLnYxLlJlY29yZGluZ0luZm8SUAoNU3RvcFJlY29yZGluZxIiLm5lZWRsZXNpbS52MS5TdG9wUmVjb3JkaW5nUmVxdWVzdBobLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdJbmZvElsKDkxpc3RSZWNvcmRpbmdzEiMubmVlZGxlc2ltLnYxLkxpc3RSZWNvcmRpbmdzUmVxdWVzdBokLm5lZWRsZXNpbS52MS5MaXN0UmVjb3JkaW5nc1Jlc3BvbnNlElsKEURvd25sb2FkUmVjb3JkaW5nEiYubmVlZGxlc2ltLnYxLkRvd25sb2FkUmVjb3JkaW5nUmVxdWVzdBocLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdDaHVuazABYgZwcm90bzM");
 
 /**
  * The pose of the needle base: position and the direction in which the shaft points.
@@ -77,6 +83,127 @@ export const Vec2Schema: GenMessage<Vec2> = /*@__PURE__*/
   messageDesc(file_needlesim_v1_needlesim, 1);
 
 /**
+ * A 3D vector; its unit and frame are the field's (world frame unless said otherwise).
+ *
+ * @generated from message needlesim.v1.Vec3
+ */
+export type Vec3 = Message<"needlesim.v1.Vec3"> & {
+  /**
+   * @generated from field: double x = 1;
+   */
+  x: number;
+
+  /**
+   * @generated from field: double y = 2;
+   */
+  y: number;
+
+  /**
+   * @generated from field: double z = 3;
+   */
+  z: number;
+};
+
+/**
+ * Describes the message needlesim.v1.Vec3.
+ * Use `create(Vec3Schema)` to create a new message.
+ */
+export const Vec3Schema: GenMessage<Vec3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 2);
+
+/**
+ * A unit quaternion (w, x, y, z): the rotation taking the needle's body frame to the world frame.
+ * Its norm must be 1 within 1e-6 (it is then normalised); anything else is INVALID_ARGUMENT.
+ *
+ * @generated from message needlesim.v1.Quaternion
+ */
+export type Quaternion = Message<"needlesim.v1.Quaternion"> & {
+  /**
+   * @generated from field: double w = 1;
+   */
+  w: number;
+
+  /**
+   * @generated from field: double x = 2;
+   */
+  x: number;
+
+  /**
+   * @generated from field: double y = 3;
+   */
+  y: number;
+
+  /**
+   * @generated from field: double z = 4;
+   */
+  z: number;
+};
+
+/**
+ * Describes the message needlesim.v1.Quaternion.
+ * Use `create(QuaternionSchema)` to create a new message.
+ */
+export const QuaternionSchema: GenMessage<Quaternion> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 3);
+
+/**
+ * The pose of a 3D needle base: the base point (world, m) and the orientation (body → world; the
+ * shaft points along the body's +x axis).
+ *
+ * @generated from message needlesim.v1.Pose3
+ */
+export type Pose3 = Message<"needlesim.v1.Pose3"> & {
+  /**
+   * @generated from field: needlesim.v1.Vec3 position_m = 1;
+   */
+  positionM?: Vec3 | undefined;
+
+  /**
+   * @generated from field: needlesim.v1.Quaternion orientation = 2;
+   */
+  orientation?: Quaternion | undefined;
+};
+
+/**
+ * Describes the message needlesim.v1.Pose3.
+ * Use `create(Pose3Schema)` to create a new message.
+ */
+export const Pose3Schema: GenMessage<Pose3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 4);
+
+/**
+ * A 3D scene whose Gmsh tetrahedral mesh is uploaded with it: the scene TOML of the README's 3D
+ * format (`dim = 3`) whose `[mesh]` names the file `mesh_file_name` (type = "msh"), and that
+ * file's text (MSH 2.2 or 4.1 ASCII, tetrahedra, physical groups for regions and fixed sets).
+ * The scene loader's limits apply (nodes, tetrahedra, session memory: RESOURCE_EXHAUSTED).
+ *
+ * @generated from message needlesim.v1.UploadedScene3d
+ */
+export type UploadedScene3d = Message<"needlesim.v1.UploadedScene3d"> & {
+  /**
+   * @generated from field: string scene_toml = 1;
+   */
+  sceneToml: string;
+
+  /**
+   * @generated from field: string mesh_file_name = 2;
+   */
+  meshFileName: string;
+
+  /**
+   * @generated from field: string mesh_text = 3;
+   */
+  meshText: string;
+};
+
+/**
+ * Describes the message needlesim.v1.UploadedScene3d.
+ * Use `create(UploadedScene3dSchema)` to create a new message.
+ */
+export const UploadedScene3dSchema: GenMessage<UploadedScene3d> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 5);
+
+/**
  * A tissue mesh: linear triangles. Node ids are 0-based indices into the node list.
  *
  * @generated from message needlesim.v1.Mesh
@@ -116,7 +243,7 @@ export type Mesh = Message<"needlesim.v1.Mesh"> & {
  * Use `create(MeshSchema)` to create a new message.
  */
 export const MeshSchema: GenMessage<Mesh> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 2);
+  messageDesc(file_needlesim_v1_needlesim, 6);
 
 /**
  * Elasticity and needle interaction of one tissue region.
@@ -183,7 +310,7 @@ export type Region = Message<"needlesim.v1.Region"> & {
  * Use `create(RegionSchema)` to create a new message.
  */
 export const RegionSchema: GenMessage<Region> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 3);
+  messageDesc(file_needlesim_v1_needlesim, 7);
 
 /**
  * @generated from message needlesim.v1.Target
@@ -210,7 +337,7 @@ export type Target = Message<"needlesim.v1.Target"> & {
  * Use `create(TargetSchema)` to create a new message.
  */
 export const TargetSchema: GenMessage<Target> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 4);
+  messageDesc(file_needlesim_v1_needlesim, 8);
 
 /**
  * A scene given as data, for planning software that owns its own meshes.
@@ -305,7 +432,7 @@ export type UploadedScene = Message<"needlesim.v1.UploadedScene"> & {
  * Use `create(UploadedSceneSchema)` to create a new message.
  */
 export const UploadedSceneSchema: GenMessage<UploadedScene> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 5);
+  messageDesc(file_needlesim_v1_needlesim, 9);
 
 /**
  * Where a session's scene comes from.
@@ -318,7 +445,8 @@ export type SceneSource = Message<"needlesim.v1.SceneSource"> & {
    */
   source: {
     /**
-     * A shipped example: "paper-phantom", "fig3-target".
+     * A shipped example: "paper-phantom", "fig3-target"; the 3D ones ("cube-phantom-3d",
+     * "brachy-3d", "fig3-target-3d") make 3D sessions.
      *
      * @generated from field: string example = 1;
      */
@@ -326,7 +454,8 @@ export type SceneSource = Message<"needlesim.v1.SceneSource"> & {
     case: "example";
   } | {
     /**
-     * A scene in the TOML format of the README (mesh files cannot be referenced).
+     * A scene in the TOML format of the README (mesh files cannot be referenced); a 3D scene
+     * (`dim = 3`, box meshes) makes a 3D session.
      *
      * @generated from field: string scene_toml = 2;
      */
@@ -338,6 +467,14 @@ export type SceneSource = Message<"needlesim.v1.SceneSource"> & {
      */
     value: UploadedScene;
     case: "uploaded";
+  } | {
+    /**
+     * A 3D scene with its uploaded tetrahedral mesh: a 3D session.
+     *
+     * @generated from field: needlesim.v1.UploadedScene3d uploaded3d = 4;
+     */
+    value: UploadedScene3d;
+    case: "uploaded3d";
   } | { case: undefined; value?: undefined };
 };
 
@@ -346,7 +483,44 @@ export type SceneSource = Message<"needlesim.v1.SceneSource"> & {
  * Use `create(SceneSourceSchema)` to create a new message.
  */
 export const SceneSourceSchema: GenMessage<SceneSource> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 6);
+  messageDesc(file_needlesim_v1_needlesim, 10);
+
+/**
+ * The boundary surface of a 3D tissue: the faces of its tetrahedra that belong to one
+ * tetrahedron only (a closed surface: every edge is shared by two triangles).
+ *
+ * @generated from message needlesim.v1.Surface
+ */
+export type Surface = Message<"needlesim.v1.Surface"> & {
+  /**
+   * The mesh node of each surface node (0-based mesh ids), ascending.
+   *
+   * @generated from field: repeated uint32 node_ids = 1;
+   */
+  nodeIds: number[];
+
+  /**
+   * Reference positions of the surface nodes, world, m, flattened [x0, y0, z0, x1, ...].
+   *
+   * @generated from field: repeated double node_xyz_m = 2;
+   */
+  nodeXyzM: number[];
+
+  /**
+   * Triangles as indices into the surface nodes (not mesh ids), flattened [a0, b0, c0, a1, ...],
+   * counter-clockwise seen from outside the tissue.
+   *
+   * @generated from field: repeated uint32 triangles = 3;
+   */
+  triangles: number[];
+};
+
+/**
+ * Describes the message needlesim.v1.Surface.
+ * Use `create(SurfaceSchema)` to create a new message.
+ */
+export const SurfaceSchema: GenMessage<Surface> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 11);
 
 /**
  * @generated from message needlesim.v1.CreateSessionRequest
@@ -385,7 +559,7 @@ export type CreateSessionRequest = Message<"needlesim.v1.CreateSessionRequest"> 
  * Use `create(CreateSessionRequestSchema)` to create a new message.
  */
 export const CreateSessionRequestSchema: GenMessage<CreateSessionRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 7);
+  messageDesc(file_needlesim_v1_needlesim, 12);
 
 /**
  * @generated from message needlesim.v1.CreateSessionResponse
@@ -412,7 +586,7 @@ export type CreateSessionResponse = Message<"needlesim.v1.CreateSessionResponse"
  * Use `create(CreateSessionResponseSchema)` to create a new message.
  */
 export const CreateSessionResponseSchema: GenMessage<CreateSessionResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 8);
+  messageDesc(file_needlesim_v1_needlesim, 13);
 
 /**
  * @generated from message needlesim.v1.ListSessionsRequest
@@ -425,7 +599,7 @@ export type ListSessionsRequest = Message<"needlesim.v1.ListSessionsRequest"> & 
  * Use `create(ListSessionsRequestSchema)` to create a new message.
  */
 export const ListSessionsRequestSchema: GenMessage<ListSessionsRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 9);
+  messageDesc(file_needlesim_v1_needlesim, 14);
 
 /**
  * @generated from message needlesim.v1.ListSessionsResponse
@@ -442,7 +616,7 @@ export type ListSessionsResponse = Message<"needlesim.v1.ListSessionsResponse"> 
  * Use `create(ListSessionsResponseSchema)` to create a new message.
  */
 export const ListSessionsResponseSchema: GenMessage<ListSessionsResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 10);
+  messageDesc(file_needlesim_v1_needlesim, 15);
 
 /**
  * @generated from message needlesim.v1.GetSessionRequest
@@ -459,7 +633,7 @@ export type GetSessionRequest = Message<"needlesim.v1.GetSessionRequest"> & {
  * Use `create(GetSessionRequestSchema)` to create a new message.
  */
 export const GetSessionRequestSchema: GenMessage<GetSessionRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 11);
+  messageDesc(file_needlesim_v1_needlesim, 16);
 
 /**
  * @generated from message needlesim.v1.CloseSessionRequest
@@ -476,7 +650,7 @@ export type CloseSessionRequest = Message<"needlesim.v1.CloseSessionRequest"> & 
  * Use `create(CloseSessionRequestSchema)` to create a new message.
  */
 export const CloseSessionRequestSchema: GenMessage<CloseSessionRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 12);
+  messageDesc(file_needlesim_v1_needlesim, 17);
 
 /**
  * @generated from message needlesim.v1.CloseSessionResponse
@@ -489,7 +663,7 @@ export type CloseSessionResponse = Message<"needlesim.v1.CloseSessionResponse"> 
  * Use `create(CloseSessionResponseSchema)` to create a new message.
  */
 export const CloseSessionResponseSchema: GenMessage<CloseSessionResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 13);
+  messageDesc(file_needlesim_v1_needlesim, 18);
 
 /**
  * @generated from message needlesim.v1.SessionInfo
@@ -569,6 +743,19 @@ export type SessionInfo = Message<"needlesim.v1.SessionInfo"> & {
    * @generated from field: bool device_channel_broken = 13;
    */
   deviceChannelBroken: boolean;
+
+  /**
+   * 2 or 3 (0 from servers before 3D sessions: 2). A 3D session takes Pose3 poses (Control3,
+   * SetPose3) and its frames carry `d3`; n_triangles is then 0 and n_tetrahedra its element count.
+   *
+   * @generated from field: uint32 dimension = 14;
+   */
+  dimension: number;
+
+  /**
+   * @generated from field: uint32 n_tetrahedra = 15;
+   */
+  nTetrahedra: number;
 };
 
 /**
@@ -576,7 +763,7 @@ export type SessionInfo = Message<"needlesim.v1.SessionInfo"> & {
  * Use `create(SessionInfoSchema)` to create a new message.
  */
 export const SessionInfoSchema: GenMessage<SessionInfo> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 14);
+  messageDesc(file_needlesim_v1_needlesim, 19);
 
 /**
  * Real-time statistics of a session's tick loop, in microseconds.
@@ -721,7 +908,7 @@ export type SessionStats = Message<"needlesim.v1.SessionStats"> & {
  * Use `create(SessionStatsSchema)` to create a new message.
  */
 export const SessionStatsSchema: GenMessage<SessionStats> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 15);
+  messageDesc(file_needlesim_v1_needlesim, 20);
 
 /**
  * @generated from message needlesim.v1.FlipBevelRequest
@@ -754,7 +941,7 @@ export type FlipBevelRequest = Message<"needlesim.v1.FlipBevelRequest"> & {
  * Use `create(FlipBevelRequestSchema)` to create a new message.
  */
 export const FlipBevelRequestSchema: GenMessage<FlipBevelRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 16);
+  messageDesc(file_needlesim_v1_needlesim, 21);
 
 /**
  * @generated from message needlesim.v1.FlipBevelResponse
@@ -773,7 +960,7 @@ export type FlipBevelResponse = Message<"needlesim.v1.FlipBevelResponse"> & {
  * Use `create(FlipBevelResponseSchema)` to create a new message.
  */
 export const FlipBevelResponseSchema: GenMessage<FlipBevelResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 17);
+  messageDesc(file_needlesim_v1_needlesim, 22);
 
 /**
  * @generated from message needlesim.v1.ControlRequest
@@ -823,7 +1010,51 @@ export type ControlRequest = Message<"needlesim.v1.ControlRequest"> & {
  * Use `create(ControlRequestSchema)` to create a new message.
  */
 export const ControlRequestSchema: GenMessage<ControlRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 18);
+  messageDesc(file_needlesim_v1_needlesim, 23);
+
+/**
+ * ControlRequest for a 3D session (Control3). A 2D session refuses it, as a 3D session refuses
+ * ControlRequest: INVALID_ARGUMENT naming the pose field.
+ *
+ * @generated from message needlesim.v1.ControlRequest3
+ */
+export type ControlRequest3 = Message<"needlesim.v1.ControlRequest3"> & {
+  /**
+   * @generated from field: string session_id = 1;
+   */
+  sessionId: string;
+
+  /**
+   * The base pose (world frame): position m, unit quaternion (w, x, y, z).
+   *
+   * @generated from field: needlesim.v1.Pose3 base3 = 2;
+   */
+  base3?: Pose3 | undefined;
+
+  /**
+   * As in ControlRequest.
+   *
+   * @generated from field: uint64 client_time_ns = 3;
+   */
+  clientTimeNs: bigint;
+
+  /**
+   * @generated from field: uint64 seq = 4;
+   */
+  seq: bigint;
+
+  /**
+   * @generated from field: bool take_over = 5;
+   */
+  takeOver: boolean;
+};
+
+/**
+ * Describes the message needlesim.v1.ControlRequest3.
+ * Use `create(ControlRequest3Schema)` to create a new message.
+ */
+export const ControlRequest3Schema: GenMessage<ControlRequest3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 24);
 
 /**
  * @generated from message needlesim.v1.SetPoseRequest
@@ -860,7 +1091,41 @@ export type SetPoseRequest = Message<"needlesim.v1.SetPoseRequest"> & {
  * Use `create(SetPoseRequestSchema)` to create a new message.
  */
 export const SetPoseRequestSchema: GenMessage<SetPoseRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 19);
+  messageDesc(file_needlesim_v1_needlesim, 25);
+
+/**
+ * SetPoseRequest for a 3D session (SetPose3), as ControlRequest3 is to ControlRequest.
+ *
+ * @generated from message needlesim.v1.SetPoseRequest3
+ */
+export type SetPoseRequest3 = Message<"needlesim.v1.SetPoseRequest3"> & {
+  /**
+   * @generated from field: string session_id = 1;
+   */
+  sessionId: string;
+
+  /**
+   * @generated from field: needlesim.v1.Pose3 base3 = 2;
+   */
+  base3?: Pose3 | undefined;
+
+  /**
+   * @generated from field: string client_id = 3;
+   */
+  clientId: string;
+
+  /**
+   * @generated from field: bool take_over = 4;
+   */
+  takeOver: boolean;
+};
+
+/**
+ * Describes the message needlesim.v1.SetPoseRequest3.
+ * Use `create(SetPoseRequest3Schema)` to create a new message.
+ */
+export const SetPoseRequest3Schema: GenMessage<SetPoseRequest3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 26);
 
 /**
  * @generated from message needlesim.v1.ControlResponse
@@ -977,6 +1242,13 @@ export type ControlResponse = Message<"needlesim.v1.ControlResponse"> & {
    * @generated from field: string fault = 21;
    */
   fault: string;
+
+  /**
+   * The 3D state of the tick, for a 3D session (unset in 2D).
+   *
+   * @generated from field: needlesim.v1.Tick3 d3 = 22;
+   */
+  d3?: Tick3 | undefined;
 };
 
 /**
@@ -984,7 +1256,179 @@ export type ControlResponse = Message<"needlesim.v1.ControlResponse"> & {
  * Use `create(ControlResponseSchema)` to create a new message.
  */
 export const ControlResponseSchema: GenMessage<ControlResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 20);
+  messageDesc(file_needlesim_v1_needlesim, 27);
+
+/**
+ * One contact point of a 3D needle with the tissue: a material point of a tetrahedron held by
+ * the needle.
+ *
+ * @generated from message needlesim.v1.Contact3
+ */
+export type Contact3 = Message<"needlesim.v1.Contact3"> & {
+  /**
+   * @generated from field: needlesim.v1.NodeState state = 1;
+   */
+  state: NodeState;
+
+  /**
+   * Current (deformed) position, world, m.
+   *
+   * @generated from field: needlesim.v1.Vec3 position_m = 2;
+   */
+  positionM?: Vec3 | undefined;
+
+  /**
+   * Reference (undeformed) position, world, m.
+   *
+   * @generated from field: needlesim.v1.Vec3 reference_m = 3;
+   */
+  referenceM?: Vec3 | undefined;
+
+  /**
+   * Force of the needle on the tissue there, world, N.
+   *
+   * @generated from field: needlesim.v1.Vec3 force_n = 4;
+   */
+  forceN?: Vec3 | undefined;
+};
+
+/**
+ * Describes the message needlesim.v1.Contact3.
+ * Use `create(Contact3Schema)` to create a new message.
+ */
+export const Contact3Schema: GenMessage<Contact3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 28);
+
+/**
+ * A target sphere of a 3D session at a tick.
+ *
+ * @generated from message needlesim.v1.TargetSphere
+ */
+export type TargetSphere = Message<"needlesim.v1.TargetSphere"> & {
+  /**
+   * @generated from field: string name = 1;
+   */
+  name: string;
+
+  /**
+   * The displaced centre (moving with the tissue), world, m.
+   *
+   * @generated from field: needlesim.v1.Vec3 center_m = 2;
+   */
+  centerM?: Vec3 | undefined;
+
+  /**
+   * @generated from field: double radius_m = 3;
+   */
+  radiusM: number;
+
+  /**
+   * Distance from the tip to the displaced centre, m.
+   *
+   * @generated from field: double distance_m = 4;
+   */
+  distanceM: number;
+
+  /**
+   * Latched: the tip came within radius_m of the centre.
+   *
+   * @generated from field: bool hit = 5;
+   */
+  hit: boolean;
+
+  /**
+   * Latched: the tip went past the centre without a hit.
+   *
+   * @generated from field: bool missed = 6;
+   */
+  missed: boolean;
+};
+
+/**
+ * Describes the message needlesim.v1.TargetSphere.
+ * Use `create(TargetSphereSchema)` to create a new message.
+ */
+export const TargetSphereSchema: GenMessage<TargetSphere> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 29);
+
+/**
+ * The 3D state of a tick (world frame throughout).
+ *
+ * @generated from message needlesim.v1.Tick3
+ */
+export type Tick3 = Message<"needlesim.v1.Tick3"> & {
+  /**
+   * The base pose the tick applied (after the session's per-tick step limits).
+   *
+   * @generated from field: needlesim.v1.Pose3 base = 1;
+   */
+  base?: Pose3 | undefined;
+
+  /**
+   * Force of the tissue on the needle base, N.
+   *
+   * @generated from field: needlesim.v1.Vec3 force_n = 2;
+   */
+  forceN?: Vec3 | undefined;
+
+  /**
+   * Torque of the tissue on the needle about the base point, N·m.
+   *
+   * @generated from field: needlesim.v1.Vec3 torque_nm = 3;
+   */
+  torqueNm?: Vec3 | undefined;
+
+  /**
+   * The axial force the tissue resists the needle with (−t·F, t the shaft direction), N:
+   * positive while pushing in, negative while pulling out.
+   *
+   * @generated from field: double axial_force_n = 4;
+   */
+  axialForceN: number;
+
+  /**
+   * The tip, m.
+   *
+   * @generated from field: needlesim.v1.Vec3 tip_m = 5;
+   */
+  tipM?: Vec3 | undefined;
+
+  /**
+   * The needle's shape, base to tip, m (two points for a rigid needle).
+   *
+   * @generated from field: repeated needlesim.v1.Vec3 needle_shape_m = 6;
+   */
+  needleShapeM: Vec3[];
+
+  /**
+   * The contact points (at most 64; a needle with more is truncated), in working-set order.
+   *
+   * @generated from field: repeated needlesim.v1.Contact3 contacts = 7;
+   */
+  contacts: Contact3[];
+
+  /**
+   * @generated from field: repeated needlesim.v1.TargetSphere targets = 8;
+   */
+  targets: TargetSphere[];
+
+  /**
+   * The 6×6 stiffness of the wrench (F, τ) with respect to the base pose, row-major: rows
+   * Fx, Fy, Fz, τx, τy, τz; columns the base translation x, y, z (m) and a world rotation
+   * vector x, y, z (rad, applied as R ← exp(δθ)R); N/m, N/rad, N·m/m, N·m/rad. Refreshed every
+   * few ticks. A remote device renders F + K·δ between network updates.
+   *
+   * @generated from field: repeated double stiffness = 9;
+   */
+  stiffness: number[];
+};
+
+/**
+ * Describes the message needlesim.v1.Tick3.
+ * Use `create(Tick3Schema)` to create a new message.
+ */
+export const Tick3Schema: GenMessage<Tick3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 30);
 
 /**
  * @generated from message needlesim.v1.ObserveRequest
@@ -1003,7 +1447,8 @@ export type ObserveRequest = Message<"needlesim.v1.ObserveRequest"> & {
   rateHz: number;
 
   /**
-   * Include the displacement of every mesh node (costly on large meshes).
+   * Include the displacement of every mesh node (costly on large meshes); for a 3D session, of
+   * every surface node (Frame.surface_displacement_m).
    *
    * @generated from field: bool include_displacements = 3;
    */
@@ -1015,7 +1460,7 @@ export type ObserveRequest = Message<"needlesim.v1.ObserveRequest"> & {
  * Use `create(ObserveRequestSchema)` to create a new message.
  */
 export const ObserveRequestSchema: GenMessage<ObserveRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 21);
+  messageDesc(file_needlesim_v1_needlesim, 31);
 
 /**
  * One contact of the needle with the tissue: a mesh node (the paper's node capture) or a
@@ -1064,7 +1509,7 @@ export type NeedleNode = Message<"needlesim.v1.NeedleNode"> & {
  * Use `create(NeedleNodeSchema)` to create a new message.
  */
 export const NeedleNodeSchema: GenMessage<NeedleNode> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 22);
+  messageDesc(file_needlesim_v1_needlesim, 32);
 
 /**
  * @generated from message needlesim.v1.TargetState
@@ -1096,7 +1541,7 @@ export type TargetState = Message<"needlesim.v1.TargetState"> & {
  * Use `create(TargetStateSchema)` to create a new message.
  */
 export const TargetStateSchema: GenMessage<TargetState> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 23);
+  messageDesc(file_needlesim_v1_needlesim, 33);
 
 /**
  * @generated from message needlesim.v1.Frame
@@ -1207,6 +1652,22 @@ export type Frame = Message<"needlesim.v1.Frame"> & {
    * @generated from field: string fault = 21;
    */
   fault: string;
+
+  /**
+   * As in ControlResponse: the 3D state, for a 3D session.
+   *
+   * @generated from field: needlesim.v1.Tick3 d3 = 22;
+   */
+  d3?: Tick3 | undefined;
+
+  /**
+   * 3D sessions, rendering observers with include_displacements: the displacement of every
+   * surface node (in the order of Surface.node_ids), world, m, flattened [ux0, uy0, uz0, ...];
+   * computed at most every 8 ms (empty until the first one). node_displacement_m stays empty.
+   *
+   * @generated from field: repeated double surface_displacement_m = 23;
+   */
+  surfaceDisplacementM: number[];
 };
 
 /**
@@ -1214,7 +1675,7 @@ export type Frame = Message<"needlesim.v1.Frame"> & {
  * Use `create(FrameSchema)` to create a new message.
  */
 export const FrameSchema: GenMessage<Frame> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 24);
+  messageDesc(file_needlesim_v1_needlesim, 34);
 
 /**
  * @generated from message needlesim.v1.TrajectorySample
@@ -1236,7 +1697,7 @@ export type TrajectorySample = Message<"needlesim.v1.TrajectorySample"> & {
  * Use `create(TrajectorySampleSchema)` to create a new message.
  */
 export const TrajectorySampleSchema: GenMessage<TrajectorySample> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 25);
+  messageDesc(file_needlesim_v1_needlesim, 35);
 
 /**
  * @generated from message needlesim.v1.SimulateRequest
@@ -1267,7 +1728,7 @@ export type SimulateRequest = Message<"needlesim.v1.SimulateRequest"> & {
  * Use `create(SimulateRequestSchema)` to create a new message.
  */
 export const SimulateRequestSchema: GenMessage<SimulateRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 26);
+  messageDesc(file_needlesim_v1_needlesim, 36);
 
 /**
  * @generated from message needlesim.v1.SimulateProgress
@@ -1289,7 +1750,7 @@ export type SimulateProgress = Message<"needlesim.v1.SimulateProgress"> & {
  * Use `create(SimulateProgressSchema)` to create a new message.
  */
 export const SimulateProgressSchema: GenMessage<SimulateProgress> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 27);
+  messageDesc(file_needlesim_v1_needlesim, 37);
 
 /**
  * @generated from message needlesim.v1.SeriesRow
@@ -1361,7 +1822,7 @@ export type SeriesRow = Message<"needlesim.v1.SeriesRow"> & {
  * Use `create(SeriesRowSchema)` to create a new message.
  */
 export const SeriesRowSchema: GenMessage<SeriesRow> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 28);
+  messageDesc(file_needlesim_v1_needlesim, 38);
 
 /**
  * Consecutive rows of the time series.
@@ -1380,7 +1841,7 @@ export type SeriesChunk = Message<"needlesim.v1.SeriesChunk"> & {
  * Use `create(SeriesChunkSchema)` to create a new message.
  */
 export const SeriesChunkSchema: GenMessage<SeriesChunk> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 29);
+  messageDesc(file_needlesim_v1_needlesim, 39);
 
 /**
  * @generated from message needlesim.v1.SimulateResult
@@ -1427,7 +1888,7 @@ export type SimulateResult = Message<"needlesim.v1.SimulateResult"> & {
  * Use `create(SimulateResultSchema)` to create a new message.
  */
 export const SimulateResultSchema: GenMessage<SimulateResult> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 30);
+  messageDesc(file_needlesim_v1_needlesim, 40);
 
 /**
  * @generated from message needlesim.v1.SimulateResponse
@@ -1462,7 +1923,7 @@ export type SimulateResponse = Message<"needlesim.v1.SimulateResponse"> & {
  * Use `create(SimulateResponseSchema)` to create a new message.
  */
 export const SimulateResponseSchema: GenMessage<SimulateResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 31);
+  messageDesc(file_needlesim_v1_needlesim, 41);
 
 /**
  * @generated from message needlesim.v1.StartRecordingRequest
@@ -1479,7 +1940,7 @@ export type StartRecordingRequest = Message<"needlesim.v1.StartRecordingRequest"
  * Use `create(StartRecordingRequestSchema)` to create a new message.
  */
 export const StartRecordingRequestSchema: GenMessage<StartRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 32);
+  messageDesc(file_needlesim_v1_needlesim, 42);
 
 /**
  * @generated from message needlesim.v1.StopRecordingRequest
@@ -1496,7 +1957,7 @@ export type StopRecordingRequest = Message<"needlesim.v1.StopRecordingRequest"> 
  * Use `create(StopRecordingRequestSchema)` to create a new message.
  */
 export const StopRecordingRequestSchema: GenMessage<StopRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 33);
+  messageDesc(file_needlesim_v1_needlesim, 43);
 
 /**
  * @generated from message needlesim.v1.RecordingInfo
@@ -1533,7 +1994,7 @@ export type RecordingInfo = Message<"needlesim.v1.RecordingInfo"> & {
  * Use `create(RecordingInfoSchema)` to create a new message.
  */
 export const RecordingInfoSchema: GenMessage<RecordingInfo> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 34);
+  messageDesc(file_needlesim_v1_needlesim, 44);
 
 /**
  * @generated from message needlesim.v1.ListRecordingsRequest
@@ -1546,7 +2007,7 @@ export type ListRecordingsRequest = Message<"needlesim.v1.ListRecordingsRequest"
  * Use `create(ListRecordingsRequestSchema)` to create a new message.
  */
 export const ListRecordingsRequestSchema: GenMessage<ListRecordingsRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 35);
+  messageDesc(file_needlesim_v1_needlesim, 45);
 
 /**
  * @generated from message needlesim.v1.ListRecordingsResponse
@@ -1563,7 +2024,7 @@ export type ListRecordingsResponse = Message<"needlesim.v1.ListRecordingsRespons
  * Use `create(ListRecordingsResponseSchema)` to create a new message.
  */
 export const ListRecordingsResponseSchema: GenMessage<ListRecordingsResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 36);
+  messageDesc(file_needlesim_v1_needlesim, 46);
 
 /**
  * @generated from message needlesim.v1.DownloadRecordingRequest
@@ -1580,7 +2041,7 @@ export type DownloadRecordingRequest = Message<"needlesim.v1.DownloadRecordingRe
  * Use `create(DownloadRecordingRequestSchema)` to create a new message.
  */
 export const DownloadRecordingRequestSchema: GenMessage<DownloadRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 37);
+  messageDesc(file_needlesim_v1_needlesim, 47);
 
 /**
  * @generated from message needlesim.v1.RecordingChunk
@@ -1602,7 +2063,7 @@ export type RecordingChunk = Message<"needlesim.v1.RecordingChunk"> & {
  * Use `create(RecordingChunkSchema)` to create a new message.
  */
 export const RecordingChunkSchema: GenMessage<RecordingChunk> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 38);
+  messageDesc(file_needlesim_v1_needlesim, 48);
 
 /**
  * @generated from enum needlesim.v1.NodeState
@@ -1693,6 +2154,18 @@ export const SessionService: GenService<{
     input: typeof CloseSessionRequestSchema;
     output: typeof CloseSessionResponseSchema;
   },
+  /**
+   * The boundary surface of a 3D session's tissue in its reference configuration, fetched once:
+   * frames then carry its nodes' displacements (Frame.surface_displacement_m). FAILED_PRECONDITION
+   * for a 2D session (use GetMesh). Observer token.
+   *
+   * @generated from rpc needlesim.v1.SessionService.GetSurface
+   */
+  getSurface: {
+    methodKind: "unary";
+    input: typeof GetSessionRequestSchema;
+    output: typeof SurfaceSchema;
+  },
 }> = /*@__PURE__*/
   serviceDesc(file_needlesim_v1_needlesim, 0);
 
@@ -1741,6 +2214,27 @@ export const ControlService: GenService<{
     methodKind: "unary";
     input: typeof FlipBevelRequestSchema;
     output: typeof FlipBevelResponseSchema;
+  },
+  /**
+   * Control for a 3D session: 3D poses in (ControlRequest3), one response per tick out (its `d3`
+   * set). The same lease, tokens and errors as Control.
+   *
+   * @generated from rpc needlesim.v1.ControlService.Control3
+   */
+  control3: {
+    methodKind: "bidi_streaming";
+    input: typeof ControlRequest3Schema;
+    output: typeof ControlResponseSchema;
+  },
+  /**
+   * SetPose for a 3D session.
+   *
+   * @generated from rpc needlesim.v1.ControlService.SetPose3
+   */
+  setPose3: {
+    methodKind: "unary";
+    input: typeof SetPoseRequest3Schema;
+    output: typeof ControlResponseSchema;
   },
 }> = /*@__PURE__*/
   serviceDesc(file_needlesim_v1_needlesim, 1);
