@@ -13,7 +13,8 @@ use needlesim_core::{BasePose, Material, MaterialMap, Mesh, NeedleShape, PlaneMo
 use needlesim_proto::v1 as pb;
 
 use crate::status::quote;
-use needlesim_scene::{Scene, SceneLimits, Trajectory};
+use needlesim_core::sim3::BasePose3;
+use needlesim_scene::{Scene, Scene3d, SceneLimits, Trajectory};
 
 /// The needle working-set capacity of an uploaded scene.
 const UPLOADED_MAX_NEEDLE_NODES: usize = 128;
@@ -87,7 +88,114 @@ pub fn frame_from_record(r: &TickRecord, target_names: &[String], missed_ticks: 
         bevel_side: r.bevel_side,
         faulted: r.fault.is_some(),
         fault: r.fault.map(|f| f.message()).unwrap_or_default(),
+        d3: tick3(r, target_names),
+        surface_displacement_m: vec![],
     }
+}
+
+fn v3(a: [f64; 3]) -> Option<pb::Vec3> {
+    Some(pb::Vec3 { x: a[0], y: a[1], z: a[2] })
+}
+
+/// A 3D pose to the protocol's.
+pub fn pose3_to_pb(position_m: [f64; 3], wxyz: [f64; 4]) -> pb::Pose3 {
+    let [w, x, y, z] = wxyz;
+    pb::Pose3 { position_m: v3(position_m), orientation: Some(pb::Quaternion { w, x, y, z }) }
+}
+
+/// The 3D part of a record (None for a 2D record).
+fn tick3(r: &TickRecord, target_names: &[String]) -> Option<pb::Tick3> {
+    if r.dimension != 3 {
+        return None;
+    }
+    let d = &r.d3;
+    Some(pb::Tick3 {
+        base: Some(pose3_to_pb(d.position_m, d.orientation_wxyz)),
+        force_n: v3(d.force_n),
+        torque_nm: v3(d.torque_nm),
+        axial_force_n: d.axial_force_n,
+        tip_m: v3(d.tip_m),
+        needle_shape_m: vec![
+            pb::Vec3 { x: d.position_m[0], y: d.position_m[1], z: d.position_m[2] },
+            pb::Vec3 { x: d.tip_m[0], y: d.tip_m[1], z: d.tip_m[2] },
+        ],
+        contacts: d
+            .contacts()
+            .iter()
+            .map(|c| pb::Contact3 {
+                state: match c.state {
+                    0 => pb::NodeState::Stuck,
+                    1 => pb::NodeState::Slipping,
+                    _ => pb::NodeState::Tip,
+                } as i32,
+                position_m: v3(c.x_m),
+                reference_m: v3(c.x_ref_m),
+                force_n: v3(c.force_n),
+            })
+            .collect(),
+        targets: d
+            .targets()
+            .iter()
+            .map(|t| pb::TargetSphere {
+                name: target_names.get(t.name_idx as usize).cloned().unwrap_or_default(),
+                center_m: v3(t.centre_m),
+                radius_m: t.radius_m,
+                distance_m: t.distance_m,
+                hit: t.hit,
+                missed: t.missed,
+            })
+            .collect(),
+        stiffness: d.stiffness.iter().flatten().copied().collect(),
+    })
+}
+
+/// A 2D pose a client sent in `base` for a session of `dimension`: present and finite
+/// (INVALID_ARGUMENT naming `base`, also when the session is 3D).
+pub fn checked_pose2_for(base: Option<&pb::Pose2>, dimension: u8) -> Result<ClientPose, ApiError> {
+    if dimension == 3 {
+        return Err(ApiError::invalid(
+            "base",
+            "this is a 3D session: send its poses through Control3/SetPose3 (base3: position_m, orientation)",
+        ));
+    }
+    checked_pose_from_pb(base, "base").map(ClientPose::Two)
+}
+
+/// A 3D pose a client sent in `base3` for a session of `dimension` ([`checked_pose3_from_pb`];
+/// INVALID_ARGUMENT naming `base3` when the session is 2D).
+pub fn checked_pose3_for(base3: Option<&pb::Pose3>, dimension: u8) -> Result<ClientPose, ApiError> {
+    if dimension != 3 {
+        return Err(ApiError::invalid("base3", "this is a 2D session: send its poses through Control/SetPose (base: x_m, y_m, theta_rad)"));
+    }
+    checked_pose3_from_pb(base3, "base3").map(ClientPose::Three)
+}
+
+/// A pose of either dimension, checked ([`checked_pose2_for`], [`checked_pose3_for`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ClientPose {
+    Two(BasePose),
+    Three(BasePose3),
+}
+
+/// A 3D pose a client sent in `field`: present, finite, its quaternion unit (INVALID_ARGUMENT
+/// naming `field.position_m` or `field.orientation`).
+pub fn checked_pose3_from_pb(p: Option<&pb::Pose3>, field: &str) -> Result<BasePose3, ApiError> {
+    let p = p.ok_or_else(|| ApiError::invalid(field, format!("{field} is missing")))?;
+    let pos_field = format!("{field}.position_m");
+    let q_field = format!("{field}.orientation");
+    let v = p.position_m.as_ref().ok_or_else(|| ApiError::invalid(&pos_field, format!("{pos_field} is missing")))?;
+    let position_m = [v.x, v.y, v.z];
+    if !position_m.iter().all(|c| c.is_finite()) {
+        return Err(ApiError::invalid(&pos_field, format!("{pos_field} ({}, {}, {}) is not finite", v.x, v.y, v.z)));
+    }
+    let q = p.orientation.as_ref().ok_or_else(|| ApiError::invalid(&q_field, format!("{q_field} is missing")))?;
+    let wxyz = [q.w, q.x, q.y, q.z];
+    BasePose3::new(position_m, wxyz).map_err(|e| {
+        ApiError::invalid(
+            &q_field,
+            format!("{q_field} (w {}, x {}, y {}, z {}): {e} (a unit quaternion w, x, y, z is needed)", q.w, q.x, q.y, q.z),
+        )
+    })
 }
 
 /// A tick record to a controller response.
@@ -112,6 +220,7 @@ pub fn control_response(r: &TickRecord) -> pb::ControlResponse {
         bevel_side: r.bevel_side,
         faulted: r.fault.is_some(),
         fault: r.fault.map(|f| f.message()).unwrap_or_default(),
+        d3: tick3(r, &[]),
     }
 }
 
@@ -139,8 +248,10 @@ pub fn session_info(s: &Session) -> pb::SessionInfo {
     pb::SessionInfo {
         session_id: s.id.clone(),
         scene_name: s.scene_name.clone(),
-        n_nodes: s.tissue.mesh().n_nodes() as u32,
-        n_triangles: s.tissue.mesh().n_triangles() as u32,
+        n_nodes: s.tissue.n_nodes() as u32,
+        n_triangles: if s.dimension() == 2 { s.tissue.n_elements() as u32 } else { 0 },
+        dimension: s.dimension() as u32,
+        n_tetrahedra: if s.dimension() == 3 { s.tissue.n_elements() as u32 } else { 0 },
         tick_rate_hz: s.tick_rate_hz,
         created_unix_ms: s.created_unix_ms,
         tick: s.counters.ticks.load(Ordering::Relaxed),
@@ -363,6 +474,75 @@ pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Res
             needlesim_scene::parse_scene(text, std::path::Path::new("/nonexistent"), limits).context("scene.scene_toml")
         }
         pb::scene_source::Source::Uploaded(u) => uploaded_scene(u, limits),
+        pb::scene_source::Source::Uploaded3d(_) => bail!("scene.uploaded3d: a 3D scene makes a live session only (CreateSession)"),
+    }
+}
+
+/// The scene of a new session: 2D or 3D.
+pub enum SessionScene {
+    Two(Scene),
+    Three(Box<Scene3d>),
+}
+
+/// A session's scene from its source: a 3D example name, a 3D TOML (`dim = 3`) or an uploaded 3D
+/// scene load with the 3D loader (its limits), anything else as [`scene_from_pb`].
+pub fn session_scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Result<SessionScene> {
+    match src.and_then(|s| s.source.as_ref()) {
+        Some(pb::scene_source::Source::Example(name)) if needlesim_scene::EXAMPLES3D.iter().any(|e| e.0 == name) => {
+            Ok(SessionScene::Three(Box::new(needlesim_scene::load_scene3d(name, limits)?)))
+        }
+        Some(pb::scene_source::Source::SceneToml(text)) if needlesim_scene::scene_dim(text).is_ok_and(|d| d == 3) => {
+            let scene = needlesim_scene::parse_scene3d(text, std::path::Path::new("/nonexistent"), limits).context("scene.scene_toml")?;
+            Ok(SessionScene::Three(Box::new(scene)))
+        }
+        Some(pb::scene_source::Source::Uploaded3d(u)) => uploaded_scene3d(u, limits).map(|s| SessionScene::Three(Box::new(s))),
+        _ => scene_from_pb(src, limits).map(SessionScene::Two),
+    }
+}
+
+/// An uploaded 3D scene: its mesh file written to a private temporary directory for the 3D
+/// loader (which reads the file the TOML names, within its limits), removed afterwards.
+fn uploaded_scene3d(u: &pb::UploadedScene3d, limits: &SceneLimits) -> Result<Scene3d> {
+    let name = &u.mesh_file_name;
+    let plain = !name.is_empty()
+        && name.len() <= 255
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || "._-".contains(c))
+        && !name.starts_with('.');
+    if !plain {
+        bail!(
+            "scene.uploaded3d.mesh_file_name '{}': a plain file name is needed (letters, digits, '.', '_', '-'; not starting with '.')",
+            quote(name)
+        );
+    }
+    let max = limits.mesh.max_nodes.saturating_mul(512).max(1 << 20);
+    if u.mesh_text.len() > max {
+        return Err(anyhow::Error::new(needlesim_scene::SizeLimit {
+            what: "scene.uploaded3d.mesh_text".into(),
+            amount: u.mesh_text.len() as u64 >> 20,
+            limit: max as u64 >> 20,
+            unit: "MiB",
+            hint: " (the server's node limit bounds the mesh text)".into(),
+        }));
+    }
+    static UPLOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = UPLOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    // Unique to this process and call; `create_dir` refuses one that exists.
+    let dir = std::env::temp_dir().join(format!("needlesim-upload3d-{}-{n}", std::process::id()));
+    std::fs::create_dir(&dir).with_context(|| format!("scene.uploaded3d: cannot create {}", dir.display()))?;
+    let result = std::fs::write(dir.join(name), &u.mesh_text)
+        .with_context(|| "scene.uploaded3d: cannot store the mesh".to_string())
+        .and_then(|()| needlesim_scene::parse_scene3d(&u.scene_toml, &dir, limits).context("scene.uploaded3d"));
+    let _ = std::fs::remove_dir_all(&dir);
+    result
+}
+
+/// The boundary surface of a 3D session's tissue.
+pub fn surface_to_pb(surface: &needlesim_session::BoundarySurface, mesh: &needlesim_core::d3::TetMesh) -> pb::Surface {
+    let nodes_m = mesh.nodes_m();
+    pb::Surface {
+        node_ids: surface.nodes.clone(),
+        node_xyz_m: surface.nodes.iter().flat_map(|&v| nodes_m[v as usize]).collect(),
+        triangles: surface.triangles.iter().flatten().copied().collect(),
     }
 }
 

@@ -11,6 +11,7 @@
 use needlesim_core::mesh::MeshError;
 use needlesim_core::msh::MshError;
 use needlesim_core::sim::SimError;
+use needlesim_core::sim3::SimError3;
 use needlesim_offline::RunError;
 use needlesim_offline::plan::PlanInputError;
 use tonic::Status;
@@ -130,6 +131,16 @@ fn with_causes(e: &dyn std::error::Error) -> String {
     s
 }
 
+impl From<&SimError3> for ApiError {
+    fn from(e: &SimError3) -> Self {
+        match e {
+            // The scene's parameters (a target outside the mesh, a value out of range) or a pose.
+            SimError3::InvalidParams(_) | SimError3::Pose { .. } | SimError3::UnknownNode { .. } => ApiError::invalid("scene", e),
+            _ => ApiError::Internal(e.to_string()),
+        }
+    }
+}
+
 impl From<&RunError> for ApiError {
     fn from(e: &RunError) -> Self {
         match e {
@@ -150,6 +161,7 @@ impl From<&SessionError> for ApiError {
         match e {
             SessionError::TickRate(_) => ApiError::invalid("tick_rate_hz", e),
             SessionError::Sim(s) => ApiError::from(s),
+            SessionError::Sim3(s) => ApiError::from(s),
             _ => ApiError::Internal(e.to_string()),
         }
     }

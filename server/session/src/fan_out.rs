@@ -129,6 +129,108 @@ impl ColumnWorker {
     }
 }
 
+/// The 3D session's compliance worker: columns of requested nodes, or node blocks
+/// ([`needlesim_core::sim3::Sim3BlockWorker`]), per the simulation's store. Answers in request
+/// order; waits (200 µs polls) when the delivery ring is full rather than drop an answer.
+pub(crate) enum Worker3 {
+    Columns {
+        model: Arc<needlesim_core::d3::TetTissueModel>,
+        req_rx: rtrb::Consumer<u32>,
+        col_tx: rtrb::Producer<(u32, Box<[f64]>)>,
+        ret_rx: rtrb::Consumer<Box<[f64]>>,
+    },
+    Blocks {
+        worker: Box<needlesim_core::sim3::Sim3BlockWorker>,
+        req_rx: rtrb::Consumer<needlesim_core::sim3::BlockRequest>,
+        pay_tx: rtrb::Producer<Box<needlesim_core::sim3::BlockPayload>>,
+        ret_rx: rtrb::Consumer<Box<needlesim_core::sim3::BlockPayload>>,
+    },
+}
+
+/// Pushes `item` into `tx`, waiting while the ring is full; false when stopped meanwhile.
+fn push_waiting<T>(tx: &mut rtrb::Producer<T>, mut item: T, stop: &AtomicBool) -> bool {
+    loop {
+        match tx.push(item) {
+            Ok(()) => return true,
+            Err(rtrb::PushError::Full(back)) => {
+                if stop.load(Ordering::Relaxed) {
+                    return false;
+                }
+                item = back;
+                std::thread::sleep(Duration::from_micros(200));
+            }
+        }
+    }
+}
+
+impl Worker3 {
+    pub(crate) fn run(self, bell: Arc<Doorbell>, stop: Arc<AtomicBool>) {
+        match self {
+            Worker3::Columns { model, mut req_rx, mut col_tx, mut ret_rx } => {
+                let mut scratch = model.column_scratch();
+                let len = 3 * model.n_dofs();
+                let mut spare: Vec<Box<[f64]>> = Vec::new();
+                while !stop.load(Ordering::Relaxed) {
+                    while let Ok(b) = ret_rx.pop() {
+                        if spare.len() < 8 {
+                            spare.push(b);
+                        }
+                    }
+                    let Ok(node) = req_rx.pop() else {
+                        bell.wait_from_worker(COLUMN_WORKER_TIMEOUT, || !req_rx.is_empty() || stop.load(Ordering::Relaxed));
+                        continue;
+                    };
+                    let mut cols = spare.pop().unwrap_or_else(|| vec![0.0; len].into_boxed_slice());
+                    if let Err(e) = model.compliance_columns_into(node as usize, &mut cols, &mut scratch) {
+                        tracing::error!("3D columns of node {node}: {e}");
+                        continue;
+                    }
+                    if !push_waiting(&mut col_tx, (node, cols), &stop) {
+                        return;
+                    }
+                }
+            }
+            Worker3::Blocks { mut worker, mut req_rx, mut pay_tx, mut ret_rx } => {
+                let mut batch = Vec::with_capacity(needlesim_core::sim3::ROWS_BATCH);
+                let mut spare: Vec<Box<needlesim_core::sim3::BlockPayload>> = Vec::new();
+                while !stop.load(Ordering::Relaxed) {
+                    while let Ok(b) = ret_rx.pop() {
+                        spare.push(b);
+                    }
+                    batch.clear();
+                    while batch.len() < needlesim_core::sim3::ROWS_BATCH
+                        && let Ok(r) = req_rx.pop()
+                    {
+                        batch.push(r);
+                    }
+                    if batch.is_empty() {
+                        bell.wait_from_worker(COLUMN_WORKER_TIMEOUT, || !req_rx.is_empty() || stop.load(Ordering::Relaxed));
+                        continue;
+                    }
+                    let payloads = match worker.compute(&batch) {
+                        Ok(p) => p,
+                        Err(e) => {
+                            // Not expected (the simulation requests its own nodes and slots);
+                            // those nodes stay pending: their captures wait.
+                            tracing::error!("3D node blocks: {e}");
+                            continue;
+                        }
+                    };
+                    for p in payloads {
+                        let mut b = spare.pop().unwrap_or_else(|| Box::new(p.clone()));
+                        b.node_idx = p.node_idx;
+                        b.slot = p.slot;
+                        b.blocks.clone_from(&p.blocks);
+                        if !push_waiting(&mut pay_tx, b, &stop) {
+                            return;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// Distributes tick records off the real-time thread.
 pub(crate) struct FanOut {
     pub(crate) rec_rx: rtrb::Consumer<TickRecord>,
@@ -136,8 +238,7 @@ pub(crate) struct FanOut {
     pub(crate) latest_tx: tokio::sync::watch::Sender<Arc<TickRecord>>,
     pub(crate) field_tx: tokio::sync::watch::Sender<Arc<Field>>,
     pub(crate) field_subscribers: Arc<AtomicU64>,
-    pub(crate) render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>,
-    pub(crate) n_dofs: usize,
+    pub(crate) field_maker: FieldMaker,
     pub(crate) histograms: Arc<Mutex<Histograms>>,
     pub(crate) sink: SinkSlot,
     pub(crate) counters: Arc<SessionCounters>,
@@ -148,6 +249,14 @@ pub(crate) struct FanOut {
     /// Rung by the real-time thread after it pushes a record.
     pub(crate) bell: Arc<Doorbell>,
     pub(crate) stop: Arc<AtomicBool>,
+}
+
+/// How the fan-out computes a displacement field.
+pub(crate) enum FieldMaker {
+    /// 2D: every node's, from the contacts' columns the column worker keeps for rendering.
+    Two { render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>>, n_dofs: usize },
+    /// 3D: the boundary surface's nodes' ([`crate::surface`]).
+    Three(crate::surface::SurfaceField3),
 }
 
 /// How often the fan-out computes the displacement field while someone wants it.
@@ -188,7 +297,10 @@ impl FanOut {
                 {
                     last_field = Instant::now();
                     field_tick = Some(rec.tick);
-                    let field = self.field_for(rec);
+                    let field = match &mut self.field_maker {
+                        FieldMaker::Two { render_columns, n_dofs } => field_for(rec, render_columns, *n_dofs),
+                        FieldMaker::Three(f) => Field { tick: rec.tick, displacement_m: f.field(&rec.d3) },
+                    };
                     self.field_tx.send_replace(Arc::new(field));
                 }
             }
@@ -218,26 +330,26 @@ impl FanOut {
         }
         *stiffness_errors_logged = errors;
     }
+}
 
-    /// $u = \sum_w C_{:,w} f_w$ from the columns the worker computed.
-    fn field_for(&self, rec: &TickRecord) -> Field {
-        let mut u = vec![0.0; self.n_dofs];
-        let cols = self.render_columns.lock().expect("render columns lock");
-        for nn in rec.nodes() {
-            for (node, weight) in TickRecord::contact_terms(nn) {
-                let Some(c) = cols.get(&node) else { continue };
-                for comp in 0..2 {
-                    let f = weight * nn.force_n[comp];
-                    if f != 0.0 {
-                        for (o, v) in u.iter_mut().zip(&c[comp * self.n_dofs..(comp + 1) * self.n_dofs]) {
-                            *o += v * f;
-                        }
+/// $u = \sum_w C_{:,w} f_w$ from the columns the worker computed (2D).
+fn field_for(rec: &TickRecord, render_columns: &Mutex<std::collections::HashMap<u32, Arc<[f64]>>>, n_dofs: usize) -> Field {
+    let mut u = vec![0.0; n_dofs];
+    let cols = render_columns.lock().expect("render columns lock");
+    for nn in rec.nodes() {
+        for (node, weight) in TickRecord::contact_terms(nn) {
+            let Some(c) = cols.get(&node) else { continue };
+            for comp in 0..2 {
+                let f = weight * nn.force_n[comp];
+                if f != 0.0 {
+                    for (o, v) in u.iter_mut().zip(&c[comp * n_dofs..(comp + 1) * n_dofs]) {
+                        *o += v * f;
                     }
                 }
             }
         }
-        Field { tick: rec.tick, displacement_m: u }
     }
+    Field { tick: rec.tick, displacement_m: u }
 }
 
 /// The session's device-channel watcher (a non-real-time thread): checks the channel's file every

@@ -22,15 +22,19 @@ pub mod control_lease;
 mod counters;
 mod doorbell;
 mod fan_out;
+mod live_sim;
 mod record;
 mod rt_loop;
 mod session;
+pub mod surface;
 
 pub use counters::{SessionCounters, StatsSnapshot};
 pub use fan_out::{Field, RecordSink};
+pub use record::{ContactRecord3, MAX_RECORD_CONTACTS3, MAX_RECORD_TARGETS3, PoseCommand3, Record3, TargetRecord3};
 pub use record::{
     DEVICE_STALE_TICKS, FAULT_OTHER, FAULT_SOLVER, FAULT_TISSUE, MAX_CONSECUTIVE_STEP_ERRORS, MAX_RECORD_NODES, MAX_RECORD_SHAPE,
     MAX_RECORD_TARGETS, NodeRecord, PoseCommand, STIFFNESS_EVERY_TICKS, SessionFault, TargetRecord, TickRecord,
 };
 pub use rt_loop::{FLIP_BEVEL_BUTTON, IN_TICK, WARM_UP_TICKS, request_realtime_priority};
-pub use session::{DEFAULT_SPIN_MARGIN, Session, SessionError, set_rt_priority, set_spin_margin};
+pub use session::{DEFAULT_SPIN_MARGIN, Session, SessionError, SessionTissue, WrongDimension, set_rt_priority, set_spin_margin};
+pub use surface::BoundarySurface;

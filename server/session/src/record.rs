@@ -4,6 +4,7 @@
 
 use needlesim_core::BasePose;
 use needlesim_core::sim::{Divergence, NodeState, SimError, StepOutput};
+use needlesim_core::sim3::{PointState3, SimError3, StepOutput3, TargetState3};
 
 /// Needle nodes carried by one tick record (a simulation may have more; they are counted).
 pub const MAX_RECORD_NODES: usize = 128;
@@ -84,6 +85,101 @@ pub struct TickRecord {
     /// The session faulted at this record's tick: the simulation failed, the force is zero and
     /// the needle is held; no record follows.
     pub fault: Option<SessionFault>,
+    /// The dimension of the session: 2, or 3 when [`TickRecord::d3`] holds the tick. A 3D
+    /// record fills the 2D fields above with the planar part of the 3D tick (x, y, the twist
+    /// about z), so that a 2D consumer reads something meaningful.
+    pub dimension: u8,
+    /// The 3D tick (all zero in a 2D session).
+    pub d3: Record3,
+}
+
+/// Contact points carried by one 3D tick record (a simulation may have more; they are counted
+/// in `SessionCounters::records_truncated`).
+pub const MAX_RECORD_CONTACTS3: usize = 64;
+/// Targets carried by one 3D tick record (the 3D simulation's own bound).
+pub const MAX_RECORD_TARGETS3: usize = needlesim_core::sim3::MAX_TARGETS;
+
+/// One contact point of a 3D tick (world frame).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactRecord3 {
+    /// Its reference (undeformed) position, m.
+    pub x_ref_m: [f64; 3],
+    /// Its current position $X + u$, m.
+    pub x_m: [f64; 3],
+    /// The force of the needle on the tissue there, N.
+    pub force_n: [f64; 3],
+    /// 0 stuck, 1 slipping, 2 carried by the tip.
+    pub state: u8,
+}
+
+/// One target sphere of a 3D tick (world frame).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TargetRecord3 {
+    /// The index of its name in the session's target names.
+    pub name_idx: u16,
+    /// Displaced centre, m.
+    pub centre_m: [f64; 3],
+    pub radius_m: f64,
+    /// Distance from the tip to the displaced centre, m.
+    pub distance_m: f64,
+    /// Latched: the tip came within the radius.
+    pub hit: bool,
+    /// Latched: the tip went past the centre without a hit.
+    pub missed: bool,
+}
+
+/// The 3D part of a tick record: plain data of fixed size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Record3 {
+    /// The base pose applied: position, world, m …
+    pub position_m: [f64; 3],
+    /// … and orientation, unit quaternion $(w, x, y, z)$, needle body frame → world (the needle
+    /// axis is the body's $+x$).
+    pub orientation_wxyz: [f64; 4],
+    /// Force of the tissue on the needle base, world, N.
+    pub force_n: [f64; 3],
+    /// Torque of the tissue on the needle about the base point, world, N·m.
+    pub torque_nm: [f64; 3],
+    /// The axial force, $-t\cdot F$, N (positive while pushing in).
+    pub axial_force_n: f64,
+    /// The tip, world, m.
+    pub tip_m: [f64; 3],
+    pub n_contacts: u8,
+    pub contacts: [ContactRecord3; MAX_RECORD_CONTACTS3],
+    pub n_targets: u8,
+    pub targets: [TargetRecord3; MAX_RECORD_TARGETS3],
+    /// $\partial(F, \tau)/\partial(x_b, \theta)$ (`needlesim_core::sim3::WrenchStiffness3`),
+    /// refreshed every [`STIFFNESS_EVERY_TICKS`] ticks.
+    pub stiffness: [[f64; 6]; 6],
+}
+
+impl Default for Record3 {
+    fn default() -> Self {
+        Self {
+            position_m: [0.0; 3],
+            orientation_wxyz: [1.0, 0.0, 0.0, 0.0],
+            force_n: [0.0; 3],
+            torque_nm: [0.0; 3],
+            axial_force_n: 0.0,
+            tip_m: [0.0; 3],
+            n_contacts: 0,
+            contacts: [ContactRecord3::default(); MAX_RECORD_CONTACTS3],
+            n_targets: 0,
+            targets: [TargetRecord3::default(); MAX_RECORD_TARGETS3],
+            stiffness: [[0.0; 6]; 6],
+        }
+    }
+}
+
+impl Record3 {
+    /// The contact points of this record.
+    pub fn contacts(&self) -> &[ContactRecord3] {
+        &self.contacts[..self.n_contacts as usize]
+    }
+    /// The targets of this record.
+    pub fn targets(&self) -> &[TargetRecord3] {
+        &self.targets[..self.n_targets as usize]
+    }
 }
 
 /// Why a live session stopped stepping: plain data (a code and numbers), written by the
@@ -115,6 +211,16 @@ impl SessionFault {
             SimError::Mixed(_) => Self { tick, code: FAULT_SOLVER, value: 0.0, bound: 0.0 },
             _ => Self { tick, code: FAULT_OTHER, value: 0.0, bound: 0.0 },
         }
+    }
+
+    /// The fault of a failed 3D step at `tick` (not for a rejected pose, which is no fault).
+    pub fn of3(e: &SimError3, tick: u64) -> Self {
+        let code = match e {
+            SimError3::Tissue(_) | SimError3::Sparse(_) => FAULT_TISSUE,
+            SimError3::Mixed(_) => FAULT_SOLVER,
+            _ => FAULT_OTHER,
+        };
+        Self { tick, code, value: 0.0, bound: 0.0 }
     }
 
     /// The fault in words (allocates: for the IO side).
@@ -165,6 +271,8 @@ impl Default for TickRecord {
             shape_m: [[0.0; 2]; MAX_RECORD_SHAPE],
             bevel_side: 0.0,
             fault: None,
+            dimension: 2,
+            d3: Record3::default(),
         }
     }
 }
@@ -227,6 +335,72 @@ impl TickRecord {
         }
     }
 
+    /// Fills the record from a 3D step (`radii_m`: the targets' radii, in the simulation's order),
+    /// the 2D fields with its planar part. Allocates nothing.
+    pub(crate) fn fill_from_rt3(&mut self, out: &StepOutput3, radii_m: &[f64]) {
+        let q = out.pose.orientation;
+        let wxyz = [q.w, q.i, q.j, q.k];
+        let d = &mut self.d3;
+        d.position_m = out.pose.position_m;
+        d.orientation_wxyz = wxyz;
+        d.force_n = out.base_force_n;
+        d.torque_nm = out.base_torque_nm;
+        d.axial_force_n = out.axial_force_n;
+        d.tip_m = out.tip_m;
+        let n = out.contacts.len().min(MAX_RECORD_CONTACTS3);
+        d.n_contacts = n as u8;
+        let (mut stuck, mut slipping, mut tip) = (0, 0, 0);
+        for (r, c) in d.contacts.iter_mut().zip(&out.contacts[..n]) {
+            let state = match c.state {
+                PointState3::Stuck => 0,
+                PointState3::Slipping => 1,
+                PointState3::Tip => 2,
+            };
+            *r = ContactRecord3 { x_ref_m: c.x_ref_m, x_m: c.x_m, force_n: c.force_n, state };
+        }
+        for c in &out.contacts {
+            match c.state {
+                PointState3::Stuck => stuck += 1,
+                PointState3::Slipping => slipping += 1,
+                PointState3::Tip => tip += 1,
+            }
+        }
+        let targets = out.targets.as_slice();
+        let m = targets.len().min(MAX_RECORD_TARGETS3);
+        d.n_targets = m as u8;
+        for (r, t) in d.targets.iter_mut().zip(&targets[..m]) {
+            *r = TargetRecord3 {
+                name_idx: t.name_idx as u16,
+                centre_m: t.centre_m,
+                radius_m: radii_m.get(t.name_idx).copied().unwrap_or(0.0),
+                distance_m: t.distance_m,
+                hit: t.state == TargetState3::Hit,
+                missed: t.state == TargetState3::Missed,
+            };
+        }
+        // The planar part, for 2D consumers.
+        self.dimension = 3;
+        self.tick = out.tick;
+        self.time_s = out.time_s;
+        let [x_m, y_m, theta_rad] = needlesim_channel::spatial::pose_to_planar(out.pose.position_m, wxyz);
+        self.base = BasePose::new(x_m, y_m, theta_rad);
+        self.force_n = [out.base_force_n[0], out.base_force_n[1]];
+        self.torque_nm = out.base_torque_nm[2];
+        self.force_axial_n = -out.axial_force_n;
+        self.force_lateral_n = 0.0;
+        self.tip_m = [out.tip_m[0], out.tip_m[1]];
+        self.inserted_length_m = out.inserted_length_m;
+        self.n_stuck = stuck;
+        self.n_slipping = slipping;
+        self.n_tip = tip;
+        self.n_nodes = 0;
+        self.n_targets = 0;
+        self.n_shape = 2;
+        self.shape_m[0] = [out.pose.position_m[0], out.pose.position_m[1]];
+        self.shape_m[1] = self.tip_m;
+        self.bevel_side = 0.0;
+    }
+
     /// The needle nodes of this record.
     pub fn nodes(&self) -> &[NodeRecord] {
         &self.nodes[..self.n_nodes as usize]
@@ -246,10 +420,14 @@ impl TickRecord {
     }
 }
 
-/// A pose command from a controller.
+/// A pose command from a controller: a 2D [`BasePose`] (the default) or a 3D
+/// [`BasePose3`](needlesim_core::sim3::BasePose3) ([`PoseCommand3`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PoseCommand {
-    pub pose: BasePose,
+pub struct PoseCommand<P = BasePose> {
+    pub pose: P,
     pub seq: u64,
     pub client_time_ns: u64,
 }
+
+/// A 3D pose command.
+pub type PoseCommand3 = PoseCommand<needlesim_core::sim3::BasePose3>;

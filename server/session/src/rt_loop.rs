@@ -17,15 +17,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use needlesim_core::BasePose;
-use needlesim_core::sim::{SimError, Simulation};
-
 use crate::counters::SessionCounters;
 use crate::doorbell::Doorbell;
-use crate::fan_out::{EVICTED_TAG, RENDER_TAG};
-use crate::record::{
-    DEVICE_STALE_TICKS, MAX_CONSECUTIVE_STEP_ERRORS, MAX_RECORD_NODES, PoseCommand, STIFFNESS_EVERY_TICKS, SessionFault, TickRecord,
-};
+use crate::live_sim::{LiveSim, StepFail};
+use crate::record::{DEVICE_STALE_TICKS, MAX_CONSECUTIVE_STEP_ERRORS, PoseCommand, STIFFNESS_EVERY_TICKS, SessionFault, TickRecord};
 
 thread_local! {
     /// True on a session's real-time thread while it computes a tick (after its first ticks),
@@ -36,22 +31,14 @@ thread_local! {
 /// Ticks after which the real-time thread counts as warmed up.
 pub const WARM_UP_TICKS: u64 = 200;
 
-/// A node's columns were asked of the worker for the real-time cache.
-const REQUESTED_FOR_CACHE: u8 = 1;
-/// A node's columns were asked of the worker for the renderer (the node is a contact's).
-const REQUESTED_FOR_RENDER: u8 = 2;
-
 /// The real-time loop's state.
-pub(crate) struct RtLoop {
-    pub(crate) sim: Simulation,
+/// The real-time loop's state, generic over the simulation ([`LiveSim`]: 2D or 3D).
+pub(crate) struct RtLoop<S: LiveSim> {
+    /// The simulation and its worker's queues.
+    pub(crate) sim: S,
     pub(crate) period: Duration,
-    pub(crate) pose_out: triple_buffer::Output<PoseCommand>,
+    pub(crate) pose_out: triple_buffer::Output<PoseCommand<S::Pose>>,
     pub(crate) rec_tx: rtrb::Producer<TickRecord>,
-    pub(crate) req_tx: rtrb::Producer<u32>,
-    pub(crate) col_rx: rtrb::Consumer<(u32, Box<[f64]>)>,
-    pub(crate) ret_tx: rtrb::Producer<Box<[f64]>>,
-    /// Per node: [`REQUESTED_FOR_CACHE`] and/or [`REQUESTED_FOR_RENDER`], until evicted.
-    pub(crate) requested: Vec<u8>,
     pub(crate) counters: Arc<SessionCounters>,
     pub(crate) stop: Arc<AtomicBool>,
     pub(crate) record: Box<TickRecord>,
@@ -70,7 +57,6 @@ pub(crate) struct RtLoop {
     pub(crate) device_seen: bool,
     /// The device's buttons at its previous fresh pose (None before the first).
     pub(crate) last_buttons: Option<u32>,
-    pub(crate) stiffness: [f64; 9],
     /// Set when a step failed: no more steps, zero force, the needle held.
     pub(crate) fault: Option<SessionFault>,
     /// Step failures (other than a divergence) in a row; [`MAX_CONSECUTIVE_STEP_ERRORS`] fault.
@@ -87,7 +73,7 @@ use needlesim_channel::rt::request_precise_timers;
 pub use needlesim_channel::rt::request_realtime_priority;
 use needlesim_channel::schedule::Schedule;
 
-impl RtLoop {
+impl<S: LiveSim> RtLoop<S> {
     pub(crate) fn run(mut self) {
         // Reported, not logged: the fan-out puts it into the log.
         let priority = request_realtime_priority(self.rt_priority).map(|()| self.rt_priority);
@@ -120,37 +106,16 @@ impl RtLoop {
         }
     }
 
-    /// After the cache evicted `node`'s columns: it may be requested again, and the worker is
-    /// told to drop the renderer's copy (a full ring is counted; the copy then stays until the
-    /// node is computed again).
-    fn forget_columns_from_rt(&mut self, node: usize) {
-        self.requested[node] = 0;
-        if self.req_tx.push(node as u32 | EVICTED_TAG).is_err() {
-            self.counters.dropped_eviction_notices.fetch_add(1, Ordering::Relaxed);
-        }
-    }
-
-    fn tick_from_rt(&mut self, pose: &mut BasePose, last_seq: &mut u64, last_client_time: &mut u64, lateness: Duration) {
+    fn tick_from_rt(&mut self, pose: &mut S::Pose, last_seq: &mut u64, last_client_time: &mut u64, lateness: Duration) {
         let warm = self.counters.ticks.load(Ordering::Relaxed) >= WARM_UP_TICKS;
         IN_TICK.with(|c| c.set(warm));
         self.compute_tick_from_rt(pose, last_seq, last_client_time, lateness);
         IN_TICK.with(|c| c.set(false));
     }
 
-    fn compute_tick_from_rt(&mut self, pose: &mut BasePose, last_seq: &mut u64, last_client_time: &mut u64, lateness: Duration) {
+    fn compute_tick_from_rt(&mut self, pose: &mut S::Pose, last_seq: &mut u64, last_client_time: &mut u64, lateness: Duration) {
         let t0 = Instant::now();
-        // Columns delivered by the worker; the box not kept goes back to be freed there.
-        while let Ok((node, cols)) = self.col_rx.pop() {
-            let inserted = self.sim.insert_columns_owned(node as usize, cols);
-            if let Some(spare) = inserted.spare
-                && let Err(rtrb::PushError::Full(spare)) = self.ret_tx.push(spare)
-            {
-                drop(spare);
-            }
-            if let Some(evicted) = inserted.evicted {
-                self.forget_columns_from_rt(evicted);
-            }
-        }
+        self.sim.absorb_from_rt(&self.counters);
         // A pose written since the last tick is new, whatever its seq (a controller that takes
         // over may start counting again from where its predecessor was).
         let client_pose = self.pose_out.update();
@@ -178,10 +143,15 @@ impl RtLoop {
             } else if sample.fresh()
                 && let Some(p) = sample.value
             {
-                // A 2D session takes the planar part of the 6-DOF pose (x, y, the twist about z).
-                let [x_m, y_m, theta_rad] = p.to_planar();
-                *pose = BasePose::new(x_m, y_m, theta_rad);
-                self.device_pose_counter = p.counter;
+                match self.sim.pose_from_device(&p) {
+                    Some(q) => {
+                        *pose = q;
+                        self.device_pose_counter = p.counter;
+                    }
+                    None => {
+                        self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+                    }
+                }
                 // Button 0 pressed (rising edge): flip the bevel.
                 if let Some(prev) = self.last_buttons
                     && p.buttons & FLIP_BEVEL_BUTTON != 0
@@ -210,29 +180,28 @@ impl RtLoop {
         let applied = self.counters.bevel_flips_applied.load(Ordering::Relaxed);
         if requested > applied {
             if (requested - applied) % 2 == 1 {
-                self.sim.flip_bevel();
+                self.sim.flip_bevel_from_rt();
             }
             self.counters.bevel_flips_applied.store(requested, Ordering::Relaxed);
         }
-        let misses_before = self.sim.stats().column_misses;
+        let misses_before = self.sim.column_misses();
         // A faulted session steps no more; the tick that faulted publishes one record saying so.
         let mut just_faulted = false;
         let stepped = if self.fault.is_some() {
             *pose = self.sim.pose();
             false
         } else {
-            match self.sim.step(*pose) {
-                Ok(out) => {
-                    self.record.fill_from_rt(out);
+            match self.sim.step_from_rt(*pose, &mut self.record) {
+                Ok(()) => {
                     self.consecutive_step_errors = 0;
                     true
                 }
-                Err(SimError::NonFinitePose { .. }) => {
+                Err(StepFail::RejectedPose) => {
                     self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
                     *pose = self.sim.pose();
                     false
                 }
-                Err(e) if !matches!(e, SimError::Diverged { .. }) && self.consecutive_step_errors + 1 < MAX_CONSECUTIVE_STEP_ERRORS => {
+                Err(StepFail::Failed { diverged: false, .. }) if self.consecutive_step_errors + 1 < MAX_CONSECUTIVE_STEP_ERRORS => {
                     // Another failure of the step (the solver or a compliance column) may pass
                     // with the next pose: hold the last pose, publish nothing, count it; only a
                     // run of them faults the session.
@@ -241,26 +210,14 @@ impl RtLoop {
                     *pose = self.sim.pose();
                     false
                 }
-                Err(e) => {
+                Err(StepFail::Failed { diverged, fault }) => {
                     // A diverged solve (or a failure that persists) cannot go on pushing: zero
                     // force, hold the last pose, and tell the others (the message is put into
                     // words off this thread).
-                    if !matches!(e, SimError::Diverged { .. }) {
+                    if !diverged {
                         self.counters.step_errors.fetch_add(1, Ordering::Relaxed);
                     }
-                    let fault = SessionFault::of(&e, self.sim.stats().ticks);
-                    self.counters.set_fault_from_rt(&fault);
-                    self.fault = Some(fault);
-                    let r = &mut *self.record;
-                    r.tick = fault.tick;
-                    r.time_s = fault.tick as f64 / self.sim.params().tick_rate_hz;
-                    r.force_n = [0.0; 2];
-                    r.torque_nm = 0.0;
-                    r.force_axial_n = 0.0;
-                    r.force_lateral_n = 0.0;
-                    r.fault = Some(fault);
-                    r.base = self.sim.pose();
-                    self.stiffness = [0.0; 9];
+                    self.fail_from_rt(fault);
                     *pose = self.sim.pose();
                     just_faulted = true;
                     false
@@ -268,15 +225,12 @@ impl RtLoop {
             }
         };
         if stepped && self.counters.ticks.load(Ordering::Relaxed).is_multiple_of(STIFFNESS_EVERY_TICKS) {
-            match self.sim.stiffness_jacobian() {
-                Ok(j) => self.stiffness = [j[0][0], j[0][1], j[0][2], j[1][0], j[1][1], j[1][2], j[2][0], j[2][1], j[2][2]],
-                // The last Jacobian is kept; counted here, logged by the fan-out.
-                Err(_) => {
-                    self.counters.stiffness_errors.fetch_add(1, Ordering::Relaxed);
-                }
+            // On failure the last Jacobian is kept; counted here, logged by the fan-out.
+            if self.sim.refresh_stiffness_from_rt().is_err() {
+                self.counters.stiffness_errors.fetch_add(1, Ordering::Relaxed);
             }
         }
-        self.record.stiffness = self.stiffness;
+        self.sim.stiffness_into(&mut self.record);
         self.record.device_stale = device_stale;
         if let Some(dev) = self.device.as_mut() {
             let r = &self.record;
@@ -292,53 +246,10 @@ impl RtLoop {
                 pose_counter: if stepped { self.device_pose_counter } else { 0 },
                 ..Default::default()
             };
-            // The 2D wrench, stiffness and base embedded in the channel's 6-DOF fields.
-            force.set_planar([r.force_n[0], r.force_n[1], r.torque_nm], &self.stiffness, [r.base.x_m, r.base.y_m, r.base.theta_rad]);
+            self.sim.fill_force(r, &mut force);
             dev.write_force_from_rt(&force);
         }
-        for k in 0..self.sim.output().evicted.len() {
-            let node = self.sim.output().evicted[k];
-            self.forget_columns_from_rt(node);
-        }
-        let st = self.sim.stats();
-        self.counters.column_misses.fetch_add(st.column_misses - misses_before, Ordering::Relaxed);
-        self.counters.columns_evicted.store(st.columns_evicted, Ordering::Relaxed);
-        self.counters.column_deferrals.store(st.column_deferrals, Ordering::Relaxed);
-        self.counters.budget_exhausted_ticks.store(st.budget_exhausted_ticks, Ordering::Relaxed);
-        self.counters.hybrid_checks.store(st.hybrid_checks, Ordering::Relaxed);
-        self.counters.hybrid_rebuilds.store(st.hybrid_rebuilds, Ordering::Relaxed);
-        self.counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);
-        if self.sim.output().needle_nodes.len() > MAX_RECORD_NODES {
-            self.counters.records_truncated.fetch_add(1, Ordering::Relaxed);
-        }
-        // Ask the worker for the columns of approaching nodes (for this thread's cache), and for
-        // the renderer's copies of the contacts' nodes (the fan-out renders their share of the
-        // field; it keeps no copy of a column only the prefetch needed).
-        let out = self.sim.output();
-        let n_app = out.approaching.len();
-        let n_req = n_app + 3 * out.needle_nodes.len();
-        let mut requested_any = false;
-        for k in 0..n_req {
-            let out = self.sim.output();
-            let (node, flag, tag) = if k < n_app {
-                (out.approaching[k], REQUESTED_FOR_CACHE, 0)
-            } else {
-                let nn = &out.needle_nodes[(k - n_app) / 3];
-                match nn.contact.nodes().get((k - n_app) % 3) {
-                    Some(j) => (j.index(), REQUESTED_FOR_RENDER, RENDER_TAG),
-                    None => continue,
-                }
-            };
-            if self.requested[node] & flag == 0 {
-                if self.req_tx.push(node as u32 | tag).is_ok() {
-                    self.requested[node] |= flag;
-                    requested_any = true;
-                } else {
-                    self.counters.dropped_column_requests.fetch_add(1, Ordering::Relaxed);
-                    break;
-                }
-            }
-        }
+        let requested_any = self.sim.after_step_from_rt(&self.counters, misses_before);
         if requested_any && self.column_bell.ring_from_rt() {
             self.counters.column_wakes.fetch_add(1, Ordering::Relaxed);
         }
@@ -355,5 +266,20 @@ impl RtLoop {
             }
         }
         self.counters.ticks.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// The session faults: the record says so, with zero force at the held pose.
+    fn fail_from_rt(&mut self, fault: SessionFault) {
+        self.counters.set_fault_from_rt(&fault);
+        self.fault = Some(fault);
+        let r = &mut *self.record;
+        r.tick = fault.tick;
+        r.time_s = fault.tick as f64 / self.sim.tick_rate_hz();
+        r.force_n = [0.0; 2];
+        r.torque_nm = 0.0;
+        r.force_axial_n = 0.0;
+        r.force_lateral_n = 0.0;
+        r.fault = Some(fault);
+        self.sim.hold_record_from_rt(r);
     }
 }

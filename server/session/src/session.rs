@@ -7,14 +7,88 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 use needlesim_core::compliance::TissueModel;
+use needlesim_core::d3::TetTissueModel;
 use needlesim_core::sim::{SimError, Simulation};
+use needlesim_core::sim3::{Sim3Params, SimError3, Simulation3, StoreKind3};
 use needlesim_scene::Scene;
 
 use crate::counters::{SessionCounters, StatsSnapshot};
 use crate::doorbell::Doorbell;
-use crate::fan_out::{ColumnWorker, FanOut, Field, Histograms, RecordSink, watch_device_channel};
-use crate::record::{COLUMN_QUEUE, PoseCommand, RECORD_RING, TickRecord};
+use crate::fan_out::{ColumnWorker, FanOut, Field, FieldMaker, Histograms, RecordSink, Worker3, watch_device_channel};
+use crate::live_sim::{Link3, Live2, Live3, LiveSim, MAX_REQUESTS3_PER_TICK};
+use crate::record::{COLUMN_QUEUE, PoseCommand, PoseCommand3, RECORD_RING, TickRecord};
 use crate::rt_loop::RtLoop;
+use crate::surface::{BoundarySurface, SurfaceField3};
+
+/// The tissue of a session: 2D or 3D.
+#[derive(Clone)]
+pub enum SessionTissue {
+    Two(Arc<TissueModel>),
+    /// A 3D tissue and its boundary surface (what observers draw).
+    Three {
+        model: Arc<TetTissueModel>,
+        surface: Arc<BoundarySurface>,
+    },
+}
+
+impl SessionTissue {
+    /// The 2D tissue, if the session is 2D.
+    pub fn two(&self) -> Option<&Arc<TissueModel>> {
+        match self {
+            Self::Two(t) => Some(t),
+            Self::Three { .. } => None,
+        }
+    }
+    /// 2 or 3.
+    pub fn dimension(&self) -> u8 {
+        match self {
+            Self::Two(_) => 2,
+            Self::Three { .. } => 3,
+        }
+    }
+    /// Number of mesh nodes.
+    pub fn n_nodes(&self) -> usize {
+        match self {
+            Self::Two(t) => t.mesh().n_nodes(),
+            Self::Three { model, .. } => model.mesh().n_nodes(),
+        }
+    }
+    /// Number of elements (triangles in 2D, tetrahedra in 3D).
+    pub fn n_elements(&self) -> usize {
+        match self {
+            Self::Two(t) => t.mesh().n_triangles(),
+            Self::Three { model, .. } => model.mesh().n_tets(),
+        }
+    }
+}
+
+/// The pose slot of a session, of its dimension.
+enum PoseSlot {
+    Two(Mutex<triple_buffer::Input<PoseCommand>>),
+    Three(Mutex<triple_buffer::Input<PoseCommand3>>),
+}
+
+/// A pose of the wrong dimension for the session (a 2D pose to a 3D session or the reverse).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("a {given}D pose for a {session}D session")]
+pub struct WrongDimension {
+    pub given: u8,
+    pub session: u8,
+}
+
+/// What [`Session::launch`] needs besides the simulation.
+struct Launch {
+    id: String,
+    scene_name: String,
+    tissue: SessionTissue,
+    tick_rate_hz: f64,
+    target_names: Vec<String>,
+    has_bevel: bool,
+    device: Option<needlesim_channel::shm::ServerEnd>,
+    /// Starts the compliance worker (its bell, the stop flag).
+    worker: Box<dyn FnOnce(Arc<Doorbell>, Arc<AtomicBool>) -> std::io::Result<JoinHandle<()>> + Send>,
+    field_maker: FieldMaker,
+}
 
 /// The IO side's handle on a running session.
 pub struct Session {
@@ -22,7 +96,7 @@ pub struct Session {
     pub scene_name: String,
     pub controller_token: String,
     pub observer_token: String,
-    pub tissue: Arc<TissueModel>,
+    pub tissue: SessionTissue,
     pub tick_rate_hz: f64,
     pub target_names: Vec<String>,
     pub created_unix_ms: u64,
@@ -31,7 +105,7 @@ pub struct Session {
     pub device_channel_path: Option<std::path::PathBuf>,
     /// The needle has a bevel tip (a flip changes something).
     pub has_bevel: bool,
-    pose_in: Mutex<triple_buffer::Input<PoseCommand>>,
+    pose_in: PoseSlot,
     client_in_control: AtomicBool,
     /// Who may drive the session over gRPC now: one controller at a time (IO side only).
     pub control: Arc<crate::control_lease::ControlLease>,
@@ -90,6 +164,8 @@ pub enum SessionError {
     TickRate(f64),
     #[error(transparent)]
     Sim(#[from] SimError),
+    #[error(transparent)]
+    Sim3(#[from] SimError3),
     #[error("cannot start a session thread: {0}")]
     Thread(std::io::Error),
     #[error("cannot create the device channel: {0}")]
@@ -116,12 +192,110 @@ impl Session {
         sim.reserve_cached_nodes(4 * sim.params().max_needle_nodes + 256);
         let id = random_token()[..12].to_owned();
         let device = match device_dir {
-            Some(dir) => {
-                let path = dir.join(format!("needlesim-{id}"));
-                Some(needlesim_channel::shm::DeviceChannel::create(&path)?)
-            }
+            Some(dir) => Some(needlesim_channel::shm::DeviceChannel::create(dir.join(format!("needlesim-{id}")))?),
             None => None,
         };
+        let (req_tx, req_rx) = rtrb::RingBuffer::<u32>::new(COLUMN_QUEUE);
+        let (col_tx, col_rx) = rtrb::RingBuffer::<(u32, Box<[f64]>)>::new(COLUMN_QUEUE);
+        let (ret_tx, ret_rx) = rtrb::RingBuffer::<Box<[f64]>>::new(COLUMN_QUEUE);
+        let render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>> = Arc::default();
+        let tissue = scene.tissue.clone();
+        let worker_render = render_columns.clone();
+        let worker_id = id.clone();
+        let worker = Box::new(move |bell: Arc<Doorbell>, stop: Arc<AtomicBool>| {
+            let w = ColumnWorker { tissue, req_rx, col_tx, ret_rx, render_columns: worker_render, bell, stop };
+            std::thread::Builder::new().name(format!("columns-{worker_id}")).spawn(move || w.run())
+        });
+        let live = Live2 { req_tx, col_rx, ret_tx, requested: vec![0; scene.tissue.mesh().n_nodes()], stiffness: [0.0; 9], sim };
+        let launch = Launch {
+            id,
+            scene_name: scene.name.clone(),
+            tissue: SessionTissue::Two(scene.tissue.clone()),
+            tick_rate_hz,
+            target_names: scene.target_names.clone(),
+            has_bevel,
+            device,
+            worker,
+            field_maker: FieldMaker::Two { render_columns, n_dofs: scene.tissue.n_dofs() },
+        };
+        Self::launch(live, launch, PoseSlot::Two)
+    }
+
+    /// Starts the threads of a 3D session: `params` for [`Simulation3::new`] (their tick rate is
+    /// the session's, checked as in [`Session::start`]), `model` the tissue, `target_names` by
+    /// the targets' name indices, a shared-memory device channel of layout dimension 3 in
+    /// `device_dir` when given. The worker computes columns or node blocks per
+    /// [`Sim3Params::store`] (resolved for the mesh).
+    pub fn start3(
+        scene_name: &str,
+        model: Arc<TetTissueModel>,
+        params: Sim3Params,
+        target_names: Vec<String>,
+        device_dir: Option<&std::path::Path>,
+    ) -> Result<Arc<Self>, SessionError> {
+        let tick_rate_hz = params.tick_rate_hz;
+        if !(tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&tick_rate_hz)) {
+            return Err(SessionError::TickRate(tick_rate_hz));
+        }
+        let mut radii_m = vec![0.0; target_names.len().max(params.targets.iter().map(|t| t.name_idx + 1).max().unwrap_or(0))];
+        for t in &params.targets {
+            radii_m[t.name_idx] = t.radius_m;
+        }
+        let n_nodes = model.mesh().n_nodes();
+        let kind = params.store.resolve(n_nodes);
+        let sim = Simulation3::new(model.clone(), params)?;
+        let id = random_token()[..12].to_owned();
+        let device = match device_dir {
+            Some(dir) => Some(needlesim_channel::shm::DeviceChannel::create_with_dimension(
+                dir.join(format!("needlesim-{id}")),
+                needlesim_channel::shm::Dimension::Three,
+            )?),
+            None => None,
+        };
+        let worker_id = id.clone();
+        let (link, worker3) = if kind == StoreKind3::NodeBlocks {
+            let worker = Box::new(sim.block_worker()?);
+            // Short rings: a payload holds a block per slot.
+            let (req_tx, req_rx) = rtrb::RingBuffer::new(MAX_REQUESTS3_PER_TICK);
+            let (pay_tx, pay_rx) = rtrb::RingBuffer::new(MAX_REQUESTS3_PER_TICK);
+            let (ret_tx, ret_rx) = rtrb::RingBuffer::new(2 * MAX_REQUESTS3_PER_TICK);
+            let reqs = Vec::with_capacity(MAX_REQUESTS3_PER_TICK);
+            (Link3::Blocks { req_tx, pay_rx, ret_tx, reqs }, Worker3::Blocks { worker, req_rx, pay_tx, ret_rx })
+        } else {
+            let (req_tx, req_rx) = rtrb::RingBuffer::new(COLUMN_QUEUE);
+            let (col_tx, col_rx) = rtrb::RingBuffer::new(MAX_REQUESTS3_PER_TICK);
+            let (ret_tx, ret_rx) = rtrb::RingBuffer::new(2 * MAX_REQUESTS3_PER_TICK);
+            (
+                Link3::Columns { req_tx, col_rx, ret_tx, requested: vec![false; n_nodes] },
+                Worker3::Columns { model: model.clone(), req_rx, col_tx, ret_rx },
+            )
+        };
+        let worker = Box::new(move |bell: Arc<Doorbell>, stop: Arc<AtomicBool>| {
+            std::thread::Builder::new().name(format!("blocks-{worker_id}")).spawn(move || worker3.run(bell, stop))
+        });
+        let surface = Arc::new(BoundarySurface::of(model.mesh()));
+        let live = Live3 { sim, link, radii_m, stiffness: [[0.0; 6]; 6], refused_payloads: 0 };
+        let launch = Launch {
+            id,
+            scene_name: scene_name.to_owned(),
+            tissue: SessionTissue::Three { model: model.clone(), surface: surface.clone() },
+            tick_rate_hz,
+            target_names,
+            has_bevel: false,
+            device,
+            worker,
+            field_maker: FieldMaker::Three(SurfaceField3::new(model, surface)),
+        };
+        Self::launch(live, launch, PoseSlot::Three)
+    }
+
+    /// Starts the real-time thread on `sim`, the device watcher, the worker and the fan-out.
+    fn launch<S: LiveSim>(
+        sim: S,
+        l: Launch,
+        slot: impl FnOnce(Mutex<triple_buffer::Input<PoseCommand<S::Pose>>>) -> PoseSlot,
+    ) -> Result<Arc<Self>, SessionError> {
+        let Launch { id, scene_name, tissue, tick_rate_hz, target_names, has_bevel, device, worker, field_maker } = l;
         let device_channel_path = device.as_ref().map(|d| d.path().to_path_buf());
         let device_watch = device.as_ref().map(|d| d.watch());
         let counters = Arc::new(SessionCounters::default());
@@ -129,9 +303,6 @@ impl Session {
         let initial = PoseCommand { pose: sim.pose(), seq: 0, client_time_ns: 0 };
         let (pose_in, pose_out) = triple_buffer::triple_buffer(&initial);
         let (rec_tx, rec_rx) = rtrb::RingBuffer::<TickRecord>::new(RECORD_RING);
-        let (req_tx, req_rx) = rtrb::RingBuffer::<u32>::new(COLUMN_QUEUE);
-        let (col_tx, col_rx) = rtrb::RingBuffer::<(u32, Box<[f64]>)>::new(COLUMN_QUEUE);
-        let (ret_tx, ret_rx) = rtrb::RingBuffer::<Box<[f64]>>::new(COLUMN_QUEUE);
         // One second of buffering for every-tick observers; beyond it they are told what they missed.
         let (all_tx, _) = tokio::sync::broadcast::channel(1024);
         let (latest_tx, latest_rx) = tokio::sync::watch::channel(Arc::new(TickRecord::default()));
@@ -140,7 +311,6 @@ impl Session {
             compute_ns: hdrhistogram::Histogram::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds"),
             lateness_ns: hdrhistogram::Histogram::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds"),
         }));
-        let render_columns: Arc<Mutex<std::collections::HashMap<u32, Arc<[f64]>>>> = Arc::default();
         let field_subscribers = Arc::new(AtomicU64::new(0));
         let sink: crate::fan_out::SinkSlot = Arc::new(Mutex::new(None));
         let (rt_priority_tx, rt_priority_rx) = std::sync::mpsc::sync_channel(1);
@@ -154,10 +324,6 @@ impl Session {
             period,
             pose_out,
             rec_tx,
-            req_tx,
-            col_rx,
-            ret_tx,
-            requested: vec![0; scene.tissue.mesh().n_nodes()],
             counters: counters.clone(),
             stop: stop.clone(),
             record: Box::new(TickRecord::default()),
@@ -169,7 +335,6 @@ impl Session {
             device,
             device_seen: false,
             last_buttons: None,
-            stiffness: [0.0; 9],
             fault: None,
             consecutive_step_errors: 0,
             rt_priority_tx,
@@ -180,24 +345,14 @@ impl Session {
             let spawned = std::thread::Builder::new().name(format!("dev-{id}")).spawn(move || watch_device_channel(watch, stop));
             threads.push(spawned.map_err(SessionError::Thread)?);
         }
-        let worker = ColumnWorker {
-            tissue: scene.tissue.clone(),
-            req_rx,
-            col_tx,
-            ret_rx,
-            render_columns: render_columns.clone(),
-            bell: column_bell.clone(),
-            stop: stop.clone(),
-        };
-        threads.push(std::thread::Builder::new().name(format!("columns-{id}")).spawn(move || worker.run()).map_err(SessionError::Thread)?);
+        threads.push(worker(column_bell.clone(), stop.clone()).map_err(SessionError::Thread)?);
         let fan = FanOut {
             rec_rx,
             all_tx: all_tx.clone(),
             latest_tx,
             field_tx,
             field_subscribers: field_subscribers.clone(),
-            render_columns,
-            n_dofs: scene.tissue.n_dofs(),
+            field_maker,
             histograms: histograms.clone(),
             sink: sink.clone(),
             counters: counters.clone(),
@@ -210,17 +365,17 @@ impl Session {
         let created_unix_ms = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_millis() as u64);
         Ok(Arc::new(Self {
             id,
-            scene_name: scene.name.clone(),
+            scene_name,
             controller_token: random_token(),
             observer_token: random_token(),
-            tissue: scene.tissue.clone(),
+            tissue,
             tick_rate_hz,
-            target_names: scene.target_names.clone(),
+            target_names,
             created_unix_ms,
             counters,
             device_channel_path,
             has_bevel,
-            pose_in: Mutex::new(pose_in),
+            pose_in: slot(Mutex::new(pose_in)),
             client_in_control: AtomicBool::new(false),
             control: crate::control_lease::ControlLease::new(),
             stop,
@@ -256,9 +411,41 @@ impl Session {
     }
 
     /// Publishes a pose for the next tick (latest value wins; an unconsumed one is counted as
-    /// superseded). Called from IO tasks.
+    /// superseded). Called from IO tasks. A 3D session ignores it (the service checks the
+    /// dimension first: [`Session::dimension`]; 3D poses go through [`Session::write_pose3_from_io`]).
     pub fn write_pose_from_io(&self, cmd: PoseCommand) {
-        let mut input = self.pose_in.lock().expect("pose slot lock");
+        if let PoseSlot::Two(slot) = &self.pose_in {
+            self.write_slot(slot, cmd);
+        }
+    }
+
+    /// Publishes a 3D pose for the next tick, as [`Session::write_pose_from_io`] does a 2D one.
+    ///
+    /// Errors: [`WrongDimension`] for a 2D session (nothing is written).
+    pub fn write_pose3_from_io(&self, cmd: PoseCommand3) -> Result<(), WrongDimension> {
+        match &self.pose_in {
+            PoseSlot::Three(slot) => {
+                self.write_slot(slot, cmd);
+                Ok(())
+            }
+            PoseSlot::Two(_) => Err(WrongDimension { given: 3, session: 2 }),
+        }
+    }
+
+    /// [`Session::write_pose3_from_io`], and a scripted demo yields to the client.
+    pub fn write_client_pose3_from_io(&self, cmd: PoseCommand3) -> Result<(), WrongDimension> {
+        self.write_pose3_from_io(cmd)?;
+        self.client_in_control.store(true, Ordering::Relaxed);
+        Ok(())
+    }
+
+    /// 2 or 3.
+    pub fn dimension(&self) -> u8 {
+        self.tissue.dimension()
+    }
+
+    fn write_slot<P: Copy + Send>(&self, slot: &Mutex<triple_buffer::Input<PoseCommand<P>>>, cmd: PoseCommand<P>) {
+        let mut input = slot.lock().expect("pose slot lock");
         if input.consumed() {
             // the previous pose was read by a tick
         } else if self.counters.poses_written.load(Ordering::Relaxed) > 0 {

@@ -11,125 +11,104 @@ use tonic::{Request, Response, Status, Streaming};
 
 use needlesim_session::{PoseCommand, Session};
 
-use super::{Api, BoxStream, Role, authorize, check_pose, token_of};
-use crate::convert;
+use super::{Api, BoxStream, Role, authorize, token_of};
+use crate::convert::{self, ClientPose};
+
+/// What the Control streams (2D `ControlRequest`, 3D `ControlRequest3`) need of a message.
+trait ControlMessage: Send + 'static {
+    fn session_id(&self) -> &str;
+    /// The pose, checked against the session's dimension; `None` for a message that only flips
+    /// the bevel.
+    fn pose(&self, s: &Session) -> Result<Option<ClientPose>, Status>;
+    fn flip_bevel(&self) -> bool;
+    fn take_over(&self) -> bool;
+    fn seq(&self) -> u64;
+    fn client_time_ns(&self) -> u64;
+}
+
+impl ControlMessage for pb::ControlRequest {
+    fn session_id(&self) -> &str {
+        &self.session_id
+    }
+    fn pose(&self, s: &Session) -> Result<Option<ClientPose>, Status> {
+        if self.flip_bevel && self.base.is_none() {
+            return Ok(None);
+        }
+        Ok(Some(convert::checked_pose2_for(self.base.as_ref(), s.dimension())?))
+    }
+    fn flip_bevel(&self) -> bool {
+        self.flip_bevel
+    }
+    fn take_over(&self) -> bool {
+        self.take_over
+    }
+    fn seq(&self) -> u64 {
+        self.seq
+    }
+    fn client_time_ns(&self) -> u64 {
+        self.client_time_ns
+    }
+}
+
+impl ControlMessage for pb::ControlRequest3 {
+    fn session_id(&self) -> &str {
+        &self.session_id
+    }
+    fn pose(&self, s: &Session) -> Result<Option<ClientPose>, Status> {
+        Ok(Some(convert::checked_pose3_for(self.base3.as_ref(), s.dimension())?))
+    }
+    fn flip_bevel(&self) -> bool {
+        false
+    }
+    fn take_over(&self) -> bool {
+        self.take_over
+    }
+    fn seq(&self) -> u64 {
+        self.seq
+    }
+    fn client_time_ns(&self) -> u64 {
+        self.client_time_ns
+    }
+}
+
+/// Publishes a checked pose (its dimension is the session's: [`ControlMessage::pose`]).
+fn write_pose(s: &Session, pose: ClientPose, seq: u64, client_time_ns: u64) {
+    match pose {
+        ClientPose::Two(pose) => s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns }),
+        ClientPose::Three(pose) => {
+            // Cannot fail: the pose was checked against the session's dimension.
+            let _ = s.write_client_pose3_from_io(PoseCommand { pose, seq, client_time_ns });
+        }
+    }
+}
 
 #[tonic::async_trait]
 impl pb::control_service_server::ControlService for Api {
     type ControlStream = BoxStream<pb::ControlResponse>;
+    type Control3Stream = BoxStream<pb::ControlResponse>;
 
     async fn control(&self, req: Request<Streaming<pb::ControlRequest>>) -> Result<Response<Self::ControlStream>, Status> {
-        let token = token_of(&req);
-        let client = client_address(&req);
-        let mut inbound = req.into_inner();
-        let first =
-            inbound.message().await?.ok_or_else(|| Status::invalid_argument("the control stream ended before its first message"))?;
-        let s = self.state.session(&first.session_id)?;
-        if !token.as_deref().is_some_and(|t| crate::access::token_matches(t, &s.controller_token)) {
-            return Err(Status::permission_denied("driving a session needs its controller token (`authorization: Bearer <token>`)"));
-        }
-        let pose = check_pose(first.base.as_ref(), "base")?;
-        // One controller at a time: this stream holds the session's control lease until it ends.
-        let mut lease = s.control.acquire_stream(&client, first.take_over).await.map_err(|busy| control_refused(&s, busy))?;
-        if first.take_over {
-            tracing::info!(session = %s.id, %client, "a Control stream took control over");
-        }
-        lease.write_if_held(|| {
-            if first.flip_bevel {
-                s.request_bevel_flip_from_io();
-            }
-            s.write_client_pose_from_io(PoseCommand { pose, seq: first.seq.max(1), client_time_ns: first.client_time_ns });
-        });
-        let (tx, rx) = mpsc::channel(256);
-        // When the controller closes its side, the response stream ends too.
-        let client_done = Arc::new(std::sync::atomic::AtomicBool::new(false));
-        // Poses in: latest value wins; a malformed message ends the stream with its reason, and so
-        // does a take-over by another client.
-        let s_in = s.clone();
-        let tx_err = tx.clone();
-        let done_in = client_done.clone();
-        tokio::spawn(async move {
-            let _done = SetOnDrop(done_in);
-            let mut seq = first.seq.max(1);
-            loop {
-                let msg = tokio::select! {
-                    m = inbound.message() => m,
-                    () = lease.revoked() => {
-                        let _ = tx_err.send(Err(Status::aborted(format!(
-                            "control of session {} was taken over by another client", s_in.id
-                        )))).await;
-                        return;
-                    }
-                };
-                let held = match msg {
-                    Ok(Some(m)) if m.flip_bevel && m.base.is_none() => lease.write_if_held(|| {
-                        s_in.request_bevel_flip_from_io();
-                    }),
-                    Ok(Some(m)) => match check_pose(m.base.as_ref(), "base") {
-                        Ok(pose) => {
-                            seq = if m.seq > seq { m.seq } else { seq + 1 };
-                            lease.write_if_held(|| {
-                                if m.flip_bevel {
-                                    s_in.request_bevel_flip_from_io();
-                                }
-                                s_in.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: m.client_time_ns });
-                            })
-                        }
-                        Err(e) => {
-                            s_in.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
-                            let _ = tx_err.send(Err(e)).await;
-                            return;
-                        }
-                    },
-                    Ok(None) | Err(_) => return,
-                };
-                if !held {
-                    // Taken over between the message and its write: the pose was not used.
-                    let _ =
-                        tx_err.send(Err(Status::aborted(format!("control of session {} was taken over by another client", s_in.id)))).await;
-                    return;
-                }
-            }
-        });
-        // Responses out: one per tick; a slow controller skips ticks rather than delaying anyone.
-        let mut ticks = s.all_ticks.subscribe();
-        tokio::spawn(async move {
-            loop {
-                if client_done.load(Ordering::Relaxed) {
-                    return;
-                }
-                match ticks.recv().await {
-                    Ok(rec) => {
-                        if tx.send(Ok(convert::control_response(&rec))).await.is_err() {
-                            return;
-                        }
-                    }
-                    Err(tokio::sync::broadcast::error::RecvError::Lagged(_)) => continue,
-                    Err(tokio::sync::broadcast::error::RecvError::Closed) => return,
-                }
-            }
-        });
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        control_stream(self, req).await
+    }
+
+    async fn control3(&self, req: Request<Streaming<pb::ControlRequest3>>) -> Result<Response<Self::Control3Stream>, Status> {
+        control_stream(self, req).await
     }
 
     async fn set_pose(&self, req: Request<pb::SetPoseRequest>) -> Result<Response<pb::ControlResponse>, Status> {
-        let s = self.state.session(&req.get_ref().session_id)?;
-        authorize(&req, &s, Role::Controller)?;
-        let pose = check_pose(req.get_ref().base.as_ref(), "base").inspect_err(|_| {
-            s.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
-        })?;
         let r = req.get_ref();
-        let client = if r.client_id.is_empty() { client_address(&req) } else { format!("id:{}", r.client_id) };
-        // One controller at a time: refused while a Control stream or another SetPose client
-        // holds the lease, unless it takes over.
-        s.control
-            .with_unary(&client, r.take_over, || {
-                let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
-                s.write_client_pose_from_io(PoseCommand { pose, seq, client_time_ns: 0 });
-            })
-            .await
-            .map_err(|busy| control_refused(&s, busy))?;
-        Ok(Response::new(convert::control_response(&s.latest_record())))
+        let s = self.state.session(&r.session_id)?;
+        authorize(&req, &s, Role::Controller)?;
+        let pose = convert::checked_pose2_for(r.base.as_ref(), s.dimension()).map_err(Status::from);
+        set_pose(&s, &req, pose, &r.client_id, r.take_over).await
+    }
+
+    async fn set_pose3(&self, req: Request<pb::SetPoseRequest3>) -> Result<Response<pb::ControlResponse>, Status> {
+        let r = req.get_ref();
+        let s = self.state.session(&r.session_id)?;
+        authorize(&req, &s, Role::Controller)?;
+        let pose = convert::checked_pose3_for(r.base3.as_ref(), s.dimension()).map_err(Status::from);
+        set_pose(&s, &req, pose, &r.client_id, r.take_over).await
     }
 
     async fn flip_bevel(&self, req: Request<pb::FlipBevelRequest>) -> Result<Response<pb::FlipBevelResponse>, Status> {
@@ -151,6 +130,130 @@ impl pb::control_service_server::ControlService for Api {
             .map_err(|busy| control_refused(&s, busy))?;
         Ok(Response::new(convert::flip_bevel_response(flips_requested)))
     }
+}
+
+/// SetPose and SetPose3: one pose (checked by the caller), answered with the latest state.
+async fn set_pose<T>(
+    s: &Arc<Session>,
+    req: &Request<T>,
+    pose: Result<ClientPose, Status>,
+    client_id: &str,
+    take_over: bool,
+) -> Result<Response<pb::ControlResponse>, Status> {
+    let pose = pose.inspect_err(|_| {
+        s.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+    })?;
+    let client = if client_id.is_empty() { client_address(req) } else { format!("id:{client_id}") };
+    // One controller at a time: refused while a Control stream or another SetPose client
+    // holds the lease, unless it takes over.
+    s.control
+        .with_unary(&client, take_over, || {
+            let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
+            write_pose(s, pose, seq, 0);
+        })
+        .await
+        .map_err(|busy| control_refused(s, busy))?;
+    Ok(Response::new(convert::control_response(&s.latest_record())))
+}
+
+/// Control and Control3: poses in, one response per tick out.
+async fn control_stream<M: ControlMessage>(
+    api: &Api,
+    req: Request<Streaming<M>>,
+) -> Result<Response<BoxStream<pb::ControlResponse>>, Status> {
+    let token = token_of(&req);
+    let client = client_address(&req);
+    let mut inbound = req.into_inner();
+    let first = inbound.message().await?.ok_or_else(|| Status::invalid_argument("the control stream ended before its first message"))?;
+    let s = api.state.session(first.session_id())?;
+    if !token.as_deref().is_some_and(|t| crate::access::token_matches(t, &s.controller_token)) {
+        return Err(Status::permission_denied("driving a session needs its controller token (`authorization: Bearer <token>`)"));
+    }
+    // The first message must carry a pose (a flip alone is refused as a missing base).
+    let pose = match first.pose(&s)? {
+        Some(p) => p,
+        None => return Err(convert::checked_pose2_for(None, s.dimension()).map_err(Status::from).unwrap_err()),
+    };
+    // One controller at a time: this stream holds the session's control lease until it ends.
+    let mut lease = s.control.acquire_stream(&client, first.take_over()).await.map_err(|busy| control_refused(&s, busy))?;
+    if first.take_over() {
+        tracing::info!(session = %s.id, %client, "a Control stream took control over");
+    }
+    lease.write_if_held(|| {
+        if first.flip_bevel() {
+            s.request_bevel_flip_from_io();
+        }
+        write_pose(&s, pose, first.seq().max(1), first.client_time_ns());
+    });
+    let (tx, rx) = mpsc::channel(256);
+    // When the controller closes its side, the response stream ends too.
+    let client_done = Arc::new(std::sync::atomic::AtomicBool::new(false));
+    // Poses in: latest value wins; a malformed message ends the stream with its reason, and so
+    // does a take-over by another client.
+    let s_in = s.clone();
+    let tx_err = tx.clone();
+    let done_in = client_done.clone();
+    tokio::spawn(async move {
+        let _done = SetOnDrop(done_in);
+        let mut seq = first.seq().max(1);
+        loop {
+            let msg = tokio::select! {
+                m = inbound.message() => m,
+                () = lease.revoked() => {
+                    let _ = tx_err.send(Err(Status::aborted(format!(
+                        "control of session {} was taken over by another client", s_in.id
+                    )))).await;
+                    return;
+                }
+            };
+            let held = match msg {
+                Ok(Some(m)) => match m.pose(&s_in) {
+                    Ok(None) => lease.write_if_held(|| {
+                        s_in.request_bevel_flip_from_io();
+                    }),
+                    Ok(Some(pose)) => {
+                        seq = if m.seq() > seq { m.seq() } else { seq + 1 };
+                        lease.write_if_held(|| {
+                            if m.flip_bevel() {
+                                s_in.request_bevel_flip_from_io();
+                            }
+                            write_pose(&s_in, pose, seq, m.client_time_ns());
+                        })
+                    }
+                    Err(e) => {
+                        s_in.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+                        let _ = tx_err.send(Err(e)).await;
+                        return;
+                    }
+                },
+                Ok(None) | Err(_) => return,
+            };
+            if !held {
+                // Taken over between the message and its write: the pose was not used.
+                let _ = tx_err.send(Err(Status::aborted(format!("control of session {} was taken over by another client", s_in.id)))).await;
+                return;
+            }
+        }
+    });
+    // Responses out: one per tick; a slow controller skips ticks rather than delaying anyone.
+    let mut ticks = s.all_ticks.subscribe();
+    tokio::spawn(async move {
+        loop {
+            if client_done.load(Ordering::Relaxed) {
+                return;
+            }
+            match ticks.recv().await {
+                Ok(rec) => {
+                    if tx.send(Ok(convert::control_response(&rec))).await.is_err() {
+                        return;
+                    }
+                }
+                Err(tokio::sync::broadcast::error::RecvError::Lagged(_)) => continue,
+                Err(tokio::sync::broadcast::error::RecvError::Closed) => return,
+            }
+        }
+    });
+    Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
 }
 
 /// Who sends a request, for the control lease: its IP address (the port changes with each

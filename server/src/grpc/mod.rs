@@ -158,7 +158,7 @@ impl ServerState {
     /// `device_channel`, and registers it.
     pub fn create_session_in(
         &self,
-        mut slot: SessionSlot,
+        slot: SessionSlot,
         scene: &needlesim_scene::Scene,
         tick_rate_hz: f64,
         device_channel: bool,
@@ -168,6 +168,35 @@ impl ServerState {
             std::fs::create_dir_all(d).map_err(|e| Status::internal(format!("cannot create {}: {e}", d.display())))?;
         }
         let s = Session::start(scene, tick_rate_hz, dir.as_deref()).map_err(|e| Status::from(ApiError::from(e)))?;
+        Ok(self.register(slot, s))
+    }
+
+    /// Starts a 3D session of `scene` at `tick_rate_hz` in a reserved `slot` (its tissue
+    /// factorised here), with a shared-memory device channel of dimension 3 when `device_channel`,
+    /// and registers it.
+    pub fn create_session3_in(
+        &self,
+        slot: SessionSlot,
+        scene: &needlesim_scene::Scene3d,
+        tick_rate_hz: f64,
+        device_channel: bool,
+    ) -> Result<Arc<Session>, Status> {
+        let dir = device_channel.then(|| self.device_dir());
+        if let Some(d) = &dir {
+            std::fs::create_dir_all(d).map_err(|e| Status::internal(format!("cannot create {}: {e}", d.display())))?;
+        }
+        let model = Arc::new(scene.tissue_model().map_err(|e| status_of("scene", &e))?);
+        let initial =
+            needlesim_offline::simulate3::base_pose3(&scene.initial_pose).map_err(|e| Status::from(ApiError::invalid("scene", e)))?;
+        let mut params = needlesim_offline::simulate3::sim3_params(scene, initial);
+        params.tick_rate_hz = tick_rate_hz;
+        let names = scene.targets.iter().map(|t| t.name.clone()).collect();
+        let s = Session::start3(&scene.name, model, params, names, dir.as_deref()).map_err(|e| Status::from(ApiError::from(e)))?;
+        Ok(self.register(slot, s))
+    }
+
+    /// Registers a started session and frees its reservation.
+    fn register(&self, mut slot: SessionSlot, s: Arc<Session>) -> Arc<Session> {
         {
             // Registered and unreserved in one step.
             let mut sessions = self.sessions.write().expect("sessions lock");
@@ -175,8 +204,8 @@ impl ServerState {
             slot.armed = false;
             self.pending_sessions.fetch_sub(1, Ordering::AcqRel);
         }
-        tracing::info!(session = %s.id, scene = %s.scene_name, n_nodes = s.tissue.mesh().n_nodes(), tick_rate_hz, "session created");
-        Ok(s)
+        tracing::info!(session = %s.id, scene = %s.scene_name, dimension = s.dimension(), n_nodes = s.tissue.n_nodes(), tick_rate_hz = s.tick_rate_hz, "session created");
+        s
     }
 
     fn session(&self, id: &str) -> Result<Arc<Session>, Status> {
@@ -233,11 +262,6 @@ fn authorize<T>(req: &Request<T>, s: &Session, role: Role) -> Result<(), Status>
     }
 }
 
-/// A pose a client sent in `field`, present and finite.
-fn check_pose(p: Option<&pb::Pose2>, field: &str) -> Result<needlesim_core::BasePose, Status> {
-    convert::checked_pose_from_pb(p, field).map_err(Status::from)
-}
-
 /// Implements all services over one shared state.
 #[derive(Clone)]
 pub struct Api {
@@ -252,6 +276,18 @@ pub(crate) async fn load_scene_from_pb(
     limits: needlesim_scene::SceneLimits,
 ) -> Result<needlesim_scene::Scene, Status> {
     tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
+        .await
+        .map_err(|e| Status::internal(format!("scene task: {e}")))?
+        .map_err(|e| status_of("scene", &e))
+}
+
+/// Loads a session's scene, 2D or 3D ([`convert::session_scene_from_pb`]), off the async runtime,
+/// with the statuses of [`load_scene_from_pb`].
+pub(crate) async fn load_session_scene_from_pb(
+    src: Option<pb::SceneSource>,
+    limits: needlesim_scene::SceneLimits,
+) -> Result<convert::SessionScene, Status> {
+    tokio::task::spawn_blocking(move || convert::session_scene_from_pb(src.as_ref(), &limits))
         .await
         .map_err(|e| Status::internal(format!("scene task: {e}")))?
         .map_err(|e| status_of("scene", &e))

@@ -105,7 +105,12 @@ impl pb::observe_service_server::ObserveService for Api {
                     last_tick = rec.tick;
                     let mut frame = convert::frame_from_record(&rec, &names, 0);
                     if r.include_displacements {
-                        frame.node_displacement_m = field.borrow_and_update().displacement_m.clone();
+                        let u = field.borrow_and_update().displacement_m.clone();
+                        if rec.dimension == 3 {
+                            frame.surface_displacement_m = u;
+                        } else {
+                            frame.node_displacement_m = u;
+                        }
                     }
                     if tx.send(Ok(frame)).await.is_err() {
                         return;

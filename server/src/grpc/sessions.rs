@@ -4,8 +4,9 @@
 use needlesim_proto::v1 as pb;
 use tonic::{Request, Response, Status};
 
-use super::{Api, Role, authorize, load_scene_from_pb};
+use super::{Api, Role, authorize, load_session_scene_from_pb};
 use crate::convert;
+use crate::status::ApiError;
 
 #[tonic::async_trait]
 impl pb::session_service_server::SessionService for Api {
@@ -14,16 +15,23 @@ impl pb::session_service_server::SessionService for Api {
         // The limit is checked and a place reserved first, in one step: a create over the limit
         // costs nothing, and concurrent creates never exceed it.
         let slot = self.state.reserve_session_slot()?;
-        let scene = load_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
-        let rate = if r.tick_rate_hz == 0.0 { scene.params.tick_rate_hz } else { r.tick_rate_hz };
+        let scene = load_session_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
+        let scene_rate = match &scene {
+            convert::SessionScene::Two(s) => s.params.tick_rate_hz,
+            convert::SessionScene::Three(s) => s.tick_rate_hz,
+        };
+        let rate = if r.tick_rate_hz == 0.0 { scene_rate } else { r.tick_rate_hz };
         if !(rate.is_finite() && (500.0..=1000.0).contains(&rate)) {
             return Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")));
         }
         let state = self.state.clone();
         let device = r.device_channel;
-        let s = tokio::task::spawn_blocking(move || state.create_session_in(slot, &scene, rate, device))
-            .await
-            .map_err(|e| Status::internal(format!("session task: {e}")))??;
+        let s = tokio::task::spawn_blocking(move || match scene {
+            convert::SessionScene::Two(scene) => state.create_session_in(slot, &scene, rate, device),
+            convert::SessionScene::Three(scene) => state.create_session3_in(slot, &scene, rate, device),
+        })
+        .await
+        .map_err(|e| Status::internal(format!("session task: {e}")))??;
         if r.record {
             super::recordings::start_recording(&self.state, &s)?;
         }
@@ -43,7 +51,21 @@ impl pb::session_service_server::SessionService for Api {
     async fn get_mesh(&self, req: Request<pb::GetSessionRequest>) -> Result<Response<pb::Mesh>, Status> {
         let s = self.state.session(&req.get_ref().session_id)?;
         authorize(&req, &s, Role::Observer)?;
-        Ok(Response::new(convert::mesh_to_pb(s.tissue.mesh())))
+        match s.tissue.two() {
+            Some(t) => Ok(Response::new(convert::mesh_to_pb(t.mesh()))),
+            None => Err(ApiError::FailedPrecondition(format!("session {} is 3D: its tissue's surface comes from GetSurface", s.id)).into()),
+        }
+    }
+
+    async fn get_surface(&self, req: Request<pb::GetSessionRequest>) -> Result<Response<pb::Surface>, Status> {
+        let s = self.state.session(&req.get_ref().session_id)?;
+        authorize(&req, &s, Role::Observer)?;
+        match &s.tissue {
+            needlesim_session::SessionTissue::Three { model, surface } => Ok(Response::new(convert::surface_to_pb(surface, model.mesh()))),
+            needlesim_session::SessionTissue::Two(_) => {
+                Err(ApiError::FailedPrecondition(format!("session {} is 2D: its mesh comes from GetMesh", s.id)).into())
+            }
+        }
     }
 
     async fn get_stats(&self, req: Request<pb::GetSessionRequest>) -> Result<Response<pb::SessionStats>, Status> {

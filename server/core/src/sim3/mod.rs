@@ -479,6 +479,19 @@ impl Simulation3 {
         Ok(evicted)
     }
 
+    /// [`Simulation3::insert_columns`] for columns handed over as an owned box (length $9n$):
+    /// the box is kept, or copied into reused storage, so that nothing is allocated (a real-time
+    /// thread receiving a worker's columns). Returns the evicted node, if any, and the box not
+    /// kept (for the caller to hand back to the worker).
+    ///
+    /// Errors: [`SimError3::WrongStore`] with node blocks (the box is dropped).
+    pub fn insert_columns_owned(&mut self, node_idx: usize, columns: Box<[f64]>) -> Result<(Option<usize>, Option<Box<[f64]>>), SimError3> {
+        let evicted = if self.columns_mut("insert_columns_owned")?.contains(node_idx) { None } else { self.make_room() };
+        let spare = self.columns_mut("insert_columns_owned")?.insert_owned(node_idx, columns);
+        self.stamp[node_idx] = self.tick + 1;
+        Ok((evicted, spare))
+    }
+
     fn columns_mut(&mut self, call: &'static str) -> Result<&mut ComplianceCache3, SimError3> {
         match &mut self.cache {
             ComplianceStore3::Columns(c) => Ok(c),
