@@ -7,6 +7,7 @@
 
 pub mod access;
 pub mod convert;
+pub mod foxglove_live;
 pub mod grpc;
 pub mod grpc_identify;
 pub mod jobs;

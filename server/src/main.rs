@@ -98,6 +98,12 @@ struct ServeArgs {
     /// per session every tick: 150 µs at 1 kHz is 15 % of a core per session.
     #[arg(long, value_name = "US", default_value_t = needlesim_session::DEFAULT_SPIN_MARGIN.as_micros() as u64)]
     spin_margin_us: u64,
+    /// Serve live sessions to the Foxglove app over its WebSocket protocol on this address
+    /// (e.g. 127.0.0.1:8765; port 0 picks one). Off by default. The protocol carries no
+    /// tokens: every live session is visible to whoever reaches the port — keep it on loopback
+    /// or a trusted network.
+    #[arg(long, value_name = "ADDR")]
+    foxglove_addr: Option<std::net::SocketAddr>,
 }
 
 #[derive(Subcommand)]
@@ -529,6 +535,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         default_scene: (args.default_scene != "none").then_some(args.default_scene),
         demo: args.demo,
         admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
+        foxglove: args.foxglove_addr,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     runtime.block_on(serve::serve(config, async {

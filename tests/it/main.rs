@@ -12,6 +12,7 @@ mod cli;
 mod cli_errors;
 mod contact_points;
 mod flexible_e2e;
+mod foxglove;
 mod identify_fit;
 mod identify_track;
 mod plan;

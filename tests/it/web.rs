@@ -206,7 +206,10 @@ fn issue_17_page_shows_and_drives_a_3d_session_in_headless_chromium() {
     let _turn = needlesim_tests::REALTIME.blocking_lock();
     require_node_modules();
     let chromium = std::env::var("NEEDLESIM_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".to_owned());
-    assert!(Path::new(&chromium).exists(), "no Chromium at {chromium}: apt-get install chromium (tests/run does it), or set NEEDLESIM_CHROMIUM");
+    assert!(
+        Path::new(&chromium).exists(),
+        "no Chromium at {chromium}: apt-get install chromium (tests/run does it), or set NEEDLESIM_CHROMIUM"
+    );
     let web = web_dir();
     let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", web.to_str().unwrap()]);
     let shots = repo_root().join("target/web-screenshots");
