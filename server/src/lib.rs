@@ -8,6 +8,7 @@
 pub mod access;
 pub mod agones;
 pub mod convert;
+pub mod foxglove_live;
 pub mod grpc;
 pub mod grpc_identify;
 pub mod jobs;

@@ -101,6 +101,12 @@ struct ServeArgs {
     /// The Agones game-server integration (`--agones` and its options; README "Running a fleet").
     #[command(flatten)]
     fleet: agones::AgonesArgs,
+    /// Serve live sessions to the Foxglove app over its WebSocket protocol on this address
+    /// (e.g. 127.0.0.1:8765; port 0 picks one). Off by default. The protocol carries no
+    /// tokens: every live session is visible to whoever reaches the port — keep it on loopback
+    /// or a trusted network.
+    #[arg(long, value_name = "ADDR")]
+    foxglove_addr: Option<std::net::SocketAddr>,
 }
 
 #[derive(Subcommand)]
@@ -573,6 +579,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         default_scene: (args.default_scene != "none").then_some(args.default_scene),
         demo: args.demo,
         admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
+        foxglove: args.foxglove_addr,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     if let Some(cfg) = fleet {

@@ -30,6 +30,8 @@ pub struct ServeConfig {
     pub demo: bool,
     /// The admin token, which opens every recording (only its SHA-256 is kept).
     pub admin_token: Option<String>,
+    /// Where the live Foxglove endpoint listens (`--foxglove-addr`), if anywhere.
+    pub foxglove: Option<SocketAddr>,
 }
 
 /// Prometheus text exposition of every session's counters and percentiles.
@@ -290,6 +292,11 @@ where
     let addr = listener.local_addr()?;
     tracing::info!(%addr, tls = config.tls.is_some(), data_dir = %config.data_dir.display(), "needlesim-server listening");
     println!("listening on {addr}");
+    if let Some(fx) = config.foxglove {
+        let port = crate::foxglove_live::start(fx, state.clone()).await?;
+        tracing::info!(port, "Foxglove endpoint listening");
+        println!("foxglove on ws://{}:{port} (Foxglove app: Open connection → Foxglove WebSocket)", fx.ip());
+    }
     if let Some(s) = &demo_session {
         let scheme = if config.tls.is_some() { "https" } else { "http" };
         println!(

@@ -13,6 +13,7 @@ mod cli_errors;
 mod contact_points;
 mod fleet;
 mod flexible_e2e;
+mod foxglove;
 mod identify_fit;
 mod identify_track;
 mod plan;

@@ -197,3 +197,45 @@ fn page_drives_the_needle_in_headless_chromium() {
     assert_ne!(before, after, "the tissue view did not change as the needle advanced");
     println!("screenshots in {}", shots.display());
 }
+
+/// Issue 17 (3D in the browser): a live 3D session (cube-phantom-3d) in the page's three.js view —
+/// the tissue drawn, the mouse drives the needle in (depth grows, the picture changes), the
+/// section plane changes the picture (tests/web3d_e2e.mjs; WebGL through SwiftShader).
+#[test]
+fn issue_17_page_shows_and_drives_a_3d_session_in_headless_chromium() {
+    let _turn = needlesim_tests::REALTIME.blocking_lock();
+    require_node_modules();
+    let chromium = std::env::var("NEEDLESIM_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".to_owned());
+    assert!(
+        Path::new(&chromium).exists(),
+        "no Chromium at {chromium}: apt-get install chromium (tests/run does it), or set NEEDLESIM_CHROMIUM"
+    );
+    let web = web_dir();
+    let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", web.to_str().unwrap()]);
+    let shots = repo_root().join("target/web-screenshots");
+    for f in ["view3-before.png", "view3-after.png", "view3-section.png", "page3.png", "summary3.json"] {
+        let _ = std::fs::remove_file(shots.join(f));
+    }
+    let out = run(Command::new("node")
+        .arg(repo_root().join("tests/web3d_e2e.mjs"))
+        .arg(server.url())
+        .arg(&shots)
+        .env("NEEDLESIM_CHROMIUM", &chromium));
+    let (so, se) = text(&out);
+    println!("{so}");
+    assert!(out.status.success(), "tests/web3d_e2e.mjs failed:\n{so}\n{se}\nserver log:\n{}", server.stderr.lock().unwrap());
+
+    let summary = needlesim_tests::read_json(&shots.join("summary3.json"));
+    let f = |k: &str| summary[k].as_f64().unwrap_or_else(|| panic!("summary3.json has no number `{k}`: {summary}"));
+    assert!(f("frames") >= 10.0, "too few frames: {summary}");
+    assert!(f("poses") >= 1.0, "no 3D pose was sent: {summary}");
+    // The cube fills a good part of the view; a blank or failed WebGL canvas would be white.
+    assert!(f("drawnShare") > 0.05, "the tissue is not drawn: {summary}");
+    assert!(f("depth1") > f("depth0") + 0.015, "the drag did not insert the needle: {summary}");
+    assert_eq!(summary["changedByInsertion"], true, "the picture did not change as the needle went in: {summary}");
+    assert_eq!(summary["changedBySection"], true, "the section plane did not change the picture: {summary}");
+    for name in ["view3-before.png", "view3-after.png", "view3-section.png", "page3.png"] {
+        let png = std::fs::read(shots.join(name)).unwrap_or_else(|e| panic!("no screenshot {name}: {e}"));
+        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 5000, "{name} is not a real screenshot ({} bytes)", png.len());
+    }
+}

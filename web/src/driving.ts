@@ -2,9 +2,10 @@
 //! the base freely, Shift: rotates), the wheel rotates; poses go out by unary SetPose, at most one
 //! per 10 ms and two in flight, only the newest pending one kept. And the bevel flip.
 import { create } from "@bufbuild/protobuf";
-import { Pose2Schema } from "./gen/needlesim/v1/needlesim_pb";
+import { Pose2Schema, Pose3Schema } from "./gen/needlesim/v1/needlesim_pb";
 import { auth, control } from "./api";
 import { publish, status } from "./dom";
+import type { Pose3 } from "./pose3";
 import { type Pose, state } from "./state";
 import { viewTransform } from "./view";
 
@@ -30,22 +31,52 @@ function command(p: Pose): void {
   pump();
 }
 
+/** Commands a 3D pose (a 3D session's driving: driving3.ts). */
+export function command3(p: Pose3): void {
+  const d = state.driving;
+  d.posesCommanded++;
+  publish("posesCommanded", d.posesCommanded);
+  d.commanded3 = p;
+  d.pending3 = p;
+  pump();
+}
+
+/** The SetPose (2D) or SetPose3 call of the newest pending pose, or null when none waits. */
+function nextCall(sessionId: string, token: string): (() => Promise<unknown>) | null {
+  const d = state.driving;
+  const opts = auth(token);
+  if (d.pending3) {
+    const p = d.pending3;
+    d.pending3 = null;
+    const [w, x, y, z] = p.quaternion;
+    const [px, py, pz] = p.positionM;
+    const base3 = create(Pose3Schema, { positionM: { x: px, y: py, z: pz }, orientation: { w, x, y, z } });
+    return () => control.setPose3({ sessionId, base3, clientId: TAB_ID }, opts);
+  }
+  if (d.pending) {
+    const p = d.pending;
+    d.pending = null;
+    const base = create(Pose2Schema, { xM: p.xM, yM: p.yM, thetaRad: p.thetaRad });
+    return () => control.setPose({ sessionId, base, clientId: TAB_ID }, opts);
+  }
+  return null;
+}
+
 /** Sends the pending pose when the rate and the in-flight limit allow (else retries later). */
 function pump(): void {
   const d = state.driving;
   const session = state.session;
-  if (!d.pending || !session || d.inFlight >= 2) return;
+  if (!(d.pending || d.pending3) || !session || d.inFlight >= 2) return;
   const now = performance.now();
   if (now - d.lastSentMs < 10) {
     setTimeout(pump, 10 - (now - d.lastSentMs));
     return;
   }
-  const p = d.pending;
-  d.pending = null;
+  const call = nextCall(session.id, session.token);
+  if (!call) return;
   d.lastSentMs = now;
   d.inFlight++;
-  control
-    .setPose({ sessionId: session.id, base: create(Pose2Schema, { xM: p.xM, yM: p.yM, thetaRad: p.thetaRad }), clientId: TAB_ID }, auth(session.token))
+  call()
     .then(() => {
       d.posesAcked++;
       publish("poses", d.posesAcked);
@@ -60,7 +91,7 @@ function pump(): void {
 /** Lets the mouse drive the needle on this canvas (the tissue view). */
 export function installDriving(view: HTMLCanvasElement): void {
   view.addEventListener("mousedown", (ev) => {
-    if (state.mode !== "live") return;
+    if (state.mode !== "live" || state.dim !== 2) return;
     const start = currentPose();
     if (!start) return;
     const r = view.getBoundingClientRect();
@@ -94,7 +125,7 @@ export function installDriving(view: HTMLCanvasElement): void {
   view.addEventListener(
     "wheel",
     (ev) => {
-      if (state.mode !== "live") return;
+      if (state.mode !== "live" || state.dim !== 2) return;
       const p = currentPose();
       if (!p) return;
       ev.preventDefault();

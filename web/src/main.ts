@@ -14,6 +14,10 @@ import { loadRecording, refreshRecordings, sliderMoved, startStopRecording, stop
 import { createFromExample, refreshSessions, selectedSessionChanged, watch, watchSelected } from "./sessions";
 import { state } from "./state";
 import { drawView } from "./view";
+import { command3 } from "./driving";
+import { installDriving3 } from "./driving3";
+import { pose3Of, scene3Of } from "./frame3";
+import { TissueView3 } from "./view3";
 
 /** The live time plot's window (s). */
 const LIVE_WINDOW_S = 20;
@@ -21,13 +25,60 @@ const PLOT_WIDTH_PX = 500;
 const PLOT_HEIGHT_PX = 220;
 
 const view = $("view", HTMLCanvasElement);
+const view3Canvas = $("view3", HTMLCanvasElement);
+/** The 3D view, made when the first 3D session is shown (WebGL only then). */
+let view3: TissueView3 | null = null;
+let view3Surface: unknown = null;
+let view3Draws = 0;
+
+/** Shows the 2D or the 3D view, as the session is; draws the 3D one. */
+function render3(): void {
+  const is3 = state.dim === 3;
+  view.hidden = is3;
+  view3Canvas.hidden = !is3;
+  $("controls3").hidden = !is3;
+  if (!is3 || !state.surface3) return;
+  if (!view3) {
+    view3 = new TissueView3(view3Canvas);
+    const v = view3;
+    installDriving3(
+      view3Canvas,
+      () => v.camera,
+      () => state.driving.commanded3 ?? (state.frame?.d3 ? pose3Of(state.frame.d3) : null),
+      (p) => {
+        if (state.mode === "live") command3(p);
+      },
+      (on) => {
+        v.controls.enabled = on;
+      },
+    );
+    v.controls.addEventListener("change", () => {
+      state.dirty = true;
+    });
+  }
+  if (view3Surface !== state.surface3) {
+    view3Surface = state.surface3;
+    view3.setSurface(state.surface3);
+  }
+  view3.setSection($("section-on", HTMLInputElement).checked, Number($("section-at", HTMLInputElement).value));
+  const s = state.frame ? scene3Of(state.frame) : null;
+  if (s) view3.show(s);
+  view3.render();
+  publish("view3Draws", ++view3Draws);
+}
 const plots = new ForcePlots($("plot-time"), $("plot-depth"), PLOT_WIDTH_PX, PLOT_HEIGHT_PX);
 
 /** Draws what changed, once per animation frame: the tissue view and the plots. */
 function render(): void {
   if (state.dirty) {
     state.dirty = false;
-    drawView(view, state);
+    if (state.dim === 3) render3();
+    else {
+      view3Canvas.hidden = true;
+      $("controls3").hidden = true;
+      view.hidden = false;
+      drawView(view, state);
+    }
     const pb = state.playback;
     if (state.mode === "playback" && pb.history) {
       plots.show(pb.history, null, state.frame ? sampleOf(state.frame) : null);
@@ -53,6 +104,11 @@ $("live").addEventListener("click", () => {
   if (state.session) void watch(state.session.id, state.session.token);
 });
 $("slider").addEventListener("input", sliderMoved);
+for (const id of ["section-on", "section-at"]) {
+  $(id).addEventListener("input", () => {
+    state.dirty = true;
+  });
+}
 $("play").addEventListener("click", togglePlay);
 
 async function main(): Promise<void> {

@@ -3,6 +3,7 @@
 import { auth, observe, sessions, tokens } from "./api";
 import { $, publish, status } from "./dom";
 import { buildMesh } from "./mesh";
+import { sample3Of, surface3Of } from "./frame3";
 import { showFrame, showFramesReceived } from "./readout";
 import { resetForSession, state } from "./state";
 import { sampleOf } from "./history";
@@ -76,9 +77,16 @@ export async function watch(id: string, token: string): Promise<void> {
   url.searchParams.set("token", token);
   window.history.replaceState(null, "", url);
   try {
-    state.mesh = buildMesh(await sessions.getMesh({ sessionId: id }, auth(token)));
+    const info = await sessions.getSession({ sessionId: id }, auth(token));
+    if (info.dimension === 3) {
+      state.surface3 = surface3Of(await sessions.getSurface({ sessionId: id }, auth(token)));
+      state.dim = 3;
+    } else {
+      state.mesh = buildMesh(await sessions.getMesh({ sessionId: id }, auth(token)));
+    }
+    publish("dim", state.dim);
   } catch (e) {
-    status(`GetMesh: ${String(e)}`);
+    status(`opening the session: ${String(e)}`);
     return;
   }
   const abort = new AbortController();
@@ -89,7 +97,7 @@ export async function watch(id: string, token: string): Promise<void> {
     const stream = observe.observe({ sessionId: id, rateHz: 60, includeDisplacements: true }, { ...auth(token), signal: abort.signal });
     for await (const f of stream) {
       showFramesReceived(++state.framesReceived);
-      state.history.push(sampleOf(f));
+      state.history.push(f.d3 ? sample3Of(f, f.d3) : sampleOf(f));
       if (state.mode === "live") showFrame(f);
     }
     if (!abort.signal.aborted) status("the session's frame stream ended");

@@ -3,6 +3,8 @@
 import type { Frame } from "./gen/needlesim/v1/needlesim_pb";
 import type { Bounds, MeshGeom } from "./mesh";
 import { ForceHistory } from "./history";
+import type { Pose3 } from "./pose3";
+import type { Surface3 } from "./view3";
 
 /** A needle base pose: position (m) and direction (rad). */
 export interface Pose {
@@ -32,6 +34,9 @@ export interface DrivingState {
   commanded: Pose | null;
   /** The pose waiting to be sent (only the newest is kept). */
   pending: Pose | null;
+  /** The same for a 3D session. */
+  commanded3: Pose3 | null;
+  pending3: Pose3 | null;
   /** SetPose calls in flight (at most two). */
   inFlight: number;
   /** When the last SetPose went out (performance.now(), ms). */
@@ -58,6 +63,10 @@ export interface ViewerState {
   session: { id: string; token: string } | null;
   mode: "live" | "playback";
   mesh: MeshGeom | null;
+  /** 2 or 3: the watched session's (or the played recording's) dimension. */
+  dim: 2 | 3;
+  /** A 3D session's tissue surface (GetSurface). */
+  surface3: Surface3 | null;
   /** The frame shown (the latest live one, or the playback cursor's). */
   frame: Frame | null;
   /** Frames received from the live stream of this session. */
@@ -82,6 +91,8 @@ export const state: ViewerState = {
   session: null,
   mode: "live",
   mesh: null,
+  dim: 2,
+  surface3: null,
   frame: null,
   framesReceived: 0,
   streamAbort: null,
@@ -90,7 +101,7 @@ export const state: ViewerState = {
   strainScale: 1e-3,
   viewBounds: null,
   dirty: true,
-  driving: { commanded: null, pending: null, inFlight: 0, lastSentMs: 0, posesCommanded: 0, posesAcked: 0, drag: null },
+  driving: { commanded: null, pending: null, commanded3: null, pending3: null, inFlight: 0, lastSentMs: 0, posesCommanded: 0, posesAcked: 0, drag: null },
   playback: { frames: [], history: null, playing: false, startedMs: 0, startedSimS: 0 },
 };
 
@@ -99,10 +110,13 @@ export function resetForSession(id: string, token: string): void {
   state.mode = "live";
   state.session = { id, token };
   state.mesh = null;
+  state.dim = 2;
+  state.surface3 = null;
   state.frame = null;
   state.viewBounds = null;
   state.history.clear();
   state.framesReceived = 0;
   state.driving.commanded = null;
+  state.driving.commanded3 = null;
   state.dirty = true;
 }

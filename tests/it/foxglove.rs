@@ -1,0 +1,140 @@
+//! Issue 17 (Foxglove): the real server with `--foxglove-addr` serves a live 3D session to a
+//! Foxglove WebSocket client (the ws-protocol: advertise, subscribe, binary messageData): the
+//! scene in Foxglove's `foxglove.SceneUpdate` schema (tissue surface, needle, contacts, targets)
+//! and the force samples, as the session is driven in.
+use futures_util::{SinkExt, StreamExt};
+use needlesim_proto::v1 as pb;
+use prost::Message as _;
+use tokio_tungstenite::tungstenite::{Message, client::IntoClientRequest};
+
+use needlesim_tests::{ServerProcess, connect, create_example_session, with_token};
+
+/// The foxglove.SceneUpdate fields the test reads (protobuf field numbers from Foxglove's
+/// schemas: SceneUpdate.entities = 2; SceneEntity.id = 2, triangles = 12, lines = 10;
+/// TriangleListPrimitive.indices = 5; LinePrimitive.points = 5; Point3.z = 3).
+mod fx {
+    #[derive(Clone, PartialEq, prost::Message)]
+    pub struct SceneUpdate {
+        #[prost(message, repeated, tag = "2")]
+        pub entities: Vec<SceneEntity>,
+    }
+    #[derive(Clone, PartialEq, prost::Message)]
+    pub struct SceneEntity {
+        #[prost(string, tag = "2")]
+        pub id: String,
+        #[prost(message, repeated, tag = "10")]
+        pub lines: Vec<LinePrimitive>,
+        #[prost(message, repeated, tag = "12")]
+        pub triangles: Vec<TriangleListPrimitive>,
+    }
+    #[derive(Clone, PartialEq, prost::Message)]
+    pub struct LinePrimitive {
+        #[prost(message, repeated, tag = "5")]
+        pub points: Vec<Point3>,
+    }
+    #[derive(Clone, PartialEq, prost::Message)]
+    pub struct TriangleListPrimitive {
+        #[prost(uint32, repeated, tag = "5")]
+        pub indices: Vec<u32>,
+    }
+    #[derive(Clone, PartialEq, prost::Message)]
+    pub struct Point3 {
+        #[prost(double, tag = "1")]
+        pub x: f64,
+        #[prost(double, tag = "2")]
+        pub y: f64,
+        #[prost(double, tag = "3")]
+        pub z: f64,
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_17_a_foxglove_client_sees_a_live_3d_session() {
+    let _turn = needlesim_tests::REALTIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none", "--foxglove-addr", "127.0.0.1:0"]);
+    let port = {
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+        loop {
+            let out = server.stdout.lock().unwrap().clone();
+            if let Some(p) = out
+                .lines()
+                .find_map(|l| l.strip_prefix("foxglove on ws://127.0.0.1:"))
+                .and_then(|r| r.split_whitespace().next().map(str::to_owned))
+            {
+                break p;
+            }
+            assert!(std::time::Instant::now() < deadline, "the server did not print its Foxglove port: {out}");
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+        }
+    };
+    let ch = connect(&server).await;
+    let created = create_example_session(&ch, "cube-phantom-3d").await;
+    let id = created.session.as_ref().unwrap().session_id.clone();
+
+    let mut req = format!("ws://127.0.0.1:{port}").into_client_request().unwrap();
+    req.headers_mut().insert("sec-websocket-protocol", "foxglove.sdk.v1".parse().unwrap());
+    let (mut ws, _) = tokio_tungstenite::connect_async(req).await.expect("the Foxglove endpoint accepts a ws-protocol client");
+    let (scene_topic, force_topic) = (format!("/needlesim/{id}/scene"), format!("/needlesim/{id}/force"));
+    let mut channels = std::collections::BTreeMap::new();
+    let deadline = tokio::time::Instant::now() + std::time::Duration::from_secs(30);
+    while !(channels.contains_key(&scene_topic) && channels.contains_key(&force_topic)) {
+        assert!(tokio::time::Instant::now() < deadline, "the session's channels were not advertised: {channels:?}");
+        let Ok(Some(Ok(Message::Text(t)))) = tokio::time::timeout(std::time::Duration::from_secs(1), ws.next()).await else { continue };
+        let v: serde_json::Value = serde_json::from_str(&t).unwrap();
+        if v["op"] == "advertise" {
+            for c in v["channels"].as_array().unwrap() {
+                channels.insert(
+                    c["topic"].as_str().unwrap().to_owned(),
+                    (c["id"].as_u64().unwrap(), c["schemaName"].as_str().unwrap().to_owned()),
+                );
+            }
+        }
+    }
+    assert_eq!(channels[&scene_topic].1, "foxglove.SceneUpdate");
+    assert_eq!(channels[&force_topic].1, "needlesim.ForceSample");
+    let subs = serde_json::json!({"op": "subscribe", "subscriptions": [
+        {"id": 1, "channelId": channels[&scene_topic].0}, {"id": 2, "channelId": channels[&force_topic].0}]});
+    ws.send(Message::Text(subs.to_string().into())).await.unwrap();
+
+    // Drive the needle in (SetPose3 every 10 ms) while reading what Foxglove would show.
+    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let (mut tips_z, mut force_z, mut surface_triangles) = (Vec::new(), Vec::new(), 0usize);
+    let start = tokio::time::Instant::now();
+    let q = pb::Quaternion { w: std::f64::consts::FRAC_1_SQRT_2, x: 0.0, y: std::f64::consts::FRAC_1_SQRT_2, z: 0.0 };
+    let mut next_pose = start;
+    while start.elapsed() < std::time::Duration::from_secs(8) && (tips_z.len() < 20 || force_z.len() < 50) {
+        if tokio::time::Instant::now() >= next_pose {
+            // 5 mm/s down from the scene's start (tip 5 mm above the top face).
+            let z = 0.205 - 0.005 * start.elapsed().as_secs_f64() * 4.0;
+            let base3 = pb::Pose3 { position_m: Some(pb::Vec3 { x: 0.05, y: 0.05, z }), orientation: Some(q) };
+            let req = pb::SetPoseRequest3 { session_id: id.clone(), base3: Some(base3), client_id: "fx-test".into(), take_over: false };
+            control.set_pose3(with_token(req, &created.controller_token)).await.expect("SetPose3");
+            next_pose += std::time::Duration::from_millis(10);
+        }
+        let Ok(Some(Ok(Message::Binary(b)))) = tokio::time::timeout(std::time::Duration::from_millis(5), ws.next()).await else { continue };
+        assert_eq!(b[0], 1, "messageData opcode");
+        let payload = &b[13..];
+        match u32::from_le_bytes(b[1..5].try_into().unwrap()) {
+            1 => {
+                let up = fx::SceneUpdate::decode(payload).expect("a foxglove.SceneUpdate");
+                for e in &up.entities {
+                    match e.id.as_str() {
+                        "tissue" => surface_triangles = e.triangles[0].indices.len() / 3,
+                        "needle" => tips_z.push(e.lines[0].points.last().unwrap().z),
+                        _ => {}
+                    }
+                }
+            }
+            2 => {
+                let v: serde_json::Value = serde_json::from_slice(payload).expect("force JSON");
+                force_z.push(v["force_n"]["z"].as_f64().unwrap());
+            }
+            other => panic!("unknown subscription {other}"),
+        }
+    }
+    // The 21³ cube's surface: 6 faces × 20² squares × 2 triangles.
+    assert_eq!(surface_triangles, 6 * 400 * 2, "the tissue entity is not the cube's surface");
+    assert!(tips_z.len() >= 20 && force_z.len() >= 50, "too few messages: {} scenes, {} forces", tips_z.len(), force_z.len());
+    assert!(tips_z.last().unwrap() < &(tips_z[0] - 0.005), "the needle did not move down in the scene: {tips_z:?}");
+    assert!(force_z.iter().any(|&f| f > 0.01), "no upward tissue force on the needle while inserting: {force_z:?}");
+}
