@@ -15,6 +15,7 @@ mod flexible_e2e;
 mod identify_fit;
 mod identify_track;
 mod plan;
+mod rate_physics;
 mod python_client;
 mod python_package;
 mod scenes3d;
