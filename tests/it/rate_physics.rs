@@ -124,5 +124,9 @@ fn a_viscoelastic_block_under_a_step_relaxes_as_the_closed_form_sls() {
     let ramp = tau_s / 1e-3 * ((1e-3 / tau_s).exp() - 1.0);
     let rest = fv / fe - g_inf;
     assert!(rest > 0.0 && rest <= (1.0 - g_inf) * (-5.0f64).exp() * ramp, "end {fv} N, elastic {fe} N");
-    eprintln!("simulate SLS block: peak {peak:.4} N, worst deviation {worst:.2e} N ({:.1e} of peak), end {fv:.5} N = {:.5} × elastic", worst / peak, fv / fe);
+    eprintln!(
+        "simulate SLS block: peak {peak:.4} N, worst deviation {worst:.2e} N ({:.1e} of peak), end {fv:.5} N = {:.5} × elastic",
+        worst / peak,
+        fv / fe
+    );
 }

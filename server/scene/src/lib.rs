@@ -682,9 +682,7 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
         max_base_step_rad: f.limits.max_base_step_rad,
         max_active_set_iterations: f.limits.max_active_set_iterations,
         lookahead_m: f.limits.lookahead_m,
-        viscoelastic: f
-            .viscoelastic
-            .map(|v| Viscoelastic { long_term_ratio: v.long_term_ratio, relaxation_time_s: v.relaxation_time_s }),
+        viscoelastic: f.viscoelastic.map(|v| Viscoelastic { long_term_ratio: v.long_term_ratio, relaxation_time_s: v.relaxation_time_s }),
     };
     // Everything else the simulation checks (the needle's shape; a target outside the mesh, …):
     // a scene that loads makes a simulation.

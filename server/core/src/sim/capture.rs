@@ -11,9 +11,9 @@ use crate::ids::{Axis, NodeIdx};
 use crate::mixed::Condition;
 
 use super::frames::Geometry;
-use super::viscous::{History, ScaledBlocks};
 use super::param_limits::{MAX_APPROACHING, MAX_CAPTURES_PER_TICK};
 use super::state::{NeedleNode, NodeState, State, WorkingSet};
+use super::viscous::{History, ScaledBlocks};
 use super::{Ctx, SimError, SimStats};
 
 /// A node the tip passed this tick and its arc length in the tip's frame.
@@ -219,7 +219,8 @@ pub(super) fn capture(
             0.0
         };
         let visc = setup.visc.map_or_else(History::default, |c| History::captured(&c, node_displacement(ws, &st.cache, j)));
-        let slot = ws.solver.add_contact(&ScaledBlocks { cache: &st.cache, scale: setup.compliance_scale }, ContactPoint::node(j), angle)?;
+        let slot =
+            ws.solver.add_contact(&ScaledBlocks { cache: &st.cache, scale: setup.compliance_scale }, ContactPoint::node(j), angle)?;
         let (s0, lat0) = frame.coords([x[0] + visc.shift_m[0], x[1] + visc.shift_m[1]]);
         let region = setup.node_region[j.index()];
         let bevel_tip = is_tip && bevel;
