@@ -193,8 +193,8 @@ mod tests {
         let u: Vec<f64> = (0..=n).map(|k| 1e-3 * ((k as f64 * 0.037).sin() + 0.3 * ((k * 7 % 13) as f64 / 13.0))).collect();
         let mut hist = History::captured(&c, [u[0], 0.0]);
         for k in 1..=n {
-            // v_n from the recursion: γ u_n + r_n = γ (u_n + shift).
-            let v_rec = c.gamma * (u[k] + hist.shift_m[0]);
+            // v_n from the recursion: γ u_n + r_n = γ (u_n − shift), the shift being −r_n/γ.
+            let v_rec = c.gamma * (u[k] - hist.shift_m[0]);
             // v_n by the convolution: u(0) applied at t = 0 (g(t_k) u_0), then each linear piece.
             let t = k as f64 * dt;
             let tau = v.relaxation_time_s;
