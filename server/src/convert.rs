@@ -620,6 +620,7 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
                 tip_peak_width_m: or(r.tip_peak_width_m, d.tip_peak_width_m),
                 puncture_force_n: or(r.puncture_force_n, d.puncture_force_n),
                 cutting_force_n: or(r.cutting_force_n, d.cutting_force_n),
+                ..d
             })
             .collect(),
         targets: u
@@ -636,6 +637,7 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
         max_base_step_rad: 0.05,
         max_active_set_iterations: 64,
         lookahead_m: 0.01,
+        viscoelastic: None,
     };
     // Validate the needle parameters now, so the error reaches the caller as INVALID_ARGUMENT.
     needlesim_core::Simulation::new(tissue.clone(), params.clone()).context("scene.uploaded")?;

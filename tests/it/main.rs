@@ -19,6 +19,7 @@ mod identify_track;
 mod plan;
 mod python_client;
 mod python_package;
+mod rate_physics;
 mod scenes3d;
 mod server_e2e;
 mod session3d;

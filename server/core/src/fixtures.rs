@@ -69,6 +69,7 @@ pub fn phantom_params(needle: NeedleShape) -> SimParams {
         max_base_step_rad: 0.05,
         max_active_set_iterations: 64,
         lookahead_m: 0.01,
+        viscoelastic: None,
     }
 }
 

@@ -9,6 +9,22 @@
 //! $$q(\ell) = q_0\Big(1 + h\,\tfrac12\big(1 + \cos(\pi \ell / w)\big)\,[\ell < w]\Big),$$
 //! a uniform level $q_0$ with a raised-cosine peak of relative height $h$ (≈ 0.3) and width $w$ just
 //! behind the tip. A needle node receives the integral of $q$ over its tributary segment.
+//!
+//! Rate-dependent friction (issue 19): the kinetic friction per unit length grows with the
+//! slip speed $v$ as in the modified Karnopp model that Okamura, Simone and O'Leary fitted to
+//! needle insertions into bovine liver ("Force modeling for needle insertion into soft tissue",
+//! IEEE TBME 51(10), 2004: Coulomb plus viscous friction, $F = C\,\mathrm{sgn}(v) + b\,v$ with
+//! $v$ the needle's velocity), distributed along the shaft:
+//! $$q(\ell, v) = q_0\Big(1 + h\,\tfrac12\big(1 + \cos(\pi \ell / w)\big)\,[\ell < w]\Big) + b_v\,|v|,$$
+//! with $b_v$ (N·s/m², [`RegionNeedleParams::friction_damping_n_s_per_m2`]) the viscous
+//! friction per unit length and unit speed; a node of tributary length $\lambda$ gets
+//! $\int q_0(\ldots) + b_v |v| \lambda$ (a stuck node's static threshold scales with it). As in
+//! Okamura et al., $v$ is the needle's axial speed (over the last tick): the tissue is taken at
+//! rest. The tissue points' own speed is not used because the quasi-static stick/slip
+//! alternates at the tick level (a contact slides one tick, holds the next), so a per-contact
+//! speed is noise at the tick rate rather than a velocity. $b_v = 0$ is the paper's law. By
+//! hand, for uniform friction: a shaft length $\ell$ sliding at the insertion speed $V$
+//! carries $(q_0 + b_v V)\,\ell$.
 
 /// The commanded or current pose of the needle base.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -177,6 +193,10 @@ pub struct RegionNeedleParams {
     pub puncture_force_n: f64,
     /// Axial force at which the tip cuts past an interior node of the same region, N.
     pub cutting_force_n: f64,
+    /// Viscous friction $b_v$ per unit length and unit slip speed, N·s/m² (module docs): a node
+    /// slipping at $v$ gets $b_v |v|$ per metre of its tributary segment on top of $q$. 0: the
+    /// paper's rate-independent friction.
+    pub friction_damping_n_s_per_m2: f64,
 }
 
 impl Default for RegionNeedleParams {
@@ -189,6 +209,7 @@ impl Default for RegionNeedleParams {
             tip_peak_width_m: 0.005,
             puncture_force_n: 0.3,
             cutting_force_n: 0.05,
+            friction_damping_n_s_per_m2: 0.0,
         }
     }
 }
@@ -196,13 +217,14 @@ impl Default for RegionNeedleParams {
 impl RegionNeedleParams {
     /// Checks the values; `region` names the region in the message.
     pub fn validate(&self, region: &str) -> Result<(), String> {
-        let checks: [(&str, f64, bool); 6] = [
+        let checks: [(&str, f64, bool); 7] = [
             ("friction_n_per_m", self.friction_n_per_m, self.friction_n_per_m >= 0.0),
             ("static_friction_ratio", self.static_friction_ratio, self.static_friction_ratio >= 1.0),
             ("tip_peak_ratio", self.tip_peak_ratio, self.tip_peak_ratio >= 0.0),
             ("tip_peak_width_m", self.tip_peak_width_m, self.tip_peak_width_m > 0.0),
             ("puncture_force_n", self.puncture_force_n, self.puncture_force_n >= 0.0),
             ("cutting_force_n", self.cutting_force_n, self.cutting_force_n >= 0.0),
+            ("friction_damping_n_s_per_m2", self.friction_damping_n_s_per_m2, self.friction_damping_n_s_per_m2 >= 0.0),
         ];
         for (name, v, ok) in checks {
             if !(v.is_finite() && ok) {

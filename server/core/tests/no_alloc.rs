@@ -36,7 +36,23 @@ fn flexible_bevel_needle_steps_allocate_nothing_after_warm_up() {
     run_case(NeedleShape::Flexible(f), ContactModel::Nodes);
 }
 
+/// Issue 19: viscoelastic tissue (the history's recursion, the shifted references, the scaled
+/// blocks of captures and drift checks) with material points, rigid and flexible bevel-tip.
+#[test]
+fn viscoelastic_steps_allocate_nothing_after_warm_up() {
+    let v = Some(needlesim_core::sim::Viscoelastic { long_term_ratio: 0.5, relaxation_time_s: 0.2 });
+    run_case_with(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }), ContactModel::MaterialPoints { spacing_m: 0.001 }, v);
+    let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
+    f.flexural_rigidity_nm2 *= 0.3;
+    f.bevel_force_ratio = 0.2;
+    run_case_with(NeedleShape::Flexible(f), ContactModel::MaterialPoints { spacing_m: 0.001 }, v);
+}
+
 fn run_case(needle: NeedleShape, contact: ContactModel) {
+    run_case_with(needle, contact, None);
+}
+
+fn run_case_with(needle: NeedleShape, contact: ContactModel, viscoelastic: Option<needlesim_core::sim::Viscoelastic>) {
     let model = fixtures::phantom(25);
     let a0 = -1.3f64;
     let base_at = |d: f64, a: f64| BasePose::new(0.04 + (d - 0.1) * a.cos(), 0.1 + (d - 0.1) * a.sin(), a);
@@ -44,6 +60,7 @@ fn run_case(needle: NeedleShape, contact: ContactModel) {
         initial_pose: base_at(-0.005, a0),
         targets: vec![needlesim_core::TargetParams { name: "t".into(), center_m: [0.05, 0.04], radius_m: 0.002 }],
         contact,
+        viscoelastic,
         ..fixtures::phantom_params(needle)
     };
     let mut sim = Simulation::new(model, params).unwrap();

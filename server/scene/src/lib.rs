@@ -14,7 +14,7 @@ use std::sync::Arc;
 use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::mesh::DiagonalPattern;
-use needlesim_core::sim::{ContactModel, SimParams, TargetParams};
+use needlesim_core::sim::{ContactModel, SimParams, TargetParams, Viscoelastic};
 use needlesim_core::{
     BasePose, FlexibleNeedle, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams,
     RigidNeedle,
@@ -60,6 +60,20 @@ pub struct SceneFile {
     pub targets: Vec<TargetSpec>,
     #[serde(default)]
     pub limits: LimitsSpec,
+    /// Viscoelastic tissue: `[viscoelastic] long_term_ratio = E∞/E₀, relaxation_time_s = τ`, one
+    /// standard-linear-solid relaxation of every modulus (the regions' `E` are the
+    /// instantaneous moduli E₀). Absent: elastic.
+    pub viscoelastic: Option<ViscoelasticSpec>,
+}
+
+/// The `[viscoelastic]` table: $E(t) = E_\infty + (E_0 - E_\infty) e^{-t/\tau}$ for every region.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViscoelasticSpec {
+    /// $E_\infty / E_0$, in (0, 1].
+    pub long_term_ratio: f64,
+    /// $\tau$, s (> 0).
+    pub relaxation_time_s: f64,
 }
 
 fn default_rate() -> f64 {
@@ -130,6 +144,10 @@ pub struct RegionSpec {
     pub puncture_force_n: f64,
     #[serde(default = "d_cutting")]
     pub cutting_force_n: f64,
+    /// Viscous friction per unit length and unit slip speed, N·s/m² (rate-dependent friction,
+    /// `q₀ + b·|v|`; 0: rate-independent). 2D only.
+    #[serde(default)]
+    pub friction_damping_n_s_per_m2: f64,
 }
 
 fn d_friction() -> f64 {
@@ -492,6 +510,22 @@ fn check_values(f: &SceneFile) -> Result<()> {
             bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, t.radius_m);
         }
     }
+    for (k, r) in f.regions.iter().enumerate() {
+        let b = r.friction_damping_n_s_per_m2;
+        if !(b.is_finite() && b >= 0.0) {
+            bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {b}: must be finite and ≥ 0", r.name);
+        }
+    }
+    if let Some(v) = f.viscoelastic {
+        let g = v.long_term_ratio;
+        if !(g.is_finite() && g > 0.0 && g <= 1.0) {
+            bail!("viscoelastic.long_term_ratio = {g}: must be in (0, 1] (E∞/E₀)");
+        }
+        let tau = v.relaxation_time_s;
+        if !(tau.is_finite() && tau > 0.0) {
+            bail!("viscoelastic.relaxation_time_s = {tau}: must be finite and > 0");
+        }
+    }
     if let Some(d) = f.dim
         && d != 2
     {
@@ -582,6 +616,7 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
             tip_peak_width_m: r.tip_peak_width_m,
             puncture_force_n: r.puncture_force_n,
             cutting_force_n: r.cutting_force_n,
+            friction_damping_n_s_per_m2: r.friction_damping_n_s_per_m2,
         });
     }
     for r in &f.regions {
@@ -647,6 +682,7 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
         max_base_step_rad: f.limits.max_base_step_rad,
         max_active_set_iterations: f.limits.max_active_set_iterations,
         lookahead_m: f.limits.lookahead_m,
+        viscoelastic: f.viscoelastic.map(|v| Viscoelastic { long_term_ratio: v.long_term_ratio, relaxation_time_s: v.relaxation_time_s }),
     };
     // Everything else the simulation checks (the needle's shape; a target outside the mesh, …):
     // a scene that loads makes a simulation.

@@ -604,6 +604,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
                 tip_peak_width_m: r.tip_peak_width_m,
                 puncture_force_n: r.puncture_force_n,
                 cutting_force_n: r.cutting_force_n,
+                ..Default::default()
             },
         });
     }

@@ -62,12 +62,13 @@ pub(super) fn update_friction(
         let nn = &mut ws.nodes[slot.index()];
         nn.s_work_m = match nn.state {
             NodeState::Stuck => nn.anchor_s_m,
-            NodeState::Slipping if current => frame.coords(nn.x_ref_m).0 + ws.solver.displacement_local(slot)[Axis::Axial],
+            NodeState::Slipping if current => frame.coords(nn.x_kin_m()).0 + ws.solver.displacement_local(slot)[Axis::Axial],
             NodeState::Slipping => nn.s_prev_m,
             NodeState::Tip => continue,
         };
         order.push(slot);
     }
+    let speed = ws.axial_speed_m_per_s;
     let nodes = &ws.nodes;
     order.sort_unstable_by(|&a, &b| nodes[a.index()].s_work_m.total_cmp(&nodes[b.index()].s_work_m));
     let k = order.len();
@@ -79,7 +80,7 @@ pub(super) fn update_friction(
         let hi = if i + 1 == k { s_tip.max(s) } else { 0.5 * (s + ws.node(order[i + 1]).s_work_m) };
         let rp = params.regions[ws.node(slot).region];
         let nn = ws.node_mut(slot);
-        nn.friction_new_n = rp.friction_integral_n(s_tip - hi, s_tip - lo);
+        nn.friction_new_n = rp.friction_integral_n(s_tip - hi, s_tip - lo) + rp.friction_damping_n_s_per_m2 * speed * (hi - lo);
         if nn.state == NodeState::Slipping {
             max_change = max_change.max((nn.friction_new_n - nn.friction_n).abs());
         }
@@ -159,7 +160,7 @@ pub(super) fn resolve_active_set(
         for slot in ws.slots() {
             let nn = *ws.node(slot);
             let f = ws.solver.force_local(slot);
-            let (s0, _) = geo.slot_frame(ws, slot).coords(nn.x_ref_m);
+            let (s0, _) = geo.slot_frame(ws, slot).coords(nn.x_kin_m());
             let s_now = s0 + ws.solver.displacement_local(slot)[Axis::Axial];
             let f_t = f[Axis::Axial];
             let change = match nn.state {
@@ -187,7 +188,7 @@ pub(super) fn resolve_active_set(
         // Apply in descending slot order so removals do not disturb pending slots.
         sc.changes.sort_unstable_by_key(|c| std::cmp::Reverse(c.0));
         for &(slot, change) in sc.changes.iter() {
-            let x = ws.node(slot).x_ref_m;
+            let x = ws.node(slot).x_kin_m();
             let (s0, lat0) = geo.slot_frame(ws, slot).coords(x);
             match change {
                 Change::Puncture => {

@@ -13,6 +13,7 @@ use crate::mixed::Condition;
 use super::frames::Geometry;
 use super::param_limits::{MAX_APPROACHING, MAX_CAPTURES_PER_TICK};
 use super::state::{NeedleNode, NodeState, State, WorkingSet};
+use super::viscous::{History, ScaledBlocks};
 use super::{Ctx, SimError, SimStats};
 
 /// A node the tip passed this tick and its arc length in the tip's frame.
@@ -217,8 +218,10 @@ pub(super) fn capture(
         } else {
             0.0
         };
-        let slot = ws.solver.add_contact(&st.cache, ContactPoint::node(j), angle)?;
-        let (s0, lat0) = frame.coords(x);
+        let visc = setup.visc.map_or_else(History::default, |c| History::captured(&c, node_displacement(ws, &st.cache, j)));
+        let slot =
+            ws.solver.add_contact(&ScaledBlocks { cache: &st.cache, scale: setup.compliance_scale }, ContactPoint::node(j), angle)?;
+        let (s0, lat0) = frame.coords([x[0] + visc.shift_m[0], x[1] + visc.shift_m[1]]);
         let region = setup.node_region[j.index()];
         let bevel_tip = is_tip && bevel;
         let entering = setup.is_boundary[j.index()] || st.last_tip_region != Some(region);
@@ -238,6 +241,7 @@ pub(super) fn capture(
             lat_offset_m,
             lateral_ref_m: lat_offset_m - lat0,
             force_ref_local_n: [0.0; 2],
+            visc,
         };
         if bevel_tip {
             // The bevel's tip node slides on the bevel face: its lateral force is prescribed.
@@ -399,14 +403,15 @@ pub(super) fn capture_points(
     // A flexible needle takes the point where it is; the rigid one puts it on the shaft (it
     // lies there up to the tip's lateral motion in one tick).
     let lat_offset_m = if geo.curve.is_some() { frame.coords(prev_tip).1 } else { 0.0 };
-    let (s0, lat0) = frame.coords(x);
+    let visc = ctx.setup.visc.map_or_else(History::default, |c| History::captured(&c, contact_displacement(&st.ws, &st.cache, &contact)));
+    let (s0, lat0) = frame.coords([x[0] + visc.shift_m[0], x[1] + visc.shift_m[1]]);
     let tri = contact.tri_idx().expect("a material point lies in a triangle");
     let region = mesh.region_of_tri()[tri];
     let entering = st.ws.len() == 0 || st.last_tip_region != Some(region);
     let rp = params.regions[region];
     let bevel = st.flex.as_ref().is_some_and(|f| f.bevel_ratio > 0.0);
     let ws = &mut st.ws;
-    let slot = ws.solver.add_contact(&st.cache, contact, angle)?;
+    let slot = ws.solver.add_contact(&ScaledBlocks { cache: &st.cache, scale: ctx.setup.compliance_scale }, contact, angle)?;
     let lateral = if bevel {
         ws.solver.set_condition(slot, Axis::Lateral, Condition::Force, 0.0)
     } else {
@@ -444,6 +449,7 @@ pub(super) fn capture_points(
             lat_offset_m,
             lateral_ref_m: lat_offset_m - lat0,
             force_ref_local_n: [0.0; 2],
+            visc,
         },
     );
     st.stats.captures += 1;

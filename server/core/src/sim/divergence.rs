@@ -77,7 +77,7 @@ pub(super) fn check(bounds: &DivergenceBounds, geo: &Geometry<'_>, ws: &WorkingS
         let u = ws.solver.displacement_world(slot);
         check(Divergence::NodeForce, f[0].hypot(f[1]), bd.force_n)?;
         check(Divergence::Displacement, u[0].hypot(u[1]), bd.displacement_m)?;
-        let x = ws.node(slot).x_ref_m;
+        let x = ws.node(slot).x_kin_m();
         let p = [x[0] + u[0], x[1] + u[1]];
         min_s = min_s.min(geo.slot_frame(ws, slot).coords(p).0);
         force[0] -= f[0];

@@ -18,7 +18,7 @@
 //! [`param_limits::HYBRID_CHECK_EVERY_TICKS`]: super::param_limits::HYBRID_CHECK_EVERY_TICKS
 //! [`param_limits::HYBRID_DRIFT_TOL`]: super::param_limits::HYBRID_DRIFT_TOL
 
-use crate::compliance::ComplianceCache;
+use crate::compliance::ContactBlocks;
 use crate::ids::{Axis, Slot};
 use crate::mixed::Condition;
 
@@ -51,7 +51,7 @@ impl DriftCheck {
 /// The unknowns are recomputed as $y = H x$ from the prescribed values into `y` (capacity: the
 /// solver's DOFs), so a prescribed value changed after the last solve (the bevel force's update)
 /// does not read as drift; $O(d^2)$.
-pub(super) fn row_residual(ws: &WorkingSet, cache: &ComplianceCache, slot_idx: usize, y: &mut Vec<f64>) -> Option<f64> {
+pub(super) fn row_residual<C: ContactBlocks<2> + ?Sized>(ws: &WorkingSet, cache: &C, slot_idx: usize, y: &mut Vec<f64>) -> Option<f64> {
     let solver = &ws.solver;
     let contacts = solver.contacts();
     let a = contacts.get(slot_idx)?;
@@ -104,7 +104,7 @@ pub(super) enum Checked {
 
 /// One check of the round robin: checks the contact at `drift.cursor` (then advances it),
 /// records the residual, and rebuilds $H$ when it exceeds `drift.tol`.
-pub(super) fn check_one(ws: &mut WorkingSet, cache: &ComplianceCache, drift: &mut DriftCheck) -> Checked {
+pub(super) fn check_one<C: ContactBlocks<2> + ?Sized>(ws: &mut WorkingSet, cache: &C, drift: &mut DriftCheck) -> Checked {
     let d = ws.solver.contacts().len();
     if d == 0 {
         return Checked::Nothing;

@@ -110,7 +110,7 @@ pub(super) fn settle_shape(
         let nn = *ws.node(slot);
         let s = match nn.state {
             NodeState::Slipping => {
-                let x = nn.x_ref_m;
+                let x = nn.x_kin_m();
                 let geo = Geometry::of(shape, pose, Some(&fx.curve));
                 geo.slot_frame(ws, slot).coords(x).0 + ws.solver.displacement_local(slot)[Axis::Axial]
             }
@@ -138,7 +138,7 @@ pub(super) fn settle_shape(
             continue;
         }
         let nn = ws.node(slot);
-        let x = nn.x_ref_m;
+        let x = nn.x_kin_m();
         let u = ws.solver.displacement_world(slot);
         let s = nn.s_work_m;
         let (_, lat) = fx.curve.frame_coords(s, fx.curve.tangent_angle_at(s), [x[0] + u[0], x[1] + u[1]]);

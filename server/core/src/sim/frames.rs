@@ -171,7 +171,7 @@ pub(super) fn set_prescribed_values(geo: &Geometry<'_>, ws: &mut WorkingSet) {
     let s_tip = geo.s_tip_m();
     for slot in ws.slots() {
         let nn = *ws.node(slot);
-        let x = nn.x_ref_m;
+        let x = nn.x_kin_m();
         let frame = geo.slot_frame(ws, slot);
         ws.node_mut(slot).lateral_ref_m = prescribe(&mut ws.solver, slot, &nn, frame, x, s_tip);
     }

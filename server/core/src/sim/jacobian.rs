@@ -80,7 +80,7 @@ fn wrench_of(ws: &WorkingSet, solver: &MixedSolver, pose: &BasePose) -> [f64; 3]
     for slot in ws.slots() {
         let f = solver.force_world(slot);
         let u = solver.displacement_world(slot);
-        let x = ws.node(slot).x_ref_m;
+        let x = ws.node(slot).x_kin_m();
         let p = [x[0] + u[0], x[1] + u[1]];
         w[0] -= f[0];
         w[1] -= f[1];
@@ -94,7 +94,7 @@ fn record_base(ws: &WorkingSet, solver: &MixedSolver, base: &mut Vec<SlotBase>) 
     base.clear();
     for slot in ws.slots() {
         let u = solver.displacement_world(slot);
-        let x = ws.node(slot).x_ref_m;
+        let x = ws.node(slot).x_kin_m();
         base.push(SlotBase {
             u_local: solver.displacement_local(slot),
             f_local: solver.force_local(slot),
@@ -164,7 +164,7 @@ fn probe_wrench_rigid(ctx: &Ctx<'_>, ws: &WorkingSet, probe: &mut MixedSolver, p
         let nn = ws.node(slot);
         // A no-op for a translation probe (the frames are at the pose's angle already).
         probe.set_angle(slot, shape.frame_angle_at(pose, nn.s_prev_m))?;
-        prescribe(probe, slot, nn, frame, nn.x_ref_m, s_tip);
+        prescribe(probe, slot, nn, frame, nn.x_kin_m(), s_tip);
     }
     probe.solve();
     Ok(wrench_of(ws, probe, pose))
@@ -178,7 +178,7 @@ fn rotation_rate_rigid(ws: &WorkingSet, probe: &mut ProbeScratch, pose: &BasePos
     let b = pose.position_m();
     for (slot, s0) in ws.slots().zip(&probe.base) {
         let nn = ws.node(slot);
-        let x_dot = prescribed_rate(solver, slot, nn.state, nn.x_ref_m, b, b, solver.angle_rad(slot));
+        let x_dot = prescribed_rate(solver, slot, nn.state, nn.x_kin_m(), b, b, solver.angle_rad(slot));
         let xi = old_frame_rate(solver, slot, x_dot, s0);
         for axis in Axis::BOTH {
             solver.set_value(slot, axis, xi[axis]);
@@ -197,7 +197,7 @@ fn prescribe_flexible(ctx: &Ctx<'_>, ws: &WorkingSet, probe: &mut MixedSolver, s
         let nn = ws.node(slot);
         let s_ref = nn.s_ref_m(s_tip);
         let frame = Frame::new(sc.probe_curve.point_at(s_ref), s_ref, probe.angle_rad(slot));
-        let lateral = prescribe(probe, slot, nn, frame, nn.x_ref_m, s_tip);
+        let lateral = prescribe(probe, slot, nn, frame, nn.x_kin_m(), s_tip);
         sc.nodes.push(CoupledNode { s_m: s_ref, lateral_ref_m: lateral, force_ref_local_n: nn.force_ref_local_n });
     }
 }
@@ -253,7 +253,7 @@ fn rotation_rate_flexible(ctx: &Ctx<'_>, ws: &WorkingSet, probe: &mut ProbeScrat
         let nn = ws.node(slot);
         let s_ref = nn.s_ref_m(s_tip);
         let origin = sc.probe_curve.point_at(s_ref);
-        let x_dot = prescribed_rate(solver, slot, nn.state, nn.x_ref_m, origin, b, solver.angle_rad(slot));
+        let x_dot = prescribed_rate(solver, slot, nn.state, nn.x_kin_m(), origin, b, solver.angle_rad(slot));
         let xi = old_frame_rate(solver, slot, x_dot, s0);
         for axis in Axis::BOTH {
             solver.set_value(slot, axis, xi[axis]);

@@ -65,6 +65,7 @@ mod params;
 mod scratch;
 mod setup;
 mod state;
+mod viscous;
 
 use std::sync::Arc;
 
@@ -77,6 +78,7 @@ pub use divergence::DivergenceBounds;
 pub use error::{Divergence, SimError};
 pub use output::{LocalCondition, NeedleNodeOut, SimStats, StateSnapshot, StepOutput, TargetOut};
 pub use params::{ContactModel, SimParams, TargetParams, param_limits};
+pub use viscous::Viscoelastic;
 
 pub use state::NodeState;
 
@@ -311,7 +313,11 @@ impl Simulation {
         let prev_tip = Geometry::new(params, st.pose, st.flex.as_ref()).tip();
         let us = st.ws.solver.stats();
         st.updates_at_tick_start = us.n_pivots + us.n_rotations + us.n_added + us.n_removed;
+        let pose_before = st.pose;
         let clamped = frames::apply_pose(params, commanded, &mut st.pose, &mut st.ws, st.flex.as_mut())?;
+        let t_axis = st.pose.axis();
+        st.ws.axial_speed_m_per_s =
+            ((st.pose.x_m - pose_before.x_m) * t_axis[0] + (st.pose.y_m - pose_before.y_m) * t_axis[1]).abs() * params.tick_rate_hz;
         frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
         lap(clock, &mut t_last, &mut stage_ns, 0);
         capture::release_withdrawn(s_tip, &mut st.ws, &mut st.stats)?;
@@ -352,10 +358,14 @@ impl Simulation {
         }
         lap(clock, &mut t_last, &mut stage_ns, 5);
         output::write_output(&ctx, st, out, iterations, converged, clamped);
+        if let Some(c) = &setup.visc {
+            viscous::advance(c, &mut st.ws);
+        }
         lap(clock, &mut t_last, &mut stage_ns, 6);
         touch_and_sweep(params, model.mesh().nodes_m(), st, out);
         if st.tick % param_limits::HYBRID_CHECK_EVERY_TICKS == param_limits::HYBRID_CHECK_EVERY_TICKS - 1 {
-            let checked = drift::check_one(&mut st.ws, &st.cache, &mut st.drift);
+            let blocks = viscous::ScaledBlocks { cache: &st.cache, scale: setup.compliance_scale };
+            let checked = drift::check_one(&mut st.ws, &blocks, &mut st.drift);
             st.stats.hybrid_checks += (checked != drift::Checked::Nothing) as u64;
             st.stats.hybrid_rebuilds += (checked == drift::Checked::Rebuilt) as u64;
             st.stats.hybrid_rebuild_failures += (checked == drift::Checked::RebuildFailed) as u64;

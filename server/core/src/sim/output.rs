@@ -249,7 +249,10 @@ pub(super) fn write_output(ctx: &Ctx<'_>, st: &mut State, out: &mut StepOutput, 
     for slot in ws.slots() {
         let k = slot.index();
         let f = ws.solver.force_world(slot);
-        let u = ws.solver.displacement_world(slot);
+        let shift = ws.node(slot).visc.shift_m;
+        let u_solver = ws.solver.displacement_world(slot);
+        // The true displacement (the solver's is measured from the shifted reference).
+        let u = [u_solver[0] + shift[0], u_solver[1] + shift[1]];
         ws.f_world[k] = f;
         ws.u_world[k] = u;
         let frame = geo.slot_frame(ws, slot);

@@ -5,6 +5,7 @@ use crate::mesh::Mesh;
 use crate::needle::{BasePose, NeedleShape, RegionNeedleParams};
 
 use super::SimError;
+use super::viscous::Viscoelastic;
 
 /// A target embedded in the tissue: a point (radius 0) or a small disc.
 #[derive(Debug, Clone, PartialEq)]
@@ -74,6 +75,9 @@ pub struct SimParams {
     pub max_active_set_iterations: usize,
     /// How far ahead of the tip nodes are reported as approaching (for column prefetch).
     pub lookahead_m: f64,
+    /// Viscoelastic tissue: one proportional relaxation of every modulus (`None`: elastic; see
+    /// `viscous.rs`). The tissue model's moduli are then the instantaneous ones, $E_0$.
+    pub viscoelastic: Option<Viscoelastic>,
 }
 
 impl SimParams {
@@ -124,6 +128,9 @@ impl SimParams {
                 "max_active_set_iterations = {} must be in 1..={MAX_ACTIVE_SET_ITERATIONS}",
                 self.max_active_set_iterations
             ));
+        }
+        if let Some(v) = &self.viscoelastic {
+            v.validate().map_err(SimError::InvalidParams)?;
         }
         for t in &self.targets {
             if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {

@@ -6,6 +6,7 @@ use crate::compliance::TissueModel;
 use crate::mesh::Mesh;
 use crate::spatial::NodeGrid;
 
+use super::viscous::ViscCoeffs;
 use super::{DivergenceBounds, SimError, SimParams};
 
 /// A target located in the mesh: the triangle containing its centre and the barycentric
@@ -37,6 +38,10 @@ pub(super) struct Setup {
     /// The longest edge of the mesh (m): every node of a triangle a line crosses lies within it
     /// of the line.
     pub max_edge_m: f64,
+    /// The viscous recursion's constants (`None`: elastic tissue; `viscous.rs`).
+    pub visc: Option<ViscCoeffs>,
+    /// The working solver's scale of every compliance block: $1/\gamma$, exactly 1 when elastic.
+    pub compliance_scale: f64,
 }
 
 impl Setup {
@@ -62,7 +67,10 @@ impl Setup {
             })
             .collect();
         let max_edge_m = tri_diam_m.iter().copied().fold(0.0, f64::max);
+        let visc = ViscCoeffs::new(params.viscoelastic, params.tick_rate_hz);
         Ok(Self {
+            visc,
+            compliance_scale: visc.map_or(1.0, |c| c.compliance_scale()),
             node_tri_start,
             node_tris,
             tri_diam_m,

@@ -65,9 +65,19 @@ pub(super) struct NeedleNode {
     pub lateral_ref_m: f64,
     /// The node's force on the tissue (in its frame) the reference shape carries.
     pub force_ref_local_n: [f64; 2],
+    /// Viscous history (all zero in an elastic tissue; `viscous.rs`).
+    pub visc: super::viscous::History,
 }
 
 impl NeedleNode {
+    /// The position the working solver's displacement is measured from: the reference
+    /// position shifted by the viscous history, $X + \tilde u$ is where the tissue point is
+    /// (`viscous.rs`; $X$ itself in an elastic tissue).
+    #[inline]
+    pub fn x_kin_m(&self) -> [f64; 2] {
+        [self.x_ref_m[0] + self.visc.shift_m[0], self.x_ref_m[1] + self.visc.shift_m[1]]
+    }
+
     /// The arc length the node's frame is attached to: the anchor of a stuck node, last tick's
     /// position of a slipping one, the tip's arc length `s_tip_m` for the tip's node.
     #[inline]
@@ -93,6 +103,9 @@ pub(super) struct WorkingSet {
     /// of [`super::capture::node_displacement`] between steps.
     pub f_world: Vec<[f64; 2]>,
     pub u_world: Vec<[f64; 2]>,
+    /// The needle's axial speed over the tick, $|(b_k - b_{k-1})\cdot t|/\Delta t$ (m/s): the
+    /// rate-dependent friction's slip speed $v$ ([`crate::needle`]; the tissue at rest).
+    pub axial_speed_m_per_s: f64,
 }
 
 impl WorkingSet {
@@ -104,6 +117,7 @@ impl WorkingSet {
             slot_of_node: vec![None; n_nodes],
             f_world: Vec::with_capacity(cap),
             u_world: Vec::with_capacity(cap),
+            axial_speed_m_per_s: 0.0,
         }
     }
     /// Number of needle nodes.
