@@ -4,7 +4,11 @@
 usage: mcap_check.py FILE.mcap [--tolerate-truncation]
 
 Prints {"file", "messages", "topics", "schema_names", "schema_encodings", "message_encodings",
-"first_sequence", "last_sequence", "in_order", "truncated"}.
+"first_sequence", "last_sequence", "in_order", "truncated", "foxglove"}: messages, sequences and
+order are those of the project's frame topic (/needlesim/frames); topics and schemas cover every
+channel; "foxglove" counts the messages of Foxglove's channels ({"scene", "force"}) and lists the
+scene entity ids found by decoding the foxglove.SceneUpdate messages with the descriptor the file
+carries ("scene_entities"), and the force sample keys ("force_keys").
 
 Without --tolerate-truncation the file is read with `mcap.reader.make_reader` (a seeking reader
 that uses the summary): an unfinished file is an error (exit status 1). With
@@ -37,14 +41,38 @@ def main() -> int:
     truncated = False
     last_time = None
 
+    foxglove = {"scene": 0, "force": 0, "scene_entities": set(), "force_keys": set()}
+    scene_classes = {}
+
+    def scene_class(schema):
+        # The message class of foxglove.SceneUpdate from the FileDescriptorSet in the file.
+        if schema.id not in scene_classes:
+            from google.protobuf import descriptor_pb2, descriptor_pool, message_factory
+
+            fds = descriptor_pb2.FileDescriptorSet.FromString(schema.data)
+            pool = descriptor_pool.DescriptorPool()
+            for fd in fds.file:
+                pool.Add(fd)
+            scene_classes[schema.id] = message_factory.GetMessageClass(pool.FindMessageTypeByName(schema.name))
+        return scene_classes[schema.id]
+
     def add(schema, channel, message):
         nonlocal count, first_seq, last_seq, in_order, last_time
-        count += 1
         topics.add(channel.topic)
         message_encodings.add(channel.message_encoding)
         if schema is not None:
             schema_names.add(schema.name)
             schema_encodings.add(schema.encoding)
+        if schema is not None and schema.name == "foxglove.SceneUpdate":
+            foxglove["scene"] += 1
+            for e in scene_class(schema).FromString(message.data).entities:
+                foxglove["scene_entities"].add(e.id)
+            return
+        if schema is not None and schema.name == "needlesim.ForceSample":
+            foxglove["force"] += 1
+            foxglove["force_keys"].update(json.loads(message.data).keys())
+            return
+        count += 1
         if first_seq is None:
             first_seq = message.sequence
         elif message.sequence <= last_seq or message.log_time < last_time:
@@ -84,6 +112,7 @@ def main() -> int:
                 "last_sequence": last_seq,
                 "in_order": in_order,
                 "truncated": truncated,
+                "foxglove": {k: sorted(v) if isinstance(v, set) else v for k, v in foxglove.items()},
             }
         )
     )

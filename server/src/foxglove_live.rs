@@ -55,7 +55,7 @@ pub async fn start(addr: SocketAddr, state: SharedState) -> Result<u16> {
 }
 
 /// The surface Foxglove draws: a 3D session's boundary, a 2D session's mesh at z = 0.
-fn surface_of(s: &Session) -> Surface {
+pub(crate) fn surface_of(s: &Session) -> Surface {
     match &s.tissue {
         SessionTissue::Three { model, surface } => {
             let x = model.mesh().nodes_m();
@@ -106,10 +106,38 @@ fn scene_parts(r: &TickRecord, needle: &mut Vec<[f64; 3]>, points: &mut Vec<Scen
 }
 
 /// A tick record's force sample (2D embedded in the plane z = 0, the torque about z).
-fn force_of(r: &TickRecord) -> ForceSample {
+pub(crate) fn force_of(r: &TickRecord) -> ForceSample {
     let (force_n, torque_nm) =
         if r.dimension == 3 { (r.d3.force_n, r.d3.torque_nm) } else { ([r.force_n[0], r.force_n[1], 0.0], [0.0, 0.0, r.torque_nm]) };
     ForceSample { time_s: r.time_s, depth_m: r.inserted_length_m, force_n: force_n.into(), torque_nm: torque_nm.into() }
+}
+
+/// Buffers for a record's scene (reused from one scene to the next).
+#[derive(Default)]
+pub(crate) struct SceneParts {
+    needle: Vec<[f64; 3]>,
+    points: Vec<ScenePoint>,
+    targets: Vec<SceneTarget>,
+}
+
+impl SceneParts {
+    /// The scene of `rec` without displacements (the surface undeformed), with the surface
+    /// entity when `surface` is given.
+    pub(crate) fn scene_update(
+        &mut self,
+        rec: &TickRecord,
+        surface: Option<&Surface>,
+    ) -> needlesim_foxglove::foxglove::messages::SceneUpdate {
+        scene_parts(rec, &mut self.needle, &mut self.points, &mut self.targets);
+        let frame = SceneFrame {
+            time_ns: (rec.time_s * 1e9) as u64,
+            surface_displacement_m: None,
+            needle_m: &self.needle,
+            points: &self.points,
+            targets: &self.targets,
+        };
+        scene_update(surface, &frame, 0.0)
+    }
 }
 
 /// Holds one displacement-field subscription of a session while a Foxglove client watches its

@@ -43,7 +43,7 @@ pub const CHUNK_BYTES: usize = 64 * 1024;
 /// The writer also closes a non-empty chunk after this long, so that a slow stream is on disk.
 pub const FLUSH_INTERVAL: Duration = Duration::from_secs(1);
 /// Frames that can wait for the writer thread before [`Recorder::write_from_fanout`] drops them.
-pub const QUEUE_FRAMES: usize = 4096;
+pub const QUEUE_FRAMES: usize = 8192;
 
 /// Why a recording could not be started, written, finished or opened.
 #[derive(Debug)]
@@ -134,13 +134,33 @@ pub struct SessionRecording {
     recorder: Recorder,
     target_names: Vec<String>,
     frame_of: FrameOfRecord,
+    /// For the Foxglove channels: the tissue's surface (sent with the scene every
+    /// [`SURFACE_EVERY_S`]), the simulated times of the last scene and surface, and buffers.
+    surface: needlesim_foxglove::Surface,
+    last_scene_s: f64,
+    last_surface_s: f64,
+    parts: crate::foxglove_live::SceneParts,
 }
+
+/// Scenes in a recording: at most one per this many seconds of simulated time (30 Hz).
+pub const SCENE_EVERY_S: f64 = 1.0 / 30.0;
+/// The tissue's surface is repeated in the scene this often (s), so that a player that seeks
+/// finds it within a second.
+pub const SURFACE_EVERY_S: f64 = 1.0;
 
 impl SessionRecording {
     /// Records `session`'s frames into `recorder` from the next tick on, or gives the recorder
     /// back when the session already has a record sink.
     pub fn attach(session: &Session, recorder: Recorder, frame_of: FrameOfRecord) -> Result<(), Recorder> {
-        let sink = Box::new(SessionRecording { recorder, target_names: session.target_names.clone(), frame_of });
+        let sink = Box::new(SessionRecording {
+            recorder,
+            target_names: session.target_names.clone(),
+            frame_of,
+            surface: crate::foxglove_live::surface_of(session),
+            last_scene_s: f64::NEG_INFINITY,
+            last_surface_s: f64::NEG_INFINITY,
+            parts: crate::foxglove_live::SceneParts::default(),
+        });
         session.attach_sink_from_io(sink).map_err(|back| match back.into_any().downcast::<SessionRecording>() {
             Ok(r) => r.recorder,
             Err(_) => unreachable!("the sink just refused is the recording given"),
@@ -166,6 +186,18 @@ impl SessionRecording {
 impl RecordSink for SessionRecording {
     fn write_from_fanout(&mut self, rec: &TickRecord) {
         self.recorder.write_from_fanout(&(self.frame_of)(rec, &self.target_names));
+        let force = crate::foxglove_live::force_of(rec).to_json();
+        self.recorder.queue_from_fanout(Queued { topic: Topic::FoxgloveForce, tick: rec.tick, time_s: rec.time_s, data: force });
+        if rec.time_s - self.last_scene_s >= SCENE_EVERY_S {
+            self.last_scene_s = rec.time_s;
+            let with_surface = rec.time_s - self.last_surface_s >= SURFACE_EVERY_S;
+            if with_surface {
+                self.last_surface_s = rec.time_s;
+            }
+            let update = self.parts.scene_update(rec, with_surface.then_some(&self.surface));
+            let data = prost::Message::encode_to_vec(&update);
+            self.recorder.queue_from_fanout(Queued { topic: Topic::FoxgloveScene, tick: rec.tick, time_s: rec.time_s, data });
+        }
     }
 
     fn as_any(&self) -> &dyn std::any::Any {
@@ -207,8 +239,20 @@ struct Counters {
     finished: AtomicBool,
 }
 
-/// A frame on its way to the writer thread, encoded by the caller.
+/// Which channel a queued message goes to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Topic {
+    /// The project's frame (`FRAME_TOPIC`).
+    Frame,
+    /// Foxglove's scene (`/needlesim/<session>/scene`, foxglove.SceneUpdate).
+    FoxgloveScene,
+    /// The force sample for Foxglove's Plot panel (`/needlesim/<session>/force`, JSON).
+    FoxgloveForce,
+}
+
+/// A message on its way to the writer thread, encoded by the caller.
 struct Queued {
+    topic: Topic,
     tick: u64,
     time_s: f64,
     data: Vec<u8>,
@@ -250,6 +294,7 @@ impl Recorder {
         let mut writer = options.create(sink)?;
         let schema_id = writer.add_schema(FRAME_SCHEMA_NAME, PROTOBUF_ENCODING, needlesim_proto::FILE_DESCRIPTOR_SET)?;
         let channel_id = writer.add_channel(schema_id, FRAME_TOPIC, PROTOBUF_ENCODING, &BTreeMap::new())?;
+        let foxglove = needlesim_foxglove::McapChannels::register(&mut writer, session_id)?;
         let metadata = BTreeMap::from([
             ("session_id".to_owned(), session_id.to_owned()),
             ("start_utc".to_owned(), stamp),
@@ -266,6 +311,7 @@ impl Recorder {
                 let w = WriterThread {
                     writer,
                     channel_id,
+                    foxglove,
                     start_ns,
                     offset_ns: None,
                     counters: thread_counters,
@@ -283,8 +329,13 @@ impl Recorder {
     /// I/O. Returns false, and counts the frame as dropped, when the queue is full or the writer
     /// has stopped.
     pub fn write_from_fanout(&self, frame: &Frame) -> bool {
+        self.queue_from_fanout(Queued { topic: Topic::Frame, tick: frame.tick, time_s: frame.time_s, data: frame.encode_to_vec() })
+    }
+
+    /// Queues a message for one of the Foxglove channels (encoded by the caller), as
+    /// [`Recorder::write_from_fanout`].
+    fn queue_from_fanout(&self, queued: Queued) -> bool {
         let Some(tx) = &self.tx else { return false };
-        let queued = Queued { tick: frame.tick, time_s: frame.time_s, data: frame.encode_to_vec() };
         match tx.try_send(queued) {
             Ok(()) => true,
             Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) => {
@@ -357,6 +408,8 @@ type McapWriter = mcap::Writer<Sink>;
 struct WriterThread {
     writer: McapWriter,
     channel_id: u16,
+    /// The Foxglove scene and force channels.
+    foxglove: needlesim_foxglove::McapChannels,
     /// Wall-clock time of the start of the recording, ns since the Unix epoch.
     start_ns: u64,
     /// Added to the simulated time (ns) of a frame to give its log time; fixed by the first frame
@@ -410,11 +463,21 @@ impl WriterThread {
         let sim_ns = if sim_ns.is_finite() { sim_ns as i128 } else { 0 };
         let offset = *self.offset_ns.get_or_insert(i128::from(self.start_ns) - sim_ns);
         let time = u64::try_from((sim_ns + offset).max(0)).unwrap_or(u64::MAX);
-        // MCAP sequences are 32 bits: the tick wraps after 2^32 frames.
-        let header =
-            mcap::records::MessageHeader { channel_id: self.channel_id, sequence: queued.tick as u32, log_time: time, publish_time: time };
-        self.writer.write_to_known_channel(&header, &queued.data)?;
-        self.counters.messages.fetch_add(1, Ordering::Relaxed);
+        match queued.topic {
+            Topic::Frame => {
+                // MCAP sequences are 32 bits: the tick wraps after 2^32 frames.
+                let header = mcap::records::MessageHeader {
+                    channel_id: self.channel_id,
+                    sequence: queued.tick as u32,
+                    log_time: time,
+                    publish_time: time,
+                };
+                self.writer.write_to_known_channel(&header, &queued.data)?;
+                self.counters.messages.fetch_add(1, Ordering::Relaxed);
+            }
+            Topic::FoxgloveScene => self.foxglove.write_scene_encoded(&mut self.writer, time, &queued.data)?,
+            Topic::FoxgloveForce => self.foxglove.write_force_encoded(&mut self.writer, time, &queued.data)?,
+        }
         self.pending_bytes += queued.data.len();
         self.pending_messages += 1;
         Ok(())

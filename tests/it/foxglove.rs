@@ -10,8 +10,8 @@ use tokio_tungstenite::tungstenite::{Message, client::IntoClientRequest};
 use needlesim_tests::{ServerProcess, connect, create_example_session, with_token};
 
 /// The foxglove.SceneUpdate fields the test reads (protobuf field numbers from Foxglove's
-/// schemas: SceneUpdate.entities = 2; SceneEntity.id = 2, triangles = 12, lines = 10;
-/// TriangleListPrimitive.indices = 5; LinePrimitive.points = 5; Point3.z = 3).
+/// schemas: SceneUpdate.entities = 2; SceneEntity.id = 3, lines = 11, triangles = 12;
+/// TriangleListPrimitive.indices = 5 (fixed32); LinePrimitive.points = 5; Point3.z = 3).
 mod fx {
     #[derive(Clone, PartialEq, prost::Message)]
     pub struct SceneUpdate {
@@ -20,9 +20,9 @@ mod fx {
     }
     #[derive(Clone, PartialEq, prost::Message)]
     pub struct SceneEntity {
-        #[prost(string, tag = "2")]
+        #[prost(string, tag = "3")]
         pub id: String,
-        #[prost(message, repeated, tag = "10")]
+        #[prost(message, repeated, tag = "11")]
         pub lines: Vec<LinePrimitive>,
         #[prost(message, repeated, tag = "12")]
         pub triangles: Vec<TriangleListPrimitive>,
@@ -34,7 +34,7 @@ mod fx {
     }
     #[derive(Clone, PartialEq, prost::Message)]
     pub struct TriangleListPrimitive {
-        #[prost(uint32, repeated, tag = "5")]
+        #[prost(fixed32, repeated, tag = "5")]
         pub indices: Vec<u32>,
     }
     #[derive(Clone, PartialEq, prost::Message)]

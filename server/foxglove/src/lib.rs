@@ -15,6 +15,8 @@
 //! - `/needlesim/<session>/force` — [`ForceSample`] as JSON (schema [`FORCE_SCHEMA_JSON`]): the
 //!   base force (N) and torque (N·m) in the world frame, the inserted depth (m), for the Plot panel.
 
+pub use foxglove;
+
 pub mod live;
 pub mod mcap_channels;
 pub mod scene;

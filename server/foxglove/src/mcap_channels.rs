@@ -42,9 +42,19 @@ impl McapChannels {
         time_ns: u64,
         update: &SceneUpdate,
     ) -> Result<(), mcap::McapError> {
+        self.write_scene_encoded(writer, time_ns, &update.encode_to_vec())
+    }
+
+    /// Writes an already encoded `foxglove.SceneUpdate` (e.g. built on another thread).
+    pub fn write_scene_encoded<W: Write + Seek>(
+        &mut self,
+        writer: &mut mcap::Writer<W>,
+        time_ns: u64,
+        data: &[u8],
+    ) -> Result<(), mcap::McapError> {
         self.scene_seq = self.scene_seq.wrapping_add(1);
         let header = MessageHeader { channel_id: self.scene, sequence: self.scene_seq, log_time: time_ns, publish_time: time_ns };
-        writer.write_to_known_channel(&header, &update.encode_to_vec())
+        writer.write_to_known_channel(&header, data)
     }
 
     /// Writes a force sample at `time_ns`.
@@ -54,9 +64,19 @@ impl McapChannels {
         time_ns: u64,
         sample: &ForceSample,
     ) -> Result<(), mcap::McapError> {
+        self.write_force_encoded(writer, time_ns, &sample.to_json())
+    }
+
+    /// Writes an already encoded force sample (JSON).
+    pub fn write_force_encoded<W: Write + Seek>(
+        &mut self,
+        writer: &mut mcap::Writer<W>,
+        time_ns: u64,
+        data: &[u8],
+    ) -> Result<(), mcap::McapError> {
         self.force_seq = self.force_seq.wrapping_add(1);
         let header = MessageHeader { channel_id: self.force, sequence: self.force_seq, log_time: time_ns, publish_time: time_ns };
-        writer.write_to_known_channel(&header, &sample.to_json())
+        writer.write_to_known_channel(&header, data)
     }
 }
 
