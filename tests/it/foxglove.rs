@@ -96,6 +96,11 @@ async fn issue_17_a_foxglove_client_sees_a_live_3d_session() {
         {"id": 1, "channelId": channels[&scene_topic].0}, {"id": 2, "channelId": channels[&force_topic].0}]});
     ws.send(Message::Text(subs.to_string().into())).await.unwrap();
 
+    // Record the session meanwhile: the recording must open in Foxglove too.
+    let mut recordings = pb::recording_service_client::RecordingServiceClient::new(ch.clone());
+    let start_rec = pb::StartRecordingRequest { session_id: id.clone() };
+    recordings.start_recording(with_token(start_rec, &created.controller_token)).await.expect("StartRecording");
+
     // Drive the needle in (SetPose3 every 10 ms) while reading what Foxglove would show.
     let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
     let (mut tips_z, mut force_z, mut surface_triangles) = (Vec::new(), Vec::new(), 0usize);
@@ -137,4 +142,27 @@ async fn issue_17_a_foxglove_client_sees_a_live_3d_session() {
     assert!(tips_z.len() >= 20 && force_z.len() >= 50, "too few messages: {} scenes, {} forces", tips_z.len(), force_z.len());
     assert!(tips_z.last().unwrap() < &(tips_z[0] - 0.005), "the needle did not move down in the scene: {tips_z:?}");
     assert!(force_z.iter().any(|&f| f > 0.01), "no upward tissue force on the needle while inserting: {force_z:?}");
+
+    // The recording of the 3D session, read by the Python `mcap` package (tests/mcap_check.py):
+    // Foxglove's scene schema with the cube's entities, and the force samples.
+    let stop = pb::StopRecordingRequest { session_id: id.clone() };
+    let info = recordings.stop_recording(with_token(stop, &created.controller_token)).await.expect("StopRecording").into_inner();
+    let file = server.data_dir.join("recordings").join(&info.name);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(20);
+    let check = loop {
+        let out = needlesim_tests::run(
+            std::process::Command::new(needlesim_tests::python()).arg(needlesim_tests::repo_root().join("tests/mcap_check.py")).arg(&file),
+        );
+        let (o, e) = needlesim_tests::text(&out);
+        if out.status.success() {
+            break serde_json::from_str::<serde_json::Value>(o.trim())
+                .unwrap_or_else(|err| panic!("mcap_check.py printed no JSON ({err}):\n{o}\n{e}"));
+        }
+        assert!(std::time::Instant::now() < deadline, "the recording {} did not become readable: {o}\n{e}", file.display());
+        tokio::time::sleep(std::time::Duration::from_millis(200)).await;
+    };
+    let fox = &check["foxglove"];
+    assert!(check["schema_names"].as_array().unwrap().iter().any(|n| n == "foxglove.SceneUpdate"), "{check}");
+    assert_eq!(fox["scene_entities"], serde_json::json!(["contacts", "needle", "targets", "tissue"]), "{check}");
+    assert!(fox["scene"].as_u64().unwrap() >= 10 && fox["force"].as_u64().unwrap() >= 100, "too few Foxglove messages recorded: {check}");
 }
