@@ -534,7 +534,10 @@ fn read_trajectory(py: Python<'_>, scene: &SceneKind, obj: Option<&Bound<'_, PyA
         (text, path.display().to_string())
     } else {
         let np = py.import("numpy")?;
-        let arr = np.call_method1("asarray", (obj, "float64"))?;
+        // C-contiguous and aligned (numpy copies only when it must): an array unpickled from
+        // out-of-band buffers (Dask, pickle protocol 5) can be unaligned, and reading one as a
+        // slice would panic (issue 21's hung Dask sweep: the panic could not travel back).
+        let arr = np.call_method1("require", (obj, "float64", ("C", "A")))?;
         let cols = if dim == 2 { 4 } else { 8 };
         let header = if dim == 2 { "t_s,x_m,y_m,theta_rad" } else { "t_s,x_m,y_m,z_m,qw,qx,qy,qz" };
         let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
