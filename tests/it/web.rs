@@ -151,8 +151,11 @@ fn plot_data_stays_bounded_ordered_and_ranged() {
     assert!(so.contains("# pass 8") && so.contains("# fail 0"), "web/test/*.test.mjs did not run their 8 tests:\n{so}");
 }
 
-#[test]
-fn page_drives_the_needle_in_headless_chromium() {
+/// Runs a page script (`node SCRIPT URL OUT_DIR`) in headless Chromium against a real server
+/// serving web/, after removing the screenshots and summary it writes (in
+/// target/web-screenshots); fails with the script's output and the server's log; returns the
+/// screenshot directory and the parsed summary.
+fn run_page_script(script: &str, screenshots: &[&str], summary: &str) -> (PathBuf, serde_json::Value) {
     let _turn = needlesim_tests::REALTIME.blocking_lock();
     require_node_modules();
     let chromium = std::env::var("NEEDLESIM_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".to_owned());
@@ -163,19 +166,24 @@ fn page_drives_the_needle_in_headless_chromium() {
     let web = web_dir();
     let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", web.to_str().unwrap()]);
     let shots = repo_root().join("target/web-screenshots");
-    for f in ["view-before.png", "view-after.png", "plots.png", "page.png", "playback.png", "summary.json"] {
+    for f in screenshots.iter().chain([&summary]) {
         let _ = std::fs::remove_file(shots.join(f));
     }
-    let out = run(Command::new("node")
-        .arg(repo_root().join("tests/web_e2e.mjs"))
-        .arg(server.url())
-        .arg(&shots)
-        .env("NEEDLESIM_CHROMIUM", &chromium));
+    let out = run(Command::new("node").arg(repo_root().join(script)).arg(server.url()).arg(&shots).env("NEEDLESIM_CHROMIUM", &chromium));
     let (so, se) = text(&out);
     println!("{so}");
-    assert!(out.status.success(), "tests/web_e2e.mjs failed:\n{so}\n{se}\nserver log:\n{}", server.stderr.lock().unwrap());
+    assert!(out.status.success(), "{script} failed:\n{so}\n{se}\nserver log:\n{}", server.stderr.lock().unwrap());
+    let summary = needlesim_tests::read_json(&shots.join(summary));
+    (shots, summary)
+}
 
-    let summary = needlesim_tests::read_json(&shots.join("summary.json"));
+#[test]
+fn page_drives_the_needle_in_headless_chromium() {
+    let (shots, summary) = run_page_script(
+        "tests/web_e2e.mjs",
+        &["view-before.png", "view-after.png", "plots.png", "page.png", "playback.png"],
+        "summary.json",
+    );
     let f = |k: &str| summary[k].as_f64().unwrap_or_else(|| panic!("summary.json has no number `{k}`: {summary}"));
     assert!(f("frames") >= 10.0, "too few frames: {summary}");
     assert!(f("poses") >= 1.0, "no pose was sent: {summary}");
@@ -203,29 +211,8 @@ fn page_drives_the_needle_in_headless_chromium() {
 /// section plane changes the picture (tests/web3d_e2e.mjs; WebGL through SwiftShader).
 #[test]
 fn issue_17_page_shows_and_drives_a_3d_session_in_headless_chromium() {
-    let _turn = needlesim_tests::REALTIME.blocking_lock();
-    require_node_modules();
-    let chromium = std::env::var("NEEDLESIM_CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".to_owned());
-    assert!(
-        Path::new(&chromium).exists(),
-        "no Chromium at {chromium}: apt-get install chromium (tests/run does it), or set NEEDLESIM_CHROMIUM"
-    );
-    let web = web_dir();
-    let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", web.to_str().unwrap()]);
-    let shots = repo_root().join("target/web-screenshots");
-    for f in ["view3-before.png", "view3-after.png", "view3-section.png", "page3.png", "summary3.json"] {
-        let _ = std::fs::remove_file(shots.join(f));
-    }
-    let out = run(Command::new("node")
-        .arg(repo_root().join("tests/web3d_e2e.mjs"))
-        .arg(server.url())
-        .arg(&shots)
-        .env("NEEDLESIM_CHROMIUM", &chromium));
-    let (so, se) = text(&out);
-    println!("{so}");
-    assert!(out.status.success(), "tests/web3d_e2e.mjs failed:\n{so}\n{se}\nserver log:\n{}", server.stderr.lock().unwrap());
-
-    let summary = needlesim_tests::read_json(&shots.join("summary3.json"));
+    let (shots, summary) =
+        run_page_script("tests/web3d_e2e.mjs", &["view3-before.png", "view3-after.png", "view3-section.png", "page3.png"], "summary3.json");
     let f = |k: &str| summary[k].as_f64().unwrap_or_else(|| panic!("summary3.json has no number `{k}`: {summary}"));
     assert!(f("frames") >= 10.0, "too few frames: {summary}");
     assert!(f("poses") >= 1.0, "no 3D pose was sent: {summary}");
