@@ -182,8 +182,10 @@ impl Worker3 {
                     };
                     let mut cols = spare.pop().unwrap_or_else(|| vec![0.0; len].into_boxed_slice());
                     if let Err(e) = model.compliance_columns_into(node as usize, &mut cols, &mut scratch) {
+                        // Answered all the same, with nothing (refused there, counted as a
+                        // step error): the real-time side counts its requests in flight.
                         tracing::error!("3D columns of node {node}: {e}");
-                        continue;
+                        cols = Box::default();
                     }
                     if !push_waiting(&mut col_tx, (node, cols), &stop) {
                         return;

@@ -218,6 +218,8 @@ pub(crate) enum Link3 {
         ret_tx: rtrb::Producer<Box<[f64]>>,
         /// Per node: requested and not evicted since.
         requested: Vec<bool>,
+        /// Requests sent and not yet answered (at most [`MAX_OUTSTANDING_COLUMNS3`]).
+        outstanding: usize,
     },
     /// Node blocks: [`BlockRequest`]s out (in the order the store reserved them: none is ever
     /// dropped, the loop asks for at most the ring's free room), payloads in (in the same
@@ -230,6 +232,12 @@ pub(crate) enum Link3 {
         reqs: Vec<BlockRequest>,
     },
 }
+
+/// Column requests with the 3D worker at once, at most. A node's columns take the worker a few
+/// milliseconds on a 10k-node mesh; with the queue this short a capture's node waits for at
+/// most this many others (issue 17: a FIFO of a whole lookahead's nodes deferred the first
+/// captures after a puncture for 0.2 s).
+pub(crate) const MAX_OUTSTANDING_COLUMNS3: usize = 2;
 
 /// Requests per tick to the 3D worker, at most.
 pub(crate) const MAX_REQUESTS3_PER_TICK: usize = 64;
@@ -258,8 +266,10 @@ impl LiveSim for Live3 {
 
     fn absorb_from_rt(&mut self, counters: &SessionCounters) {
         match &mut self.link {
-            Link3::Columns { col_rx, ret_tx, requested, .. } => {
+            Link3::Columns { col_rx, ret_tx, requested, outstanding, .. } => {
                 while let Ok((node, cols)) = col_rx.pop() {
+                    // Every request is answered once (an empty box when the worker failed).
+                    *outstanding = outstanding.saturating_sub(1);
                     match self.sim.insert_columns_owned(node as usize, cols) {
                         Ok((evicted, spare)) => {
                             if let Some(evicted) = evicted {
@@ -359,14 +369,23 @@ impl LiveSim for Live3 {
         }
         let mut requested_any = false;
         match &mut self.link {
-            Link3::Columns { req_tx, requested, .. } => {
+            Link3::Columns { req_tx, requested, outstanding, .. } => {
+                // The pinned nodes, then the approaching ones nearest first (the capture's
+                // candidate leads that list), while fewer than MAX_OUTSTANDING_COLUMNS3 are
+                // with the worker: the worker answers in order, so a short queue is what lets
+                // a node needed now overtake the ones a lookahead asked for earlier.
+                let pins = self.sim.pinned_nodes();
                 let out = self.sim.output();
-                for &node in &out.approaching {
+                for &node in pins.iter().chain(&out.approaching) {
+                    if *outstanding >= MAX_OUTSTANDING_COLUMNS3 {
+                        break;
+                    }
                     if requested[node] || self.sim.cache().contains(node) {
                         continue;
                     }
                     if req_tx.push(node as u32).is_ok() {
                         requested[node] = true;
+                        *outstanding += 1;
                         requested_any = true;
                     } else {
                         counters.dropped_column_requests.fetch_add(1, Ordering::Relaxed);

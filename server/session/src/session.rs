@@ -269,7 +269,7 @@ impl Session {
             let (col_tx, col_rx) = rtrb::RingBuffer::new(MAX_REQUESTS3_PER_TICK);
             let (ret_tx, ret_rx) = rtrb::RingBuffer::new(2 * MAX_REQUESTS3_PER_TICK);
             (
-                Link3::Columns { req_tx, col_rx, ret_tx, requested: vec![false; n_nodes] },
+                Link3::Columns { req_tx, col_rx, ret_tx, requested: vec![false; n_nodes], outstanding: 0 },
                 Worker3::Columns { model: model.clone(), req_rx, col_tx, ret_rx },
             )
         };

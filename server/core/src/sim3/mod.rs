@@ -100,6 +100,8 @@ const FRICTION_SWEEPS: usize = 6;
 const FRICTION_TOL: f64 = 1e-6;
 /// Point locations along the axis ahead of the tip per tick, for the approaching nodes.
 pub const LOOKAHEAD_SAMPLES_PER_TICK: u64 = 2;
+/// Lookahead samples per axis station: on the axis and at six points around it.
+const LOOKAHEAD_RING: u64 = 7;
 /// Capacity of the list of approaching nodes.
 pub const MAX_APPROACHING: usize = 128;
 
@@ -582,6 +584,12 @@ impl Simulation3 {
         }
     }
 
+    /// The pinned nodes, in the order they were pinned (a live session's worker fetches them
+    /// before the approaching nodes).
+    pub fn pinned_nodes(&self) -> &[usize] {
+        &self.pins
+    }
+
     /// Whether `node_idx` is pinned.
     pub fn is_pinned(&self, node_idx: usize) -> bool {
         self.pinned.get(node_idx).copied().unwrap_or(false)
@@ -902,9 +910,10 @@ impl Simulation3 {
 
     /// The approaching nodes (for prefetch), kept across ticks: nodes now cached or out of the
     /// band around the axis ahead of the tip (lateral distance and arc length within a
-    /// tetrahedron diameter of the lookahead segment) leave the list; the axis ahead is located
-    /// [`LOOKAHEAD_SAMPLES_PER_TICK`] samples per tick, round robin (a point location costs
-    /// microseconds: the whole segment each tick would cost tens), and the candidate point's
+    /// tetrahedron diameter of the lookahead segment) leave the list; the axis ahead and a ring
+    /// of six points around each of its stations are located [`LOOKAHEAD_SAMPLES_PER_TICK`]
+    /// samples per tick, round robin (a point location costs microseconds: the whole segment
+    /// each tick would cost tens), and the candidate point's
     /// nodes go first. Sorted nearest first. $O(\text{list})$, no allocation.
     fn update_approaching(&mut self, candidate: Option<ContactPoint>, u_d: [f64; 3], axis_pose: &BasePose3, frame: &[[f64; 3]; 3]) {
         let len = self.params.needle_length_m;
@@ -928,10 +937,22 @@ impl Simulation3 {
             !cache.contains(j) && lat <= band && s >= s_lo && s <= s_hi
         });
         if look > 0.0 {
+            // Sample i of the round robin: station i mod n along the axis, offset across it by
+            // the ring position i div n (none, or 0.5 h in one of six directions 60° apart).
+            // An axis along a mesh line runs on tetrahedron edges and faces, where a point
+            // location finds one of the tetrahedra around it; the material point a capture
+            // locates later (deformed, through the fixed point) may lie in any of them.
             let n = ((look + 4.0 * h) / h).ceil() as u64 + 1;
+            let (nrm, bin) = (frame[1], frame[2]);
             for k in 0..LOOKAHEAD_SAMPLES_PER_TICK {
-                let i = (LOOKAHEAD_SAMPLES_PER_TICK * self.tick + k) % n;
-                let q = sub(axis_pose.point_at(len - 4.0 * h + i as f64 * h), u_d);
+                let i = (LOOKAHEAD_SAMPLES_PER_TICK * self.tick + k) % (LOOKAHEAD_RING * n);
+                let (station, ring) = (i % n, i / n);
+                let mut q = sub(axis_pose.point_at(len - 4.0 * h + station as f64 * h), u_d);
+                if ring > 0 {
+                    let phi = std::f64::consts::FRAC_PI_3 * ring as f64;
+                    let (c, sn) = (0.5 * h * phi.cos(), 0.5 * h * phi.sin());
+                    q = add(q, [c * nrm[0] + sn * bin[0], c * nrm[1] + sn * bin[1], c * nrm[2] + sn * bin[2]]);
+                }
                 if let Ok(loc) = self.model.locate(q) {
                     for node in loc.nodes {
                         self.push_approaching(node);
