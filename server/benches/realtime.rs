@@ -25,7 +25,9 @@
 //! (0, 10 and 100 observers, 6 s each), or one long case:
 //! `cargo bench -p needlesim-server --bench realtime -- --seconds 600 --observers 100`.
 //! Options: `--seconds S`, `--observers N[,N…]`, `--driver device|grpc`, `--spin-margin-us M`,
-//! `--phase-lead-us L`.
+//! `--phase-lead-us L`, `--scene NAME` (a shipped example; `cube-phantom-3d` is the 3D session on
+//! the 48,000-tetrahedron cube: the bridge replays its 6-DOF example motion, or `--driver grpc`
+//! drives it through the Control3 stream).
 
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -57,10 +59,18 @@ struct Options {
     driver: String,
     spin_margin_us: Option<u64>,
     phase_lead_us: Option<u64>,
+    scene: String,
 }
 
 fn parse_options() -> Options {
-    let mut o = Options { seconds: 6.0, observers: vec![0, 10, 100], driver: "device".into(), spin_margin_us: None, phase_lead_us: None };
+    let mut o = Options {
+        seconds: 6.0,
+        observers: vec![0, 10, 100],
+        driver: "device".into(),
+        spin_margin_us: None,
+        phase_lead_us: None,
+        scene: "paper-phantom".into(),
+    };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut value = |name: &str| args.next().unwrap_or_else(|| panic!("{name} needs a value"));
@@ -73,6 +83,7 @@ fn parse_options() -> Options {
             "--driver" => o.driver = value("--driver"),
             "--spin-margin-us" => o.spin_margin_us = Some(value("--spin-margin-us").parse().expect("--spin-margin-us M")),
             "--phase-lead-us" => o.phase_lead_us = Some(value("--phase-lead-us").parse().expect("--phase-lead-us L")),
+            "--scene" => o.scene = value("--scene"),
             other => panic!("unknown argument {other:?} (see the header of server/benches/realtime.rs)"),
         }
     }
@@ -159,7 +170,7 @@ async fn run_case(ch: tonic::transport::Channel, opts: &Options, port: u16, n_ob
     let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
     let created = sessions
         .create_session(pb::CreateSessionRequest {
-            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(opts.scene.clone())) }),
             tick_rate_hz: 1000.0,
             record: false,
             device_channel: device,
@@ -185,7 +196,7 @@ async fn run_case(ch: tonic::transport::Channel, opts: &Options, port: u16, n_ob
     }
     let mut notes = Vec::new();
     let (p2f, answered) = if device {
-        let traj = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-phantom.csv");
+        let traj = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{}.csv", opts.scene));
         let mut cmd = Command::new(bridge_binary());
         cmd.arg("--channel").arg(&info.device_channel_path).args(["--device", "scripted", "--trajectory"]).arg(traj).args([
             "--loop",
@@ -208,7 +219,11 @@ async fn run_case(ch: tonic::transport::Channel, opts: &Options, port: u16, n_ob
         ));
         ([f(&p["p50"]), f(&p["p99"]), f(&p["p999"]), f(&p["max"])], format!("{} / {}", r["answered_poses"], r["unanswered_poses"]))
     } else {
-        let mut lat = grpc_drive(ch.clone(), &sid, &ctl, secs).await;
+        let mut lat = if info.dimension == 3 {
+            grpc_drive3(ch.clone(), &sid, &ctl, secs).await
+        } else {
+            grpc_drive(ch.clone(), &sid, &ctl, secs).await
+        };
         let n = lat.len();
         ([pct(&mut lat, 0.5), pct(&mut lat, 0.99), pct(&mut lat, 0.999), pct(&mut lat, 1.0)], format!("{n} / -"))
     };
@@ -314,17 +329,69 @@ async fn grpc_drive(ch: tonic::transport::Channel, sid: &str, ctl: &str, secs: f
     latencies
 }
 
+/// [`grpc_drive`] for a 3D session (the cube): straight down its centre line through Control3,
+/// 40 mm over the case from 5 mm above the top face.
+async fn grpc_drive3(ch: tonic::transport::Channel, sid: &str, ctl: &str, secs: f64) -> Vec<f64> {
+    let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest3>(64);
+    let epoch = Instant::now();
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let pose = move |t: f64| pb::Pose3 {
+        position_m: Some(pb::Vec3 { x: 0.05, y: 0.05, z: 0.205 - 0.04 * (t / secs).min(1.0) }),
+        orientation: Some(pb::Quaternion { w: h, x: 0.0, y: h, z: 0.0 }),
+    };
+    let msg = move |t: f64, client_time_ns: u64, seq: u64, sid: String| pb::ControlRequest3 {
+        session_id: sid,
+        base3: Some(pose(t)),
+        client_time_ns,
+        seq,
+        take_over: false,
+    };
+    tx.send(msg(0.0, 1, 1, sid.to_owned())).await.unwrap();
+    let mut responses = pb::control_service_client::ControlServiceClient::new(ch)
+        .control3(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), ctl))
+        .await
+        .unwrap()
+        .into_inner();
+    let sender = tokio::spawn(async move {
+        let mut interval = tokio::time::interval(Duration::from_millis(1));
+        let mut seq = 1;
+        while epoch.elapsed().as_secs_f64() < secs {
+            interval.tick().await;
+            seq += 1;
+            let t = epoch.elapsed();
+            if tx.send(msg(t.as_secs_f64(), t.as_nanos() as u64, seq, String::new())).await.is_err() {
+                break;
+            }
+        }
+    });
+    let mut latencies = Vec::new();
+    let mut last_seen = 0;
+    let warm = Duration::from_secs(1);
+    let end = Instant::now() + Duration::from_secs_f64(secs);
+    while let Ok(Some(Ok(r))) = tokio::time::timeout_at(end.into(), responses.next()).await {
+        if r.client_time_ns != last_seen && r.client_time_ns > 1 {
+            last_seen = r.client_time_ns;
+            if epoch.elapsed() > warm {
+                latencies.push((epoch.elapsed().as_nanos() as u64 - r.client_time_ns) as f64 / 1e3);
+            }
+        }
+    }
+    let _ = sender.await;
+    latencies
+}
+
 fn main() {
     let opts = parse_options();
     let server = start_server(&opts);
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!(
-        "machine: {}; load average before: {}; server process: {} (spin margin {}); clients in this process{}; {} s per case",
+        "machine: {}; load average before: {}; server process: {} (spin margin {}); clients in this process{}; scene {}; {} s per case",
         needlesim_lab::bench::machine(),
         load.split_whitespace().take(3).collect::<Vec<_>>().join(" "),
         env!("CARGO_BIN_EXE_needlesim-server"),
         opts.spin_margin_us.map_or("default".to_owned(), |m| format!("{m} µs")),
         if opts.driver == "device" { " and the bridge's" } else { "" },
+        opts.scene,
         opts.seconds
     );
     println!();

@@ -198,8 +198,8 @@ pub fn checked_pose3_from_pb(p: Option<&pb::Pose3>, field: &str) -> Result<BaseP
     })
 }
 
-/// A tick record to a controller response.
-pub fn control_response(r: &TickRecord) -> pb::ControlResponse {
+/// A tick record to a controller response (`target_names` name the 3D targets, by index).
+pub fn control_response(r: &TickRecord, target_names: &[String]) -> pb::ControlResponse {
     pb::ControlResponse {
         tick: r.tick,
         time_s: r.time_s,
@@ -220,7 +220,7 @@ pub fn control_response(r: &TickRecord) -> pb::ControlResponse {
         bevel_side: r.bevel_side,
         faulted: r.fault.is_some(),
         fault: r.fault.map(|f| f.message()).unwrap_or_default(),
-        d3: tick3(r, &[]),
+        d3: tick3(r, target_names),
     }
 }
 

@@ -199,9 +199,14 @@ impl Drop for Server {
 }
 
 async fn create(ch: &tonic::transport::Channel) -> Result<pb::CreateSessionResponse, tonic::Status> {
+    create_example(ch, "paper-phantom").await
+}
+
+/// A 1 kHz session of a shipped example.
+async fn create_example(ch: &tonic::transport::Channel, example: &str) -> Result<pb::CreateSessionResponse, tonic::Status> {
     let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
     c.create_session(pb::CreateSessionRequest {
-        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(example.into())) }),
         tick_rate_hz: 1000.0,
         record: false,
         device_channel: false,
@@ -410,6 +415,9 @@ fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
 /// `NEEDLESIM_SERVER_BIN=target/release/needlesim-server cargo test -p needlesim-tests --test it --
 /// fleet::capacity --ignored --nocapture` (NEEDLESIM_CAPACITY_SESSIONS=1,2,3,4 picks the counts,
 /// NEEDLESIM_RT_PRIORITY the real-time priority, 40 by default as served).
+/// NEEDLESIM_CAPACITY_SCENE=cube-phantom-3d measures 3D sessions instead (the 48,000-tetrahedron
+/// cube), each driven by SetPose3 at 100 Hz down the cube's centre line to 60 mm and back, 8 s a
+/// cycle (a triangle wave from 5 mm above the top face).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 #[ignore = "a timing measurement: run on a quiet machine with a release server"]
 async fn capacity() {
@@ -424,6 +432,9 @@ async fn capacity() {
         .collect();
     let seconds: f64 = env_or("NEEDLESIM_CAPACITY_SECONDS", 10.0);
     let rt_priority: i32 = env_or("NEEDLESIM_RT_PRIORITY", 40);
+    let example = std::env::var("NEEDLESIM_CAPACITY_SCENE").unwrap_or_else(|_| "paper-phantom".into());
+    let three_d = example == "cube-phantom-3d";
+    assert!(three_d || example == "paper-phantom", "NEEDLESIM_CAPACITY_SCENE: paper-phantom or cube-phantom-3d, not {example:?}");
     let _rt = REALTIME.lock().await;
     let scene = needlesim_scene::load_scene("paper-phantom", &needlesim_core::MeshLimits::default()).expect("the paper phantom");
     let traj = needlesim_scene::Trajectory::parse_csv(scene.example_trajectory.expect("its trajectory")).expect("a trajectory");
@@ -433,7 +444,7 @@ async fn capacity() {
         let l = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
         println!("load average {label}: {}", l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
     };
-    println!("{cores} cores; server {}; rt-priority {rt_priority}; {seconds} s per row", server_bin.display());
+    println!("{cores} cores; server {}; rt-priority {rt_priority}; scene {example}; {seconds} s per row", server_bin.display());
     load("before");
     println!(
         "| sessions | ticks/s (min) | missed deadlines | lateness p99 / p99.9 (µs, worst) | compute p99 (µs, worst) | server CPU (cores) | CPU per session | RSS per session (MiB) |"
@@ -466,7 +477,7 @@ async fn capacity() {
         let rss0 = rss_bytes(pid);
         let mut sessions = Vec::new();
         for _ in 0..n {
-            sessions.push(create(&ch).await.expect("create a session"));
+            sessions.push(create_example(&ch, &example).await.expect("create a session"));
         }
         let rss1 = rss_bytes(pid);
         base_rss_mib = base_rss_mib.max(rss0 as f64 / (1 << 20) as f64);
@@ -482,6 +493,22 @@ async fn capacity() {
                 while !stop.load(std::sync::atomic::Ordering::Relaxed) {
                     every.tick().await;
                     // Staggered starts, so that the sessions are not in the same phase.
+                    if three_d {
+                        let phase = ((start.elapsed().as_secs_f64() + i as f64 * 0.7) / 8.0).fract();
+                        let depth = 0.065 * (1.0 - (2.0 * phase - 1.0).abs());
+                        let h = std::f64::consts::FRAC_1_SQRT_2;
+                        let req = pb::SetPoseRequest3 {
+                            session_id: sid(&s),
+                            base3: Some(pb::Pose3 {
+                                position_m: Some(pb::Vec3 { x: 0.05, y: 0.05, z: 0.205 - depth }),
+                                orientation: Some(pb::Quaternion { w: h, x: 0.0, y: h, z: 0.0 }),
+                            }),
+                            client_id: format!("driver-{i}"),
+                            take_over: false,
+                        };
+                        let _ = c.set_pose3(with_token(req, &s.controller_token)).await;
+                        continue;
+                    }
                     let t = t0 + (start.elapsed().as_secs_f64() + i as f64 * 0.7) % (t1 - t0);
                     let p = traj.pose_at(t);
                     let req = pb::SetPoseRequest {

@@ -227,7 +227,9 @@ async fn set_pose3_bad_3d_input_and_the_closed_surface() {
         .await
         .expect("SetPose3")
         .into_inner();
-    assert!(resp.d3.is_some(), "the answer carries the 3D state");
+    let d3 = resp.d3.as_ref().expect("the answer carries the 3D state");
+    let names: Vec<&str> = d3.targets.iter().map(|t| t.name.as_str()).collect();
+    assert_eq!(names, ["centre"], "the answer's targets carry the scene's names");
     let deadline = Instant::now() + Duration::from_secs(2);
     loop {
         let f = needlesim_tests::latest_frame(&ch, &sid, &created.observer_token).await;

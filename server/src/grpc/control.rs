@@ -153,7 +153,7 @@ async fn set_pose<T>(
         })
         .await
         .map_err(|busy| control_refused(s, busy))?;
-    Ok(Response::new(convert::control_response(&s.latest_record())))
+    Ok(Response::new(convert::control_response(&s.latest_record(), &s.target_names)))
 }
 
 /// Control and Control3: poses in, one response per tick out.
@@ -237,6 +237,7 @@ async fn control_stream<M: ControlMessage>(
     });
     // Responses out: one per tick; a slow controller skips ticks rather than delaying anyone.
     let mut ticks = s.all_ticks.subscribe();
+    let s_out = s.clone();
     tokio::spawn(async move {
         loop {
             if client_done.load(Ordering::Relaxed) {
@@ -244,7 +245,7 @@ async fn control_stream<M: ControlMessage>(
             }
             match ticks.recv().await {
                 Ok(rec) => {
-                    if tx.send(Ok(convert::control_response(&rec))).await.is_err() {
+                    if tx.send(Ok(convert::control_response(&rec, &s_out.target_names))).await.is_err() {
                         return;
                     }
                 }
