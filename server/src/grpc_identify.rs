@@ -167,15 +167,18 @@ impl pb::identify_service_server::IdentifyService for Api {
                             )));
                         }
                     };
-                    if (g.nx as usize).saturating_mul(g.ny as usize) > limits.mesh.max_nodes {
+                    // The model mesh is DEFAULT_GRID_REFINE times finer than the markers' grid.
+                    let refine = needlesim_identify::probe::DEFAULT_GRID_REFINE;
+                    let fine = |n: u32| (n as usize).saturating_sub(1).saturating_mul(refine) + 1;
+                    let model_nodes = fine(g.nx).saturating_mul(fine(g.ny));
+                    if model_nodes > limits.mesh.max_nodes {
                         return Err(Status::resource_exhausted(format!(
-                            "grid has {} × {} nodes, over the limit of {}",
+                            "grid has {} × {} markers, a model mesh of {model_nodes} nodes ({refine} times finer), over the limit of {}",
                             g.nx, g.ny, limits.mesh.max_nodes
                         )));
                     }
-                    needlesim_scene::check_session_memory((g.nx as usize).saturating_mul(g.ny as usize), 0, &limits)
-                        .map_err(|e| Status::from(ApiError::from(e)))?;
-                    grid_model(&tracks, g.nx as usize, g.ny as usize, g.width_m, g.height_m, plane).map_err(invalid("grid"))?
+                    needlesim_scene::check_session_memory(model_nodes, 0, &limits).map_err(|e| Status::from(ApiError::from(e)))?;
+                    grid_model(&tracks, g.nx as usize, g.ny as usize, g.width_m, g.height_m, plane, refine).map_err(invalid("grid"))?
                 }
                 (None, Some(_)) => {
                     let (scene, _) = scene_of(r.scene.as_ref(), &limits)?;

@@ -316,13 +316,17 @@ pub struct ProbeArgs {
     /// Thickness with --grid, m.
     #[arg(long, default_value_t = 0.01)]
     pub thickness_m: f64,
+    /// With --grid: the model mesh is this many times finer than the markers' grid.
+    #[arg(long, default_value_t = needlesim_identify::probe::DEFAULT_GRID_REFINE)]
+    pub refine: usize,
     /// The marker the probe presses (default: the one that follows the probe).
     #[arg(long)]
     pub probe_marker: Option<usize>,
     /// Marker noise, m (default: estimated from the residuals).
     #[arg(long)]
     pub marker_sigma_m: Option<f64>,
-    /// Force noise, N (default: estimated from the residuals).
+    /// Force noise, N, as reported (default: the force log's scatter about a straight line in
+    /// the probe displacement; the fit applies the logged force as the model's load).
     #[arg(long)]
     pub force_sigma_n: Option<f64>,
 }
@@ -333,7 +337,7 @@ fn run_probe(a: ProbeArgs) -> anyhow::Result<()> {
     let tracks = read_tracks(&a.tracks)?;
     let log = needlesim_identify::logs::ProbeLog::from_csv(&read_text(&a.probe_log)?).with_context(|| a.probe_log.display().to_string())?;
     let model = match (&a.grid, &a.scene) {
-        (Some((nx, ny, w, h)), _) => grid_model(&tracks, *nx, *ny, *w, *h, plane_of(&a.plane, a.thickness_m)?)?,
+        (Some((nx, ny, w, h)), _) => grid_model(&tracks, *nx, *ny, *w, *h, plane_of(&a.plane, a.thickness_m)?, a.refine)?,
         (None, Some(spec)) => {
             let scene = needlesim_scene::load_scene(spec, &needlesim_core::MeshLimits::default())?;
             let mesh = scene.tissue.mesh().clone();
