@@ -8,7 +8,10 @@ Prints {"file", "messages", "topics", "schema_names", "schema_encodings", "messa
 order are those of the project's frame topic (/needlesim/frames); topics and schemas cover every
 channel; "foxglove" counts the messages of Foxglove's channels ({"scene", "force"}) and lists the
 scene entity ids found by decoding the foxglove.SceneUpdate messages with the descriptor the file
-carries ("scene_entities"), and the force sample keys ("force_keys").
+carries ("scene_entities"), and the force sample keys ("force_keys"); "tissue" describes the
+tissue messages (/needlesim/tissue: a 2D mesh or a 3D surface, decoded the same way: their
+schema, count, nodes and triangles); "displacement_frames" counts the frames carrying a
+displacement field and "displacement_lengths" lists the field lengths found.
 
 Without --tolerate-truncation the file is read with `mcap.reader.make_reader` (a seeking reader
 that uses the summary): an unfinished file is an error (exit status 1). With
@@ -42,10 +45,13 @@ def main() -> int:
     last_time = None
 
     foxglove = {"scene": 0, "force": 0, "scene_entities": set(), "force_keys": set()}
+    tissue = {"schemas": set(), "count": 0, "nodes": None, "triangles": None}
+    displacement_frames, displacement_lengths = 0, set()
     scene_classes = {}
 
     def scene_class(schema):
-        # The message class of foxglove.SceneUpdate from the FileDescriptorSet in the file.
+        # The message class of a schema (foxglove.SceneUpdate, needlesim.v1.*) from the
+        # FileDescriptorSet in the file.
         if schema.id not in scene_classes:
             from google.protobuf import descriptor_pb2, descriptor_pool, message_factory
 
@@ -57,7 +63,7 @@ def main() -> int:
         return scene_classes[schema.id]
 
     def add(schema, channel, message):
-        nonlocal count, first_seq, last_seq, in_order, last_time
+        nonlocal count, first_seq, last_seq, in_order, last_time, displacement_frames
         topics.add(channel.topic)
         message_encodings.add(channel.message_encoding)
         if schema is not None:
@@ -72,6 +78,21 @@ def main() -> int:
             foxglove["force"] += 1
             foxglove["force_keys"].update(json.loads(message.data).keys())
             return
+        if schema is not None and schema.name in ("needlesim.v1.Mesh", "needlesim.v1.Surface"):
+            m = scene_class(schema).FromString(message.data)
+            tissue["schemas"].add(schema.name)
+            tissue["count"] += 1
+            if schema.name == "needlesim.v1.Mesh":
+                tissue["nodes"], tissue["triangles"] = len(m.node_xy_m) // 2, len(m.triangle_nodes) // 3
+            else:
+                tissue["nodes"], tissue["triangles"] = len(m.node_ids), len(m.triangles) // 3
+            return
+        if schema is not None and schema.name == "needlesim.v1.Frame":
+            f = scene_class(schema).FromString(message.data)
+            n = len(f.node_displacement_m) or len(f.surface_displacement_m)
+            if n:
+                displacement_frames += 1
+                displacement_lengths.add(n)
         count += 1
         if first_seq is None:
             first_seq = message.sequence
@@ -113,6 +134,9 @@ def main() -> int:
                 "in_order": in_order,
                 "truncated": truncated,
                 "foxglove": {k: sorted(v) if isinstance(v, set) else v for k, v in foxglove.items()},
+                "tissue": {k: sorted(v) if isinstance(v, set) else v for k, v in tissue.items()},
+                "displacement_frames": displacement_frames,
+                "displacement_lengths": sorted(displacement_lengths),
             }
         )
     )

@@ -288,7 +288,7 @@ async fn record_into(c: &Conn, a: &RecordArgs, file: &mut std::fs::File) -> Resu
     let id = a.id.as_str();
     let mut rec = pb::recording_service_client::RecordingServiceClient::new(c.channel.clone());
     let started = rec
-        .start_recording(c.request(pb::StartRecordingRequest { session_id: id.to_owned() })?)
+        .start_recording(c.request(pb::StartRecordingRequest { session_id: id.to_owned(), include_displacements: false })?)
         .await
         .map_err(|s| c.status_error(&format!("starting a recording of session {id}"), Role::Controller, Some(id), &s))?
         .into_inner();

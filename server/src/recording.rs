@@ -128,12 +128,51 @@ impl From<mcap::McapError> for RecordingError {
 /// the conversions (which import this module's types).
 pub type FrameOfRecord = fn(&TickRecord, &[String]) -> Frame;
 
+/// The session's tissue for a player: a 2D session's mesh (`needlesim.v1.Mesh`) or a 3D one's
+/// boundary surface (`needlesim.v1.Surface`), encoded; written once, on [`TISSUE_TOPIC`], with
+/// the recording's first frame.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum TissueMessage {
+    Mesh(Vec<u8>),
+    Surface(Vec<u8>),
+}
+
+impl TissueMessage {
+    fn schema_name(&self) -> &'static str {
+        match self {
+            TissueMessage::Mesh(_) => "needlesim.v1.Mesh",
+            TissueMessage::Surface(_) => "needlesim.v1.Surface",
+        }
+    }
+}
+
+/// What a session's recording carries beyond the frames and the Foxglove channels.
+#[derive(Clone, Debug, Default)]
+pub struct RecordOptions {
+    /// The tissue, written once.
+    pub tissue: Option<TissueMessage>,
+    /// The displacement field in the frames every [`FIELD_EVERY_S`] of simulated time (the
+    /// session computes it while the recording runs).
+    pub include_displacements: bool,
+}
+
+/// The topic of the tissue message.
+pub const TISSUE_TOPIC: &str = "/needlesim/tissue";
+/// With [`RecordOptions::include_displacements`]: a field at most this often (simulated s).
+pub const FIELD_EVERY_S: f64 = 0.1;
+
 /// The recording of a live session: the session's [`RecordSink`]. Each tick record becomes a
 /// frame on the fan-out thread, is encoded and queued for the writer thread.
 pub struct SessionRecording {
     recorder: Recorder,
     target_names: Vec<String>,
     frame_of: FrameOfRecord,
+    /// The tissue message, until it is queued with the first frame.
+    tissue: Option<TissueMessage>,
+    /// With displacements: the session's latest field and the subscriber count this recording
+    /// holds one of (given back on drop), and the simulated time of the last field recorded.
+    field: Option<FieldSubscription>,
+    last_field_s: f64,
     /// For the Foxglove channels: the tissue's surface (sent with the scene every
     /// [`SURFACE_EVERY_S`]), the simulated times of the last scene and surface, and buffers.
     surface: needlesim_foxglove::Surface,
@@ -151,11 +190,18 @@ pub const SURFACE_EVERY_S: f64 = 1.0;
 impl SessionRecording {
     /// Records `session`'s frames into `recorder` from the next tick on, or gives the recorder
     /// back when the session already has a record sink.
-    pub fn attach(session: &Session, recorder: Recorder, frame_of: FrameOfRecord) -> Result<(), Recorder> {
+    pub fn attach(session: &Session, recorder: Recorder, frame_of: FrameOfRecord, options: RecordOptions) -> Result<(), Recorder> {
+        let field = options.include_displacements.then(|| {
+            session.field_subscribers.fetch_add(1, Ordering::Relaxed);
+            FieldSubscription { field: session.field.clone(), subscribers: Arc::clone(&session.field_subscribers) }
+        });
         let sink = Box::new(SessionRecording {
             recorder,
             target_names: session.target_names.clone(),
             frame_of,
+            tissue: options.tissue,
+            field,
+            last_field_s: f64::NEG_INFINITY,
             surface: crate::foxglove_live::surface_of(session),
             last_scene_s: f64::NEG_INFINITY,
             last_surface_s: f64::NEG_INFINITY,
@@ -183,9 +229,45 @@ impl SessionRecording {
     }
 }
 
+/// A recording's subscription to the session's displacement field: the latest field, and the
+/// subscriber count it holds one of, given back on drop.
+struct FieldSubscription {
+    field: tokio::sync::watch::Receiver<Arc<needlesim_session::Field>>,
+    subscribers: Arc<AtomicU64>,
+}
+
+impl Drop for FieldSubscription {
+    fn drop(&mut self) {
+        self.subscribers.fetch_sub(1, Ordering::Relaxed);
+    }
+}
+
 impl RecordSink for SessionRecording {
     fn write_from_fanout(&mut self, rec: &TickRecord) {
-        self.recorder.write_from_fanout(&(self.frame_of)(rec, &self.target_names));
+        if let Some(tissue) = self.tissue.take() {
+            self.recorder.queue_from_fanout(Queued {
+                topic: Topic::Tissue(tissue.schema_name()),
+                tick: rec.tick,
+                time_s: rec.time_s,
+                data: match tissue {
+                    TissueMessage::Mesh(d) | TissueMessage::Surface(d) => d,
+                },
+            });
+        }
+        let mut frame = (self.frame_of)(rec, &self.target_names);
+        if let Some(sub) = &mut self.field
+            && rec.time_s - self.last_field_s >= FIELD_EVERY_S
+            && sub.field.has_changed().unwrap_or(false)
+        {
+            self.last_field_s = rec.time_s;
+            let u = sub.field.borrow_and_update().displacement_m.clone();
+            if rec.dimension == 3 {
+                frame.surface_displacement_m = u;
+            } else {
+                frame.node_displacement_m = u;
+            }
+        }
+        self.recorder.write_from_fanout(&frame);
         let force = crate::foxglove_live::force_of(rec).to_json();
         self.recorder.queue_from_fanout(Queued { topic: Topic::FoxgloveForce, tick: rec.tick, time_s: rec.time_s, data: force });
         if rec.time_s - self.last_scene_s >= SCENE_EVERY_S {
@@ -248,6 +330,8 @@ enum Topic {
     FoxgloveScene,
     /// The force sample for Foxglove's Plot panel (`/needlesim/<session>/force`, JSON).
     FoxgloveForce,
+    /// The tissue ([`TISSUE_TOPIC`]), with its schema's name.
+    Tissue(&'static str),
 }
 
 /// A message on its way to the writer thread, encoded by the caller.
@@ -312,6 +396,7 @@ impl Recorder {
                     writer,
                     channel_id,
                     foxglove,
+                    tissue_channel: None,
                     start_ns,
                     offset_ns: None,
                     counters: thread_counters,
@@ -410,6 +495,8 @@ struct WriterThread {
     channel_id: u16,
     /// The Foxglove scene and force channels.
     foxglove: needlesim_foxglove::McapChannels,
+    /// The tissue's channel, made with its first (only) message.
+    tissue_channel: Option<u16>,
     /// Wall-clock time of the start of the recording, ns since the Unix epoch.
     start_ns: u64,
     /// Added to the simulated time (ns) of a frame to give its log time; fixed by the first frame
@@ -477,6 +564,19 @@ impl WriterThread {
             }
             Topic::FoxgloveScene => self.foxglove.write_scene_encoded(&mut self.writer, time, &queued.data)?,
             Topic::FoxgloveForce => self.foxglove.write_force_encoded(&mut self.writer, time, &queued.data)?,
+            Topic::Tissue(schema_name) => {
+                let channel_id = match self.tissue_channel {
+                    Some(c) => c,
+                    None => {
+                        let schema_id = self.writer.add_schema(schema_name, PROTOBUF_ENCODING, needlesim_proto::FILE_DESCRIPTOR_SET)?;
+                        let c = self.writer.add_channel(schema_id, TISSUE_TOPIC, PROTOBUF_ENCODING, &BTreeMap::new())?;
+                        self.tissue_channel = Some(c);
+                        c
+                    }
+                };
+                let header = mcap::records::MessageHeader { channel_id, sequence: 0, log_time: time, publish_time: time };
+                self.writer.write_to_known_channel(&header, &queued.data)?;
+            }
         }
         self.pending_bytes += queued.data.len();
         self.pending_messages += 1;

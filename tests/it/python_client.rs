@@ -191,10 +191,14 @@ fn a_recording_driven_by_set_pose_holds_every_tick() {
     let sid = info["name"].as_str().unwrap().split('-').next().unwrap_or_default();
     let sid = topics.iter().find_map(|t| t.strip_suffix("/scene")).and_then(|t| t.strip_prefix("/needlesim/")).unwrap_or(sid);
     assert!(info["name"].as_str().unwrap().starts_with(sid), "the scene topic names another session: {check} {info}");
-    assert_eq!(topics, [format!("/needlesim/{sid}/force"), format!("/needlesim/{sid}/scene"), "/needlesim/frames".to_owned()], "{check}");
+    let mut want =
+        [format!("/needlesim/{sid}/force"), format!("/needlesim/{sid}/scene"), "/needlesim/frames".into(), "/needlesim/tissue".into()];
+    want.sort();
+    assert_eq!(topics, want, "{check}");
+    // The tissue for a player: the 2D session's mesh, once.
     assert_eq!(
         check["schema_names"],
-        serde_json::json!(["foxglove.SceneUpdate", "needlesim.ForceSample", "needlesim.v1.Frame"]),
+        serde_json::json!(["foxglove.SceneUpdate", "needlesim.ForceSample", "needlesim.v1.Frame", "needlesim.v1.Mesh"]),
         "{check}"
     );
     assert_eq!(check["in_order"], true, "{check}");
@@ -288,7 +292,10 @@ fn a_killed_server_leaves_a_readable_recording() {
         let sid = created.session.as_ref().unwrap().session_id.clone();
         let mut rec = pb::recording_service_client::RecordingServiceClient::new(ch.clone());
         let info = rec
-            .start_recording(with_token(pb::StartRecordingRequest { session_id: sid.clone() }, &created.controller_token))
+            .start_recording(with_token(
+                pb::StartRecordingRequest { session_id: sid.clone(), include_displacements: false },
+                &created.controller_token,
+            ))
             .await
             .expect("start a recording")
             .into_inner();

@@ -265,6 +265,9 @@ pub(crate) enum FieldMaker {
     ThreeThread(std::sync::mpsc::SyncSender<Arc<TickRecord>>),
 }
 
+/// The nice value of a 3D session's surface-field thread (the worker and the fan-out keep 0).
+const FIELD_THREAD_NICE: i32 = 10;
+
 /// How often the fan-out computes the displacement field while someone wants it.
 const FIELD_PERIOD: Duration = Duration::from_millis(8);
 
@@ -277,6 +280,11 @@ impl FanOut {
             };
             let field_tx = self.field_tx.clone();
             let spawned = std::thread::Builder::new().name(format!("field-{}", self.session_id)).spawn(move || {
+                // The surface picture may lag; the compliance worker's columns, which captures
+                // wait for, must not: under contention this thread yields to it (a loaded
+                // machine otherwise let the field starve the worker and the needle passed
+                // through the tissue without a capture). A refusal only costs that preference.
+                let _ = needlesim_channel::rt::lower_thread_priority(FIELD_THREAD_NICE);
                 // Ends when the fan-out drops its sender.
                 while let Ok(rec) = rx.recv() {
                     let field = Field { tick: rec.tick, displacement_m: maker.field(&rec.d3) };

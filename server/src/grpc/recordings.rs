@@ -14,7 +14,9 @@ use super::{Api, BoxStream, Role, ServerState, authorize, token_of};
 use crate::convert;
 use crate::status::ApiError;
 
-pub(super) fn start_recording(state: &ServerState, s: &Arc<Session>) -> Result<pb::RecordingInfo, Status> {
+/// Starts recording `s`: frames, the Foxglove channels, the tissue (its mesh or surface, once)
+/// and, with `include_displacements`, the displacement field 10 times a second.
+pub(super) fn start_recording(state: &ServerState, s: &Arc<Session>, include_displacements: bool) -> Result<pb::RecordingInfo, Status> {
     if let Some(r) = crate::recording::SessionRecording::info_of(s) {
         return Err(Status::failed_precondition(format!("session {} is already recording to {}", s.id, r.name)));
     }
@@ -30,7 +32,16 @@ pub(super) fn start_recording(state: &ServerState, s: &Arc<Session>) -> Result<p
         return Err(Status::internal(format!("cannot start the recording: {e}")));
     }
     let info = convert::recording_info(&rec.info());
-    if let Err(rec) = crate::recording::SessionRecording::attach(s, rec, |r, names| convert::frame_from_record(r, names, 0)) {
+    let tissue = match &s.tissue {
+        needlesim_session::SessionTissue::Three { model, surface } => {
+            crate::recording::TissueMessage::Surface(prost::Message::encode_to_vec(&convert::surface_to_pb(surface, model.mesh())))
+        }
+        needlesim_session::SessionTissue::Two(t) => {
+            crate::recording::TissueMessage::Mesh(prost::Message::encode_to_vec(&convert::mesh_to_pb(t.mesh())))
+        }
+    };
+    let options = crate::recording::RecordOptions { tissue: Some(tissue), include_displacements };
+    if let Err(rec) = crate::recording::SessionRecording::attach(s, rec, |r, names| convert::frame_from_record(r, names, 0), options) {
         // Another request started one in the meantime: this file is finished and left empty.
         let name = rec.info().name;
         drop(rec);
@@ -78,7 +89,7 @@ impl pb::recording_service_server::RecordingService for Api {
     async fn start_recording(&self, req: Request<pb::StartRecordingRequest>) -> Result<Response<pb::RecordingInfo>, Status> {
         let s = self.state.session(&req.get_ref().session_id)?;
         authorize(&req, &s, Role::Controller)?;
-        Ok(Response::new(start_recording(&self.state, &s)?))
+        Ok(Response::new(start_recording(&self.state, &s, req.get_ref().include_displacements)?))
     }
 
     async fn stop_recording(&self, req: Request<pb::StopRecordingRequest>) -> Result<Response<pb::RecordingInfo>, Status> {

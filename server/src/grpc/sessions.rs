@@ -33,7 +33,7 @@ impl pb::session_service_server::SessionService for Api {
         .await
         .map_err(|e| Status::internal(format!("session task: {e}")))??;
         if r.record {
-            super::recordings::start_recording(&self.state, &s)?;
+            super::recordings::start_recording(&self.state, &s, false)?;
         }
         Ok(Response::new(convert::create_session_response(&s)))
     }
