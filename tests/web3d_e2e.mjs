@@ -6,9 +6,11 @@
 // Creates a cube-phantom-3d session in the page, waits for its surface and frames, checks the
 // tissue is drawn (a share of the canvas is not background), drives the needle in with the mouse
 // (Ctrl-drag up: insert along the needle), checks the inserted depth grows and the picture
-// changes, then turns the section plane on and checks the picture changes again. Saves
-// view3-before.png, view3-after.png, view3-section.png and page3.png in OUT_DIR and writes
-// summary3.json.
+// changes, then turns the section plane on and checks the picture changes again; the drive is
+// recorded (with the surface's displacements), downloaded and played back in the page: the
+// recording's own surface, its first and last frames drawn differently, the depth at the end.
+// Saves view3-before.png, view3-after.png, view3-section.png, page3.png, playback3-first.png and
+// playback3-last.png in OUT_DIR and writes summary3.json.
 import { createRequire } from "node:module";
 import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -68,7 +70,14 @@ const drawnShare = () =>
 /** Waits until the 3D view has drawn `more` more times (so a change has reached the canvas). */
 async function draws(more) {
   const now = await page.evaluate(() => Number(document.body.dataset.view3Draws ?? 0));
-  await page.waitForFunction((n) => Number(document.body.dataset.view3Draws ?? 0) >= n, now + more, { timeout: 60000 });
+  await drawnSince(now + more - 1);
+}
+
+const drawCount = () => page.evaluate(() => Number(document.body.dataset.view3Draws ?? 0));
+
+/** Waits until the 3D view has drawn more than `count` times in all. */
+async function drawnSince(count) {
+  await page.waitForFunction((n) => Number(document.body.dataset.view3Draws ?? 0) > n, count, { timeout: 60000 });
 }
 
 try {
@@ -91,6 +100,11 @@ try {
   const share0 = await drawnShare();
   const before = await view.screenshot({ path: join(outDir, "view3-before.png") });
   const depth0 = await page.evaluate(() => Number(document.body.dataset.depthM));
+
+  // Record the drive (the page asks for the displacement field).
+  await page.click("#rec-start");
+  await page.waitForFunction(() => document.getElementById("rec-select").value !== "", null, { timeout: 20000 });
+  await page.waitForTimeout(300);
 
   // Drive: Ctrl-drag upwards 300 px = 30 mm along the needle (the tip starts 5 mm above the top).
   const box = await view.boundingBox();
@@ -117,7 +131,34 @@ try {
   const section = await view.screenshot({ path: join(outDir, "view3-section.png") });
   await page.screenshot({ path: join(outDir, "page3.png") });
 
+  // Stop, download and play the recording back: its first and last frames.
+  await page.waitForTimeout(500);
+  await page.click("#rec-stop");
+  await page.waitForTimeout(1500);
+  await page.click("#rec-load");
+  await page.waitForFunction(() => document.body.dataset.state === "playback", null, { timeout: 30000 });
+  const playbackFrames = await page.evaluate(() => Number(document.body.dataset.playbackFrames));
+  const playbackFields = await page.evaluate(() => Number(document.body.dataset.playbackFields));
+  const playbackDim = await page.evaluate(() => Number(document.body.dataset.dim));
+  // (Frame 1: the slider starts at 0, and setting the value it has draws nothing new.)
+  let drawn = await drawCount();
+  await page.locator("#slider").fill("1");
+  await drawnSince(drawn);
+  const playbackDepth0 = await page.evaluate(() => Number(document.body.dataset.depthM));
+  const first = await view.screenshot({ path: join(outDir, "playback3-first.png") });
+  drawn = await drawCount();
+  await page.locator("#slider").fill(String(playbackFrames - 1));
+  await drawnSince(drawn);
+  const playbackDepth1 = await page.evaluate(() => Number(document.body.dataset.depthM));
+  const last = await view.screenshot({ path: join(outDir, "playback3-last.png") });
+
   const summary = {
+    playbackFrames,
+    playbackFields,
+    playbackDim,
+    playbackDepth0,
+    playbackDepth1,
+    playbackChanged: !first.equals(last),
     frames: await page.evaluate(() => Number(document.body.dataset.frames)),
     poses: await page.evaluate(() => Number(document.body.dataset.poses ?? 0)),
     drawnShare: share0,

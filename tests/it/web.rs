@@ -208,11 +208,15 @@ fn page_drives_the_needle_in_headless_chromium() {
 
 /// Issue 17 (3D in the browser): a live 3D session (cube-phantom-3d) in the page's three.js view —
 /// the tissue drawn, the mouse drives the needle in (depth grows, the picture changes), the
-/// section plane changes the picture (tests/web3d_e2e.mjs; WebGL through SwiftShader).
+/// section plane changes the picture, and the drive's recording plays back in 3D
+/// (tests/web3d_e2e.mjs; WebGL through SwiftShader).
 #[test]
 fn issue_17_page_shows_and_drives_a_3d_session_in_headless_chromium() {
-    let (shots, summary) =
-        run_page_script("tests/web3d_e2e.mjs", &["view3-before.png", "view3-after.png", "view3-section.png", "page3.png"], "summary3.json");
+    let (shots, summary) = run_page_script(
+        "tests/web3d_e2e.mjs",
+        &["view3-before.png", "view3-after.png", "view3-section.png", "page3.png", "playback3-first.png", "playback3-last.png"],
+        "summary3.json",
+    );
     let f = |k: &str| summary[k].as_f64().unwrap_or_else(|| panic!("summary3.json has no number `{k}`: {summary}"));
     assert!(f("frames") >= 10.0, "too few frames: {summary}");
     assert!(f("poses") >= 1.0, "no 3D pose was sent: {summary}");
@@ -221,7 +225,14 @@ fn issue_17_page_shows_and_drives_a_3d_session_in_headless_chromium() {
     assert!(f("depth1") > f("depth0") + 0.015, "the drag did not insert the needle: {summary}");
     assert_eq!(summary["changedByInsertion"], true, "the picture did not change as the needle went in: {summary}");
     assert_eq!(summary["changedBySection"], true, "the section plane did not change the picture: {summary}");
-    for name in ["view3-before.png", "view3-after.png", "view3-section.png", "page3.png"] {
+    // The drive's recording plays back in 3D on the recording's own surface, deformed by the
+    // fields it carries (10 a second), from the start of the drive to its depth.
+    assert_eq!(f("playbackDim"), 3.0, "the recording did not play back in 3D: {summary}");
+    assert!(f("playbackFrames") > 10.0, "too few frames played back: {summary}");
+    assert!(f("playbackFields") >= 1.0, "the recording carries no displacement field: {summary}");
+    assert!(f("playbackDepth1") > f("playbackDepth0") + 0.015, "the playback does not go from the start to the depth: {summary}");
+    assert_eq!(summary["playbackChanged"], true, "the first and last played-back frames look the same: {summary}");
+    for name in ["view3-before.png", "view3-after.png", "view3-section.png", "page3.png", "playback3-first.png", "playback3-last.png"] {
         let png = std::fs::read(shots.join(name)).unwrap_or_else(|e| panic!("no screenshot {name}: {e}"));
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 5000, "{name} is not a real screenshot ({} bytes)", png.len());
     }

@@ -1,10 +1,13 @@
 //! Recordings: start / stop one of the watched session, list the server's, download one and play
-//! its frames back (MCAP parsed in the page: zstd by fzstd, lz4 by lz4js) with a slider and ▶.
+//! its frames back (MCAP parsed in the page: zstd by fzstd, lz4 by lz4js) with a slider and ▶:
+//! 2D or 3D, drawn on the tissue the recording carries (its mesh or surface, once) and deformed
+//! by the displacement field it carries (10 times a second; recordings started here ask for it).
 import { fromBinary } from "@bufbuild/protobuf";
 import { McapStreamReader } from "@mcap/core";
 import { decompress as zstdDecompress } from "fzstd";
 import { decompress as lz4Decompress } from "lz4js";
-import { type Frame, FrameSchema } from "./gen/needlesim/v1/needlesim_pb";
+import { type Frame, FrameSchema, type Mesh, MeshSchema, type Surface, SurfaceSchema } from "./gen/needlesim/v1/needlesim_pb";
+import { surface3Of } from "./frame3";
 import { auth, recordings, sessions, tokens } from "./api";
 import { $, publish, status } from "./dom";
 import { buildMesh } from "./mesh";
@@ -41,7 +44,10 @@ export async function startStopRecording(start: boolean): Promise<void> {
   if (!session) return status("watch a session first");
   try {
     const req = { sessionId: session.id };
-    const info = start ? await recordings.startRecording(req, auth(session.token)) : await recordings.stopRecording(req, auth(session.token));
+    // With the displacement field, so that playback draws the deformed tissue.
+    const info = start
+      ? await recordings.startRecording({ ...req, includeDisplacements: true }, auth(session.token))
+      : await recordings.stopRecording(req, auth(session.token));
     status(`${start ? "recording to" : "recorded"} ${info.name}`);
     await refreshRecordings();
     recSelect().value = info.name;
@@ -50,8 +56,16 @@ export async function startStopRecording(start: boolean): Promise<void> {
   }
 }
 
-/** The Frame messages of an MCAP file (chunked, zstd / lz4 / uncompressed; finished or not). */
-export function parseMcapFrames(bytes: Uint8Array): Frame[] {
+/** What a recording holds for playback. */
+export interface Recording {
+  frames: Frame[];
+  /** The tissue (/needlesim/tissue): a 2D session's mesh or a 3D one's surface, if recorded. */
+  mesh: Mesh | null;
+  surface: Surface | null;
+}
+
+/** The frames and the tissue of an MCAP file (chunked, zstd / lz4 / uncompressed; finished or not). */
+export function parseMcap(bytes: Uint8Array): Recording {
   const reader = new McapStreamReader({
     decompressHandlers: {
       zstd: (buf, size) => zstdDecompress(buf, new Uint8Array(Number(size))),
@@ -59,15 +73,37 @@ export function parseMcapFrames(bytes: Uint8Array): Frame[] {
     },
   });
   reader.append(bytes);
-  const frameChannels = new Set<number>();
+  const channelSchema = new Map<number, string>();
   const schemas = new Map<number, string>();
-  const out: Frame[] = [];
+  const out: Recording = { frames: [], mesh: null, surface: null };
   for (let rec = reader.nextRecord(); rec; rec = reader.nextRecord()) {
     if (rec.type === "Schema") schemas.set(rec.id, rec.name);
-    else if (rec.type === "Channel" && schemas.get(rec.schemaId) === "needlesim.v1.Frame") frameChannels.add(rec.id);
-    else if (rec.type === "Message" && frameChannels.has(rec.channelId)) out.push(fromBinary(FrameSchema, rec.data));
+    else if (rec.type === "Channel") channelSchema.set(rec.id, schemas.get(rec.schemaId) ?? "");
+    else if (rec.type === "Message") {
+      const schema = channelSchema.get(rec.channelId);
+      if (schema === "needlesim.v1.Frame") out.frames.push(fromBinary(FrameSchema, rec.data));
+      else if (schema === "needlesim.v1.Mesh") out.mesh = fromBinary(MeshSchema, rec.data);
+      else if (schema === "needlesim.v1.Surface") out.surface = fromBinary(SurfaceSchema, rec.data);
+    }
   }
   return out;
+}
+
+/** Gives every frame the latest displacement field at or before it (the recording carries one
+ * every 0.1 s): frames share the field's array, nothing is copied. Returns how many frames
+ * carried a field of their own. */
+function carryFields(frames: Frame[]): number {
+  let node: number[] = [];
+  let surface: number[] = [];
+  let fields = 0;
+  for (const f of frames) {
+    if (f.nodeDisplacementM.length || f.surfaceDisplacementM.length) fields++;
+    if (f.nodeDisplacementM.length) node = f.nodeDisplacementM;
+    else if (node.length) f.nodeDisplacementM = node;
+    if (f.surfaceDisplacementM.length) surface = f.surfaceDisplacementM;
+    else if (surface.length) f.surfaceDisplacementM = surface;
+  }
+  return fields;
 }
 
 /** Downloads the selected recording and shows its first frame in playback mode. */
@@ -88,14 +124,24 @@ export async function loadRecording(): Promise<void> {
       bytes.set(p, off);
       off += p.length;
     }
-    const all = parseMcapFrames(bytes);
+    const rec = parseMcap(bytes);
+    const all = rec.frames;
     if (!all.length) return status(`${name} holds no frames`);
+    const fields = carryFields(all);
     const step = Math.max(1, Math.ceil(all.length / MAX_PLAYBACK_FRAMES));
     const frames = all.filter((_, i) => i % step === 0);
-    // The recording's session, when it is still open and its token known, gives the mesh.
+    // The tissue: the recording's own, else (older recordings) its session's, when it is still
+    // open and its token known.
     const sid = name.replace(/-\d{8}T\d{6}Z.*$/, "");
     const tok = tokens.get(sid) ?? (state.session?.id === sid ? state.session.token : undefined);
-    if (tok && state.session?.id !== sid) {
+    if (rec.surface) {
+      state.surface3 = surface3Of(rec.surface);
+      state.dim = 3;
+    } else if (rec.mesh) {
+      state.mesh = buildMesh(rec.mesh);
+      state.viewBounds = null;
+      state.dim = 2;
+    } else if (tok && state.session?.id !== sid) {
       try {
         state.mesh = buildMesh(await sessions.getMesh({ sessionId: sid }, auth(tok)));
         state.viewBounds = null;
@@ -109,6 +155,8 @@ export async function loadRecording(): Promise<void> {
     state.mode = "playback";
     publish("state", "playback");
     publish("playbackFrames", frames.length);
+    publish("dim", state.dim);
+    publish("playbackFields", fields);
     const s = slider();
     s.max = String(frames.length - 1);
     s.value = "0";
