@@ -434,9 +434,15 @@ where
     S: AsyncRead + AsyncWrite + Unpin + Send + 'static,
 {
     let (mut sender, conn) = hyper::client::conn::http1::handshake(TokioIo::new(stream)).await?;
-    let driver = tokio::spawn(async move {
-        let _ = conn.await;
-    });
+    // The connection's own error (e.g. the TLS alert of a refused client certificate) ends the
+    // driver; the request then only sees "canceled", so the driver's error is the one reported.
+    let driver = tokio::spawn(conn);
+    let failed = |e: hyper::Error, driver: tokio::task::JoinHandle<Result<(), hyper::Error>>| async move {
+        match driver.await {
+            Ok(Err(conn_err)) => conn_err,
+            _ => e,
+        }
+    };
     let host = if ep.host.contains(':') { format!("[{}]:{}", ep.host, ep.port) } else { format!("{}:{}", ep.host, ep.port) };
     let req = Request::builder()
         .method(Method::POST)
@@ -447,12 +453,15 @@ where
         .header(hyper::header::USER_AGENT, concat!("needlesim/", env!("CARGO_PKG_VERSION")))
         .body(Full::new(Bytes::from(body)))
         .expect("a request built from a checked URL");
-    let resp = sender.send_request(req).await?;
+    let resp = match sender.send_request(req).await {
+        Ok(r) => r,
+        Err(e) => return Err(failed(e, driver).await),
+    };
     let status = resp.status();
     let bytes = match Limited::new(resp.into_body(), MAX_ANSWER_BYTES).collect().await {
         Ok(b) => b.to_bytes(),
         Err(e) => match e.downcast::<hyper::Error>() {
-            Ok(h) => return Err(*h),
+            Ok(h) => return Err(failed(*h, driver).await),
             // Over the limit: keep what the status says, the body is reported as too long.
             Err(_) => Bytes::from_static(b"{\"message\": \"(answer over 1 MiB)\"}"),
         },
@@ -556,7 +565,10 @@ pub async fn allocate(a: &AllocatorArgs) -> Result<Allocation, AllocateError> {
                     tls_failure(&ep, a, &e).unwrap_or_else(|| AllocateError::Http { url: ep.url.clone(), detail: chain(&e) })
                 })
             }
-            None => exchange(tcp, &ep, body).await.map_err(|e| AllocateError::Http { url: ep.url.clone(), detail: chain(&e) }),
+            None => exchange(tcp, &ep, body).await.map_err(|e| AllocateError::Http {
+                url: ep.url.clone(),
+                detail: format!("{} (the allocator serves HTTPS unless installed with TLS disabled: use https://)", chain(&e)),
+            }),
         }
     };
     let (status, answer) = match tokio::time::timeout(CALL_TIMEOUT, call).await {
