@@ -119,7 +119,7 @@ pub struct AllocateArgs {
 #[derive(Debug, Args, Clone, Default)]
 pub struct CreateAllocation {
     /// Ask the Agones allocator for a server first, then create the session there (instead of
-    /// --server); the server's URL is printed with the session.
+    /// --server); the server's URL is printed on standard error ("server" with --json).
     #[arg(long)]
     pub allocate: bool,
     #[command(flatten)]
@@ -145,18 +145,26 @@ pub enum AllocateError {
     #[error("--{flag} {}: {why}", path.display())]
     BadPem { flag: &'static str, path: PathBuf, why: String },
     /// No `--ca-cert` and no system CA bundle to verify the allocator with.
-    #[error("no CA to verify the allocator's certificate: pass --ca-cert CA.pem (Helm: kubectl get secret allocator-tls-ca -n agones-system -o jsonpath='{{.data.tls-ca\\.crt}}' | base64 -d)")]
+    #[error(
+        "no CA to verify the allocator's certificate: pass --ca-cert CA.pem (Helm: kubectl get secret allocator-tls-ca -n agones-system -o jsonpath='{{.data.tls-ca\\.crt}}' | base64 -d)"
+    )]
     NoCa,
     /// The TCP connection failed (refused, no route, name not resolved) or timed out.
-    #[error("cannot reach the Agones allocator at {url}: {detail}; is the agones-allocator service's address right (kubectl get service agones-allocator -n agones-system)?")]
+    #[error(
+        "cannot reach the Agones allocator at {url}: {detail}; is the agones-allocator service's address right (kubectl get service agones-allocator -n agones-system)?"
+    )]
     Unreachable { url: String, detail: String },
     /// The allocator's certificate is not signed by the CA given (or the system's), or does not
     /// name the host of the URL.
-    #[error("the allocator at {url} presented a certificate this client does not trust: {detail}; pass the allocator's CA with --ca-cert (allocator-tls-ca) and use the address its certificate names")]
+    #[error(
+        "the allocator at {url} presented a certificate this client does not trust: {detail}; pass the allocator's CA with --ca-cert (allocator-tls-ca) and use the address its certificate names"
+    )]
     ServerCertUntrusted { url: String, detail: String },
     /// The allocator refused the client certificate (missing, expired, or not in its
     /// allocator-client-ca list).
-    #[error("the allocator at {url} refused {what}: {detail}; pass an allow-listed client certificate with --client-cert and --client-key (Helm: the secret allocator-client.default)")]
+    #[error(
+        "the allocator at {url} refused {what}: {detail}; pass an allow-listed client certificate with --client-cert and --client-key (Helm: the secret allocator-client.default)"
+    )]
     ClientCertRefused { url: String, what: &'static str, detail: String },
     /// Any other TLS or HTTP failure (connection reset, malformed answer).
     #[error("talking to the Agones allocator at {url}: {detail}")]
@@ -166,7 +174,9 @@ pub enum AllocateError {
     Timeout { url: String, secs: u64 },
     /// No game server matches the selectors with a free place (`UnAllocated`: HTTP 429,
     /// ResourceExhausted).
-    #[error("no needlesim server available in namespace '{namespace}' for {selectors}: the allocator answered {status}: {message}. Every matching server is full or none carries these labels: retry once the fleet has scaled up, or check the labels (kubectl get gameservers -n {namespace} --show-labels)")]
+    #[error(
+        "no needlesim server available in namespace '{namespace}' for {selectors}: the allocator answered {status}: {message}. Every matching server is full or none carries these labels: retry once the fleet has scaled up, or check the labels (kubectl get gameservers -n {namespace} --show-labels)"
+    )]
     NoServer { namespace: String, selectors: String, status: u16, message: String },
     /// Too many concurrent allocations (HTTP 409, Aborted): retry.
     #[error("the allocator is overwhelmed by concurrent allocations ({status}: {message}); retry")]
@@ -285,10 +295,14 @@ fn parse_selector(s: &str) -> Result<BTreeMap<String, String>, AllocateError> {
         };
         let (k, v) = (k.trim(), v.trim());
         if !label_key_ok(k) {
-            return Err(bad(format!("'{k}' is not a Kubernetes label key ([prefix/]name, name ≤ 63 characters: letters, digits, -, _, .)")));
+            return Err(bad(format!(
+                "'{k}' is not a Kubernetes label key ([prefix/]name, name ≤ 63 characters: letters, digits, -, _, .)"
+            )));
         }
         if !(v.is_empty() || label_name_ok(v)) {
-            return Err(bad(format!("'{v}' is not a Kubernetes label value (≤ 63 characters: letters, digits, -, _, ., alphanumeric at both ends)")));
+            return Err(bad(format!(
+                "'{v}' is not a Kubernetes label value (≤ 63 characters: letters, digits, -, _, ., alphanumeric at both ends)"
+            )));
         }
         if labels.insert(k.to_owned(), v.to_owned()).is_some() {
             return Err(bad(format!("'{k}' is given twice")));
@@ -365,7 +379,11 @@ fn tls_config(a: &AllocatorArgs) -> Result<rustls::ClientConfig, AllocateError> 
         }
     };
     for cert in read_certs(if a.ca_cert.is_some() { "ca-cert" } else { flag }, &ca_path)? {
-        roots.add(cert).map_err(|e| AllocateError::BadPem { flag: "ca-cert", path: ca_path.clone(), why: format!("not a usable CA certificate: {e}") })?;
+        roots.add(cert).map_err(|e| AllocateError::BadPem {
+            flag: "ca-cert",
+            path: ca_path.clone(),
+            why: format!("not a usable CA certificate: {e}"),
+        })?;
     }
     let provider = Arc::new(rustls::crypto::ring::default_provider());
     let builder = rustls::ClientConfig::builder_with_provider(provider)
@@ -416,7 +434,11 @@ fn tls_failure(ep: &Endpoint, a: &AllocatorArgs, e: &(dyn std::error::Error + 's
             A::BadCertificate | A::UnknownCA | A::CertificateRequired | A::CertificateUnknown | A::CertificateExpired | A::AccessDenied,
         ) => AllocateError::ClientCertRefused {
             url,
-            what: if a.client_cert.is_some() { "the client certificate" } else { "the connection: it requires a client certificate, none was given" },
+            what: if a.client_cert.is_some() {
+                "the client certificate"
+            } else {
+                "the connection: it requires a client certificate, none was given"
+            },
             detail,
         },
         _ => AllocateError::Http { url, detail: format!("TLS: {detail}") },
@@ -502,7 +524,10 @@ fn parse_answer(body: &[u8], port_name: &str) -> Result<Allocation, AllocateErro
         let name = p.get("name").and_then(Value::as_str).unwrap_or_default().to_owned();
         // int32 in protojson: a number (a string is accepted too).
         let port = p.get("port").and_then(|x| x.as_u64().or_else(|| x.as_str().and_then(|s| s.parse().ok())));
-        let port = port.and_then(|n| u16::try_from(n).ok()).filter(|n| *n > 0).ok_or_else(|| bad(&format!("port '{name}' is not a port number")))?;
+        let port = port
+            .and_then(|n| u16::try_from(n).ok())
+            .filter(|n| *n > 0)
+            .ok_or_else(|| bad(&format!("port '{name}' is not a port number")))?;
         ports.push((name, port));
     }
     if ports.is_empty() {
@@ -556,14 +581,16 @@ pub async fn allocate(a: &AllocatorArgs) -> Result<Allocation, AllocateError> {
                 let stream = match tokio::time::timeout(CONNECT_TIMEOUT, connector.connect(name, tcp)).await {
                     Ok(Ok(s)) => s,
                     Ok(Err(e)) => {
-                        return Err(tls_failure(&ep, a, &e)
-                            .unwrap_or_else(|| AllocateError::Http { url: ep.url.clone(), detail: format!("TLS handshake: {}", chain(&e)) }));
+                        return Err(tls_failure(&ep, a, &e).unwrap_or_else(|| AllocateError::Http {
+                            url: ep.url.clone(),
+                            detail: format!("TLS handshake: {}", chain(&e)),
+                        }));
                     }
                     Err(_) => return Err(AllocateError::Timeout { url: ep.url.clone(), secs: CONNECT_TIMEOUT.as_secs() }),
                 };
-                exchange(stream, &ep, body).await.map_err(|e| {
-                    tls_failure(&ep, a, &e).unwrap_or_else(|| AllocateError::Http { url: ep.url.clone(), detail: chain(&e) })
-                })
+                exchange(stream, &ep, body)
+                    .await
+                    .map_err(|e| tls_failure(&ep, a, &e).unwrap_or_else(|| AllocateError::Http { url: ep.url.clone(), detail: chain(&e) }))
             }
             None => exchange(tcp, &ep, body).await.map_err(|e| AllocateError::Http {
                 url: ep.url.clone(),
@@ -582,11 +609,16 @@ pub async fn allocate(a: &AllocatorArgs) -> Result<Allocation, AllocateError> {
     let s = status.as_u16();
     // grpc-gateway: ResourceExhausted (8) → 429, Aborted (10) → 409.
     match (s, code) {
-        (429, _) | (_, Some(8)) => {
-            Err(AllocateError::NoServer { namespace: a.namespace.trim().to_owned(), selectors: describe_selectors(&selectors), status: s, message })
-        }
+        (429, _) | (_, Some(8)) => Err(AllocateError::NoServer {
+            namespace: a.namespace.trim().to_owned(),
+            selectors: describe_selectors(&selectors),
+            status: s,
+            message,
+        }),
         (409, _) | (_, Some(10)) => Err(AllocateError::Contention { status: s, message }),
-        (401 | 403, _) => Err(AllocateError::ClientCertRefused { url: ep.url.clone(), what: "the client certificate", detail: format!("{s}: {message}") }),
+        (401 | 403, _) => {
+            Err(AllocateError::ClientCertRefused { url: ep.url.clone(), what: "the client certificate", detail: format!("{s}: {message}") })
+        }
         _ => Err(AllocateError::Refused { url: ep.url.clone(), status: s, message }),
     }
 }
@@ -691,8 +723,11 @@ mod tests {
         assert_eq!(b["priorities"][0]["key"], "sessions");
         // Labels only: one selector per set, nothing about Counters.
         let b = request_body("default", &sel, false);
-        assert_eq!(b, json!({"namespace": "default", "gameServerSelectors": [
-            {"matchLabels": {"agones.dev/fleet": "needlesim"}}, {"matchLabels": {"agones.dev/fleet": "spare"}}]}));
+        assert_eq!(
+            b,
+            json!({"namespace": "default", "gameServerSelectors": [
+            {"matchLabels": {"agones.dev/fleet": "needlesim"}}, {"matchLabels": {"agones.dev/fleet": "spare"}}]})
+        );
     }
 
     #[test]
@@ -706,7 +741,7 @@ mod tests {
         // A single port is taken whatever its name; IPv6 goes in brackets.
         let a = parse_answer(br#"{"ports":[{"name":"default","port":7000}],"address":"fd00::5"}"#, "grpc").unwrap();
         assert_eq!(a.target(), "[fd00::5]:7000");
-        for (bad, why) in [(&b"{}"[..], "no address"), (br#"{"address":"a"}"#, "no ports"), (b"<html>", "not JSON")] {
+        for (bad, why) in [(&b"{}"[..], "no address"), (&br#"{"address":"a"}"#[..], "no ports"), (&b"<html>"[..], "not JSON")] {
             let err = parse_answer(bad, "grpc").unwrap_err().to_string();
             assert!(err.contains(why), "{err}");
         }
