@@ -65,7 +65,7 @@ pub enum SessionsCmd {
         json: bool,
     },
     /// Create a session; prints its id and both tokens.
-    Create(CreateArgs),
+    Create(Box<CreateArgs>),
     /// Close a session (controller token).
     Close {
         /// The session id.
