@@ -150,6 +150,7 @@ async fn sessions_create(c: &Conn, a: &CreateArgs, (scene, what): (pb::SceneSour
         let mut v = session_json(&s);
         v["controller_token"] = r.controller_token.into();
         v["observer_token"] = r.observer_token.into();
+        v["server"] = c.url.clone().into();
         return out_line(&serde_json::to_string_pretty(&v)?);
     }
     out_line(&format!("session           {}", s.session_id))?;

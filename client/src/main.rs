@@ -1,6 +1,7 @@
 //! `needlesim`: the command-line client of the needlesim gRPC API (sessions, live view, driving,
 //! recordings, offline simulation).
 
+mod allocate;
 mod commands;
 mod plan;
 mod rpc;
@@ -51,6 +52,8 @@ pub enum Command {
         /// The session id.
         id: String,
     },
+    /// Ask the Agones allocator for a needlesim server (label selectors); prints ADDRESS:PORT.
+    Allocate(allocate::AllocateArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -62,7 +65,7 @@ pub enum SessionsCmd {
         json: bool,
     },
     /// Create a session; prints its id and both tokens.
-    Create(CreateArgs),
+    Create(Box<CreateArgs>),
     /// Close a session (controller token).
     Close {
         /// The session id.
@@ -98,6 +101,8 @@ pub struct CreateArgs {
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub alloc: allocate::CreateAllocation,
 }
 
 #[derive(Debug, Args)]
@@ -213,7 +218,12 @@ fn main() {
             std::process::exit(1);
         }
     };
-    let result = runtime.block_on(commands::run(cli));
+    let result = runtime.block_on(async {
+        match allocate::before_command(cli).await? {
+            Some(cli) => commands::run(cli).await,
+            None => Ok(()),
+        }
+    });
     // Streams still open (observe, control) must not keep the process alive.
     runtime.shutdown_background();
     if let Err(e) = result {

@@ -12,6 +12,7 @@ mod cli;
 mod cli_errors;
 mod contact_points;
 mod fleet;
+mod fleet_alloc;
 mod flexible_e2e;
 mod foxglove;
 mod identify_fit;
