@@ -724,10 +724,16 @@ def demo3d(client: NeedlesimClient, seconds: float = 1.5, log: Optional[str] = N
     traj = np.array([[0.0, 0.05, 0.05, 0.205, *DOWN3], [seconds, 0.05, 0.05, 0.18, *DOWN3]])
     responses = client.drive(s.session_id, traj)
     th.join()
+    rec = client.stop_recording(s.session_id) if out is not None else None
     stats = client.stats(s.session_id)
     last = responses[-1].d3
-    f = last.force_n
-    print(f"drive3d: {len(responses)} responses, final depth {responses[-1].inserted_length_m * 1e3:.3f} mm, contacts {len(last.contacts)}, final force ({f.x:.6f}, {f.y:.6f}, {f.z:.6f}) N, axial {last.axial_force_n:.6f} N", flush=True)
+    f, tip = last.force_n, last.tip_m
+    print(
+        f"drive3d: {len(responses)} responses, final depth {responses[-1].inserted_length_m * 1e3:.3f} mm, "
+        f"tip ({tip.x * 1e3:.3f}, {tip.y * 1e3:.3f}, {tip.z * 1e3:.3f}) mm, contacts {len(last.contacts)}, "
+        f"final force ({f.x:.6f}, {f.y:.6f}, {f.z:.6f}) N, axial {last.axial_force_n:.6f} N",
+        flush=True,
+    )
     with_d3 = sum(1 for fr in frames if fr.HasField("d3"))
     targets = ", ".join(f"{t.name} {t.distance_m * 1e3:.3f} mm" for t in frames[-1].d3.targets) if frames else "-"
     print(f"watched3d: {len(frames)} frames, {with_d3} with d3; targets {targets}", flush=True)
@@ -755,8 +761,7 @@ def demo3d(client: NeedlesimClient, seconds: float = 1.5, log: Optional[str] = N
         f"final fz session {live_f[-1][2]:.9f} N simulate {sim_f[-1][2]:.9f} N, column_deferrals {stats.column_deferrals}",
         flush=True,
     )
-    if out is not None:
-        rec = client.stop_recording(s.session_id)
+    if rec is not None:
         size = client.download_recording(rec.name, out, s.session_id)
         print(f"recording3d: {rec.name}, {rec.messages} messages, {size} bytes to {out}", flush=True)
     client.close_session(s.session_id)

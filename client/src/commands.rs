@@ -652,7 +652,16 @@ async fn simulate(c: &Conn, a: &SimulateArgs, (scene, what): (pb::SceneSource, S
                 .enumerate()
                 .map(|(j, row)| {
                     let vals = row3_values(tick_of(j), row, row.d3.as_ref().unwrap_or(&pb::Tick3::default()));
-                    serde_json::Value::Object(vals.into_iter().map(|(k, x)| (k, serde_json::json!(x))).collect())
+                    serde_json::Value::Object(
+                        vals.into_iter()
+                            .map(|(k, x)| {
+                                // Counts, ticks and hits as integers, as in the CSV.
+                                let count = k == "tick" || k.starts_with("n_") || k.ends_with("_hit");
+                                let v = if count { serde_json::json!(x as u64) } else { serde_json::json!(x) };
+                                (k, v)
+                            })
+                            .collect(),
+                    )
                 })
                 .collect();
             let v = serde_json::json!({
@@ -717,8 +726,9 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
     sorted[i.min(sorted.len() - 1)]
 }
 
-/// Sends a pose every millisecond until the trajectory's span has played (or forever with
-/// `repeat`, or until Ctrl-C): `make(t_s, seq)` builds the message for trajectory time `t_s`.
+/// Sends a pose every millisecond until the trajectory's span has played, its end pose last (or
+/// forever with `repeat`, or until Ctrl-C): `make(t_s, seq)` builds the message for trajectory
+/// time `t_s`.
 /// Returns the last seq sent and whether Ctrl-C ended it.
 async fn send_poses<R: Send + 'static>(
     tx: tokio::sync::mpsc::Sender<R>,
@@ -738,15 +748,16 @@ async fn send_poses<R: Send + 'static>(
             _ = &mut ctrl_c => return (seq, true),
         }
         let el = start.elapsed().as_secs_f64();
-        let t = if repeat && span > 0.0 {
-            t0 + el % span
-        } else if el > span {
-            return (seq, false);
+        let (t, last) = if repeat && span > 0.0 {
+            (t0 + el % span, false)
+        } else if el >= span {
+            // The trajectory's end pose, exactly, last.
+            (t0 + span, true)
         } else {
-            t0 + el
+            (t0 + el, false)
         };
         seq += 1;
-        if tx.send(make(t, seq)).await.is_err() {
+        if tx.send(make(t, seq)).await.is_err() || last {
             return (seq, false);
         }
     }
@@ -952,6 +963,8 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
             Some(d) => {
                 let (f, m) = (xyz(d.force_n.as_ref()), xyz(d.torque_nm.as_ref()));
                 let (stuck, slipping, tip) = contact_counts3(d);
+                let t = xyz(d.tip_m.as_ref());
+                out_line(&format!("final tip      ({:.3}, {:.3}, {:.3}) mm", t[0] * 1e3, t[1] * 1e3, t[2] * 1e3))?;
                 out_line(&format!("final force    ({:.5}, {:.5}, {:.5}) N, axial {:.5} N", f[0], f[1], f[2], d.axial_force_n))?;
                 out_line(&format!("final torque   ({:.3e}, {:.3e}, {:.3e}) N·m", m[0], m[1], m[2]))?;
                 out_line(&format!("final contacts {} (stuck {stuck}, slipping {slipping}, tip {tip})", d.contacts.len()))?;

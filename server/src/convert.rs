@@ -239,6 +239,7 @@ pub fn series_row(o: &StepOutput, t0_s: f64, target_names: &[String]) -> pb::Ser
         n_slipping: o.n_slipping as u32,
         n_tip: o.n_tip as u32,
         targets: o.targets.iter().enumerate().map(|(i, t)| target_state(target_names, i, t.position_m, t.distance_m, t.hit)).collect(),
+        d3: None,
     }
 }
 
@@ -478,7 +479,7 @@ pub fn plan_result_to_pb(p: &Plan) -> pb::PlanResult {
         trajectory: p
             .trajectory
             .iter()
-            .map(|&[t, x, y, th]| pb::TrajectorySample { t_s: t, base: Some(pb::Pose2 { x_m: x, y_m: y, theta_rad: th }) })
+            .map(|&[t, x, y, th]| pb::TrajectorySample { t_s: t, base: Some(pb::Pose2 { x_m: x, y_m: y, theta_rad: th }), base3: None })
             .collect(),
         converged: p.converged,
         iterations: p.iterations as u32,
