@@ -319,6 +319,8 @@ class NeedlesimClient:
             )
         t0, t1 = traj.span_s()
         stop = threading.Event()
+        # The seq of the last pose sent, and the newest pose seq a response says a tick used.
+        seqs = {"sent": 0, "used": 0}
 
         def poses():
             start = time.monotonic()
@@ -328,13 +330,18 @@ class NeedlesimClient:
                 el = time.monotonic() - start
                 if el > t1 - t0:
                     break
+                seqs["sent"] += 1
                 yield traj.pose_at(t0 + el)
                 k += 1
                 delay = start + k * period - time.monotonic()
                 if delay > 0:
                     time.sleep(delay)
-            # The last pose, then a little time for the responses to it.
+            # The last pose; then until a tick has used it (at most 2 s), and a little longer.
+            seqs["sent"] += 1
             yield traj.pose_at(t1)
+            deadline = time.monotonic() + 2.0
+            while seqs["used"] < seqs["sent"] and time.monotonic() < deadline and not stop.is_set():
+                time.sleep(0.005)
             time.sleep(grace_s)
 
         if dim == 3:
@@ -344,6 +351,7 @@ class NeedlesimClient:
         out = []
         try:
             for r in call:
+                seqs["used"] = max(seqs["used"], r.pose_seq)
                 out.append(r)
         except grpc.RpcError as e:
             if e.code() != grpc.StatusCode.CANCELLED:

@@ -21,8 +21,8 @@ pub async fn run(cli: Cli) -> Result<()> {
     }
     // Local files are checked before the server is contacted.
     let scene = match &cli.command {
-        Command::Sessions(SessionsCmd::Create(a)) => Some(scene_source(&a.scene)?),
-        Command::Simulate(a) => Some(scene_source(&a.scene)?),
+        Command::Sessions(SessionsCmd::Create(a)) => Some(scene_source(&a.scene, a.mesh.as_deref())?),
+        Command::Simulate(a) => Some(scene_source(&a.scene, a.mesh.as_deref())?),
         _ => None,
     };
     let traj = match &cli.command {
@@ -35,7 +35,7 @@ pub async fn run(cli: Cli) -> Result<()> {
     };
     // A trajectory of the wrong dimension for the scene, when the scene's is known here.
     if let (Command::Simulate(a), Some(t), Some((_, what))) = (&cli.command, &traj, &scene)
-        && let Some(dim) = scene_dimension(&a.scene)?
+        && let Some(dim) = scene_dimension(&a.scene, a.mesh.is_some())?
         && dim != t.dimension()
     {
         let path = a.trajectory.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
@@ -83,13 +83,17 @@ const EXAMPLES3D: [&str; 3] = ["cube-phantom-3d", "brachy-3d", "fig3-target-3d"]
 /// The shipped 2D examples.
 const EXAMPLES2D: [&str; 4] = ["paper-phantom", "fig3-target", "fig4-steering", "bevel-tip"];
 
-fn scene_source(s: &SceneArgs) -> Result<(pb::SceneSource, String)> {
+/// The scene to send: an example, a TOML, or a 3D TOML with its Gmsh `mesh` (uploaded3d).
+fn scene_source(s: &SceneArgs, mesh: Option<&std::path::Path>) -> Result<(pb::SceneSource, String)> {
+    if let (Some(m), None) = (mesh, &s.scene) {
+        bail!("--mesh {} goes with --scene FILE.toml (the 3D scene whose [mesh] file names it), not --example", m.display());
+    }
     if let Some(name) = &s.example {
         return Ok((pb::SceneSource { source: Some(pb::scene_source::Source::Example(name.clone())) }, format!("example '{name}'")));
     }
     let Some(path) = &s.scene else { bail!("give --example NAME or --scene FILE.toml") };
     let text = std::fs::read_to_string(path).map_err(|e| anyhow!("cannot read the scene {}: {e}", path.display()))?;
-    let Some(mesh) = &s.mesh else {
+    let Some(mesh) = mesh else {
         return Ok((pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(text)) }, format!("scene {}", path.display())));
     };
     if !toml_is_3d(&text) {
@@ -117,7 +121,7 @@ fn toml_is_3d(text: &str) -> bool {
 
 /// The dimension of a scene when it can be told here (a shipped example, a TOML); None for an
 /// unknown example name (the server names the examples).
-fn scene_dimension(s: &SceneArgs) -> Result<Option<u32>> {
+fn scene_dimension(s: &SceneArgs, with_mesh: bool) -> Result<Option<u32>> {
     if let Some(name) = &s.example {
         return Ok(if EXAMPLES3D.contains(&name.as_str()) {
             Some(3)
@@ -130,7 +134,7 @@ fn scene_dimension(s: &SceneArgs) -> Result<Option<u32>> {
     match &s.scene {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| anyhow!("cannot read the scene {}: {e}", p.display()))?;
-            Ok(Some(if s.mesh.is_some() || toml_is_3d(&text) { 3 } else { 2 }))
+            Ok(Some(if with_mesh || toml_is_3d(&text) { 3 } else { 2 }))
         }
         None => Ok(None),
     }
@@ -218,7 +222,10 @@ async fn sessions_create(c: &Conn, a: &CreateArgs, (scene, what): (pb::SceneSour
     }
     out_line(&format!("session           {}", s.session_id))?;
     if s.dimension == 3 {
-        out_line(&format!("scene             {} (3D: {} nodes, {} tetrahedra, {} Hz)", s.scene_name, s.n_nodes, s.n_tetrahedra, s.tick_rate_hz))?;
+        out_line(&format!(
+            "scene             {} (3D: {} nodes, {} tetrahedra, {} Hz)",
+            s.scene_name, s.n_nodes, s.n_tetrahedra, s.tick_rate_hz
+        ))?;
     } else {
         out_line(&format!("scene             {} ({} nodes, {} triangles, {} Hz)", s.scene_name, s.n_nodes, s.n_triangles, s.tick_rate_hz))?;
     }
@@ -858,7 +865,7 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
     let now_ns = move || u64::try_from(epoch.elapsed().as_nanos()).unwrap_or(u64::MAX).max(1);
     let mut ctl = pb::control_service_client::ControlServiceClient::new(c.channel.clone());
     let (repeat, take_over) = (a.repeat, a.take_over);
-    let (mut responses, sender) = match traj {
+    let (mut responses, keep_open, sender) = match traj {
         AnyTrajectory::Two(traj) => {
             let (t0, t1) = traj.span_s();
             let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
@@ -885,14 +892,23 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
                 flip_bevel: false,
                 take_over: false,
             };
-            (responses, tokio::spawn(send_poses(tx, (t0, t1 - t0), repeat, make)))
+            // The request side stays open until the last pose is answered (closing it ends the
+            // response stream).
+            let keep_open: Box<dyn std::any::Any + Send> = Box::new(tx.clone());
+            (responses, keep_open, tokio::spawn(send_poses(tx, (t0, t1 - t0), repeat, make)))
         }
         AnyTrajectory::Three(traj) => {
             let (t0, t1) = traj.span_s();
             let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest3>(64);
-            tx.send(pb::ControlRequest3 { session_id: id.clone(), base3: Some(traj.pose_at(t0)), client_time_ns: now_ns(), seq: 1, take_over })
-                .await
-                .map_err(|_| anyhow!("{what}: the request stream closed"))?;
+            tx.send(pb::ControlRequest3 {
+                session_id: id.clone(),
+                base3: Some(traj.pose_at(t0)),
+                client_time_ns: now_ns(),
+                seq: 1,
+                take_over,
+            })
+            .await
+            .map_err(|_| anyhow!("{what}: the request stream closed"))?;
             let responses = ctl
                 .control3(c.request(tokio_stream::wrappers::ReceiverStream::new(rx))?)
                 .await
@@ -905,7 +921,10 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
                 seq,
                 take_over: false,
             };
-            (responses, tokio::spawn(send_poses(tx, (t0, t1 - t0), repeat, make)))
+            // The request side stays open until the last pose is answered (closing it ends the
+            // response stream).
+            let keep_open: Box<dyn std::any::Any + Send> = Box::new(tx.clone());
+            (responses, keep_open, tokio::spawn(send_poses(tx, (t0, t1 - t0), repeat, make)))
         }
     };
     tokio::pin!(sender);
@@ -914,7 +933,8 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
     let mut last_seq = 0u64;
     let mut latencies_ms: Vec<f64> = Vec::new();
     let mut log_error: Option<std::io::Error> = None;
-    let mut on_response = |r: pb::ControlResponse| {
+    // Returns the seq of the newest pose the response's tick used.
+    let mut on_response = |r: pb::ControlResponse| -> u64 {
         n_resp += 1;
         if r.pose_seq != last_seq && r.client_time_ns > 0 {
             last_seq = r.pose_seq;
@@ -926,19 +946,30 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
         {
             log_error = Some(e);
         }
+        let used = r.pose_seq;
         last = Some(r);
+        used
     };
+    let mut used = 0u64;
     let (sent, interrupted) = loop {
         tokio::select! {
             done = &mut sender => break done.map_err(|e| anyhow!("{what}: the sender task failed: {e}"))?,
             r = responses.next() => match r {
-                Some(Ok(r)) => on_response(r),
+                Some(Ok(r)) => used = used.max(on_response(r)),
                 Some(Err(s)) => return Err(c.status_error(&what, Role::Controller, Some(&id), &s)),
                 None => bail!("{what}: the server ended the control stream (session closed?)"),
             },
         }
     };
-    // The responses to the last poses: a short grace period.
+    // The responses to the last poses: until a tick has used the last pose (at most 2 s: the
+    // session holds it anyway), then a short grace period.
+    let until_used = tokio::time::Instant::now() + Duration::from_secs(2);
+    while used < sent
+        && let Ok(Some(Ok(r))) = tokio::time::timeout_at(until_used, responses.next()).await
+    {
+        used = used.max(on_response(r));
+    }
+    drop(keep_open);
     let grace = tokio::time::Instant::now() + Duration::from_millis(50);
     while let Ok(Some(Ok(r))) = tokio::time::timeout_at(grace, responses.next()).await {
         on_response(r);

@@ -71,7 +71,7 @@ pub enum SessionsCmd {
 }
 
 #[derive(Debug, Args, Clone)]
-#[group(required = true, multiple = false, args = ["example", "scene"])]
+#[group(required = true, multiple = false)]
 pub struct SceneArgs {
     /// A shipped example scene: paper-phantom, fig3-target, fig4-steering, bevel-tip; 3D:
     /// cube-phantom-3d, brachy-3d, fig3-target-3d.
@@ -81,15 +81,15 @@ pub struct SceneArgs {
     /// reference files other than a 3D scene's Gmsh mesh given with --mesh.
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
-    /// The Gmsh tetrahedral mesh (.msh) a 3D scene TOML names in `[mesh] file`, uploaded with it.
-    #[arg(long, value_name = "FILE.msh", requires = "scene")]
-    pub mesh: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
 pub struct CreateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    /// The Gmsh tetrahedral mesh (.msh) a 3D scene TOML names in `[mesh] file`, uploaded with it.
+    #[arg(long, value_name = "FILE.msh")]
+    pub mesh: Option<PathBuf>,
     /// Tick rate, 500..1000 Hz (default: the scene's).
     #[arg(long, value_name = "HZ")]
     pub rate: Option<f64>,
@@ -154,6 +154,9 @@ pub enum Format {
 pub struct SimulateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    /// The Gmsh tetrahedral mesh (.msh) a 3D scene TOML names in `[mesh] file`, uploaded with it.
+    #[arg(long, value_name = "FILE.msh")]
+    pub mesh: Option<PathBuf>,
     /// The base trajectory (t_s,x_m,y_m,theta_rad; for a 3D scene t_s,x_m,y_m,z_m,qw,qx,qy,qz);
     /// default: the example's own.
     #[arg(long, value_name = "TRAJ.csv")]

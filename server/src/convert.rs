@@ -311,7 +311,11 @@ pub fn trajectory3_from_pb(samples: &[pb::TrajectorySample]) -> Result<needlesim
         if let Some((t_prev, _)) = out.last()
             && !(s.t_s - *t_prev >= needlesim_trajectory::MIN_SAMPLE_GAP_S)
         {
-            bail!("trajectory[{i}].t_s = {} does not increase by at least {:e} s (previous {t_prev})", s.t_s, needlesim_trajectory::MIN_SAMPLE_GAP_S);
+            bail!(
+                "trajectory[{i}].t_s = {} does not increase by at least {:e} s (previous {t_prev})",
+                s.t_s,
+                needlesim_trajectory::MIN_SAMPLE_GAP_S
+            );
         }
         let q = p.orientation.quaternion();
         out.push((s.t_s, needlesim_scene::Pose3::new(p.position_m, [q.w, q.i, q.j, q.k])));
