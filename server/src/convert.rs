@@ -308,14 +308,15 @@ pub fn trajectory3_from_pb(samples: &[pb::TrajectorySample]) -> Result<needlesim
         if !s.t_s.is_finite() {
             bail!("trajectory[{i}].t_s = {} is not a finite number", s.t_s);
         }
-        if let Some((t_prev, _)) = out.last()
-            && !(s.t_s - *t_prev >= needlesim_trajectory::MIN_SAMPLE_GAP_S)
-        {
-            bail!(
-                "trajectory[{i}].t_s = {} does not increase by at least {:e} s (previous {t_prev})",
-                s.t_s,
-                needlesim_trajectory::MIN_SAMPLE_GAP_S
-            );
+        if let Some((t_prev, _)) = out.last() {
+            let gap_s = s.t_s - *t_prev;
+            if !(gap_s.is_finite() && gap_s >= needlesim_trajectory::MIN_SAMPLE_GAP_S) {
+                bail!(
+                    "trajectory[{i}].t_s = {} does not increase by at least {:e} s (previous {t_prev})",
+                    s.t_s,
+                    needlesim_trajectory::MIN_SAMPLE_GAP_S
+                );
+            }
         }
         let q = p.orientation.quaternion();
         out.push((s.t_s, needlesim_scene::Pose3::new(p.position_m, [q.w, q.i, q.j, q.k])));
