@@ -385,13 +385,19 @@ fn mismatches_bad_rows_toml_and_mesh_upload() {
         };
         let req = |scene: &str, base: Option<pb::Pose2>, base3: Option<pb::Pose3>| pb::SimulateRequest {
             scene: example(scene),
-            trajectory: vec![pb::TrajectorySample { t_s: 0.0, base, base3: base3.clone() }, pb::TrajectorySample { t_s: 0.1, base, base3 }],
+            trajectory: vec![pb::TrajectorySample { t_s: 0.0, base, base3 }, pb::TrajectorySample { t_s: 0.1, base, base3 }],
             decimate: 1,
         };
-        let e = sim.simulate(req("cube-phantom-3d", Some(p2), None)).await.err().expect("2D poses for a 3D scene");
+        let e = match sim.simulate(req("cube-phantom-3d", Some(p2), None)).await {
+            Ok(_) => panic!("2D poses for a 3D scene were accepted"),
+            Err(e) => e,
+        };
         assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
         assert!(e.message().contains("trajectory[0].base3 is missing") && e.message().contains("3D scene"), "{}", e.message());
-        let e = sim.simulate(req("paper-phantom", None, Some(p3.clone()))).await.err().expect("3D poses for a 2D scene");
+        let e = match sim.simulate(req("paper-phantom", None, Some(p3))).await {
+            Ok(_) => panic!("3D poses for a 2D scene were accepted"),
+            Err(e) => e,
+        };
         assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
         assert!(e.message().starts_with("trajectory[0].base3") && e.message().contains("2D"), "{}", e.message());
     });
