@@ -21,12 +21,23 @@ Usage from Python::
             print(frame.tick, frame.tip_m.x, frame.tip_m.y)
         c.close_session(s.session_id)
 
+3D sessions (a 3D example such as "cube-phantom-3d", a scene TOML with `dim = 3`, or a TOML with
+its Gmsh mesh: create_session_from_toml) are driven with 3D poses::
+
+    s = c.create_session("cube-phantom-3d")
+    responses = c.drive(s.session_id, "insert3d.csv")   # or an (N, 8) array t_s,x,y,z,qw,qx,qy,qz
+    print(responses[-1].d3.force_n)
+    for frame in c.watch(s.session_id, n_frames=10):
+        print(frame.d3.tip_m, [t.distance_m for t in frame.d3.targets])
+
 Conventions (see proto/needlesim/v1/needlesim.proto): SI units, 2D positions (x, y) in metres,
-angles counter-clockwise in radians. Creating a session returns a controller token (to drive the
+angles counter-clockwise in radians; 3D positions (x, y, z) in metres in the scene's world frame,
+orientations as unit quaternions (w, x, y, z) taking the needle's body frame (shaft along +x) to
+the world frame. Creating a session returns a controller token (to drive the
 needle, record and close) and an observer token (to watch); the client keeps both per session
 and sends the right one as `authorization: Bearer <token>` metadata.
 
-Command line: `demo`, `health [SERVICE]`, `services`, `record` and `hold` (see --help).
+Command line: `demo`, `demo3d`, `health [SERVICE]`, `services`, `record` and `hold` (see --help).
 """
 
 from __future__ import annotations
@@ -211,8 +222,32 @@ class NeedlesimClient:
         self.tokens[s.session_id] = s
         return s
 
+    def create_session_from_toml(
+        self, scene_toml: str, mesh_path: Optional[str] = None, tick_rate_hz: float = 0.0, record: bool = False, timeout: float = 120.0
+    ) -> Session:
+        """Creates a session from a scene TOML (the text, or the path of a .toml file): 2D, or 3D
+        with `dim = 3`. mesh_path: the Gmsh .msh file a 3D TOML names in `[mesh] file`, uploaded
+        with it (its file name must be the one the TOML names)."""
+        if os.path.isfile(scene_toml):
+            with open(scene_toml, encoding="utf-8") as f:
+                scene_toml = f.read()
+        if mesh_path is None:
+            return self.create_session(pb.SceneSource(scene_toml=scene_toml), tick_rate_hz=tick_rate_hz, record=record, timeout=timeout)
+        with open(mesh_path, encoding="utf-8") as f:
+            mesh_text = f.read()
+        scene = pb.UploadedScene3d(scene_toml=scene_toml, mesh_file_name=os.path.basename(mesh_path), mesh_text=mesh_text)
+        return self.create_session(pb.SceneSource(uploaded3d=scene), tick_rate_hz=tick_rate_hz, record=record, timeout=timeout)
+
     def get_session(self, session_id: str):
         return self.sessions.GetSession(pb.GetSessionRequest(session_id=session_id), timeout=10)
+
+    def dimension(self, session_id: str) -> int:
+        """2 or 3: the dimension of a session (3: driven with 3D poses, frames carry d3)."""
+        return max(2, self.get_session(session_id).dimension)
+
+    def surface(self, session_id: str, token: Optional[str] = None):
+        """The boundary surface of a 3D session's tissue (Surface: node_ids, node_xyz_m, triangles)."""
+        return self.sessions.GetSurface(pb.GetSessionRequest(session_id=session_id), metadata=self._md(session_id, "observer", token), timeout=30)
 
     def stats(self, session_id: str, token: Optional[str] = None):
         """The tick statistics (SessionStats) of a session."""
@@ -244,6 +279,88 @@ class NeedlesimClient:
 
         return self.control.Control(requests(), metadata=self._md(session_id, "controller", token))
 
+    def set_pose3(self, session_id: str, position_m: Sequence[float], quat_wxyz: Sequence[float], token: Optional[str] = None):
+        """Moves the needle base of a 3D session (position m, unit quaternion w, x, y, z)."""
+        req = pb.SetPoseRequest3(session_id=session_id, base3=pose3(position_m, quat_wxyz))
+        return self.control.SetPose3(req, metadata=self._md(session_id, "controller", token), timeout=10)
+
+    def control_stream3(self, session_id: str, poses: Iterable[tuple[Sequence[float], Sequence[float]]], token: Optional[str] = None):
+        """Opens the Control3 stream of a 3D session: poses (position_m, quat_wxyz) in, one
+        ControlResponse per tick out (with d3; an iterator; cancel() it to stop)."""
+
+        def requests():
+            for seq, (p, q) in enumerate(poses, start=1):
+                yield pb.ControlRequest3(
+                    session_id=session_id if seq == 1 else "",
+                    base3=pose3(p, q),
+                    client_time_ns=time.monotonic_ns(),
+                    seq=seq,
+                )
+
+        return self.control.Control3(requests(), metadata=self._md(session_id, "controller", token))
+
+    def drive(self, session_id: str, trajectory, rate_hz: float = 1000.0, token: Optional[str] = None, grace_s: float = 0.05) -> list:
+        """Plays a base trajectory in real time through the Control stream of a 2D session or
+        the Control3 stream of a 3D one, a pose every 1/rate_hz s, and returns the ControlResponses
+        (one per tick: the pose the tick applied, force, torque; d3 in 3D).
+
+        trajectory: a CSV file (t_s,x_m,y_m,theta_rad or t_s,x_m,y_m,z_m,qw,qx,qy,qz) or an
+        array-like of rows, (N, 4) for 2D, (N, 8) for 3D (a NumPy array works). A trajectory of the
+        other dimension than the session's raises ValueError naming both."""
+        if isinstance(trajectory, (str, os.PathLike)):
+            traj = read_trajectory_csv(trajectory)
+        else:
+            traj = Trajectory(trajectory)
+        dim = self.dimension(session_id)
+        if traj.dimension != dim:
+            raise ValueError(
+                f"session {session_id} is {dim}D and takes a {dim}D trajectory ({HEADERS[dim]}), "
+                f"but the trajectory is {traj.dimension}D ({HEADERS[traj.dimension]})"
+            )
+        t0, t1 = traj.span_s()
+        stop = threading.Event()
+        # The seq of the last pose sent, and the newest pose seq a response says a tick used.
+        seqs = {"sent": 0, "used": 0}
+
+        def poses():
+            start = time.monotonic()
+            period = 1.0 / rate_hz
+            k = 0
+            while not stop.is_set():
+                el = time.monotonic() - start
+                if el > t1 - t0:
+                    break
+                seqs["sent"] += 1
+                yield traj.pose_at(t0 + el)
+                k += 1
+                delay = start + k * period - time.monotonic()
+                if delay > 0:
+                    time.sleep(delay)
+            # The last pose; then until a tick has used it (at most 2 s), and a little longer.
+            seqs["sent"] += 1
+            yield traj.pose_at(t1)
+            deadline = time.monotonic() + 2.0
+            while seqs["used"] < seqs["sent"] and time.monotonic() < deadline and not stop.is_set():
+                time.sleep(0.005)
+            time.sleep(grace_s)
+
+        if dim == 3:
+            call = self.control_stream3(session_id, poses(), token)
+        else:
+            call = self.control_stream(session_id, poses(), token)
+        out = []
+        try:
+            for r in call:
+                seqs["used"] = max(seqs["used"], r.pose_seq)
+                out.append(r)
+        except grpc.RpcError as e:
+            if e.code() != grpc.StatusCode.CANCELLED:
+                raise
+        finally:
+            stop.set()
+            call.cancel()
+        return out
+
     def watch(
         self,
         session_id: str,
@@ -254,7 +371,9 @@ class NeedlesimClient:
         include_displacements: bool = False,
     ) -> Iterator[object]:
         """Yields the Frames of a live session at rate_hz (30..120, or 0 for every tick) until
-        n_frames frames have arrived or duration_s has passed (whichever comes first)."""
+        n_frames frames have arrived or duration_s has passed (whichever comes first). A 3D
+        session's frames carry d3 (pose, force, torque, tip, contacts, target spheres) and, with
+        include_displacements, surface_displacement_m (in the order of surface().node_ids)."""
         req = pb.ObserveRequest(session_id=session_id, rate_hz=rate_hz, include_displacements=include_displacements)
         call = self.observe.Observe(req, metadata=self._md(session_id, "observer", observer_token), timeout=duration_s)
         n = 0
@@ -283,15 +402,22 @@ class NeedlesimClient:
         """Runs an offline insertion (faster than real time on the server's workers).
 
         scene: an UploadedScene, a SceneSource or a shipped example's name. trajectory:
-        [(t_s, x_m, y_m, theta_rad), ...] of the needle base (empty: the example's own). Calls
+        [(t_s, x_m, y_m, theta_rad), ...] of the needle base, or for a 3D scene
+        [(t_s, x_m, y_m, z_m, qw, qx, qy, qz), ...] (an (N, 4) or (N, 8) NumPy array works; rows
+        then carry d3); empty: the example's own. Calls
         on_progress(ticks_done, ticks_total) as progress arrives; returns the SimulateResult
         (.rows: one SeriesRow every `decimate` ticks, gathered from the `series` chunks the
         server streams before the result)."""
-        req = pb.SimulateRequest(
-            scene=_scene_source(scene),
-            trajectory=[pb.TrajectorySample(t_s=t, base=pb.Pose2(x_m=x, y_m=y, theta_rad=th)) for (t, x, y, th) in trajectory],
-            decimate=decimate,
-        )
+        samples = []
+        for row in trajectory:
+            row = [float(v) for v in row]
+            if len(row) == 8:
+                samples.append(pb.TrajectorySample(t_s=row[0], base3=pose3(row[1:4], row[4:8])))
+            elif len(row) == 4:
+                samples.append(pb.TrajectorySample(t_s=row[0], base=pb.Pose2(x_m=row[1], y_m=row[2], theta_rad=row[3])))
+            else:
+                raise ValueError(f"trajectory row {len(samples)}: {len(row)} values; 4 (t_s, x_m, y_m, theta_rad) or 8 (t_s, x_m, y_m, z_m, qw, qx, qy, qz)")
+        req = pb.SimulateRequest(scene=_scene_source(scene), trajectory=samples, decimate=decimate)
         result = None
         rows = []
         for ev in self.simulation.Simulate(req, timeout=timeout):
@@ -383,7 +509,129 @@ def _scene_source(scene):
         return pb.SceneSource(example=scene)
     if isinstance(scene, pb.UploadedScene):
         return pb.SceneSource(uploaded=scene)
+    if isinstance(scene, pb.UploadedScene3d):
+        return pb.SceneSource(uploaded3d=scene)
     return scene
+
+
+# -- 3D poses and trajectories ------------------------------------------------------------------
+
+HEADERS = {2: "t_s,x_m,y_m,theta_rad", 3: "t_s,x_m,y_m,z_m,qw,qx,qy,qz"}
+
+
+def pose3(position_m: Sequence[float], quat_wxyz: Sequence[float]):
+    """A needlesim.v1.Pose3 from a position (m) and a unit quaternion (w, x, y, z)."""
+    x, y, z = (float(v) for v in position_m)
+    w, qx, qy, qz = (float(v) for v in quat_wxyz)
+    return pb.Pose3(position_m=pb.Vec3(x=x, y=y, z=z), orientation=pb.Quaternion(w=w, x=qx, y=qy, z=qz))
+
+
+def _slerp(a: Sequence[float], b: Sequence[float], w: float) -> list[float]:
+    """Spherical interpolation of unit quaternions (the shorter arc), as the server's trajectories."""
+    dot = sum(x * y for x, y in zip(a, b))
+    if dot < 0.0:
+        b, dot = [-v for v in b], -dot
+    if dot > 0.9995:
+        q = [x + w * (y - x) for x, y in zip(a, b)]
+    else:
+        th = math.acos(min(1.0, dot))
+        sa, sb = math.sin((1.0 - w) * th) / math.sin(th), math.sin(w * th) / math.sin(th)
+        q = [sa * x + sb * y for x, y in zip(a, b)]
+    n = math.sqrt(sum(v * v for v in q))
+    return [v / n for v in q]
+
+
+class Trajectory:
+    """A base trajectory: rows (t_s, x_m, y_m, theta_rad) in 2D or (t_s, x_m, y_m, z_m, qw, qx,
+    qy, qz) in 3D, times strictly increasing, values finite, quaternions of unit norm (within
+    1e-6, then normalised). pose_at(t) interpolates (linear; slerp for the orientation) and holds
+    the ends. Bad rows raise ValueError naming the row (`line` for rows read from a file)."""
+
+    def __init__(self, rows, lines: Optional[Sequence[int]] = None):
+        rows = [[float(v) for v in r] for r in rows]
+        where = (lambda k: f"line {lines[k]}") if lines is not None else (lambda k: f"row {k}")
+        if not rows:
+            raise ValueError("the trajectory has no samples")
+        width = len(rows[0])
+        if width not in (4, 8):
+            raise ValueError(f"{where(0)}: {width} values; a trajectory row has 4 ({HEADERS[2]}) or 8 ({HEADERS[3]})")
+        self.dimension = 2 if width == 4 else 3
+        for k, r in enumerate(rows):
+            if len(r) != width:
+                raise ValueError(f"{where(k)}: {len(r)} values, expected {width} ({HEADERS[self.dimension]})")
+            if not all(math.isfinite(v) for v in r):
+                raise ValueError(f"{where(k)}: a value is not a finite number: {r}")
+            if k > 0 and not r[0] > rows[k - 1][0]:
+                raise ValueError(f"{where(k)}: t_s = {r[0]} does not increase (previous {rows[k - 1][0]})")
+            if self.dimension == 3:
+                n = math.sqrt(sum(v * v for v in r[4:8]))
+                if abs(n - 1.0) > 1e-6:
+                    raise ValueError(f"{where(k)}: the quaternion qw,qx,qy,qz must have unit norm (its norm is {n})")
+                r[4:8] = [v / n for v in r[4:8]]
+        self.rows = rows
+
+    def span_s(self) -> tuple[float, float]:
+        return self.rows[0][0], self.rows[-1][0]
+
+    def pose_at(self, t_s: float):
+        """(x, y, theta) in 2D; (position, quaternion) in 3D."""
+        rows = self.rows
+        if t_s <= rows[0][0]:
+            a = b = rows[0]
+            w = 0.0
+        elif t_s >= rows[-1][0]:
+            a = b = rows[-1]
+            w = 0.0
+        else:
+            import bisect
+
+            k = bisect.bisect_right([r[0] for r in rows], t_s)
+            a, b = rows[k - 1], rows[k]
+            w = (t_s - a[0]) / (b[0] - a[0])
+        if self.dimension == 2:
+            return tuple(a[i] + w * (b[i] - a[i]) for i in (1, 2, 3))
+        p = [a[i] + w * (b[i] - a[i]) for i in (1, 2, 3)]
+        return p, _slerp(a[4:8], b[4:8], w)
+
+
+def read_trajectory_csv(path) -> Trajectory:
+    """Reads a trajectory CSV: the header (t_s,x_m,y_m,theta_rad or t_s,x_m,y_m,z_m,qw,qx,qy,qz)
+    decides the dimension; `#` lines and blank lines are skipped; errors name the file and line."""
+    rows, lines, header = [], [], None
+    with open(path, encoding="utf-8") as f:
+        for n, line in enumerate(f, start=1):
+            text = line.strip()
+            if not text or text.startswith("#"):
+                continue
+            cells = [c.strip() for c in text.split(",")]
+            if header is None:
+                header = ",".join(cells)
+                if header not in (HEADERS[2], HEADERS[3]):
+                    raise ValueError(f"{path}: line {n}: the header must be {HEADERS[2]} (2D) or {HEADERS[3]} (3D), found {header[:64]}")
+                width = len(cells)
+                continue
+            if len(cells) != width:
+                raise ValueError(f"{path}: line {n}: {len(cells)} fields, expected {width} ({header})")
+            try:
+                rows.append([float(c) for c in cells])
+            except ValueError:
+                bad = next(c for c in cells if not _is_float(c))
+                raise ValueError(f"{path}: line {n}: `{bad[:32]}` is not a number") from None
+            lines.append(n)
+    if header is None:
+        raise ValueError(f"{path}: empty: no header")
+    try:
+        return Trajectory(rows, lines)
+    except ValueError as e:
+        raise ValueError(f"{path}: {e}") from None
+
+
+def _is_float(c: str) -> bool:
+    try:
+        float(c)
+        return True
+    except ValueError:
+        return False
 
 
 # -- the demo -----------------------------------------------------------------------------------
@@ -437,6 +685,93 @@ def demo(client: NeedlesimClient) -> int:
     span = f"ticks {ticks[0]}..{ticks[-1]}" if ticks else "no ticks"
     print(f"watched: {len(frames)} frames in 1 s at 30 Hz ({span})", flush=True)
 
+    client.close_session(s.session_id)
+    print(f"session closed: {s.session_id}", flush=True)
+    return 0
+
+
+# The cube's needle points straight down: a quarter turn about +y takes the body's +x to -z.
+DOWN3 = (math.sqrt(0.5), 0.0, math.sqrt(0.5), 0.0)
+
+LOG_HEADER3 = "tick,t_s,x_m,y_m,z_m,qw,qx,qy,qz,fx_n,fy_n,fz_n,torque_x_nm,torque_y_nm,torque_z_nm,f_axial_n,inserted_m,n_points,pose_seq"
+
+
+def log_row3(r) -> str:
+    """A ControlResponse of a 3D session as a CSV row (LOG_HEADER3; repr: exact round trip)."""
+    d = r.d3
+    p, q, f, m = d.base.position_m, d.base.orientation, d.force_n, d.torque_nm
+    vals = [r.tick, r.time_s, p.x, p.y, p.z, q.w, q.x, q.y, q.z, f.x, f.y, f.z, m.x, m.y, m.z, d.axial_force_n, r.inserted_length_m, len(d.contacts), r.pose_seq]
+    return ",".join(repr(v) for v in vals)
+
+
+def demo3d(client: NeedlesimClient, seconds: float = 1.5, log: Optional[str] = None, out: Optional[str] = None) -> int:
+    """A 3D run: a session of the shipped cube (cube-phantom-3d), its surface, an insertion driven
+    through Control3 from a NumPy trajectory while an observer watches frames with d3 (and the
+    session records, with `out`), then the same applied poses offline through Simulate: the final
+    forces agree when the session admitted every contact on time (column_deferrals = 0)."""
+    import numpy as np
+
+    s = client.create_session("cube-phantom-3d")
+    info = s.info
+    print(f"session created: {s.session_id} (3D: {info.n_nodes} nodes, {info.n_tetrahedra} tetrahedra, {info.tick_rate_hz:g} Hz, dimension {info.dimension})", flush=True)
+    surface = client.surface(s.session_id)
+    print(f"surface: {len(surface.node_ids)} nodes, {len(surface.triangles) // 3} triangles", flush=True)
+    if out is not None:
+        client.start_recording(s.session_id)
+
+    frames = []
+
+    def watcher():
+        for f in client.watch(s.session_id, rate_hz=30.0, duration_s=seconds + 0.5):
+            frames.append(f)
+
+    th = threading.Thread(target=watcher, daemon=True)
+    th.start()
+    time.sleep(0.2)
+    # The tip from 5 mm above the top face (z = 0.1 m) to 20 mm deep, straight down.
+    traj = np.array([[0.0, 0.05, 0.05, 0.205, *DOWN3], [seconds, 0.05, 0.05, 0.18, *DOWN3]])
+    responses = client.drive(s.session_id, traj)
+    th.join()
+    rec = client.stop_recording(s.session_id) if out is not None else None
+    stats = client.stats(s.session_id)
+    last = responses[-1].d3
+    f, tip = last.force_n, last.tip_m
+    print(
+        f"drive3d: {len(responses)} responses, final depth {responses[-1].inserted_length_m * 1e3:.3f} mm, "
+        f"tip ({tip.x * 1e3:.3f}, {tip.y * 1e3:.3f}, {tip.z * 1e3:.3f}) mm, contacts {len(last.contacts)}, "
+        f"final force ({f.x:.6f}, {f.y:.6f}, {f.z:.6f}) N, axial {last.axial_force_n:.6f} N",
+        flush=True,
+    )
+    with_d3 = sum(1 for fr in frames if fr.HasField("d3"))
+    targets = ", ".join(f"{t.name} {t.distance_m * 1e3:.3f} mm" for t in frames[-1].d3.targets) if frames else "-"
+    print(f"watched3d: {len(frames)} frames, {with_d3} with d3; targets {targets}", flush=True)
+    if log is not None:
+        with open(log, "w", encoding="utf-8") as fh:
+            fh.write(LOG_HEADER3 + "\n")
+            for r in responses:
+                fh.write(log_row3(r) + "\n")
+
+    # The poses the ticks applied, one per tick from the first response (a gap ends the span),
+    # offline through Simulate: the same step function, so the same forces.
+    n = next((k + 1 for k in range(len(responses) - 1) if responses[k + 1].tick != responses[k].tick + 1), len(responses))
+    rate = info.tick_rate_hz
+    rows = []
+    for j, r in enumerate(responses[:n]):
+        b = r.d3.base
+        rows.append((j / rate, b.position_m.x, b.position_m.y, b.position_m.z, b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z))
+    result = client.simulate("cube-phantom-3d", np.array(rows))
+    sim_f = np.array([[row.d3.force_n.x, row.d3.force_n.y, row.d3.force_n.z] for row in result.rows])
+    live_f = np.array([[r.d3.force_n.x, r.d3.force_n.y, r.d3.force_n.z] for r in responses[:n]])
+    peak = float(np.abs(sim_f).max()) if len(sim_f) else 0.0
+    worst = float(np.abs(sim_f - live_f).max()) if len(sim_f) == len(live_f) else float("inf")
+    print(
+        f"simulate3d: {len(result.rows)} rows of {n} compared ticks, worst force difference {worst:.3e} N, peak {peak:.6f} N, "
+        f"final fz session {live_f[-1][2]:.9f} N simulate {sim_f[-1][2]:.9f} N, column_deferrals {stats.column_deferrals}",
+        flush=True,
+    )
+    if rec is not None:
+        size = client.download_recording(rec.name, out, s.session_id)
+        print(f"recording3d: {rec.name}, {rec.messages} messages, {size} bytes to {out}", flush=True)
     client.close_session(s.session_id)
     print(f"session closed: {s.session_id}", flush=True)
     return 0
@@ -518,6 +853,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     p.add_argument("--stubs", help="directory of the generated stubs (generated there if missing)")
     sub = p.add_subparsers(dest="command", required=True)
     sub.add_parser("demo", help="upload a grid mesh, simulate an insertion offline, watch the live session")
+    d3 = sub.add_parser("demo3d", help="a 3D run: drive the cube phantom through Control3, watch, compare with Simulate")
+    d3.add_argument("--seconds", type=float, default=1.5, help="the insertion's duration")
+    d3.add_argument("--log", help="write every control response (the applied pose and the forces) as CSV")
+    d3.add_argument("--out", help="record the session and download the MCAP file here")
     h = sub.add_parser("health", help="grpc.health.v1 status of a service ('' = the server)")
     h.add_argument("service", nargs="?", default="")
     sub.add_parser("services", help="the services listed by server reflection")
@@ -533,6 +872,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     with NeedlesimClient(args.address, root_cert=args.root_cert) as client:
         if args.command == "demo":
             return demo(client)
+        if args.command == "demo3d":
+            return demo3d(client, args.seconds, args.log, args.out)
         if args.command == "health":
             print(client.health(args.service))
             return 0

@@ -10,8 +10,8 @@ use prost::Message as _;
 use tokio_stream::StreamExt;
 
 use crate::rpc::{Conn, Role};
-use crate::traj::Trajectory;
-use crate::view::{LiveView, plain_line};
+use crate::traj::{AnyTrajectory, header_of};
+use crate::view::{LiveView, contact_counts3, plain_line, pose3_parts, xyz};
 use crate::{Cli, Command, CreateArgs, DriveArgs, Format, RecordArgs, ReplayArgs, SceneArgs, SessionsCmd, SimulateArgs, WatchArgs};
 
 pub async fn run(cli: Cli) -> Result<()> {
@@ -21,18 +21,31 @@ pub async fn run(cli: Cli) -> Result<()> {
     }
     // Local files are checked before the server is contacted.
     let scene = match &cli.command {
-        Command::Sessions(SessionsCmd::Create(a)) => Some(scene_source(&a.scene)?),
-        Command::Simulate(a) => Some(scene_source(&a.scene)?),
+        Command::Sessions(SessionsCmd::Create(a)) => Some(scene_source(&a.scene, a.mesh.as_deref())?),
+        Command::Simulate(a) => Some(scene_source(&a.scene, a.mesh.as_deref())?),
         _ => None,
     };
     let traj = match &cli.command {
-        Command::Drive(a) => Some(Trajectory::read(&a.trajectory)?),
-        Command::Simulate(SimulateArgs { trajectory: Some(p), .. }) => Some(Trajectory::read(p)?),
+        Command::Drive(a) => Some(AnyTrajectory::read(&a.trajectory)?),
+        Command::Simulate(SimulateArgs { trajectory: Some(p), .. }) => Some(AnyTrajectory::read(p)?),
         Command::Simulate(a) if a.scene.scene.is_some() => {
             bail!("--scene needs --trajectory TRAJ.csv (only the shipped examples have their own)")
         }
         _ => None,
     };
+    // A trajectory of the wrong dimension for the scene, when the scene's is known here.
+    if let (Command::Simulate(a), Some(t), Some((_, what))) = (&cli.command, &traj, &scene)
+        && let Some(dim) = scene_dimension(&a.scene, a.mesh.is_some())?
+        && dim != t.dimension()
+    {
+        let path = a.trajectory.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
+        bail!(
+            "--trajectory {path} is a {}D trajectory ({}) but {what} is a {dim}D scene: it needs {}",
+            t.dimension(),
+            header_of(t.dimension()),
+            header_of(dim)
+        );
+    }
     let conn = Conn::connect(&cli.server, cli.token.clone(), cli.tls_ca.as_deref()).await?;
     match (cli.command, scene, traj) {
         (Command::Sessions(SessionsCmd::List { json }), ..) => sessions_list(&conn, json).await,
@@ -65,13 +78,66 @@ fn session_client(c: &Conn) -> pb::session_service_client::SessionServiceClient<
     pb::session_service_client::SessionServiceClient::new(c.channel.clone())
 }
 
-fn scene_source(s: &SceneArgs) -> Result<(pb::SceneSource, String)> {
+/// The shipped 3D examples (the server's `EXAMPLES3D`); the others are 2D.
+const EXAMPLES3D: [&str; 3] = ["cube-phantom-3d", "brachy-3d", "fig3-target-3d"];
+/// The shipped 2D examples.
+const EXAMPLES2D: [&str; 4] = ["paper-phantom", "fig3-target", "fig4-steering", "bevel-tip"];
+
+/// The scene to send: an example, a TOML, or a 3D TOML with its Gmsh `mesh` (uploaded3d).
+fn scene_source(s: &SceneArgs, mesh: Option<&std::path::Path>) -> Result<(pb::SceneSource, String)> {
+    if let (Some(m), None) = (mesh, &s.scene) {
+        bail!("--mesh {} goes with --scene FILE.toml (the 3D scene whose [mesh] file names it), not --example", m.display());
+    }
     if let Some(name) = &s.example {
         return Ok((pb::SceneSource { source: Some(pb::scene_source::Source::Example(name.clone())) }, format!("example '{name}'")));
     }
     let Some(path) = &s.scene else { bail!("give --example NAME or --scene FILE.toml") };
     let text = std::fs::read_to_string(path).map_err(|e| anyhow!("cannot read the scene {}: {e}", path.display()))?;
-    Ok((pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(text)) }, format!("scene {}", path.display())))
+    let Some(mesh) = mesh else {
+        return Ok((pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(text)) }, format!("scene {}", path.display())));
+    };
+    if !toml_is_3d(&text) {
+        bail!("--mesh {} is for a 3D scene, but {} has no `dim = 3`", mesh.display(), path.display());
+    }
+    let mesh_text = std::fs::read_to_string(mesh).map_err(|e| anyhow!("cannot read the mesh {}: {e}", mesh.display()))?;
+    let name = mesh
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| anyhow!("--mesh {}: the path has no file name the scene could name", mesh.display()))?;
+    let upload = pb::UploadedScene3d { scene_toml: text, mesh_file_name: name.to_owned(), mesh_text };
+    Ok((
+        pb::SceneSource { source: Some(pb::scene_source::Source::Uploaded3d(upload)) },
+        format!("scene {} with mesh {}", path.display(), mesh.display()),
+    ))
+}
+
+/// Whether a scene TOML declares `dim = 3` (a top-level key line; the server decides for real).
+fn toml_is_3d(text: &str) -> bool {
+    text.lines()
+        .map(|l| l.split('#').next().unwrap_or_default().replace([' ', '\t'], ""))
+        .take_while(|l| !l.starts_with('['))
+        .any(|l| l == "dim=3")
+}
+
+/// The dimension of a scene when it can be told here (a shipped example, a TOML); None for an
+/// unknown example name (the server names the examples).
+fn scene_dimension(s: &SceneArgs, with_mesh: bool) -> Result<Option<u32>> {
+    if let Some(name) = &s.example {
+        return Ok(if EXAMPLES3D.contains(&name.as_str()) {
+            Some(3)
+        } else if EXAMPLES2D.contains(&name.as_str()) {
+            Some(2)
+        } else {
+            None
+        });
+    }
+    match &s.scene {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| anyhow!("cannot read the scene {}: {e}", p.display()))?;
+            Ok(Some(if with_mesh || toml_is_3d(&text) { 3 } else { 2 }))
+        }
+        None => Ok(None),
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -131,6 +197,8 @@ fn session_json(s: &pb::SessionInfo) -> serde_json::Value {
         "created_unix_ms": s.created_unix_ms,
         "device_channel_path": s.device_channel_path,
         "device_stale": s.device_stale,
+        "dimension": s.dimension.max(2),
+        "n_tetrahedra": s.n_tetrahedra,
     })
 }
 
@@ -154,7 +222,14 @@ async fn sessions_create(c: &Conn, a: &CreateArgs, (scene, what): (pb::SceneSour
         return out_line(&serde_json::to_string_pretty(&v)?);
     }
     out_line(&format!("session           {}", s.session_id))?;
-    out_line(&format!("scene             {} ({} nodes, {} triangles, {} Hz)", s.scene_name, s.n_nodes, s.n_triangles, s.tick_rate_hz))?;
+    if s.dimension == 3 {
+        out_line(&format!(
+            "scene             {} (3D: {} nodes, {} tetrahedra, {} Hz)",
+            s.scene_name, s.n_nodes, s.n_tetrahedra, s.tick_rate_hz
+        ))?;
+    } else {
+        out_line(&format!("scene             {} ({} nodes, {} triangles, {} Hz)", s.scene_name, s.n_nodes, s.n_triangles, s.tick_rate_hz))?;
+    }
     out_line(&format!("controller token  {}", r.controller_token))?;
     out_line(&format!("observer token    {}", r.observer_token))?;
     if !s.recording.is_empty() {
@@ -441,7 +516,84 @@ fn row_json(r: &pb::SeriesRow) -> serde_json::Value {
     serde_json::Value::Object(m)
 }
 
-async fn simulate(c: &Conn, a: &SimulateArgs, (scene, what): (pb::SceneSource, String), traj: Option<Trajectory>) -> Result<()> {
+/// The columns of a 3D time series: those of `needlesim-server simulate` for a 3D scene.
+fn csv_header3(target_names: &[String]) -> String {
+    let mut h = String::from(
+        "tick,t_s,x_m,y_m,z_m,qw,qx,qy,qz,fx_n,fy_n,fz_n,torque_x_nm,torque_y_nm,torque_z_nm,f_axial_n,tip_x_m,tip_y_m,tip_z_m,inserted_m,n_points,n_stuck,n_slipping,n_tip",
+    );
+    for n in target_names {
+        let _ = write!(h, ",target_{n}_distance_m,target_{n}_x_m,target_{n}_y_m,target_{n}_z_m,target_{n}_hit");
+    }
+    h
+}
+
+/// The values of a 3D row in [`csv_header3`]'s order (`tick` first; the counts and hits as
+/// numbers).
+fn row3_values(tick: u64, r: &pb::SeriesRow, d: &pb::Tick3) -> Vec<(String, f64)> {
+    let (p, q) = pose3_parts(d.base.as_ref());
+    let (f, m, t) = (xyz(d.force_n.as_ref()), xyz(d.torque_nm.as_ref()), xyz(d.tip_m.as_ref()));
+    let mut v: Vec<(String, f64)> = [
+        ("tick", tick as f64),
+        ("t_s", r.t_s),
+        ("x_m", p[0]),
+        ("y_m", p[1]),
+        ("z_m", p[2]),
+        ("qw", q[0]),
+        ("qx", q[1]),
+        ("qy", q[2]),
+        ("qz", q[3]),
+        ("fx_n", f[0]),
+        ("fy_n", f[1]),
+        ("fz_n", f[2]),
+        ("torque_x_nm", m[0]),
+        ("torque_y_nm", m[1]),
+        ("torque_z_nm", m[2]),
+        ("f_axial_n", d.axial_force_n),
+        ("tip_x_m", t[0]),
+        ("tip_y_m", t[1]),
+        ("tip_z_m", t[2]),
+        ("inserted_m", r.inserted_length_m),
+        ("n_points", f64::from(r.n_stuck + r.n_slipping + r.n_tip)),
+        ("n_stuck", f64::from(r.n_stuck)),
+        ("n_slipping", f64::from(r.n_slipping)),
+        ("n_tip", f64::from(r.n_tip)),
+    ]
+    .into_iter()
+    .map(|(k, x)| (k.to_owned(), x))
+    .collect();
+    for tg in &d.targets {
+        let c = xyz(tg.center_m.as_ref());
+        let n = &tg.name;
+        v.push((format!("target_{n}_distance_m"), tg.distance_m));
+        v.push((format!("target_{n}_x_m"), c[0]));
+        v.push((format!("target_{n}_y_m"), c[1]));
+        v.push((format!("target_{n}_z_m"), c[2]));
+        v.push((format!("target_{n}_hit"), f64::from(u8::from(tg.hit))));
+    }
+    v
+}
+
+/// A 3D CSV row (as `needlesim-server simulate` writes it: forces and torques in `{:e}`, the
+/// rest shortest round-trip, counts as integers).
+fn csv_row3(tick: u64, r: &pb::SeriesRow, d: &pb::Tick3) -> String {
+    let vals = row3_values(tick, r, d);
+    let mut s = String::new();
+    for (k, (name, x)) in vals.iter().enumerate() {
+        if k > 0 {
+            s.push(',');
+        }
+        let _ = match name.as_str() {
+            "tick" | "n_points" | "n_stuck" | "n_slipping" | "n_tip" => write!(s, "{}", *x as u64),
+            n if n.ends_with("_hit") => write!(s, "{}", *x as u64),
+            "t_s" => write!(s, "{x:.6}"),
+            n if n.starts_with('f') || n.starts_with("torque") || n.ends_with("_distance_m") => write!(s, "{x:e}"),
+            _ => write!(s, "{x}"),
+        };
+    }
+    s
+}
+
+async fn simulate(c: &Conn, a: &SimulateArgs, (scene, what): (pb::SceneSource, String), traj: Option<AnyTrajectory>) -> Result<()> {
     let trajectory = traj.map(|t| t.to_pb()).unwrap_or_default();
     let mut sim = pb::simulation_service_client::SimulationServiceClient::new(c.channel.clone());
     let what = format!("simulating {what}");
@@ -481,9 +633,58 @@ async fn simulate(c: &Conn, a: &SimulateArgs, (scene, what): (pb::SceneSource, S
     let mut r = result.ok_or_else(|| anyhow!("{what}: the server ended the stream without a result"))?;
     rows.append(&mut r.rows);
     r.rows = rows;
-    let names: Vec<String> = r.rows.first().map(|row| row.targets.iter().map(|t| t.name.clone()).collect()).unwrap_or_default();
+    let is_3d = r.rows.first().is_some_and(|row| row.d3.is_some());
+    let names: Vec<String> = match r.rows.first() {
+        Some(pb::SeriesRow { d3: Some(d), .. }) => d.targets.iter().map(|t| t.name.clone()).collect(),
+        Some(row) => row.targets.iter().map(|t| t.name.clone()).collect(),
+        None => vec![],
+    };
+    // The tick of each row: every `decimate`-th, and the last.
+    let d = u64::from(a.decimate.max(1));
+    let n_rows = r.rows.len();
+    let tick_of = |j: usize| if j + 1 == n_rows { r.ticks.saturating_sub(1) } else { j as u64 * d };
     let mut text = String::new();
     match a.format {
+        Format::Csv if is_3d => {
+            text.push_str(&csv_header3(&names));
+            text.push('\n');
+            for (j, row) in r.rows.iter().enumerate() {
+                text.push_str(&csv_row3(tick_of(j), row, row.d3.as_ref().unwrap_or(&pb::Tick3::default())));
+                text.push('\n');
+            }
+        }
+        Format::Json if is_3d => {
+            let rows: Vec<serde_json::Value> = r
+                .rows
+                .iter()
+                .enumerate()
+                .map(|(j, row)| {
+                    let vals = row3_values(tick_of(j), row, row.d3.as_ref().unwrap_or(&pb::Tick3::default()));
+                    serde_json::Value::Object(
+                        vals.into_iter()
+                            .map(|(k, x)| {
+                                // Counts, ticks and hits as integers, as in the CSV.
+                                let count = k == "tick" || k.starts_with("n_") || k.ends_with("_hit");
+                                let v = if count { serde_json::json!(x as u64) } else { serde_json::json!(x) };
+                                (k, v)
+                            })
+                            .collect(),
+                    )
+                })
+                .collect();
+            let v = serde_json::json!({
+                "dimension": 3,
+                "ticks": r.ticks,
+                "wall_s": r.wall_s,
+                "step_p50_us": r.step_p50_us,
+                "step_p99_us": r.step_p99_us,
+                "decimate": d,
+                "targets": names,
+                "rows": rows,
+            });
+            text = serde_json::to_string(&v)?;
+            text.push('\n');
+        }
         Format::Csv => {
             text.push_str(&csv_header(&names));
             text.push('\n');
@@ -533,54 +734,158 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
     sorted[i.min(sorted.len() - 1)]
 }
 
-async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
+/// Sends a pose every millisecond until the trajectory's span has played, its end pose last (or
+/// forever with `repeat`, or until Ctrl-C): `make(t_s, seq)` builds the message for trajectory
+/// time `t_s`.
+/// Returns the last seq sent and whether Ctrl-C ended it.
+async fn send_poses<R: Send + 'static>(
+    tx: tokio::sync::mpsc::Sender<R>,
+    (t0, span): (f64, f64),
+    repeat: bool,
+    make: impl Fn(f64, u64) -> R + Send + 'static,
+) -> (u64, bool) {
+    let mut interval = tokio::time::interval(Duration::from_millis(1));
+    interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let start = Instant::now();
+    let mut seq = 1u64;
+    let ctrl_c = tokio::signal::ctrl_c();
+    tokio::pin!(ctrl_c);
+    loop {
+        tokio::select! {
+            _ = interval.tick() => {}
+            _ = &mut ctrl_c => return (seq, true),
+        }
+        let el = start.elapsed().as_secs_f64();
+        let (t, last) = if repeat && span > 0.0 {
+            (t0 + el % span, false)
+        } else if el >= span {
+            // The trajectory's end pose, exactly, last.
+            (t0 + span, true)
+        } else {
+            (t0 + el, false)
+        };
+        seq += 1;
+        if tx.send(make(t, seq)).await.is_err() || last {
+            return (seq, false);
+        }
+    }
+}
+
+/// The header of `drive --log` for a session of `dimension`.
+fn log_header(dimension: u32) -> &'static str {
+    if dimension == 3 {
+        "tick,t_s,x_m,y_m,z_m,qw,qx,qy,qz,fx_n,fy_n,fz_n,torque_x_nm,torque_y_nm,torque_z_nm,f_axial_n,inserted_m,n_points,n_stuck,n_slipping,n_tip,pose_seq"
+    } else {
+        "tick,t_s,x_m,y_m,theta_rad,fx_n,fy_n,torque_nm,f_axial_n,f_lateral_n,inserted_m,n_stuck,n_slipping,n_tip,pose_seq"
+    }
+}
+
+/// A `drive --log` row: the pose the tick applied and what it answered, every value shortest
+/// round-trip (exact).
+fn log_row(r: &pb::ControlResponse) -> String {
+    if let Some(d) = &r.d3 {
+        let (p, q) = pose3_parts(d.base.as_ref());
+        let (f, m) = (xyz(d.force_n.as_ref()), xyz(d.torque_nm.as_ref()));
+        let (stuck, slipping, tip) = contact_counts3(d);
+        return format!(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{stuck},{slipping},{tip},{}",
+            r.tick,
+            r.time_s,
+            p[0],
+            p[1],
+            p[2],
+            q[0],
+            q[1],
+            q[2],
+            q[3],
+            f[0],
+            f[1],
+            f[2],
+            m[0],
+            m[1],
+            m[2],
+            d.axial_force_n,
+            r.inserted_length_m,
+            d.contacts.len(),
+            r.pose_seq
+        );
+    }
+    let b = r.base.unwrap_or_default();
+    let f = r.force_n.unwrap_or_default();
+    format!(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+        r.tick,
+        r.time_s,
+        b.x_m,
+        b.y_m,
+        b.theta_rad,
+        f.x,
+        f.y,
+        r.torque_nm,
+        r.force_axial_n,
+        r.force_lateral_n,
+        r.inserted_length_m,
+        r.n_stuck,
+        r.n_slipping,
+        r.n_tip,
+        r.pose_seq
+    )
+}
+
+async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
     check_id(&a.id)?;
-    let (t0, t1) = traj.span_s();
-    let span = t1 - t0;
     let id = a.id.clone();
     let what = format!("driving session {id}");
-    let epoch = Instant::now();
-    let now_ns = move || u64::try_from(epoch.elapsed().as_nanos()).unwrap_or(u64::MAX).max(1);
-    let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
-    tx.send(pb::ControlRequest {
-        session_id: id.clone(),
-        base: Some(traj.pose_at(t0)),
-        client_time_ns: now_ns(),
-        seq: 1,
-        flip_bevel: false,
-        take_over: a.take_over,
-    })
-    .await
-    .map_err(|_| anyhow!("{what}: the request stream closed"))?;
-    let mut ctl = pb::control_service_client::ControlServiceClient::new(c.channel.clone());
-    let mut responses = ctl
-        .control(c.request(tokio_stream::wrappers::ReceiverStream::new(rx))?)
+    // The session's dimension decides the stream (Control or Control3): a trajectory of the
+    // other dimension is refused before anything moves.
+    let info = session_client(c)
+        .get_session(c.request(pb::GetSessionRequest { session_id: id.clone() })?)
         .await
         .map_err(|s| c.status_error(&what, Role::Controller, Some(&id), &s))?
         .into_inner();
-    let repeat = a.repeat;
-    let sender = tokio::spawn(async move {
-        let mut interval = tokio::time::interval(Duration::from_millis(1));
-        interval.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
-        let start = Instant::now();
-        let mut seq = 1u64;
-        let ctrl_c = tokio::signal::ctrl_c();
-        tokio::pin!(ctrl_c);
-        loop {
-            tokio::select! {
-                _ = interval.tick() => {}
-                _ = &mut ctrl_c => return (seq, true),
-            }
-            let el = start.elapsed().as_secs_f64();
-            let t = if repeat && span > 0.0 {
-                t0 + el % span
-            } else if el > span {
-                return (seq, false);
-            } else {
-                t0 + el
-            };
-            seq += 1;
-            let m = pb::ControlRequest {
+    let dim = info.dimension.max(2);
+    if dim != traj.dimension() {
+        bail!(
+            "{what}: session {id} ({}) is {dim}D and takes a {dim}D trajectory ({}), but {} is {}D ({})",
+            info.scene_name,
+            header_of(dim),
+            a.trajectory.display(),
+            traj.dimension(),
+            header_of(traj.dimension())
+        );
+    }
+    let mut log = match &a.log {
+        Some(p) => {
+            let mut f = std::io::BufWriter::new(std::fs::File::create(p).map_err(|e| anyhow!("cannot create {}: {e}", p.display()))?);
+            writeln!(f, "{}", log_header(dim)).map_err(|e| anyhow!("cannot write {}: {e}", p.display()))?;
+            Some((f, p.clone()))
+        }
+        None => None,
+    };
+    let epoch = Instant::now();
+    let now_ns = move || u64::try_from(epoch.elapsed().as_nanos()).unwrap_or(u64::MAX).max(1);
+    let mut ctl = pb::control_service_client::ControlServiceClient::new(c.channel.clone());
+    let (repeat, take_over) = (a.repeat, a.take_over);
+    let (mut responses, keep_open, sender) = match traj {
+        AnyTrajectory::Two(traj) => {
+            let (t0, t1) = traj.span_s();
+            let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
+            tx.send(pb::ControlRequest {
+                session_id: id.clone(),
+                base: Some(traj.pose_at(t0)),
+                client_time_ns: now_ns(),
+                seq: 1,
+                flip_bevel: false,
+                take_over,
+            })
+            .await
+            .map_err(|_| anyhow!("{what}: the request stream closed"))?;
+            let responses = ctl
+                .control(c.request(tokio_stream::wrappers::ReceiverStream::new(rx))?)
+                .await
+                .map_err(|s| c.status_error(&what, Role::Controller, Some(&id), &s))?
+                .into_inner();
+            let make = move |t: f64, seq: u64| pb::ControlRequest {
                 session_id: String::new(),
                 base: Some(traj.pose_at(t)),
                 client_time_ns: now_ns(),
@@ -588,40 +893,95 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
                 flip_bevel: false,
                 take_over: false,
             };
-            if tx.send(m).await.is_err() {
-                return (seq, false);
-            }
+            // The request side stays open until the last pose is answered (closing it ends the
+            // response stream).
+            let keep_open: Box<dyn std::any::Any + Send> = Box::new(tx.clone());
+            (responses, keep_open, tokio::spawn(send_poses(tx, (t0, t1 - t0), repeat, make)))
         }
-    });
+        AnyTrajectory::Three(traj) => {
+            let (t0, t1) = traj.span_s();
+            let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest3>(64);
+            tx.send(pb::ControlRequest3 {
+                session_id: id.clone(),
+                base3: Some(traj.pose_at(t0)),
+                client_time_ns: now_ns(),
+                seq: 1,
+                take_over,
+            })
+            .await
+            .map_err(|_| anyhow!("{what}: the request stream closed"))?;
+            let responses = ctl
+                .control3(c.request(tokio_stream::wrappers::ReceiverStream::new(rx))?)
+                .await
+                .map_err(|s| c.status_error(&what, Role::Controller, Some(&id), &s))?
+                .into_inner();
+            let make = move |t: f64, seq: u64| pb::ControlRequest3 {
+                session_id: String::new(),
+                base3: Some(traj.pose_at(t)),
+                client_time_ns: now_ns(),
+                seq,
+                take_over: false,
+            };
+            // The request side stays open until the last pose is answered (closing it ends the
+            // response stream).
+            let keep_open: Box<dyn std::any::Any + Send> = Box::new(tx.clone());
+            (responses, keep_open, tokio::spawn(send_poses(tx, (t0, t1 - t0), repeat, make)))
+        }
+    };
     tokio::pin!(sender);
     let mut n_resp = 0u64;
     let mut last: Option<pb::ControlResponse> = None;
     let mut last_seq = 0u64;
     let mut latencies_ms: Vec<f64> = Vec::new();
-    let mut on_response = |r: pb::ControlResponse| {
+    let mut log_error: Option<std::io::Error> = None;
+    // Returns the seq of the newest pose the response's tick used.
+    let mut on_response = |r: pb::ControlResponse| -> u64 {
         n_resp += 1;
         if r.pose_seq != last_seq && r.client_time_ns > 0 {
             last_seq = r.pose_seq;
             latencies_ms.push(now_ns().saturating_sub(r.client_time_ns) as f64 * 1e-6);
         }
+        if let Some((f, _)) = log.as_mut()
+            && log_error.is_none()
+            && let Err(e) = writeln!(f, "{}", log_row(&r))
+        {
+            log_error = Some(e);
+        }
+        let used = r.pose_seq;
         last = Some(r);
+        used
     };
+    let mut used = 0u64;
     let (sent, interrupted) = loop {
         tokio::select! {
             done = &mut sender => break done.map_err(|e| anyhow!("{what}: the sender task failed: {e}"))?,
             r = responses.next() => match r {
-                Some(Ok(r)) => on_response(r),
+                Some(Ok(r)) => used = used.max(on_response(r)),
                 Some(Err(s)) => return Err(c.status_error(&what, Role::Controller, Some(&id), &s)),
                 None => bail!("{what}: the server ended the control stream (session closed?)"),
             },
         }
     };
-    // The responses to the last poses: a short grace period.
+    // The responses to the last poses: until a tick has used the last pose (at most 2 s: the
+    // session holds it anyway), then a short grace period.
+    let until_used = tokio::time::Instant::now() + Duration::from_secs(2);
+    while used < sent
+        && let Ok(Some(Ok(r))) = tokio::time::timeout_at(until_used, responses.next()).await
+    {
+        used = used.max(on_response(r));
+    }
+    drop(keep_open);
     let grace = tokio::time::Instant::now() + Duration::from_millis(50);
     while let Ok(Some(Ok(r))) = tokio::time::timeout_at(grace, responses.next()).await {
         on_response(r);
     }
     drop(responses);
+    if let Some((mut f, p)) = log {
+        if let Some(e) = log_error {
+            bail!("cannot write {}: {e}", p.display());
+        }
+        f.flush().map_err(|e| anyhow!("cannot write {}: {e}", p.display()))?;
+    }
     latencies_ms.sort_by(f64::total_cmp);
     if interrupted {
         eprintln!("interrupted");
@@ -631,10 +991,21 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
     if let Some(r) = &last {
         out_line(&format!("final tick     {} (t {:.3} s)", r.tick, r.time_s))?;
         out_line(&format!("final depth    {:.3} mm", r.inserted_length_m * 1e3))?;
-        out_line(&format!(
-            "final force    axial {:.5} N, lateral {:.5} N, torque {:.3e} N·m",
-            r.force_axial_n, r.force_lateral_n, r.torque_nm
-        ))?;
+        match &r.d3 {
+            Some(d) => {
+                let (f, m) = (xyz(d.force_n.as_ref()), xyz(d.torque_nm.as_ref()));
+                let (stuck, slipping, tip) = contact_counts3(d);
+                let t = xyz(d.tip_m.as_ref());
+                out_line(&format!("final tip      ({:.3}, {:.3}, {:.3}) mm", t[0] * 1e3, t[1] * 1e3, t[2] * 1e3))?;
+                out_line(&format!("final force    ({:.5}, {:.5}, {:.5}) N, axial {:.5} N", f[0], f[1], f[2], d.axial_force_n))?;
+                out_line(&format!("final torque   ({:.3e}, {:.3e}, {:.3e}) N·m", m[0], m[1], m[2]))?;
+                out_line(&format!("final contacts {} (stuck {stuck}, slipping {slipping}, tip {tip})", d.contacts.len()))?;
+            }
+            None => out_line(&format!(
+                "final force    axial {:.5} N, lateral {:.5} N, torque {:.3e} N·m",
+                r.force_axial_n, r.force_lateral_n, r.torque_nm
+            ))?,
+        }
     }
     if latencies_ms.is_empty() {
         out_line("latency        (no echoes)")?;
@@ -645,6 +1016,9 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: Trajectory) -> Result<()> {
             percentile(&latencies_ms, 0.99),
             latencies_ms.len()
         ))?;
+    }
+    if let Some(p) = &a.log {
+        out_line(&format!("log            {} ({n_resp} rows)", p.display()))?;
     }
     Ok(())
 }

@@ -76,10 +76,12 @@ pub enum SessionsCmd {
 #[derive(Debug, Args, Clone)]
 #[group(required = true, multiple = false)]
 pub struct SceneArgs {
-    /// A shipped example scene: paper-phantom, fig3-target, fig4-steering, bevel-tip.
+    /// A shipped example scene: paper-phantom, fig3-target, fig4-steering, bevel-tip; 3D:
+    /// cube-phantom-3d, brachy-3d, fig3-target-3d.
     #[arg(long, value_name = "NAME")]
     pub example: Option<String>,
-    /// A scene file in the TOML format of the README (it cannot reference mesh files).
+    /// A scene file in the TOML format of the README (2D, or 3D with `dim = 3`); it cannot
+    /// reference files other than a 3D scene's Gmsh mesh given with --mesh.
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
 }
@@ -88,6 +90,9 @@ pub struct SceneArgs {
 pub struct CreateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    /// The Gmsh tetrahedral mesh (.msh) a 3D scene TOML names in `[mesh] file`, uploaded with it.
+    #[arg(long, value_name = "FILE.msh")]
+    pub mesh: Option<PathBuf>,
     /// Tick rate, 500..1000 Hz (default: the scene's).
     #[arg(long, value_name = "HZ")]
     pub rate: Option<f64>,
@@ -154,7 +159,11 @@ pub enum Format {
 pub struct SimulateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// The base trajectory (t_s,x_m,y_m,theta_rad); default: the example's own.
+    /// The Gmsh tetrahedral mesh (.msh) a 3D scene TOML names in `[mesh] file`, uploaded with it.
+    #[arg(long, value_name = "FILE.msh")]
+    pub mesh: Option<PathBuf>,
+    /// The base trajectory (t_s,x_m,y_m,theta_rad; for a 3D scene t_s,x_m,y_m,z_m,qw,qx,qy,qz);
+    /// default: the example's own.
     #[arg(long, value_name = "TRAJ.csv")]
     pub trajectory: Option<PathBuf>,
     /// Keep one row every N ticks.
@@ -172,9 +181,13 @@ pub struct SimulateArgs {
 pub struct DriveArgs {
     /// The session id.
     pub id: String,
-    /// The base trajectory (t_s,x_m,y_m,theta_rad), played in real time at 1 kHz.
+    /// The base trajectory, played in real time at 1 kHz: t_s,x_m,y_m,theta_rad for a 2D
+    /// session, t_s,x_m,y_m,z_m,qw,qx,qy,qz (position, unit quaternion body → world) for a 3D one.
     #[arg(long, value_name = "TRAJ.csv")]
     pub trajectory: PathBuf,
+    /// Write every response (one per tick: the pose the tick applied, force, torque) as CSV.
+    #[arg(long, value_name = "FILE.csv")]
+    pub log: Option<PathBuf>,
     /// Repeat the trajectory until interrupted (Ctrl-C).
     #[arg(long = "loop")]
     pub repeat: bool,

@@ -239,7 +239,92 @@ pub fn series_row(o: &StepOutput, t0_s: f64, target_names: &[String]) -> pb::Ser
         n_slipping: o.n_slipping as u32,
         n_tip: o.n_tip as u32,
         targets: o.targets.iter().enumerate().map(|(i, t)| target_state(target_names, i, t.position_m, t.distance_m, t.hit)).collect(),
+        d3: None,
     }
+}
+
+/// A row of a 3D Simulate time series: `d3` with the tick's 3D state (no contacts, no
+/// stiffness: the counts say how many contacts), the 2D fields with its planar part (x, y, the
+/// twist about z, $2\,\mathrm{atan2}(q_z, q_w)$), as a 3D session's frames carry it.
+pub fn series_row3(o: &needlesim_core::sim3::StepOutput3, t_s: f64, target_names: &[String], radii_m: &[f64]) -> pb::SeriesRow {
+    use needlesim_core::sim3::{PointState3, TargetState3};
+    let q = o.pose.orientation.quaternion();
+    let wxyz = [q.w, q.i, q.j, q.k];
+    let count = |s: PointState3| o.contacts.iter().filter(|c| c.state == s).count() as u32;
+    let targets = o.targets.as_slice();
+    pb::SeriesRow {
+        t_s,
+        base: Some(pb::Pose2 { x_m: o.pose.position_m[0], y_m: o.pose.position_m[1], theta_rad: 2.0 * wxyz[3].atan2(wxyz[0]) }),
+        force_n: v2([o.base_force_n[0], o.base_force_n[1]]),
+        torque_nm: o.base_torque_nm[2],
+        force_axial_n: -o.axial_force_n,
+        force_lateral_n: 0.0,
+        tip_m: v2([o.tip_m[0], o.tip_m[1]]),
+        inserted_length_m: o.inserted_length_m,
+        n_stuck: count(PointState3::Stuck),
+        n_slipping: count(PointState3::Slipping),
+        n_tip: count(PointState3::Tip),
+        targets: vec![],
+        d3: Some(pb::Tick3 {
+            base: Some(pose3_to_pb(o.pose.position_m, wxyz)),
+            force_n: v3(o.base_force_n),
+            torque_nm: v3(o.base_torque_nm),
+            axial_force_n: o.axial_force_n,
+            tip_m: v3(o.tip_m),
+            needle_shape_m: vec![
+                pb::Vec3 { x: o.pose.position_m[0], y: o.pose.position_m[1], z: o.pose.position_m[2] },
+                pb::Vec3 { x: o.tip_m[0], y: o.tip_m[1], z: o.tip_m[2] },
+            ],
+            contacts: vec![],
+            targets: targets
+                .iter()
+                .map(|t| pb::TargetSphere {
+                    name: target_names.get(t.name_idx).cloned().unwrap_or_default(),
+                    center_m: v3(t.centre_m),
+                    radius_m: radii_m.get(t.name_idx).copied().unwrap_or(0.0),
+                    distance_m: t.distance_m,
+                    hit: t.state == TargetState3::Hit,
+                    missed: t.state == TargetState3::Missed,
+                })
+                .collect(),
+            stiffness: vec![],
+        }),
+    }
+}
+
+/// A 3D trajectory from samples: every sample's `base3` present, finite and a unit quaternion,
+/// times increasing (errors name the sample).
+pub fn trajectory3_from_pb(samples: &[pb::TrajectorySample]) -> Result<needlesim_scene::Trajectory3> {
+    let mut out: Vec<(f64, needlesim_scene::Pose3)> = Vec::with_capacity(samples.len());
+    for (i, s) in samples.iter().enumerate() {
+        let field = format!("trajectory[{i}].base3");
+        if s.base3.is_none() {
+            bail!("{field} is missing: a 3D scene needs 3D poses (base3: position_m, orientation) in every sample");
+        }
+        let p = checked_pose3_from_pb(s.base3.as_ref(), &field).map_err(|e| match e {
+            ApiError::InvalidArgument { message, .. } => anyhow::anyhow!(message),
+            other => anyhow::anyhow!("{field}: {other:?}"),
+        })?;
+        if !s.t_s.is_finite() {
+            bail!("trajectory[{i}].t_s = {} is not a finite number", s.t_s);
+        }
+        if let Some((t_prev, _)) = out.last() {
+            let gap_s = s.t_s - *t_prev;
+            if !(gap_s.is_finite() && gap_s >= needlesim_trajectory::MIN_SAMPLE_GAP_S) {
+                bail!(
+                    "trajectory[{i}].t_s = {} does not increase by at least {:e} s (previous {t_prev})",
+                    s.t_s,
+                    needlesim_trajectory::MIN_SAMPLE_GAP_S
+                );
+            }
+        }
+        let q = p.orientation.quaternion();
+        out.push((s.t_s, needlesim_scene::Pose3::new(p.position_m, [q.w, q.i, q.j, q.k])));
+    }
+    if out.is_empty() {
+        bail!("trajectory is empty");
+    }
+    Ok(needlesim_scene::Trajectory3 { samples: out })
 }
 
 /// What a session is, for listings.
@@ -399,7 +484,7 @@ pub fn plan_result_to_pb(p: &Plan) -> pb::PlanResult {
         trajectory: p
             .trajectory
             .iter()
-            .map(|&[t, x, y, th]| pb::TrajectorySample { t_s: t, base: Some(pb::Pose2 { x_m: x, y_m: y, theta_rad: th }) })
+            .map(|&[t, x, y, th]| pb::TrajectorySample { t_s: t, base: Some(pb::Pose2 { x_m: x, y_m: y, theta_rad: th }), base3: None })
             .collect(),
         converged: p.converged,
         iterations: p.iterations as u32,

@@ -27,7 +27,7 @@ fn toml(text: String) -> Option<pb::SceneSource> {
 
 /// The paper phantom's needle, inserted 40 mm over the first second, then held until `end_s`.
 fn insertion(end_s: f64) -> Vec<pb::TrajectorySample> {
-    let at = |t_s: f64, y_m: f64| pb::TrajectorySample { t_s, base: Some(pb::Pose2 { x_m: 0.05, y_m, theta_rad: DOWN }) };
+    let at = |t_s: f64, y_m: f64| pb::TrajectorySample { t_s, base: Some(pb::Pose2 { x_m: 0.05, y_m, theta_rad: DOWN }), base3: None };
     vec![at(0.0, 0.205), at(1.0, 0.165), at(end_s, 0.165)]
 }
 

@@ -34,8 +34,43 @@ impl pb::simulation_service_server::SimulationService for Api {
         let limits = self.state.limits.clone();
         let (tx, rx) = mpsc::channel(16);
         // Parse and validate before answering, so that errors are statuses, not stream items.
-        let (scene, traj) = tokio::task::spawn_blocking(move || -> Result<_, Status> {
-            let scene = convert::scene_from_pb(r.scene.as_ref(), &limits.scene()).map_err(|e| status_of("scene", &e))?;
+        let job = tokio::task::spawn_blocking(move || -> Result<_, Status> {
+            let scene = convert::session_scene_from_pb(r.scene.as_ref(), &limits.scene()).map_err(|e| status_of("scene", &e))?;
+            let too_long = |span_s: f64, rate_hz: f64| -> Result<(), Status> {
+                let ticks = (span_s * rate_hz).round() as u64;
+                if ticks > limits.max_simulate_ticks {
+                    return Err(ApiError::from(SizeLimit {
+                        what: format!("the trajectory ({span_s:.3} s at {rate_hz} Hz)"),
+                        amount: ticks,
+                        limit: limits.max_simulate_ticks,
+                        unit: "ticks",
+                        hint: " (server flag --max-simulate-ticks)".to_owned(),
+                    })
+                    .into());
+                }
+                Ok(())
+            };
+            let scene = match scene {
+                convert::SessionScene::Two(scene) => scene,
+                convert::SessionScene::Three(scene) => {
+                    let traj = if r.trajectory.is_empty() {
+                        scene.trajectory.clone().ok_or_else(|| {
+                            Status::invalid_argument("trajectory is empty and the 3D scene names no trajectory of its own")
+                        })?
+                    } else {
+                        convert::trajectory3_from_pb(&r.trajectory).map_err(|e| status_of("trajectory", &e))?
+                    };
+                    too_long(traj.duration_s(), scene.tick_rate_hz)?;
+                    return Ok(Job::Three(scene, traj));
+                }
+            };
+            if let Some(i) = r.trajectory.iter().position(|s| s.base3.is_some()) {
+                return Err(ApiError::invalid(
+                    format!("trajectory[{i}].base3"),
+                    format!("trajectory[{i}].base3: the scene is 2D: its samples take base (x_m, y_m, theta_rad), not base3"),
+                )
+                .into());
+            }
             let traj = if r.trajectory.is_empty() {
                 let text = scene
                     .example_trajectory
@@ -45,18 +80,8 @@ impl pb::simulation_service_server::SimulationService for Api {
                 convert::trajectory_from_pb(&r.trajectory).map_err(|e| status_of("trajectory", &e))?
             };
             let (t0, t1) = traj.span_s();
-            let ticks = ((t1 - t0) * scene.params.tick_rate_hz).round() as u64;
-            if ticks > limits.max_simulate_ticks {
-                return Err(ApiError::from(SizeLimit {
-                    what: format!("the trajectory ({:.3} s at {} Hz)", t1 - t0, scene.params.tick_rate_hz),
-                    amount: ticks,
-                    limit: limits.max_simulate_ticks,
-                    unit: "ticks",
-                    hint: " (server flag --max-simulate-ticks)".to_owned(),
-                })
-                .into());
-            }
-            Ok((scene, traj))
+            too_long(t1 - t0, scene.params.tick_rate_hz)?;
+            Ok(Job::Two(scene, traj))
         })
         .await
         .map_err(|e| Status::internal(format!("simulate task: {e}")))??;
@@ -65,12 +90,22 @@ impl pb::simulation_service_server::SimulationService for Api {
         // A worker thread of the blocking pool: never a session's real-time thread.
         tokio::task::spawn_blocking(move || {
             let _permit = permit;
-            if let Err(e) = run_offline(&scene, &traj, limits_ticks, decimate, &tx) {
-                let _ = tx.blocking_send(Err(ApiError::from(&e).into()));
+            let result = match &job {
+                Job::Two(scene, traj) => run_offline(scene, traj, limits_ticks, decimate, &tx).map_err(|e| ApiError::from(&e)),
+                Job::Three(scene, traj) => run_offline3(scene, traj, decimate, &tx),
+            };
+            if let Err(e) = result {
+                let _ = tx.blocking_send(Err(e.into()));
             }
         });
         Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
     }
+}
+
+/// What a Simulate call runs: a 2D scene and trajectory, or a 3D one.
+enum Job {
+    Two(Box<needlesim_scene::Scene>, needlesim_scene::Trajectory),
+    Three(Box<needlesim_scene::Scene3d>, needlesim_scene::Trajectory3),
 }
 
 /// Rows of the time series per `SeriesChunk` message (about 200 bytes each without targets).
@@ -125,5 +160,63 @@ fn run_offline(
     sim.displacement_field_into(&mut u);
     let step_us = [step_ns.value_at_quantile(0.5) as f64 * 1e-3, step_ns.value_at_quantile(0.99) as f64 * 1e-3];
     send(convert::simulate_result(sim.stats().ticks, started.elapsed().as_secs_f64(), step_us, u));
+    Ok(())
+}
+
+/// The 3D counterpart of [`run_offline`]: tick $k = 0, \dots, K$ steps the trajectory's pose at
+/// $t_0 + k / f_{tick}$, $K = \mathrm{round}((t_{end} - t_0) f_{tick})$, through the 3D step
+/// function with the columns ahead of the tip computed between steps — the loop of
+/// `needlesim-server simulate` for a 3D scene (`needlesim_offline::simulate3::run3`), so both give
+/// the same rows. Streams as [`run_offline`] does (rows with `d3`); the result carries no
+/// displacement field. Ends early, without error, when the client goes away.
+fn run_offline3(
+    scene: &needlesim_scene::Scene3d,
+    traj: &needlesim_scene::Trajectory3,
+    decimate: u64,
+    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
+) -> Result<(), ApiError> {
+    use needlesim_offline::simulate3::{base_pose3, sim3_params};
+    let send = |response: pb::SimulateResponse| tx.blocking_send(Ok(response)).is_ok();
+    let started = std::time::Instant::now();
+    let rate_hz = scene.tick_rate_hz;
+    let (t0, t1) = traj.span_s();
+    let n_ticks = ((t1 - t0) * rate_hz).round() as u64;
+    let initial = base_pose3(&traj.samples[0].1).map_err(|e| ApiError::invalid("trajectory", format!("trajectory[0].base3: {e}")))?;
+    let model = std::sync::Arc::new(scene.tissue_model().map_err(|e| ApiError::Internal(format!("the 3D tissue: {e:#}")))?);
+    let mut sim = needlesim_core::sim3::Simulation3::new(model, sim3_params(scene, initial)).map_err(|e| ApiError::from(&e))?;
+    let names: Vec<String> = scene.targets.iter().map(|t| t.name.clone()).collect();
+    let radii_m: Vec<f64> = scene.targets.iter().map(|t| t.radius_m).collect();
+    let mut chunk = Vec::with_capacity(SERIES_CHUNK_ROWS);
+    let mut step_ns = hdrhistogram::Histogram::<u64>::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds");
+    let progress_every = (n_ticks / 20).max(1);
+    let at_tick = |k: u64, t_s: f64, e: ApiError| match e {
+        ApiError::Internal(m) => ApiError::Internal(format!("tick {k} (t = {t_s} s): {m}")),
+        other => other,
+    };
+    for k in 0..=n_ticks {
+        if tx.is_closed() {
+            return Ok(());
+        }
+        let t_s = t0 + k as f64 / rate_hz;
+        let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| ApiError::invalid("trajectory", format!("the pose at t = {t_s} s: {e}")))?;
+        let s = std::time::Instant::now();
+        sim.step(pose).map_err(|e| at_tick(k, t_s, ApiError::from(&e)))?;
+        step_ns.saturating_record((s.elapsed().as_nanos() as u64).max(1));
+        sim.prefetch_columns(usize::MAX).map_err(|e| at_tick(k, t_s, ApiError::from(&e)))?;
+        if k % decimate == 0 || k == n_ticks {
+            chunk.push(convert::series_row3(sim.output(), t_s, &names, &radii_m));
+            if chunk.len() == SERIES_CHUNK_ROWS && !send(convert::series_chunk(std::mem::take(&mut chunk))) {
+                return Ok(());
+            }
+        }
+        if k % progress_every == 0 && !send(convert::simulate_progress(k, n_ticks)) {
+            return Ok(());
+        }
+    }
+    if !chunk.is_empty() && !send(convert::series_chunk(chunk)) {
+        return Ok(());
+    }
+    let step_us = [step_ns.value_at_quantile(0.5) as f64 * 1e-3, step_ns.value_at_quantile(0.99) as f64 * 1e-3];
+    send(convert::simulate_result(n_ticks + 1, started.elapsed().as_secs_f64(), step_us, vec![]));
     Ok(())
 }
