@@ -329,7 +329,10 @@ fn validate(scene: &Scene3d, req: &Plan3Request) -> Result<Problem3> {
         (Some(e), _) => e,
         (None, Some(d)) => d.entry_m,
         (None, None) => {
-            return Err(input("entry", format!("entry: scene '{}' has no 3D planning example, so the entry point must be given", scene.name)));
+            return Err(input(
+                "entry",
+                format!("entry: scene '{}' has no 3D planning example, so the entry point must be given", scene.name),
+            ));
         }
     };
     if !entry.iter().all(|v| v.is_finite()) {
@@ -343,10 +346,7 @@ fn validate(scene: &Scene3d, req: &Plan3Request) -> Result<Problem3> {
     let Some(face) = face.filter(|_| inside) else {
         return Err(input(
             "entry",
-            format!(
-                "entry: ({}, {}, {}) is not on a face of the mesh's bounding box ({:?}–{:?})",
-                entry[0], entry[1], entry[2], lo, hi
-            ),
+            format!("entry: ({}, {}, {}) is not on a face of the mesh's bounding box ({:?}–{:?})", entry[0], entry[1], entry[2], lo, hi),
         ));
     };
     let entry_radius = req.entry_radius_m.or(defaults.as_ref().map(|d| d.entry_radius_m)).unwrap_or(0.0);
@@ -369,7 +369,10 @@ fn validate(scene: &Scene3d, req: &Plan3Request) -> Result<Problem3> {
             ));
         };
         let Some((c, rad)) = r.sphere_m else {
-            return Err(input("avoid", format!("avoid: region '{name}' is not given by a sphere (structures to spare are sphere regions)")));
+            return Err(input(
+                "avoid",
+                format!("avoid: region '{name}' is not given by a sphere (structures to spare are sphere regions)"),
+            ));
         };
         structures.push(Structure3 { name: name.clone(), center_m: c, radius_m: rad });
     }
@@ -717,7 +720,7 @@ pub fn plan3(
             straight_error_m: straight_error,
         })
     };
-    let (entry, rolls) = if p.bevel { (p.entry, bevel_schedule(&p, d0)) } else { (choose_entry(&p), Vec::new()) };
+    let (entry, rolls) = if p.bevel { (p.entry, bevel_schedule(&p, d0, opts.start_outside_m)) } else { (choose_entry(&p), Vec::new()) };
     // The aim search's unknowns are across the straight line from its entry.
     let ctx = Ctx { basis: across(unit(sub(p.center, entry))), ..ctx };
     let (mut all, iterations, resolved) = aim_search(&ctx, entry, &rolls, threads, &mut report)?;
@@ -762,10 +765,12 @@ pub fn plan3(
 
 /// The bevel needle's schedule (module docs, "Rotation schedule"): one roll before the tip
 /// enters, turning the bevel to face the nearest structure across the chord.
-fn bevel_schedule(p: &Problem3, d0: [f64; 3]) -> Vec<RollStep> {
-    let Some(s) = p.structures.iter().min_by(|a, b| {
-        dist_to_segment(a.center_m, p.entry, p.center).total_cmp(&dist_to_segment(b.center_m, p.entry, p.center))
-    }) else {
+fn bevel_schedule(p: &Problem3, d0: [f64; 3], outside_m: f64) -> Vec<RollStep> {
+    let Some(s) = p
+        .structures
+        .iter()
+        .min_by(|a, b| dist_to_segment(a.center_m, p.entry, p.center).total_cmp(&dist_to_segment(b.center_m, p.entry, p.center)))
+    else {
         return Vec::new();
     };
     let rel = sub(s.center_m, p.entry);
@@ -777,5 +782,5 @@ fn bevel_schedule(p: &Problem3, d0: [f64; 3]) -> Vec<RollStep> {
     // The bevel (base frame's n at roll φ from the straight aim's frame) along w.
     let f0 = Pose3::new([0.0; 3], quat_from_axis_roll(d0, p.roll0)).frame();
     let phi = dot(w, f0[2]).atan2(dot(w, f0[1]));
-    vec![RollStep { depth_m: -1.0, roll_rad: phi }]
+    vec![RollStep { depth_m: -outside_m, roll_rad: phi }]
 }
