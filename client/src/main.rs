@@ -220,6 +220,8 @@ pub struct PlanArgs {
     /// Print the result as one JSON object.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub d3: plan::Plan3Args,
 }
 
 fn main() {

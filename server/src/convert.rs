@@ -448,6 +448,7 @@ pub fn plan_progress(pr: &PlanProgress) -> pb::PlanProgress {
         best_error_m: pr.best_error_m,
         straight_error_m: pr.straight_error_m,
         result: None,
+        result3: None,
     }
 }
 
@@ -459,6 +460,81 @@ pub fn plan_final(p: &Plan) -> pb::PlanProgress {
         best_error_m: p.plan.predicted_error_m,
         straight_error_m: p.straight.predicted_error_m,
         result: Some(plan_result_to_pb(p)),
+        result3: None,
+    }
+}
+
+/// A 3D planning request (the 3D fields of `PlanRequest`; the 2D entry segment and angles are
+/// refused, naming them).
+pub fn plan3_request_from_pb(r: &pb::PlanRequest) -> Result<needlesim_offline::plan3::Plan3Request, ApiError> {
+    if r.target.trim().is_empty() {
+        return Err(ApiError::invalid("target", "target is empty: give the name of one of the scene's targets"));
+    }
+    if r.entry_from_m.is_some() || r.entry_to_m.is_some() || r.angle_min_deg.is_some() || r.angle_max_deg.is_some() {
+        return Err(ApiError::invalid(
+            "entry_from_m",
+            "entry_from_m, entry_to_m, angle_min_deg, angle_max_deg: a 3D scene's plan takes entry_point_m (and entry_radius_m) instead",
+        ));
+    }
+    Ok(needlesim_offline::plan3::Plan3Request {
+        target: r.target.clone(),
+        entry_m: r.entry_point_m.as_ref().map(|v| [v.x, v.y, v.z]),
+        entry_radius_m: r.entry_radius_m,
+        avoid: if r.avoid.is_empty() { None } else { Some(r.avoid.clone()) },
+        clearance_m: r.clearance_m,
+        speed_m_s: r.speed_mm_s.map(|v| v * 1e-3),
+    })
+}
+
+/// The last message of a 3D Plan stream, with the plan.
+pub fn plan3_final(p: &needlesim_offline::plan3::Plan3) -> pb::PlanProgress {
+    let v3 = |v: [f64; 3]| pb::Vec3 { x: v[0], y: v[1], z: v[2] };
+    let ins = |i: &needlesim_offline::plan3::Insertion3| pb::PlannedInsertion3 {
+        entry_m: Some(v3(i.entry_m)),
+        direction: Some(v3(i.direction)),
+        rolls: i.rolls.iter().map(|r| pb::RollStep { depth_m: r.depth_m, roll_rad: r.roll_rad }).collect(),
+        depth_m: i.depth_m,
+        predicted_error_m: i.predicted_error_m,
+        tip_m: Some(v3(i.tip_m)),
+        target_m: Some(v3(i.target_m)),
+        aim_m: Some(v3(i.aim_m)),
+        clearances_m: i.clearances_m.clone(),
+    };
+    let result3 = pb::PlanResult3 {
+        target: p.target.clone(),
+        target_radius_m: p.target_radius_m,
+        target_center_m: Some(v3(p.target_center_m)),
+        speed_mm_s: p.speed_m_s * 1e3,
+        plan: Some(ins(&p.plan)),
+        straight: Some(ins(&p.straight)),
+        trajectory: p
+            .trajectory
+            .iter()
+            .map(|&[t, x, y, z, qw, qx, qy, qz]| pb::TrajectorySample3 {
+                t_s: t,
+                base: Some(pb::Pose3 { position_m: Some(v3([x, y, z])), orientation: Some(pb::Quaternion { w: qw, x: qx, y: qy, z: qz }) }),
+            })
+            .collect(),
+        converged: p.converged,
+        iterations: p.iterations as u32,
+        simulations: p.simulations as u32,
+        wall_s: p.wall_s,
+        threads: p.threads as u32,
+        structures: p
+            .structures
+            .iter()
+            .map(|s| pb::Structure3 { name: s.name.clone(), center_m: Some(v3(s.center_m)), radius_m: s.radius_m })
+            .collect(),
+        clearance_m: p.clearance_m,
+        bevel: p.bevel,
+    };
+    pb::PlanProgress {
+        iteration: p.iterations as u32,
+        simulations: p.simulations as u32,
+        best_error_m: p.plan.predicted_error_m,
+        straight_error_m: p.straight.predicted_error_m,
+        result: None,
+        result3: Some(result3),
     }
 }
 
@@ -567,6 +643,17 @@ pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Res
 pub enum SessionScene {
     Two(Box<Scene>),
     Three(Box<Scene3d>),
+}
+
+/// Whether a scene source is a 3D scene (a 3D example's name, a TOML with `dim = 3`, an uploaded
+/// 3D scene), as [`session_scene_from_pb`] decides.
+pub fn scene_source_is_3d(src: Option<&pb::SceneSource>) -> bool {
+    match src.and_then(|s| s.source.as_ref()) {
+        Some(pb::scene_source::Source::Example(name)) => needlesim_scene::EXAMPLES3D.iter().any(|e| e.0 == name),
+        Some(pb::scene_source::Source::SceneToml(text)) => needlesim_scene::scene_dim(text).is_ok_and(|d| d == 3),
+        Some(pb::scene_source::Source::Uploaded3d(_)) => true,
+        _ => false,
+    }
 }
 
 /// A session's scene from its source: a 3D example name, a 3D TOML (`dim = 3`) or an uploaded 3D

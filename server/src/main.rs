@@ -201,7 +201,21 @@ struct PlanArgs {
     /// The insertion speed in mm/s (default: the planning example's, else 10).
     #[arg(long)]
     speed_mm_s: Option<f64>,
-    /// Write the plan's base trajectory (t_s,x_m,y_m,theta_rad), replayable by `simulate`.
+    /// 3D scenes: the entry point x,y,z in metres, on a face of the mesh's bounding box
+    /// (default: the scene's 3D planning example's, server/scenes/behind-vessel-plan.toml).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_name = "X,Y,Z")]
+    entry_point: Option<Vec<f64>>,
+    /// 3D scenes: how far the entry may move on its face to clear the structures, metres.
+    #[arg(long)]
+    entry_radius_m: Option<f64>,
+    /// 3D scenes: sphere regions of the scene to keep clear of (comma-separated names).
+    #[arg(long, value_delimiter = ',')]
+    avoid: Option<Vec<String>>,
+    /// 3D scenes: the clearance to keep from them, metres.
+    #[arg(long)]
+    clearance_m: Option<f64>,
+    /// Write the plan's base trajectory (t_s,x_m,y_m,theta_rad; in 3D t_s,x_m,y_m,z_m,qw,qx,qy,qz),
+    /// replayable by `simulate`.
     #[arg(long)]
     trajectory_out: Option<PathBuf>,
     /// Print the plan as one JSON object.
@@ -235,7 +249,11 @@ fn main() -> ExitCode {
             Ok(false) => run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits),
             Err(e) => Err(e),
         },
-        Some(Command::Plan(args)) => run_plan(&args, &limits),
+        Some(Command::Plan(args)) => match is_3d_scene(&args.scene) {
+            Ok(true) => run_plan3(&args, &limits),
+            Ok(false) => run_plan(&args, &limits),
+            Err(e) => Err(e),
+        },
         Some(Command::Exercise(ExerciseCommand::Run { exercise, trajectory, placed_at, output, json, max_ticks })) => {
             needlesim_training::cli::run_command(
                 &exercise,
@@ -497,6 +515,90 @@ fn run_plan(a: &PlanArgs, limits: &MeshLimits) -> Result<()> {
     println!(
         "{} ({} simulations, {} iterations, {:.2} s on {} threads){}",
         if p.hits() { "the plan hits the target" } else { "the plan does not reach the target within its radius" },
+        p.simulations,
+        p.iterations,
+        p.wall_s,
+        p.threads,
+        a.trajectory_out.as_ref().map(|t| format!("; trajectory written to {}", t.display())).unwrap_or_default()
+    );
+    Ok(())
+}
+
+/// `plan` for a 3D scene (`needlesim_offline::plan3`).
+fn run_plan3(a: &PlanArgs, limits: &MeshLimits) -> Result<()> {
+    if a.entry.is_some() || a.angles_deg.is_some() {
+        anyhow::bail!("--entry and --angles-deg are for 2D scenes; a 3D scene's plan takes --entry-point x,y,z (and --entry-radius-m)");
+    }
+    let entry_m = match a.entry_point.as_deref() {
+        None => None,
+        Some(&[x, y, z]) => Some([x, y, z]),
+        Some(v) => anyhow::bail!("--entry-point takes 3 numbers x,y,z (metres), found {}", v.len()),
+    };
+    let scene = scene::load_scene3d(&a.scene, limits)?;
+    let req = needlesim_offline::plan3::Plan3Request {
+        target: a.target.clone(),
+        entry_m,
+        entry_radius_m: a.entry_radius_m,
+        avoid: a.avoid.clone(),
+        clearance_m: a.clearance_m,
+        speed_m_s: a.speed_mm_s.map(|v| v * 1e-3),
+    };
+    let opts = plan::PlanOptions { threads: a.threads, ..Default::default() };
+    let quiet = a.json;
+    let p = needlesim_offline::plan3::plan3(&scene, &req, &opts, |pr| {
+        if !quiet {
+            eprintln!(
+                "iteration {}: {} simulations, best predicted error {:.3} mm (straight aim {:.3} mm)",
+                pr.iteration,
+                pr.simulations,
+                pr.best_error_m * 1e3,
+                pr.straight_error_m * 1e3
+            );
+        }
+        std::ops::ControlFlow::Continue(())
+    })?;
+    if let Some(path) = &a.trajectory_out {
+        std::fs::write(path, p.trajectory_csv()).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string(&p)?);
+        return Ok(());
+    }
+    let line = |name: &str, i: &needlesim_offline::plan3::Insertion3| {
+        let rolls: Vec<String> =
+            i.rolls.iter().map(|r| format!("{:.1}° from {:.1} mm", r.roll_rad.to_degrees(), r.depth_m * 1e3)).collect();
+        println!(
+            "{name:<9} entry ({:.2}, {:.2}, {:.2}) mm, direction ({:.4}, {:.4}, {:.4}), rolls [{}], depth {:.2} mm: predicted tip–target error {:.3} mm, clearance {:.3} mm",
+            i.entry_m[0] * 1e3,
+            i.entry_m[1] * 1e3,
+            i.entry_m[2] * 1e3,
+            i.direction[0],
+            i.direction[1],
+            i.direction[2],
+            rolls.join(", "),
+            i.depth_m * 1e3,
+            i.predicted_error_m * 1e3,
+            i.min_clearance_m() * 1e3
+        );
+    };
+    let names: Vec<&str> = p.structures.iter().map(|s| s.name.as_str()).collect();
+    println!(
+        "target '{}' (radius {:.2} mm) in scene {}, sparing [{}] by {:.2} mm",
+        p.target,
+        p.target_radius_m * 1e3,
+        p.scene,
+        names.join(", "),
+        p.clearance_m * 1e3
+    );
+    line("plan", &p.plan);
+    line("straight", &p.straight);
+    println!(
+        "{} ({} simulations, {} iterations, {:.2} s on {} threads){}",
+        if p.hits() {
+            "the plan hits the target with the clearance kept"
+        } else {
+            "the plan does not reach the target with the clearance kept"
+        },
         p.simulations,
         p.iterations,
         p.wall_s,

@@ -6,6 +6,7 @@
 
 pub mod driver;
 pub mod plan;
+pub mod plan3;
 pub mod simulate;
 pub mod simulate3;
 

@@ -223,6 +223,9 @@ pub struct Region3d {
     pub name: String,
     pub material: Material,
     pub needle: RegionNeedleParams,
+    /// Box meshes: the sphere the region was given by, `(centre, radius)` in m (the 3D
+    /// planner's structures to spare are such regions).
+    pub sphere_m: Option<([f64; 3], f64)>,
 }
 
 /// The needle of a loaded scene.
@@ -606,6 +609,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
                 cutting_force_n: r.cutting_force_n,
                 ..Default::default()
             },
+            sphere_m: r.sphere.map(|sp| (sp.center_m, sp.radius_m)),
         });
     }
     let materials: Vec<Material> = regions.iter().map(|r| r.material).collect();

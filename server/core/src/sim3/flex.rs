@@ -22,10 +22,24 @@
 //! are not carried over yet). A stiff rod ($G \to 0$) gives $v = g$: the rigid needle.
 //!
 //! **Bevel.** While the tip cuts (it advanced along its tangent this tick inside the tissue) the
-//! tissue pushes it sideways with $P = s_b\,\beta\,f_c$ along the tip link's $n$ — which turns
-//! with the base's roll, the rod being torsionally rigid — $f_c$ the cutting force of the region
-//! the tip is in (the axial force the tip cuts with) and $\beta$ the bevel force ratio. It is a
-//! follower load at the tip of the rod in the shape's equilibrium and in $G$'s geometric
+//! tissue pushes it sideways with $P = s_b\,\beta\,f_c\,\bar n$, $f_c$ the cutting force of the
+//! region the tip is in (the axial force the tip cuts with), $\beta$ the bevel force ratio and
+//! $\bar n$ the bevel's direction — the tip link's $n$, which turns with the base's roll, the rod
+//! being torsionally rigid — averaged over the depth cut since the last captured point,
+//! $$\bar n = \frac{\sum_k \Delta s_k\, n_k}{\sum_k \Delta s_k}$$
+//! over this tick's and the earlier ticks' advances $\Delta s_k$ (its part across the tip's
+//! tangent). The tissue holds the needle only at its material points, a tetrahedron diameter
+//! apart (8.7 mm on the 21³ cube), so the path is what the tip's position is when a point is
+//! captured; the tissue the tip cut in between, which in a real needle's path keeps the lateral
+//! displacement of every bit of cut, is not there. With $P$ along the instantaneous $n$, a
+//! needle spun while it cuts (duty-cycled spinning, a period of 1 mm against 8.7 mm between
+//! points) bends towards wherever the bevel happens to face at each capture: the curvature is
+//! the aliased sample of the spin, not its average (measured 0.685, 0.228, 0.006 of the
+//! unspun curvature at δ = 0.25, 0.5, 0.75). Averaged over the cut, it is the mean
+//! direction the cut had, as the unicycle models of spinning needles take it (Minhas et al.
+//! 2007: the bevel's effect averages to zero over a spin); without a spin $\bar n$ is $n$ up to
+//! the tip's turn over one spacing. It is a follower load at the tip of the rod (components
+//! along the tip link's $n$ and $b$) in the shape's equilibrium and in $G$'s geometric
 //! stiffness; the held points carry its reaction. (Not through the tip's material point: in 3D
 //! a point is carried by the tip only for the few ticks until it is cut, every
 //! tetrahedron diameter — 3 % of the ticks on the 21³ cube — so a force there would act
@@ -58,10 +72,15 @@ pub(super) struct Flex3 {
     pub rod: Rod3,
     pub bevel_ratio: f64,
     pub bevel_side: f64,
-    /// The bevel's lateral force on the tip this tick, N along the tip link's $n$.
-    pub tip_load_n: f64,
+    /// The bevel's lateral force on the tip this tick, N, in the tip link's frame (its $n$ and
+    /// $b$ components; module docs, "Bevel").
+    pub tip_load_n: [f64; 2],
     /// The bevel force the reference shape is in equilibrium with.
-    tip_load_ref_n: f64,
+    tip_load_ref_n: [f64; 2],
+    /// The bevel's direction (world, the tip link's $n$) integrated over the depth cut since
+    /// the last captured point, and that depth (m).
+    bevel_dir_sum: V3,
+    bevel_cut_m: f64,
     cap: usize,
     /// $G$ over the lateral DOFs $2i + c$ (row-major, stride $2\,$cap) and what it was computed for.
     g: Vec<f64>,
@@ -89,8 +108,10 @@ impl Flex3 {
             rod: Rod3::new(f, base_m, frame, cap + 1),
             bevel_ratio: f.bevel_force_ratio,
             bevel_side: f.bevel_side,
-            tip_load_n: 0.0,
-            tip_load_ref_n: 0.0,
+            tip_load_n: [0.0; 2],
+            tip_load_ref_n: [0.0; 2],
+            bevel_dir_sum: [0.0; 3],
+            bevel_cut_m: 0.0,
             cap,
             g: vec![0.0; n2 * n2],
             g_for: None,
@@ -105,6 +126,27 @@ impl Flex3 {
             shape_passes: 0,
             shape_unconverged: 0,
         }
+    }
+
+    /// The bevel's lateral tip force for this tick (module docs, "Bevel"): the tip advanced
+    /// `advance_m` along its tangent, inside the tissue or not, cutting with `cutting_force_n`;
+    /// `captured` when a point was captured this tick (the cut since then starts now).
+    pub fn update_bevel(&mut self, advance_m: f64, inside: bool, cutting_force_n: f64, captured: bool) {
+        if captured {
+            self.bevel_dir_sum = [0.0; 3];
+            self.bevel_cut_m = 0.0;
+        }
+        if !(inside && advance_m > 1e-9) || self.bevel_ratio == 0.0 {
+            self.tip_load_n = [0.0; 2];
+            return;
+        }
+        let f = self.rod.tip_frame();
+        for c in 0..3 {
+            self.bevel_dir_sum[c] += advance_m * f[1][c];
+        }
+        self.bevel_cut_m += advance_m;
+        let p = self.bevel_side * self.bevel_ratio * cutting_force_n / self.bevel_cut_m;
+        self.tip_load_n = [p * dot(f[1], self.bevel_dir_sum), p * dot(f[2], self.bevel_dir_sum)];
     }
 
     /// The reference arc length of a point (module docs).
@@ -190,8 +232,8 @@ impl Flex3 {
             ];
             self.loads.push((s, self.rod.to_link_frame(s, w)));
         }
-        if self.tip_load_ref_n != 0.0 {
-            self.loads.push((self.rod.length_m(), [0.0, self.tip_load_ref_n, 0.0]));
+        if self.tip_load_ref_n != [0.0; 2] {
+            self.loads.push((self.rod.length_m(), [0.0, self.tip_load_ref_n[0], self.tip_load_ref_n[1]]));
         }
         let stride = 2 * self.cap;
         self.rod.tangent_compliance_into(&self.points, &self.loads, &mut self.g, stride);
@@ -271,8 +313,8 @@ impl Flex3 {
             let fw = solver.force_world(slot);
             self.loads.push((s, self.rod.to_link_frame(s, [-fw[0], -fw[1], -fw[2]])));
         }
-        if self.tip_load_n != 0.0 {
-            self.loads.push((len, [0.0, self.tip_load_n, 0.0]));
+        if self.tip_load_n != [0.0; 2] {
+            self.loads.push((len, [0.0, self.tip_load_n[0], self.tip_load_n[1]]));
         }
         self.tip_load_ref_n = self.tip_load_n;
         let loads = std::mem::take(&mut self.loads);

@@ -757,13 +757,14 @@ impl Simulation3 {
                 (BasePose3::from_rotation(base_v, quaternion_of_frame(&tf)), tf)
             }
         };
+        let captures_before = self.stats.captures;
         self.capture(prev_tip, &axis_pose, &axis_frame)?;
         // The bevel cuts sideways while the tip advances inside the tissue ([`flex`]).
         if let Some(fx) = self.flex.as_mut() {
             let advance = dot(axis_frame[0], sub(fx.rod.tip_m(), prev_tip));
             let inside = !self.pts.is_empty();
             let cut = self.params.regions[self.last_tip_region.unwrap_or(0)].cutting_force_n;
-            fx.tip_load_n = if inside && advance > 1e-9 { fx.bevel_side * fx.bevel_ratio * cut } else { 0.0 };
+            fx.update_bevel(advance, inside, cut, self.stats.captures != captures_before);
         }
         // 5, 6. Friction and active set.
         self.update_friction(&frame, false, 0.0);
