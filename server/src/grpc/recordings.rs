@@ -14,7 +14,7 @@ use super::{Api, BoxStream, Role, ServerState, authorize, token_of};
 use crate::convert;
 use crate::status::ApiError;
 
-pub(super) fn start_recording(state: &ServerState, s: &Arc<Session>) -> Result<pb::RecordingInfo, Status> {
+pub(crate) fn start_recording(state: &ServerState, s: &Arc<Session>) -> Result<pb::RecordingInfo, Status> {
     if let Some(r) = crate::recording::SessionRecording::info_of(s) {
         return Err(Status::failed_precondition(format!("session {} is already recording to {}", s.id, r.name)));
     }
