@@ -11,8 +11,7 @@
 // hands it back. Saves slice-before.png, slice-after.png, training-observer.png (the observer's
 // page with the instructor in control) and training-trainee.png in OUT_DIR, and summary-training.json.
 import { createRequire } from "node:module";
-import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { writeFileSync, mkdirSync } from "node:fs";
 import { join } from "node:path";
 
 const require = createRequire(new URL("../web/package.json", import.meta.url));
@@ -25,16 +24,18 @@ if (!base || !outDir) {
 }
 mkdirSync(outDir, { recursive: true });
 const executablePath = process.env.NEEDLESIM_CHROMIUM || "/usr/bin/chromium";
-const userDataDir = mkdtempSync(join(tmpdir(), "needlesim-chromium-"));
 
 function fail(msg) {
   throw new Error(msg);
 }
+const t0 = Date.now();
+const step = (what) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s] ${what}`);
 
-const context = await chromium.launchPersistentContext(userDataDir, {
+// One browser, a context per person (trainee, observer, instructor): each its own cookies and
+// connection pool, as three people's browsers would be.
+const browser = await chromium.launch({
   executablePath,
   headless: true,
-  viewport: { width: 1240, height: 900 },
   args: [
     "--headless",
     "--no-sandbox",
@@ -46,6 +47,14 @@ const context = await chromium.launchPersistentContext(userDataDir, {
     "--disable-sync",
   ],
 });
+// Generous waits: the machines these run on are shared and often loaded (a load of 20 on 2
+// cores makes a page load take half a minute); the checks are on what happens, not how fast.
+const WAIT_MS = 90000;
+const newPage = async () => {
+  const p = await (await browser.newContext({ viewport: { width: 1240, height: 900 } })).newPage();
+  p.setDefaultTimeout(WAIT_MS);
+  return p;
+};
 const errors = [];
 const watchErrors = (p, who) => {
   p.on("pageerror", (e) => errors.push(`${who} pageerror: ${e.message}`));
@@ -54,17 +63,18 @@ const watchErrors = (p, who) => {
   });
 };
 const data = (p, key) => p.evaluate((k) => document.body.dataset[k], key);
-const trainee = context.pages()[0] ?? (await context.newPage());
+const trainee = await newPage();
 let observer = null;
 try {
   watchErrors(trainee, "trainee");
   await trainee.goto(`${base}/`, { waitUntil: "load" });
-  await trainee.waitForSelector("body[data-ready='1']", { timeout: 20000 });
+  await trainee.waitForSelector("body[data-ready='1']", { timeout: WAIT_MS });
   await trainee.selectOption("#exercise-select", "biopsy-2d");
+  step("the trainee starts the exercise");
   await trainee.click("#create-exercise");
-  await trainee.waitForFunction(() => document.body.dataset.exercise === "biopsy-2d", null, { timeout: 30000 });
+  await trainee.waitForFunction(() => document.body.dataset.exercise === "biopsy-2d", null, { timeout: WAIT_MS });
   await trainee.waitForFunction(() => Number(document.body.dataset.frames) >= 10 && Number(document.body.dataset.ultrasoundFrames) >= 2, null, {
-    timeout: 20000,
+    timeout: WAIT_MS,
   });
   const links = await trainee.evaluate(() =>
     Object.fromEntries(["trainee", "instructor", "observer"].map((k) => [k, document.getElementById(`link-${k}`).href])),
@@ -79,15 +89,17 @@ try {
   const tick0 = Number(await data(trainee, "ultrasoundTick"));
 
   // An observer follows the exercise through its link.
-  observer = await context.newPage();
+  step("the observer opens its link");
+  observer = await newPage();
   watchErrors(observer, "observer");
   await observer.goto(links.observer, { waitUntil: "load" });
   await observer.waitForFunction(() => document.body.dataset.exercise === "biopsy-2d" && document.body.dataset.controller === "trainee", null, {
-    timeout: 20000,
+    timeout: WAIT_MS,
   });
-  if (await observer.evaluate(() => !document.getElementById("ex-instructor").hidden)) fail("the observer's page shows the instructor's buttons");
+  if (await observer.evaluate(() => document.getElementById("ex-instructor").offsetParent !== null)) fail("the observer's page shows the instructor's buttons");
 
   // The trainee drags the needle in along its axis.
+  step("the trainee drags the needle in");
   await trainee.bringToFront();
   const view = trainee.locator("#view");
   await view.scrollIntoViewIfNeeded();
@@ -104,37 +116,41 @@ try {
     await trainee.waitForTimeout(40);
   }
   await trainee.mouse.up();
-  await trainee.waitForFunction((d0) => Number(document.body.dataset.depthM) > d0 + 0.01, depth0, { timeout: 15000 });
-  await trainee.waitForFunction((t0) => Number(document.body.dataset.ultrasoundTick) > t0 + 500, tick0, { timeout: 15000 });
+  await trainee.waitForFunction((d0) => Number(document.body.dataset.depthM) > d0 + 0.01, depth0, { timeout: WAIT_MS });
+  await trainee.waitForFunction((t0) => Number(document.body.dataset.ultrasoundTick) > t0 + 500, tick0, { timeout: WAIT_MS });
   await trainee.waitForTimeout(500);
   const depth1 = Number(await data(trainee, "depthM"));
   const sliceAfter = await slice.screenshot({ path: join(outDir, "slice-after.png") });
   if (sliceBefore.equals(sliceAfter)) fail("the ultrasound slice did not change as the needle advanced");
 
   // "Placed": the score changes (the accuracy part counts the placement).
+  step("the trainee declares placed");
   await trainee.click("#ex-place");
-  await trainee.waitForFunction((s0) => Math.abs(Number(document.body.dataset.score) - s0) > 1e-6, score0, { timeout: 10000 });
+  await trainee.waitForFunction((s0) => Math.abs(Number(document.body.dataset.score) - s0) > 1e-6, score0, { timeout: WAIT_MS });
+  await trainee.waitForFunction(() => /biopsy: [0-9.]+ mm/.test(document.getElementById("ex-targets").textContent), null, { timeout: WAIT_MS });
   const score1 = Number(await data(trainee, "score"));
-  await observer.waitForFunction((s) => Math.abs(Number(document.body.dataset.score) - s) < 5, score1, { timeout: 10000 });
+  const placed = await trainee.evaluate(() => document.getElementById("ex-targets").textContent);
+  await observer.waitForFunction((s) => Math.abs(Number(document.body.dataset.score) - s) < 5, score1, { timeout: WAIT_MS });
 
   // The instructor takes control: every page shows it; then hands it back.
-  const instructor = await context.newPage();
+  step("the instructor takes control");
+  const instructor = await newPage();
   watchErrors(instructor, "instructor");
   await instructor.goto(links.instructor, { waitUntil: "load" });
-  await instructor.waitForFunction(() => document.body.dataset.exercise === "biopsy-2d", null, { timeout: 20000 });
-  if (await instructor.evaluate(() => document.getElementById("ex-instructor").hidden)) fail("the instructor's page hides the instructor's buttons");
+  await instructor.waitForFunction(() => document.body.dataset.exercise === "biopsy-2d", null, { timeout: WAIT_MS });
+  if (await instructor.evaluate(() => document.getElementById("ex-instructor").offsetParent === null)) fail("the instructor's page hides the instructor's buttons");
   await instructor.click("#ex-take");
-  await observer.waitForFunction(() => document.body.dataset.controller === "instructor", null, { timeout: 10000 });
-  await trainee.waitForFunction(() => document.body.dataset.controller === "instructor", null, { timeout: 10000 });
+  await observer.waitForFunction(() => document.body.dataset.controller === "instructor", null, { timeout: WAIT_MS });
+  await trainee.waitForFunction(() => document.body.dataset.controller === "instructor", null, { timeout: WAIT_MS });
   await instructor.fill("#ex-marker-label", "look here");
   await instructor.click("#ex-add-marker");
-  await observer.waitForFunction(() => /look here/.test(document.getElementById("ex-markers").textContent), null, { timeout: 10000 });
+  await observer.waitForFunction(() => /look here/.test(document.getElementById("ex-markers").textContent), null, { timeout: WAIT_MS });
   await observer.bringToFront();
   await observer.waitForTimeout(300);
   await observer.screenshot({ path: join(outDir, "training-observer.png") });
   const controllerShown = await data(observer, "controller");
   await instructor.click("#ex-hand-back");
-  await observer.waitForFunction(() => document.body.dataset.controller === "trainee", null, { timeout: 10000 });
+  await observer.waitForFunction(() => document.body.dataset.controller === "trainee", null, { timeout: WAIT_MS });
   await trainee.bringToFront();
   await trainee.screenshot({ path: join(outDir, "training-trainee.png") });
   if (errors.length) fail(`errors in the pages: ${errors.join("; ")}`);
@@ -145,6 +161,7 @@ try {
     depth1,
     score0,
     score1,
+    placed,
     controllerShown,
     sliceChanged: true,
     ultrasoundFrames: Number(await data(trainee, "ultrasoundFrames")),
@@ -164,6 +181,5 @@ try {
   if (errors.length) console.error(errors.join("\n"));
   process.exitCode = 1;
 } finally {
-  await context.close();
-  rmSync(userDataDir, { recursive: true, force: true });
+  await browser.close();
 }

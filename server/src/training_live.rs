@@ -279,10 +279,7 @@ impl LiveExercise {
 
     /// Takes the session's control lease for the instructor (revoking the trainee's stream).
     async fn hold_lease(&self, s: &Session) -> Result<StreamLease, Status> {
-        s.control
-            .acquire_stream("instructor", true)
-            .await
-            .map_err(|busy| Status::failed_precondition(format!("session {}: {busy}", s.id)))
+        s.control.acquire_stream("instructor", true).await.map_err(|busy| Status::failed_precondition(format!("session {}: {busy}", s.id)))
     }
 
     /// The instructor takes control (idempotent).

@@ -92,7 +92,13 @@ impl Api {
         Ok((s, ex))
     }
 
-    fn exercise_for<T>(&self, req: &Request<T>, session_id: &str, allowed: &[Who], what: &str) -> Result<(Arc<Session>, Arc<LiveExercise>, Who), Status> {
+    fn exercise_for<T>(
+        &self,
+        req: &Request<T>,
+        session_id: &str,
+        allowed: &[Who],
+        what: &str,
+    ) -> Result<(Arc<Session>, Arc<LiveExercise>, Who), Status> {
         let (s, ex) = self.exercise(session_id)?;
         let who = ex.require(&s, token_of(req).as_deref(), allowed, what)?;
         Ok((s, ex, who))
@@ -239,7 +245,10 @@ impl pb::training_service_server::TrainingService for Api {
         let r = req.get_ref();
         let rate = if r.rate_hz == 0.0 { crate::training_ultrasound::DEFAULT_RATE_HZ } else { r.rate_hz };
         if !(rate.is_finite() && (1.0..=crate::training_ultrasound::MAX_RATE_HZ).contains(&rate)) {
-            return Err(Status::invalid_argument(format!("rate_hz = {rate}: 1..{} images per second", crate::training_ultrasound::MAX_RATE_HZ)));
+            return Err(Status::invalid_argument(format!(
+                "rate_hz = {rate}: 1..{} images per second",
+                crate::training_ultrasound::MAX_RATE_HZ
+            )));
         }
         let (s, ex, _) = self.exercise_for(&req, &r.session_id, ALL, "WatchUltrasound")?;
         let ex_closed = ex.clone();

@@ -125,11 +125,7 @@ pub fn default_probe_3d(nodes_m: &[[f64; 3]], base_m: [f64; 3], axis: [f64; 3]) 
     let width = 200usize;
     let pixel_m = ((u1 - u0) / width as f64).max(1e-6);
     let height = (((v1 - v0) / pixel_m).ceil() as usize).clamp(MIN_PROBE_PIXELS as usize, MAX_PROBE_PIXELS as usize);
-    let origin_m = [
-        base_m[0] + u0 * e_u[0] + v0 * e_v[0],
-        base_m[1] + u0 * e_u[1] + v0 * e_v[1],
-        base_m[2] + u0 * e_u[2] + v0 * e_v[2],
-    ];
+    let origin_m = [base_m[0] + u0 * e_u[0] + v0 * e_v[0], base_m[1] + u0 * e_u[1] + v0 * e_v[1], base_m[2] + u0 * e_u[2] + v0 * e_v[2]];
     Probe3 { origin_m, e_u, e_v, pixel_m, width, height, thickness_m: 2e-3 }
 }
 

@@ -1,6 +1,7 @@
 //! Training (issue 20): exercise sessions in the viewer — starting one from a shipped exercise,
-//! the live score and who is in control (WatchScore), "Placed", the instructor's buttons (take
-//! control, hand back, pause, marker, end), the report, and the simulated ultrasound slice
+//! the live score and who is in control (GetStatus, polled: see watchTraining), "Placed", the
+//! instructor's buttons (take control, hand back, pause, marker, end), the report, and the
+//! simulated ultrasound slice
 //! (WatchUltrasound, 8-bit gray drawn on a canvas beside the tissue view). A page opened with
 //! `?session=ID&token=T&instructor=I` is the instructor's: it watches with T and drives and
 //! instructs with I. Publishes `data-exercise`, `data-score`, `data-controller`,
@@ -119,12 +120,25 @@ export async function watchTraining(id: string, token: string): Promise<void> {
       if (!abort.signal.aborted) status(`WatchUltrasound: ${String(e)}`);
     }
   })();
-  try {
-    for await (const st of training.watchScore({ sessionId: id, rateHz: 10 }, opts)) showStatus(st);
-  } catch (e) {
-    if (!abort.signal.aborted) status(`WatchScore: ${String(e)}`);
+  // The score by polling GetStatus (5 Hz) rather than the WatchScore stream: gRPC-web runs over
+  // HTTP/1.1, where a browser keeps at most 6 connections per server and every open stream holds
+  // one — with the frames and the slice streaming, a third stream per tab leaves a second tab
+  // (an observer beside the trainee) no connection for its SetPose calls.
+  while (!abort.signal.aborted) {
+    await new Promise((r) => setTimeout(r, SCORE_POLL_MS));
+    if (abort.signal.aborted) return;
+    try {
+      const st = await training.getStatus({ sessionId: id }, opts);
+      if (!abort.signal.aborted) showStatus(st);
+    } catch (e) {
+      if (!abort.signal.aborted) status(`GetStatus: ${String(e)}`);
+      return;
+    }
   }
 }
+
+/** How often the page asks for the exercise's status, ms. */
+const SCORE_POLL_MS = 200;
 
 /** Runs a training call with the driving token, showing the status it returns or its error. */
 async function call(what: string, f: (id: string, opts: { headers: Record<string, string> }) => Promise<ExerciseStatus | undefined>): Promise<void> {

@@ -239,7 +239,8 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
     if !run.markers.is_empty() {
         h.push_str("<h2>Timeline markers</h2>\n<table id=\"markers\">\n<tr><th>t (s)</th><th>tick</th><th>marker</th></tr>\n");
         for m in &run.markers {
-            let _ = writeln!(h, "<tr><td data-marker-t-s=\"{:e}\">{:.3}</td><td>{}</td><td>{}</td></tr>", m.t_s, m.t_s, m.tick, esc(&m.label));
+            let _ =
+                writeln!(h, "<tr><td data-marker-t-s=\"{:e}\">{:.3}</td><td>{}</td><td>{}</td></tr>", m.t_s, m.t_s, m.tick, esc(&m.label));
         }
         h.push_str("</table>\n");
     }
