@@ -591,3 +591,108 @@ pub fn sample_of(rec: &TickRecord, t_s: f64) -> Sample {
     }
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::training_ultrasound::{ProbeSpec, default_probe_2d};
+
+    fn exercise() -> Arc<LiveExercise> {
+        let ex = needlesim_training::load_exercise("biopsy-2d").unwrap();
+        let spec = TrackerSpec {
+            dims: 2,
+            targets: vec![],
+            structures: vec![],
+            limits: ex.limits,
+            weights: ex.weights,
+            redirect_threshold_m: ex.redirect_threshold_m,
+        };
+        let hub = UltrasoundHub::new(ProbeSpec::Two(default_probe_2d(([0.0, 0.0], [0.1, 0.06]))), vec![]);
+        LiveExercise::new("s", ex, spec, vec![], "fig3-target".into(), 1000.0, hub)
+    }
+
+    /// A 2D record at tick `k` (1 kHz), the tip `depth_m` along −y below (0, 0.06), in contact.
+    fn record(k: u64, depth_m: f64) -> TickRecord {
+        let mut r = TickRecord { tick: k, time_s: k as f64 * 1e-3, dimension: 2, n_tip: 1, ..TickRecord::default() };
+        r.base = needlesim_core::BasePose::new(0.0, 0.16 - depth_m, -std::f64::consts::FRAC_PI_2);
+        r.tip_m = [0.0, 0.06 - depth_m];
+        r
+    }
+
+    #[test]
+    fn the_exercise_clock_stops_while_paused_and_restarts_at_a_reset() {
+        let ex = exercise();
+        for k in 0..=1000 {
+            ex.score_record(&record(k, k as f64 * 1e-5));
+        }
+        ex.lock().paused = true;
+        for k in 1001..=2000 {
+            ex.score_record(&record(k, 0.01));
+        }
+        ex.lock().paused = false;
+        for k in 2001..=3000 {
+            ex.score_record(&record(k, 0.01 + (k - 2000) as f64 * 1e-5));
+        }
+        let snap = ex.snapshot();
+        // 1 s before the pause, 1 s after it (the first record after it is 1 ms after the last).
+        assert_eq!(snap.metrics.samples, 2001);
+        assert!((snap.time_s - 2.0).abs() < 1e-9, "exercise time {} s", snap.time_s);
+        assert!((snap.metrics.time_s - 2.0).abs() < 1e-9, "metrics time {} s", snap.metrics.time_s);
+        assert_eq!(snap.tick, 3000);
+        // The tip went 10 mm in, was held while paused, then 10 mm more: 20 mm of path.
+        assert!((snap.metrics.path_length_m - 0.02).abs() < 1e-9, "path {} m", snap.metrics.path_length_m);
+        let m = ex.add_marker("here").unwrap();
+        assert_eq!((m.tick, m.t_s), (3000, snap.time_s));
+        ex.reset().unwrap();
+        let snap = ex.snapshot();
+        assert_eq!((snap.metrics.samples, snap.markers.len(), snap.resets), (0, 0, 1));
+        ex.score_record(&record(3001, 0.02));
+        ex.score_record(&record(3002, 0.02));
+        let snap = ex.snapshot();
+        assert_eq!(snap.metrics.samples, 2);
+        assert!((snap.time_s - 1e-3).abs() < 1e-12, "the clock restarts at the reset: {} s", snap.time_s);
+    }
+
+    #[test]
+    fn markers_are_checked_and_an_ended_exercise_takes_nothing() {
+        let ex = exercise();
+        assert_eq!(ex.add_marker(&"x".repeat(201)).unwrap_err().code(), tonic::Code::InvalidArgument);
+        assert_eq!(ex.add_marker("a\nb").unwrap_err().code(), tonic::Code::InvalidArgument);
+        // No target in this spec: every placement is refused, and counted.
+        ex.score_record(&record(0, 0.0));
+        assert_eq!(ex.place().unwrap_err().code(), tonic::Code::FailedPrecondition);
+        let dir = std::env::temp_dir().join(format!("needlesim-training-live-{}", std::process::id()));
+        let f = ex.end(&dir).unwrap();
+        assert!(f.report_path.is_file());
+        let html = std::fs::read_to_string(&f.report_path).unwrap();
+        assert!(html.contains("Refused declarations"), "the refused placement is in the report");
+        let samples = ex.snapshot().metrics.samples;
+        ex.score_record(&record(1, 0.0));
+        assert_eq!(ex.snapshot().metrics.samples, samples, "an ended exercise scores no more records");
+        assert_eq!(ex.add_marker("late").unwrap_err().code(), tonic::Code::FailedPrecondition);
+        assert_eq!(ex.end(&dir).unwrap().report_name, f.report_name, "ending twice: the same report");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_2d_sample_takes_its_axis_from_the_needle_shape_and_its_targets_from_the_record() {
+        let mut r = record(5, 0.01);
+        r.n_shape = 3;
+        r.shape_m[0] = [0.0, 0.1];
+        r.shape_m[1] = [0.0, 0.08];
+        r.shape_m[2] = [0.003, 0.04];
+        r.force_axial_n = -0.5;
+        r.n_targets = 1;
+        r.targets[0].position_m = [0.003, 0.0];
+        let s = sample_of(&r, 0.25);
+        let n = (0.003f64 * 0.003 + 0.04 * 0.04).sqrt();
+        assert!((s.axis[0] - 0.003 / n).abs() < 1e-15 && (s.axis[1] + 0.04 / n).abs() < 1e-15);
+        assert_eq!((s.t_s, s.axial_force_n, s.contacts), (0.25, 0.5, 1));
+        assert_eq!(s.targets().len(), 1);
+        assert!((s.targets()[0].distance_m - (0.003f64.powi(2) + 0.05f64.powi(2)).sqrt()).abs() < 1e-15);
+        // Without a shape: the base angle.
+        r.n_shape = 0;
+        let s = sample_of(&r, 0.25);
+        assert!((s.axis[0]).abs() < 1e-15 && (s.axis[1] + 1.0).abs() < 1e-15);
+    }
+}
