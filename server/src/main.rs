@@ -115,6 +115,8 @@ struct ServeArgs {
 }
 
 #[derive(Subcommand)]
+// Parsed once at start-up: the size of the `serve` variant (its many options) costs nothing.
+#[allow(clippy::large_enum_variant)]
 enum Command {
     /// Start the gRPC server (the default when no command is given).
     Serve(ServeArgs),
