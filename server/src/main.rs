@@ -84,6 +84,11 @@ struct ServeArgs {
     /// URL to open.
     #[arg(long)]
     demo: bool,
+    /// Start a session of this shipped exercise (issue 20: biopsy-2d, brachy-2d, spare-2d,
+    /// biopsy-3d, brachy-3d, spare-3d) and print the viewer's URLs for the trainee, the instructor
+    /// and observers.
+    #[arg(long, value_name = "NAME")]
+    exercise: Option<String>,
     /// A file holding the admin token (one line, at least 16 characters), which lists and
     /// downloads every recording. Without it, a recording opens only with its session's tokens.
     #[arg(long, value_name = "FILE")]
@@ -110,6 +115,8 @@ struct ServeArgs {
 }
 
 #[derive(Subcommand)]
+// Parsed once at start-up: the size of the `serve` variant (its many options) costs nothing.
+#[allow(clippy::large_enum_variant)]
 enum Command {
     /// Start the gRPC server (the default when no command is given).
     Serve(ServeArgs),
@@ -682,6 +689,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         demo: args.demo,
         admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
         foxglove: args.foxglove_addr,
+        exercise: args.exercise,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     if let Some(cfg) = fleet {

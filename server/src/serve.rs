@@ -32,6 +32,9 @@ pub struct ServeConfig {
     pub admin_token: Option<String>,
     /// Where the live Foxglove endpoint listens (`--foxglove-addr`), if anywhere.
     pub foxglove: Option<SocketAddr>,
+    /// A shipped exercise to start a session of at start-up (`--exercise`, issue 20): its URLs for
+    /// the trainee, the instructor and observers are printed.
+    pub exercise: Option<String>,
 }
 
 /// Prometheus text exposition of every session's counters and percentiles.
@@ -251,6 +254,7 @@ where
     health_reporter.set_serving::<pb::recording_service_server::RecordingServiceServer<Api>>().await;
     health_reporter.set_serving::<pb::planning_service_server::PlanningServiceServer<Api>>().await;
     health_reporter.set_serving::<pb::identify_service_server::IdentifyServiceServer<Api>>().await;
+    health_reporter.set_serving::<pb::training_service_server::TrainingServiceServer<Api>>().await;
     let reflection_builder = || {
         tonic_reflection::server::Builder::configure()
             .register_encoded_file_descriptor_set(needlesim_proto::FILE_DESCRIPTOR_SET)
@@ -267,6 +271,7 @@ where
         .add_service(pb::planning_service_server::PlanningServiceServer::new(api.clone()).max_decoding_message_size(max))
         .add_service(pb::recording_service_server::RecordingServiceServer::new(api.clone()).max_decoding_message_size(max))
         .add_service(pb::identify_service_server::IdentifyServiceServer::new(api.clone()).max_decoding_message_size(max))
+        .add_service(pb::training_service_server::TrainingServiceServer::new(api.clone()).max_decoding_message_size(max))
         .add_service(health_service)
         .add_service(reflection)
         .add_service(reflection_alpha)
@@ -306,6 +311,20 @@ where
     }
     if let (Some(s), None) = (&default_session, &demo_session) {
         println!("default session {}: controller token {}, observer token {}", s.id, s.controller_token, s.observer_token);
+    }
+    if let Some(name) = &config.exercise {
+        let st = state.clone();
+        let name = name.clone();
+        let made = tokio::task::spawn_blocking(move || crate::training_service::create_exercise_session(&st, &name, 0.0, false))
+            .await
+            .context("exercise session task")?
+            .map_err(|e| anyhow::anyhow!("exercise session: {}", e.message()))?;
+        let scheme = if config.tls.is_some() { "https" } else { "http" };
+        let (s, ex) = (&made.session, &made.exercise);
+        println!("exercise '{}' in session {}:", ex.exercise.name, s.id);
+        println!("  trainee:    {scheme}://{addr}/?session={}&token={}", s.id, s.controller_token);
+        println!("  instructor: {scheme}://{addr}/?session={}&token={}&instructor={}", s.id, s.observer_token, ex.instructor_token());
+        println!("  observers:  {scheme}://{addr}/?session={}&token={}", s.id, s.observer_token);
     }
     drop(demo_session);
     drop(default_session);

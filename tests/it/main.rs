@@ -30,5 +30,6 @@ mod sim3;
 mod simulate;
 mod simulate3;
 mod training;
+mod training_live;
 mod validation;
 mod web;

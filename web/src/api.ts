@@ -3,6 +3,7 @@
 import { createClient, type Client } from "@connectrpc/connect";
 import { createGrpcWebTransport } from "@connectrpc/connect-web";
 import { ControlService, ObserveService, RecordingService, SessionService } from "./gen/needlesim/v1/needlesim_pb";
+import { TrainingService } from "./gen/needlesim/v1/training_pb";
 
 const transport = createGrpcWebTransport({ baseUrl: window.location.origin, useBinaryFormat: true });
 
@@ -10,6 +11,7 @@ export const sessions: Client<typeof SessionService> = createClient(SessionServi
 export const control: Client<typeof ControlService> = createClient(ControlService, transport);
 export const observe: Client<typeof ObserveService> = createClient(ObserveService, transport);
 export const recordings: Client<typeof RecordingService> = createClient(RecordingService, transport);
+export const training: Client<typeof TrainingService> = createClient(TrainingService, transport);
 
 /** Call options carrying a session's controller or observer token. */
 export function auth(token: string): { headers: Record<string, string> } {

@@ -8,6 +8,7 @@ import { publish, status } from "./dom";
 import type { Pose3 } from "./pose3";
 import { type Pose, state } from "./state";
 import { viewTransform } from "./view";
+import { drivingToken } from "./training";
 
 /** The pose to start from: the last commanded one, else the shown frame's base. */
 /** This tab's id for SetPose: the server lets one controller drive at a time, and this tab's
@@ -44,7 +45,8 @@ export function command3(p: Pose3): void {
 /** The SetPose (2D) or SetPose3 call of the newest pending pose, or null when none waits. */
 function nextCall(sessionId: string, token: string): (() => Promise<unknown>) | null {
   const d = state.driving;
-  const opts = auth(token);
+  // The instructor's page drives with the instructor's token (training.ts).
+  const opts = auth(drivingToken(token));
   if (d.pending3) {
     const p = d.pending3;
     d.pending3 = null;

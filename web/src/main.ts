@@ -18,6 +18,7 @@ import { command3 } from "./driving";
 import { installDriving3 } from "./driving3";
 import { pose3Of, scene3Of } from "./frame3";
 import { TissueView3 } from "./view3";
+import { createExercise, installTraining, setInstructorToken } from "./training";
 
 /** The live time plot's window (s). */
 const LIVE_WINDOW_S = 20;
@@ -110,12 +111,24 @@ for (const id of ["section-on", "section-at"]) {
   });
 }
 $("play").addEventListener("click", togglePlay);
+installTraining();
+$("create-exercise").addEventListener("click", () => {
+  void (async () => {
+    const made = await createExercise();
+    if (!made) return;
+    tokens.set(made.id, made.token);
+    await refreshSessions(made.id);
+    $("token", HTMLInputElement).value = made.token;
+    await watch(made.id, made.token);
+  })();
+});
 
 async function main(): Promise<void> {
   requestAnimationFrame(render);
   const params = new URLSearchParams(window.location.search);
   const sid = params.get("session");
   const tok = params.get("token");
+  setInstructorToken(params.get("instructor"));
   if (sid && tok) tokens.set(sid, tok);
   await refreshSessions(sid ?? undefined);
   void refreshRecordings();

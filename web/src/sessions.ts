@@ -7,6 +7,7 @@ import { sample3Of, surface3Of } from "./frame3";
 import { showFrame, showFramesReceived } from "./readout";
 import { resetForSession, state } from "./state";
 import { sampleOf } from "./history";
+import { watchTraining } from "./training";
 
 const sessionSelect = (): HTMLSelectElement => $("session-select", HTMLSelectElement);
 const tokenInput = (): HTMLInputElement => $("token", HTMLInputElement);
@@ -91,6 +92,8 @@ export async function watch(id: string, token: string): Promise<void> {
   }
   const abort = new AbortController();
   state.streamAbort = abort;
+  // An exercise session's score, control and ultrasound slice (training.ts; hidden otherwise).
+  void watchTraining(id, token);
   publish("state", "live");
   status("");
   try {

@@ -243,6 +243,8 @@ pub(crate) struct FanOut {
     pub(crate) field_maker: FieldMaker,
     pub(crate) histograms: Arc<Mutex<Histograms>>,
     pub(crate) sink: SinkSlot,
+    /// The second sink (`Session::attach_tap_from_io`), handed each record after `sink`.
+    pub(crate) tap: SinkSlot,
     pub(crate) counters: Arc<SessionCounters>,
     /// The real-time thread's one report on its scheduling priority, logged here (the real-time
     /// thread does not log).
@@ -312,6 +314,9 @@ impl FanOut {
                 let rec = Arc::new(rec);
                 if let Some(sink) = self.sink.lock().expect("record sink lock").as_mut() {
                     sink.write_from_fanout(&rec);
+                }
+                if let Some(tap) = self.tap.lock().expect("record tap lock").as_mut() {
+                    tap.write_from_fanout(&rec);
                 }
                 let _ = self.all_tx.send(rec.clone());
                 latest = Some(rec);

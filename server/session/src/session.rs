@@ -124,6 +124,9 @@ pub struct Session {
     histograms: Arc<Mutex<Histograms>>,
     /// Where the fan-out hands every record (a recording), when one is attached.
     sink: crate::fan_out::SinkSlot,
+    /// A second sink, the training layer's (issue 20: the live exercise's metrics), handed every
+    /// record after `sink`, independent of it (a recording and an exercise go together).
+    tap: crate::fan_out::SinkSlot,
     /// The fan-out's and the column worker's doorbells, rung at close so that they stop at once.
     bells: [Arc<Doorbell>; 2],
     threads: Mutex<Vec<JoinHandle<()>>>,
@@ -316,6 +319,7 @@ impl Session {
         }));
         let field_subscribers = Arc::new(AtomicU64::new(0));
         let sink: crate::fan_out::SinkSlot = Arc::new(Mutex::new(None));
+        let tap: crate::fan_out::SinkSlot = Arc::new(Mutex::new(None));
         let (rt_priority_tx, rt_priority_rx) = std::sync::mpsc::sync_channel(1);
         let fanout_bell = Arc::new(Doorbell::default());
         let column_bell = Arc::new(Doorbell::default());
@@ -358,6 +362,7 @@ impl Session {
             field_maker,
             histograms: histograms.clone(),
             sink: sink.clone(),
+            tap: tap.clone(),
             counters: counters.clone(),
             rt_priority_rx,
             session_id: id.clone(),
@@ -389,6 +394,7 @@ impl Session {
             n_observers: Arc::new(AtomicU64::new(0)),
             histograms,
             sink,
+            tap,
             bells: [fanout_bell, column_bell],
             threads: Mutex::new(threads),
         }))
@@ -520,6 +526,22 @@ impl Session {
         f(self.sink.lock().expect("record sink lock").as_deref())
     }
 
+    /// Attaches the second sink, the tap (the training layer's), as [`Session::attach_sink_from_io`]
+    /// does the first; refused (given back) while another tap is attached.
+    pub fn attach_tap_from_io(&self, tap: Box<dyn RecordSink>) -> Result<(), Box<dyn RecordSink>> {
+        let mut slot = self.tap.lock().expect("record tap lock");
+        if slot.is_some() {
+            return Err(tap);
+        }
+        *slot = Some(tap);
+        Ok(())
+    }
+
+    /// Detaches the tap: the fan-out hands it no record after this returns.
+    pub fn detach_tap_from_io(&self) -> Option<Box<dyn RecordSink>> {
+        self.tap.lock().expect("record tap lock").take()
+    }
+
     /// Stops the threads and waits for them, then drops the sink, if any (a recording finishes
     /// when dropped).
     pub fn close(&self) {
@@ -532,6 +554,7 @@ impl Session {
             let _ = t.join();
         }
         drop(self.detach_sink_from_io());
+        drop(self.detach_tap_from_io());
     }
 }
 

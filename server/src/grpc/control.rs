@@ -98,22 +98,30 @@ impl pb::control_service_server::ControlService for Api {
     async fn set_pose(&self, req: Request<pb::SetPoseRequest>) -> Result<Response<pb::ControlResponse>, Status> {
         let r = req.get_ref();
         let s = self.state.session(&r.session_id)?;
-        authorize(&req, &s, Role::Controller)?;
+        // The controller token, or an exercise's instructor (training_live.rs).
+        let instructor = crate::training_live::authorize_pose(&self.state.training, &req, &s)?;
         let pose = convert::checked_pose2_for(r.base.as_ref(), s.dimension()).map_err(Status::from);
-        set_pose(&s, &req, pose, &r.client_id, r.take_over).await
+        match instructor {
+            Some(ex) => instructor_pose(&s, &ex, pose),
+            None => set_pose(&s, &req, pose, &r.client_id, r.take_over).await,
+        }
     }
 
     async fn set_pose3(&self, req: Request<pb::SetPoseRequest3>) -> Result<Response<pb::ControlResponse>, Status> {
         let r = req.get_ref();
         let s = self.state.session(&r.session_id)?;
-        authorize(&req, &s, Role::Controller)?;
+        let instructor = crate::training_live::authorize_pose(&self.state.training, &req, &s)?;
         let pose = convert::checked_pose3_for(r.base3.as_ref(), s.dimension()).map_err(Status::from);
-        set_pose(&s, &req, pose, &r.client_id, r.take_over).await
+        match instructor {
+            Some(ex) => instructor_pose(&s, &ex, pose),
+            None => set_pose(&s, &req, pose, &r.client_id, r.take_over).await,
+        }
     }
 
     async fn flip_bevel(&self, req: Request<pb::FlipBevelRequest>) -> Result<Response<pb::FlipBevelResponse>, Status> {
         let s = self.state.session(&req.get_ref().session_id)?;
         authorize(&req, &s, Role::Controller)?;
+        crate::training_live::refuse_trainee(&self.state.training, &s)?;
         if !s.has_bevel {
             return Err(Status::failed_precondition(format!(
                 "session {}: the needle has a symmetric tip (a rigid needle, or a flexible one without bevel_force_ratio); there is no bevel to flip",
@@ -130,6 +138,23 @@ impl pb::control_service_server::ControlService for Api {
             .map_err(|busy| control_refused(&s, busy))?;
         Ok(Response::new(convert::flip_bevel_response(flips_requested)))
     }
+}
+
+/// SetPose and SetPose3 of an exercise's instructor: the pose written under the control lease
+/// the instructor holds (training_live.rs).
+fn instructor_pose(
+    s: &Arc<Session>,
+    ex: &crate::training_live::LiveExercise,
+    pose: Result<ClientPose, Status>,
+) -> Result<Response<pb::ControlResponse>, Status> {
+    let pose = pose.inspect_err(|_| {
+        s.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+    })?;
+    ex.write_as_instructor(|| {
+        let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
+        write_pose(s, pose, seq, 0);
+    })?;
+    Ok(Response::new(convert::control_response(&s.latest_record(), &s.target_names)))
 }
 
 /// SetPose and SetPose3: one pose (checked by the caller), answered with the latest state.
@@ -169,6 +194,8 @@ async fn control_stream<M: ControlMessage>(
     if !token.as_deref().is_some_and(|t| crate::access::token_matches(t, &s.controller_token)) {
         return Err(Status::permission_denied("driving a session needs its controller token (`authorization: Bearer <token>`)"));
     }
+    // An exercise whose instructor has control, or which is paused, refuses the trainee.
+    crate::training_live::refuse_trainee(&api.state.training, &s)?;
     // The first message must carry a pose (a flip alone is refused as a missing base).
     let pose = match first.pose(&s)? {
         Some(p) => p,

@@ -11,6 +11,7 @@ mod recordings;
 mod sessions;
 mod simulate;
 
+pub(crate) use recordings::start_recording;
 pub use simulate::SERIES_CHUNK_ROWS;
 
 use std::collections::HashMap;
@@ -29,7 +30,7 @@ use crate::convert;
 use crate::jobs::JobLimiter;
 use crate::status::{ApiError, quote, status_of};
 
-type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send + 'static>>;
+pub(crate) type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send + 'static>>;
 
 /// Limits of the server.
 #[derive(Debug, Clone)]
@@ -88,6 +89,8 @@ pub struct ServerState {
     admin_token_sha256: Option<crate::access::TokenDigest>,
     /// Set by [`ServerState::begin_drain`] (issue 22, `agones.rs`): new sessions are refused.
     draining: AtomicBool,
+    /// The live exercises, by session id (issue 20, `training_live.rs`).
+    pub training: crate::training_live::Registry,
 }
 
 /// A place among the `max_sessions` sessions, held while a session starts; given back when
@@ -121,6 +124,7 @@ impl ServerState {
             admin_token_sha256: admin_token.map(crate::access::token_digest),
             jobs,
             draining: AtomicBool::new(false),
+            training: Default::default(),
         })
     }
 
@@ -154,7 +158,7 @@ impl ServerState {
     }
 
     /// Where device channels are created: tmpfs (/dev/shm) when there is one, else the data dir.
-    fn device_dir(&self) -> PathBuf {
+    pub(crate) fn device_dir(&self) -> PathBuf {
         let shm = std::path::Path::new("/dev/shm");
         if shm.is_dir() { shm.to_path_buf() } else { self.data_dir.join("devices") }
     }
@@ -202,6 +206,19 @@ impl ServerState {
         tick_rate_hz: f64,
         device_channel: bool,
     ) -> Result<Arc<Session>, Status> {
+        self.create_session3_with_targets_in(slot, scene, tick_rate_hz, device_channel, Vec::new())
+    }
+
+    /// [`ServerState::create_session3_in`] with `extra_targets` appended to the scene's (an
+    /// exercise's own targets, named `exercise-<i>`).
+    pub fn create_session3_with_targets_in(
+        &self,
+        slot: SessionSlot,
+        scene: &needlesim_scene::Scene3d,
+        tick_rate_hz: f64,
+        device_channel: bool,
+        extra_targets: Vec<needlesim_core::sim3::Target3>,
+    ) -> Result<Arc<Session>, Status> {
         let dir = device_channel.then(|| self.device_dir());
         if let Some(d) = &dir {
             std::fs::create_dir_all(d).map_err(|e| Status::internal(format!("cannot create {}: {e}", d.display())))?;
@@ -211,13 +228,15 @@ impl ServerState {
             needlesim_offline::simulate3::base_pose3(&scene.initial_pose).map_err(|e| Status::from(ApiError::invalid("scene", e)))?;
         let mut params = needlesim_offline::simulate3::sim3_params(scene, initial);
         params.tick_rate_hz = tick_rate_hz;
-        let names = scene.targets.iter().map(|t| t.name.clone()).collect();
+        let mut names: Vec<String> = scene.targets.iter().map(|t| t.name.clone()).collect();
+        names.extend((0..extra_targets.len()).map(|i| format!("exercise-{i}")));
+        params.targets.extend(extra_targets);
         let s = Session::start3(&scene.name, model, params, names, dir.as_deref()).map_err(|e| Status::from(ApiError::from(e)))?;
         Ok(self.register(slot, s))
     }
 
     /// Registers a started session and frees its reservation.
-    fn register(&self, mut slot: SessionSlot, s: Arc<Session>) -> Arc<Session> {
+    pub(crate) fn register(&self, mut slot: SessionSlot, s: Arc<Session>) -> Arc<Session> {
         {
             // Registered and unreserved in one step.
             let mut sessions = self.sessions.write().expect("sessions lock");
@@ -229,7 +248,7 @@ impl ServerState {
         s
     }
 
-    fn session(&self, id: &str) -> Result<Arc<Session>, Status> {
+    pub(crate) fn session(&self, id: &str) -> Result<Arc<Session>, Status> {
         if id.is_empty() {
             return Err(Status::invalid_argument("session_id is empty"));
         }
@@ -252,17 +271,17 @@ impl ServerState {
 
 /// What a token allows.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Role {
+pub(crate) enum Role {
     Controller,
     Observer,
 }
 
-fn token_of<T>(req: &Request<T>) -> Option<String> {
+pub(crate) fn token_of<T>(req: &Request<T>) -> Option<String> {
     let v = req.metadata().get("authorization")?.to_str().ok()?;
     v.strip_prefix("Bearer ").map(|t| t.trim().to_owned())
 }
 
-fn authorize<T>(req: &Request<T>, s: &Session, role: Role) -> Result<(), Status> {
+pub(crate) fn authorize<T>(req: &Request<T>, s: &Session, role: Role) -> Result<(), Status> {
     let Some(tok) = token_of(req) else {
         return Err(Status::permission_denied("missing token: send `authorization: Bearer <token>` metadata"));
     };

@@ -16,7 +16,7 @@ use crate::status::ApiError;
 
 /// Starts recording `s`: frames, the Foxglove channels, the tissue (its mesh or surface, once)
 /// and, with `include_displacements`, the displacement field 10 times a second.
-pub(super) fn start_recording(state: &ServerState, s: &Arc<Session>, include_displacements: bool) -> Result<pb::RecordingInfo, Status> {
+pub(crate) fn start_recording(state: &ServerState, s: &Arc<Session>, include_displacements: bool) -> Result<pb::RecordingInfo, Status> {
     if let Some(r) = crate::recording::SessionRecording::info_of(s) {
         return Err(Status::failed_precondition(format!("session {} is already recording to {}", s.id, r.name)));
     }

@@ -79,7 +79,14 @@ impl pb::session_service_server::SessionService for Api {
         let s = self.state.session(&req.get_ref().session_id)?;
         authorize(&req, &s, Role::Controller)?;
         self.state.sessions.write().expect("sessions lock").remove(&s.id);
-        tokio::task::spawn_blocking(move || s.close()).await.map_err(|e| Status::internal(format!("close: {e}")))?;
+        let state = self.state.clone();
+        tokio::task::spawn_blocking(move || {
+            s.close();
+            // An exercise ends with its session: its report is written (training_live.rs).
+            crate::training_live::on_close(&state.training, &state.data_dir, &s.id);
+        })
+        .await
+        .map_err(|e| Status::internal(format!("close: {e}")))?;
         Ok(Response::new(pb::CloseSessionResponse {}))
     }
 }

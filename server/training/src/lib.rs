@@ -19,5 +19,5 @@ pub mod ultrasound;
 
 pub use exercise::{EXERCISES, Exercise, ExerciseError, load_exercise, parse_exercise};
 pub use metrics::{ExerciseResult, Metrics, MetricsTracker, PlaceError, Score, Trace, TrackerSpec};
-pub use run::{ExerciseRun, ExerciseRunError, run_exercise};
+pub use run::{ExerciseRun, ExerciseRunError, TimelineMarker, run_exercise};
 pub use sample::Sample;

@@ -1,6 +1,7 @@
 //! The after-action report: one self-contained HTML file (no external URL, no script) with the
 //! score, the metrics table (each value in a cell with a `data-metric` attribute naming the
-//! metric, for machines), the placements, the structures, and three inline SVG plots drawn with
+//! metric, for machines), the placements, the structures, the timeline markers of a live
+//! exercise (`data-marker-t-s`), and three inline SVG plots drawn with
 //! plotters' SVG backend: axial force against time, axial force against depth, and the tip's
 //! path against the targets (reference centre, tolerance circle, displaced centre at placement)
 //! and the structures to spare (2D: the x–y plane; 3D: the two world axes along which the path,
@@ -235,6 +236,14 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
         }
         h.push_str("</table>\n");
     }
+    if !run.markers.is_empty() {
+        h.push_str("<h2>Timeline markers</h2>\n<table id=\"markers\">\n<tr><th>t (s)</th><th>tick</th><th>marker</th></tr>\n");
+        for m in &run.markers {
+            let _ =
+                writeln!(h, "<tr><td data-marker-t-s=\"{:e}\">{:.3}</td><td>{}</td><td>{}</td></tr>", m.t_s, m.t_s, m.tick, esc(&m.label));
+        }
+        h.push_str("</table>\n");
+    }
     if !run.refused_placements.is_empty() {
         h.push_str("<h2>Refused declarations</h2>\n<ul>\n");
         for (t, why) in &run.refused_placements {
@@ -244,9 +253,10 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
     }
     let ft: Vec<(f64, f64)> = run.trace.iter().map(|p| (p.t_s, p.axial_force_n)).collect();
     let fd: Vec<(f64, f64)> = run.trace.iter().map(|p| (p.depth_m * 1e3, p.axial_force_n)).collect();
-    let place_t: Vec<(f64, f64)> = run.placements.iter().map(|(_, p)| (p.t_s, nearest(&ft, p.t_s))).collect();
+    let mut place_t: Vec<(f64, f64)> = run.placements.iter().map(|(_, p)| (p.t_s, nearest(&ft, p.t_s))).collect();
+    place_t.extend(run.markers.iter().map(|m| (m.t_s, nearest(&ft, m.t_s))));
     h.push_str("<h2>Curves</h2>\n<div class=\"plots\">\n");
-    h.push_str(&line_plot("Axial force against time (red: placements)", "t (s)", "axial force (N)", &ft, &place_t)?);
+    h.push_str(&line_plot("Axial force against time (red: placements and markers)", "t (s)", "axial force (N)", &ft, &place_t)?);
     h.push('\n');
     h.push_str(&line_plot("Axial force against depth", "inserted length (mm)", "axial force (N)", &fd, &[])?);
     h.push('\n');

@@ -77,6 +77,18 @@ pub struct ExerciseRun {
     pub placements: Vec<(usize, Placement)>,
     /// Declarations refused (every target placed already), with the time.
     pub refused_placements: Vec<(f64, String)>,
+    /// Markers an instructor placed on the timeline (a live exercise; none in a scripted run).
+    pub markers: Vec<TimelineMarker>,
+}
+
+/// A marker on an exercise's timeline (a live session's instructor places them).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TimelineMarker {
+    /// Exercise time, s.
+    pub t_s: f64,
+    /// The session's tick when it was placed.
+    pub tick: u64,
+    pub label: String,
 }
 
 /// The resolved targets: the tracker's, the report's, and those the exercise adds to the
@@ -329,6 +341,7 @@ fn finish(ex: &Exercise, scene: String, rate: f64, targets: Vec<crate::run::Targ
         structures: ex.spare.clone(),
         placements: f.placements,
         refused_placements: f.refused,
+        markers: Vec::new(),
     }
 }
 

@@ -13,7 +13,7 @@
 
 import type { GenFile, GenMessage, GenService } from "@bufbuild/protobuf/codegenv2";
 import { fileDesc, messageDesc, serviceDesc } from "@bufbuild/protobuf/codegenv2";
-import type { SceneSource, TrajectorySample, Vec2 } from "./needlesim_pb";
+import type { Pose3, SceneSource, TrajectorySample, Vec2, Vec3 } from "./needlesim_pb";
 import { file_needlesim_v1_needlesim } from "./needlesim_pb";
 import type { Message } from "@bufbuild/protobuf";
 
@@ -21,7 +21,7 @@ import type { Message } from "@bufbuild/protobuf";
  * Describes the file needlesim/v1/planning.proto.
  */
 export const file_needlesim_v1_planning: GenFile = /*@__PURE__*/
-  fileDesc("ChtuZWVkbGVzaW0vdjEvcGxhbm5pbmcucHJvdG8SDG5lZWRsZXNpbS52MSKdAgoLUGxhblJlcXVlc3QSKAoFc2NlbmUYASABKAsyGS5uZWVkbGVzaW0udjEuU2NlbmVTb3VyY2USDgoGdGFyZ2V0GAIgASgJEigKDGVudHJ5X2Zyb21fbRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEiYKCmVudHJ5X3RvX20YBCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIaCg1hbmdsZV9taW5fZGVnGAUgASgBSACIAQESGgoNYW5nbGVfbWF4X2RlZxgGIAEoAUgBiAEBEhcKCnNwZWVkX21tX3MYByABKAFIAogBAUIQCg5fYW5nbGVfbWluX2RlZ0IQCg5fYW5nbGVfbWF4X2RlZ0INCgtfc3BlZWRfbW1fcyLiAQoQUGxhbm5lZEluc2VydGlvbhIjCgdlbnRyeV9tGAEgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJYW5nbGVfcmFkGAIgASgBEg8KB2RlcHRoX20YAyABKAESGQoRcHJlZGljdGVkX2Vycm9yX20YBCABKAESIQoFdGlwX20YBSABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIkCgh0YXJnZXRfbRgGIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEiEKBWFpbV9tGAcgASgLMhIubmVlZGxlc2ltLnYxLlZlYzIi5wIKClBsYW5SZXN1bHQSDgoGdGFyZ2V0GAEgASgJEhcKD3RhcmdldF9yYWRpdXNfbRgCIAEoARIrCg90YXJnZXRfY2VudGVyX20YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpzcGVlZF9tbV9zGAQgASgBEiwKBHBsYW4YBSABKAsyHi5uZWVkbGVzaW0udjEuUGxhbm5lZEluc2VydGlvbhIwCghzdHJhaWdodBgGIAEoCzIeLm5lZWRsZXNpbS52MS5QbGFubmVkSW5zZXJ0aW9uEjIKCnRyYWplY3RvcnkYByADKAsyHi5uZWVkbGVzaW0udjEuVHJhamVjdG9yeVNhbXBsZRIRCgljb252ZXJnZWQYCCABKAgSEgoKaXRlcmF0aW9ucxgJIAEoDRITCgtzaW11bGF0aW9ucxgKIAEoDRIOCgZ3YWxsX3MYCyABKAESDwoHdGhyZWFkcxgMIAEoDSKQAQoMUGxhblByb2dyZXNzEhEKCWl0ZXJhdGlvbhgBIAEoDRITCgtzaW11bGF0aW9ucxgCIAEoDRIUCgxiZXN0X2Vycm9yX20YAyABKAESGAoQc3RyYWlnaHRfZXJyb3JfbRgEIAEoARIoCgZyZXN1bHQYBSABKAsyGC5uZWVkbGVzaW0udjEuUGxhblJlc3VsdDJSCg9QbGFubmluZ1NlcnZpY2USPwoEUGxhbhIZLm5lZWRsZXNpbS52MS5QbGFuUmVxdWVzdBoaLm5lZWRsZXNpbS52MS5QbGFuUHJvZ3Jlc3MwAWIGcHJvdG8z", [file_needlesim_v1_needlesim]);
+  fileDesc("ChtuZWVkbGVzaW0vdjEvcGxhbm5pbmcucHJvdG8SDG5lZWRsZXNpbS52MSKxAwoLUGxhblJlcXVlc3QSKAoFc2NlbmUYASABKAsyGS5uZWVkbGVzaW0udjEuU2NlbmVTb3VyY2USDgoGdGFyZ2V0GAIgASgJEigKDGVudHJ5X2Zyb21fbRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEiYKCmVudHJ5X3RvX20YBCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIaCg1hbmdsZV9taW5fZGVnGAUgASgBSACIAQESGgoNYW5nbGVfbWF4X2RlZxgGIAEoAUgBiAEBEhcKCnNwZWVkX21tX3MYByABKAFIAogBARIpCg1lbnRyeV9wb2ludF9tGAggASgLMhIubmVlZGxlc2ltLnYxLlZlYzMSGwoOZW50cnlfcmFkaXVzX20YCSABKAFIA4gBARINCgVhdm9pZBgKIAMoCRIYCgtjbGVhcmFuY2VfbRgLIAEoAUgEiAEBQhAKDl9hbmdsZV9taW5fZGVnQhAKDl9hbmdsZV9tYXhfZGVnQg0KC19zcGVlZF9tbV9zQhEKD19lbnRyeV9yYWRpdXNfbUIOCgxfY2xlYXJhbmNlX20iLQoIUm9sbFN0ZXASDwoHZGVwdGhfbRgBIAEoARIQCghyb2xsX3JhZBgCIAEoASK0AgoRUGxhbm5lZEluc2VydGlvbjMSIwoHZW50cnlfbRgBIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEiUKCWRpcmVjdGlvbhgCIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEiUKBXJvbGxzGAMgAygLMhYubmVlZGxlc2ltLnYxLlJvbGxTdGVwEg8KB2RlcHRoX20YBCABKAESGQoRcHJlZGljdGVkX2Vycm9yX20YBSABKAESIQoFdGlwX20YBiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIkCgh0YXJnZXRfbRgHIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEiEKBWFpbV9tGAggASgLMhIubmVlZGxlc2ltLnYxLlZlYzMSFAoMY2xlYXJhbmNlc19tGAkgAygBIlIKClN0cnVjdHVyZTMSDAoEbmFtZRgBIAEoCRIkCghjZW50ZXJfbRgCIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEhAKCHJhZGl1c19tGAMgASgBIkMKEVRyYWplY3RvcnlTYW1wbGUzEgsKA3RfcxgBIAEoARIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UzIr0DCgtQbGFuUmVzdWx0MxIOCgZ0YXJnZXQYASABKAkSFwoPdGFyZ2V0X3JhZGl1c19tGAIgASgBEisKD3RhcmdldF9jZW50ZXJfbRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEhIKCnNwZWVkX21tX3MYBCABKAESLQoEcGxhbhgFIAEoCzIfLm5lZWRsZXNpbS52MS5QbGFubmVkSW5zZXJ0aW9uMxIxCghzdHJhaWdodBgGIAEoCzIfLm5lZWRsZXNpbS52MS5QbGFubmVkSW5zZXJ0aW9uMxIzCgp0cmFqZWN0b3J5GAcgAygLMh8ubmVlZGxlc2ltLnYxLlRyYWplY3RvcnlTYW1wbGUzEhEKCWNvbnZlcmdlZBgIIAEoCBISCgppdGVyYXRpb25zGAkgASgNEhMKC3NpbXVsYXRpb25zGAogASgNEg4KBndhbGxfcxgLIAEoARIPCgd0aHJlYWRzGAwgASgNEiwKCnN0cnVjdHVyZXMYDSADKAsyGC5uZWVkbGVzaW0udjEuU3RydWN0dXJlMxITCgtjbGVhcmFuY2VfbRgOIAEoARINCgViZXZlbBgPIAEoCCLiAQoQUGxhbm5lZEluc2VydGlvbhIjCgdlbnRyeV9tGAEgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEQoJYW5nbGVfcmFkGAIgASgBEg8KB2RlcHRoX20YAyABKAESGQoRcHJlZGljdGVkX2Vycm9yX20YBCABKAESIQoFdGlwX20YBSABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIkCgh0YXJnZXRfbRgGIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEiEKBWFpbV9tGAcgASgLMhIubmVlZGxlc2ltLnYxLlZlYzIi5wIKClBsYW5SZXN1bHQSDgoGdGFyZ2V0GAEgASgJEhcKD3RhcmdldF9yYWRpdXNfbRgCIAEoARIrCg90YXJnZXRfY2VudGVyX20YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpzcGVlZF9tbV9zGAQgASgBEiwKBHBsYW4YBSABKAsyHi5uZWVkbGVzaW0udjEuUGxhbm5lZEluc2VydGlvbhIwCghzdHJhaWdodBgGIAEoCzIeLm5lZWRsZXNpbS52MS5QbGFubmVkSW5zZXJ0aW9uEjIKCnRyYWplY3RvcnkYByADKAsyHi5uZWVkbGVzaW0udjEuVHJhamVjdG9yeVNhbXBsZRIRCgljb252ZXJnZWQYCCABKAgSEgoKaXRlcmF0aW9ucxgJIAEoDRITCgtzaW11bGF0aW9ucxgKIAEoDRIOCgZ3YWxsX3MYCyABKAESDwoHdGhyZWFkcxgMIAEoDSK8AQoMUGxhblByb2dyZXNzEhEKCWl0ZXJhdGlvbhgBIAEoDRITCgtzaW11bGF0aW9ucxgCIAEoDRIUCgxiZXN0X2Vycm9yX20YAyABKAESGAoQc3RyYWlnaHRfZXJyb3JfbRgEIAEoARIoCgZyZXN1bHQYBSABKAsyGC5uZWVkbGVzaW0udjEuUGxhblJlc3VsdBIqCgdyZXN1bHQzGAYgASgLMhkubmVlZGxlc2ltLnYxLlBsYW5SZXN1bHQzMlIKD1BsYW5uaW5nU2VydmljZRI/CgRQbGFuEhkubmVlZGxlc2ltLnYxLlBsYW5SZXF1ZXN0GhoubmVlZGxlc2ltLnYxLlBsYW5Qcm9ncmVzczABYgZwcm90bzM", [file_needlesim_v1_needlesim]);
 
 /**
  * @generated from message needlesim.v1.PlanRequest
@@ -73,6 +73,37 @@ export type PlanRequest = Message<"needlesim.v1.PlanRequest"> & {
    * @generated from field: optional double speed_mm_s = 7;
    */
   speedMmS?: number | undefined;
+
+  /**
+   * 3D scenes (`dim = 3`; the result is `PlanProgress.result3`): the entry point, on a face of
+   * the mesh's bounding box (entry_from_m/entry_to_m and the angles do not apply). Absent: the
+   * scene's 3D planning example's (behind-vessel-3d: server/scenes/behind-vessel-plan.toml).
+   *
+   * @generated from field: needlesim.v1.Vec3 entry_point_m = 8;
+   */
+  entryPointM?: Vec3 | undefined;
+
+  /**
+   * 3D: how far the entry point may move on its face to clear the structures (symmetric
+   * needles); absent: the example's, else 0.
+   *
+   * @generated from field: optional double entry_radius_m = 9;
+   */
+  entryRadiusM?: number | undefined;
+
+  /**
+   * 3D: the structures to spare, names of sphere regions of the scene; empty: the example's.
+   *
+   * @generated from field: repeated string avoid = 10;
+   */
+  avoid: string[];
+
+  /**
+   * 3D: the clearance to keep between the needle and each structure; absent: the example's.
+   *
+   * @generated from field: optional double clearance_m = 11;
+   */
+  clearanceM?: number | undefined;
 };
 
 /**
@@ -81,6 +112,251 @@ export type PlanRequest = Message<"needlesim.v1.PlanRequest"> & {
  */
 export const PlanRequestSchema: GenMessage<PlanRequest> = /*@__PURE__*/
   messageDesc(file_needlesim_v1_planning, 0);
+
+/**
+ * 3D: from a tip depth on (beyond the entry point; negative: before it enters), the base's roll
+ * about its axis relative to the straight aim's.
+ *
+ * @generated from message needlesim.v1.RollStep
+ */
+export type RollStep = Message<"needlesim.v1.RollStep"> & {
+  /**
+   * @generated from field: double depth_m = 1;
+   */
+  depthM: number;
+
+  /**
+   * @generated from field: double roll_rad = 2;
+   */
+  rollRad: number;
+};
+
+/**
+ * Describes the message needlesim.v1.RollStep.
+ * Use `create(RollStepSchema)` to create a new message.
+ */
+export const RollStepSchema: GenMessage<RollStep> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_planning, 1);
+
+/**
+ * 3D: one simulated insertion.
+ *
+ * @generated from message needlesim.v1.PlannedInsertion3
+ */
+export type PlannedInsertion3 = Message<"needlesim.v1.PlannedInsertion3"> & {
+  /**
+   * Where the axis crosses the entry face.
+   *
+   * @generated from field: needlesim.v1.Vec3 entry_m = 1;
+   */
+  entryM?: Vec3 | undefined;
+
+  /**
+   * The unit shaft direction, base to tip.
+   *
+   * @generated from field: needlesim.v1.Vec3 direction = 2;
+   */
+  direction?: Vec3 | undefined;
+
+  /**
+   * The rotation schedule (bevel needles; empty: no roll).
+   *
+   * @generated from field: repeated needlesim.v1.RollStep rolls = 3;
+   */
+  rolls: RollStep[];
+
+  /**
+   * The tip's travel beyond the entry point at the closest approach.
+   *
+   * @generated from field: double depth_m = 4;
+   */
+  depthM: number;
+
+  /**
+   * @generated from field: double predicted_error_m = 5;
+   */
+  predictedErrorM: number;
+
+  /**
+   * The tip and the displaced target centre at closest approach.
+   *
+   * @generated from field: needlesim.v1.Vec3 tip_m = 6;
+   */
+  tipM?: Vec3 | undefined;
+
+  /**
+   * @generated from field: needlesim.v1.Vec3 target_m = 7;
+   */
+  targetM?: Vec3 | undefined;
+
+  /**
+   * The (virtual) point aimed at.
+   *
+   * @generated from field: needlesim.v1.Vec3 aim_m = 8;
+   */
+  aimM?: Vec3 | undefined;
+
+  /**
+   * Per structure (PlanResult3.structures' order): the smallest distance between the needle
+   * and its surface over the insertion (negative: crossed).
+   *
+   * @generated from field: repeated double clearances_m = 9;
+   */
+  clearancesM: number[];
+};
+
+/**
+ * Describes the message needlesim.v1.PlannedInsertion3.
+ * Use `create(PlannedInsertion3Schema)` to create a new message.
+ */
+export const PlannedInsertion3Schema: GenMessage<PlannedInsertion3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_planning, 2);
+
+/**
+ * 3D: a structure kept clear of (a sphere region of the scene, moving with the tissue).
+ *
+ * @generated from message needlesim.v1.Structure3
+ */
+export type Structure3 = Message<"needlesim.v1.Structure3"> & {
+  /**
+   * @generated from field: string name = 1;
+   */
+  name: string;
+
+  /**
+   * @generated from field: needlesim.v1.Vec3 center_m = 2;
+   */
+  centerM?: Vec3 | undefined;
+
+  /**
+   * @generated from field: double radius_m = 3;
+   */
+  radiusM: number;
+};
+
+/**
+ * Describes the message needlesim.v1.Structure3.
+ * Use `create(Structure3Schema)` to create a new message.
+ */
+export const Structure3Schema: GenMessage<Structure3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_planning, 3);
+
+/**
+ * @generated from message needlesim.v1.TrajectorySample3
+ */
+export type TrajectorySample3 = Message<"needlesim.v1.TrajectorySample3"> & {
+  /**
+   * @generated from field: double t_s = 1;
+   */
+  tS: number;
+
+  /**
+   * @generated from field: needlesim.v1.Pose3 base = 2;
+   */
+  base?: Pose3 | undefined;
+};
+
+/**
+ * Describes the message needlesim.v1.TrajectorySample3.
+ * Use `create(TrajectorySample3Schema)` to create a new message.
+ */
+export const TrajectorySample3Schema: GenMessage<TrajectorySample3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_planning, 4);
+
+/**
+ * @generated from message needlesim.v1.PlanResult3
+ */
+export type PlanResult3 = Message<"needlesim.v1.PlanResult3"> & {
+  /**
+   * @generated from field: string target = 1;
+   */
+  target: string;
+
+  /**
+   * @generated from field: double target_radius_m = 2;
+   */
+  targetRadiusM: number;
+
+  /**
+   * @generated from field: needlesim.v1.Vec3 target_center_m = 3;
+   */
+  targetCenterM?: Vec3 | undefined;
+
+  /**
+   * @generated from field: double speed_mm_s = 4;
+   */
+  speedMmS: number;
+
+  /**
+   * @generated from field: needlesim.v1.PlannedInsertion3 plan = 5;
+   */
+  plan?: PlannedInsertion3 | undefined;
+
+  /**
+   * Aiming straight at the target's undeformed centre from the requested entry point.
+   *
+   * @generated from field: needlesim.v1.PlannedInsertion3 straight = 6;
+   */
+  straight?: PlannedInsertion3 | undefined;
+
+  /**
+   * The plan's base trajectory (Simulate replays it; as the 3D CSV t_s,x_m,y_m,z_m,qw,qx,qy,qz).
+   *
+   * @generated from field: repeated needlesim.v1.TrajectorySample3 trajectory = 7;
+   */
+  trajectory: TrajectorySample3[];
+
+  /**
+   * Within the planner's tolerance and every clearance kept.
+   *
+   * @generated from field: bool converged = 8;
+   */
+  converged: boolean;
+
+  /**
+   * @generated from field: uint32 iterations = 9;
+   */
+  iterations: number;
+
+  /**
+   * @generated from field: uint32 simulations = 10;
+   */
+  simulations: number;
+
+  /**
+   * @generated from field: double wall_s = 11;
+   */
+  wallS: number;
+
+  /**
+   * @generated from field: uint32 threads = 12;
+   */
+  threads: number;
+
+  /**
+   * @generated from field: repeated needlesim.v1.Structure3 structures = 13;
+   */
+  structures: Structure3[];
+
+  /**
+   * @generated from field: double clearance_m = 14;
+   */
+  clearanceM: number;
+
+  /**
+   * Whether the needle has a bevel tip (the plan then has a rotation schedule).
+   *
+   * @generated from field: bool bevel = 15;
+   */
+  bevel: boolean;
+};
+
+/**
+ * Describes the message needlesim.v1.PlanResult3.
+ * Use `create(PlanResult3Schema)` to create a new message.
+ */
+export const PlanResult3Schema: GenMessage<PlanResult3> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_planning, 5);
 
 /**
  * One simulated insertion line.
@@ -139,7 +415,7 @@ export type PlannedInsertion = Message<"needlesim.v1.PlannedInsertion"> & {
  * Use `create(PlannedInsertionSchema)` to create a new message.
  */
 export const PlannedInsertionSchema: GenMessage<PlannedInsertion> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_planning, 1);
+  messageDesc(file_needlesim_v1_planning, 6);
 
 /**
  * @generated from message needlesim.v1.PlanResult
@@ -218,7 +494,7 @@ export type PlanResult = Message<"needlesim.v1.PlanResult"> & {
  * Use `create(PlanResultSchema)` to create a new message.
  */
 export const PlanResultSchema: GenMessage<PlanResult> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_planning, 2);
+  messageDesc(file_needlesim_v1_planning, 7);
 
 /**
  * @generated from message needlesim.v1.PlanProgress
@@ -249,11 +525,18 @@ export type PlanProgress = Message<"needlesim.v1.PlanProgress"> & {
   straightErrorM: number;
 
   /**
-   * Set on the last message only.
+   * Set on the last message only (2D scenes).
    *
    * @generated from field: needlesim.v1.PlanResult result = 5;
    */
   result?: PlanResult | undefined;
+
+  /**
+   * Set on the last message only (3D scenes).
+   *
+   * @generated from field: needlesim.v1.PlanResult3 result3 = 6;
+   */
+  result3?: PlanResult3 | undefined;
 };
 
 /**
@@ -261,7 +544,7 @@ export type PlanProgress = Message<"needlesim.v1.PlanProgress"> & {
  * Use `create(PlanProgressSchema)` to create a new message.
  */
 export const PlanProgressSchema: GenMessage<PlanProgress> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_planning, 3);
+  messageDesc(file_needlesim_v1_planning, 8);
 
 /**
  * @generated from service needlesim.v1.PlanningService

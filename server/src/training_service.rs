@@ -1,0 +1,294 @@
+//! `TrainingService` (proto/needlesim/v1/training.proto): exercise sessions, "placed", the score
+//! stream, the instructor's calls, the end of an exercise and its report, the ultrasound slice.
+//! The state lives in `training_live.rs`; the messages are built in `training_convert.rs`.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use needlesim_proto::v1 as pb;
+use needlesim_session::Session;
+use needlesim_training::run::{prepare_2d, prepare_3d};
+use needlesim_training::{EXERCISES, load_exercise};
+use tokio::sync::mpsc;
+use tokio_stream::wrappers::ReceiverStream;
+use tonic::{Request, Response, Status};
+
+use crate::grpc::{Api, BoxStream, ServerState, token_of};
+use crate::status::quote;
+use crate::training_convert as tc;
+use crate::training_live::{LiveExercise, Who};
+use crate::training_ultrasound::{ProbeSpec, UltrasoundHub, default_probe_2d, default_probe_3d};
+
+/// Bytes per report chunk.
+const REPORT_CHUNK_BYTES: usize = 64 << 10;
+const ALL: &[Who] = &[Who::Trainee, Who::Instructor, Who::Observer];
+const DRIVERS: &[Who] = &[Who::Trainee, Who::Instructor];
+const INSTRUCTOR: &[Who] = &[Who::Instructor];
+
+/// A session created from an exercise: the session and its exercise.
+pub struct ExerciseSession {
+    pub session: Arc<Session>,
+    pub exercise: Arc<LiveExercise>,
+}
+
+/// Starts a session of the shipped exercise `name` at `tick_rate_hz` (0: the scene's), its
+/// tap attached and the exercise registered (blocking: the scene is meshed and factorised).
+pub fn create_exercise_session(
+    state: &Arc<ServerState>,
+    name: &str,
+    tick_rate_hz: f64,
+    device_channel: bool,
+) -> Result<ExerciseSession, Status> {
+    if !EXERCISES.iter().any(|e| e.0 == name) {
+        let names: Vec<&str> = EXERCISES.iter().map(|e| e.0).collect();
+        return Err(Status::invalid_argument(format!("exercise: '{}' is not a shipped exercise ({})", quote(name), names.join(", "))));
+    }
+    let ex = load_exercise(name).map_err(|e| Status::internal(format!("shipped exercise {name}: {e}")))?;
+    let limits = state.limits.mesh;
+    let check_rate = |scene_rate: f64| {
+        let rate = if tick_rate_hz == 0.0 { scene_rate } else { tick_rate_hz };
+        if rate.is_finite() && (500.0..=1000.0).contains(&rate) {
+            Ok(rate)
+        } else {
+            Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")))
+        }
+    };
+    let prepare_err = |e: needlesim_training::ExerciseRunError| Status::internal(format!("shipped exercise {name}: {e}"));
+    let (s, spec, targets, probe) = if ex.dim == 2 {
+        let p = prepare_2d(&ex, &limits).map_err(prepare_err)?;
+        let rate = check_rate(p.scene.params.tick_rate_hz)?;
+        let slot = state.reserve_session_slot()?;
+        let s = state.create_session_in(slot, &p.scene, rate, device_channel)?;
+        let bbox = p.scene.tissue.mesh().bounding_box_m();
+        (s, p.spec, p.targets, ProbeSpec::Two(default_probe_2d(bbox)))
+    } else {
+        let p = prepare_3d(&ex, &limits).map_err(prepare_err)?;
+        let rate = check_rate(p.scene.tick_rate_hz)?;
+        let slot = state.reserve_session_slot()?;
+        let pose = p.scene.initial_pose;
+        let [w, x, y, z] = pose.quat_wxyz;
+        let axis = [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)];
+        let probe = ProbeSpec::Three(default_probe_3d(p.scene.mesh.nodes_m(), pose.position_m, axis));
+        let s = state.create_session3_with_targets_in(slot, &p.scene, rate, device_channel, p.added_targets)?;
+        (s, p.spec, p.targets, probe)
+    };
+    let hub = UltrasoundHub::new(probe, targets.iter().map(|t| (t.centre_m, t.radius_m)).collect());
+    let live = LiveExercise::new(&s.id, ex, spec, targets, s.scene_name.clone(), s.tick_rate_hz, hub);
+    if let Err(e) = crate::training_live::attach(&state.training, &s, live.clone()) {
+        state.sessions.write().expect("sessions lock").remove(&s.id);
+        s.close();
+        return Err(e);
+    }
+    tracing::info!(session = %s.id, exercise = %live.exercise.name, instructor_token_sha256 = %crate::access::fingerprint(live.instructor_token()), "exercise session created");
+    Ok(ExerciseSession { session: s, exercise: live })
+}
+
+impl Api {
+    /// The session and its exercise; FAILED_PRECONDITION for a session without one.
+    fn exercise(&self, session_id: &str) -> Result<(Arc<Session>, Arc<LiveExercise>), Status> {
+        let s = self.state.session(session_id)?;
+        let ex = crate::training_live::exercise_of(&self.state.training, &s.id)
+            .ok_or_else(|| Status::failed_precondition(format!("session {} was not created from an exercise", s.id)))?;
+        Ok((s, ex))
+    }
+
+    fn exercise_for<T>(
+        &self,
+        req: &Request<T>,
+        session_id: &str,
+        allowed: &[Who],
+        what: &str,
+    ) -> Result<(Arc<Session>, Arc<LiveExercise>, Who), Status> {
+        let (s, ex) = self.exercise(session_id)?;
+        let who = ex.require(&s, token_of(req).as_deref(), allowed, what)?;
+        Ok((s, ex, who))
+    }
+}
+
+fn status_now(ex: &LiveExercise) -> pb::ExerciseStatus {
+    tc::status(ex, &ex.snapshot())
+}
+
+#[tonic::async_trait]
+impl pb::training_service_server::TrainingService for Api {
+    async fn create_exercise_session(
+        &self,
+        req: Request<pb::CreateExerciseSessionRequest>,
+    ) -> Result<Response<pb::CreateExerciseSessionResponse>, Status> {
+        let r = req.into_inner();
+        let state = self.state.clone();
+        let (name, rate, device) = (r.exercise.clone(), r.tick_rate_hz, r.device_channel);
+        let made = tokio::task::spawn_blocking(move || create_exercise_session(&state, &name, rate, device))
+            .await
+            .map_err(|e| Status::internal(format!("session task: {e}")))??;
+        if r.record {
+            crate::grpc::start_recording(&self.state, &made.session, false)?;
+        }
+        let ex = &made.exercise;
+        Ok(Response::new(pb::CreateExerciseSessionResponse {
+            session: Some(crate::convert::create_session_response(&made.session)),
+            instructor_token: ex.instructor_token().to_owned(),
+            exercise: Some(tc::exercise_info(&ex.exercise, Some(&ex.targets))),
+        }))
+    }
+
+    async fn list_exercises(&self, _req: Request<pb::ListExercisesRequest>) -> Result<Response<pb::ListExercisesResponse>, Status> {
+        let mut out = Vec::new();
+        for (name, _, _) in EXERCISES {
+            let ex = load_exercise(name).map_err(|e| Status::internal(format!("shipped exercise {name}: {e}")))?;
+            out.push(tc::exercise_info(&ex, None));
+        }
+        Ok(Response::new(pb::ListExercisesResponse { exercises: out }))
+    }
+
+    async fn place(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::PlaceResponse>, Status> {
+        let (_, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, DRIVERS, "Place")?;
+        let (i, p) = ex.place()?;
+        Ok(Response::new(pb::PlaceResponse { placement: Some(tc::placement(&ex, i, &p)), status: Some(status_now(&ex)) }))
+    }
+
+    type WatchScoreStream = BoxStream<pb::ExerciseStatus>;
+
+    async fn watch_score(&self, req: Request<pb::WatchScoreRequest>) -> Result<Response<Self::WatchScoreStream>, Status> {
+        let r = req.get_ref();
+        let rate = if r.rate_hz == 0.0 { 10.0 } else { r.rate_hz };
+        if !(rate.is_finite() && (1.0..=60.0).contains(&rate)) {
+            return Err(Status::invalid_argument(format!("rate_hz = {rate}: 1..60 updates per second")));
+        }
+        let (_, ex, _) = self.exercise_for(&req, &r.session_id, ALL, "WatchScore")?;
+        let (tx, rx) = mpsc::channel(4);
+        tokio::spawn(async move {
+            let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / rate));
+            every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
+            let mut seen = None;
+            loop {
+                every.tick().await;
+                let changes = ex.changes();
+                if seen == Some(changes) {
+                    if tx.is_closed() {
+                        return;
+                    }
+                    continue;
+                }
+                seen = Some(changes);
+                let st = status_now(&ex);
+                let finished = st.finished;
+                if tx.send(Ok(st)).await.is_err() || finished {
+                    return;
+                }
+            }
+        });
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+    }
+
+    async fn get_status(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
+        let (_, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, ALL, "GetStatus")?;
+        Ok(Response::new(status_now(&ex)))
+    }
+
+    async fn take_control(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
+        let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "TakeControl")?;
+        ex.take_control(&s).await?;
+        tracing::info!(session = %s.id, "the instructor took control");
+        Ok(Response::new(status_now(&ex)))
+    }
+
+    async fn hand_back_control(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
+        let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "HandBackControl")?;
+        ex.hand_back();
+        tracing::info!(session = %s.id, "the instructor handed control back");
+        Ok(Response::new(status_now(&ex)))
+    }
+
+    async fn set_paused(&self, req: Request<pb::SetPausedRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
+        let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "SetPaused")?;
+        ex.set_paused(&s, req.get_ref().paused).await?;
+        Ok(Response::new(status_now(&ex)))
+    }
+
+    async fn reset_exercise(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
+        let (_, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "ResetExercise")?;
+        ex.reset()?;
+        Ok(Response::new(status_now(&ex)))
+    }
+
+    async fn add_marker(&self, req: Request<pb::AddMarkerRequest>) -> Result<Response<pb::ExerciseMarker>, Status> {
+        let (_, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "AddMarker")?;
+        let m = ex.add_marker(&req.get_ref().label)?;
+        Ok(Response::new(tc::marker(&m)))
+    }
+
+    async fn end_exercise(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
+        let (_, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, DRIVERS, "EndExercise")?;
+        let dir = self.state.data_dir.clone();
+        let ex2 = ex.clone();
+        tokio::task::spawn_blocking(move || ex2.end(&dir)).await.map_err(|e| Status::internal(format!("report task: {e}")))??;
+        Ok(Response::new(status_now(&ex)))
+    }
+
+    type GetReportStream = BoxStream<pb::ExerciseReportChunk>;
+
+    async fn get_report(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<Self::GetReportStream>, Status> {
+        let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, ALL, "GetReport")?;
+        let Some(f) = ex.snapshot().finished else {
+            return Err(Status::failed_precondition(format!("session {}: the exercise has not ended (EndExercise)", s.id)));
+        };
+        let html = tokio::fs::read(&f.report_path).await.map_err(|e| Status::internal(format!("cannot read the report: {e}")))?;
+        let chunks: Vec<Result<pb::ExerciseReportChunk, Status>> =
+            html.chunks(REPORT_CHUNK_BYTES).map(|c| Ok(pb::ExerciseReportChunk { html: c.to_vec() })).collect();
+        Ok(Response::new(Box::pin(tokio_stream::iter(chunks))))
+    }
+
+    type WatchUltrasoundStream = BoxStream<pb::UltrasoundImage>;
+
+    async fn watch_ultrasound(&self, req: Request<pb::WatchUltrasoundRequest>) -> Result<Response<Self::WatchUltrasoundStream>, Status> {
+        let r = req.get_ref();
+        let rate = if r.rate_hz == 0.0 { crate::training_ultrasound::DEFAULT_RATE_HZ } else { r.rate_hz };
+        if !(rate.is_finite() && (1.0..=crate::training_ultrasound::MAX_RATE_HZ).contains(&rate)) {
+            return Err(Status::invalid_argument(format!(
+                "rate_hz = {rate}: 1..{} images per second",
+                crate::training_ultrasound::MAX_RATE_HZ
+            )));
+        }
+        let (s, ex, _) = self.exercise_for(&req, &r.session_id, ALL, "WatchUltrasound")?;
+        let ex_closed = ex.clone();
+        let closed = Arc::new(move || ex_closed.closed.load(std::sync::atomic::Ordering::Acquire));
+        let (mut images, watching) = ex
+            .ultrasound
+            .watch(s.clone(), closed, rate)
+            .map_err(|e| Status::internal(format!("cannot start the ultrasound renderer: {e}")))?;
+        let (tx, rx) = mpsc::channel(2);
+        tokio::spawn(async move {
+            let _watching = watching;
+            loop {
+                if ex.closed.load(std::sync::atomic::Ordering::Acquire) {
+                    return;
+                }
+                // Woken by a new image, the client leaving, or every 0.5 s to see the session closed.
+                let changed = tokio::select! {
+                    c = images.changed() => c,
+                    () = tx.closed() => return,
+                    () = tokio::time::sleep(Duration::from_millis(500)) => continue,
+                };
+                if changed.is_err() {
+                    return;
+                }
+                let img = images.borrow_and_update().clone();
+                if let Some(img) = img
+                    && tx.send(Ok(tc::ultrasound_image(&img))).await.is_err()
+                {
+                    return;
+                }
+            }
+        });
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+    }
+
+    async fn set_probe(&self, req: Request<pb::SetProbeRequest>) -> Result<Response<pb::UltrasoundProbe>, Status> {
+        let r = req.get_ref();
+        let (s, ex, _) = self.exercise_for(&req, &r.session_id, DRIVERS, "SetProbe")?;
+        let p = tc::probe_from_pb(r.probe.as_ref(), s.dimension())?;
+        ex.ultrasound.set_probe(p);
+        Ok(Response::new(tc::probe(&p)))
+    }
+}

@@ -1,0 +1,386 @@
+//! The live ultrasound slice of an exercise session (issue 20): one renderer thread per session,
+//! started by the first watcher and stopped when the last one leaves, renders the latest tick
+//! record with needlesim-training's `ultrasound` at the highest rate any watcher asked for and
+//! publishes the image on a latest-value channel every watcher reads — so the cost does not grow
+//! with the number of observers, and nothing of it runs on the real-time thread (the renderer
+//! reads the session's latest record and, in 2D, the displacement field the fan-out computes for
+//! field subscribers, which it is while it runs).
+//!
+//! 2D: the slice is the tissue plane, the probe a window in it (by default the mesh's bounding
+//! box, depth pointing −y). 3D: a plane through the tissue (by default through the initial needle
+//! base, spanned by the needle's horizontal direction and −z, so the needle lies in it); the 3D
+//! tissue is drawn in its reference configuration (the session computes no interior displacement
+//! field: see the module docs of `needlesim_session::surface`), the needle and the targets move.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use needlesim_session::{Session, SessionTissue, TickRecord};
+use needlesim_training::ultrasound::{Probe, Probe3, SliceScene, SliceScene3, UltrasoundScratch, render_slice, render_slice_3d};
+use tokio::sync::watch;
+
+/// Largest image side, pixels.
+pub const MAX_PROBE_PIXELS: u32 = 512;
+/// Smallest image side, pixels.
+pub const MIN_PROBE_PIXELS: u32 = 8;
+/// The renderer's rate when no watcher asked for one, and the bounds of a request, Hz.
+pub const DEFAULT_RATE_HZ: f64 = 10.0;
+pub const MAX_RATE_HZ: f64 = 30.0;
+
+/// Echogenicity by region index (cycled).
+const REGION_GAIN: [f64; 6] = [0.6, 0.9, 0.45, 0.75, 0.55, 0.85];
+/// Speckle lattice cell, m.
+const SPECKLE_M: f64 = 3e-4;
+const SEED: u64 = 20;
+
+/// The probe of a session, of its dimension.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ProbeSpec {
+    Two(Probe),
+    Three(Probe3),
+}
+
+/// One rendered slice.
+#[derive(Debug, Clone)]
+pub struct SliceImage {
+    pub tick: u64,
+    pub width: usize,
+    pub height: usize,
+    pub gray8: Vec<u8>,
+    pub probe: ProbeSpec,
+    pub render_us: f64,
+}
+
+/// A probe refused, naming the field.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("probe.{field}: {message}")]
+pub struct ProbeError {
+    pub field: &'static str,
+    pub message: String,
+}
+
+/// The renderer state shared by the watchers of one session.
+pub struct UltrasoundHub {
+    probe: Mutex<ProbeSpec>,
+    /// Targets drawn (reference centre, radius), world, m (z = 0 in 2D).
+    targets: Vec<([f64; 3], f64)>,
+    watchers: AtomicUsize,
+    /// The highest rate asked for by a current watcher (bits of an f64), and whether the
+    /// renderer thread runs — under one lock, so that no watcher is left without a renderer.
+    run: Mutex<(bool, f64)>,
+    tx: watch::Sender<Option<Arc<SliceImage>>>,
+    /// Images rendered since the session started.
+    pub renders: std::sync::atomic::AtomicU64,
+}
+
+/// A watcher's registration: leaving drops it.
+pub struct Watching {
+    hub: Arc<UltrasoundHub>,
+}
+
+impl Drop for Watching {
+    fn drop(&mut self) {
+        self.hub.watchers.fetch_sub(1, Ordering::AcqRel);
+    }
+}
+
+fn unit3(v: [f64; 3]) -> [f64; 3] {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if n > 0.0 { [v[0] / n, v[1] / n, v[2] / n] } else { v }
+}
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The default 2D probe: the mesh's bounding box, 200 pixels wide, depth along −y.
+pub fn default_probe_2d(bbox: ([f64; 2], [f64; 2])) -> Probe {
+    let ([x0, y0], [x1, y1]) = bbox;
+    let width = 200usize;
+    let pixel_m = ((x1 - x0) / width as f64).max(1e-6);
+    let height = (((y1 - y0) / pixel_m).ceil() as usize).clamp(MIN_PROBE_PIXELS as usize, MAX_PROBE_PIXELS as usize);
+    Probe { origin_m: [x0, y1], e_u: [1.0, 0.0], e_v: [0.0, -1.0], pixel_m, width, height }
+}
+
+/// The default 3D probe: the plane through `base_m` spanned by the horizontal part of `axis`
+/// (x when the needle is vertical) and −z, covering the nodes' extent in it, 200 pixels wide.
+pub fn default_probe_3d(nodes_m: &[[f64; 3]], base_m: [f64; 3], axis: [f64; 3]) -> Probe3 {
+    let h = [axis[0], axis[1], 0.0];
+    let e_u = if (h[0] * h[0] + h[1] * h[1]).sqrt() > 1e-6 { unit3(h) } else { [1.0, 0.0, 0.0] };
+    let e_v = [0.0, 0.0, -1.0];
+    let (mut u0, mut u1, mut v0, mut v1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for &p in nodes_m {
+        let d = [p[0] - base_m[0], p[1] - base_m[1], p[2] - base_m[2]];
+        let (u, v) = (dot3(d, e_u), dot3(d, e_v));
+        u0 = u0.min(u);
+        u1 = u1.max(u);
+        v0 = v0.min(v);
+        v1 = v1.max(v);
+    }
+    if !u0.is_finite() {
+        (u0, u1, v0, v1) = (-0.05, 0.05, -0.05, 0.05);
+    }
+    // The tissue and the needle base above it.
+    v0 = v0.min(0.0);
+    let width = 200usize;
+    let pixel_m = ((u1 - u0) / width as f64).max(1e-6);
+    let height = (((v1 - v0) / pixel_m).ceil() as usize).clamp(MIN_PROBE_PIXELS as usize, MAX_PROBE_PIXELS as usize);
+    let origin_m = [base_m[0] + u0 * e_u[0] + v0 * e_v[0], base_m[1] + u0 * e_u[1] + v0 * e_v[1], base_m[2] + u0 * e_u[2] + v0 * e_v[2]];
+    Probe3 { origin_m, e_u, e_v, pixel_m, width, height, thickness_m: 2e-3 }
+}
+
+/// Checks a probe from a client (module docs of `training.proto`): finite, `pixel_m` in
+/// (1 µm, 1 cm], sides in [`MIN_PROBE_PIXELS`]..=[`MAX_PROBE_PIXELS`], `e_u` and `e_v` unit
+/// (±1e-3) and orthogonal (±1e-3) — then made exactly orthonormal —, in 2D in the plane.
+#[allow(clippy::too_many_arguments)]
+pub fn checked_probe(
+    dim: u8,
+    origin_m: [f64; 3],
+    e_u: [f64; 3],
+    e_v: [f64; 3],
+    pixel_m: f64,
+    width: u32,
+    height: u32,
+    thickness_m: f64,
+) -> Result<ProbeSpec, ProbeError> {
+    let bad = |field: &'static str, message: String| Err(ProbeError { field, message });
+    if let Some(x) = origin_m.iter().find(|x| !x.is_finite() || x.abs() > 1e3) {
+        return bad("origin_m", format!("{x} must be finite and within ±1e3 m"));
+    }
+    if !(pixel_m.is_finite() && pixel_m > 1e-6 && pixel_m <= 1e-2) {
+        return bad("pixel_m", format!("{pixel_m} must be in (1e-6, 1e-2] m"));
+    }
+    for (field, v) in [("width", width), ("height", height)] {
+        if !(MIN_PROBE_PIXELS..=MAX_PROBE_PIXELS).contains(&v) {
+            return bad(field, format!("{v} must be in {MIN_PROBE_PIXELS}..={MAX_PROBE_PIXELS} pixels"));
+        }
+    }
+    let mut e_u = e_u;
+    let mut e_v = e_v;
+    if dim == 2 {
+        e_u[2] = 0.0;
+        e_v[2] = 0.0;
+    }
+    for (field, v) in [("e_u", e_u), ("e_v", e_v)] {
+        let n = dot3(v, v).sqrt();
+        if !n.is_finite() || (n - 1.0).abs() > 1e-3 {
+            return bad(field, format!("length {n}: must be a unit vector{}", if dim == 2 { " in the x–y plane" } else { "" }));
+        }
+    }
+    if dot3(e_u, e_v).abs() > 1e-3 {
+        return bad("e_v", format!("e_u · e_v = {}: must be orthogonal to e_u", dot3(e_u, e_v)));
+    }
+    e_u = unit3(e_u);
+    let c = dot3(e_u, e_v);
+    e_v = unit3([e_v[0] - c * e_u[0], e_v[1] - c * e_u[1], e_v[2] - c * e_u[2]]);
+    let (width, height) = (width as usize, height as usize);
+    if dim == 2 {
+        return Ok(ProbeSpec::Two(Probe {
+            origin_m: [origin_m[0], origin_m[1]],
+            e_u: [e_u[0], e_u[1]],
+            e_v: [e_v[0], e_v[1]],
+            pixel_m,
+            width,
+            height,
+        }));
+    }
+    if !(thickness_m.is_finite() && thickness_m > 0.0 && thickness_m <= 0.05) {
+        return bad("thickness_m", format!("{thickness_m} must be in (0, 0.05] m"));
+    }
+    Ok(ProbeSpec::Three(Probe3 { origin_m, e_u, e_v, pixel_m, width, height, thickness_m }))
+}
+
+impl UltrasoundHub {
+    pub fn new(probe: ProbeSpec, targets: Vec<([f64; 3], f64)>) -> Arc<Self> {
+        Arc::new(Self {
+            probe: Mutex::new(probe),
+            targets,
+            watchers: AtomicUsize::new(0),
+            run: Mutex::new((false, DEFAULT_RATE_HZ)),
+            tx: watch::channel(None).0,
+            renders: Default::default(),
+        })
+    }
+
+    pub fn probe(&self) -> ProbeSpec {
+        *self.probe.lock().expect("probe lock")
+    }
+
+    /// Moves the probe (the next image uses it).
+    pub fn set_probe(&self, p: ProbeSpec) {
+        *self.probe.lock().expect("probe lock") = p;
+    }
+
+    /// Registers a watcher at `rate_hz` (clamped to 1..[`MAX_RATE_HZ`]) and starts the renderer if
+    /// it is not running; `closed` tells the renderer the session closed.
+    pub fn watch(
+        self: &Arc<Self>,
+        session: Arc<Session>,
+        closed: Arc<dyn Fn() -> bool + Send + Sync>,
+        rate_hz: f64,
+    ) -> std::io::Result<(watch::Receiver<Option<Arc<SliceImage>>>, Watching)> {
+        let rate = rate_hz.clamp(1.0, MAX_RATE_HZ);
+        self.watchers.fetch_add(1, Ordering::AcqRel);
+        let w = Watching { hub: self.clone() };
+        let rx = self.tx.subscribe();
+        let mut run = self.run.lock().expect("renderer lock");
+        if !run.0 {
+            run.1 = rate;
+            let hub = self.clone();
+            std::thread::Builder::new().name(format!("us-{}", session.id)).spawn(move || hub.render_loop(session, closed))?;
+            run.0 = true;
+        } else {
+            run.1 = run.1.max(rate);
+        }
+        Ok((rx, w))
+    }
+
+    fn render_loop(self: Arc<Self>, s: Arc<Session>, closed: Arc<dyn Fn() -> bool + Send + Sync>) {
+        let two = matches!(s.tissue, SessionTissue::Two(_));
+        if two {
+            s.field_subscribers.fetch_add(1, Ordering::AcqRel);
+        }
+        let mut scratch = UltrasoundScratch::default();
+        let mut u2: Vec<[f64; 2]> = Vec::new();
+        let mut u3: Vec<[f64; 3]> = Vec::new();
+        let mut last: Option<(u64, ProbeSpec)> = None;
+        let mut next = Instant::now();
+        loop {
+            let period = {
+                let mut run = self.run.lock().expect("renderer lock");
+                if self.watchers.load(Ordering::Acquire) == 0 || closed() {
+                    *run = (false, DEFAULT_RATE_HZ);
+                    break;
+                }
+                Duration::from_secs_f64(1.0 / run.1)
+            };
+            let rec = s.latest_record();
+            let probe = self.probe();
+            if last != Some((rec.tick, probe)) {
+                last = Some((rec.tick, probe));
+                let t0 = Instant::now();
+                let img = self.render(&s, &rec, probe, &mut scratch, &mut u2, &mut u3);
+                let render_us = t0.elapsed().as_secs_f64() * 1e6;
+                if let Some((width, height, gray8)) = img {
+                    self.renders.fetch_add(1, Ordering::Relaxed);
+                    self.tx.send_replace(Some(Arc::new(SliceImage { tick: rec.tick, width, height, gray8, probe, render_us })));
+                }
+            }
+            next += period;
+            let now = Instant::now();
+            if next > now {
+                std::thread::sleep(next - now);
+            } else {
+                next = now;
+            }
+        }
+        if two {
+            s.field_subscribers.fetch_sub(1, Ordering::AcqRel);
+        }
+    }
+
+    /// Renders `rec` through `probe`; `None` when the probe's dimension is not the session's.
+    fn render(
+        &self,
+        s: &Session,
+        rec: &TickRecord,
+        probe: ProbeSpec,
+        scratch: &mut UltrasoundScratch,
+        u2: &mut Vec<[f64; 2]>,
+        u3: &mut Vec<[f64; 3]>,
+    ) -> Option<(usize, usize, Vec<u8>)> {
+        match (&s.tissue, probe) {
+            (SessionTissue::Two(t), ProbeSpec::Two(p)) => {
+                let mesh = t.mesh();
+                let n = mesh.n_nodes();
+                let field = s.field.borrow().clone();
+                u2.clear();
+                if field.displacement_m.len() == 2 * n {
+                    u2.extend(field.displacement_m.chunks_exact(2).map(|c| [c[0], c[1]]));
+                } else {
+                    u2.resize(n, [0.0; 2]);
+                }
+                let targets: Vec<([f64; 2], f64)> = self.targets.iter().map(|(c, r)| ([c[0], c[1]], *r)).collect();
+                let gains: Vec<f64> = (0..mesh.region_names().len().max(1)).map(|i| REGION_GAIN[i % REGION_GAIN.len()]).collect();
+                let inside = rec.n_stuck + rec.n_slipping + rec.n_tip > 0;
+                let needle = inside.then_some(([rec.base.x_m, rec.base.y_m], rec.tip_m));
+                let scene = SliceScene {
+                    region_gain: &gains,
+                    targets: &targets,
+                    needle_m: needle,
+                    needle_halfwidth_px: 1.5,
+                    speckle_m: SPECKLE_M,
+                    seed: SEED,
+                };
+                let img = render_slice(mesh.nodes_m(), u2, mesh.triangles(), mesh.region_of_tri(), &scene, &p, scratch);
+                Some((img.width, img.height, img.pixels))
+            }
+            (SessionTissue::Three { model, .. }, ProbeSpec::Three(p)) => {
+                let mesh = model.mesh();
+                u3.clear();
+                u3.resize(mesh.n_nodes(), [0.0; 3]);
+                let gains: Vec<f64> = (0..mesh.region_names().len().max(1)).map(|i| REGION_GAIN[i % REGION_GAIN.len()]).collect();
+                let d = &rec.d3;
+                let needle = (d.n_contacts > 0).then_some((d.position_m, d.tip_m));
+                let scene = SliceScene3 {
+                    region_gain: &gains,
+                    targets: &self.targets,
+                    needle_m: needle,
+                    needle_halfwidth_px: 1.5,
+                    speckle_m: SPECKLE_M,
+                    seed: SEED,
+                };
+                let img = render_slice_3d(mesh.nodes_m(), u3, mesh.tets(), mesh.region_of_tet(), &scene, &p, scratch);
+                Some((img.width, img.height, img.pixels))
+            }
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn probes_are_checked_field_by_field_and_made_orthonormal() {
+        let ok = checked_probe(3, [0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0005, -1.0], 1e-4, 64, 64, 2e-3).unwrap();
+        let ProbeSpec::Three(p) = ok else { panic!("a 3D probe") };
+        assert!(dot3(p.e_u, p.e_v).abs() < 1e-15 && (dot3(p.e_v, p.e_v) - 1.0).abs() < 1e-15);
+        let e = checked_probe(2, [0.0; 3], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], 0.0, 64, 64, 0.0).unwrap_err();
+        assert_eq!(e.field, "pixel_m");
+        let e = checked_probe(2, [0.0; 3], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], 1e-4, 4, 64, 0.0).unwrap_err();
+        assert_eq!(e.field, "width");
+        let e = checked_probe(2, [0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1e-4, 64, 64, 0.0).unwrap_err();
+        assert_eq!(e.field, "e_v");
+        // In 2D the z parts are dropped: a vector along z alone has no length in the plane.
+        let e = checked_probe(2, [0.0; 3], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0], 1e-4, 64, 64, 0.0).unwrap_err();
+        assert_eq!(e.field, "e_u");
+        let e = checked_probe(3, [f64::NAN, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0], 1e-4, 64, 64, 2e-3).unwrap_err();
+        assert_eq!(e.field, "origin_m");
+        let e = checked_probe(3, [0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0], 1e-4, 64, 64, 0.0).unwrap_err();
+        assert_eq!(e.field, "thickness_m");
+    }
+
+    #[test]
+    fn the_default_3d_probe_holds_the_needle_and_covers_the_nodes() {
+        let nodes = [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [0.1, 0.1, 0.1]];
+        let base = [0.02, 0.05, 0.12];
+        let axis = unit3([1.0, 0.0, -1.0]);
+        let p = default_probe_3d(&nodes, base, axis);
+        let n = [
+            p.e_u[1] * p.e_v[2] - p.e_u[2] * p.e_v[1],
+            p.e_u[2] * p.e_v[0] - p.e_u[0] * p.e_v[2],
+            p.e_u[0] * p.e_v[1] - p.e_u[1] * p.e_v[0],
+        ];
+        // The base and the needle's direction lie in the plane.
+        let d = [base[0] - p.origin_m[0], base[1] - p.origin_m[1], base[2] - p.origin_m[2]];
+        assert!(dot3(d, n).abs() < 1e-12 && dot3(axis, n).abs() < 1e-12);
+        // Every node's projection falls in the image.
+        for q in nodes {
+            let d = [q[0] - p.origin_m[0], q[1] - p.origin_m[1], q[2] - p.origin_m[2]];
+            let (u, v) = (dot3(d, p.e_u) / p.pixel_m, dot3(d, p.e_v) / p.pixel_m);
+            assert!(u >= -1e-9 && u <= p.width as f64 + 1e-9 && v >= -1e-9 && v <= p.height as f64 + 1e-9, "{q:?}: ({u}, {v})");
+        }
+    }
+}
