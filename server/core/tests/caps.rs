@@ -87,4 +87,3 @@ fn issue_19_shape_passes_that_stop_at_their_cap_say_so() {
     let (f, s) = run(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }), 64, vec![RegionNeedleParams::default()]);
     assert_eq!((f.shape_passes_capped, s.shape_capped_ticks), (0, 0));
 }
-

@@ -23,10 +23,10 @@
 
 use std::time::{Duration, Instant};
 
+use needlesim_core::BasePose;
 use needlesim_core::fixtures::{box_phantom3, box_phantom3_params, phantom_bench};
 use needlesim_core::sim::{ContactModel, SimParams, Simulation};
 use needlesim_core::sim3::{BasePose3, Simulation3};
-use needlesim_core::{BasePose, NeedleShape};
 
 /// Time this thread waited on a run queue (ns), from `/proc/thread-self/schedstat`: a step
 /// during which it grew was preempted (another process had the core).
@@ -91,7 +91,8 @@ fn rotating_2d() {
     let setup_s = t0.elapsed().as_secs_f64();
     let entry = [bench.initial_pose.x_m, 0.1];
     let len = 0.1;
-    let pose = |depth_m: f64, theta: f64| BasePose::new(entry[0] + (depth_m - len) * theta.cos(), entry[1] + (depth_m - len) * theta.sin(), theta);
+    let pose =
+        |depth_m: f64, theta: f64| BasePose::new(entry[0] + (depth_m - len) * theta.cos(), entry[1] + (depth_m - len) * theta.sin(), theta);
     let params = SimParams {
         initial_pose: pose(-0.005, DOWN),
         contact: ContactModel::default_points(),
@@ -140,7 +141,14 @@ fn rotating_2d() {
     println!("  step + Jacobian on those ticks: {}", with_jac.summary());
     println!(
         "  up to {max_d} contacts; {prefetched} nodes prefetched; column misses {}, deferrals {}, unconverged {}, capped {}; pivots {}, rotations {}, stick→slip {}, slip→stick {}",
-        s.column_misses, s.column_deferrals, s.unconverged_ticks, s.active_set_capped_ticks, u.n_pivots, u.n_rotations, s.stick_to_slip, s.slip_to_stick
+        s.column_misses,
+        s.column_deferrals,
+        s.unconverged_ticks,
+        s.active_set_capped_ticks,
+        u.n_pivots,
+        u.n_rotations,
+        s.stick_to_slip,
+        s.slip_to_stick
     );
     assert_eq!(s.column_misses, 0);
 }
@@ -159,7 +167,10 @@ fn rotating_3d() {
     let start = sim.pose();
     let t_axis = start.axis();
     let down = |p: BasePose3, d: f64| {
-        BasePose3::from_rotation([p.position_m[0] + d * t_axis[0], p.position_m[1] + d * t_axis[1], p.position_m[2] + d * t_axis[2]], p.orientation)
+        BasePose3::from_rotation(
+            [p.position_m[0] + d * t_axis[0], p.position_m[1] + d * t_axis[1], p.position_m[2] + d * t_axis[2]],
+            p.orientation,
+        )
     };
     let mut script: Vec<(&str, BasePose3)> = Vec::new();
     for k in 1..=2250 {
@@ -194,7 +205,10 @@ fn rotating_3d() {
     }
     let s = sim.stats();
     let u = sim.solver().stats();
-    println!("3D rolling needle, {n}³ cube ({n_nodes} nodes, {n_tets} tets; setup {setup_s:.2} s), load average before {load_before}, after {}", load_avg());
+    println!(
+        "3D rolling needle, {n}³ cube ({n_nodes} nodes, {n_tets} tets; setup {setup_s:.2} s), load average before {load_before}, after {}",
+        load_avg()
+    );
     println!("  every step: {}", step.summary());
     println!("  steps while rolling: {}", rolling.summary());
     println!("  up to {max_d} contacts; {s:?}; pivots {}, rotations {}", u.n_pivots, u.n_rotations);

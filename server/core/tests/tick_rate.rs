@@ -113,7 +113,12 @@ fn compare_rates(case: Case) -> f64 {
     let f_max = reference.iter().map(|s| s.axial_n.abs().max(s.lateral_n.abs())).fold(0.0, f64::max);
     let s_ref = slope(&reference);
     let p_ref = puncture_depths(&reference);
-    assert!(s_ref < -5.0 && p_ref.len() > 10, "{}: the reference insertion hardly resists: slope {s_ref} N/m, {} punctures", case.name, p_ref.len());
+    assert!(
+        s_ref < -5.0 && p_ref.len() > 10,
+        "{}: the reference insertion hardly resists: slope {s_ref} N/m, {} punctures",
+        case.name,
+        p_ref.len()
+    );
     let mut worst_pct: f64 = 0.0;
     for rate in [500.0, 1000.0] {
         let c = insertion(case, rate);
@@ -176,5 +181,10 @@ fn issue_19_an_oblique_insertion_does_not_depend_on_the_tick_rate() {
 #[test]
 fn issue_19_node_capture_does_not_depend_on_the_tick_rate() {
     let rigid = NeedleShape::Rigid(RigidNeedle { length_m: 0.1 });
-    compare_rates(Case { name: "rigid, oblique, node capture", needle: rigid, theta_rad: DOWN + 30f64.to_radians(), contact: ContactModel::Nodes });
+    compare_rates(Case {
+        name: "rigid, oblique, node capture",
+        needle: rigid,
+        theta_rad: DOWN + 30f64.to_radians(),
+        contact: ContactModel::Nodes,
+    });
 }

@@ -48,7 +48,10 @@ fn issue_19_the_shipped_2d_examples_never_stop_at_an_iteration_cap() {
     assert!(cases.len() >= 7, "{} cases", cases.len());
     for (scene, csv) in &cases {
         let s = run(scene, csv);
-        println!("{scene}: {} ticks, {} captures, {} shape passes; capped: active set {}, shape {}", s.ticks, s.captures, s.shape_passes, s.active_set_capped_ticks, s.shape_capped_ticks);
+        println!(
+            "{scene}: {} ticks, {} captures, {} shape passes; capped: active set {}, shape {}",
+            s.ticks, s.captures, s.shape_passes, s.active_set_capped_ticks, s.shape_capped_ticks
+        );
         assert!(s.ticks > 1000 && s.captures > 0, "{scene}: {s:?}");
         assert_eq!((s.active_set_capped_ticks, s.shape_capped_ticks, s.unconverged_ticks), (0, 0, 0), "{scene}: {s:?}");
     }
