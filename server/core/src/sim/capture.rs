@@ -329,8 +329,8 @@ const BISECTIONS: usize = 24;
 /// carries, and so the force–depth curve, depend on the tick rate. Instead the tip's path
 /// within the tick is taken as straight, $p(\lambda) = x_{k-1} + \lambda (x_k - x_{k-1})$, and:
 /// - with a contact behind the tip, the point is the one at the arc length where it was due,
-///   $s_{due} = s_{distal} + 	ext{spacing}$:
-///   $\lambda = \operatorname{clamp}ig((s_{due} - s_{k-1}) / (s_k - s_{k-1}),\ 0,\ 1ig)$
+///   $s_{due} = s_{distal} + \text{spacing}$:
+///   $\lambda = \operatorname{clamp}\big((s_{due} - s_{k-1}) / (s_k - s_{k-1}),\ 0,\ 1\big)$
 ///   (clamped: a contact admitted late, after waiting for its columns or for room from the
 ///   other points, is taken where the tip was at the last tick, as before);
 /// - with none (the needle enters the tissue), the point where the path crosses the mesh's
