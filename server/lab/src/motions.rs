@@ -632,6 +632,7 @@ impl CaseResult {
             (s.approaching_overflow, "approaching-list overflows"),
             (s.candidate_growths, "candidate-buffer growth (an allocation in a step)"),
             (s.curve_capacity_drops, "curve capacity drops"),
+            (s.shape_capped_ticks, "ticks whose flexible shape passes stopped at their cap"),
             (self.jacobian_errors as u64, "failed Jacobians"),
         ] {
             if n > 0 {
@@ -1046,6 +1047,8 @@ pub fn to_json(suite: &Suite, opts: &MotionOptions) -> Value {
                 "captures": s.captures, "releases": s.releases, "punctures": s.punctures,
                 "stick_to_slip": s.stick_to_slip, "slip_to_stick": s.slip_to_stick, "shape_passes": s.shape_passes,
                 "shape_unconverged": s.shape_unconverged, "dependent_points": s.dependent_points, "bevel_flips": s.bevel_flips,
+                "active_set_capped_ticks": s.active_set_capped_ticks, "shape_capped_ticks": s.shape_capped_ticks,
+                "hybrid_checks": s.hybrid_checks, "hybrid_rebuilds": s.hybrid_rebuilds,
                 "clamped_ticks": s.clamped_ticks, "overflows": s.overflows(),
                 "pivots": c.solver.n_pivots, "rotations": c.solver.n_rotations, "rebuilds": c.solver.n_rebuilds,
                 "max_active_set_iterations": c.ticks.iter().map(|r| r.active_set_iterations).max().unwrap_or(0),

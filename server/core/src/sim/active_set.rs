@@ -110,8 +110,20 @@ fn flex_pair<'a>(fx: &'a mut Option<FlexState>, sc: &'a mut Option<FlexScratch>)
     fx.as_mut().zip(sc.as_mut())
 }
 
+/// How one stick/slip iteration ended.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Resolved {
+    /// Passes made.
+    pub iterations: usize,
+    /// No condition was left to change.
+    pub converged: bool,
+    /// It stopped at `max_active_set_iterations` passes with conditions still changing (not at
+    /// the tick's update budget, which [`super::SimStats::budget_exhausted_ticks`] counts).
+    pub capped: bool,
+}
+
 /// Stage 6: the bounded stick/slip iteration (at most `max_active_set_iterations` passes).
-/// Returns (iterations, converged); counts punctures, releases and stick/slip changes.
+/// Counts punctures, releases and stick/slip changes.
 ///
 /// Errors: [`SimError::Mixed`] when the solver refuses a condition change or a release.
 pub(super) fn resolve_active_set(
@@ -119,7 +131,7 @@ pub(super) fn resolve_active_set(
     st: &mut State,
     sc: &mut ActiveSetScratch,
     flex_sc: &mut Option<FlexScratch>,
-) -> Result<(usize, bool), SimError> {
+) -> Result<Resolved, SimError> {
     let params = ctx.params;
     let s_tip = ctx.setup.s_tip_m;
     let tick = st.tick;
@@ -137,7 +149,7 @@ pub(super) fn resolve_active_set(
             // are (the next tick goes on from them) and say so.
             flexible::solve_working_set(&mut st.ws, flex_pair(&mut st.flex, flex_sc), s_tip, tick);
             st.stats.budget_exhausted_ticks += 1;
-            return Ok((iter, false));
+            return Ok(Resolved { iterations: iter, converged: false, capped: false });
         }
         flexible::solve_working_set(&mut st.ws, flex_pair(&mut st.flex, flex_sc), s_tip, tick);
         // Friction shares follow the slipping nodes' positions (a node sliding back lengthens
@@ -183,7 +195,7 @@ pub(super) fn resolve_active_set(
             }
         }
         if sc.changes.is_empty() {
-            return Ok((iter, true));
+            return Ok(Resolved { iterations: iter, converged: true, capped: false });
         }
         // Apply in descending slot order so removals do not disturb pending slots.
         sc.changes.sort_unstable_by_key(|c| std::cmp::Reverse(c.0));
@@ -234,5 +246,5 @@ pub(super) fn resolve_active_set(
             flexible::solve_working_set(&mut st.ws, flex_pair(&mut st.flex, flex_sc), s_tip, tick);
         }
     }
-    Ok((max_iter, false))
+    Ok(Resolved { iterations: max_iter, converged: false, capped: true })
 }

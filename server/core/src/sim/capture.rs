@@ -302,11 +302,117 @@ fn material_point_at(
     Some((ContactPoint::in_triangle(tri, mesh.triangles()[tri], bary), x))
 }
 
+/// The tip's straight path within one tick, from its position at the last tick to the current
+/// one, with both ends' arc lengths in the tip's frame.
+#[derive(Debug, Clone, Copy)]
+struct TipPath {
+    from_m: [f64; 2],
+    to_m: [f64; 2],
+    s_from_m: f64,
+    s_to_m: f64,
+}
+
+impl TipPath {
+    /// The point a fraction `lambda` of the way.
+    fn at(&self, lambda: f64) -> [f64; 2] {
+        [self.from_m[0] + lambda * (self.to_m[0] - self.from_m[0]), self.from_m[1] + lambda * (self.to_m[1] - self.from_m[1])]
+    }
+}
+
+/// Bisection steps locating an event within a tick: to the tick's advance / 2^24 (about 1 nm
+/// at 1 kHz and 20 mm/s).
+const BISECTIONS: usize = 24;
+
+/// The material point the next contact takes, located within the tick (issue 19: tick-rate
+/// independence). A discrete step sees an event only at the first tick past it; taking the
+/// point at the tick's end (or the last tick's tip) would make which material point the needle
+/// carries, and so the force–depth curve, depend on the tick rate. Instead the tip's path
+/// within the tick is taken as straight, $p(\lambda) = x_{k-1} + \lambda (x_k - x_{k-1})$, and:
+/// - with a contact behind the tip, the point is the one at the arc length where it was due,
+///   $s_{due} = s_{distal} + \text{spacing}$:
+///   $\lambda = \operatorname{clamp}\big((s_{due} - s_{k-1}) / (s_k - s_{k-1}),\ 0,\ 1\big)$
+///   (clamped: a contact admitted late, after waiting for its columns or for room from the
+///   other points, is taken where the tip was at the last tick, as before);
+/// - with none (the needle enters the tissue), the point where the path crosses the mesh's
+///   boundary, by bisection on whether $p(\lambda)$ lies in a triangle (undeformed tissue: no
+///   contact holds it); when the last tick's tip was already inside (a contact that waited),
+///   that point;
+/// - when that point lies too close to a working point (`far_enough` says no: the spacing rule
+///   of [`capture_points`]), the first point along the rest of the path that does not, by
+///   bisection (none when even the tip's does not: a later tick takes it).
+///
+/// The material point at $p$ is then the fixed point of [`material_point_at`] with the
+/// displacement field the last tick left (the tissue between the last contact and the tip is
+/// loaded only by the contacts behind it, which hold still within a tick up to friction's
+/// sliding). The tip then pushes it to where the tip is now: a quasi-static state, the same
+/// as if it had been captured on time. Returns the contact, its reference position $X$ and $p$.
+fn capture_point_within_tick(
+    ctx: &Ctx<'_>,
+    st: &State,
+    candidates: &mut Vec<usize>,
+    path: TipPath,
+    s_due_m: Option<f64>,
+    u_d: [f64; 2],
+    far_enough: impl Fn(&ContactPoint, [f64; 2]) -> bool,
+) -> Option<(ContactPoint, [f64; 2], [f64; 2])> {
+    let lambda_due = match s_due_m {
+        Some(s_due) => ((s_due - path.s_from_m) / (path.s_to_m - path.s_from_m)).clamp(0.0, 1.0),
+        None => {
+            let (setup, mesh) = (ctx.setup, ctx.model.mesh());
+            let inside = |candidates: &mut Vec<usize>, p: [f64; 2]| {
+                setup.locate_near(mesh, [p[0] - u_d[0], p[1] - u_d[1]], setup.max_edge_m, candidates).is_some()
+            };
+            if inside(candidates, path.from_m) {
+                0.0
+            } else if !inside(candidates, path.to_m) {
+                return None;
+            } else {
+                // Outside at 0, inside at 1: the crossing, from inside.
+                let (mut lo, mut hi) = (0.0f64, 1.0f64);
+                for _ in 0..BISECTIONS {
+                    let mid = 0.5 * (lo + hi);
+                    if inside(candidates, path.at(mid)) {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                hi
+            }
+        }
+    };
+    let mut point_at = |lambda: f64| {
+        let p = path.at(lambda);
+        material_point_at(ctx, st, candidates, p, u_d).map(|(c, x)| (c, x, p))
+    };
+    let ok = |found: &Option<(ContactPoint, [f64; 2], [f64; 2])>| found.as_ref().is_some_and(|(c, x, _)| far_enough(c, *x));
+    let due = point_at(lambda_due);
+    if ok(&due) || lambda_due >= 1.0 {
+        return due.filter(|(c, x, _)| far_enough(c, *x));
+    }
+    // The due point lies too close to another: the first point along the path that does not.
+    let end = point_at(1.0);
+    if !ok(&end) {
+        return None;
+    }
+    let (mut lo, mut hi, mut found) = (lambda_due, 1.0f64, end);
+    for _ in 0..BISECTIONS {
+        let mid = 0.5 * (lo + hi);
+        let at_mid = point_at(mid);
+        if ok(&at_mid) {
+            (hi, found) = (mid, at_mid);
+        } else {
+            lo = mid;
+        }
+    }
+    found
+}
+
 /// Stage 4 with material-point contact ([`super::ContactModel::MaterialPoints`]): when no
 /// contact is carried by the tip, the tip has advanced along its axis since the last tick, and
 /// it lies `spacing_m` of arc length beyond the most distal contact, the material point the tip
-/// passed last tick (where the previous tip position $x_{k-1}$ lies in the tissue) becomes the
-/// tip's contact: carried until its axial force exceeds the puncture or cutting force. It is
+/// passed where the contact was due (located within the tick: [`capture_point_within_tick`];
+/// at the tissue's surface for the first) becomes the tip's contact: carried until its axial force exceeds the puncture or cutting force. It is
 /// taken only at a reference distance from every working point of at least both points'
 /// triangle diameters, so that no segment of the shaft inside one triangle holds two points
 /// (along a straight needle, the points' conditions are then independent). Nodes of the
@@ -338,21 +444,29 @@ pub(super) fn capture_points(
     let (s_prev_tip, _) = tip_frame.coords(prev_tip);
     let advancing = s_tip - s_prev_tip > 1e-9;
     let due = !has_tip && advancing && s_distal.is_none_or(|s| s_tip - s >= spacing_m);
-    let mut candidate = if due { material_point_at(ctx, st, &mut sc.candidates, prev_tip, u_d) } else { None };
-    if let Some((c, x)) = candidate {
-        let diam = |c: &ContactPoint| c.tri_idx().map_or(0.0, |t| setup.tri_diam_m[t]);
-        let too_close = st.ws.nodes.iter().any(|nn| {
+    // Where within the tick the tip reached the point that is due (module docs of
+    // `capture_point_within_tick`): the same material point at any tick rate.
+    // The point is taken only at a reference distance from every working point of at least
+    // both points' triangle diameters.
+    let diam = |c: &ContactPoint| c.tri_idx().map_or(0.0, |t| setup.tri_diam_m[t]);
+    let far_enough = |c: &ContactPoint, x: [f64; 2]| {
+        st.ws.nodes.iter().all(|nn| {
             let d = (nn.x_ref_m[0] - x[0]).hypot(nn.x_ref_m[1] - x[1]);
-            d <= diam(&c).max(diam(&nn.contact)) * (1.0 + 1e-9)
-        });
-        if too_close {
-            candidate = None;
-        }
-    }
+            d > diam(c).max(diam(&nn.contact)) * (1.0 + 1e-9)
+        })
+    };
+    // Where within the tick the tip reached the point that is due: the same material point at
+    // any tick rate.
+    let candidate = if due {
+        let tip_path = TipPath { from_m: prev_tip, to_m: tip, s_from_m: s_prev_tip, s_to_m: s_tip };
+        capture_point_within_tick(ctx, st, &mut sc.candidates, tip_path, s_distal.map(|s| s + spacing_m), u_d, far_enough)
+    } else {
+        None
+    };
     // Approaching nodes: the next contact's nodes first, then the nodes of the triangles the
     // axis crosses ahead of the tip.
     approaching.clear();
-    if let Some((c, _)) = candidate {
+    if let Some((c, _, _)) = candidate {
         for n in c.nodes() {
             if st.cache.contains(n.index()) {
                 st.columns_lru.touch(n.index(), st.tick);
@@ -390,7 +504,7 @@ pub(super) fn capture_points(
         let key = |j: &usize| tip_frame.coords([nodes_m[*j][0] + u_d[0], nodes_m[*j][1] + u_d[1]]).0;
         approaching[first..].sort_unstable_by(|a, b| key(a).total_cmp(&key(b)));
     }
-    let Some((contact, x)) = candidate else { return Ok(()) };
+    let Some((contact, x, p_due)) = candidate else { return Ok(()) };
     if st.ws.len() == params.max_needle_nodes {
         st.stats.capacity_drops += 1;
         return Ok(());
@@ -398,11 +512,11 @@ pub(super) fn capture_points(
     if !ensure_columns(model, params.columns_in_step, &mut st.cache, sc, &mut st.stats, &contact)? {
         return Ok(());
     }
-    let (s_new, _) = tip_frame.coords(prev_tip);
+    let (s_new, _) = tip_frame.coords(p_due);
     let (angle, frame) = geo.capture_frame(s_tip, s_new);
     // A flexible needle takes the point where it is; the rigid one puts it on the shaft (it
-    // lies there up to the tip's lateral motion in one tick).
-    let lat_offset_m = if geo.curve.is_some() { frame.coords(prev_tip).1 } else { 0.0 };
+    // lies there up to the tip's lateral motion within the tick).
+    let lat_offset_m = if geo.curve.is_some() { frame.coords(p_due).1 } else { 0.0 };
     let visc = ctx.setup.visc.map_or_else(History::default, |c| History::captured(&c, contact_displacement(&st.ws, &st.cache, &contact)));
     let (s0, lat0) = frame.coords([x[0] + visc.shift_m[0], x[1] + visc.shift_m[1]]);
     let tri = contact.tri_idx().expect("a material point lies in a triangle");

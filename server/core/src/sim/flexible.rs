@@ -22,13 +22,6 @@ use super::state::{FlexState, NodeState, WorkingSet};
 /// needle turned ~19 frames a tick on the Fig. 4 path, 100 × 100: twice the step time.)
 pub(super) const FRAME_TOL_RAD: f64 = 1e-4;
 
-/// Largest lateral distance (m) between a needle node and the settled needle shape left without
-/// another solve on the new shape (1 µm: a thousandth of a typical capture radius).
-pub(super) const SHAPE_GAP_TOL_M: f64 = 1e-6;
-
-/// Bound on the shape passes (solve, settle) per tick.
-pub(super) const SHAPE_PASSES: usize = 4;
-
 /// The flexible needle's scratch, sized for the working set's capacity: the coupling of the
 /// working solver and of the probe solver to the needle, the probe's copy of the curve, and the
 /// coupled view of the working nodes.

@@ -331,22 +331,29 @@ impl Simulation {
         lap(clock, &mut t_last, &mut stage_ns, 2);
         let geo = Geometry::new(params, st.pose, st.flex.as_ref());
         active_set::update_friction(params, &geo, &mut st.ws, &mut sc.active_set.order, false, 0.0);
-        let (mut iterations, mut converged) = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
+        let resolved = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
+        let (mut iterations, mut converged, mut capped) = (resolved.iterations, resolved.converged, resolved.capped);
         lap(clock, &mut t_last, &mut stage_ns, 3);
         // A flexible needle comes to equilibrium with the tick's forces; where that moves it off
         // the linearised prediction by more than SHAPE_GAP_TOL_M, the tissue is solved again on
-        // the new shape (a bounded Picard iteration).
-        for pass in 1..=flexible::SHAPE_PASSES {
+        // the new shape (a bounded Picard iteration, which says when it stops at its bound).
+        let mut shape_capped = false;
+        for pass in 1..=param_limits::SHAPE_PASSES {
             let (Some(fx), Some(fsc)) = (st.flex.as_mut(), sc.flex.as_mut()) else { break };
             let gap = flexible::settle_shape(st.pose, &params.needle, &mut st.ws, fx, fsc, &mut st.stats.shape_unconverged);
-            if gap <= flexible::SHAPE_GAP_TOL_M || pass == flexible::SHAPE_PASSES {
+            if gap <= param_limits::SHAPE_GAP_TOL_M {
+                break;
+            }
+            if pass == param_limits::SHAPE_PASSES {
+                shape_capped = true;
                 break;
             }
             flexible::refresh_frames(&fx.curve, &mut st.ws, s_tip)?;
             frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
-            let (it, conv) = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
-            iterations += it;
-            converged &= conv;
+            let r = active_set::resolve_active_set(&ctx, st, &mut sc.active_set, &mut sc.flex)?;
+            iterations += r.iterations;
+            converged &= r.converged;
+            capped |= r.capped;
             st.stats.shape_passes += 1;
         }
         lap(clock, &mut t_last, &mut stage_ns, 4);
@@ -358,6 +365,8 @@ impl Simulation {
         }
         lap(clock, &mut t_last, &mut stage_ns, 5);
         output::write_output(&ctx, st, out, iterations, converged, clamped);
+        out.active_set_capped = capped;
+        out.shape_passes_capped = shape_capped;
         if let Some(c) = &setup.visc {
             viscous::advance(c, &mut st.ws);
         }
@@ -376,6 +385,8 @@ impl Simulation {
         st.stats.ticks += 1;
         st.stats.clamped_ticks += clamped as u64;
         st.stats.unconverged_ticks += (!converged) as u64;
+        st.stats.active_set_capped_ticks += capped as u64;
+        st.stats.shape_capped_ticks += shape_capped as u64;
         Ok(out)
     }
 

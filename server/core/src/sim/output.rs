@@ -82,7 +82,19 @@ pub struct StepOutput {
     /// and tells whoever keeps copies (the renderer's) to drop them.
     pub evicted: Vec<usize>,
     pub active_set_iterations: usize,
+    /// Every stick/slip iteration of the tick ended with no condition left to change. `false`
+    /// when one stopped at its cap ([`Self::active_set_capped`]) or at the tick's update budget
+    /// ([`SimStats::budget_exhausted_ticks`]): the output is then the solution of the last
+    /// pass's conditions, some of which the next tick may still change.
     pub converged: bool,
+    /// The stick/slip iteration stopped at [`super::SimParams::max_active_set_iterations`]
+    /// passes with conditions still changing (counted in [`SimStats::active_set_capped_ticks`]).
+    pub active_set_capped: bool,
+    /// Flexible needle: the shape passes stopped at their cap
+    /// ([`super::param_limits::SHAPE_PASSES`]) with the settled shape still more than
+    /// [`super::param_limits::SHAPE_GAP_TOL_M`] off the shape the tissue was solved on (counted
+    /// in [`SimStats::shape_capped_ticks`]); always `false` for a rigid needle.
+    pub shape_passes_capped: bool,
     /// The commanded pose was clamped this tick.
     pub clamped: bool,
     /// Nanoseconds spent in each stage of the step ([`super::STAGE_NAMES`]), when a benchmark
@@ -113,7 +125,18 @@ pub struct SimStats {
     pub dependent_points: u64,
     pub clamped_ticks: u64,
     pub rejected_poses: u64,
+    /// Ticks whose output is not converged ([`StepOutput::converged`] false): the stick/slip
+    /// iteration hit its cap or the tick's update budget.
     pub unconverged_ticks: u64,
+    /// Ticks whose stick/slip iteration stopped at
+    /// [`super::SimParams::max_active_set_iterations`] passes with conditions still changing
+    /// ([`StepOutput::active_set_capped`]). Zero in the shipped examples.
+    pub active_set_capped_ticks: u64,
+    /// Flexible needle: ticks whose shape passes stopped at
+    /// [`super::param_limits::SHAPE_PASSES`] with the shape still off by more than
+    /// [`super::param_limits::SHAPE_GAP_TOL_M`] ([`StepOutput::shape_passes_capped`]). Zero in
+    /// the shipped examples.
+    pub shape_capped_ticks: u64,
     pub captures: u64,
     pub releases: u64,
     pub punctures: u64,
@@ -213,6 +236,8 @@ impl StepOutput {
             base: params.initial_pose,
             tip_m: geo.tip(),
             converged: true,
+            active_set_capped: false,
+            shape_passes_capped: false,
             ..Default::default()
         }
     }

@@ -233,4 +233,13 @@ pub mod param_limits {
     /// Relative residual of a contact's compliance relation above which the hybrid matrix is
     /// rebuilt from scratch (`drift.rs`).
     pub const HYBRID_DRIFT_TOL: f64 = 1e-9;
+    /// Largest lateral distance (m) between a flexible needle's node and the settled needle
+    /// shape left without another solve on the new shape (1 µm: a thousandth of a typical
+    /// capture radius).
+    pub const SHAPE_GAP_TOL_M: f64 = 1e-6;
+    /// Bound on a flexible needle's shape passes (solve, settle) per tick; a tick that ends at
+    /// it with the gap above [`SHAPE_GAP_TOL_M`] says so
+    /// ([`crate::sim::StepOutput::shape_passes_capped`], counted in
+    /// [`crate::sim::SimStats::shape_capped_ticks`]).
+    pub const SHAPE_PASSES: usize = 4;
 }
