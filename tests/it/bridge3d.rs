@@ -24,8 +24,15 @@ use tonic::transport::Channel;
 const DOWN: [f64; 4] = [std::f64::consts::FRAC_1_SQRT_2, 0.0, std::f64::consts::FRAC_1_SQRT_2, 0.0];
 /// The base's x and y: above the centre of the 0.1 m cube's top face (z = 0.1).
 const XY: [f64; 2] = [0.05, 0.05];
-/// The base's z with the tip 5 mm above the top face (the needle is 0.1 m long).
-const Z_ABOVE: f64 = 0.205;
+/// The base's z with the tip 1 mm above the top face (the needle is 0.1 m long).
+const Z_ABOVE: f64 = 0.201;
+/// How long the scripted and virtual devices rest with the tip just above the tissue before they
+/// insert (3 mm/s). A 3D session's worker computes the compliance of the nodes ahead of the tip
+/// while it rests; a capture whose nodes are not cached yet waits for them (`column_deferrals`),
+/// and on this loaded 2-core machine a needle pushed in at once, or fast, outran the worker and
+/// passed through the surface without capturing it (measured: no contact over 25 mm at 3.5 mm/s
+/// from a standing start; with this rest, contact from the surface on).
+const REST_S: f64 = 3.0;
 
 /// Fewer than 2 % of the device periods may be missed (as in 2D) on a loaded 2-core machine.
 const MISSED_BUDGET: f64 = 0.02;
@@ -261,17 +268,21 @@ fn norm3(v: &[f64]) -> f64 {
     v.iter().take(3).map(|x| x * x).sum::<f64>().sqrt()
 }
 
-/// Runs one backend for 10 s at 1 kHz against a fresh 3D session and checks the run, the insertion
+/// How long each backend runs.
+const BACKEND_SECONDS: f64 = 15.0;
+
+/// Runs one backend for [`BACKEND_SECONDS`] at 1 kHz against a fresh 3D session and checks the run, the insertion
 /// and the wrench the device was given; returns the trace.
 async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> Vec<TraceRow> {
     let s = create_cube_session(ch, true).await;
-    let seconds = 10.0;
+    let seconds = BACKEND_SECONDS;
     let trace = dir.join(&format!("trace-{name}.csv"));
     let (stop_tx, stop_rx) = tokio::sync::oneshot::channel();
     let watcher = watch(ch, &s, stop_rx);
     let ticks_before = get_stats(ch, &s).await.ticks;
     let mut full = args.to_vec();
-    full.extend_from_slice(&["--seconds", "10", "--trace", trace.to_str().unwrap()]);
+    let secs = seconds.to_string();
+    full.extend_from_slice(&["--seconds", &secs, "--trace", trace.to_str().unwrap()]);
     let bridge = spawn_bridge(&s.channel_path, &full);
     let (code, report, stderr) = finish_bridge(bridge).await;
     let _ = stop_tx.send(());
@@ -286,7 +297,7 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
     println!(
         "[3D {name}] periods {periods}, missed {missed} ({:.3} %), fresh forces {fresh} ({:.1} %), pose→force p50 {p50:.1} µs p99 {p99:.1} µs \
          ({} answered, {} in their period, {} unanswered), watchdog periods {}, max rendered force {:.3} N; server: {} ticks, compute p99 {:.1} µs, \
-         missed deadlines {}, dropped records {}",
+         missed deadlines {}, column deferrals {}, dropped records {}",
         100.0 * missed / (periods + missed),
         100.0 * fresh / periods,
         num(&report, &["answered_poses"]),
@@ -297,6 +308,7 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
         stats.ticks - ticks_before,
         stats.compute_p99_us,
         stats.missed_deadlines,
+        stats.column_deferrals,
         stats.dropped_records
     );
 
@@ -304,7 +316,7 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
     assert_eq!(code, Some(0), "[{name}] the bridge failed: {report} {stderr}");
     assert_eq!(report["exit"], "done", "[{name}] {report}");
     assert_eq!(num(&report, &["dimension"]), 3.0, "[{name}] the bridge did not see a 3D session: {report}");
-    assert!((periods + missed - seconds * 1000.0).abs() <= 1.0, "[{name}] periods {periods} + missed {missed} ≠ 10 000: {report}");
+    assert!((periods + missed - seconds * 1000.0).abs() <= 1.0, "[{name}] periods {periods} + missed {missed} ≠ {seconds} s × 1 kHz: {report}");
     assert!(missed < MISSED_BUDGET * (periods + missed), "[{name}] {missed} missed periods exceed the 2 % budget: {report}");
     assert!(fresh > 0.5 * periods, "[{name}] only {fresh} fresh forces in {periods} periods: {report}");
     assert!(p50.is_finite() && p50 > 0.0 && p50 < 3000.0, "[{name}] pose→force p50 {p50} µs: {report}");
@@ -316,7 +328,11 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
     println!("[3D {name}] last stiffness: K_xx {:.1}, K_yy {:.1}, K_zz {:.1} N/m; K_θxθx {:.4}, K_θyθy {:.4} N·m/rad", k[0], k[7], k[14], k[21], k[28]);
     assert!(k[14] < 0.0 && k[0] < 0.0 && k[7] < 0.0, "[{name}] the stiffness at the end is not restoring: {k:?}");
     // The session went on ticking and dropped nothing.
-    assert!(stats.ticks - ticks_before >= 9000, "[{name}] the session ticked {} times in 10 s", stats.ticks - ticks_before);
+    assert!(
+        stats.ticks - ticks_before >= (900.0 * seconds) as u64,
+        "[{name}] the session ticked {} times in {seconds} s",
+        stats.ticks - ticks_before
+    );
     assert_eq!(stats.dropped_records, 0, "[{name}] {stats:?}");
     assert_eq!(info.device_channel_path, s.channel_path.display().to_string());
 
@@ -351,15 +367,20 @@ async fn scripted_virtual_and_plugin_devices_insert_into_a_3d_session_at_1khz() 
     let dir = TempDir::new("bridge3d");
     let mut server = ServerProcess::start(&["--default-scene", "none"]);
     let ch = connect(&server).await;
-    // 30 mm down from 5 mm above the top face over 6 s, then held.
-    let traj = trajectory3(&dir, "insert.csv", &[(0.0, Z_ABOVE), (6.0, Z_ABOVE - 0.030), (10.0, Z_ABOVE - 0.030)]);
+    // A rest with the tip 1 mm above the top face, 30 mm down over 10 s, then held.
+    let traj = trajectory3(
+        &dir,
+        "insert.csv",
+        &[(0.0, Z_ABOVE), (REST_S, Z_ABOVE), (REST_S + 10.0, Z_ABOVE - 0.030), (100.0, Z_ABOVE - 0.030)],
+    );
     let traj = traj.to_str().unwrap();
     run_backend(&ch, &dir, "scripted", &["--device", "scripted", "--trajectory", traj]).await;
     run_backend(&ch, &dir, "virtual", &["--device", "virtual", "--trajectory", traj]).await;
-    // The 6-DOF plug-in: 3 mm/s down for 10 s (30 mm), pointing down; it records what it was sent.
+    // The 6-DOF plug-in: from the tip 10 mm above the top face, 3 mm/s down (at the surface after
+    // 3.7 s, 34 mm in at the end), pointing down; it records what it was sent.
     let lib = example_plugin6(&dir);
     let record = dir.join("record-plugin.txt");
-    let config = plugin_config(Z_ABOVE, -0.003, Some(&record));
+    let config = plugin_config(Z_ABOVE + 0.009, -0.003, Some(&record));
     let rows = run_backend(&ch, &dir, "plugin", &["--device", "plugin", "--plugin", lib.to_str().unwrap(), "--plugin-config", &config]).await;
     // The plug-in was sent every period's wrench and a final zero.
     let (last, writes) = read_record6(&record);
@@ -378,8 +399,9 @@ async fn a_sigkilled_server_drives_the_rendered_3d_wrench_to_zero() {
     let _chan_file = RemoveOnDrop(s.channel_path.clone());
     let lib = example_plugin6(&dir);
     let (trace, record) = (dir.join("trace.csv"), dir.join("record.txt"));
-    // 5 mm/s down: ~10 mm in at the kill (3 s), still moving.
-    let config = plugin_config(Z_ABOVE, -0.005, Some(&record));
+    // From the tip 10 mm above the top face, 4 mm/s down: at the surface after 2.5 s, ~12 mm in at
+    // the kill (5.5 s), still moving.
+    let config = plugin_config(Z_ABOVE + 0.009, -0.004, Some(&record));
     let (watchdog, ramp_ms) = (10u64, 50.0);
     let bridge = spawn_bridge(
         &s.channel_path,
@@ -391,7 +413,7 @@ async fn a_sigkilled_server_drives_the_rendered_3d_wrench_to_zero() {
             "--plugin-config",
             &config,
             "--seconds",
-            "5",
+            "8",
             "--watchdog-periods",
             &watchdog.to_string(),
             "--ramp-ms",
@@ -400,7 +422,7 @@ async fn a_sigkilled_server_drives_the_rendered_3d_wrench_to_zero() {
             trace.to_str().unwrap(),
         ],
     );
-    tokio::time::sleep(Duration::from_millis(3000)).await;
+    tokio::time::sleep(Duration::from_millis(5500)).await;
     let before = frame(&ch, &s).await;
     assert!(before.inserted_length_m > 0.005, "not mid-insertion at the kill: {} m", before.inserted_length_m);
     server.child.kill().expect("SIGKILL the server"); // std's kill is SIGKILL: no closing state, the file stays
@@ -413,7 +435,7 @@ async fn a_sigkilled_server_drives_the_rendered_3d_wrench_to_zero() {
 
     let rows = read_trace3(&trace);
     let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("fresh forces before the kill").t_s;
-    assert!((2.5..3.5).contains(&last_fresh), "last fresh force at {last_fresh} s, the server was killed at ~3 s");
+    assert!((5.0..6.5).contains(&last_fresh), "last fresh force at {last_fresh} s, the server was killed at ~5.5 s");
     // The device was being pushed (force and torque) just before the kill: the zeros below prove something.
     let window = || rows.iter().filter(|r| r.t_s > last_fresh - 0.1 && r.t_s <= last_fresh);
     let force_before = window().map(|r| norm3(&r.wrench)).fold(0.0, f64::max);
@@ -454,10 +476,14 @@ async fn a_sigkilled_bridge_leaves_the_3d_session_intact_and_reattachable() {
     let server = ServerProcess::start(&["--default-scene", "none"]);
     let ch = connect(&server).await;
     let s = create_cube_session(&ch, true).await;
-    // In 30 mm over 3 s, then held.
-    let insert = trajectory3(&dir, "insert.csv", &[(0.0, Z_ABOVE), (3.0, Z_ABOVE - 0.030), (60.0, Z_ABOVE - 0.030)]);
+    // A rest, in 30 mm over 8 s, then held.
+    let insert = trajectory3(
+        &dir,
+        "insert.csv",
+        &[(0.0, Z_ABOVE), (REST_S, Z_ABOVE), (REST_S + 8.0, Z_ABOVE - 0.030), (100.0, Z_ABOVE - 0.030)],
+    );
     let mut first = spawn_bridge(&s.channel_path, &["--device", "scripted", "--trajectory", insert.to_str().unwrap(), "--seconds", "60"]);
-    tokio::time::sleep(Duration::from_millis(3500)).await;
+    tokio::time::sleep(Duration::from_secs_f64(REST_S + 8.5)).await;
     let driven = frame(&ch, &s).await;
     assert!(driven.inserted_length_m > 0.010, "the first bridge did not insert the needle: {} m", driven.inserted_length_m);
     assert!(!get_session(&ch, &s).await.device_stale, "stale while the bridge runs");
@@ -539,8 +565,9 @@ async fn a_sigkilled_bridge_leaves_the_3d_session_intact_and_reattachable() {
 /// The remote test's light hand with a light grip (as in `device-bridge/tests/remote.rs`): stable
 /// against the tissue without delay, unstable against 40 ms old forces.
 const OPERATOR: [&str; 8] = ["--operator-mass", "0.05", "--operator-damping", "0.2", "--operator-kp", "80", "--operator-kd", "1.5"];
-/// The remote run: rest 0.3 s, the base 35 mm down (the tip ~30 mm in) over 1.5 s, hold.
-const REMOTE_SECONDS: f64 = 5.0;
+/// The remote run: rest [`REST_S`], 30 mm down over 6 s, hold to the end.
+const REMOTE_SECONDS: f64 = 12.0;
+const REMOTE_INSERTED_S: f64 = REST_S + 6.0;
 
 /// Oscillation over [t0, t1): the peak-to-peak of x, y and z (mm) and the RMS of the translational speed (mm/s).
 #[derive(Debug, Clone, Copy)]
@@ -577,8 +604,12 @@ fn oscillation(rows: &[TraceRow], t0: f64, t1: f64) -> Osc {
 /// with 40 ms of injected round trip; returns the report and the trace.
 async fn run_remote(ch: &Channel, server: &ServerProcess, dir: &TempDir, render: &str) -> (serde_json::Value, Vec<TraceRow>) {
     let s = create_cube_session(ch, false).await;
-    let traj = trajectory3(dir, "remote.csv", &[(0.0, Z_ABOVE), (0.3, Z_ABOVE), (1.8, Z_ABOVE - 0.035), (100.0, Z_ABOVE - 0.035)]);
-    let trace = dir.join(format!("trace-remote-{render}.csv"));
+    let traj = trajectory3(
+        dir,
+        "remote.csv",
+        &[(0.0, Z_ABOVE), (REST_S, Z_ABOVE), (REMOTE_INSERTED_S, Z_ABOVE - 0.030), (100.0, Z_ABOVE - 0.030)],
+    );
+    let trace = dir.join(&format!("trace-remote-{render}.csv"));
     let child = tokio::process::Command::new(bin("needlesim-bridge"))
         .args(["--server", &server.url(), "--session", &s.id, "--token", &s.controller_token, "--device", "virtual", "--trajectory"])
         .arg(&traj)
@@ -638,11 +669,11 @@ async fn the_remote_3d_bridge_at_40ms_holds_still_where_the_last_force_oscillate
         k[0], k[7], k[14], k[21], k[28], k[35]
     );
     assert!(k[14] < -80.0 && k[0] < 0.0 && k[7] < 0.0, "{k:?}");
-    // The local model held the hand where the trajectory put it (the base 35 mm down).
+    // The local model held the hand where the trajectory put it (the base 30 mm down).
     let z_end = local.last().unwrap().position_m[2];
-    assert!((z_end - (Z_ABOVE - 0.035)).abs() < 0.006, "local model: final z {z_end}");
+    assert!((z_end - (Z_ABOVE - 0.030)).abs() < 0.006, "local model: final z {z_end}");
 
-    let settle = oscillation(&local, 2.0, 2.5);
+    let settle = oscillation(&local, REMOTE_INSERTED_S + 0.5, REMOTE_INSERTED_S + 1.0);
     let late_local = oscillation(&local, REMOTE_SECONDS - 0.5, REMOTE_SECONDS);
     let hold_local = oscillation(&local, REMOTE_SECONDS - 1.0, REMOTE_SECONDS);
     let late_naive = oscillation(&naive, REMOTE_SECONDS - 0.5, REMOTE_SECONDS);
