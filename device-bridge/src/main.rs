@@ -605,6 +605,10 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                     }
                     std::hint::spin_loop();
                 };
+                // The report's stiffness: the last fresh one (as with the remote link).
+                if let Some(f) = &fresh {
+                    report.last_stiffness = Some(f.stiffness);
+                }
                 let sv = sample.value.unwrap_or_default();
                 Exchange {
                     fresh: fresh.as_ref().map(ServerSample::from),
