@@ -785,6 +785,8 @@ fn main() {
                 session_id: cli.session.clone().unwrap_or_default(),
                 token: cli.token.clone().unwrap_or_default(),
                 inject_rtt: Duration::from_secs_f64(cli.inject_rtt_ms * 1e-3),
+                // Just below the device loop's.
+                rt_priority: (cli.rt_priority - 1).max(0),
             })
             .map(Link::Remote)
         }

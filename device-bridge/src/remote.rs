@@ -89,6 +89,10 @@ pub struct RemoteConfig {
     pub token: String,
     /// Injected round-trip delay (half each way).
     pub inject_rtt: Duration,
+    /// SCHED_FIFO priority of the link's network thread (0: normal scheduling). Below the device
+    /// loop's: on a loaded machine a normally scheduled network thread waits tens of ms for a core
+    /// at each wake-up, and the poses and forces then cross in bursts.
+    pub rt_priority: i32,
 }
 
 /// The device loop's end of the remote link.
@@ -118,6 +122,16 @@ impl RemoteLink {
         let runtime = tokio::runtime::Builder::new_multi_thread()
             .worker_threads(1)
             .thread_name("bridge-remote")
+            .on_thread_start({
+                let priority = cfg.rt_priority;
+                move || {
+                    if priority > 0
+                        && let Err(why) = needlesim_channel::rt::request_realtime_priority(priority)
+                    {
+                        tracing::debug!("the remote link's thread runs without real-time priority ({why})");
+                    }
+                }
+            })
             .enable_all()
             .build()
             .context("starting the remote link's runtime")?;
@@ -361,10 +375,7 @@ fn request3(p: &PoseOut, session_id: String) -> pb::ControlRequest3 {
     let ([x, y, z], [qw, qx, qy, qz]) = (p.pose.position_m, p.pose.orientation);
     pb::ControlRequest3 {
         session_id,
-        base3: Some(pb::Pose3 {
-            position_m: Some(pb::Vec3 { x, y, z }),
-            orientation: Some(pb::Quaternion { w: qw, x: qx, y: qy, z: qz }),
-        }),
+        base3: Some(pb::Pose3 { position_m: Some(pb::Vec3 { x, y, z }), orientation: Some(pb::Quaternion { w: qw, x: qx, y: qy, z: qz }) }),
         client_time_ns: p.client_time_ns,
         seq: p.seq,
         take_over: false,
@@ -475,7 +486,10 @@ mod tests {
         pb::ControlResponse {
             tick: 7,
             d3: Some(pb::Tick3 {
-                base: Some(pb::Pose3 { position_m: v3(0.05, 0.04, 0.2), orientation: Some(pb::Quaternion { w: q[0], x: q[1], y: q[2], z: q[3] }) }),
+                base: Some(pb::Pose3 {
+                    position_m: v3(0.05, 0.04, 0.2),
+                    orientation: Some(pb::Quaternion { w: q[0], x: q[1], y: q[2], z: q[3] }),
+                }),
                 force_n: v3(0.1, -0.2, 0.3),
                 torque_nm: v3(-0.004, 0.005, -0.006),
                 stiffness,
@@ -520,7 +534,10 @@ mod tests {
         let prev = [[0.0; 6]; 6];
         let q = spatial::IDENTITY;
         // A 2D session's response (no d3).
-        assert!(sample_from_response3(&pb::ControlResponse { force_n: Some(pb::Vec2 { x: 1.0, y: 2.0 }), ..Default::default() }, &prev).is_none());
+        assert!(
+            sample_from_response3(&pb::ControlResponse { force_n: Some(pb::Vec2 { x: 1.0, y: 2.0 }), ..Default::default() }, &prev)
+                .is_none()
+        );
         let broken = |f: fn(&mut pb::Tick3)| {
             let mut r = response3(vec![0.0; 36], q);
             f(r.d3.as_mut().unwrap());
