@@ -520,7 +520,7 @@ async fn a_sigkilled_bridge_leaves_the_3d_session_intact_and_reattachable() {
     assert_eq!(stats_after.dropped_records, 0, "{stats_after:?}");
     assert_eq!(base3(&held1), base3(&held2), "the needle moved without a device");
     assert_eq!(held1.inserted_length_m, held2.inserted_length_m);
-    let tip = |f: &pb::Frame| f.d3.as_ref().and_then(|d| d.tip_m.clone()).map(|t| [t.x, t.y, t.z]).expect("d3.tip_m");
+    let tip = |f: &pb::Frame| f.d3.as_ref().and_then(|d| d.tip_m).map(|t| [t.x, t.y, t.z]).expect("d3.tip_m");
     assert_eq!(tip(&held1), tip(&held2), "the tip moved without a device");
     assert!(
         (held2.inserted_length_m - driven.inserted_length_m).abs() < 0.001,
