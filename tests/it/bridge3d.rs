@@ -743,8 +743,9 @@ async fn the_remote_3d_bridge_at_40ms_holds_still_where_the_last_force_oscillate
     assert!(late_local.pp_max_mm() < 0.3, "local model oscillates: {late_local:?}");
     assert!(late_local.rms_v_mm_s < 3.0, "local model oscillates: {late_local:?}");
     assert!(late_local.rms_v_mm_s <= settle.rms_v_mm_s + 0.5, "local model does not decay: {settle:?} → {late_local:?}");
-    // (b) The last force: a sustained axial oscillation, many times larger.
-    assert!(late_naive.pp_mm[2] > 3.0, "last force does not oscillate: {late_naive:?}");
-    assert!(late_naive.pp_mm[2] > 10.0 * late_local.pp_mm[2].max(0.05), "last force {late_naive:?} vs local model {late_local:?}");
+    // (b) The last force: a sustained oscillation, many times larger — on whichever axis (in 3D
+    // the naive hand has measured to go unstable laterally, ±80 mm in x and y, more than axially).
+    assert!(late_naive.pp_max_mm() > 3.0, "last force does not oscillate: {late_naive:?}");
+    assert!(late_naive.pp_max_mm() > 10.0 * late_local.pp_max_mm().max(0.05), "last force {late_naive:?} vs local model {late_local:?}");
     assert!(late_naive.rms_v_mm_s > 10.0 * late_local.rms_v_mm_s.max(1.0), "last force {late_naive:?} vs local model {late_local:?}");
 }
