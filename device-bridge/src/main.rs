@@ -22,7 +22,9 @@
 //! the outputs differ: for a 2D session the report's `final_pose` is `[x, y, θ]` and its
 //! `stiffness` the 3 × 3 `∂(Fx, Fy, τ)/∂(x, y, θ)`, and the trace has the 2D columns; for a 3D
 //! one `final_pose` is `[x, y, z, qw, qx, qy, qz]`, `stiffness` the 6 × 6 row-major, and the trace
-//! the 6-DOF columns. The report's `dimension` says which. The remote link serves 2D sessions.
+//! the 6-DOF columns. The report's `dimension` says which. The remote link (`--server`) asks the
+//! session's dimension and drives a 2D session through `Control` (planar poses, 3 × 3 stiffness) and
+//! a 3D one through `Control3` (6-DOF poses; force, torque and the 6 × 6 of each response's `d3`).
 //!
 //! # Phase-aligned with the session's ticks (`--phase-lead-us`, shared memory only)
 //!
@@ -56,7 +58,7 @@ use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDev
 use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
 use needlesim_bridge::render::{Pose6, RenderParams, Renderer, ServerSample};
 use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, Dimension, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
 use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -463,13 +465,13 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
         coupling_b: if last_force { [0.0; 6] } else { RenderParams::per_axis(cli.coupling_b, cli.coupling_b_rot) },
         output: device.output(),
     };
-    // What the session is: a 3D one gets 6-DOF traces; the remote link serves 2D sessions.
+    // What the session is: a 3D one gets 6-DOF traces; the remote link asked the session (GetSession).
     report.dimension = match link {
         Link::Shm(channel) => match channel.session_dimension() {
             Some(d) => d as u32,
             None => bail!("device channel: the session's dimension in the header is neither 2 nor 3"),
         },
-        Link::Remote(_) => Dimension::Two as u32,
+        Link::Remote(remote) => remote.dimension() as u32,
     };
     let planar = report.dimension != 3;
     let mut renderer = Renderer::new(params);
@@ -501,6 +503,7 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
     let mut remote_last = RemoteSample::default();
     let mut last_echo_seq = 0u64;
     let mut prev_buttons: Option<u32> = None;
+    let mut flip_refused_said = false;
 
     match needlesim_channel::rt::request_realtime_priority(cli.rt_priority) {
         Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
@@ -602,6 +605,10 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                     }
                     std::hint::spin_loop();
                 };
+                // The report's stiffness: the last fresh one (as with the remote link).
+                if let Some(f) = &fresh {
+                    report.last_stiffness = Some(f.stiffness);
+                }
                 let sv = sample.value.unwrap_or_default();
                 Exchange {
                     fresh: fresh.as_ref().map(ServerSample::from),
@@ -615,9 +622,15 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                 // Button 0 pressed (rising edge): flip the bevel (the shared-memory server sees
                 // the buttons itself).
                 if state.buttons & 1 != 0 && buttons_before.is_some_and(|b| b & 1 == 0) {
-                    remote.request_flip();
+                    if planar {
+                        remote.request_flip();
+                    } else if !flip_refused_said {
+                        // Control3 carries no bevel flip.
+                        flip_refused_said = true;
+                        tracing::warn!("button 0 (bevel flip) is ignored: a 3D session's Control3 stream has no bevel flip");
+                    }
                 }
-                if let Some(c) = remote.send_pose(state.pose.to_planar(), t_pose) {
+                if let Some(c) = remote.send_pose(&state.pose, t_pose) {
                     report.last_counter = c;
                 }
                 report.dropped_poses = remote.dropped_poses;
@@ -631,7 +644,26 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
                         last_echo_seq = r.pose_seq;
                         report.pose_to_force_ns.push(t_seen.saturating_sub(r.client_time_ns));
                     }
-                    if report.last_stiffness.is_none() && r.sample.stiffness.iter().flatten().any(|&v| v != 0.0) {
+                    if report.last_stiffness.is_none() && !planar && r.sample.stiffness.iter().flatten().any(|&v| v != 0.0) {
+                        let k = &r.sample.stiffness;
+                        tracing::info!(
+                            "first stiffness at the needle base: K_Fp = ∂F/∂p = [{:.1} {:.1} {:.1}; {:.1} {:.1} {:.1}; {:.1} {:.1} {:.1}] N/m, \
+                             K_τθ diagonal [{:.5} {:.5} {:.5}] N·m/rad",
+                            k[0][0],
+                            k[0][1],
+                            k[0][2],
+                            k[1][0],
+                            k[1][1],
+                            k[1][2],
+                            k[2][0],
+                            k[2][1],
+                            k[2][2],
+                            k[3][3],
+                            k[4][4],
+                            k[5][5]
+                        );
+                    }
+                    if report.last_stiffness.is_none() && planar && r.sample.stiffness.iter().flatten().any(|&v| v != 0.0) {
                         let j = restrict_planar_stiffness(&r.sample.stiffness);
                         tracing::info!(
                             "first stiffness at the needle base: J = [{:.1} {:.1} {:.4}; {:.1} {:.1} {:.4}; {:.4} {:.4} {:.5}]",
@@ -753,6 +785,8 @@ fn main() {
                 session_id: cli.session.clone().unwrap_or_default(),
                 token: cli.token.clone().unwrap_or_default(),
                 inject_rtt: Duration::from_secs_f64(cli.inject_rtt_ms * 1e-3),
+                // Just below the device loop's.
+                rt_priority: (cli.rt_priority - 1).max(0),
             })
             .map(Link::Remote)
         }

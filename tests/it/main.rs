@@ -7,6 +7,7 @@
 mod access_e2e;
 mod api_limits;
 mod bench;
+mod bridge3d;
 mod bridge_e2e;
 mod cli;
 mod cli3d;
