@@ -43,6 +43,7 @@ async fn create3(ch: &tonic::transport::Channel, example: &str) -> pb::CreateSes
     created
 }
 
+#[ignore = "run alone by tests/run (its last phase): a live 3D session whose compliance worker must keep up with the tip; on a CPU shared with other tests its captures are lost (see ARCHITECTURE, Live 3D under load)"]
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn cube_at_1khz_with_50_observers_and_a_logger_matches_simulate() {
     let _turn = ONE_AT_A_TIME.lock().await;

@@ -336,6 +336,7 @@ async fn a_2d_exercise_with_a_hand_over_a_marker_and_a_report() {
     run_exercise_live("biopsy-2d", 2).await;
 }
 
+#[ignore = "run alone by tests/run (its last phase): a live 3D session whose compliance worker must keep up with the tip; on a CPU shared with other tests its captures are lost (see ARCHITECTURE, Live 3D under load)"]
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_3d_exercise_with_a_hand_over_a_marker_and_a_report() {
     run_exercise_live("biopsy-3d", 3).await;

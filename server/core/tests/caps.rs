@@ -77,7 +77,7 @@ fn issue_19_an_active_set_that_stops_at_its_cap_says_so() {
 fn issue_19_shape_passes_that_stop_at_their_cap_say_so() {
     let mut soft = FlexibleNeedle::gauge17_steel(0.1);
     // A 17-gauge needle 1/30 as stiff (EI ≈ 1.1e-3 N·m², half the 22 G needle's) with a bevel:
-    // its shape moves by more than the gap tolerance after four passes at hundreds of ticks.
+    // its shape moves by more than the gap tolerance after the passes allowed at hundreds of ticks.
     soft.flexural_rigidity_nm2 /= 30.0;
     soft.bevel_force_ratio = 0.3;
     let (f, s) = run(NeedleShape::Flexible(soft), 64, vec![RegionNeedleParams::default()]);
