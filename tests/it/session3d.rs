@@ -218,6 +218,9 @@ async fn set_pose3_bad_3d_input_and_the_closed_surface() {
     let tok = created.controller_token.clone();
     let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
 
+    // The session's first tick first: before it, the latest record (the answer's source) is a
+    // placeholder without the 3D state.
+    let _ = needlesim_tests::latest_frame(&ch, &sid, &created.observer_token).await;
     // SetPose3 moves the base (2 mm sideways above the cube, well within a tick's step limit).
     let target = [0.052, 0.05, 0.205];
     let resp = ctl
