@@ -278,53 +278,22 @@ async fn grpc_drive(ch: tonic::transport::Channel, sid: &str, ctl: &str, secs: f
     let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(64);
     let epoch = Instant::now();
     let pose = move |t: f64| pb::Pose2 { x_m: 0.05, y_m: 0.205 - 0.04 * (t / secs).min(1.0), theta_rad: -std::f64::consts::FRAC_PI_2 };
-    tx.send(pb::ControlRequest {
-        session_id: sid.to_owned(),
-        base: Some(pose(0.0)),
-        client_time_ns: 1,
-        seq: 1,
+    let msg = move |t: f64, client_time_ns: u64, seq: u64, session_id: String| pb::ControlRequest {
+        session_id,
+        base: Some(pose(t)),
+        client_time_ns,
+        seq,
         flip_bevel: false,
         take_over: false,
-    })
-    .await
-    .unwrap();
-    let mut responses = pb::control_service_client::ControlServiceClient::new(ch)
+    };
+    tx.send(msg(0.0, 1, 1, sid.to_owned())).await.unwrap();
+    let responses = pb::control_service_client::ControlServiceClient::new(ch)
         .control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), ctl))
         .await
         .unwrap()
         .into_inner();
-    let sender = tokio::spawn(async move {
-        let mut interval = tokio::time::interval(Duration::from_millis(1));
-        let mut seq = 1;
-        while epoch.elapsed().as_secs_f64() < secs {
-            interval.tick().await;
-            seq += 1;
-            let t = epoch.elapsed();
-            let m = pb::ControlRequest {
-                session_id: String::new(),
-                base: Some(pose(t.as_secs_f64())),
-                client_time_ns: t.as_nanos() as u64,
-                seq,
-                flip_bevel: false,
-                take_over: false,
-            };
-            if tx.send(m).await.is_err() {
-                break;
-            }
-        }
-    });
-    let mut latencies = Vec::new();
-    let mut last_seen = 0;
-    let warm = Duration::from_secs(1);
-    let end = Instant::now() + Duration::from_secs_f64(secs);
-    while let Ok(Some(Ok(r))) = tokio::time::timeout_at(end.into(), responses.next()).await {
-        if r.client_time_ns != last_seen && r.client_time_ns > 1 {
-            last_seen = r.client_time_ns;
-            if epoch.elapsed() > warm {
-                latencies.push((epoch.elapsed().as_nanos() as u64 - r.client_time_ns) as f64 / 1e3);
-            }
-        }
-    }
+    let sender = spawn_pose_sender(tx, epoch, secs, msg);
+    let latencies = pose_to_force_latencies(responses, epoch, secs).await;
     let _ = sender.await;
     latencies
 }
@@ -339,20 +308,34 @@ async fn grpc_drive3(ch: tonic::transport::Channel, sid: &str, ctl: &str, secs: 
         position_m: Some(pb::Vec3 { x: 0.05, y: 0.05, z: 0.205 - 0.04 * (t / secs).min(1.0) }),
         orientation: Some(pb::Quaternion { w: h, x: 0.0, y: h, z: 0.0 }),
     };
-    let msg = move |t: f64, client_time_ns: u64, seq: u64, sid: String| pb::ControlRequest3 {
-        session_id: sid,
+    let msg = move |t: f64, client_time_ns: u64, seq: u64, session_id: String| pb::ControlRequest3 {
+        session_id,
         base3: Some(pose(t)),
         client_time_ns,
         seq,
         take_over: false,
     };
     tx.send(msg(0.0, 1, 1, sid.to_owned())).await.unwrap();
-    let mut responses = pb::control_service_client::ControlServiceClient::new(ch)
+    let responses = pb::control_service_client::ControlServiceClient::new(ch)
         .control3(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), ctl))
         .await
         .unwrap()
         .into_inner();
-    let sender = tokio::spawn(async move {
+    let sender = spawn_pose_sender(tx, epoch, secs, msg);
+    let latencies = pose_to_force_latencies(responses, epoch, secs).await;
+    let _ = sender.await;
+    latencies
+}
+
+/// Sends `msg(t_s, client_time_ns, seq, "")` every millisecond (seq from 2: the stream's first
+/// message, with the session id, is the caller's) until `secs` after `epoch`.
+fn spawn_pose_sender<M: Send + 'static>(
+    tx: tokio::sync::mpsc::Sender<M>,
+    epoch: Instant,
+    secs: f64,
+    msg: impl Fn(f64, u64, u64, String) -> M + Send + 'static,
+) -> tokio::task::JoinHandle<()> {
+    tokio::spawn(async move {
         let mut interval = tokio::time::interval(Duration::from_millis(1));
         let mut seq = 1;
         while epoch.elapsed().as_secs_f64() < secs {
@@ -363,7 +346,12 @@ async fn grpc_drive3(ch: tonic::transport::Channel, sid: &str, ctl: &str, secs: 
                 break;
             }
         }
-    });
+    })
+}
+
+/// The pose→force latencies (µs) of a control stream's responses after the first second: from
+/// the client time of a pose (ns since `epoch`) to the first response that echoes it.
+async fn pose_to_force_latencies(mut responses: tonic::Streaming<pb::ControlResponse>, epoch: Instant, secs: f64) -> Vec<f64> {
     let mut latencies = Vec::new();
     let mut last_seen = 0;
     let warm = Duration::from_secs(1);
@@ -376,7 +364,6 @@ async fn grpc_drive3(ch: tonic::transport::Channel, sid: &str, ctl: &str, secs: 
             }
         }
     }
-    let _ = sender.await;
     latencies
 }
 
