@@ -19,7 +19,7 @@ use tonic::{Request, Response, Status};
 
 use crate::convert;
 use crate::grpc::Api;
-use crate::jobs::JobKind;
+use crate::jobs::{JobKind, JobPermit};
 use crate::status::{ApiError, status_of};
 use needlesim_offline::plan::{self, PlanOptions};
 use needlesim_offline::plan3;
@@ -37,66 +37,23 @@ impl pb::planning_service_server::PlanningService for Api {
         let preq = convert::plan_request_from_pb(&r).map_err(Status::from)?;
         let slot = self.state.jobs.try_start(JobKind::Plan)?;
         let scene = crate::grpc::load_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
-        // Errors in the problem are statuses, not stream items: the planner's first output is a
-        // validated problem or an error naming the field, so it is awaited before answering.
-        let (tx, rx) = mpsc::channel(8);
-        let (first_tx, first_rx) = tokio::sync::oneshot::channel::<Result<(), Status>>();
-        let cancel = Arc::new(AtomicBool::new(false));
-        // The client going away (the receiver dropped) cancels the planning. The watcher's sender
-        // is dropped when the planning ends (`done`), or the stream would never end.
-        let (watch_tx, cancel_watch) = (tx.clone(), cancel.clone());
-        let (done, done_rx) = tokio::sync::oneshot::channel::<()>();
-        tokio::spawn(async move {
-            tokio::select! {
-                _ = watch_tx.closed() => cancel_watch.store(true, Ordering::Relaxed),
-                _ = done_rx => {}
-            }
-        });
-        let opts = PlanOptions {
-            cancel: Some(cancel.clone()),
-            max_ticks_per_simulation: self.state.limits.max_simulate_ticks,
-            ..Default::default()
-        };
-        tokio::task::spawn_blocking(move || {
-            let _slot = slot;
-            let _done = done;
-            let mut first_tx = Some(first_tx);
-            if let Err(e) = plan::validate_request(&scene, &preq, &opts) {
-                let status = status_of("", &e);
-                if let Some(f) = first_tx.take() {
-                    let _ = f.send(Err(status));
-                }
-                return;
-            }
-            if let Some(f) = first_tx.take() {
-                let _ = f.send(Ok(()));
-            }
-            let result = plan::plan(&scene, &preq, &opts, |pr| {
-                let msg = convert::plan_progress(pr);
-                if tx.blocking_send(Ok(msg)).is_err() { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
-            });
-            match result {
-                Ok(p) => {
-                    tracing::info!(
-                        scene = %p.scene,
-                        target = %p.target,
-                        plan_error_mm = p.plan.predicted_error_m * 1e3,
-                        straight_error_mm = p.straight.predicted_error_m * 1e3,
-                        simulations = p.simulations,
-                        wall_s = p.wall_s,
-                        "planned"
-                    );
-                    let last = convert::plan_final(&p);
-                    let _ = tx.blocking_send(Ok(last));
-                }
-                Err(_) if cancel.load(Ordering::Relaxed) => tracing::info!("planning cancelled: the client went away"),
-                Err(e) => {
-                    let _ = tx.blocking_send(Err(ApiError::after_validation(&e).into()));
-                }
-            }
-        });
-        first_rx.await.map_err(|_| Status::internal("the planning task ended before validating the request"))??;
-        Ok(Response::new(ReceiverStream::new(rx)))
+        let opts = self.plan_options();
+        stream_plan(slot, opts, move |opts, validated, progress| {
+            plan::validate_request(&scene, &preq, opts)?;
+            validated();
+            let p = plan::plan(&scene, &preq, opts, |pr| progress(convert::plan_progress(pr)))?;
+            tracing::info!(
+                scene = %p.scene,
+                target = %p.target,
+                plan_error_mm = p.plan.predicted_error_m * 1e3,
+                straight_error_mm = p.straight.predicted_error_m * 1e3,
+                simulations = p.simulations,
+                wall_s = p.wall_s,
+                "planned"
+            );
+            Ok(convert::plan_final(&p))
+        })
+        .await
     }
 }
 
@@ -110,55 +67,91 @@ impl Api {
             convert::SessionScene::Three(s) => s,
             convert::SessionScene::Two(_) => return Err(Status::internal("a 3D scene source loaded as a 2D scene")),
         };
-        let (tx, rx) = mpsc::channel(8);
-        let (first_tx, first_rx) = tokio::sync::oneshot::channel::<Result<(), Status>>();
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (watch_tx, cancel_watch) = (tx.clone(), cancel.clone());
-        let (done, done_rx) = tokio::sync::oneshot::channel::<()>();
-        tokio::spawn(async move {
-            tokio::select! {
-                _ = watch_tx.closed() => cancel_watch.store(true, Ordering::Relaxed),
-                _ = done_rx => {}
-            }
-        });
-        let opts = PlanOptions {
-            cancel: Some(cancel.clone()),
-            max_ticks_per_simulation: self.state.limits.max_simulate_ticks,
-            ..Default::default()
-        };
-        tokio::task::spawn_blocking(move || {
-            let _slot = slot;
-            let _done = done;
-            if let Err(e) = plan3::validate3_request(&scene, &preq) {
-                let _ = first_tx.send(Err(status_of("", &e)));
-                return;
-            }
-            let _ = first_tx.send(Ok(()));
-            let result = plan3::plan3(&scene, &preq, &opts, |pr| {
-                let msg = convert::plan_progress(pr);
-                if tx.blocking_send(Ok(msg)).is_err() { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
-            });
-            match result {
-                Ok(p) => {
-                    tracing::info!(
-                        scene = %p.scene,
-                        target = %p.target,
-                        plan_error_mm = p.plan.predicted_error_m * 1e3,
-                        straight_error_mm = p.straight.predicted_error_m * 1e3,
-                        clearance_mm = p.plan.min_clearance_m() * 1e3,
-                        simulations = p.simulations,
-                        wall_s = p.wall_s,
-                        "planned in 3D"
-                    );
-                    let _ = tx.blocking_send(Ok(convert::plan3_final(&p)));
-                }
-                Err(_) if cancel.load(Ordering::Relaxed) => tracing::info!("planning cancelled: the client went away"),
-                Err(e) => {
-                    let _ = tx.blocking_send(Err(ApiError::after_validation(&e).into()));
-                }
-            }
-        });
-        first_rx.await.map_err(|_| Status::internal("the planning task ended before validating the request"))??;
-        Ok(Response::new(ReceiverStream::new(rx)))
+        let opts = self.plan_options();
+        stream_plan(slot, opts, move |opts, validated, progress| {
+            plan3::validate3_request(&scene, &preq)?;
+            validated();
+            let p = plan3::plan3(&scene, &preq, opts, |pr| progress(convert::plan_progress(pr)))?;
+            tracing::info!(
+                scene = %p.scene,
+                target = %p.target,
+                plan_error_mm = p.plan.predicted_error_m * 1e3,
+                straight_error_mm = p.straight.predicted_error_m * 1e3,
+                clearance_mm = p.plan.min_clearance_m() * 1e3,
+                simulations = p.simulations,
+                wall_s = p.wall_s,
+                "planned in 3D"
+            );
+            Ok(convert::plan3_final(&p))
+        })
+        .await
     }
+
+    /// The planners' options: the server's tick limit per simulation (the cancel flag is
+    /// [`stream_plan`]'s).
+    fn plan_options(&self) -> PlanOptions {
+        PlanOptions { max_ticks_per_simulation: self.state.limits.max_simulate_ticks, ..Default::default() }
+    }
+}
+
+/// Runs a planner on a blocking thread and streams it: `run(opts, validated, progress)` checks
+/// the request first and calls `validated()` once it is valid — an error before that is the
+/// call's status (INVALID_ARGUMENT naming the field), so bad input never opens a stream — then
+/// sends its progress through `progress` (which breaks when the client has gone) and returns the
+/// final message. The client going away sets the cancel flag in `opts`, which ends the planning;
+/// an error after validation is the stream's last item. The job slot is held until the end.
+async fn stream_plan<R>(
+    slot: JobPermit,
+    mut opts: PlanOptions,
+    run: R,
+) -> Result<Response<ReceiverStream<Result<pb::PlanProgress, Status>>>, Status>
+where
+    R: FnOnce(&PlanOptions, &mut dyn FnMut(), &mut dyn FnMut(pb::PlanProgress) -> ControlFlow<()>) -> anyhow::Result<pb::PlanProgress>
+        + Send
+        + 'static,
+{
+    let (tx, rx) = mpsc::channel(8);
+    let (first_tx, first_rx) = tokio::sync::oneshot::channel::<Result<(), Status>>();
+    let cancel = Arc::new(AtomicBool::new(false));
+    // The client going away (the receiver dropped) cancels the planning. The watcher's sender
+    // is dropped when the planning ends (`done`), or the stream would never end.
+    let (watch_tx, cancel_watch) = (tx.clone(), cancel.clone());
+    let (done, done_rx) = tokio::sync::oneshot::channel::<()>();
+    tokio::spawn(async move {
+        tokio::select! {
+            _ = watch_tx.closed() => cancel_watch.store(true, Ordering::Relaxed),
+            _ = done_rx => {}
+        }
+    });
+    opts.cancel = Some(cancel.clone());
+    tokio::task::spawn_blocking(move || {
+        let _slot = slot;
+        let _done = done;
+        let mut first_tx = Some(first_tx);
+        let mut validated = || {
+            if let Some(f) = first_tx.take() {
+                let _ = f.send(Ok(()));
+            }
+        };
+        let progress_tx = tx.clone();
+        let mut progress = |msg: pb::PlanProgress| {
+            if progress_tx.blocking_send(Ok(msg)).is_err() { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+        };
+        let result = run(&opts, &mut validated, &mut progress);
+        match (result, first_tx.take()) {
+            // Not yet validated: the error is the call's status.
+            (Err(e), Some(f)) => {
+                let _ = f.send(Err(status_of("", &e)));
+            }
+            (Ok(last), _) => {
+                let _ = tx.blocking_send(Ok(last));
+            }
+            (Err(_), None) if cancel.load(Ordering::Relaxed) => tracing::info!("planning cancelled: the client went away"),
+            (Err(e), None) => {
+                let _ = tx.blocking_send(Err(ApiError::after_validation(&e).into()));
+            }
+        }
+    });
+    first_rx.await.map_err(|_| Status::internal("the planning task ended before validating the request"))??;
+    Ok(Response::new(ReceiverStream::new(rx)))
 }
