@@ -20,8 +20,10 @@ use std::time::{Duration, Instant};
 
 use needlesim_proto::v1 as pb;
 use needlesim_tests::{REALTIME as ONE_AT_A_TIME, ServerProcess, TempDir, bin, connect, repo_root, with_token};
-use tokio_stream::StreamExt;
 use tonic::transport::Channel;
+
+// The 2D end-to-end tests' session and bridge helpers serve here too.
+use crate::bridge_e2e::{MISSED_BUDGET, RemoveOnDrop, Session, frame, get_session, get_stats, num, spawn_bridge, watch};
 
 /// The cube's needle points straight down (−z): a quarter turn about +y (its TOML's `base_quat`).
 const DOWN: [f64; 4] = [std::f64::consts::FRAC_1_SQRT_2, 0.0, std::f64::consts::FRAC_1_SQRT_2, 0.0];
@@ -36,24 +38,6 @@ const Z_ABOVE: f64 = 0.201;
 /// passed through the surface without capturing it (measured: no contact over 25 mm at 3.5 mm/s
 /// from a standing start; with this rest, contact from the surface on).
 const REST_S: f64 = 3.0;
-
-/// Fewer than 2 % of the device periods may be missed (as in 2D) on a loaded 2-core machine.
-const MISSED_BUDGET: f64 = 0.02;
-
-struct Session {
-    id: String,
-    controller_token: String,
-    observer_token: String,
-    channel_path: PathBuf,
-}
-
-/// Removes the channel file a SIGKILLed server leaves behind in /dev/shm.
-struct RemoveOnDrop(PathBuf);
-impl Drop for RemoveOnDrop {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
 
 /// A `cube-phantom-3d` session at 1 kHz, with a device channel if `device_channel`.
 async fn create_cube_session(ch: &Channel, device_channel: bool) -> Session {
@@ -76,55 +60,6 @@ async fn create_cube_session(ch: &Channel, device_channel: bool) -> Session {
         assert!(!info.device_stale, "a fresh session's device is not stale before any bridge attached: {info:?}");
     }
     Session { id: info.session_id, controller_token: created.controller_token, observer_token: created.observer_token, channel_path }
-}
-
-async fn get_session(ch: &Channel, s: &Session) -> pb::SessionInfo {
-    pb::session_service_client::SessionServiceClient::new(ch.clone())
-        .get_session(pb::GetSessionRequest { session_id: s.id.clone() })
-        .await
-        .expect("GetSession")
-        .into_inner()
-}
-
-async fn get_stats(ch: &Channel, s: &Session) -> pb::SessionStats {
-    pb::session_service_client::SessionServiceClient::new(ch.clone())
-        .get_stats(with_token(pb::GetSessionRequest { session_id: s.id.clone() }, &s.observer_token))
-        .await
-        .expect("GetStats")
-        .into_inner()
-}
-
-/// The session's current frame (a fresh observer stream, its first frame).
-async fn frame(ch: &Channel, s: &Session) -> pb::Frame {
-    let mut c = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
-    let req = with_token(pb::ObserveRequest { session_id: s.id.clone(), rate_hz: 60.0, include_displacements: false }, &s.observer_token);
-    let mut stream = c.observe(req).await.expect("Observe").into_inner();
-    tokio::time::timeout(Duration::from_secs(5), stream.next())
-        .await
-        .expect("a frame within 5 s")
-        .expect("the stream yields a frame")
-        .expect("the frame is not an error")
-}
-
-/// Watches the session at 60 Hz until `stop` fires; returns every frame.
-fn watch(ch: &Channel, s: &Session, stop: tokio::sync::oneshot::Receiver<()>) -> tokio::task::JoinHandle<Vec<pb::Frame>> {
-    let ch = ch.clone();
-    let req = with_token(pb::ObserveRequest { session_id: s.id.clone(), rate_hz: 60.0, include_displacements: false }, &s.observer_token);
-    tokio::spawn(async move {
-        let mut c = pb::observe_service_client::ObserveServiceClient::new(ch);
-        let mut stream = c.observe(req).await.expect("Observe").into_inner();
-        let mut frames = Vec::new();
-        tokio::pin!(stop);
-        loop {
-            tokio::select! {
-                _ = &mut stop => return frames,
-                f = stream.next() => match f {
-                    Some(Ok(f)) => frames.push(f),
-                    _ => return frames,
-                },
-            }
-        }
-    })
 }
 
 /// A frame's 3D base pose: (position, orientation).
@@ -178,21 +113,6 @@ fn plugin_config(z0: f64, vz_m_s: f64, record: Option<&Path>) -> String {
     c
 }
 
-/// `needlesim-bridge --channel PATH --rate-hz 1000 --json ARGS…`, stdout and stderr piped.
-fn spawn_bridge(channel: &Path, args: &[&str]) -> tokio::process::Child {
-    tokio::process::Command::new(bin("needlesim-bridge"))
-        .arg("--channel")
-        .arg(channel)
-        .args(["--rate-hz", "1000", "--json"])
-        .args(args)
-        .env("RUST_LOG", "warn")
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .kill_on_drop(true)
-        .spawn()
-        .expect("needlesim-bridge starts")
-}
-
 /// Waits for a bridge to exit; returns (exit code, the JSON report, stderr).
 async fn finish_bridge(child: tokio::process::Child) -> (Option<i32>, serde_json::Value, String) {
     let out = tokio::time::timeout(Duration::from_secs(90), child.wait_with_output())
@@ -203,14 +123,6 @@ async fn finish_bridge(child: tokio::process::Child) -> (Option<i32>, serde_json
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     let json = serde_json::from_str(stdout.trim()).unwrap_or_else(|e| panic!("the report is not JSON ({e}): {stdout:?}; stderr: {stderr}"));
     (out.status.code(), json, stderr)
-}
-
-fn num(json: &serde_json::Value, path: &[&str]) -> f64 {
-    let mut v = json;
-    for k in path {
-        v = &v[*k];
-    }
-    v.as_f64().unwrap_or_else(|| panic!("{} is not a number in {json}", path.join(".")))
 }
 
 fn nums(json: &serde_json::Value, key: &str) -> Vec<f64> {

@@ -25,17 +25,18 @@ use needlesim_tests::REALTIME as ONE_AT_A_TIME;
 
 /// The device period budget: fewer than 2 % of the scheduled periods may be missed (a late wake-up
 /// of more than one period) on a loaded 2-core machine.
-const MISSED_BUDGET: f64 = 0.02;
+pub(crate) const MISSED_BUDGET: f64 = 0.02;
 
-struct Session {
-    id: String,
-    controller_token: String,
-    observer_token: String,
-    channel_path: PathBuf,
+/// A live session of these tests: its id, tokens and device channel file.
+pub(crate) struct Session {
+    pub(crate) id: String,
+    pub(crate) controller_token: String,
+    pub(crate) observer_token: String,
+    pub(crate) channel_path: PathBuf,
 }
 
 /// Removes the channel file a SIGKILLed server leaves behind in /dev/shm.
-struct RemoveOnDrop(PathBuf);
+pub(crate) struct RemoveOnDrop(pub(crate) PathBuf);
 impl Drop for RemoveOnDrop {
     fn drop(&mut self) {
         let _ = std::fs::remove_file(&self.0);
@@ -63,7 +64,7 @@ async fn create_device_session(ch: &Channel) -> Session {
     Session { id: info.session_id, controller_token: created.controller_token, observer_token: created.observer_token, channel_path }
 }
 
-async fn get_session(ch: &Channel, s: &Session) -> pb::SessionInfo {
+pub(crate) async fn get_session(ch: &Channel, s: &Session) -> pb::SessionInfo {
     pb::session_service_client::SessionServiceClient::new(ch.clone())
         .get_session(pb::GetSessionRequest { session_id: s.id.clone() })
         .await
@@ -71,7 +72,7 @@ async fn get_session(ch: &Channel, s: &Session) -> pb::SessionInfo {
         .into_inner()
 }
 
-async fn get_stats(ch: &Channel, s: &Session) -> pb::SessionStats {
+pub(crate) async fn get_stats(ch: &Channel, s: &Session) -> pb::SessionStats {
     pb::session_service_client::SessionServiceClient::new(ch.clone())
         .get_stats(with_token(pb::GetSessionRequest { session_id: s.id.clone() }, &s.observer_token))
         .await
@@ -80,7 +81,7 @@ async fn get_stats(ch: &Channel, s: &Session) -> pb::SessionStats {
 }
 
 /// The session's current frame (a fresh observer stream, its first frame).
-async fn frame(ch: &Channel, s: &Session) -> pb::Frame {
+pub(crate) async fn frame(ch: &Channel, s: &Session) -> pb::Frame {
     let mut c = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
     let req = with_token(pb::ObserveRequest { session_id: s.id.clone(), rate_hz: 60.0, include_displacements: false }, &s.observer_token);
     let mut stream = c.observe(req).await.expect("Observe").into_inner();
@@ -92,7 +93,7 @@ async fn frame(ch: &Channel, s: &Session) -> pb::Frame {
 }
 
 /// Watches the session at 60 Hz until `stop` fires; returns every frame.
-fn watch(ch: &Channel, s: &Session, stop: tokio::sync::oneshot::Receiver<()>) -> tokio::task::JoinHandle<Vec<pb::Frame>> {
+pub(crate) fn watch(ch: &Channel, s: &Session, stop: tokio::sync::oneshot::Receiver<()>) -> tokio::task::JoinHandle<Vec<pb::Frame>> {
     let ch = ch.clone();
     let req = with_token(pb::ObserveRequest { session_id: s.id.clone(), rate_hz: 60.0, include_displacements: false }, &s.observer_token);
     tokio::spawn(async move {
@@ -140,7 +141,7 @@ fn example_plugin(dir: &TempDir) -> PathBuf {
 }
 
 /// `needlesim-bridge --channel PATH --rate-hz 1000 --json ARGS…`, stdout and stderr piped.
-fn spawn_bridge(channel: &Path, args: &[&str]) -> tokio::process::Child {
+pub(crate) fn spawn_bridge(channel: &Path, args: &[&str]) -> tokio::process::Child {
     tokio::process::Command::new(bin("needlesim-bridge"))
         .arg("--channel")
         .arg(channel)
@@ -166,7 +167,7 @@ async fn finish_bridge(child: tokio::process::Child) -> (Option<i32>, serde_json
     (out.status.code(), json, stderr)
 }
 
-fn num(json: &serde_json::Value, path: &[&str]) -> f64 {
+pub(crate) fn num(json: &serde_json::Value, path: &[&str]) -> f64 {
     let mut v = json;
     for k in path {
         v = &v[*k];
