@@ -6,10 +6,10 @@
 //! 2D/3D mismatches and bad 3D rows named.
 
 use std::collections::HashMap;
-use std::io::Read;
+
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
+use std::time::Duration;
 
 use needlesim_proto::v1 as pb;
 use needlesim_tests::{ServerProcess, TempDir, bin, python, repo_root, run, text, with_token};
@@ -21,38 +21,9 @@ pub(crate) const DOWN3: &str = "0.7071067811865475,0,0.7071067811865475,0";
 
 /// Runs `needlesim ARGS` (no NEEDLESIM_* environment), killing it after 120 s.
 fn needlesim(args: &[&str]) -> Output {
-    let mut child = Command::new(bin("needlesim"))
-        .args(args)
-        .env_remove("NEEDLESIM_SERVER")
-        .env_remove("NEEDLESIM_TOKEN")
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("needlesim starts");
-    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
-    let out_t = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        let _ = out.read_to_end(&mut v);
-        v
-    });
-    let err_t = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        let _ = err.read_to_end(&mut v);
-        v
-    });
-    let deadline = Instant::now() + Duration::from_secs(120);
-    let status = loop {
-        if let Some(s) = child.try_wait().expect("wait for needlesim") {
-            break s;
-        }
-        if Instant::now() > deadline {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("needlesim {args:?} did not finish within 120 s");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    Output { status, stdout: out_t.join().unwrap(), stderr: err_t.join().unwrap() }
+    let mut cmd = Command::new(bin("needlesim"));
+    cmd.args(args).env_remove("NEEDLESIM_SERVER").env_remove("NEEDLESIM_TOKEN");
+    needlesim_tests::run_within(&mut cmd, Duration::from_secs(120))
 }
 
 fn run_ok(args: &[&str]) -> String {

@@ -215,35 +215,11 @@ fn bad_trajectories_and_scenes_get_clear_errors() {
 /// Runs `needlesim-server simulate ARGS`, killing it after `secs` (a hang is a failure);
 /// returns whether it succeeded, and its stderr.
 fn simulate_within(args: &[&str], secs: u64) -> (bool, String) {
-    use std::io::Read;
-    let mut child = Command::new(bin("needlesim-server"))
-        .arg("simulate")
-        .args(args)
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("the server starts");
-    let mut err_pipe = child.stderr.take().unwrap();
-    let reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = err_pipe.read_to_string(&mut s);
-        s
-    });
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(secs);
-    let status = loop {
-        if let Some(st) = child.try_wait().unwrap() {
-            break st;
-        }
-        if std::time::Instant::now() > deadline {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("simulate {args:?} did not finish within {secs} s");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    };
-    let err = reader.join().unwrap();
+    let out =
+        needlesim_tests::run_within(Command::new(bin("needlesim-server")).arg("simulate").args(args), std::time::Duration::from_secs(secs));
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
     assert!(!err.contains("panicked"), "{err}");
-    (status.success(), err)
+    (out.status.success(), err)
 }
 
 /// The `error: ` line of a failed run's stderr.
