@@ -11,43 +11,19 @@
 // recording's own surface, its first and last frames drawn differently, the depth at the end.
 // Saves view3-before.png, view3-after.png, view3-section.png, page3.png, playback3-first.png and
 // playback3-last.png in OUT_DIR and writes summary3.json.
-import { createRequire } from "node:module";
-import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from "node:fs";
+import { mkdtempSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
+import { CHROMIUM_ARGS, WEBGL_ARGS, chromium, executablePath, fail, scriptArgs } from "./browser.mjs";
 
-const require = createRequire(new URL("../web/package.json", import.meta.url));
-const { chromium } = require("playwright-core");
-
-const [base, outDir] = process.argv.slice(2);
-if (!base || !outDir) {
-  console.error("usage: node tests/web3d_e2e.mjs BASE_URL OUT_DIR");
-  process.exit(2);
-}
-mkdirSync(outDir, { recursive: true });
-const executablePath = process.env.NEEDLESIM_CHROMIUM || "/usr/bin/chromium";
+const [base, outDir] = scriptArgs("web3d_e2e.mjs");
 const userDataDir = mkdtempSync(join(tmpdir(), "needlesim-chromium-"));
-
-function fail(msg) {
-  throw new Error(msg);
-}
 
 const context = await chromium.launchPersistentContext(userDataDir, {
   executablePath,
   headless: true,
   viewport: { width: 1240, height: 860 },
-  args: [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--no-first-run",
-    "--disable-quic",
-    "--disable-sync",
-    "--use-angle=swiftshader",
-    "--enable-unsafe-swiftshader",
-  ],
+  args: [...CHROMIUM_ARGS, ...WEBGL_ARGS],
 });
 const errors = [];
 const page = context.pages()[0] ?? (await context.newPage());

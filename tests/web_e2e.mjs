@@ -9,41 +9,19 @@
 // change, stops the recording and plays it back; then creates a bevel-tip session and flips its
 // bevel with the "Flip bevel" button. Saves view-before.png, bevel-flipped.png, view-after.png,
 // plots.png, page.png and playback.png in OUT_DIR and prints a JSON summary.
-import { createRequire } from "node:module";
-import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from "node:fs";
+import { mkdtempSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
+import { CHROMIUM_ARGS, chromium, executablePath, fail, scriptArgs } from "./browser.mjs";
 
-const require = createRequire(new URL("../web/package.json", import.meta.url));
-const { chromium } = require("playwright-core");
-
-const [base, outDir] = process.argv.slice(2);
-if (!base || !outDir) {
-  console.error("usage: node tests/web_e2e.mjs BASE_URL OUT_DIR");
-  process.exit(2);
-}
-mkdirSync(outDir, { recursive: true });
-const executablePath = process.env.NEEDLESIM_CHROMIUM || "/usr/bin/chromium";
+const [base, outDir] = scriptArgs("web_e2e.mjs");
 const userDataDir = mkdtempSync(join(tmpdir(), "needlesim-chromium-"));
-
-function fail(msg) {
-  throw new Error(msg);
-}
 
 const context = await chromium.launchPersistentContext(userDataDir, {
   executablePath,
   headless: true,
   viewport: { width: 1240, height: 860 },
-  args: [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--no-first-run",
-    "--disable-quic",
-    "--disable-sync",
-  ],
+  args: CHROMIUM_ARGS,
 });
 const errors = [];
 const page = context.pages()[0] ?? (await context.newPage());

@@ -10,24 +10,11 @@
 // the instructor's page (its link) takes control — the observer's page shows "instructor" — and
 // hands it back. Saves slice-before.png, slice-after.png, training-observer.png (the observer's
 // page with the instructor in control) and training-trainee.png in OUT_DIR, and summary-training.json.
-import { createRequire } from "node:module";
-import { writeFileSync, mkdirSync } from "node:fs";
+import { writeFileSync } from "node:fs";
 import { join } from "node:path";
+import { CHROMIUM_ARGS, chromium, executablePath, fail, scriptArgs } from "./browser.mjs";
 
-const require = createRequire(new URL("../web/package.json", import.meta.url));
-const { chromium } = require("playwright-core");
-
-const [base, outDir] = process.argv.slice(2);
-if (!base || !outDir) {
-  console.error("usage: node tests/web_training_e2e.mjs BASE_URL OUT_DIR");
-  process.exit(2);
-}
-mkdirSync(outDir, { recursive: true });
-const executablePath = process.env.NEEDLESIM_CHROMIUM || "/usr/bin/chromium";
-
-function fail(msg) {
-  throw new Error(msg);
-}
+const [base, outDir] = scriptArgs("web_training_e2e.mjs");
 const t0 = Date.now();
 const step = (what) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s] ${what}`);
 
@@ -36,16 +23,7 @@ const step = (what) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)} s]
 const browser = await chromium.launch({
   executablePath,
   headless: true,
-  args: [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--no-first-run",
-    "--disable-quic",
-    "--disable-sync",
-  ],
+  args: CHROMIUM_ARGS,
 });
 // Generous waits: the machines these run on are shared and often loaded (a load of 20 on 2
 // cores makes a page load take half a minute); the checks are on what happens, not how fast.
