@@ -82,9 +82,20 @@ pub struct PlanFile {
 
 /// The shipped planning example for a scene name, if there is one.
 pub fn example_for_scene(scene_name: &str) -> Result<Option<PlanFile>> {
-    for (name, text) in PLAN_EXAMPLES {
-        let f: PlanFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("planning example {name}: {}", e.to_string().trim_end()))?;
-        if f.scene == scene_name {
+    find_example(PLAN_EXAMPLES, scene_name, |f: &PlanFile| &f.scene)
+}
+
+/// The first of `examples` (name, TOML text) whose scene (`scene_of`) is `scene_name`.
+///
+/// Errors: an example that does not parse as `T` (naming it).
+pub(crate) fn find_example<T: serde::de::DeserializeOwned>(
+    examples: &[(&str, &str)],
+    scene_name: &str,
+    scene_of: impl Fn(&T) -> &str,
+) -> Result<Option<T>> {
+    for (name, text) in examples {
+        let f: T = toml::from_str(text).map_err(|e| anyhow::anyhow!("planning example {name}: {}", e.to_string().trim_end()))?;
+        if scene_of(&f) == scene_name {
             return Ok(Some(f));
         }
     }
@@ -102,7 +113,7 @@ pub struct PlanInputError {
 }
 
 /// A [`PlanInputError`] as the planner's `anyhow` error.
-fn input(field: &'static str, message: String) -> anyhow::Error {
+pub(crate) fn input(field: &'static str, message: String) -> anyhow::Error {
     anyhow::Error::new(PlanInputError { field, message })
 }
 

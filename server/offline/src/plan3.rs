@@ -73,7 +73,7 @@ use needlesim_trajectory::Pose3;
 use needlesim_trajectory::pose3::quat_from_axis_roll;
 use serde::{Deserialize, Serialize};
 
-use crate::plan::{PlanInputError, PlanOptions, PlanProgress};
+use crate::plan::{PlanOptions, PlanProgress, input};
 use crate::simulate3::sim3_params;
 
 /// How fast the planned trajectory rolls the base about its axis, rad/s.
@@ -111,17 +111,7 @@ pub struct Plan3File {
 
 /// The shipped 3D planning example for a scene name, if there is one.
 pub fn example3_for_scene(scene_name: &str) -> Result<Option<Plan3File>> {
-    for (name, text) in PLAN3_EXAMPLES {
-        let f: Plan3File = toml::from_str(text).map_err(|e| anyhow::anyhow!("planning example {name}: {}", e.to_string().trim_end()))?;
-        if f.scene == scene_name {
-            return Ok(Some(f));
-        }
-    }
-    Ok(None)
-}
-
-fn input(field: &'static str, message: String) -> anyhow::Error {
-    anyhow::Error::new(PlanInputError { field, message })
+    crate::plan::find_example(PLAN3_EXAMPLES, scene_name, |f: &Plan3File| &f.scene)
 }
 
 /// What to plan in 3D. Absent fields take the shipped planning example's values for the scene.
