@@ -486,19 +486,7 @@ fn run_plan(a: &PlanArgs, limits: &MeshLimits) -> Result<()> {
     let scene = scene::load_scene(&a.scene, limits)?;
     let req = plan::PlanRequest { target: a.target.clone(), entry_m, angles_deg, speed_m_s: a.speed_mm_s.map(|v| v * 1e-3) };
     let opts = plan::PlanOptions { threads: a.threads, ..Default::default() };
-    let quiet = a.json;
-    let p = plan::plan(&scene, &req, &opts, |pr| {
-        if !quiet {
-            eprintln!(
-                "iteration {}: {} simulations, best predicted error {:.3} mm (straight aim {:.3} mm)",
-                pr.iteration,
-                pr.simulations,
-                pr.best_error_m * 1e3,
-                pr.straight_error_m * 1e3
-            );
-        }
-        std::ops::ControlFlow::Continue(())
-    })?;
+    let p = plan::plan(&scene, &req, &opts, plan_progress_printer(a.json))?;
     if let Some(path) = &a.trajectory_out {
         std::fs::write(path, p.trajectory_csv()).with_context(|| format!("cannot write {}", path.display()))?;
     }
@@ -531,6 +519,22 @@ fn run_plan(a: &PlanArgs, limits: &MeshLimits) -> Result<()> {
     Ok(())
 }
 
+/// The planners' progress on stderr, a line per iteration (nothing when `quiet`).
+fn plan_progress_printer(quiet: bool) -> impl FnMut(&plan::PlanProgress) -> std::ops::ControlFlow<()> {
+    move |pr| {
+        if !quiet {
+            eprintln!(
+                "iteration {}: {} simulations, best predicted error {:.3} mm (straight aim {:.3} mm)",
+                pr.iteration,
+                pr.simulations,
+                pr.best_error_m * 1e3,
+                pr.straight_error_m * 1e3
+            );
+        }
+        std::ops::ControlFlow::Continue(())
+    }
+}
+
 /// `plan` for a 3D scene (`needlesim_offline::plan3`).
 fn run_plan3(a: &PlanArgs, limits: &MeshLimits) -> Result<()> {
     if a.entry.is_some() || a.angles_deg.is_some() {
@@ -551,19 +555,7 @@ fn run_plan3(a: &PlanArgs, limits: &MeshLimits) -> Result<()> {
         speed_m_s: a.speed_mm_s.map(|v| v * 1e-3),
     };
     let opts = plan::PlanOptions { threads: a.threads, ..Default::default() };
-    let quiet = a.json;
-    let p = needlesim_offline::plan3::plan3(&scene, &req, &opts, |pr| {
-        if !quiet {
-            eprintln!(
-                "iteration {}: {} simulations, best predicted error {:.3} mm (straight aim {:.3} mm)",
-                pr.iteration,
-                pr.simulations,
-                pr.best_error_m * 1e3,
-                pr.straight_error_m * 1e3
-            );
-        }
-        std::ops::ControlFlow::Continue(())
-    })?;
+    let p = needlesim_offline::plan3::plan3(&scene, &req, &opts, plan_progress_printer(a.json))?;
     if let Some(path) = &a.trajectory_out {
         std::fs::write(path, p.trajectory_csv()).with_context(|| format!("cannot write {}", path.display()))?;
     }
