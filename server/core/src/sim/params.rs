@@ -241,5 +241,5 @@ pub mod param_limits {
     /// it with the gap above [`SHAPE_GAP_TOL_M`] says so
     /// ([`crate::sim::StepOutput::shape_passes_capped`], counted in
     /// [`crate::sim::SimStats::shape_capped_ticks`]).
-    pub const SHAPE_PASSES: usize = 4;
+    pub const SHAPE_PASSES: usize = 6;
 }
