@@ -236,6 +236,8 @@ struct PlanArgs {
 fn main() -> ExitCode {
     tracing_subscriber::fmt()
         .with_writer(std::io::stderr)
+        // Colour only on a terminal: logs piped to a file or a collector stay plain text.
+        .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .with_env_filter(tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "info".into()))
         .init();
     let cli = Cli::parse();
@@ -342,9 +344,18 @@ fn run_simulate(
         prefetched_columns = summary.prefetched_columns,
         clamped_ticks = summary.clamped_ticks,
         unconverged_ticks = summary.unconverged_ticks,
+        active_set_capped_ticks = summary.active_set_capped_ticks,
+        shape_capped_ticks = summary.shape_capped_ticks,
         wall_s = t0.elapsed().as_secs_f64(),
         "simulated"
     );
+    if summary.active_set_capped_ticks + summary.shape_capped_ticks > 0 {
+        tracing::warn!(
+            "{} ticks ended at the stick/slip iteration cap and {} at the flexible needle's shape-pass cap: their contact conditions or needle shape are the last iterate, not converged",
+            summary.active_set_capped_ticks,
+            summary.shape_capped_ticks
+        );
+    }
     match output {
         Some(p) => std::fs::write(p, &csv).with_context(|| format!("cannot write {}", p.display()))?,
         None => print!("{csv}"),

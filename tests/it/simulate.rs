@@ -426,3 +426,18 @@ fn issue_15_material_point_states_resolve_with_the_reference_on_200x200() {
     }
     assert!(kinds.contains("stuck") && kinds.contains("slipping"), "stuck and slipping points were checked: {kinds:?}");
 }
+
+/// Issue 19: `simulate` reports its iteration caps — the ticks whose stick/slip iteration or
+/// flexible shape passes stopped at their bound — and the shipped bevel-tip example (a flexible
+/// needle with a bevel, the one that used to end a tick at the 4-pass shape cap) has none.
+#[test]
+fn issue_19_simulate_reports_iteration_caps_and_the_bevel_example_has_none() {
+    let dir = TempDir::new("caps");
+    let out = dir.path().join("bevel.csv");
+    let (_, err) = simulate_ok(&["--scene", "bevel-tip", "-o", out.to_str().unwrap()]);
+    let line = err.lines().find(|l| l.contains("simulated")).unwrap_or_else(|| panic!("no summary line: {err}"));
+    for key in ["active_set_capped_ticks=0", "shape_capped_ticks=0", "unconverged_ticks=0"] {
+        assert!(line.contains(key), "{key} not in the summary: {line}");
+    }
+    assert!(!err.contains("iteration cap"), "{err}");
+}

@@ -23,6 +23,10 @@ pub struct RunSummary {
     pub column_deferrals: u64,
     pub prefetched_columns: u64,
     pub unconverged_ticks: u64,
+    /// Ticks whose stick/slip iteration stopped at its cap (issue 19).
+    pub active_set_capped_ticks: u64,
+    /// Ticks whose flexible needle's shape passes stopped at their cap (issue 19).
+    pub shape_capped_ticks: u64,
     pub numeric_factorisations: u64,
     /// Step compute times, seconds, one per tick.
     pub step_times_s: Vec<f64>,
@@ -106,6 +110,8 @@ pub fn run_observed(
     summary.prefetched_columns = finished.prefetched_columns;
     summary.stopped_early = totals.stopped_early;
     summary.unconverged_ticks = st.unconverged_ticks;
+    summary.active_set_capped_ticks = st.active_set_capped_ticks;
+    summary.shape_capped_ticks = st.shape_capped_ticks;
     summary.numeric_factorisations = sim.model().cholesky().n_numeric_factorisations();
     Ok((sim, summary))
 }
