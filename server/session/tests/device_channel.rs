@@ -355,3 +355,50 @@ fn issue_20_a_suspended_device_does_not_drive_gets_zero_force_and_catches_up_aft
     session.close();
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 20 in 3D: a suspended device's poses are set aside, and once lifted the needle catches
+/// up with the device along the straight line at `DEVICE_CATCH_UP_M_PER_S` (the count of partial
+/// steps exact) and ends exactly at its pose. Above the tissue (no contact: the compliance
+/// worker's pace does not matter).
+#[test]
+fn issue_20_a_suspended_3d_device_catches_up_along_a_straight_line() {
+    let scene = needlesim_scene::load_scene3d("cube-phantom-3d", &MeshLimits::default()).unwrap();
+    let model = std::sync::Arc::new(scene.tissue_model().unwrap());
+    let q = scene.initial_pose.quat_wxyz;
+    let initial = needlesim_core::sim3::BasePose3::new([0.05, 0.05, 0.23], q).unwrap();
+    let mut params = needlesim_core::sim3::Sim3Params::new(scene.needle.length_m, initial);
+    params.regions = scene.regions.iter().map(|r| r.needle).collect();
+    let dir = std::env::temp_dir().join(format!("needlesim-device-suspend3-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = Session::start3("cube-phantom-3d", model, params, vec![], Some(&dir)).unwrap();
+    let mut device = DeviceChannel::attach(session.device_channel_path.as_ref().unwrap()).unwrap();
+    let hold = |device: &mut DeviceEnd, p: [f64; 3], secs: f64| {
+        let start = Instant::now();
+        while start.elapsed().as_secs_f64() < secs {
+            device
+                .write_pose_from_device(&DevicePose { t_ns: monotonic_ns(), position_m: p, orientation: q, ..Default::default() })
+                .unwrap();
+            std::thread::sleep(Duration::from_micros(500));
+        }
+    };
+    let base = |s: &Session| s.latest_record().d3.position_m;
+    hold(&mut device, [0.05, 0.05, 0.23], 0.3);
+    assert_eq!(base(&session), [0.05, 0.05, 0.23], "the device drives");
+    session.suspend_device_from_io(true);
+    std::thread::sleep(Duration::from_millis(20));
+    // 6.123 mm in x and 8 mm up: 10.07… mm, off a multiple of the 50 µm step.
+    let target = [0.05 + 0.006123, 0.05, 0.238];
+    hold(&mut device, target, 0.5);
+    assert_eq!(base(&session), [0.05, 0.05, 0.23], "a suspended device does not drive");
+    assert!(session.counters.device_poses_suspended.load(Ordering::Relaxed) > 100);
+    session.suspend_device_from_io(false);
+    hold(&mut device, target, 1.0);
+    let b = base(&session);
+    assert!(b.iter().zip(&target).all(|(a, t)| (a - t).abs() < 1e-12), "caught up: {b:?}");
+    let gap_m = (0.006123f64.powi(2) + 0.008f64.powi(2)).sqrt();
+    let step_m = needlesim_session::DEVICE_CATCH_UP_M_PER_S / 1000.0;
+    assert_eq!(session.counters.device_catch_up_poses.load(Ordering::Relaxed), (gap_m / step_m).ceil() as u64 - 1);
+    drop(device);
+    session.close();
+    let _ = std::fs::remove_dir_all(&dir);
+}
