@@ -39,7 +39,7 @@ impl std::fmt::Display for Busy {
         match self {
             Busy::Stream => write!(f, "another client drives this session through a Control stream"),
             Busy::Unary => write!(f, "another client drove this session through SetPose less than {} s ago", UNARY_LEASE.as_secs_f64()),
-            Busy::Exclusive => write!(f, "the session's instructor holds control, which cannot be taken over"),
+            Busy::Exclusive => write!(f, "a training exercise's instructor holds the control lease exclusively (no take-over)"),
         }
     }
 }

@@ -300,7 +300,7 @@ fn control_refused(s: &Session, busy: needlesim_session::control_lease::Busy) ->
         // Held exclusively by a training exercise's instructor (training_live.rs): reached by a
         // trainee whose check passed just before TakeControl or SetPaused.
         Busy::Exclusive => Status::failed_precondition(format!(
-            "session {}: {busy}: the instructor has control or has paused the exercise; the trainee's poses are refused until control is handed back and the exercise resumes",
+            "session {}: {busy} while in control or while the exercise is paused; the trainee's poses are refused until control is handed back and the exercise resumes",
             s.id
         )),
         Busy::Stream | Busy::Unary => Status::failed_precondition(format!(
