@@ -675,6 +675,39 @@ mod tests {
         assert!((snap.time_s - 1e-3).abs() < 1e-12, "the clock restarts at the reset: {} s", snap.time_s);
     }
 
+    /// Issue 20's race, step by step: the trainee's check passes, then the instructor takes
+    /// control, then the trainee's stream or SetPose reaches the lease (with `take_over`): refused,
+    /// and the instructor keeps driving. The device is suspended while control or a pause holds.
+    #[tokio::test]
+    async fn issue_20_a_trainee_checked_just_before_take_control_cannot_take_the_lease_after_it() {
+        use needlesim_session::control_lease::Busy;
+        let scene = needlesim_scene::load_scene("paper-phantom", &needlesim_core::MeshLimits::default()).unwrap();
+        let s = Session::start(&scene, 1000.0, None).unwrap();
+        let ex = exercise();
+        let mut trainee = s.control.acquire_stream("trainee", false).await.unwrap();
+        assert!(ex.refuse_trainee().is_ok(), "the trainee's check passes");
+        ex.take_control(&s);
+        trainee.revoked().await;
+        assert!(!trainee.write_if_held(|| panic!("the revoked trainee writes")));
+        assert!(s.device_suspended());
+        assert_eq!(s.control.acquire_stream("trainee", true).await.err(), Some(Busy::Exclusive));
+        assert_eq!(s.control.with_unary("trainee", true, || panic!("the trainee writes")).await, Err::<(), _>(Busy::Exclusive));
+        let mut wrote = false;
+        ex.write_as_instructor(|| wrote = true).unwrap();
+        assert!(wrote, "the instructor drives");
+        // Paused, then handed back: still locked (the pause holds); resumed: free.
+        ex.set_paused(&s, true);
+        ex.hand_back(&s);
+        assert!(s.device_suspended(), "paused: the device stays suspended");
+        assert_eq!(ex.refuse_trainee().unwrap_err().code(), tonic::Code::FailedPrecondition);
+        assert_eq!(s.control.acquire_stream("trainee", true).await.err(), Some(Busy::Exclusive));
+        ex.set_paused(&s, false);
+        assert!(!s.device_suspended());
+        assert!(ex.refuse_trainee().is_ok());
+        assert!(s.control.acquire_stream("trainee", false).await.is_ok(), "the lease is free again");
+        s.close();
+    }
+
     #[test]
     fn markers_are_checked_and_an_ended_exercise_takes_nothing() {
         let ex = exercise();
