@@ -346,6 +346,8 @@ pub fn session_info(s: &Session) -> pb::SessionInfo {
         device_channel_path: s.device_channel_path.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
         device_stale: s.counters.device_stale.load(Ordering::Relaxed) != 0,
         device_channel_broken: s.counters.device_channel_broken.load(Ordering::Relaxed) != 0,
+        device_suspended: s.device_channel_path.is_some() && s.device_suspended(),
+        device_poses_suspended: s.counters.device_poses_suspended.load(Ordering::Relaxed),
     }
 }
 

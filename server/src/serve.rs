@@ -79,6 +79,17 @@ fn metrics_text(state: &ServerState) -> String {
             "1 once the device channel's file was changed under it (truncated, deleted, replaced, garbage)",
             Family::default(),
         ),
+        (
+            "device_suspended",
+            "1 while the device does not drive (a training exercise's instructor has control or has paused it)",
+            Family::default(),
+        ),
+        ("device_poses_suspended", "Fresh device poses set aside while the device was suspended", Family::default()),
+        (
+            "device_catch_up_poses",
+            "Device poses after a suspension that moved the needle only part of the way (the catch-up at 50 mm/s)",
+            Family::default(),
+        ),
     ];
     for s in sessions.values() {
         let st = s.stats();
@@ -109,6 +120,9 @@ fn metrics_text(state: &ServerState) -> String {
             st.rejected_poses as f64,
             s.counters.device_stale.load(Ordering::Relaxed) as f64,
             s.counters.device_channel_broken.load(Ordering::Relaxed) as f64,
+            f64::from(u8::from(s.device_channel_path.is_some() && s.device_suspended())),
+            s.counters.device_poses_suspended.load(Ordering::Relaxed) as f64,
+            s.counters.device_catch_up_poses.load(Ordering::Relaxed) as f64,
         ];
         for ((_, _, fam), v) in gauges.iter_mut().zip(values) {
             fam.get_or_create(&labels).set(v);

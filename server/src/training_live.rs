@@ -13,11 +13,31 @@
 //! the last reset). Paused records are not scored; $P$ grows by $t_k - t_{k-1}$ for each of them.
 //!
 //! **Control.** The instructor's control is the session's control lease
-//! (`needlesim_session::control_lease`), held as a stream lease while the instructor has control
-//! or the exercise is paused: taking it revokes the trainee's Control stream (ABORTED), and
-//! [`LiveExercise::refuse_trainee`] refuses the trainee's poses with FAILED_PRECONDITION before
-//! they reach the lease (so the trainee's `take_over` cannot take it back). The instructor's
-//! poses are written under that lease ([`LiveExercise::write_as_instructor`]).
+//! (`needlesim_session::control_lease`), held *exclusively* ([`ControlLease::take_exclusive`](needlesim_session::control_lease::ControlLease::take_exclusive))
+//! while the instructor has control or the exercise is paused: taking it revokes the trainee's
+//! Control stream (ABORTED), and no `take_over` can take it back. [`LiveExercise::refuse_trainee`]
+//! refuses the trainee's poses with FAILED_PRECONDITION before they reach the lease (with the
+//! reason: control or pause). That check alone would race with TakeControl (checked, then the
+//! instructor takes control, then the trainee's stream or SetPose takes the lease over); the
+//! exclusive lease closes it: the trainee's acquisition and the instructor's take are decided
+//! under the lease's one lock, and every pose is written under it, so a trainee checked before the
+//! take either got the lease before it (and is revoked by it: no pose of theirs lands after) or
+//! is refused after it ([`Busy::Exclusive`](needlesim_session::control_lease::Busy::Exclusive), FAILED_PRECONDITION, `grpc/control.rs`). The
+//! instructor's poses are written under that lease ([`LiveExercise::write_as_instructor`]). The
+//! state (control, paused) and the lease change together under the exercise's state lock (lock
+//! order: exercise state, then lease).
+//!
+//! **A trainee on a device.** A session created with a device channel is driven by the device
+//! bridge on the real-time thread, not through the lease. While the instructor has control or the
+//! exercise is paused the session's device is suspended ([`Session::suspend_device_from_io`], set
+//! under the same state lock, so the flag is always "control or paused"): its poses are read and
+//! counted (`device_poses_suspended`) but not applied, its button flips nothing, and the device
+//! is sent zero force and stiffness. When neither holds (HandBack without a pause, Resume without
+//! control) the device drives again: the needle, wherever the instructor left it, moves towards
+//! the device at no more than 50 mm/s and 0.5 rad/s (`needlesim_session::DEVICE_CATCH_UP_M_PER_S`),
+//! the device feeling nothing until it is there, then the force returns over 0.2 s
+//! (`needlesim_session::rt_loop`'s docs). Reset and the end of the exercise leave control and
+//! pause as they are.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -277,53 +297,55 @@ impl LiveExercise {
         }
     }
 
-    /// Takes the session's control lease for the instructor (revoking the trainee's stream).
-    async fn hold_lease(&self, s: &Session) -> Result<StreamLease, Status> {
-        s.control.acquire_stream("instructor", true).await.map_err(|busy| Status::failed_precondition(format!("session {}: {busy}", s.id)))
+    /// Holds the session's control lease exclusively (revoking the trainee's stream) unless this
+    /// exercise holds it already, and suspends the session's device; under the state lock.
+    fn hold(st: &mut ExState, s: &Session) {
+        if !st.hold.as_ref().is_some_and(StreamLease::is_held) {
+            // A previous hold is no longer the holder: dropping it releases nothing.
+            st.hold = Some(s.control.take_exclusive());
+        }
+        s.suspend_device_from_io(true);
     }
 
-    /// The instructor takes control (idempotent).
-    pub async fn take_control(&self, s: &Session) -> Result<(), Status> {
-        let lease = self.hold_lease(s).await?;
+    /// Lets the lease go and the device drive again once neither control nor a pause holds;
+    /// under the state lock.
+    fn release_if_free(st: &mut ExState, s: &Session) {
+        if !st.instructor_control && !st.paused {
+            st.hold = None;
+            s.suspend_device_from_io(false);
+        }
+    }
+
+    /// The instructor takes control (idempotent): the exclusive lease, the device suspended.
+    pub fn take_control(&self, s: &Session) {
         let mut st = self.lock();
         st.instructor_control = true;
-        // A previous hold is no longer the holder: dropping it releases nothing.
-        st.hold = Some(lease);
+        Self::hold(&mut st, s);
         drop(st);
         self.changed();
-        Ok(())
     }
 
-    /// The instructor hands control back (idempotent); the lease is let go unless paused.
-    pub fn hand_back(&self) {
+    /// The instructor hands control back (idempotent); the lease is let go and the device drives
+    /// again unless paused.
+    pub fn hand_back(&self, s: &Session) {
         let mut st = self.lock();
         st.instructor_control = false;
-        if !st.paused {
-            st.hold = None;
-        }
+        Self::release_if_free(&mut st, s);
         drop(st);
         self.changed();
     }
 
-    /// Pauses or resumes (module docs); the lease is held while paused.
-    pub async fn set_paused(&self, s: &Session, paused: bool) -> Result<(), Status> {
+    /// Pauses or resumes (module docs); the lease is held and the device suspended while paused.
+    pub fn set_paused(&self, s: &Session, paused: bool) {
+        let mut st = self.lock();
+        st.paused = paused;
         if paused {
-            let needs_lease = self.lock().hold.is_none();
-            let lease = if needs_lease { Some(self.hold_lease(s).await?) } else { None };
-            let mut st = self.lock();
-            st.paused = true;
-            if st.hold.is_none() {
-                st.hold = lease;
-            }
+            Self::hold(&mut st, s);
         } else {
-            let mut st = self.lock();
-            st.paused = false;
-            if !st.instructor_control {
-                st.hold = None;
-            }
+            Self::release_if_free(&mut st, s);
         }
+        drop(st);
         self.changed();
-        Ok(())
     }
 
     /// Restarts the metrics, placements and markers (the clock from zero at the next record).
@@ -651,6 +673,39 @@ mod tests {
         let snap = ex.snapshot();
         assert_eq!(snap.metrics.samples, 2);
         assert!((snap.time_s - 1e-3).abs() < 1e-12, "the clock restarts at the reset: {} s", snap.time_s);
+    }
+
+    /// Issue 20's race, step by step: the trainee's check passes, then the instructor takes
+    /// control, then the trainee's stream or SetPose reaches the lease (with `take_over`): refused,
+    /// and the instructor keeps driving. The device is suspended while control or a pause holds.
+    #[tokio::test]
+    async fn issue_20_a_trainee_checked_just_before_take_control_cannot_take_the_lease_after_it() {
+        use needlesim_session::control_lease::Busy;
+        let scene = needlesim_scene::load_scene("paper-phantom", &needlesim_core::MeshLimits::default()).unwrap();
+        let s = Session::start(&scene, 1000.0, None).unwrap();
+        let ex = exercise();
+        let mut trainee = s.control.acquire_stream("trainee", false).await.unwrap();
+        assert!(ex.refuse_trainee().is_ok(), "the trainee's check passes");
+        ex.take_control(&s);
+        trainee.revoked().await;
+        assert!(!trainee.write_if_held(|| panic!("the revoked trainee writes")));
+        assert!(s.device_suspended());
+        assert_eq!(s.control.acquire_stream("trainee", true).await.err(), Some(Busy::Exclusive));
+        assert_eq!(s.control.with_unary("trainee", true, || panic!("the trainee writes")).await, Err::<(), _>(Busy::Exclusive));
+        let mut wrote = false;
+        ex.write_as_instructor(|| wrote = true).unwrap();
+        assert!(wrote, "the instructor drives");
+        // Paused, then handed back: still locked (the pause holds); resumed: free.
+        ex.set_paused(&s, true);
+        ex.hand_back(&s);
+        assert!(s.device_suspended(), "paused: the device stays suspended");
+        assert_eq!(ex.refuse_trainee().unwrap_err().code(), tonic::Code::FailedPrecondition);
+        assert_eq!(s.control.acquire_stream("trainee", true).await.err(), Some(Busy::Exclusive));
+        ex.set_paused(&s, false);
+        assert!(!s.device_suspended());
+        assert!(ex.refuse_trainee().is_ok());
+        assert!(s.control.acquire_stream("trainee", false).await.is_ok(), "the lease is free again");
+        s.close();
     }
 
     #[test]

@@ -188,21 +188,21 @@ impl pb::training_service_server::TrainingService for Api {
 
     async fn take_control(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "TakeControl")?;
-        ex.take_control(&s).await?;
+        ex.take_control(&s);
         tracing::info!(session = %s.id, "the instructor took control");
         Ok(Response::new(status_now(&ex)))
     }
 
     async fn hand_back_control(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "HandBackControl")?;
-        ex.hand_back();
+        ex.hand_back(&s);
         tracing::info!(session = %s.id, "the instructor handed control back");
         Ok(Response::new(status_now(&ex)))
     }
 
     async fn set_paused(&self, req: Request<pb::SetPausedRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "SetPaused")?;
-        ex.set_paused(&s, req.get_ref().paused).await?;
+        ex.set_paused(&s, req.get_ref().paused);
         Ok(Response::new(status_now(&ex)))
     }
 

@@ -156,7 +156,7 @@ pub(crate) fn spawn_bridge(channel: &Path, args: &[&str]) -> tokio::process::Chi
 }
 
 /// Waits for a bridge to exit; returns (exit code, the JSON report, stderr).
-async fn finish_bridge(child: tokio::process::Child) -> (Option<i32>, serde_json::Value, String) {
+pub(crate) async fn finish_bridge(child: tokio::process::Child) -> (Option<i32>, serde_json::Value, String) {
     let out = tokio::time::timeout(Duration::from_secs(60), child.wait_with_output())
         .await
         .expect("the bridge exits")

@@ -31,6 +31,7 @@ mod sim3;
 mod simulate;
 mod simulate3;
 mod training;
+mod training_device;
 mod training_live;
 mod validation;
 mod web;

@@ -3,6 +3,14 @@
 //! sending poses keeps it, and an idle one lets go). Anyone else is refused until the holder lets
 //! go, unless it asks to take over: the holder is then revoked (a revoked stream ends with
 //! ABORTED). IO side only: the real-time thread never touches the lease.
+//!
+//! An *exclusive* holder ([`ControlLease::take_exclusive`]: a training session's instructor while
+//! holding control or pausing the exercise) revokes whoever holds the lease and cannot itself be
+//! taken over: every other request is refused with [`Busy::Exclusive`] at once, `take_over` or not,
+//! until it lets go. The refusal and the take are decided under the lease's one lock, and every
+//! pose is written under it ([`StreamLease::write_if_held`], [`ControlLease::with_unary`]), so no
+//! other client's pose lands after an exclusive take, and no client checked before it can take
+//! the lease after it.
 
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -22,6 +30,8 @@ pub enum Busy {
     Stream,
     /// Another SetPose client sent a pose less than [`UNARY_LEASE`] ago.
     Unary,
+    /// An exclusive holder ([`ControlLease::take_exclusive`]) has it: no take-over.
+    Exclusive,
 }
 
 impl std::fmt::Display for Busy {
@@ -29,13 +39,14 @@ impl std::fmt::Display for Busy {
         match self {
             Busy::Stream => write!(f, "another client drives this session through a Control stream"),
             Busy::Unary => write!(f, "another client drove this session through SetPose less than {} s ago", UNARY_LEASE.as_secs_f64()),
+            Busy::Exclusive => write!(f, "a training exercise's instructor holds the control lease exclusively (no take-over)"),
         }
     }
 }
 
 enum Holder {
-    /// A Control stream; `revoke` tells it that it was taken over.
-    Stream { id: u64, revoke: watch::Sender<bool> },
+    /// A Control stream, or an exclusive holder; `revoke` tells it that it was taken over.
+    Stream { id: u64, revoke: watch::Sender<bool>, exclusive: bool },
     /// A SetPose client (its `client_id`, or its address), until `until`.
     Unary { client: String, until: Instant },
 }
@@ -81,19 +92,32 @@ impl ControlLease {
 
     fn try_stream(self: &Arc<Self>, client: &str, take_over: bool, now: Instant) -> Result<StreamLease, Busy> {
         let mut g = self.inner.lock().expect("control lease lock");
-        if !take_over {
-            match &g.holder {
-                Some(Holder::Stream { .. }) => return Err(Busy::Stream),
-                Some(Holder::Unary { client: c, until }) if *until > now && c != client => return Err(Busy::Unary),
-                _ => {}
-            }
+        match &g.holder {
+            Some(Holder::Stream { exclusive: true, .. }) => return Err(Busy::Exclusive),
+            _ if take_over => {}
+            Some(Holder::Stream { .. }) => return Err(Busy::Stream),
+            Some(Holder::Unary { client: c, until }) if *until > now && c != client => return Err(Busy::Unary),
+            _ => {}
         }
+        Ok(self.hold_stream(&mut g, false))
+    }
+
+    /// Revokes the holder, if any, and makes a new stream lease the holder.
+    fn hold_stream(self: &Arc<Self>, g: &mut Inner, exclusive: bool) -> StreamLease {
         revoke(g.holder.take());
         g.next_id += 1;
         let id = g.next_id;
         let (tx, rx) = watch::channel(false);
-        g.holder = Some(Holder::Stream { id, revoke: tx });
-        Ok(StreamLease { lease: self.clone(), id, revoked: rx })
+        g.holder = Some(Holder::Stream { id, revoke: tx, exclusive });
+        StreamLease { lease: self.clone(), id, revoked: rx }
+    }
+
+    /// Takes the lease exclusively, at once (module docs): whoever holds it is revoked (an
+    /// exclusive holder too), and until the returned lease is dropped every other request is
+    /// refused with [`Busy::Exclusive`], `take_over` or not.
+    pub fn take_exclusive(self: &Arc<Self>) -> StreamLease {
+        let mut g = self.inner.lock().expect("control lease lock");
+        self.hold_stream(&mut g, true)
     }
 
     /// SetPose of `client`: runs `write` under the lease, which `client` then holds for
@@ -109,6 +133,7 @@ impl ControlLease {
                 let mut g = self.inner.lock().expect("control lease lock");
                 let now = Instant::now();
                 let busy = match &g.holder {
+                    Some(Holder::Stream { exclusive: true, .. }) => return Err(Busy::Exclusive),
                     _ if take_over => None,
                     Some(Holder::Stream { .. }) => Some(Busy::Stream),
                     Some(Holder::Unary { client: c, until }) if *until > now && c != client => Some(Busy::Unary),
@@ -120,7 +145,7 @@ impl ControlLease {
                         g.holder = Some(Holder::Unary { client: client.to_owned(), until: now + UNARY_LEASE });
                         return Ok(write());
                     }
-                    Some(Busy::Unary) => return Err(Busy::Unary),
+                    Some(busy @ (Busy::Unary | Busy::Exclusive)) => return Err(busy),
                     Some(Busy::Stream) => {}
                 }
             }
@@ -162,6 +187,12 @@ impl StreamLease {
             }
             _ => false,
         }
+    }
+
+    /// Whether this lease still holds (nobody took over).
+    pub fn is_held(&self) -> bool {
+        let g = self.lease.inner.lock().expect("control lease lock");
+        matches!(&g.holder, Some(Holder::Stream { id, .. }) if *id == self.id)
     }
 
     /// Resolves when another client took over.
@@ -211,6 +242,32 @@ mod tests {
         assert_eq!(lease.acquire_stream("cli", false).await.err(), Some(Busy::Unary));
         assert!(lease.acquire_stream("web", false).await.is_ok(), "a SetPose client may open a stream");
         assert_eq!(lease.with_unary("cli", true, || 4).await, Ok(4));
+    }
+
+    /// Issue 20: an exclusive holder (a training instructor) revokes the holder and is not
+    /// revoked by a take-over; whoever acquires after it is refused until it lets go.
+    #[tokio::test]
+    async fn an_exclusive_holder_cannot_be_taken_over() {
+        let lease = ControlLease::new();
+        let mut trainee = lease.acquire_stream("trainee", false).await.unwrap();
+        let instructor = lease.take_exclusive();
+        trainee.revoked().await;
+        assert!(!trainee.write_if_held(|| panic!("a revoked stream writes")));
+        // A client that was let through before the take cannot take the lease after it.
+        assert_eq!(lease.acquire_stream("trainee", true).await.err(), Some(Busy::Exclusive));
+        assert_eq!(lease.acquire_stream("trainee", false).await.err(), Some(Busy::Exclusive));
+        assert_eq!(lease.with_unary("trainee", true, || panic!("a refused SetPose writes")).await, Err::<(), _>(Busy::Exclusive));
+        let mut wrote = false;
+        assert!(instructor.write_if_held(|| wrote = true));
+        assert!(wrote, "the exclusive holder still writes");
+        // A second exclusive take replaces the first (the instructor taking control again).
+        let again = lease.take_exclusive();
+        assert!(!instructor.write_if_held(|| ()));
+        drop(instructor);
+        assert_eq!(lease.acquire_stream("trainee", true).await.err(), Some(Busy::Exclusive), "the old lease's drop releases nothing");
+        drop(again);
+        drop(trainee);
+        assert!(lease.acquire_stream("trainee", false).await.is_ok(), "free again once the exclusive holder lets go");
     }
 
     #[tokio::test]

@@ -33,8 +33,16 @@ pub struct SessionCounters {
     pub device_stale: AtomicU64,
     /// Times the device went stale.
     pub device_stale_events: AtomicU64,
-    /// Fresh device poses taken.
+    /// Fresh device poses read (taken, refused, or set aside while the device is suspended).
     pub device_poses: AtomicU64,
+    /// Fresh device poses set aside because the device was suspended
+    /// ([`Session::suspend_device_from_io`](crate::Session::suspend_device_from_io): a training
+    /// session's instructor has control, or the exercise is paused).
+    pub device_poses_suspended: AtomicU64,
+    /// Fresh device poses, after a suspension, that moved the needle only part of the way towards
+    /// the device (at most [`DEVICE_CATCH_UP_M_PER_S`](crate::DEVICE_CATCH_UP_M_PER_S) and
+    /// [`DEVICE_CATCH_UP_RAD_PER_S`](crate::DEVICE_CATCH_UP_RAD_PER_S)): the catch-up's length.
+    pub device_catch_up_poses: AtomicU64,
     /// 1 once the device channel is broken (its file was truncated, resized, overwritten, deleted
     /// or replaced: `needlesim_channel::shm::Broken`): the device stays stale for the rest of the session.
     pub device_channel_broken: AtomicU64,

@@ -35,6 +35,9 @@ pub use record::{
     DEVICE_STALE_TICKS, FAULT_OTHER, FAULT_SOLVER, FAULT_TISSUE, MAX_CONSECUTIVE_STEP_ERRORS, MAX_RECORD_NODES, MAX_RECORD_SHAPE,
     MAX_RECORD_TARGETS, NodeRecord, PoseCommand, STIFFNESS_EVERY_TICKS, SessionFault, TargetRecord, TickRecord,
 };
-pub use rt_loop::{FLIP_BEVEL_BUTTON, IN_TICK, WARM_UP_TICKS, request_realtime_priority};
+pub use rt_loop::{
+    DEVICE_CATCH_UP_M_PER_S, DEVICE_CATCH_UP_RAD_PER_S, DEVICE_FORCE_RAMP_S, FLIP_BEVEL_BUTTON, IN_TICK, WARM_UP_TICKS,
+    request_realtime_priority,
+};
 pub use session::{DEFAULT_SPIN_MARGIN, Session, SessionError, SessionTissue, WrongDimension, set_rt_priority, set_spin_margin};
 pub use surface::BoundarySurface;

@@ -39,6 +39,10 @@ pub(crate) trait LiveSim: Send + 'static {
     fn pose(&self) -> Self::Pose;
     /// The device's 6-DOF pose as this simulation's pose (`None`: refused, e.g. not unit).
     fn pose_from_device(&self, p: &DevicePose) -> Option<Self::Pose>;
+    /// `target` approached from [`LiveSim::pose`] by at most `max_step_m` of translation and
+    /// `max_step_rad` of rotation (each clamped on its own), and whether `target` was reached
+    /// (nothing clamped): the device's catch-up after a suspension ([`crate::rt_loop`]).
+    fn towards(&self, target: &Self::Pose, max_step_m: f64, max_step_rad: f64) -> (Self::Pose, bool);
     /// Takes what the worker delivered since the last tick.
     fn absorb_from_rt(&mut self, counters: &SessionCounters);
     /// Turns the needle 180° about its axis (nothing for a needle without bevel).
@@ -98,6 +102,26 @@ impl LiveSim for Live2 {
         // A 2D session takes the planar part of the 6-DOF pose (x, y, the twist about z).
         let [x_m, y_m, theta_rad] = p.to_planar();
         Some(BasePose::new(x_m, y_m, theta_rad))
+    }
+
+    fn towards(&self, target: &BasePose, max_step_m: f64, max_step_rad: f64) -> (BasePose, bool) {
+        // The translation along the straight line, the angle on its own (no wrap: as the core's clamp).
+        let from = self.sim.pose();
+        let (dx, dy) = (target.x_m - from.x_m, target.y_m - from.y_m);
+        let dist = dx.hypot(dy);
+        let mut next = *target;
+        let mut reached = true;
+        if dist > max_step_m {
+            let k = max_step_m / dist;
+            (next.x_m, next.y_m) = (from.x_m + k * dx, from.y_m + k * dy);
+            reached = false;
+        }
+        let dth = target.theta_rad - from.theta_rad;
+        if dth.abs() > max_step_rad {
+            next.theta_rad = from.theta_rad + max_step_rad.copysign(dth);
+            reached = false;
+        }
+        (next, reached)
     }
 
     fn absorb_from_rt(&mut self, counters: &SessionCounters) {
@@ -262,6 +286,11 @@ impl LiveSim for Live3 {
 
     fn pose_from_device(&self, p: &DevicePose) -> Option<BasePose3> {
         BasePose3::new(p.position_m, p.orientation).ok()
+    }
+
+    fn towards(&self, target: &BasePose3, max_step_m: f64, max_step_rad: f64) -> (BasePose3, bool) {
+        let (next, clamped) = self.sim.pose().clamped_towards(target, max_step_m, max_step_rad);
+        (next, !clamped)
     }
 
     fn absorb_from_rt(&mut self, counters: &SessionCounters) {

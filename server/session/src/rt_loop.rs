@@ -12,6 +12,23 @@
 //! a pose reaches the device as a force within the same tick. The fan-out and the column worker
 //! park when idle; the thread rings their doorbells after pushing them work
 //! ([`crate::doorbell`]: no system call unless the thread is parked), and counts the wakes.
+//!
+//! **Who drives.** A client's pose (the triple buffer) is taken when it is new; a fresh device
+//! pose, read in the same tick, wins over it. While the IO side has the device *suspended*
+//! ([`crate::Session::suspend_device_from_io`]: a training session's instructor has control or the
+//! exercise is paused; an atomic the thread loads once per tick) the thread still reads the channel
+//! — so freshness, staleness and `device_poses` stay right — but applies no device pose (each
+//! counted in `device_poses_suspended`), takes no bevel flip from its button, does not let a stale
+//! device reset the pose (the instructor's), and writes the device a zero wrench and stiffness
+//! (state OK, so the bridge renders zero at once instead of holding its last sample through its
+//! watchdog). When the suspension is lifted the device's pose is usually far from the needle's
+//! (the instructor moved it): each fresh device pose then moves the needle only
+//! $v\,/\,f_{tick}$ towards it ([`DEVICE_CATCH_UP_M_PER_S`], [`DEVICE_CATCH_UP_RAD_PER_S`]: a
+//! 50 mm gap takes 1 s) until a pose is within that step, counted in `device_catch_up_poses`; the
+//! device still gets zero meanwhile, and then the wrench and stiffness return linearly from 0 to
+//! full over [`DEVICE_FORCE_RAMP_S`]. (Without it the jump would be the core's per-tick clamp,
+//! `max_base_step_m` = 2 mm a tick by default, 2 m/s, and the bridge's local model would
+//! extrapolate the stiffness over the whole gap.)
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -57,6 +74,15 @@ pub(crate) struct RtLoop<S: LiveSim> {
     pub(crate) device_seen: bool,
     /// The device's buttons at its previous fresh pose (None before the first).
     pub(crate) last_buttons: Option<u32>,
+    /// Set by the IO side while the device must not drive ([`crate::Session::suspend_device_from_io`]);
+    /// loaded once per tick.
+    pub(crate) device_suspended: Arc<AtomicBool>,
+    /// After a suspension, until the needle has reached the device's pose: each fresh device pose
+    /// moves the needle at most the catch-up step towards it (module docs).
+    pub(crate) device_catching_up: bool,
+    /// The gain on the wrench and stiffness written to the device: 0 while suspended or catching
+    /// up, then back to 1 in [`DEVICE_FORCE_RAMP_S`] (module docs).
+    pub(crate) device_force_gain: f64,
     /// Set when a step failed: no more steps, zero force, the needle held.
     pub(crate) fault: Option<SessionFault>,
     /// Step failures (other than a divergence) in a row; [`MAX_CONSECUTIVE_STEP_ERRORS`] fault.
@@ -68,6 +94,15 @@ pub(crate) struct RtLoop<S: LiveSim> {
 /// The device button (bit of `DevicePose::buttons`) that turns the needle 180° about its axis,
 /// on each press (rising edge).
 pub const FLIP_BEVEL_BUTTON: u32 = 1;
+
+/// After a suspension of the device, the needle follows it again at no more than this speed
+/// until it has reached the device's pose (m/s; per fresh device pose, $v/f_{tick}$).
+pub const DEVICE_CATCH_UP_M_PER_S: f64 = 0.05;
+/// … and turns towards it at no more than this rate (rad/s).
+pub const DEVICE_CATCH_UP_RAD_PER_S: f64 = 0.5;
+/// Once caught up, the wrench and stiffness written to the device return to full in this long
+/// (a linear ramp, s).
+pub const DEVICE_FORCE_RAMP_S: f64 = 0.2;
 
 use needlesim_channel::rt::request_precise_timers;
 pub use needlesim_channel::rt::request_realtime_priority;
@@ -129,6 +164,14 @@ impl<S: LiveSim> RtLoop<S> {
         // A device on the shared-memory channel drives the needle while it sends poses; when it
         // stops, the needle is held where it was and the device is marked stale.
         let mut device_stale = false;
+        // Set by the IO side (a training session's instructor has control, or the exercise is
+        // paused): the device's poses are read and counted but not applied.
+        let suspended = self.device.is_some() && self.device_suspended.load(Ordering::Relaxed);
+        if suspended {
+            self.device_catching_up = true;
+            // The force answers no device pose.
+            self.device_pose_counter = 0;
+        }
         if let Some(dev) = self.device.as_mut() {
             let sample = dev.read_pose_from_rt();
             if sample.status == needlesim_channel::shm::ReadStatus::Broken {
@@ -143,17 +186,35 @@ impl<S: LiveSim> RtLoop<S> {
             } else if sample.fresh()
                 && let Some(p) = sample.value
             {
-                match self.sim.pose_from_device(&p) {
-                    Some(q) => {
-                        *pose = q;
-                        self.device_pose_counter = p.counter;
-                    }
-                    None => {
-                        self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+                if suspended {
+                    self.counters.device_poses_suspended.fetch_add(1, Ordering::Relaxed);
+                } else {
+                    match self.sim.pose_from_device(&p) {
+                        Some(q) if self.device_catching_up => {
+                            // Back from a suspension: towards the device at the catch-up speed.
+                            let rate = self.sim.tick_rate_hz();
+                            let (next, reached) = self.sim.towards(&q, DEVICE_CATCH_UP_M_PER_S / rate, DEVICE_CATCH_UP_RAD_PER_S / rate);
+                            *pose = next;
+                            self.device_pose_counter = p.counter;
+                            if reached {
+                                self.device_catching_up = false;
+                            } else {
+                                self.counters.device_catch_up_poses.fetch_add(1, Ordering::Relaxed);
+                            }
+                        }
+                        Some(q) => {
+                            *pose = q;
+                            self.device_pose_counter = p.counter;
+                        }
+                        None => {
+                            self.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
+                        }
                     }
                 }
-                // Button 0 pressed (rising edge): flip the bevel.
-                if let Some(prev) = self.last_buttons
+                // Button 0 pressed (rising edge): flip the bevel (not while suspended: the
+                // trainee's flips are refused then).
+                if !suspended
+                    && let Some(prev) = self.last_buttons
                     && p.buttons & FLIP_BEVEL_BUTTON != 0
                     && prev & FLIP_BEVEL_BUTTON == 0
                 {
@@ -163,9 +224,10 @@ impl<S: LiveSim> RtLoop<S> {
                 self.device_seen = true;
                 self.counters.device_poses.fetch_add(1, Ordering::Relaxed);
             } else if self.device_seen && sample.reads_since_fresh > DEVICE_STALE_TICKS {
-                // Hold the needle where the device left it, unless a client moves it.
+                // Hold the needle where the device left it, unless a client moves it (while
+                // suspended the device does not drive: the pose is the instructor's).
                 device_stale = true;
-                if !client_pose {
+                if !client_pose && !suspended {
                     *pose = self.sim.pose();
                     self.device_pose_counter = 0;
                 }
@@ -247,6 +309,20 @@ impl<S: LiveSim> RtLoop<S> {
                 ..Default::default()
             };
             self.sim.fill_force(r, &mut force);
+            // Zero while suspended or catching up (a hand that does not drive is not pushed),
+            // then a ramp back to full: the wrench and the stiffness the bridge's local model
+            // extrapolates with, scaled alike.
+            self.device_force_gain = if suspended || self.device_catching_up {
+                0.0
+            } else {
+                (self.device_force_gain + 1.0 / (DEVICE_FORCE_RAMP_S * self.sim.tick_rate_hz()).max(1.0)).min(1.0)
+            };
+            if self.device_force_gain < 1.0 {
+                let g = self.device_force_gain;
+                force.force_n = force.force_n.map(|v| g * v);
+                force.torque_nm = force.torque_nm.map(|v| g * v);
+                force.stiffness = force.stiffness.map(|row| row.map(|v| g * v));
+            }
             dev.write_force_from_rt(&force);
         }
         let requested_any = self.sim.after_step_from_rt(&self.counters, misses_before);

@@ -110,6 +110,8 @@ pub struct Session {
     pub has_bevel: bool,
     pose_in: PoseSlot,
     client_in_control: AtomicBool,
+    /// While set the device does not drive (read by the real-time thread each tick).
+    device_suspended: Arc<AtomicBool>,
     /// Who may drive the session over gRPC now: one controller at a time (IO side only).
     pub control: Arc<crate::control_lease::ControlLease>,
     stop: Arc<AtomicBool>,
@@ -306,6 +308,7 @@ impl Session {
         let device_watch = device.as_ref().map(|d| d.watch());
         let counters = Arc::new(SessionCounters::default());
         let stop = Arc::new(AtomicBool::new(false));
+        let device_suspended = Arc::new(AtomicBool::new(false));
         let initial = PoseCommand { pose: sim.pose(), seq: 0, client_time_ns: 0 };
         let (pose_in, pose_out) = triple_buffer::triple_buffer(&initial);
         let (rec_tx, rec_rx) = rtrb::RingBuffer::<TickRecord>::new(RECORD_RING);
@@ -342,6 +345,9 @@ impl Session {
             device,
             device_seen: false,
             last_buttons: None,
+            device_suspended: device_suspended.clone(),
+            device_catching_up: false,
+            device_force_gain: 1.0,
             fault: None,
             consecutive_step_errors: 0,
             rt_priority_tx,
@@ -385,6 +391,7 @@ impl Session {
             has_bevel,
             pose_in: slot(Mutex::new(pose_in)),
             client_in_control: AtomicBool::new(false),
+            device_suspended,
             control: crate::control_lease::ControlLease::new(),
             stop,
             all_ticks: all_tx,
@@ -412,6 +419,21 @@ impl Session {
     /// of flips requested so far.
     pub fn request_bevel_flip_from_io(&self) -> u64 {
         self.counters.bevel_flips_requested.fetch_add(1, Ordering::Relaxed) + 1
+    }
+
+    /// Suspends the device (`true`) or lets it drive again (`false`): while suspended the
+    /// real-time thread, from its next tick, applies none of the device channel's poses (it still
+    /// reads and counts them: `device_poses_suspended`) and writes the device zero force and
+    /// stiffness; when lifted, the needle catches up with the device at a bounded speed and the
+    /// force ramps back (`rt_loop`'s module docs). Nothing for a session without a device channel.
+    /// The training layer's switch (an instructor has control, or the exercise is paused).
+    pub fn suspend_device_from_io(&self, suspended: bool) {
+        self.device_suspended.store(suspended, Ordering::Relaxed);
+    }
+
+    /// Whether the device is suspended ([`Session::suspend_device_from_io`]).
+    pub fn device_suspended(&self) -> bool {
+        self.device_suspended.load(Ordering::Relaxed)
     }
 
     /// Whether a client has sent a pose (a scripted demo stops then).

@@ -255,3 +255,150 @@ fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
     session.close();
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Drives the device from `from_y` to `to_y` in `secs` (as `drive`), returning every fresh force
+/// it read, in order.
+fn drive_collect(device: &mut DeviceEnd, from_y: f64, to_y: f64, secs: f64) -> Vec<ServerForce> {
+    let start = Instant::now();
+    let mut forces = Vec::new();
+    while start.elapsed().as_secs_f64() < secs {
+        let a = start.elapsed().as_secs_f64() / secs;
+        let y = from_y + (to_y - from_y) * a;
+        device.write_pose_from_device(&DevicePose::planar(monotonic_ns(), [0.05, y, -std::f64::consts::FRAC_PI_2], 0)).unwrap();
+        let f = device.read_force_from_device();
+        if f.fresh()
+            && let Some(v) = f.value
+        {
+            forces.push(v);
+        }
+        std::thread::sleep(Duration::from_micros(500));
+    }
+    forces
+}
+
+fn is_zero(f: &ServerForce) -> bool {
+    f.force_n == [0.0; 3] && f.torque_nm == [0.0; 3] && f.stiffness.iter().flatten().all(|&v| v == 0.0)
+}
+
+/// Issue 20: while the device is suspended (a training session's instructor has control) it does
+/// not drive, its poses are counted, it gets zero force and stiffness, and a client's pose moves
+/// the needle; when the suspension is lifted the needle catches up with the device at
+/// `DEVICE_CATCH_UP_M_PER_S` (one step per fresh device pose: the count is exact) and the force
+/// ramps back.
+#[test]
+fn issue_20_a_suspended_device_does_not_drive_gets_zero_force_and_catches_up_after() {
+    let scene = needlesim_scene::load_scene("paper-phantom", &MeshLimits::default()).unwrap();
+    let dir = std::env::temp_dir().join(format!("needlesim-device-suspend-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = Session::start(&scene, 1000.0, Some(&dir)).unwrap();
+    let mut device = DeviceChannel::attach(session.device_channel_path.clone().unwrap()).unwrap();
+    let c = &session.counters;
+
+    // The device inserts the needle 20 mm and feels the tissue.
+    let f = drive(&mut device, 0.205, 0.185, 1.0).expect("forces arrive");
+    assert!(!is_zero(&f) && f.force_n[1] > 0.1, "the tissue resists the insertion: {f:?}");
+    assert!((session.latest_record().base.y_m - 0.185).abs() < 0.002);
+    assert_eq!(c.device_poses_suspended.load(Ordering::Relaxed), 0, "nothing is set aside before a suspension");
+
+    // Suspended: the device goes on 20 mm deeper; the needle stays, the device feels nothing.
+    session.suspend_device_from_io(true);
+    assert!(session.device_suspended());
+    let suspended_before = c.device_poses_suspended.load(Ordering::Relaxed);
+    std::thread::sleep(Duration::from_millis(20));
+    let held = session.latest_record();
+    let during = drive_collect(&mut device, 0.185, 0.165, 1.0);
+    assert!(during.len() > 100, "forces keep coming while suspended: {}", during.len());
+    assert!(during.iter().all(is_zero), "zero wrench and stiffness while suspended: {:?}", during.iter().find(|f| !is_zero(f)));
+    assert!(during.iter().all(|f| f.state == ServerForce::STATE_OK && f.pose_counter == 0), "state OK, answering no device pose");
+    let after = session.latest_record();
+    assert!(after.tick > held.tick + 100, "the session kept ticking: {} → {}", held.tick, after.tick);
+    assert_eq!(after.base.y_m, held.base.y_m, "the needle does not follow a suspended device");
+    let set_aside = c.device_poses_suspended.load(Ordering::Relaxed) - suspended_before;
+    assert!(set_aside > 100, "the suspended poses are counted: {set_aside}");
+    assert!(!after.device_stale, "a suspended device that sends poses is not stale");
+
+    // A client (the instructor) moves the needle meanwhile: to 10.23 mm above the device.
+    session.write_client_pose_from_io(needlesim_session::PoseCommand {
+        pose: needlesim_core::BasePose::new(0.05, 0.17523, -std::f64::consts::FRAC_PI_2),
+        seq: 1,
+        client_time_ns: 0,
+    });
+    let during = drive_collect(&mut device, 0.165, 0.165, 0.3);
+    assert!(during.iter().all(is_zero));
+    assert_eq!(session.latest_record().base.y_m, 0.17523, "the client's pose drives");
+
+    // Lifted, the device held at 0.165: the needle catches up 10.23 mm at 50 µm a fresh pose (205
+    // steps: 204 part of the way, the last one reaching — a gap away from a multiple of the step,
+    // so that round-off cannot add one), the device feeling nothing until then, then the force
+    // ramps back over 200 ticks.
+    let catch_up_before = c.device_catch_up_poses.load(Ordering::Relaxed);
+    session.suspend_device_from_io(false);
+    let back = drive_collect(&mut device, 0.165, 0.165, 1.5);
+    let rec = session.latest_record();
+    assert!((rec.base.y_m - 0.165).abs() < 1e-12, "the needle has caught up with the device: {:?}", rec.base);
+    let steps = c.device_catch_up_poses.load(Ordering::Relaxed) - catch_up_before;
+    let step_m = needlesim_session::DEVICE_CATCH_UP_M_PER_S / 1000.0;
+    let gap_m = 0.17523 - 0.165;
+    assert_eq!(steps, (gap_m / step_m).ceil() as u64 - 1, "catch-up poses for {gap_m} m at {step_m} m a pose");
+    let first_nonzero = back.iter().position(|f| !is_zero(f)).expect("the force comes back");
+    // The catch-up takes 200 fresh device poses (one a device period): many zero forces first.
+    assert!(first_nonzero > 50, "zero force while catching up: the first nonzero at {first_nonzero}");
+    let last = back.last().unwrap();
+    assert!(last.force_n[1] > 0.1 && last.stiffness[0][0] < 0.0, "full force again: {last:?}");
+    // Some of the forces in between are part of the way up the ramp (the stiffness at the held
+    // pose scaled by a gain in (0, 1)).
+    let k_full = last.stiffness[0][0];
+    let ramp = back[first_nonzero..].iter().filter(|f| f.stiffness[0][0] < 0.0 && f.stiffness[0][0] > 0.5 * k_full).count();
+    assert!(ramp > 10, "the force ramps back: {ramp} forces below half the full stiffness");
+
+    drop(device);
+    session.close();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 20 in 3D: a suspended device's poses are set aside, and once lifted the needle catches
+/// up with the device along the straight line at `DEVICE_CATCH_UP_M_PER_S` (the count of partial
+/// steps exact) and ends exactly at its pose. Above the tissue (no contact: the compliance
+/// worker's pace does not matter).
+#[test]
+fn issue_20_a_suspended_3d_device_catches_up_along_a_straight_line() {
+    let scene = needlesim_scene::load_scene3d("cube-phantom-3d", &MeshLimits::default()).unwrap();
+    let model = std::sync::Arc::new(scene.tissue_model().unwrap());
+    let q = scene.initial_pose.quat_wxyz;
+    let initial = needlesim_core::sim3::BasePose3::new([0.05, 0.05, 0.23], q).unwrap();
+    let mut params = needlesim_core::sim3::Sim3Params::new(scene.needle.length_m, initial);
+    params.regions = scene.regions.iter().map(|r| r.needle).collect();
+    let dir = std::env::temp_dir().join(format!("needlesim-device-suspend3-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = Session::start3("cube-phantom-3d", model, params, vec![], Some(&dir)).unwrap();
+    let mut device = DeviceChannel::attach(session.device_channel_path.as_ref().unwrap()).unwrap();
+    let hold = |device: &mut DeviceEnd, p: [f64; 3], secs: f64| {
+        let start = Instant::now();
+        while start.elapsed().as_secs_f64() < secs {
+            device
+                .write_pose_from_device(&DevicePose { t_ns: monotonic_ns(), position_m: p, orientation: q, ..Default::default() })
+                .unwrap();
+            std::thread::sleep(Duration::from_micros(500));
+        }
+    };
+    let base = |s: &Session| s.latest_record().d3.position_m;
+    hold(&mut device, [0.05, 0.05, 0.23], 0.3);
+    assert_eq!(base(&session), [0.05, 0.05, 0.23], "the device drives");
+    session.suspend_device_from_io(true);
+    std::thread::sleep(Duration::from_millis(20));
+    // 6.123 mm in x and 8 mm up: 10.07… mm, off a multiple of the 50 µm step.
+    let target = [0.05 + 0.006123, 0.05, 0.238];
+    hold(&mut device, target, 0.5);
+    assert_eq!(base(&session), [0.05, 0.05, 0.23], "a suspended device does not drive");
+    assert!(session.counters.device_poses_suspended.load(Ordering::Relaxed) > 100);
+    session.suspend_device_from_io(false);
+    hold(&mut device, target, 1.0);
+    let b = base(&session);
+    assert!(b.iter().zip(&target).all(|(a, t)| (a - t).abs() < 1e-12), "caught up: {b:?}");
+    let gap_m = (0.006123f64.powi(2) + 0.008f64.powi(2)).sqrt();
+    let step_m = needlesim_session::DEVICE_CATCH_UP_M_PER_S / 1000.0;
+    assert_eq!(session.counters.device_catch_up_poses.load(Ordering::Relaxed), (gap_m / step_m).ceil() as u64 - 1);
+    drop(device);
+    session.close();
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,5 +1,6 @@
 //! `ControlService`: the Control stream (poses in, one response per tick out), SetPose and
-//! FlipBevel, one controller at a time through the session's control lease.
+//! FlipBevel, one controller at a time through the session's control lease (held exclusively by a
+//! training exercise's instructor while in control or paused: then no `take_over` gets it).
 
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
@@ -194,7 +195,9 @@ async fn control_stream<M: ControlMessage>(
     if !token.as_deref().is_some_and(|t| crate::access::token_matches(t, &s.controller_token)) {
         return Err(Status::permission_denied("driving a session needs its controller token (`authorization: Bearer <token>`)"));
     }
-    // An exercise whose instructor has control, or which is paused, refuses the trainee.
+    // An exercise whose instructor has control, or which is paused, refuses the trainee (and, if
+    // the instructor takes control between this check and the lease below, the lease refuses:
+    // the instructor holds it exclusively; training_live.rs, "Control").
     crate::training_live::refuse_trainee(&api.state.training, &s)?;
     // The first message must carry a pose (a flip alone is refused as a missing base).
     let pose = match first.pose(&s)? {
@@ -292,7 +295,19 @@ fn client_address<T>(req: &Request<T>) -> String {
 
 /// FAILED_PRECONDITION for a request refused by the session's control lease.
 fn control_refused(s: &Session, busy: needlesim_session::control_lease::Busy) -> Status {
-    Status::failed_precondition(format!("session {}: {busy}; one controller at a time (set `take_over` to take control from it)", s.id))
+    use needlesim_session::control_lease::Busy;
+    match busy {
+        // Held exclusively by a training exercise's instructor (training_live.rs): reached by a
+        // trainee whose check passed just before TakeControl or SetPaused.
+        Busy::Exclusive => Status::failed_precondition(format!(
+            "session {}: {busy} while in control or while the exercise is paused; the trainee's poses are refused until control is handed back and the exercise resumes",
+            s.id
+        )),
+        Busy::Stream | Busy::Unary => Status::failed_precondition(format!(
+            "session {}: {busy}; one controller at a time (set `take_over` to take control from it)",
+            s.id
+        )),
+    }
 }
 
 /// Sets its flag when dropped (when the task holding it ends, however it ends).
