@@ -389,6 +389,8 @@ pub fn session_stats(st: &StatsSnapshot) -> pb::SessionStats {
         column_deferrals: st.column_deferrals,
         columns_evicted: st.columns_evicted,
         budget_exhausted_ticks: st.budget_exhausted_ticks,
+        active_set_capped_ticks: st.active_set_capped_ticks,
+        shape_capped_ticks: st.shape_capped_ticks,
         hybrid_checks: st.hybrid_checks,
         hybrid_rebuilds: st.hybrid_rebuilds,
         rejected_poses: st.rejected_poses,

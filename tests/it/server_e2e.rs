@@ -701,3 +701,74 @@ async fn issue_13_a_diverging_live_session_faults_with_zero_force() {
     assert!(line.ends_with(" 1.0") || line.ends_with(" 1"), "{line}");
     println!("fault: {} ({responses_after_fault} faulted control responses)", st.fault);
 }
+
+/// The value of `needlesim_{name}{session="{sid}"}` in a /metrics page.
+fn session_gauge(metrics: &str, name: &str, sid: &str) -> Option<f64> {
+    let prefix = format!("needlesim_{name}{{session=\"{sid}\"}} ");
+    metrics.lines().find_map(|l| l.strip_prefix(&prefix)?.trim().parse().ok())
+}
+
+/// Issue 19: a session counts the ticks that ended at an iteration cap and says so in GetStats
+/// and /metrics. A paper-phantom session limited to one stick/slip pass per tick, whose rigid
+/// needle turns while inserted (stick/slip fronts run along the shaft), counts capped ticks; the
+/// same motion with the scene's own limit counts none.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_19_iteration_caps_are_counted_in_get_stats_and_metrics() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let toml = std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/paper-phantom.toml")).unwrap();
+    assert!(!toml.contains("[limits]"), "the test appends its own [limits] table");
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let mut counts = Vec::new();
+    for scene in [format!("{toml}\n[limits]\nmax_active_set_iterations = 1\n"), toml.clone()] {
+        let created = sessions
+            .create_session(pb::CreateSessionRequest {
+                scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(scene)) }),
+                tick_rate_hz: 1000.0,
+                record: false,
+                device_channel: false,
+            })
+            .await
+            .expect("a paper-phantom session")
+            .into_inner();
+        let sid = created.session.unwrap().session_id;
+        // 25 mm down at the top centre, then turned ±6° about the base while going 10 mm deeper.
+        let down = -std::f64::consts::FRAC_PI_2;
+        for k in 0..=120 {
+            let (y, th) = if k <= 50 {
+                (0.205 - 5e-4 * k as f64, down)
+            } else {
+                (0.18 - 1.4e-4 * (k - 50) as f64, down + 0.1 * ((k - 50) as f64 * 0.2).sin())
+            };
+            let pose = pb::Pose2 { x_m: 0.05, y_m: y, theta_rad: th };
+            control
+                .set_pose(with_token(
+                    pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose), client_id: String::new(), take_over: false },
+                    &created.controller_token,
+                ))
+                .await
+                .unwrap();
+            tokio::time::sleep(Duration::from_millis(10)).await;
+        }
+        tokio::time::sleep(Duration::from_millis(200)).await;
+        let st = sessions
+            .get_stats(with_token(pb::GetSessionRequest { session_id: sid.clone() }, &created.observer_token))
+            .await
+            .unwrap()
+            .into_inner();
+        let metrics = String::from_utf8(http1(&server.addr, b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")).unwrap();
+        let gauge = |name: &str| session_gauge(&metrics, name, &sid).unwrap_or_else(|| panic!("no {name} for {sid}: {metrics}"));
+        // /metrics is read after GetStats: a counter can only have grown.
+        assert!(gauge("active_set_capped_ticks") >= st.active_set_capped_ticks as f64, "{metrics}");
+        assert!(gauge("shape_capped_ticks") >= st.shape_capped_ticks as f64, "{metrics}");
+        assert!(!st.faulted, "{}", st.fault);
+        counts.push((st.active_set_capped_ticks, st.shape_capped_ticks, gauge("active_set_capped_ticks")));
+        sessions.close_session(with_token(pb::CloseSessionRequest { session_id: sid }, &created.controller_token)).await.unwrap();
+    }
+    let (one_pass, own) = (counts[0], counts[1]);
+    assert!(one_pass.0 > 0 && one_pass.2 > 0.0, "one stick/slip pass a tick must cap some ticks: {counts:?}");
+    assert_eq!((own.0, own.1), (0, 0), "the scene's own limits: no capped tick: {counts:?}");
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}

@@ -17,6 +17,10 @@ pub struct SessionCounters {
     /// `SimStats::column_deferrals` and `SimStats::budget_exhausted_ticks`, as of the last tick.
     pub column_deferrals: AtomicU64,
     pub budget_exhausted_ticks: AtomicU64,
+    /// `SimStats::active_set_capped_ticks` and `SimStats::shape_capped_ticks` (2D), as of the
+    /// last tick: ticks whose stick/slip iteration or flexible shape passes stopped at their cap.
+    pub active_set_capped_ticks: AtomicU64,
+    pub shape_capped_ticks: AtomicU64,
     /// `SimStats::hybrid_checks` and `SimStats::hybrid_rebuilds`, as of the last tick.
     pub hybrid_checks: AtomicU64,
     pub hybrid_rebuilds: AtomicU64,
@@ -111,6 +115,8 @@ pub struct StatsSnapshot {
     pub column_deferrals: u64,
     pub columns_evicted: u64,
     pub budget_exhausted_ticks: u64,
+    pub active_set_capped_ticks: u64,
+    pub shape_capped_ticks: u64,
     pub hybrid_checks: u64,
     pub hybrid_rebuilds: u64,
     pub rejected_poses: u64,

@@ -195,6 +195,8 @@ impl LiveSim for Live2 {
         counters.columns_evicted.store(st.columns_evicted, Ordering::Relaxed);
         counters.column_deferrals.store(st.column_deferrals, Ordering::Relaxed);
         counters.budget_exhausted_ticks.store(st.budget_exhausted_ticks, Ordering::Relaxed);
+        counters.active_set_capped_ticks.store(st.active_set_capped_ticks, Ordering::Relaxed);
+        counters.shape_capped_ticks.store(st.shape_capped_ticks, Ordering::Relaxed);
         counters.hybrid_checks.store(st.hybrid_checks, Ordering::Relaxed);
         counters.hybrid_rebuilds.store(st.hybrid_rebuilds, Ordering::Relaxed);
         counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);

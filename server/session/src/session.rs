@@ -508,6 +508,8 @@ impl Session {
             column_deferrals: c.column_deferrals.load(Ordering::Relaxed),
             columns_evicted: c.columns_evicted.load(Ordering::Relaxed),
             budget_exhausted_ticks: c.budget_exhausted_ticks.load(Ordering::Relaxed),
+            active_set_capped_ticks: c.active_set_capped_ticks.load(Ordering::Relaxed),
+            shape_capped_ticks: c.shape_capped_ticks.load(Ordering::Relaxed),
             hybrid_checks: c.hybrid_checks.load(Ordering::Relaxed),
             hybrid_rebuilds: c.hybrid_rebuilds.load(Ordering::Relaxed),
             rejected_poses: c.rejected_poses.load(Ordering::Relaxed),
