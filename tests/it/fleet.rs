@@ -683,7 +683,7 @@ fn manifests_validate() {
     for k in ["Fleet", "FleetAutoscaler", "GameServerAllocation", "Role", "RoleBinding", "ServiceAccount", "Deployment", "Service"] {
         assert!(kinds.iter().any(|x| x == k), "no {k} in deploy/k8s ({kinds:?})");
     }
-    assert!(report.contains("5 Kubernetes") && report.contains("3 Agones"), "{report}");
+    assert!(report.contains("5 Kubernetes") && report.contains("6 Agones"), "{report}");
     let broken = [
         ("fleet.yaml", "capacity: 8", "capacity: 6", "!= --max-sessions"),
         (
@@ -700,6 +700,10 @@ fn manifests_validate() {
         ("fleetautoscaler.yaml", "key: sessions", "key: rooms", "no such Counter"),
         ("allocation.yaml", "gameServerState: Ready", "gameServerState: Shutdown", "gameServerState"),
         ("planning.yaml", "containerPort: 50051", "containerPort: fifty", "containerPort"),
+        // The 3D fleet (issue 22's sizing in docs/capacity.md), its autoscaler and allocation.
+        ("fleet-3d.yaml", "capacity: 4", "capacity: 8", "!= --max-sessions"),
+        ("fleet-3d.yaml", "fleetName: needlesim-3d", "fleetName: needlesim-4d", "no such Fleet"),
+        ("allocation-3d.yaml", "agones.dev/fleet: needlesim-3d", "agones.dev/fleet: needlesim-2d", "no such Fleet"),
     ];
     for (file, from, to, expect) in broken {
         let dir = TempDir::new("manifests");
