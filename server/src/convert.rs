@@ -405,6 +405,11 @@ pub fn flip_bevel_response(flips_requested: u64) -> pb::FlipBevelResponse {
     pb::FlipBevelResponse { flips_requested }
 }
 
+/// The spin command in force.
+pub fn set_spin_response(spin: &needlesim_session::spin::SpinCommand) -> pb::SetSpinResponse {
+    pb::SetSpinResponse { duty_cycle: spin.duty_cycle(), period_m: spin.period_m() }
+}
+
 /// A recording, live or on disk.
 pub fn recording_info(i: &RecordingInfo) -> pb::RecordingInfo {
     pb::RecordingInfo {

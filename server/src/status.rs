@@ -185,6 +185,16 @@ impl From<&RecordingError> for ApiError {
     }
 }
 
+impl From<needlesim_session::spin::SpinError> for ApiError {
+    fn from(e: needlesim_session::spin::SpinError) -> Self {
+        use needlesim_session::spin::SpinError;
+        match e {
+            SpinError::DutyCycle(_) => ApiError::invalid("duty_cycle", e),
+            SpinError::Period(_) => ApiError::invalid("period_m", e),
+        }
+    }
+}
+
 impl From<SizeLimit> for ApiError {
     fn from(e: SizeLimit) -> Self {
         ApiError::ResourceExhausted(e.to_string())

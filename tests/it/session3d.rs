@@ -332,3 +332,93 @@ async fn set_pose3_bad_3d_input_and_the_closed_surface() {
         .expect_err("no 3D surface");
     assert_eq!(e.code(), Code::FailedPrecondition);
 }
+
+/// Issue 18: SetSpin rolls a 3D needle about its own axis as it is inserted — duty cycle 0.5,
+/// 1 mm period: after 10.25 mm of insertion 10 turns and half of the eleventh (the first half of
+/// each period turns), so the applied orientation is the commanded one turned by π about the
+/// needle's axis; stopped (duty 0), further insertion keeps that roll. Bad values name the
+/// field; a 2D session and an observer are refused.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_18_set_spin_rolls_the_needle_by_the_duty_cycled_law() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let created = create3(&ch, "cube-phantom-3d").await;
+    let sid = created.session.as_ref().unwrap().session_id.clone();
+    let tok = created.controller_token.clone();
+    let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let spin = |duty_cycle: f64, period_m: f64| pb::SetSpinRequest { session_id: sid.clone(), duty_cycle, period_m, ..Default::default() };
+    let _ = needlesim_tests::latest_frame(&ch, &sid, &created.observer_token).await;
+
+    for (req, field) in
+        [(spin(1.5, 0.0), "duty_cycle"), (spin(f64::NAN, 0.0), "duty_cycle"), (spin(0.5, 1.0), "period_m"), (spin(0.5, -1e-3), "period_m")]
+    {
+        let e = ctl.set_spin(with_token(req, &tok)).await.unwrap_err();
+        assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
+        assert!(e.message().starts_with(field), "{}", e.message());
+    }
+    let e = ctl.set_spin(with_token(spin(0.5, 0.0), &created.observer_token)).await.unwrap_err();
+    assert_eq!(e.code(), Code::PermissionDenied);
+
+    // The base goes down 10.25 mm in 0.25 mm steps along its axis (−z), orientation unchanged.
+    let z0 = 0.205;
+    let set = |z: f64| pb::SetPoseRequest3 { session_id: sid.clone(), base3: Some(pose3([0.05, 0.05, z], DOWN)), ..Default::default() };
+    let dot = |a: [f64; 4], b: [f64; 4]| (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]).abs();
+    let applied_at = |z: f64| {
+        let ch = ch.clone();
+        let (sid, obs) = (sid.clone(), created.observer_token.clone());
+        async move {
+            let deadline = Instant::now() + Duration::from_secs(20);
+            loop {
+                let f = needlesim_tests::latest_frame(&ch, &sid, &obs).await;
+                let b = f.d3.unwrap().base.unwrap();
+                if (v3(&b.position_m)[2] - z).abs() < 1e-12 {
+                    // The core moves the base at most a bounded turn per tick: give the roll of
+                    // the last poses (half a turn for each 0.25 mm step at this duty) time to
+                    // settle, then read it.
+                    tokio::time::sleep(Duration::from_millis(500)).await;
+                    let q = needlesim_tests::latest_frame(&ch, &sid, &obs).await.d3.unwrap().base.unwrap().orientation.unwrap();
+                    return [q.w, q.x, q.y, q.z];
+                }
+                assert!(Instant::now() < deadline, "the session never applied the base at z = {z}");
+                tokio::time::sleep(Duration::from_millis(20)).await;
+            }
+        }
+    };
+    // A client pose first: the example's demo insertion, which plays until a client drives, stops
+    // with the base back at its start.
+    ctl.set_pose3(with_token(set(z0), &tok)).await.expect("SetPose3");
+    let q = applied_at(z0).await;
+    assert!(dot(q, DOWN) > 1.0 - 1e-12, "no spin yet: {q:?}");
+    let r = ctl.set_spin(with_token(spin(0.5, 0.0), &tok)).await.expect("SetSpin").into_inner();
+    assert_eq!((r.duty_cycle, r.period_m), (0.5, 1e-3), "the period defaults to 1 mm");
+    for k in 1..=41 {
+        ctl.set_pose3(with_token(set(z0 - 0.25e-3 * k as f64), &tok)).await.expect("SetPose3");
+        tokio::time::sleep(Duration::from_millis(5)).await;
+    }
+    let z1 = z0 - 0.25e-3 * 41.0;
+    // DOWN turned by π about its local x: DOWN ⊗ (0, 1, 0, 0) = (0, c, 0, −c), c = 1/√2.
+    let c = std::f64::consts::FRAC_1_SQRT_2;
+    let rolled_by_pi = [0.0, c, 0.0, -c];
+    let q = applied_at(z1).await;
+    assert!(dot(q, rolled_by_pi) > 1.0 - 1e-9, "10.25 mm at duty 0.5: rolled by π, got {q:?}");
+
+    // Stopped: 0.3 mm more keeps the roll (0.3 mm at duty 0.5 would have turned 0.6 of a turn).
+    ctl.set_spin(with_token(spin(0.0, 0.0), &tok)).await.expect("SetSpin 0");
+    tokio::time::sleep(Duration::from_millis(50)).await;
+    ctl.set_pose3(with_token(set(z1 - 0.3e-3), &tok)).await.expect("SetPose3");
+    let q = applied_at(z1 - 0.3e-3).await;
+    assert!(dot(q, rolled_by_pi) > 1.0 - 1e-9, "the spin stopped where it was, got {q:?}");
+
+    // A 2D session has no axis to roll about.
+    let two = create_example_session(&ch, "paper-phantom").await;
+    let e = ctl
+        .set_spin(with_token(
+            pb::SetSpinRequest { session_id: two.session.unwrap().session_id, duty_cycle: 0.5, ..Default::default() },
+            &two.controller_token,
+        ))
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::FailedPrecondition, "{e:?}");
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}

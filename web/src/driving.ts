@@ -138,6 +138,18 @@ export function installDriving(view: HTMLCanvasElement): void {
 }
 
 /** Turns the needle 180° about its axis (a bevel tip then faces the other side). */
+/** SetSpin (3D): duty-cycled spinning at the duty in [0, 1] (0 stops), 1 mm per turn. */
+export async function setSpin(dutyCycle: number): Promise<void> {
+  const session = state.session;
+  if (!session) return status("watch a session first");
+  try {
+    const r = await control.setSpin({ sessionId: session.id, dutyCycle, periodM: 0, clientId: TAB_ID }, auth(session.token));
+    status(r.dutyCycle > 0 ? `spinning: duty ${r.dutyCycle}, one turn per ${(r.periodM * 1e3).toFixed(1)} mm` : "spin stopped");
+  } catch (e) {
+    status(`SetSpin: ${String(e)}`);
+  }
+}
+
 export async function flipBevel(): Promise<void> {
   const session = state.session;
   if (!session) return status("watch a session first");

@@ -54,6 +54,9 @@ pub struct SessionCounters {
     /// real-time thread.
     pub bevel_flips_requested: AtomicU64,
     pub bevel_flips_applied: AtomicU64,
+    /// The duty-cycled spin a controller asked for (3D: [`crate::spin`]): one word the IO side
+    /// writes and the real-time thread reads each tick ([`crate::spin::SpinCommand::to_word`]).
+    pub spin_word: AtomicU64,
     /// Steps that failed other than by diverging (the solver or a compliance column): the tick
     /// held its pose and published nothing; [`MAX_CONSECUTIVE_STEP_ERRORS`](crate::MAX_CONSECUTIVE_STEP_ERRORS) in a row fault.
     pub step_errors: AtomicU64,

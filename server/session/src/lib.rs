@@ -26,6 +26,7 @@ mod live_sim;
 mod record;
 mod rt_loop;
 mod session;
+pub mod spin;
 pub mod surface;
 
 pub use counters::{SessionCounters, StatsSnapshot};

@@ -6,6 +6,7 @@
 //! stiffness and its part of the record. Everything here runs on the real-time thread: no
 //! allocation once warmed up, no lock, no I/O, no logging; what goes wrong is counted.
 
+use crate::spin::SpinState;
 use std::sync::atomic::Ordering;
 
 use needlesim_channel::shm::{DevicePose, ServerForce};
@@ -47,6 +48,9 @@ pub(crate) trait LiveSim: Send + 'static {
     fn absorb_from_rt(&mut self, counters: &SessionCounters);
     /// Turns the needle 180° about its axis (nothing for a needle without bevel).
     fn flip_bevel_from_rt(&mut self);
+    /// The spin command word in force from this tick on ([`crate::spin`]; nothing in 2D, whose
+    /// needle has no axis to roll about).
+    fn set_spin_from_rt(&mut self, _word: u64) {}
     /// One step towards `pose`, filling `rec` on success.
     fn step_from_rt(&mut self, pose: Self::Pose, rec: &mut TickRecord) -> Result<(), StepFail>;
     /// Fills the pose fields of a fault's record (the needle held where it is) and zeroes the
@@ -277,13 +281,21 @@ pub(crate) struct Live3 {
     pub(crate) stiffness: [[f64; 6]; 6],
     /// Compliance payloads the simulation refused (a protocol error; counted, never expected).
     pub(crate) refused_payloads: u64,
+    /// The duty-cycled spin ([`crate::spin`]): the command word in force and the roll's state.
+    pub(crate) spin_word: u64,
+    pub(crate) spin: SpinState,
+    /// The pose the last successful step was commanded, before the spin's roll (the needle's
+    /// applied pose is this one rolled); `None` before the first step.
+    pub(crate) commanded: Option<BasePose3>,
 }
 
 impl LiveSim for Live3 {
     type Pose = BasePose3;
 
+    /// The commanded pose (before the spin's roll): what the loop holds, and what a device
+    /// catches up with, so that holding the needle never adds the roll twice.
     fn pose(&self) -> BasePose3 {
-        self.sim.pose()
+        self.commanded.unwrap_or_else(|| self.sim.pose())
     }
 
     fn pose_from_device(&self, p: &DevicePose) -> Option<BasePose3> {
@@ -291,7 +303,7 @@ impl LiveSim for Live3 {
     }
 
     fn towards(&self, target: &BasePose3, max_step_m: f64, max_step_rad: f64) -> (BasePose3, bool) {
-        let (next, clamped) = self.sim.pose().clamped_towards(target, max_step_m, max_step_rad);
+        let (next, clamped) = self.pose().clamped_towards(target, max_step_m, max_step_rad);
         (next, !clamped)
     }
 
@@ -333,13 +345,21 @@ impl LiveSim for Live3 {
     }
 
     fn flip_bevel_from_rt(&mut self) {
-        // The 3D needle has a symmetric tip: a flip changes nothing.
+        // A 3D needle's bevel turns with the base's roll (the pose, or the spin): a flip is a
+        // roll the controller commands.
+    }
+
+    fn set_spin_from_rt(&mut self, word: u64) {
+        self.spin_word = word;
     }
 
     fn step_from_rt(&mut self, pose: BasePose3, rec: &mut TickRecord) -> Result<(), StepFail> {
         let tick = self.sim.tick();
-        match self.sim.step(pose) {
+        let mut rolled = pose;
+        self.spin.apply_from_rt(self.spin_word, &mut rolled);
+        match self.sim.step(rolled) {
             Ok(out) => {
+                self.commanded = Some(pose);
                 rec.fill_from_rt3(out, &self.radii_m);
                 Ok(())
             }

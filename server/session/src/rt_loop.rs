@@ -253,6 +253,7 @@ impl<S: LiveSim> RtLoop<S> {
             *pose = self.sim.pose();
             false
         } else {
+            self.sim.set_spin_from_rt(self.counters.spin_word.load(Ordering::Relaxed));
             match self.sim.step_from_rt(*pose, &mut self.record) {
                 Ok(()) => {
                     self.consecutive_step_errors = 0;

@@ -1,6 +1,7 @@
 //! The IO side's handle on a running session: starting its threads, publishing poses and bevel
 //! flips (`*_from_io`), statistics, the record sink, closing.
 
+use crate::spin::SpinState;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -282,7 +283,16 @@ impl Session {
             std::thread::Builder::new().name(format!("blocks-{worker_id}")).spawn(move || worker3.run(bell, stop))
         });
         let surface = Arc::new(BoundarySurface::of(model.mesh()));
-        let live = Live3 { sim, link, radii_m, stiffness: [[0.0; 6]; 6], refused_payloads: 0 };
+        let live = Live3 {
+            sim,
+            link,
+            radii_m,
+            stiffness: [[0.0; 6]; 6],
+            refused_payloads: 0,
+            spin_word: 0,
+            spin: SpinState::default(),
+            commanded: None,
+        };
         let launch = Launch {
             id,
             scene_name: scene_name.to_owned(),
@@ -412,6 +422,13 @@ impl Session {
     pub fn write_client_pose_from_io(&self, cmd: PoseCommand) {
         self.client_in_control.store(true, Ordering::Relaxed);
         self.write_pose_from_io(cmd);
+    }
+
+    /// Sets the duty-cycled spin (a 3D session's needle rolls about its own axis as it is
+    /// inserted: [`crate::spin`]) from the real-time thread's next tick; a `duty_cycle` of 0
+    /// stops it where it is. Checked by the caller ([`crate::spin::SpinCommand::new`]).
+    pub fn set_spin_from_io(&self, spin: crate::spin::SpinCommand) {
+        self.counters.spin_word.store(spin.to_word(), Ordering::Relaxed);
     }
 
     /// Asks the real-time thread to turn the needle 180° about its axis at its next tick (no

@@ -139,6 +139,30 @@ impl pb::control_service_server::ControlService for Api {
             .map_err(|busy| control_refused(&s, busy))?;
         Ok(Response::new(convert::flip_bevel_response(flips_requested)))
     }
+
+    async fn set_spin(&self, req: Request<pb::SetSpinRequest>) -> Result<Response<pb::SetSpinResponse>, Status> {
+        set_spin(self, req).await
+    }
+}
+
+/// SetSpin (the proto's docs): checked, then written under the control lease as a flip is.
+async fn set_spin(api: &Api, req: Request<pb::SetSpinRequest>) -> Result<Response<pb::SetSpinResponse>, Status> {
+    let s = api.state.session(&req.get_ref().session_id)?;
+    authorize(&req, &s, Role::Controller)?;
+    crate::training_live::refuse_trainee(&api.state.training, &s)?;
+    if s.dimension() != 3 {
+        return Err(Status::failed_precondition(format!(
+            "session {}: spinning rolls a 3D needle about its own axis; a 2D needle has none (a 2D bevel turns with FlipBevel)",
+            s.id
+        )));
+    }
+    let r = req.get_ref();
+    let spin =
+        needlesim_session::spin::SpinCommand::new(r.duty_cycle, r.period_m).map_err(|e| Status::from(crate::status::ApiError::from(e)))?;
+    let client = if r.client_id.is_empty() { client_address(&req) } else { format!("id:{}", r.client_id) };
+    // Spinning is driving: one controller at a time, as for a flip.
+    s.control.with_unary(&client, r.take_over, || s.set_spin_from_io(spin)).await.map_err(|busy| control_refused(&s, busy))?;
+    Ok(Response::new(convert::set_spin_response(&spin)))
 }
 
 /// SetPose and SetPose3 of an exercise's instructor: the pose written under the control lease

@@ -29,7 +29,7 @@ import type { Message } from "@bufbuild/protobuf";
  * Describes the file needlesim/v1/needlesim.proto.
  */
 export const file_needlesim_v1_needlesim: GenFile = /*@__PURE__*/
-  fileDesc("ChxuZWVkbGVzaW0vdjEvbmVlZGxlc2ltLnByb3RvEgxuZWVkbGVzaW0udjEiNAoFUG9zZTISCwoDeF9tGAEgASgBEgsKA3lfbRgCIAEoARIRCgl0aGV0YV9yYWQYAyABKAEiHAoEVmVjMhIJCgF4GAEgASgBEgkKAXkYAiABKAEiJwoEVmVjMxIJCgF4GAEgASgBEgkKAXkYAiABKAESCQoBehgDIAEoASI4CgpRdWF0ZXJuaW9uEgkKAXcYASABKAESCQoBeBgCIAEoARIJCgF5GAMgASgBEgkKAXoYBCABKAEiXgoFUG9zZTMSJgoKcG9zaXRpb25fbRgBIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEi0KC29yaWVudGF0aW9uGAIgASgLMhgubmVlZGxlc2ltLnYxLlF1YXRlcm5pb24iUAoPVXBsb2FkZWRTY2VuZTNkEhIKCnNjZW5lX3RvbWwYASABKAkSFgoObWVzaF9maWxlX25hbWUYAiABKAkSEQoJbWVzaF90ZXh0GAMgASgJImAKBE1lc2gSEQoJbm9kZV94eV9tGAEgAygBEhYKDnRyaWFuZ2xlX25vZGVzGAIgAygNEhcKD3RyaWFuZ2xlX3JlZ2lvbhgDIAMoDRIUCgxyZWdpb25fbmFtZXMYBCADKAki5QEKBlJlZ2lvbhIMCgRuYW1lGAEgASgJEhgKEHlvdW5nX21vZHVsdXNfcGEYAiABKAESFQoNcG9pc3Nvbl9yYXRpbxgDIAEoARIYChBmcmljdGlvbl9uX3Blcl9tGAQgASgBEh0KFXN0YXRpY19mcmljdGlvbl9yYXRpbxgFIAEoARIWCg50aXBfcGVha19yYXRpbxgGIAEoARIYChB0aXBfcGVha193aWR0aF9tGAcgASgBEhgKEHB1bmN0dXJlX2ZvcmNlX24YCCABKAESFwoPY3V0dGluZ19mb3JjZV9uGAkgASgBIk4KBlRhcmdldBIMCgRuYW1lGAEgASgJEiQKCGNlbnRlcl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEAoIcmFkaXVzX20YAyABKAEi6gIKDVVwbG9hZGVkU2NlbmUSDAoEbmFtZRgBIAEoCRIgCgRtZXNoGAIgASgLMhIubmVlZGxlc2ltLnYxLk1lc2gSJQoHcmVnaW9ucxgDIAMoCzIULm5lZWRsZXNpbS52MS5SZWdpb24SEwoLZml4ZWRfbm9kZXMYBCADKA0SDQoFcGxhbmUYBSABKAkSEwoLdGhpY2tuZXNzX20YBiABKAESFwoPbmVlZGxlX2xlbmd0aF9tGAcgASgBEigKC25lZWRsZV9iYXNlGAggASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhgKEGNhcHR1cmVfcmFkaXVzX20YCSABKAESJQoHdGFyZ2V0cxgKIAMoCzIULm5lZWRsZXNpbS52MS5UYXJnZXQSFAoMdGlja19yYXRlX2h6GAsgASgBEhkKEWNvbnRhY3Rfc3BhY2luZ19tGAwgASgBEhQKDG5vZGVfY2FwdHVyZRgNIAEoCCKmAQoLU2NlbmVTb3VyY2USEQoHZXhhbXBsZRgBIAEoCUgAEhQKCnNjZW5lX3RvbWwYAiABKAlIABIvCgh1cGxvYWRlZBgDIAEoCzIbLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lSAASMwoKdXBsb2FkZWQzZBgEIAEoCzIdLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lM2RIAEIICgZzb3VyY2UiQgoHU3VyZmFjZRIQCghub2RlX2lkcxgBIAMoDRISCgpub2RlX3h5el9tGAIgAygBEhEKCXRyaWFuZ2xlcxgDIAMoDSJ+ChRDcmVhdGVTZXNzaW9uUmVxdWVzdBIoCgVzY2VuZRgBIAEoCzIZLm5lZWRsZXNpbS52MS5TY2VuZVNvdXJjZRIUCgx0aWNrX3JhdGVfaHoYAiABKAESDgoGcmVjb3JkGAMgASgIEhYKDmRldmljZV9jaGFubmVsGAQgASgIInUKFUNyZWF0ZVNlc3Npb25SZXNwb25zZRIqCgdzZXNzaW9uGAEgASgLMhkubmVlZGxlc2ltLnYxLlNlc3Npb25JbmZvEhgKEGNvbnRyb2xsZXJfdG9rZW4YAiABKAkSFgoOb2JzZXJ2ZXJfdG9rZW4YAyABKAkiFQoTTGlzdFNlc3Npb25zUmVxdWVzdCJDChRMaXN0U2Vzc2lvbnNSZXNwb25zZRIrCghzZXNzaW9ucxgBIAMoCzIZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbyInChFHZXRTZXNzaW9uUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIikKE0Nsb3NlU2Vzc2lvblJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSIWChRDbG9zZVNlc3Npb25SZXNwb25zZSKLAwoLU2Vzc2lvbkluZm8SEgoKc2Vzc2lvbl9pZBgBIAEoCRISCgpzY2VuZV9uYW1lGAIgASgJEg8KB25fbm9kZXMYAyABKA0SEwoLbl90cmlhbmdsZXMYBCABKA0SFAoMdGlja19yYXRlX2h6GAUgASgBEhcKD2NyZWF0ZWRfdW5peF9tcxgGIAEoBBIMCgR0aWNrGAcgASgEEhMKC25fb2JzZXJ2ZXJzGAggASgNEhEKCXJlY29yZGluZxgJIAEoCRIUCgx0YXJnZXRfbmFtZXMYCiADKAkSGwoTZGV2aWNlX2NoYW5uZWxfcGF0aBgLIAEoCRIUCgxkZXZpY2Vfc3RhbGUYDCABKAgSHQoVZGV2aWNlX2NoYW5uZWxfYnJva2VuGA0gASgIEhEKCWRpbWVuc2lvbhgOIAEoDRIUCgxuX3RldHJhaGVkcmEYDyABKA0SGAoQZGV2aWNlX3N1c3BlbmRlZBgQIAEoCBIeChZkZXZpY2VfcG9zZXNfc3VzcGVuZGVkGBEgASgEIr0ECgxTZXNzaW9uU3RhdHMSDQoFdGlja3MYASABKAQSFgoOY29tcHV0ZV9wNTBfdXMYAiABKAESFgoOY29tcHV0ZV9wOTlfdXMYAyABKAESFwoPY29tcHV0ZV9wOTk5X3VzGAQgASgBEhYKDmNvbXB1dGVfbWF4X3VzGAUgASgBEhcKD2xhdGVuZXNzX3A1MF91cxgGIAEoARIXCg9sYXRlbmVzc19wOTlfdXMYByABKAESGAoQbGF0ZW5lc3NfcDk5OV91cxgIIAEoARIYChBtaXNzZWRfZGVhZGxpbmVzGAkgASgEEhgKEHN1cGVyc2VkZWRfcG9zZXMYCiABKAQSFwoPZHJvcHBlZF9yZWNvcmRzGAsgASgEEhUKDWNvbHVtbl9taXNzZXMYDCABKAQSFgoOcmVqZWN0ZWRfcG9zZXMYDSABKAQSFQoNY2xhbXBlZF90aWNrcxgOIAEoBBIYChBjb2x1bW5fZGVmZXJyYWxzGA8gASgEEhcKD2NvbHVtbnNfZXZpY3RlZBgQIAEoBBIeChZidWRnZXRfZXhoYXVzdGVkX3RpY2tzGBEgASgEEhUKDWh5YnJpZF9jaGVja3MYEiABKAQSFwoPaHlicmlkX3JlYnVpbGRzGBMgASgEEg8KB2ZhdWx0ZWQYFCABKAgSDQoFZmF1bHQYFSABKAkSHwoXYWN0aXZlX3NldF9jYXBwZWRfdGlja3MYFiABKAQSGgoSc2hhcGVfY2FwcGVkX3RpY2tzGBcgASgEIkwKEEZsaXBCZXZlbFJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIRCgljbGllbnRfaWQYAiABKAkSEQoJdGFrZV9vdmVyGAMgASgIIiwKEUZsaXBCZXZlbFJlc3BvbnNlEhcKD2ZsaXBzX3JlcXVlc3RlZBgBIAEoBCKTAQoOQ29udHJvbFJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhYKDmNsaWVudF90aW1lX25zGAMgASgEEgsKA3NlcRgEIAEoBBISCgpmbGlwX2JldmVsGAUgASgIEhEKCXRha2Vfb3ZlchgGIAEoCCKBAQoPQ29udHJvbFJlcXVlc3QzEhIKCnNlc3Npb25faWQYASABKAkSIgoFYmFzZTMYAiABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTMSFgoOY2xpZW50X3RpbWVfbnMYAyABKAQSCwoDc2VxGAQgASgEEhEKCXRha2Vfb3ZlchgFIAEoCCJtCg5TZXRQb3NlUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEiEKBGJhc2UYAiABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISEQoJY2xpZW50X2lkGAMgASgJEhEKCXRha2Vfb3ZlchgEIAEoCCJvCg9TZXRQb3NlUmVxdWVzdDMSEgoKc2Vzc2lvbl9pZBgBIAEoCRIiCgViYXNlMxgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMxIRCgljbGllbnRfaWQYAyABKAkSEQoJdGFrZV9vdmVyGAQgASgIIuoDCg9Db250cm9sUmVzcG9uc2USDAoEdGljaxgBIAEoBBIOCgZ0aW1lX3MYAiABKAESIwoHZm9yY2VfbhgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhEKCXRvcnF1ZV9ubRgEIAEoARIVCg1mb3JjZV9heGlhbF9uGAUgASgBEhcKD2ZvcmNlX2xhdGVyYWxfbhgGIAEoARIhCgRiYXNlGAcgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiEKBXRpcF9tGAggASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCSABKAESDwoHbl9zdHVjaxgKIAEoDRISCgpuX3NsaXBwaW5nGAsgASgNEg0KBW5fdGlwGAwgASgNEhAKCHBvc2Vfc2VxGA0gASgEEhYKDmNsaWVudF90aW1lX25zGA4gASgEEhEKCXN0aWZmbmVzcxgPIAMoARIqCg5uZWVkbGVfc2hhcGVfbRgQIAMoCzISLm5lZWRsZXNpbS52MS5WZWMyEhIKCmJldmVsX3NpZGUYESABKAESDwoHZmF1bHRlZBgUIAEoCBINCgVmYXVsdBgVIAEoCRIfCgJkMxgWIAEoCzITLm5lZWRsZXNpbS52MS5UaWNrMyKoAQoIQ29udGFjdDMSJgoFc3RhdGUYASABKA4yFy5uZWVkbGVzaW0udjEuTm9kZVN0YXRlEiYKCnBvc2l0aW9uX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxInCgtyZWZlcmVuY2VfbRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEiMKB2ZvcmNlX24YBCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMyKFAQoMVGFyZ2V0U3BoZXJlEgwKBG5hbWUYASABKAkSJAoIY2VudGVyX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIQCghyYWRpdXNfbRgDIAEoARISCgpkaXN0YW5jZV9tGAQgASgBEgsKA2hpdBgFIAEoCBIOCgZtaXNzZWQYBiABKAgixgIKBVRpY2szEiEKBGJhc2UYASABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTMSIwoHZm9yY2VfbhgCIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEiUKCXRvcnF1ZV9ubRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEhUKDWF4aWFsX2ZvcmNlX24YBCABKAESIQoFdGlwX20YBSABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIqCg5uZWVkbGVfc2hhcGVfbRgGIAMoCzISLm5lZWRsZXNpbS52MS5WZWMzEigKCGNvbnRhY3RzGAcgAygLMhYubmVlZGxlc2ltLnYxLkNvbnRhY3QzEisKB3RhcmdldHMYCCADKAsyGi5uZWVkbGVzaW0udjEuVGFyZ2V0U3BoZXJlEhEKCXN0aWZmbmVzcxgJIAMoASJUCg5PYnNlcnZlUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEg8KB3JhdGVfaHoYAiABKAESHQoVaW5jbHVkZV9kaXNwbGFjZW1lbnRzGAMgASgIIqcBCgpOZWVkbGVOb2RlEgwKBG5vZGUYASABKA0SJgoFc3RhdGUYAiABKA4yFy5uZWVkbGVzaW0udjEuTm9kZVN0YXRlEiYKCnBvc2l0aW9uX20YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIjCgdmb3JjZV9uGAQgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISFgoObWF0ZXJpYWxfcG9pbnQYBSABKAgiZAoLVGFyZ2V0U3RhdGUSDAoEbmFtZRgBIAEoCRImCgpwb3NpdGlvbl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEgoKZGlzdGFuY2VfbRgDIAEoARILCgNoaXQYBCABKAgixQQKBUZyYW1lEgwKBHRpY2sYASABKAQSDgoGdGltZV9zGAIgASgBEiEKBGJhc2UYAyABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISIwoHZm9yY2VfbhgEIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhEKCXRvcnF1ZV9ubRgFIAEoARIVCg1mb3JjZV9heGlhbF9uGAYgASgBEhcKD2ZvcmNlX2xhdGVyYWxfbhgHIAEoARIhCgV0aXBfbRgIIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhkKEWluc2VydGVkX2xlbmd0aF9tGAkgASgBEi4KDG5lZWRsZV9ub2RlcxgKIAMoCzIYLm5lZWRsZXNpbS52MS5OZWVkbGVOb2RlEioKB3RhcmdldHMYCyADKAsyGS5uZWVkbGVzaW0udjEuVGFyZ2V0U3RhdGUSGwoTbm9kZV9kaXNwbGFjZW1lbnRfbRgMIAMoARIUCgxtaXNzZWRfdGlja3MYDSABKAQSEgoKY29tcHV0ZV91cxgOIAEoARIRCglzdGlmZm5lc3MYDyADKAESKgoObmVlZGxlX3NoYXBlX20YECADKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpiZXZlbF9zaWRlGBEgASgBEg8KB2ZhdWx0ZWQYFCABKAgSDQoFZmF1bHQYFSABKAkSHwoCZDMYFiABKAsyEy5uZWVkbGVzaW0udjEuVGljazMSHgoWc3VyZmFjZV9kaXNwbGFjZW1lbnRfbRgXIAMoASJmChBUcmFqZWN0b3J5U2FtcGxlEgsKA3RfcxgBIAEoARIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiIKBWJhc2UzGAMgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UzIoEBCg9TaW11bGF0ZVJlcXVlc3QSKAoFc2NlbmUYASABKAsyGS5uZWVkbGVzaW0udjEuU2NlbmVTb3VyY2USMgoKdHJhamVjdG9yeRgCIAMoCzIeLm5lZWRsZXNpbS52MS5UcmFqZWN0b3J5U2FtcGxlEhAKCGRlY2ltYXRlGAMgASgNIjsKEFNpbXVsYXRlUHJvZ3Jlc3MSEgoKdGlja3NfZG9uZRgBIAEoBBITCgt0aWNrc190b3RhbBgCIAEoBCLiAgoJU2VyaWVzUm93EgsKA3RfcxgBIAEoARIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiMKB2ZvcmNlX24YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIRCgl0b3JxdWVfbm0YBCABKAESFQoNZm9yY2VfYXhpYWxfbhgFIAEoARIXCg9mb3JjZV9sYXRlcmFsX24YBiABKAESIQoFdGlwX20YByABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIZChFpbnNlcnRlZF9sZW5ndGhfbRgIIAEoARIPCgduX3N0dWNrGAkgASgNEhIKCm5fc2xpcHBpbmcYCiABKA0SDQoFbl90aXAYCyABKA0SKgoHdGFyZ2V0cxgMIAMoCzIZLm5lZWRsZXNpbS52MS5UYXJnZXRTdGF0ZRIfCgJkMxgNIAEoCzITLm5lZWRsZXNpbS52MS5UaWNrMyI0CgtTZXJpZXNDaHVuaxIlCgRyb3dzGAEgAygLMhcubmVlZGxlc2ltLnYxLlNlcmllc1JvdyKeAQoOU2ltdWxhdGVSZXN1bHQSJQoEcm93cxgBIAMoCzIXLm5lZWRsZXNpbS52MS5TZXJpZXNSb3cSDQoFdGlja3MYAiABKAQSDgoGd2FsbF9zGAMgASgBEhMKC3N0ZXBfcDUwX3VzGAQgASgBEhMKC3N0ZXBfcDk5X3VzGAUgASgBEhwKFGZpbmFsX2Rpc3BsYWNlbWVudF9tGAYgAygBIqwBChBTaW11bGF0ZVJlc3BvbnNlEjIKCHByb2dyZXNzGAEgASgLMh4ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUHJvZ3Jlc3NIABIuCgZyZXN1bHQYAiABKAsyHC5uZWVkbGVzaW0udjEuU2ltdWxhdGVSZXN1bHRIABIrCgZzZXJpZXMYAyABKAsyGS5uZWVkbGVzaW0udjEuU2VyaWVzQ2h1bmtIAEIHCgVldmVudCJKChVTdGFydFJlY29yZGluZ1JlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIdChVpbmNsdWRlX2Rpc3BsYWNlbWVudHMYAiABKAgiKgoUU3RvcFJlY29yZGluZ1JlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSJpCg1SZWNvcmRpbmdJbmZvEgwKBG5hbWUYASABKAkSEgoKc2Vzc2lvbl9pZBgCIAEoCRISCgpzaXplX2J5dGVzGAMgASgEEhAKCG1lc3NhZ2VzGAQgASgEEhAKCGZpbmlzaGVkGAUgASgIIhcKFUxpc3RSZWNvcmRpbmdzUmVxdWVzdCJJChZMaXN0UmVjb3JkaW5nc1Jlc3BvbnNlEi8KCnJlY29yZGluZ3MYASADKAsyGy5uZWVkbGVzaW0udjEuUmVjb3JkaW5nSW5mbyIoChhEb3dubG9hZFJlY29yZGluZ1JlcXVlc3QSDAoEbmFtZRgBIAEoCSIuCg5SZWNvcmRpbmdDaHVuaxIMCgRkYXRhGAEgASgMEg4KBm9mZnNldBgCIAEoBCpqCglOb2RlU3RhdGUSGgoWTk9ERV9TVEFURV9VTlNQRUNJRklFRBAAEhQKEE5PREVfU1RBVEVfU1RVQ0sQARIXChNOT0RFX1NUQVRFX1NMSVBQSU5HEAISEgoOTk9ERV9TVEFURV9USVAQAzKxBAoOU2Vzc2lvblNlcnZpY2USWAoNQ3JlYXRlU2Vzc2lvbhIiLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVxdWVzdBojLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVzcG9uc2USVQoMTGlzdFNlc3Npb25zEiEubmVlZGxlc2ltLnYxLkxpc3RTZXNzaW9uc1JlcXVlc3QaIi5uZWVkbGVzaW0udjEuTGlzdFNlc3Npb25zUmVzcG9uc2USSAoKR2V0U2Vzc2lvbhIfLm5lZWRsZXNpbS52MS5HZXRTZXNzaW9uUmVxdWVzdBoZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbxI+CgdHZXRNZXNoEh8ubmVlZGxlc2ltLnYxLkdldFNlc3Npb25SZXF1ZXN0GhIubmVlZGxlc2ltLnYxLk1lc2gSRwoIR2V0U3RhdHMSHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaGi5uZWVkbGVzaW0udjEuU2Vzc2lvblN0YXRzElUKDENsb3NlU2Vzc2lvbhIhLm5lZWRsZXNpbS52MS5DbG9zZVNlc3Npb25SZXF1ZXN0GiIubmVlZGxlc2ltLnYxLkNsb3NlU2Vzc2lvblJlc3BvbnNlEkQKCkdldFN1cmZhY2USHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaFS5uZWVkbGVzaW0udjEuU3VyZmFjZTKKAwoOQ29udHJvbFNlcnZpY2USSgoHQ29udHJvbBIcLm5lZWRsZXNpbS52MS5Db250cm9sUmVxdWVzdBodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UoATABEkYKB1NldFBvc2USHC5uZWVkbGVzaW0udjEuU2V0UG9zZVJlcXVlc3QaHS5uZWVkbGVzaW0udjEuQ29udHJvbFJlc3BvbnNlEkwKCUZsaXBCZXZlbBIeLm5lZWRsZXNpbS52MS5GbGlwQmV2ZWxSZXF1ZXN0Gh8ubmVlZGxlc2ltLnYxLkZsaXBCZXZlbFJlc3BvbnNlEkwKCENvbnRyb2wzEh0ubmVlZGxlc2ltLnYxLkNvbnRyb2xSZXF1ZXN0MxodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UoATABEkgKCFNldFBvc2UzEh0ubmVlZGxlc2ltLnYxLlNldFBvc2VSZXF1ZXN0MxodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UyUAoOT2JzZXJ2ZVNlcnZpY2USPgoHT2JzZXJ2ZRIcLm5lZWRsZXNpbS52MS5PYnNlcnZlUmVxdWVzdBoTLm5lZWRsZXNpbS52MS5GcmFtZTABMmAKEVNpbXVsYXRpb25TZXJ2aWNlEksKCFNpbXVsYXRlEh0ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUmVxdWVzdBoeLm5lZWRsZXNpbS52MS5TaW11bGF0ZVJlc3BvbnNlMAEy8gIKEFJlY29yZGluZ1NlcnZpY2USUgoOU3RhcnRSZWNvcmRpbmcSIy5uZWVkbGVzaW0udjEuU3RhcnRSZWNvcmRpbmdSZXF1ZXN0GhsubmVlZGxlc2ltLnYxLlJlY29yZGluZ0luZm8SUAoNU3RvcFJlY29yZGluZxIiLm5lZWRsZXNpbS52MS5TdG9wUmVjb3JkaW5nUmVxdWVzdBobLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdJbmZvElsKDkxpc3RSZWNvcmRpbmdzEiMubmVlZGxlc2ltLnYxLkxpc3RSZWNvcmRpbmdzUmVxdWVzdBokLm5lZWRsZXNpbS52MS5MaXN0UmVjb3JkaW5nc1Jlc3BvbnNlElsKEURvd25sb2FkUmVjb3JkaW5nEiYubmVlZGxlc2ltLnYxLkRvd25sb2FkUmVjb3JkaW5nUmVxdWVzdBocLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdDaHVuazABYgZwcm90bzM");
+  fileDesc("ChxuZWVkbGVzaW0vdjEvbmVlZGxlc2ltLnByb3RvEgxuZWVkbGVzaW0udjEiNAoFUG9zZTISCwoDeF9tGAEgASgBEgsKA3lfbRgCIAEoARIRCgl0aGV0YV9yYWQYAyABKAEiHAoEVmVjMhIJCgF4GAEgASgBEgkKAXkYAiABKAEiJwoEVmVjMxIJCgF4GAEgASgBEgkKAXkYAiABKAESCQoBehgDIAEoASI4CgpRdWF0ZXJuaW9uEgkKAXcYASABKAESCQoBeBgCIAEoARIJCgF5GAMgASgBEgkKAXoYBCABKAEiXgoFUG9zZTMSJgoKcG9zaXRpb25fbRgBIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEi0KC29yaWVudGF0aW9uGAIgASgLMhgubmVlZGxlc2ltLnYxLlF1YXRlcm5pb24iUAoPVXBsb2FkZWRTY2VuZTNkEhIKCnNjZW5lX3RvbWwYASABKAkSFgoObWVzaF9maWxlX25hbWUYAiABKAkSEQoJbWVzaF90ZXh0GAMgASgJImAKBE1lc2gSEQoJbm9kZV94eV9tGAEgAygBEhYKDnRyaWFuZ2xlX25vZGVzGAIgAygNEhcKD3RyaWFuZ2xlX3JlZ2lvbhgDIAMoDRIUCgxyZWdpb25fbmFtZXMYBCADKAki5QEKBlJlZ2lvbhIMCgRuYW1lGAEgASgJEhgKEHlvdW5nX21vZHVsdXNfcGEYAiABKAESFQoNcG9pc3Nvbl9yYXRpbxgDIAEoARIYChBmcmljdGlvbl9uX3Blcl9tGAQgASgBEh0KFXN0YXRpY19mcmljdGlvbl9yYXRpbxgFIAEoARIWCg50aXBfcGVha19yYXRpbxgGIAEoARIYChB0aXBfcGVha193aWR0aF9tGAcgASgBEhgKEHB1bmN0dXJlX2ZvcmNlX24YCCABKAESFwoPY3V0dGluZ19mb3JjZV9uGAkgASgBIk4KBlRhcmdldBIMCgRuYW1lGAEgASgJEiQKCGNlbnRlcl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEAoIcmFkaXVzX20YAyABKAEi6gIKDVVwbG9hZGVkU2NlbmUSDAoEbmFtZRgBIAEoCRIgCgRtZXNoGAIgASgLMhIubmVlZGxlc2ltLnYxLk1lc2gSJQoHcmVnaW9ucxgDIAMoCzIULm5lZWRsZXNpbS52MS5SZWdpb24SEwoLZml4ZWRfbm9kZXMYBCADKA0SDQoFcGxhbmUYBSABKAkSEwoLdGhpY2tuZXNzX20YBiABKAESFwoPbmVlZGxlX2xlbmd0aF9tGAcgASgBEigKC25lZWRsZV9iYXNlGAggASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhgKEGNhcHR1cmVfcmFkaXVzX20YCSABKAESJQoHdGFyZ2V0cxgKIAMoCzIULm5lZWRsZXNpbS52MS5UYXJnZXQSFAoMdGlja19yYXRlX2h6GAsgASgBEhkKEWNvbnRhY3Rfc3BhY2luZ19tGAwgASgBEhQKDG5vZGVfY2FwdHVyZRgNIAEoCCKmAQoLU2NlbmVTb3VyY2USEQoHZXhhbXBsZRgBIAEoCUgAEhQKCnNjZW5lX3RvbWwYAiABKAlIABIvCgh1cGxvYWRlZBgDIAEoCzIbLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lSAASMwoKdXBsb2FkZWQzZBgEIAEoCzIdLm5lZWRsZXNpbS52MS5VcGxvYWRlZFNjZW5lM2RIAEIICgZzb3VyY2UiQgoHU3VyZmFjZRIQCghub2RlX2lkcxgBIAMoDRISCgpub2RlX3h5el9tGAIgAygBEhEKCXRyaWFuZ2xlcxgDIAMoDSJ+ChRDcmVhdGVTZXNzaW9uUmVxdWVzdBIoCgVzY2VuZRgBIAEoCzIZLm5lZWRsZXNpbS52MS5TY2VuZVNvdXJjZRIUCgx0aWNrX3JhdGVfaHoYAiABKAESDgoGcmVjb3JkGAMgASgIEhYKDmRldmljZV9jaGFubmVsGAQgASgIInUKFUNyZWF0ZVNlc3Npb25SZXNwb25zZRIqCgdzZXNzaW9uGAEgASgLMhkubmVlZGxlc2ltLnYxLlNlc3Npb25JbmZvEhgKEGNvbnRyb2xsZXJfdG9rZW4YAiABKAkSFgoOb2JzZXJ2ZXJfdG9rZW4YAyABKAkiFQoTTGlzdFNlc3Npb25zUmVxdWVzdCJDChRMaXN0U2Vzc2lvbnNSZXNwb25zZRIrCghzZXNzaW9ucxgBIAMoCzIZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbyInChFHZXRTZXNzaW9uUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJIikKE0Nsb3NlU2Vzc2lvblJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSIWChRDbG9zZVNlc3Npb25SZXNwb25zZSKLAwoLU2Vzc2lvbkluZm8SEgoKc2Vzc2lvbl9pZBgBIAEoCRISCgpzY2VuZV9uYW1lGAIgASgJEg8KB25fbm9kZXMYAyABKA0SEwoLbl90cmlhbmdsZXMYBCABKA0SFAoMdGlja19yYXRlX2h6GAUgASgBEhcKD2NyZWF0ZWRfdW5peF9tcxgGIAEoBBIMCgR0aWNrGAcgASgEEhMKC25fb2JzZXJ2ZXJzGAggASgNEhEKCXJlY29yZGluZxgJIAEoCRIUCgx0YXJnZXRfbmFtZXMYCiADKAkSGwoTZGV2aWNlX2NoYW5uZWxfcGF0aBgLIAEoCRIUCgxkZXZpY2Vfc3RhbGUYDCABKAgSHQoVZGV2aWNlX2NoYW5uZWxfYnJva2VuGA0gASgIEhEKCWRpbWVuc2lvbhgOIAEoDRIUCgxuX3RldHJhaGVkcmEYDyABKA0SGAoQZGV2aWNlX3N1c3BlbmRlZBgQIAEoCBIeChZkZXZpY2VfcG9zZXNfc3VzcGVuZGVkGBEgASgEIr0ECgxTZXNzaW9uU3RhdHMSDQoFdGlja3MYASABKAQSFgoOY29tcHV0ZV9wNTBfdXMYAiABKAESFgoOY29tcHV0ZV9wOTlfdXMYAyABKAESFwoPY29tcHV0ZV9wOTk5X3VzGAQgASgBEhYKDmNvbXB1dGVfbWF4X3VzGAUgASgBEhcKD2xhdGVuZXNzX3A1MF91cxgGIAEoARIXCg9sYXRlbmVzc19wOTlfdXMYByABKAESGAoQbGF0ZW5lc3NfcDk5OV91cxgIIAEoARIYChBtaXNzZWRfZGVhZGxpbmVzGAkgASgEEhgKEHN1cGVyc2VkZWRfcG9zZXMYCiABKAQSFwoPZHJvcHBlZF9yZWNvcmRzGAsgASgEEhUKDWNvbHVtbl9taXNzZXMYDCABKAQSFgoOcmVqZWN0ZWRfcG9zZXMYDSABKAQSFQoNY2xhbXBlZF90aWNrcxgOIAEoBBIYChBjb2x1bW5fZGVmZXJyYWxzGA8gASgEEhcKD2NvbHVtbnNfZXZpY3RlZBgQIAEoBBIeChZidWRnZXRfZXhoYXVzdGVkX3RpY2tzGBEgASgEEhUKDWh5YnJpZF9jaGVja3MYEiABKAQSFwoPaHlicmlkX3JlYnVpbGRzGBMgASgEEg8KB2ZhdWx0ZWQYFCABKAgSDQoFZmF1bHQYFSABKAkSHwoXYWN0aXZlX3NldF9jYXBwZWRfdGlja3MYFiABKAQSGgoSc2hhcGVfY2FwcGVkX3RpY2tzGBcgASgEInAKDlNldFNwaW5SZXF1ZXN0EhIKCnNlc3Npb25faWQYASABKAkSEgoKZHV0eV9jeWNsZRgCIAEoARIQCghwZXJpb2RfbRgDIAEoARIRCgljbGllbnRfaWQYBCABKAkSEQoJdGFrZV9vdmVyGAUgASgIIjcKD1NldFNwaW5SZXNwb25zZRISCgpkdXR5X2N5Y2xlGAEgASgBEhAKCHBlcmlvZF9tGAIgASgBIkwKEEZsaXBCZXZlbFJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIRCgljbGllbnRfaWQYAiABKAkSEQoJdGFrZV9vdmVyGAMgASgIIiwKEUZsaXBCZXZlbFJlc3BvbnNlEhcKD2ZsaXBzX3JlcXVlc3RlZBgBIAEoBCKTAQoOQ29udHJvbFJlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEhYKDmNsaWVudF90aW1lX25zGAMgASgEEgsKA3NlcRgEIAEoBBISCgpmbGlwX2JldmVsGAUgASgIEhEKCXRha2Vfb3ZlchgGIAEoCCKBAQoPQ29udHJvbFJlcXVlc3QzEhIKCnNlc3Npb25faWQYASABKAkSIgoFYmFzZTMYAiABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTMSFgoOY2xpZW50X3RpbWVfbnMYAyABKAQSCwoDc2VxGAQgASgEEhEKCXRha2Vfb3ZlchgFIAEoCCJtCg5TZXRQb3NlUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEiEKBGJhc2UYAiABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISEQoJY2xpZW50X2lkGAMgASgJEhEKCXRha2Vfb3ZlchgEIAEoCCJvCg9TZXRQb3NlUmVxdWVzdDMSEgoKc2Vzc2lvbl9pZBgBIAEoCRIiCgViYXNlMxgCIAEoCzITLm5lZWRsZXNpbS52MS5Qb3NlMxIRCgljbGllbnRfaWQYAyABKAkSEQoJdGFrZV9vdmVyGAQgASgIIuoDCg9Db250cm9sUmVzcG9uc2USDAoEdGljaxgBIAEoBBIOCgZ0aW1lX3MYAiABKAESIwoHZm9yY2VfbhgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhEKCXRvcnF1ZV9ubRgEIAEoARIVCg1mb3JjZV9heGlhbF9uGAUgASgBEhcKD2ZvcmNlX2xhdGVyYWxfbhgGIAEoARIhCgRiYXNlGAcgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiEKBXRpcF9tGAggASgLMhIubmVlZGxlc2ltLnYxLlZlYzISGQoRaW5zZXJ0ZWRfbGVuZ3RoX20YCSABKAESDwoHbl9zdHVjaxgKIAEoDRISCgpuX3NsaXBwaW5nGAsgASgNEg0KBW5fdGlwGAwgASgNEhAKCHBvc2Vfc2VxGA0gASgEEhYKDmNsaWVudF90aW1lX25zGA4gASgEEhEKCXN0aWZmbmVzcxgPIAMoARIqCg5uZWVkbGVfc2hhcGVfbRgQIAMoCzISLm5lZWRsZXNpbS52MS5WZWMyEhIKCmJldmVsX3NpZGUYESABKAESDwoHZmF1bHRlZBgUIAEoCBINCgVmYXVsdBgVIAEoCRIfCgJkMxgWIAEoCzITLm5lZWRsZXNpbS52MS5UaWNrMyKoAQoIQ29udGFjdDMSJgoFc3RhdGUYASABKA4yFy5uZWVkbGVzaW0udjEuTm9kZVN0YXRlEiYKCnBvc2l0aW9uX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxInCgtyZWZlcmVuY2VfbRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEiMKB2ZvcmNlX24YBCABKAsyEi5uZWVkbGVzaW0udjEuVmVjMyKFAQoMVGFyZ2V0U3BoZXJlEgwKBG5hbWUYASABKAkSJAoIY2VudGVyX20YAiABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIQCghyYWRpdXNfbRgDIAEoARISCgpkaXN0YW5jZV9tGAQgASgBEgsKA2hpdBgFIAEoCBIOCgZtaXNzZWQYBiABKAgixgIKBVRpY2szEiEKBGJhc2UYASABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTMSIwoHZm9yY2VfbhgCIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEiUKCXRvcnF1ZV9ubRgDIAEoCzISLm5lZWRsZXNpbS52MS5WZWMzEhUKDWF4aWFsX2ZvcmNlX24YBCABKAESIQoFdGlwX20YBSABKAsyEi5uZWVkbGVzaW0udjEuVmVjMxIqCg5uZWVkbGVfc2hhcGVfbRgGIAMoCzISLm5lZWRsZXNpbS52MS5WZWMzEigKCGNvbnRhY3RzGAcgAygLMhYubmVlZGxlc2ltLnYxLkNvbnRhY3QzEisKB3RhcmdldHMYCCADKAsyGi5uZWVkbGVzaW0udjEuVGFyZ2V0U3BoZXJlEhEKCXN0aWZmbmVzcxgJIAMoASJUCg5PYnNlcnZlUmVxdWVzdBISCgpzZXNzaW9uX2lkGAEgASgJEg8KB3JhdGVfaHoYAiABKAESHQoVaW5jbHVkZV9kaXNwbGFjZW1lbnRzGAMgASgIIqcBCgpOZWVkbGVOb2RlEgwKBG5vZGUYASABKA0SJgoFc3RhdGUYAiABKA4yFy5uZWVkbGVzaW0udjEuTm9kZVN0YXRlEiYKCnBvc2l0aW9uX20YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIjCgdmb3JjZV9uGAQgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISFgoObWF0ZXJpYWxfcG9pbnQYBSABKAgiZAoLVGFyZ2V0U3RhdGUSDAoEbmFtZRgBIAEoCRImCgpwb3NpdGlvbl9tGAIgASgLMhIubmVlZGxlc2ltLnYxLlZlYzISEgoKZGlzdGFuY2VfbRgDIAEoARILCgNoaXQYBCABKAgixQQKBUZyYW1lEgwKBHRpY2sYASABKAQSDgoGdGltZV9zGAIgASgBEiEKBGJhc2UYAyABKAsyEy5uZWVkbGVzaW0udjEuUG9zZTISIwoHZm9yY2VfbhgEIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhEKCXRvcnF1ZV9ubRgFIAEoARIVCg1mb3JjZV9heGlhbF9uGAYgASgBEhcKD2ZvcmNlX2xhdGVyYWxfbhgHIAEoARIhCgV0aXBfbRgIIAEoCzISLm5lZWRsZXNpbS52MS5WZWMyEhkKEWluc2VydGVkX2xlbmd0aF9tGAkgASgBEi4KDG5lZWRsZV9ub2RlcxgKIAMoCzIYLm5lZWRsZXNpbS52MS5OZWVkbGVOb2RlEioKB3RhcmdldHMYCyADKAsyGS5uZWVkbGVzaW0udjEuVGFyZ2V0U3RhdGUSGwoTbm9kZV9kaXNwbGFjZW1lbnRfbRgMIAMoARIUCgxtaXNzZWRfdGlja3MYDSABKAQSEgoKY29tcHV0ZV91cxgOIAEoARIRCglzdGlmZm5lc3MYDyADKAESKgoObmVlZGxlX3NoYXBlX20YECADKAsyEi5uZWVkbGVzaW0udjEuVmVjMhISCgpiZXZlbF9zaWRlGBEgASgBEg8KB2ZhdWx0ZWQYFCABKAgSDQoFZmF1bHQYFSABKAkSHwoCZDMYFiABKAsyEy5uZWVkbGVzaW0udjEuVGljazMSHgoWc3VyZmFjZV9kaXNwbGFjZW1lbnRfbRgXIAMoASJmChBUcmFqZWN0b3J5U2FtcGxlEgsKA3RfcxgBIAEoARIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiIKBWJhc2UzGAMgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UzIoEBCg9TaW11bGF0ZVJlcXVlc3QSKAoFc2NlbmUYASABKAsyGS5uZWVkbGVzaW0udjEuU2NlbmVTb3VyY2USMgoKdHJhamVjdG9yeRgCIAMoCzIeLm5lZWRsZXNpbS52MS5UcmFqZWN0b3J5U2FtcGxlEhAKCGRlY2ltYXRlGAMgASgNIjsKEFNpbXVsYXRlUHJvZ3Jlc3MSEgoKdGlja3NfZG9uZRgBIAEoBBITCgt0aWNrc190b3RhbBgCIAEoBCLiAgoJU2VyaWVzUm93EgsKA3RfcxgBIAEoARIhCgRiYXNlGAIgASgLMhMubmVlZGxlc2ltLnYxLlBvc2UyEiMKB2ZvcmNlX24YAyABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIRCgl0b3JxdWVfbm0YBCABKAESFQoNZm9yY2VfYXhpYWxfbhgFIAEoARIXCg9mb3JjZV9sYXRlcmFsX24YBiABKAESIQoFdGlwX20YByABKAsyEi5uZWVkbGVzaW0udjEuVmVjMhIZChFpbnNlcnRlZF9sZW5ndGhfbRgIIAEoARIPCgduX3N0dWNrGAkgASgNEhIKCm5fc2xpcHBpbmcYCiABKA0SDQoFbl90aXAYCyABKA0SKgoHdGFyZ2V0cxgMIAMoCzIZLm5lZWRsZXNpbS52MS5UYXJnZXRTdGF0ZRIfCgJkMxgNIAEoCzITLm5lZWRsZXNpbS52MS5UaWNrMyI0CgtTZXJpZXNDaHVuaxIlCgRyb3dzGAEgAygLMhcubmVlZGxlc2ltLnYxLlNlcmllc1JvdyKeAQoOU2ltdWxhdGVSZXN1bHQSJQoEcm93cxgBIAMoCzIXLm5lZWRsZXNpbS52MS5TZXJpZXNSb3cSDQoFdGlja3MYAiABKAQSDgoGd2FsbF9zGAMgASgBEhMKC3N0ZXBfcDUwX3VzGAQgASgBEhMKC3N0ZXBfcDk5X3VzGAUgASgBEhwKFGZpbmFsX2Rpc3BsYWNlbWVudF9tGAYgAygBIqwBChBTaW11bGF0ZVJlc3BvbnNlEjIKCHByb2dyZXNzGAEgASgLMh4ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUHJvZ3Jlc3NIABIuCgZyZXN1bHQYAiABKAsyHC5uZWVkbGVzaW0udjEuU2ltdWxhdGVSZXN1bHRIABIrCgZzZXJpZXMYAyABKAsyGS5uZWVkbGVzaW0udjEuU2VyaWVzQ2h1bmtIAEIHCgVldmVudCJKChVTdGFydFJlY29yZGluZ1JlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCRIdChVpbmNsdWRlX2Rpc3BsYWNlbWVudHMYAiABKAgiKgoUU3RvcFJlY29yZGluZ1JlcXVlc3QSEgoKc2Vzc2lvbl9pZBgBIAEoCSJpCg1SZWNvcmRpbmdJbmZvEgwKBG5hbWUYASABKAkSEgoKc2Vzc2lvbl9pZBgCIAEoCRISCgpzaXplX2J5dGVzGAMgASgEEhAKCG1lc3NhZ2VzGAQgASgEEhAKCGZpbmlzaGVkGAUgASgIIhcKFUxpc3RSZWNvcmRpbmdzUmVxdWVzdCJJChZMaXN0UmVjb3JkaW5nc1Jlc3BvbnNlEi8KCnJlY29yZGluZ3MYASADKAsyGy5uZWVkbGVzaW0udjEuUmVjb3JkaW5nSW5mbyIoChhEb3dubG9hZFJlY29yZGluZ1JlcXVlc3QSDAoEbmFtZRgBIAEoCSIuCg5SZWNvcmRpbmdDaHVuaxIMCgRkYXRhGAEgASgMEg4KBm9mZnNldBgCIAEoBCpqCglOb2RlU3RhdGUSGgoWTk9ERV9TVEFURV9VTlNQRUNJRklFRBAAEhQKEE5PREVfU1RBVEVfU1RVQ0sQARIXChNOT0RFX1NUQVRFX1NMSVBQSU5HEAISEgoOTk9ERV9TVEFURV9USVAQAzKxBAoOU2Vzc2lvblNlcnZpY2USWAoNQ3JlYXRlU2Vzc2lvbhIiLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVxdWVzdBojLm5lZWRsZXNpbS52MS5DcmVhdGVTZXNzaW9uUmVzcG9uc2USVQoMTGlzdFNlc3Npb25zEiEubmVlZGxlc2ltLnYxLkxpc3RTZXNzaW9uc1JlcXVlc3QaIi5uZWVkbGVzaW0udjEuTGlzdFNlc3Npb25zUmVzcG9uc2USSAoKR2V0U2Vzc2lvbhIfLm5lZWRsZXNpbS52MS5HZXRTZXNzaW9uUmVxdWVzdBoZLm5lZWRsZXNpbS52MS5TZXNzaW9uSW5mbxI+CgdHZXRNZXNoEh8ubmVlZGxlc2ltLnYxLkdldFNlc3Npb25SZXF1ZXN0GhIubmVlZGxlc2ltLnYxLk1lc2gSRwoIR2V0U3RhdHMSHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaGi5uZWVkbGVzaW0udjEuU2Vzc2lvblN0YXRzElUKDENsb3NlU2Vzc2lvbhIhLm5lZWRsZXNpbS52MS5DbG9zZVNlc3Npb25SZXF1ZXN0GiIubmVlZGxlc2ltLnYxLkNsb3NlU2Vzc2lvblJlc3BvbnNlEkQKCkdldFN1cmZhY2USHy5uZWVkbGVzaW0udjEuR2V0U2Vzc2lvblJlcXVlc3QaFS5uZWVkbGVzaW0udjEuU3VyZmFjZTLSAwoOQ29udHJvbFNlcnZpY2USSgoHQ29udHJvbBIcLm5lZWRsZXNpbS52MS5Db250cm9sUmVxdWVzdBodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UoATABEkYKB1NldFBvc2USHC5uZWVkbGVzaW0udjEuU2V0UG9zZVJlcXVlc3QaHS5uZWVkbGVzaW0udjEuQ29udHJvbFJlc3BvbnNlEkwKCUZsaXBCZXZlbBIeLm5lZWRsZXNpbS52MS5GbGlwQmV2ZWxSZXF1ZXN0Gh8ubmVlZGxlc2ltLnYxLkZsaXBCZXZlbFJlc3BvbnNlEkwKCENvbnRyb2wzEh0ubmVlZGxlc2ltLnYxLkNvbnRyb2xSZXF1ZXN0MxodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2UoATABEkgKCFNldFBvc2UzEh0ubmVlZGxlc2ltLnYxLlNldFBvc2VSZXF1ZXN0MxodLm5lZWRsZXNpbS52MS5Db250cm9sUmVzcG9uc2USRgoHU2V0U3BpbhIcLm5lZWRsZXNpbS52MS5TZXRTcGluUmVxdWVzdBodLm5lZWRsZXNpbS52MS5TZXRTcGluUmVzcG9uc2UyUAoOT2JzZXJ2ZVNlcnZpY2USPgoHT2JzZXJ2ZRIcLm5lZWRsZXNpbS52MS5PYnNlcnZlUmVxdWVzdBoTLm5lZWRsZXNpbS52MS5GcmFtZTABMmAKEVNpbXVsYXRpb25TZXJ2aWNlEksKCFNpbXVsYXRlEh0ubmVlZGxlc2ltLnYxLlNpbXVsYXRlUmVxdWVzdBoeLm5lZWRsZXNpbS52MS5TaW11bGF0ZVJlc3BvbnNlMAEy8gIKEFJlY29yZGluZ1NlcnZpY2USUgoOU3RhcnRSZWNvcmRpbmcSIy5uZWVkbGVzaW0udjEuU3RhcnRSZWNvcmRpbmdSZXF1ZXN0GhsubmVlZGxlc2ltLnYxLlJlY29yZGluZ0luZm8SUAoNU3RvcFJlY29yZGluZxIiLm5lZWRsZXNpbS52MS5TdG9wUmVjb3JkaW5nUmVxdWVzdBobLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdJbmZvElsKDkxpc3RSZWNvcmRpbmdzEiMubmVlZGxlc2ltLnYxLkxpc3RSZWNvcmRpbmdzUmVxdWVzdBokLm5lZWRsZXNpbS52MS5MaXN0UmVjb3JkaW5nc1Jlc3BvbnNlElsKEURvd25sb2FkUmVjb3JkaW5nEiYubmVlZGxlc2ltLnYxLkRvd25sb2FkUmVjb3JkaW5nUmVxdWVzdBocLm5lZWRsZXNpbS52MS5SZWNvcmRpbmdDaHVuazABYgZwcm90bzM");
 
 /**
  * The pose of the needle base: position and the direction in which the shaft points.
@@ -940,6 +940,73 @@ export const SessionStatsSchema: GenMessage<SessionStats> = /*@__PURE__*/
   messageDesc(file_needlesim_v1_needlesim, 20);
 
 /**
+ * @generated from message needlesim.v1.SetSpinRequest
+ */
+export type SetSpinRequest = Message<"needlesim.v1.SetSpinRequest"> & {
+  /**
+   * @generated from field: string session_id = 1;
+   */
+  sessionId: string;
+
+  /**
+   * In [0, 1]: 0 stops the spin, 1 spins continuously (a straight path for a bevel tip).
+   *
+   * @generated from field: double duty_cycle = 2;
+   */
+  dutyCycle: number;
+
+  /**
+   * Insertion per period, m; 0: 1 mm.
+   *
+   * @generated from field: double period_m = 3;
+   */
+  periodM: number;
+
+  /**
+   * As FlipBevelRequest.
+   *
+   * @generated from field: string client_id = 4;
+   */
+  clientId: string;
+
+  /**
+   * @generated from field: bool take_over = 5;
+   */
+  takeOver: boolean;
+};
+
+/**
+ * Describes the message needlesim.v1.SetSpinRequest.
+ * Use `create(SetSpinRequestSchema)` to create a new message.
+ */
+export const SetSpinRequestSchema: GenMessage<SetSpinRequest> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 21);
+
+/**
+ * @generated from message needlesim.v1.SetSpinResponse
+ */
+export type SetSpinResponse = Message<"needlesim.v1.SetSpinResponse"> & {
+  /**
+   * The command in force (the period resolved).
+   *
+   * @generated from field: double duty_cycle = 1;
+   */
+  dutyCycle: number;
+
+  /**
+   * @generated from field: double period_m = 2;
+   */
+  periodM: number;
+};
+
+/**
+ * Describes the message needlesim.v1.SetSpinResponse.
+ * Use `create(SetSpinResponseSchema)` to create a new message.
+ */
+export const SetSpinResponseSchema: GenMessage<SetSpinResponse> = /*@__PURE__*/
+  messageDesc(file_needlesim_v1_needlesim, 22);
+
+/**
  * @generated from message needlesim.v1.FlipBevelRequest
  */
 export type FlipBevelRequest = Message<"needlesim.v1.FlipBevelRequest"> & {
@@ -970,7 +1037,7 @@ export type FlipBevelRequest = Message<"needlesim.v1.FlipBevelRequest"> & {
  * Use `create(FlipBevelRequestSchema)` to create a new message.
  */
 export const FlipBevelRequestSchema: GenMessage<FlipBevelRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 21);
+  messageDesc(file_needlesim_v1_needlesim, 23);
 
 /**
  * @generated from message needlesim.v1.FlipBevelResponse
@@ -989,7 +1056,7 @@ export type FlipBevelResponse = Message<"needlesim.v1.FlipBevelResponse"> & {
  * Use `create(FlipBevelResponseSchema)` to create a new message.
  */
 export const FlipBevelResponseSchema: GenMessage<FlipBevelResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 22);
+  messageDesc(file_needlesim_v1_needlesim, 24);
 
 /**
  * @generated from message needlesim.v1.ControlRequest
@@ -1039,7 +1106,7 @@ export type ControlRequest = Message<"needlesim.v1.ControlRequest"> & {
  * Use `create(ControlRequestSchema)` to create a new message.
  */
 export const ControlRequestSchema: GenMessage<ControlRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 23);
+  messageDesc(file_needlesim_v1_needlesim, 25);
 
 /**
  * ControlRequest for a 3D session (Control3). A 2D session refuses it, as a 3D session refuses
@@ -1083,7 +1150,7 @@ export type ControlRequest3 = Message<"needlesim.v1.ControlRequest3"> & {
  * Use `create(ControlRequest3Schema)` to create a new message.
  */
 export const ControlRequest3Schema: GenMessage<ControlRequest3> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 24);
+  messageDesc(file_needlesim_v1_needlesim, 26);
 
 /**
  * @generated from message needlesim.v1.SetPoseRequest
@@ -1120,7 +1187,7 @@ export type SetPoseRequest = Message<"needlesim.v1.SetPoseRequest"> & {
  * Use `create(SetPoseRequestSchema)` to create a new message.
  */
 export const SetPoseRequestSchema: GenMessage<SetPoseRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 25);
+  messageDesc(file_needlesim_v1_needlesim, 27);
 
 /**
  * SetPoseRequest for a 3D session (SetPose3), as ControlRequest3 is to ControlRequest.
@@ -1154,7 +1221,7 @@ export type SetPoseRequest3 = Message<"needlesim.v1.SetPoseRequest3"> & {
  * Use `create(SetPoseRequest3Schema)` to create a new message.
  */
 export const SetPoseRequest3Schema: GenMessage<SetPoseRequest3> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 26);
+  messageDesc(file_needlesim_v1_needlesim, 28);
 
 /**
  * @generated from message needlesim.v1.ControlResponse
@@ -1285,7 +1352,7 @@ export type ControlResponse = Message<"needlesim.v1.ControlResponse"> & {
  * Use `create(ControlResponseSchema)` to create a new message.
  */
 export const ControlResponseSchema: GenMessage<ControlResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 27);
+  messageDesc(file_needlesim_v1_needlesim, 29);
 
 /**
  * One contact point of a 3D needle with the tissue: a material point of a tetrahedron held by
@@ -1326,7 +1393,7 @@ export type Contact3 = Message<"needlesim.v1.Contact3"> & {
  * Use `create(Contact3Schema)` to create a new message.
  */
 export const Contact3Schema: GenMessage<Contact3> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 28);
+  messageDesc(file_needlesim_v1_needlesim, 30);
 
 /**
  * A target sphere of a 3D session at a tick.
@@ -1378,7 +1445,7 @@ export type TargetSphere = Message<"needlesim.v1.TargetSphere"> & {
  * Use `create(TargetSphereSchema)` to create a new message.
  */
 export const TargetSphereSchema: GenMessage<TargetSphere> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 29);
+  messageDesc(file_needlesim_v1_needlesim, 31);
 
 /**
  * The 3D state of a tick (world frame throughout).
@@ -1457,7 +1524,7 @@ export type Tick3 = Message<"needlesim.v1.Tick3"> & {
  * Use `create(Tick3Schema)` to create a new message.
  */
 export const Tick3Schema: GenMessage<Tick3> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 30);
+  messageDesc(file_needlesim_v1_needlesim, 32);
 
 /**
  * @generated from message needlesim.v1.ObserveRequest
@@ -1489,7 +1556,7 @@ export type ObserveRequest = Message<"needlesim.v1.ObserveRequest"> & {
  * Use `create(ObserveRequestSchema)` to create a new message.
  */
 export const ObserveRequestSchema: GenMessage<ObserveRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 31);
+  messageDesc(file_needlesim_v1_needlesim, 33);
 
 /**
  * One contact of the needle with the tissue: a mesh node (the paper's node capture) or a
@@ -1538,7 +1605,7 @@ export type NeedleNode = Message<"needlesim.v1.NeedleNode"> & {
  * Use `create(NeedleNodeSchema)` to create a new message.
  */
 export const NeedleNodeSchema: GenMessage<NeedleNode> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 32);
+  messageDesc(file_needlesim_v1_needlesim, 34);
 
 /**
  * @generated from message needlesim.v1.TargetState
@@ -1570,7 +1637,7 @@ export type TargetState = Message<"needlesim.v1.TargetState"> & {
  * Use `create(TargetStateSchema)` to create a new message.
  */
 export const TargetStateSchema: GenMessage<TargetState> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 33);
+  messageDesc(file_needlesim_v1_needlesim, 35);
 
 /**
  * @generated from message needlesim.v1.Frame
@@ -1704,7 +1771,7 @@ export type Frame = Message<"needlesim.v1.Frame"> & {
  * Use `create(FrameSchema)` to create a new message.
  */
 export const FrameSchema: GenMessage<Frame> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 34);
+  messageDesc(file_needlesim_v1_needlesim, 36);
 
 /**
  * @generated from message needlesim.v1.TrajectorySample
@@ -1735,7 +1802,7 @@ export type TrajectorySample = Message<"needlesim.v1.TrajectorySample"> & {
  * Use `create(TrajectorySampleSchema)` to create a new message.
  */
 export const TrajectorySampleSchema: GenMessage<TrajectorySample> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 35);
+  messageDesc(file_needlesim_v1_needlesim, 37);
 
 /**
  * @generated from message needlesim.v1.SimulateRequest
@@ -1766,7 +1833,7 @@ export type SimulateRequest = Message<"needlesim.v1.SimulateRequest"> & {
  * Use `create(SimulateRequestSchema)` to create a new message.
  */
 export const SimulateRequestSchema: GenMessage<SimulateRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 36);
+  messageDesc(file_needlesim_v1_needlesim, 38);
 
 /**
  * @generated from message needlesim.v1.SimulateProgress
@@ -1788,7 +1855,7 @@ export type SimulateProgress = Message<"needlesim.v1.SimulateProgress"> & {
  * Use `create(SimulateProgressSchema)` to create a new message.
  */
 export const SimulateProgressSchema: GenMessage<SimulateProgress> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 37);
+  messageDesc(file_needlesim_v1_needlesim, 39);
 
 /**
  * @generated from message needlesim.v1.SeriesRow
@@ -1869,7 +1936,7 @@ export type SeriesRow = Message<"needlesim.v1.SeriesRow"> & {
  * Use `create(SeriesRowSchema)` to create a new message.
  */
 export const SeriesRowSchema: GenMessage<SeriesRow> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 38);
+  messageDesc(file_needlesim_v1_needlesim, 40);
 
 /**
  * Consecutive rows of the time series.
@@ -1888,7 +1955,7 @@ export type SeriesChunk = Message<"needlesim.v1.SeriesChunk"> & {
  * Use `create(SeriesChunkSchema)` to create a new message.
  */
 export const SeriesChunkSchema: GenMessage<SeriesChunk> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 39);
+  messageDesc(file_needlesim_v1_needlesim, 41);
 
 /**
  * @generated from message needlesim.v1.SimulateResult
@@ -1935,7 +2002,7 @@ export type SimulateResult = Message<"needlesim.v1.SimulateResult"> & {
  * Use `create(SimulateResultSchema)` to create a new message.
  */
 export const SimulateResultSchema: GenMessage<SimulateResult> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 40);
+  messageDesc(file_needlesim_v1_needlesim, 42);
 
 /**
  * @generated from message needlesim.v1.SimulateResponse
@@ -1970,7 +2037,7 @@ export type SimulateResponse = Message<"needlesim.v1.SimulateResponse"> & {
  * Use `create(SimulateResponseSchema)` to create a new message.
  */
 export const SimulateResponseSchema: GenMessage<SimulateResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 41);
+  messageDesc(file_needlesim_v1_needlesim, 43);
 
 /**
  * @generated from message needlesim.v1.StartRecordingRequest
@@ -1997,7 +2064,7 @@ export type StartRecordingRequest = Message<"needlesim.v1.StartRecordingRequest"
  * Use `create(StartRecordingRequestSchema)` to create a new message.
  */
 export const StartRecordingRequestSchema: GenMessage<StartRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 42);
+  messageDesc(file_needlesim_v1_needlesim, 44);
 
 /**
  * @generated from message needlesim.v1.StopRecordingRequest
@@ -2014,7 +2081,7 @@ export type StopRecordingRequest = Message<"needlesim.v1.StopRecordingRequest"> 
  * Use `create(StopRecordingRequestSchema)` to create a new message.
  */
 export const StopRecordingRequestSchema: GenMessage<StopRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 43);
+  messageDesc(file_needlesim_v1_needlesim, 45);
 
 /**
  * @generated from message needlesim.v1.RecordingInfo
@@ -2051,7 +2118,7 @@ export type RecordingInfo = Message<"needlesim.v1.RecordingInfo"> & {
  * Use `create(RecordingInfoSchema)` to create a new message.
  */
 export const RecordingInfoSchema: GenMessage<RecordingInfo> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 44);
+  messageDesc(file_needlesim_v1_needlesim, 46);
 
 /**
  * @generated from message needlesim.v1.ListRecordingsRequest
@@ -2064,7 +2131,7 @@ export type ListRecordingsRequest = Message<"needlesim.v1.ListRecordingsRequest"
  * Use `create(ListRecordingsRequestSchema)` to create a new message.
  */
 export const ListRecordingsRequestSchema: GenMessage<ListRecordingsRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 45);
+  messageDesc(file_needlesim_v1_needlesim, 47);
 
 /**
  * @generated from message needlesim.v1.ListRecordingsResponse
@@ -2081,7 +2148,7 @@ export type ListRecordingsResponse = Message<"needlesim.v1.ListRecordingsRespons
  * Use `create(ListRecordingsResponseSchema)` to create a new message.
  */
 export const ListRecordingsResponseSchema: GenMessage<ListRecordingsResponse> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 46);
+  messageDesc(file_needlesim_v1_needlesim, 48);
 
 /**
  * @generated from message needlesim.v1.DownloadRecordingRequest
@@ -2098,7 +2165,7 @@ export type DownloadRecordingRequest = Message<"needlesim.v1.DownloadRecordingRe
  * Use `create(DownloadRecordingRequestSchema)` to create a new message.
  */
 export const DownloadRecordingRequestSchema: GenMessage<DownloadRecordingRequest> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 47);
+  messageDesc(file_needlesim_v1_needlesim, 49);
 
 /**
  * @generated from message needlesim.v1.RecordingChunk
@@ -2120,7 +2187,7 @@ export type RecordingChunk = Message<"needlesim.v1.RecordingChunk"> & {
  * Use `create(RecordingChunkSchema)` to create a new message.
  */
 export const RecordingChunkSchema: GenMessage<RecordingChunk> = /*@__PURE__*/
-  messageDesc(file_needlesim_v1_needlesim, 48);
+  messageDesc(file_needlesim_v1_needlesim, 50);
 
 /**
  * @generated from enum needlesim.v1.NodeState
@@ -2292,6 +2359,21 @@ export const ControlService: GenService<{
     methodKind: "unary";
     input: typeof SetPoseRequest3Schema;
     output: typeof ControlResponseSchema;
+  },
+  /**
+   * Duty-cycled spinning of a 3D session's needle (steering a bevel tip proportionally): from
+   * the next tick on, the needle rolls about its own axis one turn per `period_m` of insertion,
+   * over the first `duty_cycle` of each period, on top of the controller's (or device's) pose;
+   * 0 stops it where it is. Spinning is driving: the same lease and refusals as FlipBevel.
+   * INVALID_ARGUMENT for a duty cycle outside [0, 1] or a period outside [1e-4, 0.1] m;
+   * FAILED_PRECONDITION for a 2D session. Controller token.
+   *
+   * @generated from rpc needlesim.v1.ControlService.SetSpin
+   */
+  setSpin: {
+    methodKind: "unary";
+    input: typeof SetSpinRequestSchema;
+    output: typeof SetSpinResponseSchema;
   },
 }> = /*@__PURE__*/
   serviceDesc(file_needlesim_v1_needlesim, 1);
