@@ -8,16 +8,29 @@
 //!
 //! 2D: the slice is the tissue plane, the probe a window in it (by default the mesh's bounding
 //! box, depth pointing −y). 3D: a plane through the tissue (by default through the initial needle
-//! base, spanned by the needle's horizontal direction and −z, so the needle lies in it); the 3D
-//! tissue is drawn in its reference configuration (the session computes no interior displacement
-//! field: see the module docs of `needlesim_session::surface`), the needle and the targets move.
+//! base, spanned by the needle's horizontal direction and −z, so the needle lies in it), drawn
+//! deformed: the session computes no interior displacement field (see the module docs of
+//! `needlesim_session::surface`), so the renderer solves for it itself, once per image, from the
+//! record's contact points (reference position $X_i$, force $f_i$ of the needle on the tissue;
+//! at most `MAX_RECORD_CONTACTS3` of them):
+//! $$u = K_{ff}^{-1} \sum_i \sum_a N_a(X_i)\, e_{k_a} \otimes f_i$$
+//! with the tissue model's factorisation (`needlesim_training::ultrasound::DeformedTissue3`: one
+//! sparse solve, $O(\mathrm{nnz}(L))$, whatever the number of contacts). The model is immutable
+//! and shared (`Arc`): the solve takes no lock, so the real-time thread never waits on it; a
+//! moved probe re-renders the last solved field without solving again. Cost per image on the
+//! 48,000-tetrahedron cube: the solve (about 1–3 ms) plus the rasterisation (about as much) —
+//! BENCHMARKS.md, `slice_cost`. The renderer thread runs at a lowered priority (nice
+//! [`RENDER_THREAD_NICE`], like the surface field's thread): the picture may lag, the compliance
+//! worker a capture waits for must not.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use needlesim_session::{Session, SessionTissue, TickRecord};
-use needlesim_training::ultrasound::{Probe, Probe3, SliceScene, SliceScene3, UltrasoundScratch, render_slice, render_slice_3d};
+use needlesim_training::ultrasound::{
+    DeformedTissue3, Probe, Probe3, SliceScene, SliceScene3, UltrasoundScratch, render_slice, render_slice_3d,
+};
 use tokio::sync::watch;
 
 /// Largest image side, pixels.
@@ -27,6 +40,9 @@ pub const MIN_PROBE_PIXELS: u32 = 8;
 /// The renderer's rate when no watcher asked for one, and the bounds of a request, Hz.
 pub const DEFAULT_RATE_HZ: f64 = 10.0;
 pub const MAX_RATE_HZ: f64 = 30.0;
+
+/// The renderer thread's nice value (the session's worker and fan-out keep 0).
+pub const RENDER_THREAD_NICE: i32 = 10;
 
 /// Echogenicity by region index (cycled).
 const REGION_GAIN: [f64; 6] = [0.6, 0.9, 0.45, 0.75, 0.55, 0.85];
@@ -49,6 +65,8 @@ pub struct SliceImage {
     pub height: usize,
     pub gray8: Vec<u8>,
     pub probe: ProbeSpec,
+    /// The image's cost on the renderer thread, µs: in 3D the displacement solve (when the tick is
+    /// new) and the rasterisation.
     pub render_us: f64,
 }
 
@@ -72,6 +90,18 @@ pub struct UltrasoundHub {
     tx: watch::Sender<Option<Arc<SliceImage>>>,
     /// Images rendered since the session started.
     pub renders: std::sync::atomic::AtomicU64,
+}
+
+/// The renderer thread's buffers, reused image after image.
+#[derive(Default)]
+struct RenderBuffers {
+    scratch: UltrasoundScratch,
+    u2: Vec<[f64; 2]>,
+    /// 3D: the displacement solver (made at the first 3D image) and the tick it last solved.
+    deformed: Option<DeformedTissue3>,
+    solved_tick: Option<u64>,
+    /// 3D: solves that failed (logged at counts 1, 2, 4, …; the slice is then drawn undeformed).
+    solve_errors: u64,
 }
 
 /// A watcher's registration: leaving drops it.
@@ -240,9 +270,9 @@ impl UltrasoundHub {
         if two {
             s.field_subscribers.fetch_add(1, Ordering::AcqRel);
         }
-        let mut scratch = UltrasoundScratch::default();
-        let mut u2: Vec<[f64; 2]> = Vec::new();
-        let mut u3: Vec<[f64; 3]> = Vec::new();
+        // A refusal (not Linux, or the OS says no) only costs that preference.
+        let _ = needlesim_channel::rt::lower_thread_priority(RENDER_THREAD_NICE);
+        let mut buffers = RenderBuffers::default();
         let mut last: Option<(u64, ProbeSpec)> = None;
         let mut next = Instant::now();
         loop {
@@ -259,7 +289,7 @@ impl UltrasoundHub {
             if last != Some((rec.tick, probe)) {
                 last = Some((rec.tick, probe));
                 let t0 = Instant::now();
-                let img = self.render(&s, &rec, probe, &mut scratch, &mut u2, &mut u3);
+                let img = self.render(&s, &rec, probe, &mut buffers);
                 let render_us = t0.elapsed().as_secs_f64() * 1e6;
                 if let Some((width, height, gray8)) = img {
                     self.renders.fetch_add(1, Ordering::Relaxed);
@@ -280,15 +310,8 @@ impl UltrasoundHub {
     }
 
     /// Renders `rec` through `probe`; `None` when the probe's dimension is not the session's.
-    fn render(
-        &self,
-        s: &Session,
-        rec: &TickRecord,
-        probe: ProbeSpec,
-        scratch: &mut UltrasoundScratch,
-        u2: &mut Vec<[f64; 2]>,
-        u3: &mut Vec<[f64; 3]>,
-    ) -> Option<(usize, usize, Vec<u8>)> {
+    fn render(&self, s: &Session, rec: &TickRecord, probe: ProbeSpec, buf: &mut RenderBuffers) -> Option<(usize, usize, Vec<u8>)> {
+        let RenderBuffers { scratch, u2, deformed, solved_tick, solve_errors } = buf;
         match (&s.tissue, probe) {
             (SessionTissue::Two(t), ProbeSpec::Two(p)) => {
                 let mesh = t.mesh();
@@ -317,10 +340,18 @@ impl UltrasoundHub {
             }
             (SessionTissue::Three { model, .. }, ProbeSpec::Three(p)) => {
                 let mesh = model.mesh();
-                u3.clear();
-                u3.resize(mesh.n_nodes(), [0.0; 3]);
-                let gains: Vec<f64> = (0..mesh.region_names().len().max(1)).map(|i| REGION_GAIN[i % REGION_GAIN.len()]).collect();
                 let d = &rec.d3;
+                let deformed = deformed.get_or_insert_with(|| DeformedTissue3::new(model));
+                if *solved_tick != Some(rec.tick) {
+                    *solved_tick = Some(rec.tick);
+                    if let Err(e) = deformed.solve(model, d.contacts().iter().map(|c| (c.x_ref_m, c.force_n))) {
+                        *solve_errors += 1;
+                        if solve_errors.is_power_of_two() {
+                            tracing::warn!(session = %s.id, errors = *solve_errors, "ultrasound: the tissue's displacement at tick {}: {e}; drawn undeformed", rec.tick);
+                        }
+                    }
+                }
+                let gains: Vec<f64> = (0..mesh.region_names().len().max(1)).map(|i| REGION_GAIN[i % REGION_GAIN.len()]).collect();
                 let needle = (d.n_contacts > 0).then_some((d.position_m, d.tip_m));
                 let scene = SliceScene3 {
                     region_gain: &gains,
@@ -330,7 +361,8 @@ impl UltrasoundHub {
                     speckle_m: SPECKLE_M,
                     seed: SEED,
                 };
-                let img = render_slice_3d(mesh.nodes_m(), u3, mesh.tets(), mesh.region_of_tet(), &scene, &p, scratch);
+                let img =
+                    render_slice_3d(mesh.nodes_m(), deformed.displacement_m(), mesh.tets(), mesh.region_of_tet(), &scene, &p, scratch);
                 Some((img.width, img.height, img.pixels))
             }
             _ => None,
