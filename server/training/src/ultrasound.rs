@@ -635,10 +635,13 @@ mod tests {
         assert_eq!(off, still);
     }
 
+    /// A contact: reference position (m), force of the needle on the tissue (N).
+    type Contact = ([f64; 3], [f64; 3]);
+
     /// A 60 mm box tissue of 12³ cells, bottom fixed, and the contacts of a needle pushing it
     /// along +x: five points on the vertical line x = y = 30 mm, z = 35…55 mm, force `scale`
     /// N each along +x (and a little −z).
-    fn pushed_box(scale: f64) -> (TetTissueModel, Vec<([f64; 3], [f64; 3])>) {
+    fn pushed_box(scale: f64) -> (TetTissueModel, Vec<Contact>) {
         use needlesim_core::Material;
         use needlesim_core::d3::{BoxGridParams, TetMaterials, TetMeshLimits};
         let mesh = BoxGridParams::new([13, 13, 13], [0.06; 3]).build(&TetMeshLimits::default()).unwrap();
@@ -682,7 +685,7 @@ mod tests {
         let u1 = u_at(&model, deformed.solve(&model, unit.iter().copied()).unwrap(), near);
         let scale = 4e-4 / u1[0];
         assert!(scale > 0.0, "the push moves the tissue along +x: {u1:?}");
-        let contacts: Vec<([f64; 3], [f64; 3])> = unit.iter().map(|&(x, f)| (x, f.map(|v| v * scale))).collect();
+        let contacts: Vec<Contact> = unit.iter().map(|&(x, f)| (x, f.map(|v| v * scale))).collect();
         let u = deformed.solve(&model, contacts.iter().copied()).unwrap().to_vec();
         assert_eq!(deformed.n_outside(), 0);
         let regions = vec![0; model.mesh().n_tets()];
