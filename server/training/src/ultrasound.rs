@@ -768,8 +768,11 @@ mod tests {
         assert!(d.displacement_m().iter().all(|v| *v == [0.0; 3]));
     }
 
-    /// The cost of a 256 × 154 slice of a 41 × 25 grid and of a 256 × 256 slice of 48,000
-    /// tetrahedra (issue 20's observers' side). Run with
+    /// The cost of a 256 × 154 slice of a 41 × 25 grid, of a 256 × 256 slice of 48,000
+    /// tetrahedra (issue 20's observers' side), and of a live 3D image of the cube-phantom-3d
+    /// tissue (its 21³-node, 48,000-tetrahedron box, `fixtures::box_phantom3(21)`): the
+    /// displacement solve from 20 contacts of a needle 40 mm in ([`DeformedTissue3::solve`]) plus
+    /// the 256 × 256 slice through the needle. Run with
     /// `cargo test -p needlesim-training --release -- --ignored --nocapture slice_cost`.
     #[test]
     #[ignore]
@@ -839,5 +842,73 @@ mod tests {
             pct(&times, 0.99),
             pct(&times, 1.0)
         );
+
+        // The live 3D image: solve, then render, on the cube-phantom-3d tissue.
+        let t = std::time::Instant::now();
+        let model = needlesim_core::fixtures::box_phantom3(21);
+        let t_model = t.elapsed();
+        let mesh = model.mesh();
+        let regions = vec![0; mesh.n_tets()];
+        let tets: Vec<[usize; 4]> = mesh.tets().to_vec();
+        // A needle 40 mm into the top centre, slightly off the grid lines: 20 points 2 mm apart,
+        // each dragging the tissue down (−z: pushing in) and sideways, the tip's point the most.
+        let contacts: Vec<Contact> = (0..20)
+            .map(|k| {
+                let z = 0.0995 - 0.002 * k as f64;
+                let tip = if k == 19 { 10.0 } else { 1.0 };
+                ([0.0503, 0.0498, z], [0.01, 0.004, -0.02 * tip])
+            })
+            .collect();
+        let p = Probe3 {
+            origin_m: [0.0, 0.0498, 0.1],
+            e_u: [1.0, 0.0, 0.0],
+            e_v: [0.0, 0.0, -1.0],
+            pixel_m: 0.1 / 256.0,
+            width: 256,
+            height: 256,
+            thickness_m: 2e-3,
+        };
+        let scene = SliceScene3 {
+            region_gain: &[0.7],
+            targets: &[([0.05, 0.05, 0.05], 0.002)],
+            needle_m: Some(([0.0503, 0.0498, 0.105], [0.0503, 0.0498, 0.0615])),
+            needle_halfwidth_px: 1.0,
+            speckle_m: 3e-4,
+            seed: 1,
+        };
+        let mut deformed = DeformedTissue3::new(&model);
+        let (mut solve, mut render, mut total) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..100 {
+            // A new tick each time: the forces change a little.
+            let f = 1.0 + 1e-3 * i as f64;
+            let t0 = std::time::Instant::now();
+            let u = deformed.solve(&model, contacts.iter().map(|&(x, g)| (x, g.map(|v| v * f)))).unwrap();
+            let t1 = std::time::Instant::now();
+            let img = render_slice_3d(mesh.nodes_m(), u, &tets, &regions, &scene, &p, &mut scratch);
+            let t2 = std::time::Instant::now();
+            assert_eq!(img.pixels.len(), 256 * 256);
+            solve.push((t1 - t0).as_secs_f64() * 1e6);
+            render.push((t2 - t1).as_secs_f64() * 1e6);
+            total.push((t2 - t0).as_secs_f64() * 1e6);
+        }
+        let umax = deformed.displacement_m().iter().flatten().fold(0.0_f64, |a, v| a.max(v.abs()));
+        println!(
+            "3D live image, cube-phantom-3d ({} nodes, {} tetrahedra, factor nnz {}, model built in {:.2} s), 20 contacts, max |u| {:.2} mm:",
+            mesh.n_nodes(),
+            mesh.n_tets(),
+            model.cholesky().factor_nnz(),
+            t_model.as_secs_f64(),
+            umax * 1e3
+        );
+        for (what, times) in [("solve", &mut solve), ("render 256x256", &mut render), ("solve + render", &mut total)] {
+            times.sort_by(f64::total_cmp);
+            println!(
+                "  {what}: p50 {:.0} us, p99 {:.0} us, max {:.0} us (n = {})",
+                pct(times, 0.5),
+                pct(times, 0.99),
+                pct(times, 1.0),
+                times.len()
+            );
+        }
     }
 }
