@@ -16,12 +16,17 @@
 //! $$u = K_{ff}^{-1} \sum_i \sum_a N_a(X_i)\, e_{k_a} \otimes f_i$$
 //! with the tissue model's factorisation (`needlesim_training::ultrasound::DeformedTissue3`: one
 //! sparse solve, $O(\mathrm{nnz}(L))$, whatever the number of contacts). The model is immutable
-//! and shared (`Arc`): the solve takes no lock, so the real-time thread never waits on it; a
-//! moved probe re-renders the last solved field without solving again. Cost per image on the
-//! 48,000-tetrahedron cube: the solve (about 1–3 ms) plus the rasterisation (about as much) —
-//! BENCHMARKS.md, `slice_cost`. The renderer thread runs at a lowered priority (nice
-//! [`RENDER_THREAD_NICE`], like the surface field's thread): the picture may lag, the compliance
-//! worker a capture waits for must not.
+//! and shared (`Arc`): the solve takes no lock, so the real-time thread never waits on it.
+//! Cost per image on the cube-phantom-3d tissue (48,000 tetrahedra, $\mathrm{nnz}(L)$ = 16.6 M):
+//! the solve, 22–40 ms on a lightly loaded core (BENCHMARKS.md, "3D compliance": one full solve),
+//! plus the rasterisation — `slice_cost` in needlesim-training measures both. The solve is
+//! therefore rationed: none when the contacts (positions and forces) are those of the field
+//! solved last (a held needle, a moved probe), and at most [`SOLVE_DUTY_MAX`] of the thread's time
+//! (after a solve of $T$, the next waits until $T/$`SOLVE_DUTY_MAX` after it began); an image in
+//! between draws the record's needle over the last solved tissue, and the renderer comes back
+//! for the record's field even when no new record arrives. The renderer thread runs at a lowered
+//! priority (nice [`RENDER_THREAD_NICE`], like the surface field's thread): the picture may lag,
+//! the compliance worker a capture waits for must not.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -92,14 +97,65 @@ pub struct UltrasoundHub {
     pub renders: std::sync::atomic::AtomicU64,
 }
 
+/// The largest share of the renderer thread's time the 3D displacement solves may take: after a
+/// solve that took $T$, the next one starts no sooner than $T / $ `SOLVE_DUTY_MAX` after it began
+/// (images in between draw the latest needle over the last solved tissue).
+pub const SOLVE_DUTY_MAX: f64 = 0.25;
+
+/// A contact as the solve sees it: reference position (m), force on the tissue (N).
+type SolveContact = ([f64; 3], [f64; 3]);
+
+/// What the renderer does with a record's contacts in 3D.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SolveDecision {
+    /// The same contacts (positions and forces, bit for bit) as the field solved last: no solve.
+    Same,
+    /// New contacts, but the last solve's duty cycle has not elapsed: keep the last field for now.
+    Wait,
+    /// Solve.
+    Solve,
+}
+
+/// When the 3D renderer solves (module docs): not for unchanged contacts, and within
+/// [`SOLVE_DUTY_MAX`] of the thread's time.
+#[derive(Debug, Default)]
+struct SolveGate {
+    /// The contacts of the field solved last.
+    contacts: Vec<SolveContact>,
+    /// When the last solve began, and how long it took.
+    last: Option<(Instant, Duration)>,
+}
+
+impl SolveGate {
+    fn decide(&self, contacts: &[SolveContact], now: Instant) -> SolveDecision {
+        if self.last.is_some() && self.contacts == contacts {
+            return SolveDecision::Same;
+        }
+        match self.last {
+            Some((began, took)) if now < began + took.div_f64(SOLVE_DUTY_MAX) => SolveDecision::Wait,
+            _ => SolveDecision::Solve,
+        }
+    }
+
+    fn solved(&mut self, contacts: &[SolveContact], began: Instant, took: Duration) {
+        self.contacts.clear();
+        self.contacts.extend_from_slice(contacts);
+        self.last = Some((began, took));
+    }
+}
+
 /// The renderer thread's buffers, reused image after image.
 #[derive(Default)]
 struct RenderBuffers {
     scratch: UltrasoundScratch,
     u2: Vec<[f64; 2]>,
-    /// 3D: the displacement solver (made at the first 3D image) and the tick it last solved.
+    /// 3D: the displacement solver (made at the first 3D image), the record's contacts, and when
+    /// to solve.
     deformed: Option<DeformedTissue3>,
-    solved_tick: Option<u64>,
+    contacts: Vec<SolveContact>,
+    gate: SolveGate,
+    /// 3D: the image drew an older field than its record's (the solve waits): render again.
+    field_behind: bool,
     /// 3D: solves that failed (logged at counts 1, 2, 4, …; the slice is then drawn undeformed).
     solve_errors: u64,
 }
@@ -295,6 +351,10 @@ impl UltrasoundHub {
                     self.renders.fetch_add(1, Ordering::Relaxed);
                     self.tx.send_replace(Some(Arc::new(SliceImage { tick: rec.tick, width, height, gray8, probe, render_us })));
                 }
+                if buffers.field_behind {
+                    // The record's field is still to come (a held needle brings no new record).
+                    last = None;
+                }
             }
             next += period;
             let now = Instant::now();
@@ -311,7 +371,7 @@ impl UltrasoundHub {
 
     /// Renders `rec` through `probe`; `None` when the probe's dimension is not the session's.
     fn render(&self, s: &Session, rec: &TickRecord, probe: ProbeSpec, buf: &mut RenderBuffers) -> Option<(usize, usize, Vec<u8>)> {
-        let RenderBuffers { scratch, u2, deformed, solved_tick, solve_errors } = buf;
+        let RenderBuffers { scratch, u2, deformed, contacts, gate, field_behind, solve_errors } = buf;
         match (&s.tissue, probe) {
             (SessionTissue::Two(t), ProbeSpec::Two(p)) => {
                 let mesh = t.mesh();
@@ -342,9 +402,15 @@ impl UltrasoundHub {
                 let mesh = model.mesh();
                 let d = &rec.d3;
                 let deformed = deformed.get_or_insert_with(|| DeformedTissue3::new(model));
-                if *solved_tick != Some(rec.tick) {
-                    *solved_tick = Some(rec.tick);
-                    if let Err(e) = deformed.solve(model, d.contacts().iter().map(|c| (c.x_ref_m, c.force_n))) {
+                contacts.clear();
+                contacts.extend(d.contacts().iter().map(|c| (c.x_ref_m, c.force_n)));
+                let now = Instant::now();
+                let decision = gate.decide(contacts, now);
+                *field_behind = decision == SolveDecision::Wait;
+                if decision == SolveDecision::Solve {
+                    let solved = deformed.solve(model, contacts.iter().copied()).map(|_| ());
+                    gate.solved(contacts, now, now.elapsed());
+                    if let Err(e) = solved {
                         *solve_errors += 1;
                         if solve_errors.is_power_of_two() {
                             tracing::warn!(session = %s.id, errors = *solve_errors, "ultrasound: the tissue's displacement at tick {}: {e}; drawn undeformed", rec.tick);
@@ -392,6 +458,30 @@ mod tests {
         assert_eq!(e.field, "origin_m");
         let e = checked_probe(3, [0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0], 1e-4, 64, 64, 0.0).unwrap_err();
         assert_eq!(e.field, "thickness_m");
+    }
+
+    /// The solve is skipped for unchanged contacts, waits out its duty cycle for new ones, and
+    /// runs once it has elapsed (or at the first image).
+    #[test]
+    fn the_3d_solve_is_rationed_by_unchanged_contacts_and_its_duty_cycle() {
+        let t0 = Instant::now();
+        let a: Vec<SolveContact> = vec![([0.05, 0.05, 0.09], [0.0, 0.0, -0.02]), ([0.05, 0.05, 0.08], [0.001, 0.0, -0.3])];
+        let mut b = a.clone();
+        b[1].1[2] = -0.31;
+        let mut gate = SolveGate::default();
+        assert_eq!(gate.decide(&a, t0), SolveDecision::Solve, "the first image solves");
+        assert_eq!(gate.decide(&[], t0), SolveDecision::Solve, "no contacts yet: solve (to zero, without a solve)");
+        let took = Duration::from_millis(30);
+        gate.solved(&a, t0, took);
+        let next = t0 + took.div_f64(SOLVE_DUTY_MAX);
+        assert_eq!(gate.decide(&a, t0 + Duration::from_secs(5)), SolveDecision::Same, "unchanged contacts never solve again");
+        assert_eq!(gate.decide(&b, t0 + took), SolveDecision::Wait);
+        assert_eq!(gate.decide(&b, next - Duration::from_micros(1)), SolveDecision::Wait);
+        assert_eq!(gate.decide(&b, next), SolveDecision::Solve);
+        assert_eq!(gate.decide(&a[..1], next), SolveDecision::Solve, "a contact less is a change");
+        gate.solved(&b, next, took);
+        assert_eq!(gate.decide(&b, next), SolveDecision::Same);
+        assert_eq!(gate.decide(&a, next + took), SolveDecision::Wait);
     }
 
     #[test]
