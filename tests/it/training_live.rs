@@ -199,6 +199,25 @@ async fn run_exercise_live(exercise: &str, dim: usize) {
             }
         })
     };
+    // 3D: the probe moves 4 mm off the needle's plane, beyond the beam's half-thickness, so the
+    // needle is not drawn: what changes in that slice as the needle advances is the tissue it
+    // deforms (the renderer's solve from the tick's contacts).
+    let off_needle = if dim == 3 {
+        let mut c = tr.clone();
+        let req = with_token(pb::WatchUltrasoundRequest { session_id: sid.clone(), rate_hz: 10.0 }, &obs);
+        let mut stream = c.watch_ultrasound(req).await.expect("WatchUltrasound").into_inner();
+        let first = stream.next().await.expect("a first image").expect("an image");
+        let mut p = first.probe.expect("the image's probe");
+        let (u, v) = (p.e_u.unwrap(), p.e_v.unwrap());
+        let n = [u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x];
+        let o = p.origin_m.unwrap();
+        p.origin_m = Some(pb::Vec3 { x: o.x + 0.004 * n[0], y: o.y + 0.004 * n[1], z: o.z + 0.004 * n[2] });
+        assert!(p.thickness_m < 0.008, "the needle lies outside half the beam's thickness: {} m", p.thickness_m);
+        let req = pb::SetProbeRequest { session_id: sid.clone(), probe: Some(p) };
+        Some(tr.set_probe(with_token(req, &instructor)).await.expect("SetProbe").into_inner())
+    } else {
+        None
+    };
     // Roles: the observer may not place, the trainee may not take control.
     let e = tr.place(with_token(pb::ExerciseRequest { session_id: sid.clone() }, &obs)).await.unwrap_err();
     assert_eq!(e.code(), Code::PermissionDenied, "{e:?}");
@@ -323,6 +342,18 @@ async fn run_exercise_live(exercise: &str, dim: usize) {
     assert!(last.tick > first.tick);
     let changed = first.gray8.iter().zip(&last.gray8).filter(|(a, b)| a != b).count();
     assert!(changed > 50, "the slice changed as the needle advanced: {changed} pixels");
+    if let Some(probe) = &off_needle {
+        // The slice off the needle's plane, before the needle went in and at the end.
+        let off: Vec<&pb::UltrasoundImage> = images.iter().filter(|i| i.probe.as_ref() == Some(probe)).collect();
+        let (a, b) = (off.first().expect("images off the needle"), off.last().unwrap());
+        assert!(b.tick > a.tick && a.gray8.len() == b.gray8.len());
+        let n = a.gray8.len();
+        let changed = a.gray8.iter().zip(&b.gray8).filter(|(x, y)| x != y).count();
+        println!("{exercise}: off the needle's plane, {changed} of {n} pixels changed from tick {} to {}", a.tick, b.tick);
+        // Undeformed, this slice would not change at all (no needle in it, targets and speckle
+        // attached to the reference configuration).
+        assert!(changed > n / 50, "the deformed tissue changed the slice off the needle: {changed} of {n} pixels");
+    }
 
     // Closing the session: its exercise is gone.
     let mut sc = pb::session_service_client::SessionServiceClient::new(ch.clone());
