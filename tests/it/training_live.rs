@@ -428,20 +428,24 @@ async fn bad_requests_are_named() {
     assert_eq!((ok.width, ok.height), (64, 64));
 }
 
-/// The ultrasound slice's cost on the real-time thread: a 2D exercise at 1 kHz, the needle driven
-/// in, for `NEEDLESIM_SECONDS` (10) s with 10 ultrasound observers at 30 Hz, then as long without;
-/// prints the missed deadlines and lateness of each phase and the load. Timing: ignored.
+/// The ultrasound slice's cost on the real-time thread: an exercise (`NEEDLESIM_EXERCISE`,
+/// `biopsy-2d` by default; a `-3d` one renders the deformed 3D tissue, a solve per image) at
+/// 1 kHz, the needle driven in, for `NEEDLESIM_SECONDS` (10) s with 10 ultrasound observers at
+/// 30 Hz, then as long without; prints the missed deadlines and lateness of each phase and the
+/// load. Timing: ignored.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 #[ignore = "a measurement (prints figures): run alone on a quiet machine"]
 async fn ultrasound_cost_on_the_real_time_thread() {
     let _turn = REALTIME.lock().await;
     let secs: f64 = std::env::var("NEEDLESIM_SECONDS").ok().and_then(|s| s.parse().ok()).unwrap_or(10.0);
+    let exercise = std::env::var("NEEDLESIM_EXERCISE").unwrap_or_else(|_| "biopsy-2d".into());
+    let dim = if exercise.ends_with("-3d") { 3 } else { 2 };
     let server = ServerProcess::start(&["--default-scene", "none"]);
     let ch = connect(&server).await;
     let mut tr = pb::training_service_client::TrainingServiceClient::new(ch.clone());
     let created = tr
         .create_exercise_session(pb::CreateExerciseSessionRequest {
-            exercise: "biopsy-2d".into(),
+            exercise: exercise.clone(),
             tick_rate_hz: 1000.0,
             ..Default::default()
         })
@@ -451,7 +455,7 @@ async fn ultrasound_cost_on_the_real_time_thread() {
     let sess = created.session.unwrap();
     let sid = sess.session.unwrap().session_id;
     let (trainee, obs) = (sess.controller_token, sess.observer_token);
-    let path = Path::of("biopsy-2d", 2);
+    let path = Path::of(&exercise, dim);
     let mut sc = pb::session_service_client::SessionServiceClient::new(ch.clone());
     let stats = |mut sc: pb::session_service_client::SessionServiceClient<tonic::transport::Channel>, sid: String, obs: String| async move {
         sc.get_stats(with_token(pb::GetSessionRequest { session_id: sid }, &obs)).await.unwrap().into_inner()
@@ -491,7 +495,7 @@ async fn ultrasound_cost_on_the_real_time_thread() {
         let after = stats(sc.clone(), sid.clone(), obs.clone()).await;
         let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
         println!(
-            "ultrasound {phase}: {} ticks, {} missed deadlines, lateness p99 {:.1} µs p99.9 {:.1} µs, compute max {:.1} µs (whole session), {frames} images received, mean render {:.0} µs; loadavg {}",
+            "{exercise} ultrasound {phase}: {} ticks, {} missed deadlines, lateness p99 {:.1} µs p99.9 {:.1} µs, compute max {:.1} µs (whole session), {frames} images received, mean render {:.0} µs; loadavg {}",
             after.ticks - before.ticks,
             after.missed_deadlines - before.missed_deadlines,
             after.lateness_p99_us,
