@@ -18,8 +18,9 @@
 //! sparse solve, $O(\mathrm{nnz}(L))$, whatever the number of contacts). The model is immutable
 //! and shared (`Arc`): the solve takes no lock, so the real-time thread never waits on it.
 //! Cost per image on the cube-phantom-3d tissue (48,000 tetrahedra, $\mathrm{nnz}(L)$ = 16.6 M):
-//! the solve, 22–40 ms on a lightly loaded core (BENCHMARKS.md, "3D compliance": one full solve),
-//! plus the rasterisation — `slice_cost` in needlesim-training measures both. The solve is
+//! the solve, memory-bound (it reads $L$ twice): 22–40 ms at load 3.5–5, 52 ms p50 at load 6.6,
+//! plus the rasterisation, 15 ms — BENCHMARKS.md, "3D ultrasound slice of the deformed tissue"
+//! (`slice_cost` in needlesim-training measures both). The solve is
 //! therefore rationed: none when the contacts (positions and forces) are those of the field
 //! solved last (a held needle, a moved probe), and at most [`SOLVE_DUTY_MAX`] of the thread's time
 //! (after a solve of $T$, the next waits until $T/$`SOLVE_DUTY_MAX` after it began); an image in

@@ -30,8 +30,8 @@
 //! $$u = K_{ff}^{-1} \sum_i \sum_a N_a(X_i)\, e_{k_a} \otimes f_i$$
 //! ([`TetTissueModel::displacement_for_point_loads_into`]; linear elasticity, the same $u$ the
 //! simulation's point compliance gives at the contacts), which [`render_slice_3d`] draws. Cost
-//! $O(\mathrm{nnz}(L))$ per tick, however many contacts (about 1–3 ms on the 48,000-tetrahedron
-//! cube: the `slice_cost` timing below).
+//! $O(\mathrm{nnz}(L))$ per tick, however many contacts — memory-bound, tens of milliseconds on
+//! the 48,000-tetrahedron cube (nnz(L) = 16.6 M; the `slice_cost` timing below, BENCHMARKS.md).
 
 use needlesim_core::d3::{PointLocation, TetColumnScratch, TetTissueError, TetTissueModel};
 
