@@ -485,6 +485,61 @@ mod tests {
         assert_eq!(gate.decide(&a, next + took), SolveDecision::Wait);
     }
 
+    /// A live 3D session (a 9³-node box at 1 kHz, its surface field on) with the needle held 35 mm
+    /// deep: the displacement the renderer solves from the latest record's contacts
+    /// ([`DeformedTissue3`], one solve) equals, at the boundary surface's nodes, the field the
+    /// session's fan-out computes from the compliance columns of the same contacts.
+    #[test]
+    fn the_solved_field_is_the_sessions_surface_field_at_the_surface() {
+        use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
+        use needlesim_core::sim3::BasePose3;
+        use needlesim_session::{BoundarySurface, PoseCommand3};
+        let model = box_phantom3(9);
+        let params = box_phantom3_params([0.0513, 0.0487, 0.1], 0.005);
+        let start = params.initial_pose;
+        let s = Session::start3("box", model.clone(), params, vec![], None).unwrap();
+        s.field_subscribers.fetch_add(1, Ordering::AcqRel);
+        let t0 = Instant::now();
+        for seq in 1.. {
+            let t = t0.elapsed().as_secs_f64();
+            let p = start.position_m;
+            let pose = BasePose3::from_rotation([p[0], p[1], p[2] - 0.04 * (t / 1.5).min(1.0)], start.orientation);
+            s.write_pose3_from_io(PoseCommand3 { pose, seq, client_time_ns: 0 }).unwrap();
+            if t > 1.6 {
+                break;
+            }
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        // Held: wait until the contacts stop changing and two fields computed after that agree
+        // (the fan-out adds at most 8 nodes' columns per field).
+        let surface = BoundarySurface::of(model.mesh());
+        let deadline = Instant::now() + Duration::from_secs(30);
+        let (rec, field) = loop {
+            assert!(Instant::now() < deadline, "the held needle's contacts and surface field did not settle");
+            let a = s.latest_record();
+            std::thread::sleep(Duration::from_millis(100));
+            let f1 = s.field.borrow().clone();
+            std::thread::sleep(Duration::from_millis(100));
+            let (b, f2) = (s.latest_record(), s.field.borrow().clone());
+            if a.d3.contacts() == b.d3.contacts() && f1.tick > a.tick && f2.tick > f1.tick && f1.displacement_m == f2.displacement_m {
+                break (b, f2);
+            }
+        };
+        s.close();
+        assert!(rec.d3.n_contacts >= 2, "the needle holds points: {}", rec.d3.n_contacts);
+        let mut d = DeformedTissue3::new(&model);
+        let u = d.solve(&model, rec.d3.contacts().iter().map(|c| (c.x_ref_m, c.force_n))).unwrap();
+        assert_eq!(field.displacement_m.len(), 3 * surface.nodes.len());
+        let scale = field.displacement_m.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+        assert!(scale > 1e-5, "the surface moved: {scale} m");
+        for (k, &v) in surface.nodes.iter().enumerate() {
+            for c in 0..3 {
+                let (got, want) = (u[v as usize][c], field.displacement_m[3 * k + c]);
+                assert!((got - want).abs() <= 1e-9 * scale, "surface node {v} axis {c}: solved {got} m, surface field {want} m");
+            }
+        }
+    }
+
     #[test]
     fn the_default_3d_probe_holds_the_needle_and_covers_the_nodes() {
         let nodes = [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [0.1, 0.1, 0.1]];
