@@ -404,7 +404,8 @@ impl DeformedTissue3 {
     /// No contacts: $u = 0$, without a solve.
     ///
     /// Errors ([`TetTissueModel::displacement_for_point_loads_into`]'s; the displacement is then
-    /// zero): a non-finite force ([`TetTissueError::NonFiniteForce`]), and
+    /// zero): a non-finite force ([`TetTissueError::NonFiniteForce`], its `point_idx` counting
+    /// the contacts inside the mesh), and
     /// [`TetTissueError::OutputLength`] when `model` is not the one these buffers were made for.
     pub fn solve(
         &mut self,
