@@ -533,8 +533,8 @@ mod tests {
         let scale = field.displacement_m.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
         assert!(scale > 1e-5, "the surface moved: {scale} m");
         for (k, &v) in surface.nodes.iter().enumerate() {
-            for c in 0..3 {
-                let (got, want) = (u[v as usize][c], field.displacement_m[3 * k + c]);
+            for (c, &got) in u[v as usize].iter().enumerate() {
+                let want = field.displacement_m[3 * k + c];
                 assert!((got - want).abs() <= 1e-9 * scale, "surface node {v} axis {c}: solved {got} m, surface field {want} m");
             }
         }
