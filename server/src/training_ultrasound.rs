@@ -8,16 +8,35 @@
 //!
 //! 2D: the slice is the tissue plane, the probe a window in it (by default the mesh's bounding
 //! box, depth pointing −y). 3D: a plane through the tissue (by default through the initial needle
-//! base, spanned by the needle's horizontal direction and −z, so the needle lies in it); the 3D
-//! tissue is drawn in its reference configuration (the session computes no interior displacement
-//! field: see the module docs of `needlesim_session::surface`), the needle and the targets move.
+//! base, spanned by the needle's horizontal direction and −z, so the needle lies in it), drawn
+//! deformed: the session computes no interior displacement field (see the module docs of
+//! `needlesim_session::surface`), so the renderer solves for it itself, once per image, from the
+//! record's contact points (reference position $X_i$, force $f_i$ of the needle on the tissue;
+//! at most `MAX_RECORD_CONTACTS3` of them):
+//! $$u = K_{ff}^{-1} \sum_i \sum_a N_a(X_i)\, e_{k_a} \otimes f_i$$
+//! with the tissue model's factorisation (`needlesim_training::ultrasound::DeformedTissue3`: one
+//! sparse solve, $O(\mathrm{nnz}(L))$, whatever the number of contacts). The model is immutable
+//! and shared (`Arc`): the solve takes no lock, so the real-time thread never waits on it.
+//! Cost per image on the cube-phantom-3d tissue (48,000 tetrahedra, $\mathrm{nnz}(L)$ = 16.6 M):
+//! the solve, memory-bound (it reads $L$ twice): 22–40 ms at load 3.5–5, 52 ms p50 at load 6.6,
+//! plus the rasterisation, 15 ms — BENCHMARKS.md, "3D ultrasound slice of the deformed tissue"
+//! (`slice_cost` in needlesim-training measures both). The solve is
+//! therefore rationed: none when the contacts (positions and forces) are those of the field
+//! solved last (a held needle, a moved probe), and at most [`SOLVE_DUTY_MAX`] of the thread's time
+//! (after a solve of $T$, the next waits until $T/$`SOLVE_DUTY_MAX` after it began); an image in
+//! between draws the record's needle over the last solved tissue, and the renderer comes back
+//! for the record's field even when no new record arrives. The renderer thread runs at a lowered
+//! priority (nice [`RENDER_THREAD_NICE`], like the surface field's thread): the picture may lag,
+//! the compliance worker a capture waits for must not.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use needlesim_session::{Session, SessionTissue, TickRecord};
-use needlesim_training::ultrasound::{Probe, Probe3, SliceScene, SliceScene3, UltrasoundScratch, render_slice, render_slice_3d};
+use needlesim_training::ultrasound::{
+    DeformedTissue3, Probe, Probe3, SliceScene, SliceScene3, UltrasoundScratch, render_slice, render_slice_3d,
+};
 use tokio::sync::watch;
 
 /// Largest image side, pixels.
@@ -27,6 +46,9 @@ pub const MIN_PROBE_PIXELS: u32 = 8;
 /// The renderer's rate when no watcher asked for one, and the bounds of a request, Hz.
 pub const DEFAULT_RATE_HZ: f64 = 10.0;
 pub const MAX_RATE_HZ: f64 = 30.0;
+
+/// The renderer thread's nice value (the session's worker and fan-out keep 0).
+pub const RENDER_THREAD_NICE: i32 = 10;
 
 /// Echogenicity by region index (cycled).
 const REGION_GAIN: [f64; 6] = [0.6, 0.9, 0.45, 0.75, 0.55, 0.85];
@@ -49,6 +71,8 @@ pub struct SliceImage {
     pub height: usize,
     pub gray8: Vec<u8>,
     pub probe: ProbeSpec,
+    /// The image's cost on the renderer thread, µs: in 3D the displacement solve (when the tick is
+    /// new) and the rasterisation.
     pub render_us: f64,
 }
 
@@ -72,6 +96,69 @@ pub struct UltrasoundHub {
     tx: watch::Sender<Option<Arc<SliceImage>>>,
     /// Images rendered since the session started.
     pub renders: std::sync::atomic::AtomicU64,
+}
+
+/// The largest share of the renderer thread's time the 3D displacement solves may take: after a
+/// solve that took $T$, the next one starts no sooner than $T / $ `SOLVE_DUTY_MAX` after it began
+/// (images in between draw the latest needle over the last solved tissue).
+pub const SOLVE_DUTY_MAX: f64 = 0.25;
+
+/// A contact as the solve sees it: reference position (m), force on the tissue (N).
+type SolveContact = ([f64; 3], [f64; 3]);
+
+/// What the renderer does with a record's contacts in 3D.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SolveDecision {
+    /// The same contacts (positions and forces, bit for bit) as the field solved last: no solve.
+    Same,
+    /// New contacts, but the last solve's duty cycle has not elapsed: keep the last field for now.
+    Wait,
+    /// Solve.
+    Solve,
+}
+
+/// When the 3D renderer solves (module docs): not for unchanged contacts, and within
+/// [`SOLVE_DUTY_MAX`] of the thread's time.
+#[derive(Debug, Default)]
+struct SolveGate {
+    /// The contacts of the field solved last.
+    contacts: Vec<SolveContact>,
+    /// When the last solve began, and how long it took.
+    last: Option<(Instant, Duration)>,
+}
+
+impl SolveGate {
+    fn decide(&self, contacts: &[SolveContact], now: Instant) -> SolveDecision {
+        if self.last.is_some() && self.contacts == contacts {
+            return SolveDecision::Same;
+        }
+        match self.last {
+            Some((began, took)) if now < began + took.div_f64(SOLVE_DUTY_MAX) => SolveDecision::Wait,
+            _ => SolveDecision::Solve,
+        }
+    }
+
+    fn solved(&mut self, contacts: &[SolveContact], began: Instant, took: Duration) {
+        self.contacts.clear();
+        self.contacts.extend_from_slice(contacts);
+        self.last = Some((began, took));
+    }
+}
+
+/// The renderer thread's buffers, reused image after image.
+#[derive(Default)]
+struct RenderBuffers {
+    scratch: UltrasoundScratch,
+    u2: Vec<[f64; 2]>,
+    /// 3D: the displacement solver (made at the first 3D image), the record's contacts, and when
+    /// to solve.
+    deformed: Option<DeformedTissue3>,
+    contacts: Vec<SolveContact>,
+    gate: SolveGate,
+    /// 3D: the image drew an older field than its record's (the solve waits): render again.
+    field_behind: bool,
+    /// 3D: solves that failed (logged at counts 1, 2, 4, …; the slice is then drawn undeformed).
+    solve_errors: u64,
 }
 
 /// A watcher's registration: leaving drops it.
@@ -240,9 +327,9 @@ impl UltrasoundHub {
         if two {
             s.field_subscribers.fetch_add(1, Ordering::AcqRel);
         }
-        let mut scratch = UltrasoundScratch::default();
-        let mut u2: Vec<[f64; 2]> = Vec::new();
-        let mut u3: Vec<[f64; 3]> = Vec::new();
+        // A refusal (not Linux, or the OS says no) only costs that preference.
+        let _ = needlesim_channel::rt::lower_thread_priority(RENDER_THREAD_NICE);
+        let mut buffers = RenderBuffers::default();
         let mut last: Option<(u64, ProbeSpec)> = None;
         let mut next = Instant::now();
         loop {
@@ -259,11 +346,15 @@ impl UltrasoundHub {
             if last != Some((rec.tick, probe)) {
                 last = Some((rec.tick, probe));
                 let t0 = Instant::now();
-                let img = self.render(&s, &rec, probe, &mut scratch, &mut u2, &mut u3);
+                let img = self.render(&s, &rec, probe, &mut buffers);
                 let render_us = t0.elapsed().as_secs_f64() * 1e6;
                 if let Some((width, height, gray8)) = img {
                     self.renders.fetch_add(1, Ordering::Relaxed);
                     self.tx.send_replace(Some(Arc::new(SliceImage { tick: rec.tick, width, height, gray8, probe, render_us })));
+                }
+                if buffers.field_behind {
+                    // The record's field is still to come (a held needle brings no new record).
+                    last = None;
                 }
             }
             next += period;
@@ -280,15 +371,8 @@ impl UltrasoundHub {
     }
 
     /// Renders `rec` through `probe`; `None` when the probe's dimension is not the session's.
-    fn render(
-        &self,
-        s: &Session,
-        rec: &TickRecord,
-        probe: ProbeSpec,
-        scratch: &mut UltrasoundScratch,
-        u2: &mut Vec<[f64; 2]>,
-        u3: &mut Vec<[f64; 3]>,
-    ) -> Option<(usize, usize, Vec<u8>)> {
+    fn render(&self, s: &Session, rec: &TickRecord, probe: ProbeSpec, buf: &mut RenderBuffers) -> Option<(usize, usize, Vec<u8>)> {
+        let RenderBuffers { scratch, u2, deformed, contacts, gate, field_behind, solve_errors } = buf;
         match (&s.tissue, probe) {
             (SessionTissue::Two(t), ProbeSpec::Two(p)) => {
                 let mesh = t.mesh();
@@ -317,10 +401,24 @@ impl UltrasoundHub {
             }
             (SessionTissue::Three { model, .. }, ProbeSpec::Three(p)) => {
                 let mesh = model.mesh();
-                u3.clear();
-                u3.resize(mesh.n_nodes(), [0.0; 3]);
-                let gains: Vec<f64> = (0..mesh.region_names().len().max(1)).map(|i| REGION_GAIN[i % REGION_GAIN.len()]).collect();
                 let d = &rec.d3;
+                let deformed = deformed.get_or_insert_with(|| DeformedTissue3::new(model));
+                contacts.clear();
+                contacts.extend(d.contacts().iter().map(|c| (c.x_ref_m, c.force_n)));
+                let now = Instant::now();
+                let decision = gate.decide(contacts, now);
+                *field_behind = decision == SolveDecision::Wait;
+                if decision == SolveDecision::Solve {
+                    let solved = deformed.solve(model, contacts.iter().copied()).map(|_| ());
+                    gate.solved(contacts, now, now.elapsed());
+                    if let Err(e) = solved {
+                        *solve_errors += 1;
+                        if solve_errors.is_power_of_two() {
+                            tracing::warn!(session = %s.id, errors = *solve_errors, "ultrasound: the tissue's displacement at tick {}: {e}; drawn undeformed", rec.tick);
+                        }
+                    }
+                }
+                let gains: Vec<f64> = (0..mesh.region_names().len().max(1)).map(|i| REGION_GAIN[i % REGION_GAIN.len()]).collect();
                 let needle = (d.n_contacts > 0).then_some((d.position_m, d.tip_m));
                 let scene = SliceScene3 {
                     region_gain: &gains,
@@ -330,7 +428,8 @@ impl UltrasoundHub {
                     speckle_m: SPECKLE_M,
                     seed: SEED,
                 };
-                let img = render_slice_3d(mesh.nodes_m(), u3, mesh.tets(), mesh.region_of_tet(), &scene, &p, scratch);
+                let img =
+                    render_slice_3d(mesh.nodes_m(), deformed.displacement_m(), mesh.tets(), mesh.region_of_tet(), &scene, &p, scratch);
                 Some((img.width, img.height, img.pixels))
             }
             _ => None,
@@ -360,6 +459,85 @@ mod tests {
         assert_eq!(e.field, "origin_m");
         let e = checked_probe(3, [0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0], 1e-4, 64, 64, 0.0).unwrap_err();
         assert_eq!(e.field, "thickness_m");
+    }
+
+    /// The solve is skipped for unchanged contacts, waits out its duty cycle for new ones, and
+    /// runs once it has elapsed (or at the first image).
+    #[test]
+    fn the_3d_solve_is_rationed_by_unchanged_contacts_and_its_duty_cycle() {
+        let t0 = Instant::now();
+        let a: Vec<SolveContact> = vec![([0.05, 0.05, 0.09], [0.0, 0.0, -0.02]), ([0.05, 0.05, 0.08], [0.001, 0.0, -0.3])];
+        let mut b = a.clone();
+        b[1].1[2] = -0.31;
+        let mut gate = SolveGate::default();
+        assert_eq!(gate.decide(&a, t0), SolveDecision::Solve, "the first image solves");
+        assert_eq!(gate.decide(&[], t0), SolveDecision::Solve, "no contacts yet: solve (to zero, without a solve)");
+        let took = Duration::from_millis(30);
+        gate.solved(&a, t0, took);
+        let next = t0 + took.div_f64(SOLVE_DUTY_MAX);
+        assert_eq!(gate.decide(&a, t0 + Duration::from_secs(5)), SolveDecision::Same, "unchanged contacts never solve again");
+        assert_eq!(gate.decide(&b, t0 + took), SolveDecision::Wait);
+        assert_eq!(gate.decide(&b, next - Duration::from_micros(1)), SolveDecision::Wait);
+        assert_eq!(gate.decide(&b, next), SolveDecision::Solve);
+        assert_eq!(gate.decide(&a[..1], next), SolveDecision::Solve, "a contact less is a change");
+        gate.solved(&b, next, took);
+        assert_eq!(gate.decide(&b, next), SolveDecision::Same);
+        assert_eq!(gate.decide(&a, next + took), SolveDecision::Wait);
+    }
+
+    /// A live 3D session (a 9³-node box at 1 kHz, its surface field on) with the needle held 35 mm
+    /// deep: the displacement the renderer solves from the latest record's contacts
+    /// ([`DeformedTissue3`], one solve) equals, at the boundary surface's nodes, the field the
+    /// session's fan-out computes from the compliance columns of the same contacts.
+    #[test]
+    fn the_solved_field_is_the_sessions_surface_field_at_the_surface() {
+        use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
+        use needlesim_core::sim3::BasePose3;
+        use needlesim_session::{BoundarySurface, PoseCommand3};
+        let model = box_phantom3(9);
+        let params = box_phantom3_params([0.0513, 0.0487, 0.1], 0.005);
+        let start = params.initial_pose;
+        let s = Session::start3("box", model.clone(), params, vec![], None).unwrap();
+        s.field_subscribers.fetch_add(1, Ordering::AcqRel);
+        let t0 = Instant::now();
+        for seq in 1.. {
+            let t = t0.elapsed().as_secs_f64();
+            let p = start.position_m;
+            let pose = BasePose3::from_rotation([p[0], p[1], p[2] - 0.04 * (t / 1.5).min(1.0)], start.orientation);
+            s.write_pose3_from_io(PoseCommand3 { pose, seq, client_time_ns: 0 }).unwrap();
+            if t > 1.6 {
+                break;
+            }
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        // Held: wait until the contacts stop changing and two fields computed after that agree
+        // (the fan-out adds at most 8 nodes' columns per field).
+        let surface = BoundarySurface::of(model.mesh());
+        let deadline = Instant::now() + Duration::from_secs(30);
+        let (rec, field) = loop {
+            assert!(Instant::now() < deadline, "the held needle's contacts and surface field did not settle");
+            let a = s.latest_record();
+            std::thread::sleep(Duration::from_millis(100));
+            let f1 = s.field.borrow().clone();
+            std::thread::sleep(Duration::from_millis(100));
+            let (b, f2) = (s.latest_record(), s.field.borrow().clone());
+            if a.d3.contacts() == b.d3.contacts() && f1.tick > a.tick && f2.tick > f1.tick && f1.displacement_m == f2.displacement_m {
+                break (b, f2);
+            }
+        };
+        s.close();
+        assert!(rec.d3.n_contacts >= 2, "the needle holds points: {}", rec.d3.n_contacts);
+        let mut d = DeformedTissue3::new(&model);
+        let u = d.solve(&model, rec.d3.contacts().iter().map(|c| (c.x_ref_m, c.force_n))).unwrap();
+        assert_eq!(field.displacement_m.len(), 3 * surface.nodes.len());
+        let scale = field.displacement_m.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+        assert!(scale > 1e-5, "the surface moved: {scale} m");
+        for (k, &v) in surface.nodes.iter().enumerate() {
+            for (c, &got) in u[v as usize].iter().enumerate() {
+                let want = field.displacement_m[3 * k + c];
+                assert!((got - want).abs() <= 1e-9 * scale, "surface node {v} axis {c}: solved {got} m, surface field {want} m");
+            }
+        }
     }
 
     #[test]

@@ -199,6 +199,25 @@ async fn run_exercise_live(exercise: &str, dim: usize) {
             }
         })
     };
+    // 3D: the probe moves 4 mm off the needle's plane, beyond the beam's half-thickness, so the
+    // needle is not drawn: what changes in that slice as the needle advances is the tissue it
+    // deforms (the renderer's solve from the tick's contacts).
+    let off_needle = if dim == 3 {
+        let mut c = tr.clone();
+        let req = with_token(pb::WatchUltrasoundRequest { session_id: sid.clone(), rate_hz: 10.0 }, &obs);
+        let mut stream = c.watch_ultrasound(req).await.expect("WatchUltrasound").into_inner();
+        let first = stream.next().await.expect("a first image").expect("an image");
+        let mut p = first.probe.expect("the image's probe");
+        let (u, v) = (p.e_u.unwrap(), p.e_v.unwrap());
+        let n = [u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x];
+        let o = p.origin_m.unwrap();
+        p.origin_m = Some(pb::Vec3 { x: o.x + 0.004 * n[0], y: o.y + 0.004 * n[1], z: o.z + 0.004 * n[2] });
+        assert!(p.thickness_m < 0.008, "the needle lies outside half the beam's thickness: {} m", p.thickness_m);
+        let req = pb::SetProbeRequest { session_id: sid.clone(), probe: Some(p) };
+        Some(tr.set_probe(with_token(req, &instructor)).await.expect("SetProbe").into_inner())
+    } else {
+        None
+    };
     // Roles: the observer may not place, the trainee may not take control.
     let e = tr.place(with_token(pb::ExerciseRequest { session_id: sid.clone() }, &obs)).await.unwrap_err();
     assert_eq!(e.code(), Code::PermissionDenied, "{e:?}");
@@ -323,6 +342,18 @@ async fn run_exercise_live(exercise: &str, dim: usize) {
     assert!(last.tick > first.tick);
     let changed = first.gray8.iter().zip(&last.gray8).filter(|(a, b)| a != b).count();
     assert!(changed > 50, "the slice changed as the needle advanced: {changed} pixels");
+    if let Some(probe) = &off_needle {
+        // The slice off the needle's plane, before the needle went in and at the end.
+        let off: Vec<&pb::UltrasoundImage> = images.iter().filter(|i| i.probe.as_ref() == Some(probe)).collect();
+        let (a, b) = (off.first().expect("images off the needle"), off.last().unwrap());
+        assert!(b.tick > a.tick && a.gray8.len() == b.gray8.len());
+        let n = a.gray8.len();
+        let changed = a.gray8.iter().zip(&b.gray8).filter(|(x, y)| x != y).count();
+        println!("{exercise}: off the needle's plane, {changed} of {n} pixels changed from tick {} to {}", a.tick, b.tick);
+        // Undeformed, this slice would not change at all (no needle in it, targets and speckle
+        // attached to the reference configuration).
+        assert!(changed > n / 50, "the deformed tissue changed the slice off the needle: {changed} of {n} pixels");
+    }
 
     // Closing the session: its exercise is gone.
     let mut sc = pb::session_service_client::SessionServiceClient::new(ch.clone());
@@ -397,20 +428,24 @@ async fn bad_requests_are_named() {
     assert_eq!((ok.width, ok.height), (64, 64));
 }
 
-/// The ultrasound slice's cost on the real-time thread: a 2D exercise at 1 kHz, the needle driven
-/// in, for `NEEDLESIM_SECONDS` (10) s with 10 ultrasound observers at 30 Hz, then as long without;
-/// prints the missed deadlines and lateness of each phase and the load. Timing: ignored.
+/// The ultrasound slice's cost on the real-time thread: an exercise (`NEEDLESIM_EXERCISE`,
+/// `biopsy-2d` by default; a `-3d` one renders the deformed 3D tissue, a solve per image) at
+/// 1 kHz, the needle driven in, for `NEEDLESIM_SECONDS` (10) s with 10 ultrasound observers at
+/// 30 Hz, then as long without; prints the missed deadlines and lateness of each phase and the
+/// load. Timing: ignored.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 #[ignore = "a measurement (prints figures): run alone on a quiet machine"]
 async fn ultrasound_cost_on_the_real_time_thread() {
     let _turn = REALTIME.lock().await;
     let secs: f64 = std::env::var("NEEDLESIM_SECONDS").ok().and_then(|s| s.parse().ok()).unwrap_or(10.0);
+    let exercise = std::env::var("NEEDLESIM_EXERCISE").unwrap_or_else(|_| "biopsy-2d".into());
+    let dim = if exercise.ends_with("-3d") { 3 } else { 2 };
     let server = ServerProcess::start(&["--default-scene", "none"]);
     let ch = connect(&server).await;
     let mut tr = pb::training_service_client::TrainingServiceClient::new(ch.clone());
     let created = tr
         .create_exercise_session(pb::CreateExerciseSessionRequest {
-            exercise: "biopsy-2d".into(),
+            exercise: exercise.clone(),
             tick_rate_hz: 1000.0,
             ..Default::default()
         })
@@ -420,7 +455,7 @@ async fn ultrasound_cost_on_the_real_time_thread() {
     let sess = created.session.unwrap();
     let sid = sess.session.unwrap().session_id;
     let (trainee, obs) = (sess.controller_token, sess.observer_token);
-    let path = Path::of("biopsy-2d", 2);
+    let path = Path::of(&exercise, dim);
     let mut sc = pb::session_service_client::SessionServiceClient::new(ch.clone());
     let stats = |mut sc: pb::session_service_client::SessionServiceClient<tonic::transport::Channel>, sid: String, obs: String| async move {
         sc.get_stats(with_token(pb::GetSessionRequest { session_id: sid }, &obs)).await.unwrap().into_inner()
@@ -460,7 +495,7 @@ async fn ultrasound_cost_on_the_real_time_thread() {
         let after = stats(sc.clone(), sid.clone(), obs.clone()).await;
         let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
         println!(
-            "ultrasound {phase}: {} ticks, {} missed deadlines, lateness p99 {:.1} µs p99.9 {:.1} µs, compute max {:.1} µs (whole session), {frames} images received, mean render {:.0} µs; loadavg {}",
+            "{exercise} ultrasound {phase}: {} ticks, {} missed deadlines, lateness p99 {:.1} µs p99.9 {:.1} µs, compute max {:.1} µs (whole session), {frames} images received, mean render {:.0} µs; loadavg {}",
             after.ticks - before.ticks,
             after.missed_deadlines - before.missed_deadlines,
             after.lateness_p99_us,

@@ -22,6 +22,18 @@
 //! Cost: $O(\text{triangles} + \text{pixels})$ per image (the triangles' pixel boxes), no
 //! allocation beyond the image and two per-pixel buffers ([`UltrasoundScratch`]), for the
 //! observers' side of a session (never the real-time thread).
+//!
+//! **The deformed 3D tissue.** A 3D session computes no interior displacement field; its tick
+//! record carries the contact points (reference position $X_i$, force $f_i$ of the needle on the
+//! tissue). [`DeformedTissue3::solve`] turns them into every node's displacement by one sparse
+//! solve with the tissue's factorisation,
+//! $$u = K_{ff}^{-1} \sum_i \sum_a N_a(X_i)\, e_{k_a} \otimes f_i$$
+//! ([`TetTissueModel::displacement_for_point_loads_into`]; linear elasticity, the same $u$ the
+//! simulation's point compliance gives at the contacts), which [`render_slice_3d`] draws. Cost
+//! $O(\mathrm{nnz}(L))$ per tick, however many contacts — memory-bound, tens of milliseconds on
+//! the 48,000-tetrahedron cube (nnz(L) = 16.6 M; the `slice_cost` timing below, BENCHMARKS.md).
+
+use needlesim_core::d3::{PointLocation, TetColumnScratch, TetTissueError, TetTissueModel};
 
 /// The probe's image plane and resolution.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -363,6 +375,79 @@ pub fn render_slice_3d(
     shade(w, h, needle_px, scene.needle_halfwidth_px, scratch)
 }
 
+/// Every node's displacement of a 3D tissue at one tick from its contact points (module docs):
+/// buffers sized once for a model, reused tick after tick (no allocation once the contacts fit).
+pub struct DeformedTissue3 {
+    locations: Vec<PointLocation>,
+    forces_n: Vec<[f64; 3]>,
+    scratch: TetColumnScratch,
+    u_m: Vec<[f64; 3]>,
+    n_outside: usize,
+}
+
+impl DeformedTissue3 {
+    /// Buffers for `model` (its solve scratch, one displacement per node, room for 64 contacts).
+    pub fn new(model: &TetTissueModel) -> Self {
+        Self {
+            locations: Vec::with_capacity(64),
+            forces_n: Vec::with_capacity(64),
+            scratch: model.column_scratch(),
+            u_m: vec![[0.0; 3]; model.mesh().n_nodes()],
+            n_outside: 0,
+        }
+    }
+
+    /// Solves for the displacement of every node of `model` (which these buffers were made for)
+    /// under the tick's contacts, `(x_ref_m, force_n)`: the reference position of each contact
+    /// point and the force of the needle on the tissue there (world, m and N). A contact whose
+    /// reference position lies outside the mesh is left out (counted: [`Self::n_outside`]).
+    /// No contacts: $u = 0$, without a solve.
+    ///
+    /// Errors ([`TetTissueModel::displacement_for_point_loads_into`]'s; the displacement is then
+    /// zero): a non-finite force ([`TetTissueError::NonFiniteForce`], its `point_idx` counting
+    /// the contacts inside the mesh), and
+    /// [`TetTissueError::OutputLength`] when `model` is not the one these buffers were made for.
+    pub fn solve(
+        &mut self,
+        model: &TetTissueModel,
+        contacts: impl IntoIterator<Item = ([f64; 3], [f64; 3])>,
+    ) -> Result<&[[f64; 3]], TetTissueError> {
+        self.locations.clear();
+        self.forces_n.clear();
+        self.n_outside = 0;
+        for (x_ref_m, force_n) in contacts {
+            match model.locate(x_ref_m) {
+                Ok(loc) => {
+                    self.locations.push(loc);
+                    self.forces_n.push(force_n);
+                }
+                Err(_) => self.n_outside += 1,
+            }
+        }
+        if self.locations.is_empty() {
+            self.u_m.fill([0.0; 3]);
+            return Ok(&self.u_m);
+        }
+        let solved =
+            model.displacement_for_point_loads_into(&self.locations, &self.forces_n, self.u_m.as_flattened_mut(), &mut self.scratch);
+        if let Err(e) = solved {
+            self.u_m.fill([0.0; 3]);
+            return Err(e);
+        }
+        Ok(&self.u_m)
+    }
+
+    /// The last displacement solved, per node, m.
+    pub fn displacement_m(&self) -> &[[f64; 3]] {
+        &self.u_m
+    }
+
+    /// How many contacts of the last [`Self::solve`] lay outside the mesh.
+    pub fn n_outside(&self) -> usize {
+        self.n_outside
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -551,8 +636,144 @@ mod tests {
         assert_eq!(off, still);
     }
 
-    /// The cost of a 256 × 154 slice of a 41 × 25 grid and of a 256 × 256 slice of 48,000
-    /// tetrahedra (issue 20's observers' side). Run with
+    /// A contact: reference position (m), force of the needle on the tissue (N).
+    type Contact = ([f64; 3], [f64; 3]);
+
+    /// A 60 mm box tissue of 12³ cells, bottom fixed, and the contacts of a needle pushing it
+    /// along +x: five points on the vertical line x = y = 30 mm, z = 35…55 mm, force `scale`
+    /// N each along +x (and a little −z).
+    fn pushed_box(scale: f64) -> (TetTissueModel, Vec<Contact>) {
+        use needlesim_core::Material;
+        use needlesim_core::d3::{BoxGridParams, TetMaterials, TetMeshLimits};
+        let mesh = BoxGridParams::new([13, 13, 13], [0.06; 3]).build(&TetMeshLimits::default()).unwrap();
+        let mats = TetMaterials::per_region(&mesh, &[Material { young_modulus_pa: 15e3, poisson_ratio: 0.45 }]).unwrap();
+        let fixed = mesh.boundary_set("bottom").unwrap().to_vec();
+        let model = TetTissueModel::new(mesh, mats, &fixed).unwrap();
+        let contacts = (0..5).map(|k| ([0.03, 0.03, 0.035 + 0.005 * k as f64], [scale, 0.0, -0.2 * scale])).collect();
+        (model, contacts)
+    }
+
+    /// A `width × height` window of 0.1 mm pixels in the plane y = 31.2 mm (lateral +x, depth
+    /// −z) centred on `centre_m`.
+    fn window(centre_m: [f64; 3], width: usize, height: usize) -> Probe3 {
+        Probe3 {
+            origin_m: [centre_m[0] - 0.5e-4 * width as f64, centre_m[1], centre_m[2] + 0.5e-4 * height as f64],
+            e_u: [1.0, 0.0, 0.0],
+            e_v: [0.0, 0.0, -1.0],
+            pixel_m: 1e-4,
+            width,
+            height,
+            thickness_m: 1e-3,
+        }
+    }
+
+    /// The displacement at a material point, interpolated from the nodes.
+    fn u_at(model: &TetTissueModel, u: &[[f64; 3]], x_m: [f64; 3]) -> [f64; 3] {
+        let l = model.locate(x_m).unwrap();
+        std::array::from_fn(|c| (0..4).map(|k| l.weights[k] * u[l.nodes[k]][c]).sum())
+    }
+
+    /// The slice of the tissue a needle's contacts deform (one solve, [`DeformedTissue3`]) differs
+    /// from the reference slice where the tissue moved, its speckle following the solved
+    /// displacement there within a pixel, and is unchanged where the tissue did not move.
+    #[test]
+    fn the_slice_of_a_solved_field_moves_the_speckle_with_the_tissue() {
+        let (model, unit) = pushed_box(1.0);
+        let mut deformed = DeformedTissue3::new(&model);
+        // Beside the needle, 4 mm off it at mid-depth; and far from it, next to the fixed bottom.
+        let (near, far) = ([0.034, 0.0312, 0.045], [0.045, 0.0312, 0.0015]);
+        // Scale the loads (the model is linear) so that the tissue beside the needle moves 4 px.
+        let u1 = u_at(&model, deformed.solve(&model, unit.iter().copied()).unwrap(), near);
+        let scale = 4e-4 / u1[0];
+        assert!(scale > 0.0, "the push moves the tissue along +x: {u1:?}");
+        let contacts: Vec<Contact> = unit.iter().map(|&(x, f)| (x, f.map(|v| v * scale))).collect();
+        let u = deformed.solve(&model, contacts.iter().copied()).unwrap().to_vec();
+        assert_eq!(deformed.n_outside(), 0);
+        let regions = vec![0; model.mesh().n_tets()];
+        let tets: Vec<[usize; 4]> = model.mesh().tets().to_vec();
+        let nodes = model.mesh().nodes_m();
+        let zero = vec![[0.0; 3]; nodes.len()];
+        let scene = SliceScene3 { region_gain: &[0.8], targets: &[], needle_m: None, needle_halfwidth_px: 1.0, speckle_m: 3e-4, seed: 5 };
+        let mut scratch = UltrasoundScratch::default();
+        let equal =
+            |a: &GrayImage8, b: &GrayImage8| a.pixels.iter().zip(&b.pixels).filter(|(x, y)| x == y).count() as f64 / a.pixels.len() as f64;
+
+        let p = window(near, 64, 64);
+        let still = render_slice_3d(nodes, &zero, &tets, &regions, &scene, &p, &mut scratch);
+        let moved = render_slice_3d(nodes, &u, &tets, &regions, &scene, &p, &mut scratch);
+        assert!(equal(&still, &moved) < 0.2, "the slice changed where the tissue moved: {} of the pixels equal", equal(&still, &moved));
+        let uc = u_at(&model, &u, near);
+        let want = [dot3(uc, p.e_u) / p.pixel_m, dot3(uc, p.e_v) / p.pixel_m];
+        let mut best = (f64::NEG_INFINITY, 0, 0);
+        for dy in -8..=8 {
+            for dx in -8..=8 {
+                let c = ncc(&still.pixels, &moved.pixels, p.width, p.height, dx, dy, 10);
+                if c > best.0 {
+                    best = (c, dx, dy);
+                }
+            }
+        }
+        assert!(
+            (best.1 as f64 - want[0]).abs() <= 1.0 && (best.2 as f64 - want[1]).abs() <= 1.0 && best.0 > 0.5,
+            "solved in-plane displacement {want:?} px, speckle correlation peak at ({}, {}) r = {:.3}",
+            best.1,
+            best.2,
+            best.0
+        );
+
+        let r0 = ncc(&still.pixels, &moved.pixels, p.width, p.height, 0, 0, 10);
+        assert!(r0 < 0.5, "unshifted, the moved speckle no longer matches: r = {r0:.3}");
+
+        // Next to the fixed bottom the tissue moves less than half a pixel: the slice stays put.
+        let p = window(far, 96, 24);
+        let max_px = (0..p.height)
+            .step_by(7)
+            .flat_map(|j| (0..p.width).step_by(7).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let x =
+                    [0, 1, 2].map(|c| p.origin_m[c] + (i as f64 + 0.5) * p.pixel_m * p.e_u[c] + (j as f64 + 0.5) * p.pixel_m * p.e_v[c]);
+                let uf = u_at(&model, &u, x);
+                dot3(uf, uf).sqrt() / p.pixel_m
+            })
+            .fold(0.0, f64::max);
+        assert!(max_px < 0.5, "the tissue by the support barely moves: up to {max_px} px");
+        let still = render_slice_3d(nodes, &zero, &tets, &regions, &scene, &p, &mut scratch);
+        let moved = render_slice_3d(nodes, &u, &tets, &regions, &scene, &p, &mut scratch);
+        let r0 = ncc(&still.pixels, &moved.pixels, p.width, p.height, 0, 0, 2);
+        assert!(r0 > 0.9, "unchanged where the tissue did not move: r = {r0:.3} ({} of the pixels equal)", equal(&still, &moved));
+    }
+
+    /// [`DeformedTissue3`]: no contacts (or only contacts outside the mesh) give $u = 0$ without a
+    /// solve; a non-finite force is refused, naming the point, and leaves $u = 0$; the result is
+    /// the core's one solve.
+    #[test]
+    fn deformed_tissue_skips_outside_points_and_refuses_bad_forces() {
+        let (model, contacts) = pushed_box(0.05);
+        let mut d = DeformedTissue3::new(&model);
+        let u = d.solve(&model, contacts.iter().copied()).unwrap().to_vec();
+        assert!(u.iter().flatten().any(|&v| v.abs() > 1e-6), "the contacts move the tissue");
+        let locs: Vec<PointLocation> = contacts.iter().map(|c| model.locate(c.0).unwrap()).collect();
+        let forces: Vec<[f64; 3]> = contacts.iter().map(|c| c.1).collect();
+        let mut want = vec![0.0; model.n_dofs()];
+        model.displacement_for_point_loads_into(&locs, &forces, &mut want, &mut model.column_scratch()).unwrap();
+        assert_eq!(u.as_flattened(), &want[..]);
+        // A point outside the tissue is left out.
+        let with_outside = contacts.iter().copied().chain([([0.03, 0.03, 0.2], [1.0, 0.0, 0.0])]);
+        assert_eq!(d.solve(&model, with_outside).unwrap(), &u[..]);
+        assert_eq!(d.n_outside(), 1);
+        assert!(d.solve(&model, [([0.03, 0.03, 0.2], [1.0, 0.0, 0.0])]).unwrap().iter().all(|v| *v == [0.0; 3]));
+        assert!(d.solve(&model, []).unwrap().iter().all(|v| *v == [0.0; 3]));
+        let bad = contacts.iter().copied().chain([([0.03, 0.03, 0.03], [f64::INFINITY, 0.0, 0.0])]);
+        let e = d.solve(&model, bad).unwrap_err();
+        assert!(matches!(e, TetTissueError::NonFiniteForce { point_idx: 5, .. }), "{e:?}");
+        assert!(d.displacement_m().iter().all(|v| *v == [0.0; 3]));
+    }
+
+    /// The cost of a 256 × 154 slice of a 41 × 25 grid, of a 256 × 256 slice of 48,000
+    /// tetrahedra (issue 20's observers' side), and of a live 3D image of the cube-phantom-3d
+    /// tissue (its 21³-node, 48,000-tetrahedron box, `fixtures::box_phantom3(21)`): the
+    /// displacement solve from 20 contacts of a needle 40 mm in ([`DeformedTissue3::solve`]) plus
+    /// the 256 × 256 slice through the needle. Run with
     /// `cargo test -p needlesim-training --release -- --ignored --nocapture slice_cost`.
     #[test]
     #[ignore]
@@ -622,5 +843,73 @@ mod tests {
             pct(&times, 0.99),
             pct(&times, 1.0)
         );
+
+        // The live 3D image: solve, then render, on the cube-phantom-3d tissue.
+        let t = std::time::Instant::now();
+        let model = needlesim_core::fixtures::box_phantom3(21);
+        let t_model = t.elapsed();
+        let mesh = model.mesh();
+        let regions = vec![0; mesh.n_tets()];
+        let tets: Vec<[usize; 4]> = mesh.tets().to_vec();
+        // A needle 40 mm into the top centre, slightly off the grid lines: 20 points 2 mm apart,
+        // each dragging the tissue down (−z: pushing in) and sideways, the tip's point the most.
+        let contacts: Vec<Contact> = (0..20)
+            .map(|k| {
+                let z = 0.0995 - 0.002 * k as f64;
+                let tip = if k == 19 { 10.0 } else { 1.0 };
+                ([0.0503, 0.0498, z], [0.01, 0.004, -0.02 * tip])
+            })
+            .collect();
+        let p = Probe3 {
+            origin_m: [0.0, 0.0498, 0.1],
+            e_u: [1.0, 0.0, 0.0],
+            e_v: [0.0, 0.0, -1.0],
+            pixel_m: 0.1 / 256.0,
+            width: 256,
+            height: 256,
+            thickness_m: 2e-3,
+        };
+        let scene = SliceScene3 {
+            region_gain: &[0.7],
+            targets: &[([0.05, 0.05, 0.05], 0.002)],
+            needle_m: Some(([0.0503, 0.0498, 0.105], [0.0503, 0.0498, 0.0615])),
+            needle_halfwidth_px: 1.0,
+            speckle_m: 3e-4,
+            seed: 1,
+        };
+        let mut deformed = DeformedTissue3::new(&model);
+        let (mut solve, mut render, mut total) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..100 {
+            // A new tick each time: the forces change a little.
+            let f = 1.0 + 1e-3 * i as f64;
+            let t0 = std::time::Instant::now();
+            let u = deformed.solve(&model, contacts.iter().map(|&(x, g)| (x, g.map(|v| v * f)))).unwrap();
+            let t1 = std::time::Instant::now();
+            let img = render_slice_3d(mesh.nodes_m(), u, &tets, &regions, &scene, &p, &mut scratch);
+            let t2 = std::time::Instant::now();
+            assert_eq!(img.pixels.len(), 256 * 256);
+            solve.push((t1 - t0).as_secs_f64() * 1e6);
+            render.push((t2 - t1).as_secs_f64() * 1e6);
+            total.push((t2 - t0).as_secs_f64() * 1e6);
+        }
+        let umax = deformed.displacement_m().iter().flatten().fold(0.0_f64, |a, v| a.max(v.abs()));
+        println!(
+            "3D live image, cube-phantom-3d ({} nodes, {} tetrahedra, factor nnz {}, model built in {:.2} s), 20 contacts, max |u| {:.2} mm:",
+            mesh.n_nodes(),
+            mesh.n_tets(),
+            model.cholesky().factor_nnz(),
+            t_model.as_secs_f64(),
+            umax * 1e3
+        );
+        for (what, times) in [("solve", &mut solve), ("render 256x256", &mut render), ("solve + render", &mut total)] {
+            times.sort_by(f64::total_cmp);
+            println!(
+                "  {what}: p50 {:.0} us, p99 {:.0} us, max {:.0} us (n = {})",
+                pct(times, 0.5),
+                pct(times, 0.99),
+                pct(times, 1.0),
+                times.len()
+            );
+        }
     }
 }

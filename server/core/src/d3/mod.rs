@@ -4,7 +4,8 @@
 //! tetrahedron holds a point, and its barycentric weights), [`assembly`] (3D Hooke, element
 //! matrices, sparse $K$, stresses), [`statics`] (static solves with world, local-frame and
 //! material-point conditions, reactions), [`tissue`] (one factorisation of $K_{ff}$, compliance
-//! columns of a node and the point compliance on demand) and [`sparse_compliance`] (node and point
+//! columns of a node, the point compliance on demand, and every node's displacement under point
+//! loads by one solve) and [`sparse_compliance`] (node and point
 //! compliance blocks from sparse forward solves along elimination-tree paths, without full columns). Gmsh files with tetrahedra are read by
 //! [`crate::msh::parse_msh3d`].
 //!

@@ -8,6 +8,13 @@
 //! once its [`TetColumnScratch`] exists). A material point $x$ in a tetrahedron with nodes $k_i$ and
 //! weights $N_i(x)$ ([`TetTissueModel::locate`]) has the block
 //! $W_{ab} = \sum_{i,j} N_{a,i} N_{b,j}\, C_{k_{a,i} k_{b,j}}$ (3 × 3 blocks of $C$).
+//!
+//! The displacement of every node under point loads $f_i$ at material points $X_i$ (the needle's
+//! contacts of one tick) is one solve with the same factor
+//! ([`TetTissueModel::displacement_for_point_loads_into`]):
+//! $$u = C\,F = K_{ff}^{-1} F, \qquad F = P^\top f = \sum_i \sum_{a} N_a(X_i)\, e_{k_a(X_i)} \otimes f_i,$$
+//! i.e. $u = \sum_i \sum_a N_a(X_i)\, C_{\cdot, k_a} f_i$ without forming a column — cost
+//! $O(\mathrm{nnz}(L))$ however many points, and by linearity $P u = W f$ at the points themselves.
 
 use faer::Mat;
 use faer::sparse::SparseColMat;
@@ -32,6 +39,15 @@ pub enum TetTissueError {
     /// A point lies outside the mesh (point compliance).
     #[error("working point {point_idx}: {source}")]
     Locate { point_idx: usize, source: LocateError },
+    /// Point loads: the number of forces is not the number of points.
+    #[error("{n_forces} forces for {n_points} load points: one force per point")]
+    LoadCount { n_points: usize, n_forces: usize },
+    /// Point loads: a force has a NaN or infinite component.
+    #[error("the force {force_n:?} N at load point {point_idx} is not finite")]
+    NonFiniteForce { point_idx: usize, force_n: [f64; 3] },
+    /// Point loads: the output slice does not hold one value per DOF.
+    #[error("the displacement output holds {len} values; the model has {n_dofs} DOFs")]
+    OutputLength { len: usize, n_dofs: usize },
     /// The factorisation failed (at construction; rigid-body motion, for example).
     #[error(transparent)]
     Factor(#[from] FactorError),
@@ -49,7 +65,8 @@ pub struct TetTissueModel {
     locator: TetLocator,
 }
 
-/// Scratch for [`TetTissueModel::compliance_columns_into`]; allocate once per thread.
+/// Scratch for [`TetTissueModel::compliance_columns_into`] and
+/// [`TetTissueModel::displacement_for_point_loads_into`]; allocate once per thread.
 pub struct TetColumnScratch {
     rhs: Mat<f64>,
     chol: CholeskyScratch,
@@ -145,6 +162,59 @@ impl TetTissueModel {
             return Err(TetTissueError::UnknownNode { node_idx, n_nodes });
         }
         self.chol.node_columns_into(node_idx, out, &mut scratch.rhs, &mut scratch.chol);
+        Ok(())
+    }
+
+    /// Writes into `out_m` (length $3n$, DOF $3\cdot\mathrm{node} + \mathrm{axis}$, m) the
+    /// displacement of every node under the point loads `forces_n[i]` (N, world) at the located
+    /// material points `points[i]`: $u = K_{ff}^{-1} P^\top f$ (module docs), zero at fixed DOFs.
+    /// One sparse solve of one right-hand side, cost $O(\mathrm{nnz}(L))$ whatever the number of
+    /// points; allocates nothing. Loads on a fixed node's DOFs go to the support (they move
+    /// nothing). No points: $u = 0$.
+    ///
+    /// Errors (nothing is written): [`TetTissueError::LoadCount`] when `forces_n` and `points`
+    /// differ in length, [`TetTissueError::OutputLength`] when `out_m` is not $3n$ long,
+    /// [`TetTissueError::UnknownNode`] when a point names a node the mesh does not have, and
+    /// [`TetTissueError::NonFiniteForce`] when a force component is NaN or infinite.
+    pub fn displacement_for_point_loads_into(
+        &self,
+        points: &[PointLocation],
+        forces_n: &[[f64; 3]],
+        out_m: &mut [f64],
+        scratch: &mut TetColumnScratch,
+    ) -> Result<(), TetTissueError> {
+        let (n_nodes, n_dofs) = (self.mesh.n_nodes(), self.n_dofs());
+        if points.len() != forces_n.len() {
+            return Err(TetTissueError::LoadCount { n_points: points.len(), n_forces: forces_n.len() });
+        }
+        if out_m.len() != n_dofs {
+            return Err(TetTissueError::OutputLength { len: out_m.len(), n_dofs });
+        }
+        for (point_idx, (p, f)) in points.iter().zip(forces_n).enumerate() {
+            if let Some(&node_idx) = p.nodes.iter().find(|&&v| v >= n_nodes) {
+                return Err(TetTissueError::UnknownNode { node_idx, n_nodes });
+            }
+            if !f.iter().all(|x| x.is_finite()) {
+                return Err(TetTissueError::NonFiniteForce { point_idx, force_n: *f });
+            }
+        }
+        let dofs = self.chol.dofs();
+        let mut rhs = scratch.rhs.as_mut().subcols_mut(0, 1);
+        rhs.fill(0.0);
+        for (p, f) in points.iter().zip(forces_n) {
+            for (&node, &weight) in p.nodes.iter().zip(&p.weights) {
+                for (axis, &f_axis) in f.iter().enumerate() {
+                    if let Some(free) = dofs.free_index(3 * node + axis) {
+                        rhs[(free, 0)] += weight * f_axis;
+                    }
+                }
+            }
+        }
+        self.chol.solve_in_place(rhs.as_mut(), &mut scratch.chol);
+        out_m.fill(0.0);
+        for (free, &dof) in dofs.free_dofs().iter().enumerate() {
+            out_m[dof] = rhs[(free, 0)];
+        }
         Ok(())
     }
 
@@ -307,6 +377,128 @@ mod tests {
         }
         let e = m.point_compliance_at(&[[0.0, 0.0, 0.5]]).unwrap_err();
         assert!(e.to_string().starts_with("working point 0: the point"), "{e}");
+    }
+
+    /// The displacement under point loads (one solve) equals $\sum_i \sum_a N_a C_{\cdot,a} f_i$
+    /// built from the compliance columns, at every DOF (the surface nodes among them: the session's
+    /// surface field is this sum restricted to them), is zero at the fixed DOFs, and at the points
+    /// themselves equals $W f$ with the point compliance.
+    #[test]
+    fn point_load_displacement_is_the_sum_of_compliance_columns() {
+        let m = model();
+        let n_dofs = m.n_dofs();
+        // Three points inside, one in a tetrahedron touching the fixed bottom (z = 4 mm).
+        let xs = [[0.031, 0.042, 0.077], [0.051, 0.011, 0.033], [0.0712, 0.0555, 0.004], [0.0499, 0.0401, 0.0903]];
+        let forces = [[0.3, -0.1, -0.8], [-0.05, 0.2, 0.4], [0.1, 0.1, -0.6], [0.0, -0.25, 0.15]];
+        let locs: Vec<PointLocation> = xs.iter().map(|&x| m.locate(x).unwrap()).collect();
+        assert!(locs.iter().any(|l| l.nodes.iter().any(|&v| m.is_fixed(v))), "a point next to the support");
+        let mut scratch = m.column_scratch();
+        let mut u = vec![f64::NAN; n_dofs];
+        m.displacement_for_point_loads_into(&locs, &forces, &mut u, &mut scratch).unwrap();
+        let mut want = vec![0.0; n_dofs];
+        let mut cols = vec![0.0; 3 * n_dofs];
+        for (l, f) in locs.iter().zip(&forces) {
+            for (&node, &weight) in l.nodes.iter().zip(&l.weights) {
+                m.compliance_columns_into(node, &mut cols, &mut scratch).unwrap();
+                for (axis, &fa) in f.iter().enumerate() {
+                    for (w, c) in want.iter_mut().zip(&cols[axis * n_dofs..(axis + 1) * n_dofs]) {
+                        *w += weight * fa * c;
+                    }
+                }
+            }
+        }
+        let scale = want.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+        assert!(scale > 1e-6, "the loads move the tissue: {scale} m");
+        for d in 0..n_dofs {
+            assert!((u[d] - want[d]).abs() <= 1e-12 * scale, "dof {d}: {} vs {}", u[d], want[d]);
+            if m.is_fixed(d / 3) {
+                assert_eq!(u[d], 0.0, "fixed dof {d}");
+            }
+        }
+        // At the points: P u = W f.
+        let w = m.point_compliance(&locs).unwrap();
+        let f: Vec<f64> = forces.iter().flatten().copied().collect();
+        for (a, l) in locs.iter().enumerate() {
+            for r in 0..3 {
+                let pu: f64 = (0..4).map(|k| l.weights[k] * u[3 * l.nodes[k] + r]).sum();
+                let wf: f64 = (0..f.len()).map(|j| w[(3 * a + r) * f.len() + j] * f[j]).sum();
+                assert!((pu - wf).abs() <= 1e-12 * scale, "point {a} axis {r}: {pu} vs {wf}");
+            }
+        }
+        // No points: no displacement, over whatever was there.
+        m.displacement_for_point_loads_into(&[], &[], &mut u, &mut scratch).unwrap();
+        assert!(u.iter().all(|&v| v == 0.0));
+    }
+
+    /// Bad input to the point-load solve is refused with the error naming it, and nothing is written.
+    #[test]
+    fn point_load_errors() {
+        let m = model();
+        let n_dofs = m.n_dofs();
+        let mut scratch = m.column_scratch();
+        let good = m.locate([0.05, 0.04, 0.05]).unwrap();
+        let mut u = vec![7.0; n_dofs];
+        let e = m.displacement_for_point_loads_into(&[good, good], &[[0.0; 3]], &mut u, &mut scratch).unwrap_err();
+        assert_eq!(e, TetTissueError::LoadCount { n_points: 2, n_forces: 1 });
+        let e = m.displacement_for_point_loads_into(&[good], &[[0.0; 3]], &mut u[1..], &mut scratch).unwrap_err();
+        assert_eq!(e, TetTissueError::OutputLength { len: n_dofs - 1, n_dofs });
+        let bad = PointLocation { nodes: [0, 1, 2, 48], ..good };
+        let e = m.displacement_for_point_loads_into(&[good, bad], &[[0.0; 3]; 2], &mut u, &mut scratch).unwrap_err();
+        assert_eq!(e, TetTissueError::UnknownNode { node_idx: 48, n_nodes: 48 });
+        let e = m.displacement_for_point_loads_into(&[good, good], &[[0.0; 3], [0.0, f64::NAN, 1.0]], &mut u, &mut scratch).unwrap_err();
+        assert!(matches!(e, TetTissueError::NonFiniteForce { point_idx: 1, .. }), "{e:?}");
+        assert!(e.to_string().contains("load point 1"), "{e}");
+        assert!(u.iter().all(|&v| v == 7.0), "nothing written on an error");
+    }
+
+    /// A 3D insertion's contact points sit where the one solve puts the tissue: interpolating
+    /// $u = K_{ff}^{-1} P^\top f$ of the tick's contact forces at each contact's reference
+    /// position gives its deformed position $x_i - X_i$ (the simulation's own displacements, from
+    /// its point compliance); and the shared model solves the same from another thread.
+    #[test]
+    fn point_load_displacement_puts_the_contacts_where_the_simulation_has_them() {
+        use crate::fixtures::{box_phantom3, box_phantom3_params};
+        use crate::sim3::{BasePose3, Simulation3};
+        let model = box_phantom3(9);
+        let mut sim = Simulation3::new(model.clone(), box_phantom3_params([0.0513, 0.0487, 0.1], 0.005)).unwrap();
+        let start = sim.pose();
+        let p0 = start.position_m;
+        // 40 mm down, then 1.5 mm sideways (lateral loads too).
+        for k in 1..=2000 {
+            sim.step(BasePose3::from_rotation([p0[0], p0[1], p0[2] - 2e-5 * k as f64], start.orientation)).unwrap();
+            sim.prefetch_columns(usize::MAX).unwrap();
+        }
+        for k in 1..=150 {
+            sim.step(BasePose3::from_rotation([p0[0] + 1e-5 * k as f64, p0[1], p0[2] - 0.04], start.orientation)).unwrap();
+            sim.prefetch_columns(usize::MAX).unwrap();
+        }
+        let out = sim.output();
+        assert!(out.contacts.len() >= 2, "the needle holds points: {}", out.contacts.len());
+        let locs: Vec<PointLocation> = out.contacts.iter().map(|c| model.locate(c.x_ref_m).unwrap()).collect();
+        let forces: Vec<[f64; 3]> = out.contacts.iter().map(|c| c.force_n).collect();
+        let mut u = vec![0.0; model.n_dofs()];
+        model.displacement_for_point_loads_into(&locs, &forces, &mut u, &mut model.column_scratch()).unwrap();
+        let (mut err, mut size, mut lateral) = (0.0_f64, 0.0_f64, 0.0_f64);
+        for (c, l) in out.contacts.iter().zip(&locs) {
+            for r in 0..3 {
+                let at: f64 = (0..4).map(|k| l.weights[k] * u[3 * l.nodes[k] + r]).sum();
+                let want = c.x_m[r] - c.x_ref_m[r];
+                err = err.max((at - want).abs());
+                size = size.max(want.abs());
+            }
+            lateral = lateral.max(c.force_n[0].abs());
+        }
+        assert!(size > 1e-4 && lateral > 1e-3, "the tissue moved ({size} m) under lateral loads ({lateral} N)");
+        assert!(err <= 1e-9 * size, "contacts off their solved positions by {err:e} m (displacements up to {size:e} m)");
+        let (m2, l2, f2) = (model.clone(), locs.clone(), forces.clone());
+        let other = std::thread::spawn(move || {
+            let mut u = vec![0.0; m2.n_dofs()];
+            m2.displacement_for_point_loads_into(&l2, &f2, &mut u, &mut m2.column_scratch()).unwrap();
+            u
+        })
+        .join()
+        .unwrap();
+        assert_eq!(other, u, "the same solve from another thread");
     }
 
     /// Timing on the 21³ box grid (48 000 tetrahedra), bottom fixed; run in release:
