@@ -284,18 +284,24 @@ pub(crate) struct Live3 {
     /// The duty-cycled spin ([`crate::spin`]): the command word in force and the roll's state.
     pub(crate) spin_word: u64,
     pub(crate) spin: SpinState,
-    /// The pose the last successful step was commanded, before the spin's roll (the needle's
-    /// applied pose is this one rolled); `None` before the first step.
-    pub(crate) commanded: Option<BasePose3>,
+    /// The spin's roll (rad) in the pose of the last successful step: [`LiveSim::pose`] takes it
+    /// off again.
+    pub(crate) applied_roll_rad: f64,
 }
 
 impl LiveSim for Live3 {
     type Pose = BasePose3;
 
-    /// The commanded pose (before the spin's roll): what the loop holds, and what a device
-    /// catches up with, so that holding the needle never adds the roll twice.
+    /// The pose the last step applied without the spin's roll (the needle's pose itself when it
+    /// does not spin): what the loop holds and what a device catches up with, so that holding
+    /// the needle never adds the roll twice.
     fn pose(&self) -> BasePose3 {
-        self.commanded.unwrap_or_else(|| self.sim.pose())
+        let p = self.sim.pose();
+        if self.applied_roll_rad == 0.0 {
+            return p;
+        }
+        let unroll = nalgebra::UnitQuaternion::from_axis_angle(&nalgebra::Vector3::x_axis(), -self.applied_roll_rad);
+        BasePose3::from_rotation(p.position_m, p.orientation * unroll)
     }
 
     fn pose_from_device(&self, p: &DevicePose) -> Option<BasePose3> {
@@ -359,7 +365,7 @@ impl LiveSim for Live3 {
         self.spin.apply_from_rt(self.spin_word, &mut rolled);
         match self.sim.step(rolled) {
             Ok(out) => {
-                self.commanded = Some(pose);
+                self.applied_roll_rad = self.spin.roll_rad();
                 rec.fill_from_rt3(out, &self.radii_m);
                 Ok(())
             }

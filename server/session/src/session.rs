@@ -291,7 +291,7 @@ impl Session {
             refused_payloads: 0,
             spin_word: 0,
             spin: SpinState::default(),
-            commanded: None,
+            applied_roll_rad: 0.0,
         };
         let launch = Launch {
             id,
