@@ -135,6 +135,11 @@ pub enum SimError3 {
     /// a request or the factor.
     #[error(transparent)]
     Sparse(#[from] SparseComplianceError),
+    /// At [`Simulation3::wrench_stiffness`] of a flexible needle: rod and tissue in series,
+    /// $I + H_{PP}\tilde G_{PP}$, has a pivot below 1e-14 of its largest entry (not expected:
+    /// both compliances are positive semidefinite and the tissue's definite).
+    #[error("tick {tick}: the flexible needle's stiffness is singular (smallest relative pivot {pivot:e})")]
+    SingularRodCoupling { tick: u64, pivot: f64 },
     /// At [`Simulation3::pin_node`]: the node does not exist.
     #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
     UnknownNode { node_idx: usize, n_nodes: usize },
@@ -407,7 +412,7 @@ impl Simulation3 {
             column_buf,
             column_scratch: None,
             out,
-            stiffness: stiffness::StiffnessScratch::with_capacity(cap),
+            stiffness: stiffness::StiffnessScratch::with_capacity(cap, flex.is_some()),
             targets,
             flex,
             model,
