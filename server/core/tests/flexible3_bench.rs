@@ -23,7 +23,10 @@
 //! | tilt | 500 | the base turned 4° about world y through the entry point |
 //! | withdraw | 3250 | 65 mm back at 20 mm/s |
 //!
-//! Columns are prefetched between steps (not timed); no step computes one (asserted).
+//! Every 10 ticks with points held, the wrench stiffness (what the live session refreshes for a
+//! device's local model; a flexible needle's has the rod in series) is timed apart and together
+//! with its tick's step. Columns are prefetched between steps (not timed); no step computes one
+//! (asserted).
 
 use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
 use needlesim_core::needle::FlexibleNeedle;
@@ -84,6 +87,7 @@ fn bench(label: &str, needle: Option<NeedleShape3>) -> Vec<String> {
     }
     let mut all = Times::default();
     let mut phases: Vec<Times> = PHASES.iter().map(|_| Times::default()).collect();
+    let (mut stiffness, mut with_stiffness) = (Times::default(), Times::default());
     let (mut max_d, mut capped) = (0, 0);
     let load_before = load_avg();
     for (k, (phase, p)) in poses.iter().enumerate() {
@@ -93,6 +97,13 @@ fn bench(label: &str, needle: Option<NeedleShape3>) -> Vec<String> {
         capped += usize::from(!converged);
         all.push(dt, pre);
         phases[*phase].push(dt, pre);
+        // The device's local model: the wrench stiffness every 10 ticks, as the live session.
+        if k % 10 == 0 && d > 0 {
+            let (r, dk, pk) = timed(|| sim.wrench_stiffness().map(|_| ()));
+            r.unwrap_or_else(|e| panic!("{label}, tick {k}: {e}"));
+            stiffness.push(dk, pk);
+            with_stiffness.push(dt + dk, pre || pk);
+        }
         sim.prefetch_columns(usize::MAX).unwrap();
     }
     println!("{label} needle, 21³ cube ({n_nodes} nodes, {n_tets} tets), load average before {load_before}, after {}", load_avg());
@@ -102,6 +113,10 @@ fn bench(label: &str, needle: Option<NeedleShape3>) -> Vec<String> {
         println!("  {name}: {}", t.summary());
         rows.push(format!("| {label} | {name} | {} |", t.row()));
     }
+    println!("  wrench stiffness (every 10 ticks): {}", stiffness.summary());
+    println!("  step + stiffness on those ticks: {}", with_stiffness.summary());
+    rows.push(format!("| {label} | wrench stiffness | {} |", stiffness.row()));
+    rows.push(format!("| {label} | step + stiffness | {} |", with_stiffness.row()));
     println!(
         "  up to {max_d} points; unconverged ticks {capped}; shape passes beyond the first, unconverged shapes: {:?}; {:?}",
         sim.shape_stats(),
