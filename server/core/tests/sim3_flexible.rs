@@ -1,8 +1,9 @@
 //! The flexible and bevel-tip needle in 3D (issue 18) on the cube phantom: a stiff flexible
-//! needle gives the rigid needle over an insertion with a tilted base and a roll; no allocation
-//! in a warm step; a bevel needle follows an arc in its bevel's plane, bends back when rolled
-//! 180°, into the new plane when rolled 90°; duty-cycled spinning scales the bevel's curvature
-//! by $1 - \delta$.
+//! needle gives the rigid needle over an insertion with a tilted base and a roll, up to the rod's
+//! own bending (the cantilever's, $\propto 1/EI$); no allocation in a warm step; a bevel needle
+//! follows an arc in its bevel's plane, bends back when rolled 180°, into the new plane when
+//! rolled 90°; duty-cycled spinning scales the bevel's curvature by $1 - \delta$; the flexible
+//! needle's wrench stiffness (rod and tissue in series) against central differences.
 
 use nalgebra::UnitQuaternion;
 use needlesim_alloc_count::{CountingAlloc, count_on_this_thread, thread_allocations};

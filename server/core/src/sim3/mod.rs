@@ -62,7 +62,8 @@
 //! problem the last step solved in the terms of the 3D exchange format's `points`.
 //!
 //! Besides: the stiffness of the base wrench for a device's local model
-//! ([`Simulation3::wrench_stiffness`], [`stiffness`]), and targets moving with the tissue, hit
+//! ([`Simulation3::wrench_stiffness`], [`stiffness`]; a flexible needle's rod in series with the
+//! tissue), and targets moving with the tissue, hit
 //! or miss latched, updated after stage 7 ([`targets`]).
 
 mod flex;
