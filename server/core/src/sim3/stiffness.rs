@@ -38,7 +38,7 @@
 //!
 //! **Flexible needle.** The held points sit on the rod, which bends under their forces: the
 //! coupled solve prescribes $e_a\cdot u_i = g_k - \sum_{l} G_{kl}\,(\varphi_l - \varphi^{ref}_l)$
-//! on the lateral DOFs ([`super::flex`]: $g_k = e_a\cdot(c_i - X_i)$, $c_i$ the point's place on
+//! on the lateral DOFs (`sim3/flex.rs`: $g_k = e_a\cdot(c_i - X_i)$, $c_i$ the point's place on
 //! the rod, $G$ the rod's tangent lateral compliance between the points' $n$, $b$, the
 //! reference forces held in the points' frames). The clamp moves the rod as
 //! [`crate::rod3::Rod3::set_base`] does: the swing $\theta_\perp = \theta - \phi\,t$ (across the
@@ -394,7 +394,7 @@ impl Simulation3 {
     ///
     /// A flexible needle: its rod moved with the clamp (its shape in the base frame kept), every
     /// point's frame turned to the rod's, the values put the points on it, and one coupled solve
-    /// with the rod's tangent compliance at the reference forces ([`super::flex`]) — the
+    /// with the rod's tangent compliance at the reference forces (`sim3/flex.rs`) — the
     /// linearised equilibrium [`Self::wrench_stiffness`] differentiates; at the step's pose it
     /// differs from the step's wrench by what the step's last shape update left
     /// ([`super::SHAPE_GAP_TOL_M`] at most between points and rod).
