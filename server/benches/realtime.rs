@@ -27,7 +27,10 @@
 //! Options: `--seconds S`, `--observers N[,N…]`, `--driver device|grpc`, `--spin-margin-us M`,
 //! `--phase-lead-us L`, `--scene NAME` (a shipped example; `cube-phantom-3d` is the 3D session on
 //! the 48,000-tetrahedron cube: the bridge replays its 6-DOF example motion, or `--driver grpc`
-//! drives it through the Control3 stream).
+//! drives it through the Control3 stream), `--needle flexible|bevel` (a 3D example's needle
+//! replaced, the scene sent as TOML: `flexible`, the gauge's steel rod, symmetric tip; `bevel`,
+//! the thin bevel-tip needle of behind-vessel-bevel-3d — 0.64 mm, EI = 5e-4 N·m², bevel force
+//! ratio 0.5 —; the bridge still replays the example's motion).
 
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -60,6 +63,8 @@ struct Options {
     spin_margin_us: Option<u64>,
     phase_lead_us: Option<u64>,
     scene: String,
+    /// `flexible` or `bevel`: the 3D example's needle replaced (module docs).
+    needle: Option<String>,
 }
 
 fn parse_options() -> Options {
@@ -70,6 +75,7 @@ fn parse_options() -> Options {
         spin_margin_us: None,
         phase_lead_us: None,
         scene: "paper-phantom".into(),
+        needle: None,
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -84,11 +90,46 @@ fn parse_options() -> Options {
             "--spin-margin-us" => o.spin_margin_us = Some(value("--spin-margin-us").parse().expect("--spin-margin-us M")),
             "--phase-lead-us" => o.phase_lead_us = Some(value("--phase-lead-us").parse().expect("--phase-lead-us L")),
             "--scene" => o.scene = value("--scene"),
+            "--needle" => o.needle = Some(value("--needle")),
             other => panic!("unknown argument {other:?} (see the header of server/benches/realtime.rs)"),
         }
     }
     assert!(o.driver == "device" || o.driver == "grpc", "--driver device|grpc, not {:?}", o.driver);
+    assert!(matches!(o.needle.as_deref(), None | Some("flexible" | "bevel")), "--needle flexible|bevel, not {:?}", o.needle);
     o
+}
+
+/// The session's scene: the shipped example, or with `--needle` its TOML (a 3D example's,
+/// server/scenes/NAME.toml) with the `[needle]` table's model keys put in and its trajectory
+/// key dropped (the bridge reads the motion itself; a TOML sent to the server names no file).
+fn scene_source(opts: &Options) -> pb::SceneSource {
+    let Some(needle) = opts.needle.as_deref() else {
+        return pb::SceneSource { source: Some(pb::scene_source::Source::Example(opts.scene.clone())) };
+    };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{}.toml", opts.scene));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("--needle needs a shipped 3D scene: {}: {e}", path.display()));
+    assert!(text.lines().any(|l| l.trim() == "dim = 3"), "--needle applies to 3D scenes; {} is not one", path.display());
+    assert!(text.lines().any(|l| l.trim() == "[needle]"), "{} has no [needle] table", path.display());
+    let keys: &[&str] = match needle {
+        "flexible" => &["model = \"flexible\""],
+        _ => &["diameter_m = 0.00064", "model = \"flexible\"", "flexural_rigidity_nm2 = 5e-4", "bevel_force_ratio = 0.5"],
+    };
+    let mut out = String::new();
+    for line in text.lines() {
+        let key = line.split('=').next().unwrap_or("").trim();
+        if key == "trajectory" || (needle == "bevel" && (key == "gauge" || key == "diameter_m")) {
+            continue;
+        }
+        out.push_str(line);
+        out.push('\n');
+        if line.trim() == "[needle]" {
+            for k in keys {
+                out.push_str(k);
+                out.push('\n');
+            }
+        }
+    }
+    pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(out)) }
 }
 
 /// The server process, killed on drop.
@@ -170,7 +211,7 @@ async fn run_case(ch: tonic::transport::Channel, opts: &Options, port: u16, n_ob
     let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
     let created = sessions
         .create_session(pb::CreateSessionRequest {
-            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(opts.scene.clone())) }),
+            scene: Some(scene_source(opts)),
             tick_rate_hz: 1000.0,
             record: false,
             device_channel: device,
@@ -378,7 +419,7 @@ fn main() {
         env!("CARGO_BIN_EXE_needlesim-server"),
         opts.spin_margin_us.map_or("default".to_owned(), |m| format!("{m} µs")),
         if opts.driver == "device" { " and the bridge's" } else { "" },
-        opts.scene,
+        opts.needle.as_ref().map_or(opts.scene.clone(), |n| format!("{} with the {n} needle", opts.scene)),
         opts.seconds
     );
     println!();

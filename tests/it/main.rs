@@ -20,6 +20,7 @@ mod foxglove;
 mod identify_fit;
 mod identify_track;
 mod plan;
+mod plan3;
 mod python_client;
 mod python_client3d;
 mod python_package;

@@ -21,64 +21,15 @@
 //!
 //! Columns are prefetched between steps (not timed); no step computes one.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use needlesim_core::BasePose;
 use needlesim_core::fixtures::{box_phantom3, box_phantom3_params, phantom_bench};
 use needlesim_core::sim::{ContactModel, SimParams, Simulation};
 use needlesim_core::sim3::{BasePose3, Simulation3};
 
-/// Time this thread waited on a run queue (ns), from `/proc/thread-self/schedstat`: a step
-/// during which it grew was preempted (another process had the core).
-fn run_queue_wait_ns() -> u64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat").ok().and_then(|s| s.split_whitespace().nth(1)?.parse().ok()).unwrap_or(0)
-}
-
-fn load_avg() -> String {
-    std::fs::read_to_string("/proc/loadavg").map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" ")).unwrap_or_default()
-}
-
-/// Step times, each with whether it was preempted.
-#[derive(Default)]
-struct Times {
-    all: Vec<Duration>,
-    calm: Vec<Duration>,
-}
-
-impl Times {
-    fn push(&mut self, dt: Duration, preempted: bool) {
-        self.all.push(dt);
-        if !preempted {
-            self.calm.push(dt);
-        }
-    }
-    /// "p50 / p99 / p99.9 / max µs" of all steps, and p99.9 / max without the preempted ones.
-    fn summary(&mut self) -> String {
-        self.all.sort_unstable();
-        self.calm.sort_unstable();
-        let q = |v: &[Duration], p: f64| v[((v.len() as f64 * p) as usize).min(v.len() - 1)].as_secs_f64() * 1e6;
-        format!(
-            "{} steps: p50 {:.1} / p99 {:.1} / p99.9 {:.1} / max {:.1} µs; without the {} preempted: p99.9 {:.1} / max {:.1} µs",
-            self.all.len(),
-            q(&self.all, 0.5),
-            q(&self.all, 0.99),
-            q(&self.all, 0.999),
-            q(&self.all, 1.0),
-            self.all.len() - self.calm.len(),
-            q(&self.calm, 0.999),
-            q(&self.calm, 1.0)
-        )
-    }
-}
-
-/// Times `f` and whether the thread was preempted meanwhile.
-fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration, bool) {
-    let w0 = run_queue_wait_ns();
-    let t = Instant::now();
-    let r = f();
-    let dt = t.elapsed();
-    (r, dt, run_queue_wait_ns() > w0)
-}
+mod timing;
+use timing::{Times, load_avg, timed};
 
 const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
 

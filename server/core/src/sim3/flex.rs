@@ -68,6 +68,7 @@ pub const SHAPE_GAP_TOL_M: f64 = 1e-6;
 pub const SHAPE_PASSES: usize = 4;
 
 /// The flexible needle's state and scratch, sized for the working set's capacity.
+#[derive(Clone)]
 pub(super) struct Flex3 {
     pub rod: Rod3,
     pub bevel_ratio: f64,
@@ -216,6 +217,19 @@ impl Flex3 {
         if self.g_for == Some(version) {
             return;
         }
+        let mut g = std::mem::take(&mut self.g);
+        self.compliance_into(solver, pts, &mut g);
+        self.g = g;
+        self.g_for = Some(version);
+    }
+
+    /// The rod's tangent lateral compliance $G$ between the points' $n$, $b$ directions (the
+    /// solver's frames) on the current shape carrying the reference forces, into `out` (row-major,
+    /// lateral DOF $2i + c$, stride $2\,$cap; `out` holds at least $(2\,\mathrm{cap})^2$). Leaves
+    /// the shape and the cached $G$ as they are (what [`Simulation3::wrench_stiffness`] reads).
+    ///
+    /// [`Simulation3::wrench_stiffness`]: super::Simulation3::wrench_stiffness
+    pub fn compliance_into(&mut self, solver: &MixedSolver3, pts: &[Point], out: &mut [f64]) {
         self.points.clear();
         self.loads.clear();
         for slot in Slot::all(pts.len()) {
@@ -236,8 +250,12 @@ impl Flex3 {
             self.loads.push((self.rod.length_m(), [0.0, self.tip_load_ref_n[0], self.tip_load_ref_n[1]]));
         }
         let stride = 2 * self.cap;
-        self.rod.tangent_compliance_into(&self.points, &self.loads, &mut self.g, stride);
-        self.g_for = Some(version);
+        self.rod.tangent_compliance_into(&self.points, &self.loads, out, stride);
+    }
+
+    /// The stride of [`Self::compliance_into`]'s rows.
+    pub fn compliance_stride(&self) -> usize {
+        2 * self.cap
     }
 
     /// The coupled solve of the working set (module docs).

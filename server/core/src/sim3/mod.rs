@@ -62,7 +62,8 @@
 //! problem the last step solved in the terms of the 3D exchange format's `points`.
 //!
 //! Besides: the stiffness of the base wrench for a device's local model
-//! ([`Simulation3::wrench_stiffness`], [`stiffness`]), and targets moving with the tissue, hit
+//! ([`Simulation3::wrench_stiffness`], [`stiffness`]; a flexible needle's rod in series with the
+//! tissue), and targets moving with the tissue, hit
 //! or miss latched, updated after stage 7 ([`targets`]).
 
 mod flex;
@@ -135,6 +136,11 @@ pub enum SimError3 {
     /// a request or the factor.
     #[error(transparent)]
     Sparse(#[from] SparseComplianceError),
+    /// At [`Simulation3::wrench_stiffness`] of a flexible needle: rod and tissue in series,
+    /// $I + H_{PP}\tilde G_{PP}$, has a pivot below 1e-14 of its largest entry (not expected:
+    /// both compliances are positive semidefinite and the tissue's definite).
+    #[error("tick {tick}: the flexible needle's stiffness is singular (smallest relative pivot {pivot:e})")]
+    SingularRodCoupling { tick: u64, pivot: f64 },
     /// At [`Simulation3::pin_node`]: the node does not exist.
     #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
     UnknownNode { node_idx: usize, n_nodes: usize },
@@ -407,7 +413,7 @@ impl Simulation3 {
             column_buf,
             column_scratch: None,
             out,
-            stiffness: stiffness::StiffnessScratch::with_capacity(cap),
+            stiffness: stiffness::StiffnessScratch::with_capacity(cap, flex.is_some()),
             targets,
             flex,
             model,

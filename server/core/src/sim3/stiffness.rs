@@ -36,6 +36,30 @@
 //! answer to the forces turning with the frame (the slipping friction and the reactions), and
 //! $\delta u_i - \delta x_b$ the motion of the lever arm, both its ends.
 //!
+//! **Flexible needle.** The held points sit on the rod, which bends under their forces: the
+//! coupled solve prescribes $e_a\cdot u_i = g_k - \sum_{l} G_{kl}\,(\varphi_l - \varphi^{ref}_l)$
+//! on the lateral DOFs (`sim3/flex.rs`: $g_k = e_a\cdot(c_i - X_i)$, $c_i$ the point's place on
+//! the rod, $G$ the rod's tangent lateral compliance between the points' $n$, $b$, the
+//! reference forces held in the points' frames). The clamp moves the rod as
+//! [`crate::rod3::Rod3::set_base`] does: the swing $\theta_\perp = \theta - \phi\,t$ (across the
+//! base axis $t$) carries the shape rigidly, $\delta c_i = \delta x_b + \theta_\perp\times(c_i - x_b)$;
+//! the roll $\phi = \theta\cdot t$ leaves the centreline where it is and turns every frame about
+//! its own tangent $t_i$ (torsionally rigid). So each point's frame turns by
+//! $\Omega_i = \theta_\perp + \phi\,t_i$ ($= \theta$ for a straight rod), $g = \Omega_i\times f_i$,
+//! $$\rho_k = (\Omega_i\times e_a)\cdot(c_i - x_i) + e_a\cdot\big(\delta x_b + \theta_\perp\times(c_i - x_b) - (W g)_i\big)$$
+//! (the rigid needle's $\rho_k$ when $c_i$ lies on the axis), and the rod's bending enters
+//! through $G$ — rod and tissue in series:
+//! $$(C_{PP} + \tilde G_{PP})\,\delta\varphi_P = \rho_P,\qquad
+//! \delta\varphi_P = (I + H_{PP}\tilde G_{PP})^{-1} H_{PP}\,\rho_P,$$
+//! $\tilde G$ being $G$ on the lateral DOFs of $P$ and zero on the axial ones (the rod is
+//! inextensible); $G$ changes with the pose only at second order ($\varphi = \varphi^{ref}$ at a
+//! settled state). A bevel's tip force is a follower load, turning with the frames like the
+//! slipping friction. The derivative reads the solver's frames, which the step turns to the
+//! rod's only past [`super::FLEX_FRAME_TOL`]: against the re-solve (which turns them exactly) it
+//! agrees to about that lag (tested). One LU of $I + H_{PP}\tilde G_{PP}$ per call,
+//! $O(|P|^3)$, and $G$, $O(N d + d^2)$, in scratch of $(2\,m_{max})^2 + (3\,m_{max})^2$ more
+//! doubles for a flexible needle.
+//!
 //! **Properties** (tested): the force–position block is
 //! $\partial F / \partial x_b = -E_P H_{PP} E_P^\top$, symmetric and negative semidefinite
 //! whatever the active set; a roll about the needle axis ($\theta = t$) changes nothing
@@ -110,11 +134,19 @@ pub(super) struct StiffnessScratch {
     f: Vec<[f64; 3]>,
     r: Vec<[f64; 3]>,
     frame: Vec<[[f64; 3]; 3]>,
+    /// A flexible needle's: the rod's $G$ (stride $2\,$cap), $I + H_{PP}\tilde G_{PP}$ and its
+    /// LU's row swaps (empty for a rigid needle).
+    g_rod: Vec<f64>,
+    m: Vec<f64>,
+    piv: Vec<usize>,
+    /// A flexible needle's: each point's reference point on the rod, $c(s_i)$.
+    c: Vec<[f64; 3]>,
 }
 
 impl StiffnessScratch {
-    pub(super) fn with_capacity(cap_points: usize) -> Self {
+    pub(super) fn with_capacity(cap_points: usize, flexible: bool) -> Self {
         let d = 3 * cap_points;
+        let (g_len, m_len, piv_len) = if flexible { (4 * cap_points * cap_points, d * d, d) } else { (0, 0, 0) };
         Self {
             w: vec![0.0; d * d],
             p_dofs: Vec::with_capacity(d),
@@ -127,7 +159,69 @@ impl StiffnessScratch {
             f: vec![[0.0; 3]; cap_points],
             r: vec![[0.0; 3]; cap_points],
             frame: vec![[[0.0; 3]; 3]; cap_points],
+            g_rod: vec![0.0; g_len],
+            m: vec![0.0; m_len],
+            piv: vec![0; piv_len],
+            c: vec![[0.0; 3]; if flexible { cap_points } else { 0 }],
         }
+    }
+}
+
+/// Factorises the row-major `n × n` matrix `a` in place as $P A = L U$ (partial pivoting; `L`
+/// unit lower, below the diagonal; `piv[p]` the row swapped with row `p` at step `p`). Returns
+/// the smallest pivot's magnitude relative to the largest entry (0 for a singular matrix).
+fn lu_factor(a: &mut [f64], piv: &mut [usize], n: usize) -> f64 {
+    let scale = a[..n * n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut smallest = f64::INFINITY;
+    for p in 0..n {
+        let mut best = p;
+        for r in p + 1..n {
+            if a[r * n + p].abs() > a[best * n + p].abs() {
+                best = r;
+            }
+        }
+        piv[p] = best;
+        if best != p {
+            for c in 0..n {
+                a.swap(p * n + c, best * n + c);
+            }
+        }
+        let d = a[p * n + p];
+        smallest = smallest.min(d.abs());
+        if d == 0.0 {
+            continue;
+        }
+        for r in p + 1..n {
+            let f = a[r * n + p] / d;
+            a[r * n + p] = f;
+            if f != 0.0 {
+                for c in p + 1..n {
+                    a[r * n + c] -= f * a[p * n + c];
+                }
+            }
+        }
+    }
+    if n == 0 { 1.0 } else { smallest / scale.max(f64::MIN_POSITIVE) }
+}
+
+/// Solves $A x = b$ in place (`b` becomes `x`) with [`lu_factor`]'s factors.
+fn lu_solve(a: &[f64], piv: &[usize], b: &mut [f64], n: usize) {
+    for p in 0..n {
+        b.swap(p, piv[p]);
+    }
+    for r in 0..n {
+        let mut v = b[r];
+        for c in 0..r {
+            v -= a[r * n + c] * b[c];
+        }
+        b[r] = v;
+    }
+    for r in (0..n).rev() {
+        let mut v = b[r];
+        for c in r + 1..n {
+            v -= a[r * n + c] * b[c];
+        }
+        b[r] = v / a[r * n + r];
     }
 }
 
@@ -150,6 +244,7 @@ impl Simulation3 {
         let m = self.solver.n_nodes();
         let d = 3 * m;
         let base = self.pose.position_m;
+        let frame0 = self.pose.frame();
         let s = &mut self.stiffness;
         let solver = &self.solver;
         let contacts = solver.contacts();
@@ -178,6 +273,41 @@ impl Simulation3 {
             }
         }
         let np = s.p_dofs.len();
+        // A flexible needle: the rod in series (module docs), M = I + H_PP G̃_PP factorised once.
+        let flexible = match self.flex.as_mut() {
+            None => false,
+            Some(fx) => {
+                for (i, p) in self.pts.iter().enumerate() {
+                    s.c[i] = fx.rod.point_at(fx.s_ref(p));
+                }
+                fx.compliance_into(solver, &self.pts, &mut s.g_rod);
+                let stride = fx.compliance_stride();
+                // G̃ between local DOFs k = 3i + a and l = 3j + b: G's lateral DOFs 2i + a − 1.
+                let g_rod = &s.g_rod;
+                let lateral = |k: usize| Axis::of_local_dof::<3>(k) != Axis::Axial;
+                let gt = |k: usize, l: usize| {
+                    if lateral(k) && lateral(l) { g_rod[(2 * (k / 3) + k % 3 - 1) * stride + 2 * (l / 3) + l % 3 - 1] } else { 0.0 }
+                };
+                for q in 0..np {
+                    let k = s.p_dofs[q];
+                    for r in 0..np {
+                        let l = s.p_dofs[r];
+                        let mut v = if q == r { 1.0 } else { 0.0 };
+                        for &e in &s.p_dofs {
+                            if lateral(e) {
+                                v += solver.hybrid(k, e) * gt(e, l);
+                            }
+                        }
+                        s.m[q * np + r] = v;
+                    }
+                }
+                let conditioning = lu_factor(&mut s.m[..np * np], &mut s.piv[..np], np);
+                if !(conditioning > 1e-14) {
+                    return Err(SimError3::SingularRodCoupling { tick: self.tick, pivot: conditioning });
+                }
+                true
+            }
+        };
         let mut matrix = [[0.0; 6]; 6];
         for c in 0..6 {
             let mut dx = [0.0; 3];
@@ -188,9 +318,15 @@ impl Simulation3 {
                 theta[c - 3] = 1.0;
             }
             let rotating = c >= 3;
-            // g = θ × f and W g.
+            // Each point's frame turns by Ω_i: θ for a rigid needle; for a flexible one the
+            // swing θ_⊥ and the roll φ about the point's own tangent (module docs).
+            let axis = frame0[0];
+            let roll = dot(theta, axis);
+            let swing = sub(theta, axis.map(|v| roll * v));
+            let omega = |i: usize| if flexible { add(swing, s.frame[i][0].map(|v| roll * v)) } else { theta };
+            // g = Ω × f and W g.
             for i in 0..m {
-                let g = cross(theta, s.f[i]);
+                let g = cross(omega(i), s.f[i]);
                 s.g[3 * i..3 * i + 3].copy_from_slice(&g);
             }
             if rotating {
@@ -203,11 +339,20 @@ impl Simulation3 {
                 let i = k / 3;
                 let e = s.frame[i][k % 3];
                 let wg = [s.wg[3 * i], s.wg[3 * i + 1], s.wg[3 * i + 2]];
-                s.rho[q] = dot(e, sub(add(dx, cross(theta, s.r[i])), wg));
+                s.rho[q] = if flexible {
+                    // (Ω_i × e)·(c_i − x_i) + e·(δx_b + θ_⊥ × (c_i − x_b) − (W g)_i).
+                    let c_rel = sub(s.c[i], base);
+                    dot(cross(omega(i), e), sub(c_rel, s.r[i])) + dot(e, sub(add(dx, cross(swing, c_rel)), wg))
+                } else {
+                    dot(e, sub(add(dx, cross(theta, s.r[i])), wg))
+                };
             }
             for q in 0..np {
                 let k = s.p_dofs[q];
                 s.dphi[q] = s.p_dofs.iter().zip(&s.rho[..np]).map(|(&l, &rho)| solver.hybrid(k, l) * rho).sum();
+            }
+            if flexible {
+                lu_solve(&s.m[..np * np], &s.piv[..np], &mut s.dphi[..np], np);
             }
             // δf = g + E_P δφ_P, δu = W δf.
             s.df[..d].copy_from_slice(&s.g[..d]);
@@ -246,6 +391,13 @@ impl Simulation3 {
     ///
     /// Errors: [`SimError3::Pose`] for a non-finite or non-unit `pose`; [`SimError3::Mixed`]
     /// when the solver refuses the turned frames (a singular prescribed direction).
+    ///
+    /// A flexible needle: its rod moved with the clamp (its shape in the base frame kept), every
+    /// point's frame turned to the rod's, the values put the points on it, and one coupled solve
+    /// with the rod's tangent compliance at the reference forces (`sim3/flex.rs`) — the
+    /// linearised equilibrium [`Self::wrench_stiffness`] differentiates; at the step's pose it
+    /// differs from the step's wrench by what the step's last shape update left
+    /// ([`super::SHAPE_GAP_TOL_M`] at most between points and rod).
     #[doc(hidden)]
     pub fn frozen_active_set_wrench(&self, pose: &BasePose3) -> Result<([f64; 3], [f64; 3]), SimError3> {
         pose.check().map_err(|source| SimError3::Pose { tick: self.tick, source })?;
@@ -253,7 +405,15 @@ impl Simulation3 {
         let frame = pose.frame();
         let base = pose.position_m;
         let len = self.params.needle_length_m;
-        for slot in Slot::all(self.pts.len()) {
+        let mut pts = self.pts.clone();
+        if let Some(fx) = &self.flex {
+            let mut fx = fx.clone();
+            fx.rod.set_base(base, frame);
+            fx.refresh_frames(&mut solver, &pts, true)?;
+            fx.set_values(&mut solver, &mut pts);
+            fx.solve(&mut solver, &pts, self.tick);
+        }
+        for slot in Slot::all(self.pts.len()).filter(|_| self.flex.is_none()) {
             solver.set_frame(slot, frame)?;
             let p = &self.pts[slot.index()];
             let dref = sub(p.x_ref_m, base);
@@ -267,9 +427,9 @@ impl Simulation3 {
         }
         solver.solve();
         let (mut force, mut torque) = ([0.0; 3], [0.0; 3]);
-        for slot in Slot::all(self.pts.len()) {
+        for slot in Slot::all(pts.len()) {
             let f = solver.force_world(slot);
-            let x = add(self.pts[slot.index()].x_ref_m, solver.displacement_world(slot));
+            let x = add(pts[slot.index()].x_ref_m, solver.displacement_world(slot));
             let neg = f.map(|v| -v);
             force = add(force, neg);
             torque = add(torque, cross(sub(x, base), neg));
