@@ -86,7 +86,7 @@ enum Command {
     /// h, h/2, h/4, h/8 (the shipped grid is h/2… see `refine` module docs) with each contact
     /// model; peak puncture force, mean cutting force, sawtooth, closest approach.
     Refine {
-        /// Models to compare (default: nodes,points).
+        /// Models to compare: nodes, points, toughness (default: all three).
         #[arg(long, value_delimiter = ',')]
         models: Vec<String>,
         /// Scenes (default: paper-phantom,fig3-target,fig4-steering).
@@ -162,7 +162,7 @@ fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBu
 }
 
 fn run_refine(models: &[String], scenes: &[String], grids: usize) -> Result<()> {
-    let models = if models.is_empty() { vec!["nodes".to_owned(), "points".to_owned()] } else { models.to_vec() };
+    let models = if models.is_empty() { vec!["nodes".to_owned(), "points".to_owned(), "toughness".to_owned()] } else { models.to_vec() };
     let models = models.iter().map(|m| refine::Model::parse(m)).collect::<Result<Vec<_>>>()?;
     let scenes = if scenes.is_empty() { vec!["paper-phantom".into(), "fig3-target".into(), "fig4-steering".into()] } else { scenes.to_vec() };
     let mut studies = Vec::new();

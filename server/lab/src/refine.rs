@@ -8,15 +8,20 @@
 //!   first puncture (the counter [`needlesim_core::sim::SimStats::punctures`] still 0). Before
 //!   it only the tip's contact loads the tissue, so this is the force the surface gave way at.
 //!   The three scenes have one region, so there is no region-boundary puncture to report.
-//! - **mean cutting force** $\bar F_c$ (N): the axial force on the tip's contact
-//!   ($t \cdot f$ of the contact in state `tip`, 0 at ticks with none) averaged over the ticks
-//!   after the first puncture at which the base advances along the needle,
-//!   $\bar F_c = \frac{1}{|K|}\sum_{k \in K} t\cdot f_{tip,k}$. This is the part of the insertion
-//!   force the tip itself carries (friction acts on the shaft's contacts): with node thresholds
-//!   it is a sawtooth whose period is the node spacing, so its mean is what a hand feels.
-//! - **sawtooth** $\sigma$ (N) and **slope** (N/m): the least-squares line $F \approx a + b\,d$ of
-//!   the resistance against the base's travel $d$ over the same ticks, and the standard
-//!   deviation of the residuals (the measure of the sawtooth).
+//! - **sawtooth** $\sigma$ (N) and **slope** $b$ (N/m): the least-squares line $F \approx a + b\,d$
+//!   of the resistance $F$ against the base's travel $d$ over the cutting ticks $K$ (after the
+//!   first puncture, the base advancing along the needle), and the standard deviation of the
+//!   residuals (the measure of the sawtooth).
+//! - **mean cutting force** $\bar F_c$ (N): the mean resistance minus the friction trend, the
+//!   line's value at the travel $d_p$ of the puncture, $\bar F_c = a + b\,d_p$. Friction grows
+//!   with the inserted length $d - d_p$ (the slope $b$ is the friction per length, about $q_0$);
+//!   what does not grow with it is what the tip meets: the cutting force and the friction peak
+//!   behind the tip. Defined on the total force, not on one contact, because the two cutting
+//!   models put the tip's force on different contacts (a carried contact with thresholds, the
+//!   most distal shaft contact with toughness).
+//! - **carried tip force** (N): with thresholds, the axial force on the contact carried by the
+//!   tip ($t \cdot f$ of the contact in state `tip`, 0 at ticks with none) averaged over $K$
+//!   (0 with energy-based cutting, which carries no contact inside a region).
 //! - **closest approach** (m): $\min_k |c_k - p_k|$ of the tip $p_k$ to the target's displaced
 //!   centre $c_k$ (the Fig. 3 miss distance; for Fig. 4 how close the steered tip came).
 //!
@@ -81,17 +86,31 @@ pub enum Model {
     Nodes,
     /// Material points every 2 mm with the scene's force thresholds.
     Points,
+    /// Material points with energy-based cutting ([`TOUGHNESS_J_PER_M2`]): puncture by the
+    /// scene's force threshold on a material point, cutting by $F_c = G_c w$.
+    Toughness,
 }
+
+/// The fracture toughness of the study's energy-based variants, J/m²: $G_c w$ with a 17-gauge
+/// needle's width ($w$ = 1.473 mm) gives 0.050 N, the shipped scenes' `cutting_force_n`.
+pub const TOUGHNESS_J_PER_M2: f64 = 34.0;
+
+/// The width given to the rigid needles of the energy-based variants, m (17 gauge).
+pub const RIGID_DIAMETER_M: f64 = 1.473e-3;
+
+/// The working-set capacity of every variant: the node capture holds one node per element
+/// along the shaft, 128 (the scenes' default) overflows on the finest grids.
+pub const STUDY_MAX_NODES: usize = 1024;
 
 impl Model {
     /// The model named `name` (its [`Self::label`]).
     ///
     /// Errors: an unknown name, listing the known ones.
     pub fn parse(name: &str) -> Result<Self> {
-        [Model::Nodes, Model::Points]
+        [Model::Nodes, Model::Points, Model::Toughness]
             .into_iter()
             .find(|m| m.label() == name)
-            .with_context(|| format!("unknown model '{name}' (known: nodes, points)"))
+            .with_context(|| format!("unknown model '{name}' (known: nodes, points, toughness)"))
     }
 
     /// The model's name in tables and on the command line.
@@ -99,6 +118,7 @@ impl Model {
         match self {
             Model::Nodes => "nodes",
             Model::Points => "points",
+            Model::Toughness => "toughness",
         }
     }
 }
@@ -126,6 +146,20 @@ pub fn variant_toml(figure: Figure, nx: usize, ny: usize, model: Model) -> Resul
                 match model {
                     Model::Nodes => out.push_str("contact = \"nodes\"\n"),
                     Model::Points => out.push_str("contact = \"points\"\n"),
+                    Model::Toughness => {
+                        out.push_str("contact = \"points\"\ncutting = \"toughness\"\n");
+                        if !text.contains("gauge") {
+                            out.push_str(&format!("diameter_m = {RIGID_DIAMETER_M}\n"));
+                        }
+                    }
+                }
+                out.push_str(&format!("max_nodes = {STUDY_MAX_NODES}\n"));
+            }
+            "cutting_force_n" => {
+                out.push_str(line);
+                out.push('\n');
+                if model == Model::Toughness {
+                    out.push_str(&format!("fracture_toughness_j_per_m2 = {TOUGHNESS_J_PER_M2}\n"));
                 }
             }
             "capture_radius_m" if model != Model::Nodes => {}
@@ -148,6 +182,7 @@ pub struct Measured {
     pub ticks: u64,
     pub peak_puncture_n: f64,
     pub mean_cutting_n: f64,
+    pub carried_tip_n: f64,
     pub sawtooth_n: f64,
     pub slope_n_per_m: f64,
     /// Closest approach to the scene's first target, m (NaN without targets).
@@ -167,6 +202,7 @@ pub fn measure(scene: &Scene, traj: &Trajectory) -> Result<Measured> {
     let mut closest_m = f64::INFINITY;
     let mut prev_base: Option<[f64; 2]> = None;
     let mut travel_m = 0.0;
+    let mut puncture_travel_m = f64::NAN;
     // Sums over the cutting ticks: count, tip force, and the least-squares sums of (d, F).
     let (mut n, mut sum_tip) = (0.0, 0.0);
     let (mut sd, mut sf, mut sdd, mut sdf, mut sff) = (0.0, 0.0, 0.0, 0.0, 0.0);
@@ -184,6 +220,9 @@ pub fn measure(scene: &Scene, traj: &Trajectory) -> Result<Measured> {
         if sim.stats().punctures == 0 {
             peak_puncture_n = peak_puncture_n.max(resistance);
         } else if advance > 1e-9 {
+            if puncture_travel_m.is_nan() {
+                puncture_travel_m = travel_m;
+            }
             let tip_angle = out.tip_angle_rad;
             let t = [tip_angle.cos(), tip_angle.sin()];
             let tip_force: f64 =
@@ -208,7 +247,8 @@ pub fn measure(scene: &Scene, traj: &Trajectory) -> Result<Measured> {
         nodes: scene.tissue.mesh().n_nodes(),
         ticks: stats.ticks,
         peak_puncture_n,
-        mean_cutting_n: sum_tip / n,
+        mean_cutting_n: intercept + slope * puncture_travel_m,
+        carried_tip_n: sum_tip / n,
         sawtooth_n: (rss.max(0.0) / n).sqrt(),
         slope_n_per_m: slope,
         closest_m: if closest_m.is_finite() { closest_m } else { f64::NAN },
@@ -271,22 +311,25 @@ pub fn to_markdown(studies: &[FigureStudy]) -> String {
         let _ = writeln!(s, "\n### {}\n", st.figure.scene_name());
         let _ = writeln!(
             s,
-            "| model | grid | nodes | peak puncture (N) | mean cutting (N) | sawtooth σ (mN) | slope (N/m) | closest approach (mm) | capacity drops |"
+            "| model | grid | nodes | peak puncture (N) | mean cutting (N) | carried tip (N) | sawtooth σ (mN) | slope (N/m) | closest approach (mm) |"
         );
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
         for (model, (nx, ny), m) in &st.rows {
             let _ = writeln!(
                 s,
-                "| {} | {nx}×{ny} | {} | {:.4} | {:.4} | {:.1} | {:.2} | {:.2} | {} |",
+                "| {} | {nx}×{ny} | {} | {:.4} | {:.4} | {:.4} | {:.1} | {:.2} | {:.2} |",
                 model.label(),
                 m.nodes,
                 m.peak_puncture_n,
                 m.mean_cutting_n,
+                m.carried_tip_n,
                 m.sawtooth_n * 1e3,
                 m.slope_n_per_m,
                 m.closest_m * 1e3,
-                m.capacity_drops
             );
+            if m.capacity_drops > 0 {
+                let _ = writeln!(s, "|  | (working set full: {} captures dropped) | | | | | | | |", m.capacity_drops);
+            }
         }
         let mut models: Vec<Model> = Vec::new();
         for r in &st.rows {

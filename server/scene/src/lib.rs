@@ -148,6 +148,10 @@ pub struct RegionSpec {
     /// `q₀ + b·|v|`; 0: rate-independent). 2D only.
     #[serde(default)]
     pub friction_damping_n_s_per_m2: f64,
+    /// Fracture toughness $G_c$, J/m², with `needle.cutting = "toughness"` (required then, for
+    /// every region): the tip cuts with the force $G_c w$ ($w$ the needle's diameter) instead of
+    /// cutting past contacts at `cutting_force_n`.
+    pub fracture_toughness_j_per_m2: Option<f64>,
 }
 
 fn d_friction() -> f64 {
@@ -207,6 +211,33 @@ pub struct NeedleSpec {
     pub bevel_force_ratio: Option<f64>,
     /// Flexible needle: initial bevel side, +1 or -1 (towards the needle's +n or -n).
     pub bevel_side: Option<f64>,
+    /// How the tip cuts inside a region: `thresholds` (default: the contact at the tip is
+    /// carried until its force exceeds the region's `cutting_force_n`) or `toughness`
+    /// (energy-based, mesh-independent: the force $G_c w$ while the tip advances; needs
+    /// `contact = "points"`, `diameter_m` or a gauge, and every region's
+    /// `fracture_toughness_j_per_m2`).
+    #[serde(default)]
+    pub cutting: CuttingSpec,
+    /// The needle's outer diameter $w$, m (the crack width of energy-based cutting); default
+    /// for a flexible needle with a gauge: the gauge's outer diameter.
+    pub diameter_m: Option<f64>,
+}
+
+/// How the tip cuts inside a region ([`NeedleSpec::cutting`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CuttingSpec {
+    #[default]
+    Thresholds,
+    Toughness,
+}
+
+impl NeedleSpec {
+    /// The crack width $w$ of energy-based cutting: `diameter_m`, else the gauge's outer
+    /// diameter; `None` when neither is given.
+    pub fn cutting_width_m(&self) -> Option<f64> {
+        self.diameter_m.or_else(|| self.gauge.and_then(|g| GAUGES.iter().find(|(gg, _, _)| *gg == g).map(|&(_, od, _)| od)))
+    }
 }
 
 /// How the needle holds the tissue ([`needlesim_core::sim::ContactModel`]).
@@ -485,6 +516,34 @@ fn check_values(f: &SceneFile) -> Result<()> {
     {
         bail!("needle.capture_radius_m = {r}: must be finite and > 0");
     }
+    if let Some(d) = n.diameter_m
+        && !(d.is_finite() && d > 0.0 && d <= 0.02)
+    {
+        bail!("needle.diameter_m = {d}: must be finite, > 0 and ≤ 0.02 m");
+    }
+    if n.cutting == CuttingSpec::Toughness {
+        if n.contact == ContactSpec::Nodes {
+            bail!("needle.cutting = \"toughness\" needs needle.contact = \"points\" (energy-based cutting acts at material points, not captured nodes)");
+        }
+        if n.cutting_width_m().is_none() {
+            bail!("needle.cutting = \"toughness\" needs the needle's width: give needle.diameter_m (or a gauge for a flexible needle)");
+        }
+    }
+    for (k, r) in f.regions.iter().enumerate() {
+        match (n.cutting, r.fracture_toughness_j_per_m2) {
+            (CuttingSpec::Toughness, None) => {
+                bail!("regions[{k}] '{}': needle.cutting = \"toughness\" needs fracture_toughness_j_per_m2 in every region", r.name)
+            }
+            (CuttingSpec::Thresholds, Some(_)) => bail!(
+                "regions[{k}] '{}': fracture_toughness_j_per_m2 is set but needle.cutting is not \"toughness\" (the region would cut at cutting_force_n)",
+                r.name
+            ),
+            (_, Some(g)) if !(g.is_finite() && g >= 0.0) => {
+                bail!("regions[{k}] '{}': fracture_toughness_j_per_m2 = {g}: must be finite and ≥ 0", r.name)
+            }
+            _ => {}
+        }
+    }
     let max_nodes = if n.model == NeedleModelSpec::Flexible { MAX_NEEDLE_NODES_FLEXIBLE } else { MAX_NEEDLE_NODES };
     if !(1..=max_nodes).contains(&n.max_nodes) {
         bail!("needle.max_nodes = {}: must be in 1..={max_nodes}", n.max_nodes);
@@ -617,6 +676,10 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
             puncture_force_n: r.puncture_force_n,
             cutting_force_n: r.cutting_force_n,
             friction_damping_n_s_per_m2: r.friction_damping_n_s_per_m2,
+            toughness_cutting_force_n: match (f.needle.cutting, r.fracture_toughness_j_per_m2, f.needle.cutting_width_m()) {
+                (CuttingSpec::Toughness, Some(g), Some(w)) => Some(g * w),
+                _ => None,
+            },
         });
     }
     for r in &f.regions {

@@ -524,14 +524,19 @@ pub(super) fn capture_points(
     let entering = st.ws.len() == 0 || st.last_tip_region != Some(region);
     let rp = params.regions[region];
     let bevel = st.flex.as_ref().is_some_and(|f| f.bevel_ratio > 0.0);
+    // Energy-based cutting: inside a region the tip is not carried by a point that it cuts
+    // past at a threshold; the point is taken as a slipping shaft contact, and the cutting
+    // force rides on the most distal contact (`active_set::update_friction`).
+    let carried = entering || rp.toughness_cutting_force_n.is_none();
     let ws = &mut st.ws;
     let slot = ws.solver.add_contact(&ScaledBlocks { cache: &st.cache, scale: ctx.setup.compliance_scale }, contact, angle)?;
-    let lateral = if bevel {
+    let lateral = if bevel && carried {
         ws.solver.set_condition(slot, Axis::Lateral, Condition::Force, 0.0)
     } else {
         ws.solver.set_condition(slot, Axis::Lateral, Condition::Displacement, lat_offset_m - lat0)
     };
-    let axial = lateral.and_then(|()| ws.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_tip - s0));
+    // A slipping point gets its axial force condition at the start of the active-set stage.
+    let axial = lateral.and_then(|()| if carried { ws.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_tip - s0) } else { Ok(()) });
     match axial {
         Ok(()) => {}
         Err(crate::mixed::MixedError::SingularPivot { .. }) => {
@@ -551,7 +556,7 @@ pub(super) fn capture_points(
         NeedleNode {
             contact,
             x_ref_m: x,
-            state: NodeState::Tip,
+            state: if carried { NodeState::Tip } else { NodeState::Slipping },
             anchor_s_m: s_new,
             s_prev_m: s_new,
             s_work_m: s_new,

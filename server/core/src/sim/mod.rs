@@ -316,8 +316,9 @@ impl Simulation {
         let pose_before = st.pose;
         let clamped = frames::apply_pose(params, commanded, &mut st.pose, &mut st.ws, st.flex.as_mut())?;
         let t_axis = st.pose.axis();
-        st.ws.axial_speed_m_per_s =
-            ((st.pose.x_m - pose_before.x_m) * t_axis[0] + (st.pose.y_m - pose_before.y_m) * t_axis[1]).abs() * params.tick_rate_hz;
+        let advance_m = (st.pose.x_m - pose_before.x_m) * t_axis[0] + (st.pose.y_m - pose_before.y_m) * t_axis[1];
+        st.ws.axial_speed_m_per_s = advance_m.abs() * params.tick_rate_hz;
+        st.ws.advancing = advance_m > 0.0;
         frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
         lap(clock, &mut t_last, &mut stage_ns, 0);
         capture::release_withdrawn(s_tip, &mut st.ws, &mut st.stats)?;
