@@ -810,6 +810,37 @@ pub fn pose2(p: BasePose) -> Pose2 {
 mod tests {
     use super::*;
 
+    /// The shipped energy-based variants load with $F_c = G_c w$ per region, and every wrong
+    /// combination of the keys is refused with a message naming the key.
+    #[test]
+    fn toughness_cutting_keys() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+        for (file, width_m) in [("paper-phantom-toughness.toml", 1.473e-3), ("fig3-target-toughness.toml", 1.473e-3), ("fig4-steering-toughness.toml", 0.718e-3)] {
+            let s = load_scene(dir.join(file).to_str().unwrap(), &MeshLimits::default()).unwrap();
+            let fc = s.params.regions[0].toughness_cutting_force_n.expect("energy-based cutting");
+            assert!((fc - 34.0 * width_m).abs() <= 1e-12, "{file}: F_c = {fc}");
+            assert_eq!(s.params.contact, ContactModel::default_points(), "{file}");
+        }
+        // The shipped node scenes keep the threshold model.
+        assert!(load_scene("paper-phantom", &MeshLimits::default()).unwrap().params.regions[0].toughness_cutting_force_n.is_none());
+        let base = std::fs::read_to_string(dir.join("paper-phantom-toughness.toml")).unwrap();
+        let err = |text: String| format!("{:#}", parse_scene(&text, Path::new("."), &MeshLimits::default()).err().expect("refused"));
+        let e = err(base.replace("contact = \"points\"", "contact = \"nodes\""));
+        assert!(e.contains("needle.cutting") && e.contains("points"), "{e}");
+        let e = err(base.replace("diameter_m = 0.001473\n", ""));
+        assert!(e.contains("diameter_m"), "{e}");
+        let e = err(base.replace("fracture_toughness_j_per_m2 = 34.0\n", ""));
+        assert!(e.contains("fracture_toughness_j_per_m2") && e.contains("tissue"), "{e}");
+        let e = err(base.replace("cutting = \"toughness\"\n", ""));
+        assert!(e.contains("fracture_toughness_j_per_m2") && e.contains("cutting"), "{e}");
+        let e = err(base.replace("= 34.0", "= -1.0"));
+        assert!(e.contains("fracture_toughness_j_per_m2 = -1"), "{e}");
+        let e = err(base.replace("diameter_m = 0.001473", "diameter_m = nan"));
+        assert!(e.contains("needle.diameter_m"), "{e}");
+        let e = err(base.replace("cutting = \"toughness\"", "cutting = \"energy\""));
+        assert!(e.contains("energy"), "{e}");
+    }
+
     #[test]
     fn shipped_examples_load() {
         for (name, _, csv) in EXAMPLES {
