@@ -164,7 +164,8 @@ fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBu
 fn run_refine(models: &[String], scenes: &[String], grids: usize) -> Result<()> {
     let models = if models.is_empty() { vec!["nodes".to_owned(), "points".to_owned(), "toughness".to_owned()] } else { models.to_vec() };
     let models = models.iter().map(|m| refine::Model::parse(m)).collect::<Result<Vec<_>>>()?;
-    let scenes = if scenes.is_empty() { vec!["paper-phantom".into(), "fig3-target".into(), "fig4-steering".into()] } else { scenes.to_vec() };
+    let scenes =
+        if scenes.is_empty() { vec!["paper-phantom".into(), "fig3-target".into(), "fig4-steering".into()] } else { scenes.to_vec() };
     let mut studies = Vec::new();
     for name in &scenes {
         let figure = refine::Figure::parse(name)?;

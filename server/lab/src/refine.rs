@@ -38,10 +38,10 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::mesh::MeshLimits;
-use std::fmt::Write as _;
 use needlesim_core::sim::NodeState;
 use needlesim_offline::driver::{RunOptions, Script, ScriptedRun};
 use needlesim_scene::{EXAMPLES, Scene, Trajectory, parse_scene};
+use std::fmt::Write as _;
 
 /// The three figure scenes of the study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -104,11 +104,6 @@ pub const TOUGHNESS_J_PER_M2: f64 = 34.0;
 /// The width given to the rigid needles of the energy-based variants, m (17 gauge).
 pub const RIGID_DIAMETER_M: f64 = 1.473e-3;
 
-/// The working-set capacity of the node-capture variants: the node capture holds about one
-/// node per element along the shaft, and 128 (the scenes' default) overflows on the finest
-/// grids (material points need 40 for 80 mm).
-pub const STUDY_MAX_NODES: usize = 1024;
-
 impl Model {
     /// The model named `name` (its [`Self::label`]).
     ///
@@ -160,9 +155,6 @@ pub fn variant_toml(figure: Figure, nx: usize, ny: usize, model: Model) -> Resul
                         }
                     }
                 }
-                if model == Model::Nodes {
-                    out.push_str(&format!("max_nodes = {STUDY_MAX_NODES}\n"));
-                }
             }
             "cutting_force_n" => {
                 out.push_str(line);
@@ -199,7 +191,8 @@ pub struct Measured {
     /// Closest approach to the scene's first target, m (NaN without targets).
     pub closest_m: f64,
     pub punctures: u64,
-    /// Captures dropped because the working set was full (the node model on fine meshes).
+    /// Captures dropped because the working set was full (the node capture holds about one node
+    /// per element along the shaft: on the finest Fig. 3 grid it passes the scenes' 128).
     pub capacity_drops: u64,
 }
 
@@ -257,7 +250,8 @@ pub fn measure(scene: &Scene, traj: &Trajectory) -> Result<Measured> {
     let slope = (n * sdf - sd * sf) / (n * sdd - sd * sd);
     let intercept = (sf - slope * sd) / n;
     // Residual sum of squares of the line, from the sums.
-    let rss = sff - 2.0 * intercept * sf - 2.0 * slope * sdf + n * intercept * intercept + 2.0 * intercept * slope * sd + slope * slope * sdd;
+    let rss =
+        sff - 2.0 * intercept * sf - 2.0 * slope * sdf + n * intercept * intercept + 2.0 * intercept * slope * sd + slope * slope * sdd;
     Ok(Measured {
         nodes: scene.tissue.mesh().n_nodes(),
         ticks: stats.ticks,
@@ -376,4 +370,3 @@ pub fn to_markdown(studies: &[FigureStudy]) -> String {
     }
     s
 }
-

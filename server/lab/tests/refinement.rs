@@ -27,7 +27,10 @@ fn toughness_cutting_force_is_g_c_w_on_two_meshes() {
     for n in [19, 37] {
         let text = refine::variant_toml(Figure::Phantom, n, n, Model::Toughness).unwrap();
         let tough = measure_text(&text, Figure::Phantom);
-        let zero = measure_text(&text.replace(&format!("fracture_toughness_j_per_m2 = {TOUGHNESS_J_PER_M2}"), "fracture_toughness_j_per_m2 = 0"), Figure::Phantom);
+        let zero = measure_text(
+            &text.replace(&format!("fracture_toughness_j_per_m2 = {TOUGHNESS_J_PER_M2}"), "fracture_toughness_j_per_m2 = 0"),
+            Figure::Phantom,
+        );
         assert_eq!(tough.carried_tip_n, 0.0, "{n}²: a contact was carried by the tip after the puncture");
         assert_eq!(tough.punctures, 1, "{n}²: only the surface is punctured");
         let delta = tough.mean_cutting_n - zero.mean_cutting_n;
@@ -39,9 +42,10 @@ fn toughness_cutting_force_is_g_c_w_on_two_meshes() {
 }
 
 /// The whole study (README "Mesh refinement"): the three figure scenes on four grids each
-/// with energy-based cutting; between the two finest meshes the peak puncture force, the mean
-/// cutting force and the Fig. 3 and Fig. 4 closest approaches change by less than 5 %.
-/// About 1–2 minutes on two cores (debug build, the core at opt-level 3).
+/// with energy-based cutting; between the two finest meshes the phantom's peak puncture force
+/// and mean cutting force and the Fig. 3 and Fig. 4 closest approaches change by less than 5 %
+/// (issue 19's criterion). 37 s on two shared cores at load 5 (debug build, the core at
+/// opt-level 3). FAILS today on Fig. 4 (5.3 %: README "Mesh refinement", not converged).
 #[test]
 #[ignore = "slow: the whole refinement study (run with --ignored)"]
 fn refinement_study_converges_with_toughness() {
@@ -56,9 +60,12 @@ fn refinement_study_converges_with_toughness() {
                 failures.push(format!("{}: {what} changes {:.1} % ({x} → {y})", figure.scene_name(), 100.0 * c));
             }
         };
-        check("peak puncture force", a.peak_puncture_n, b.peak_puncture_n);
-        check("mean cutting force", a.mean_cutting_n, b.mean_cutting_n);
-        if figure != Figure::Phantom {
+        if figure == Figure::Phantom {
+            // The force–depth curve's figures (the phantom's target lies on the axis).
+            check("peak puncture force", a.peak_puncture_n, b.peak_puncture_n);
+            check("mean cutting force", a.mean_cutting_n, b.mean_cutting_n);
+        } else {
+            // The miss (Fig. 3) and the hit (Fig. 4) distances.
             check("closest approach", a.closest_m, b.closest_m);
         }
     }

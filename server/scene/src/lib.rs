@@ -523,7 +523,9 @@ fn check_values(f: &SceneFile) -> Result<()> {
     }
     if n.cutting == CuttingSpec::Toughness {
         if n.contact == ContactSpec::Nodes {
-            bail!("needle.cutting = \"toughness\" needs needle.contact = \"points\" (energy-based cutting acts at material points, not captured nodes)");
+            bail!(
+                "needle.cutting = \"toughness\" needs needle.contact = \"points\" (energy-based cutting acts at material points, not captured nodes)"
+            );
         }
         if n.cutting_width_m().is_none() {
             bail!("needle.cutting = \"toughness\" needs the needle's width: give needle.diameter_m (or a gauge for a flexible needle)");
@@ -815,7 +817,11 @@ mod tests {
     #[test]
     fn toughness_cutting_keys() {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
-        for (file, width_m) in [("paper-phantom-toughness.toml", 1.473e-3), ("fig3-target-toughness.toml", 1.473e-3), ("fig4-steering-toughness.toml", 0.718e-3)] {
+        for (file, width_m) in [
+            ("paper-phantom-toughness.toml", 1.473e-3),
+            ("fig3-target-toughness.toml", 1.473e-3),
+            ("fig4-steering-toughness.toml", 0.718e-3),
+        ] {
             let s = load_scene(dir.join(file).to_str().unwrap(), &MeshLimits::default()).unwrap();
             let fc = s.params.regions[0].toughness_cutting_force_n.expect("energy-based cutting");
             assert!((fc - 34.0 * width_m).abs() <= 1e-12, "{file}: F_c = {fc}");

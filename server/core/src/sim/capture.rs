@@ -536,7 +536,8 @@ pub(super) fn capture_points(
         ws.solver.set_condition(slot, Axis::Lateral, Condition::Displacement, lat_offset_m - lat0)
     };
     // A slipping point gets its axial force condition at the start of the active-set stage.
-    let axial = lateral.and_then(|()| if carried { ws.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_tip - s0) } else { Ok(()) });
+    let axial = lateral
+        .and_then(|()| if carried { ws.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_tip - s0) } else { Ok(()) });
     match axial {
         Ok(()) => {}
         Err(crate::mixed::MixedError::SingularPivot { .. }) => {
