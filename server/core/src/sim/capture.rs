@@ -412,7 +412,9 @@ fn capture_point_within_tick(
 /// contact is carried by the tip, the tip has advanced along its axis since the last tick, and
 /// it lies `spacing_m` of arc length beyond the most distal contact, the material point the tip
 /// passed where the contact was due (located within the tick: [`capture_point_within_tick`];
-/// at the tissue's surface for the first) becomes the tip's contact: carried until its axial force exceeds the puncture or cutting force. It is
+/// at the tissue's surface for the first) becomes the tip's contact: carried until its axial force exceeds the puncture or cutting force
+/// (with energy-based cutting, inside a region it joins as a slipping shaft contact instead, and
+/// the cutting force $G_c w$ rides on the most distal contact: `active_set::update_friction`). It is
 /// taken only at a reference distance from every working point of at least both points'
 /// triangle diameters, so that no segment of the shaft inside one triangle holds two points
 /// (along a straight needle, the points' conditions are then independent). Nodes of the
