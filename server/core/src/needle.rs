@@ -197,6 +197,16 @@ pub struct RegionNeedleParams {
     /// slipping at $v$ gets $b_v |v|$ per metre of its tributary segment on top of $q$. 0: the
     /// paper's rate-independent friction.
     pub friction_damping_n_s_per_m2: f64,
+    /// Energy-based cutting (issue 19; Mahvash & Hayward, IEEE TBME 2010), with material-point
+    /// contact only: `Some(F_c)`, the cutting force $F_c = G_c\,w$ of a fracture toughness
+    /// $G_c$ (J/m²) and the needle's width $w$ (m). Advancing the tip by $\delta$ creates a
+    /// crack of area $w\,\delta$ and costs the work $G_c\,w\,\delta$, so the tissue at the tip
+    /// resists with the constant force $F_c$ while the tip cuts, and with nothing while it rests
+    /// or withdraws. It is applied to the most distal contact on top of its friction share
+    /// (`sim/active_set.rs`); interior points are then taken as slipping contacts, not carried
+    /// by the tip ($F_c$ replaces [`Self::cutting_force_n`], so no sawtooth). `None`: the
+    /// threshold model (a carried contact cut at `cutting_force_n`).
+    pub toughness_cutting_force_n: Option<f64>,
 }
 
 impl Default for RegionNeedleParams {
@@ -210,6 +220,7 @@ impl Default for RegionNeedleParams {
             puncture_force_n: 0.3,
             cutting_force_n: 0.05,
             friction_damping_n_s_per_m2: 0.0,
+            toughness_cutting_force_n: None,
         }
     }
 }
@@ -217,7 +228,8 @@ impl Default for RegionNeedleParams {
 impl RegionNeedleParams {
     /// Checks the values; `region` names the region in the message.
     pub fn validate(&self, region: &str) -> Result<(), String> {
-        let checks: [(&str, f64, bool); 7] = [
+        let fc = self.toughness_cutting_force_n.unwrap_or(0.0);
+        let checks: [(&str, f64, bool); 8] = [
             ("friction_n_per_m", self.friction_n_per_m, self.friction_n_per_m >= 0.0),
             ("static_friction_ratio", self.static_friction_ratio, self.static_friction_ratio >= 1.0),
             ("tip_peak_ratio", self.tip_peak_ratio, self.tip_peak_ratio >= 0.0),
@@ -225,6 +237,7 @@ impl RegionNeedleParams {
             ("puncture_force_n", self.puncture_force_n, self.puncture_force_n >= 0.0),
             ("cutting_force_n", self.cutting_force_n, self.cutting_force_n >= 0.0),
             ("friction_damping_n_s_per_m2", self.friction_damping_n_s_per_m2, self.friction_damping_n_s_per_m2 >= 0.0),
+            ("toughness_cutting_force_n", fc, fc >= 0.0),
         ];
         for (name, v, ok) in checks {
             if !(v.is_finite() && ok) {

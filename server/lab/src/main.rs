@@ -7,7 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use needlesim_lab::{bench, identify, motions};
+use needlesim_lab::{bench, identify, motions, refine};
 
 /// Counts heap bytes for `bench`'s peak-memory figures (relaxed atomic adds per allocation; no
 /// thread turns allocation counting on).
@@ -82,6 +82,20 @@ enum Command {
         #[arg(long)]
         ticks_csv: Option<PathBuf>,
     },
+    /// The mesh-refinement study (issue 19): the paper phantom, Fig. 3 and Fig. 4 on grids
+    /// h, h/2, h/4, h/8 (the shipped grid is h/2… see `refine` module docs) with each contact
+    /// model; peak puncture force, mean cutting force, sawtooth, closest approach.
+    Refine {
+        /// Models to compare: nodes, points, toughness (default: all three).
+        #[arg(long, value_delimiter = ',')]
+        models: Vec<String>,
+        /// Scenes (default: paper-phantom,fig3-target,fig4-steering).
+        #[arg(long, value_delimiter = ',')]
+        scenes: Vec<String>,
+        /// Only the first N grids of each scene (coarsest first; default 4).
+        #[arg(long, default_value_t = 4)]
+        grids: usize,
+    },
 }
 
 fn main() -> ExitCode {
@@ -109,6 +123,7 @@ fn main() -> ExitCode {
             )
         }
         Command::Identify { command } => identify::run(command),
+        Command::Refine { models, scenes, grids } => run_refine(&models, &scenes, grids),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -143,5 +158,19 @@ fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBu
     } else {
         print!("{}", motions::to_markdown(&suite, &opts));
     }
+    Ok(())
+}
+
+fn run_refine(models: &[String], scenes: &[String], grids: usize) -> Result<()> {
+    let models = if models.is_empty() { vec!["nodes".to_owned(), "points".to_owned(), "toughness".to_owned()] } else { models.to_vec() };
+    let models = models.iter().map(|m| refine::Model::parse(m)).collect::<Result<Vec<_>>>()?;
+    let scenes =
+        if scenes.is_empty() { vec!["paper-phantom".into(), "fig3-target".into(), "fig4-steering".into()] } else { scenes.to_vec() };
+    let mut studies = Vec::new();
+    for name in &scenes {
+        let figure = refine::Figure::parse(name)?;
+        studies.push(refine::study(figure, &models, grids, |line| eprintln!("{line}"))?);
+    }
+    print!("{}", refine::to_markdown(&studies));
     Ok(())
 }

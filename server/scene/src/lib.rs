@@ -148,6 +148,10 @@ pub struct RegionSpec {
     /// `q₀ + b·|v|`; 0: rate-independent). 2D only.
     #[serde(default)]
     pub friction_damping_n_s_per_m2: f64,
+    /// Fracture toughness $G_c$, J/m², with `needle.cutting = "toughness"` (required then, for
+    /// every region): the tip cuts with the force $G_c w$ ($w$ the needle's diameter) instead of
+    /// cutting past contacts at `cutting_force_n`.
+    pub fracture_toughness_j_per_m2: Option<f64>,
 }
 
 fn d_friction() -> f64 {
@@ -207,6 +211,33 @@ pub struct NeedleSpec {
     pub bevel_force_ratio: Option<f64>,
     /// Flexible needle: initial bevel side, +1 or -1 (towards the needle's +n or -n).
     pub bevel_side: Option<f64>,
+    /// How the tip cuts inside a region: `thresholds` (default: the contact at the tip is
+    /// carried until its force exceeds the region's `cutting_force_n`) or `toughness`
+    /// (energy-based, mesh-independent: the force $G_c w$ while the tip advances; needs
+    /// `contact = "points"`, `diameter_m` or a gauge, and every region's
+    /// `fracture_toughness_j_per_m2`).
+    #[serde(default)]
+    pub cutting: CuttingSpec,
+    /// The needle's outer diameter $w$, m (the crack width of energy-based cutting); default
+    /// for a flexible needle with a gauge: the gauge's outer diameter.
+    pub diameter_m: Option<f64>,
+}
+
+/// How the tip cuts inside a region ([`NeedleSpec::cutting`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CuttingSpec {
+    #[default]
+    Thresholds,
+    Toughness,
+}
+
+impl NeedleSpec {
+    /// The crack width $w$ of energy-based cutting: `diameter_m`, else the gauge's outer
+    /// diameter; `None` when neither is given.
+    pub fn cutting_width_m(&self) -> Option<f64> {
+        self.diameter_m.or_else(|| self.gauge.and_then(|g| GAUGES.iter().find(|(gg, _, _)| *gg == g).map(|&(_, od, _)| od)))
+    }
 }
 
 /// How the needle holds the tissue ([`needlesim_core::sim::ContactModel`]).
@@ -485,6 +516,36 @@ fn check_values(f: &SceneFile) -> Result<()> {
     {
         bail!("needle.capture_radius_m = {r}: must be finite and > 0");
     }
+    if let Some(d) = n.diameter_m
+        && !(d.is_finite() && d > 0.0 && d <= 0.02)
+    {
+        bail!("needle.diameter_m = {d}: must be finite, > 0 and ≤ 0.02 m");
+    }
+    if n.cutting == CuttingSpec::Toughness {
+        if n.contact == ContactSpec::Nodes {
+            bail!(
+                "needle.cutting = \"toughness\" needs needle.contact = \"points\" (energy-based cutting acts at material points, not captured nodes)"
+            );
+        }
+        if n.cutting_width_m().is_none() {
+            bail!("needle.cutting = \"toughness\" needs the needle's width: give needle.diameter_m (or a gauge for a flexible needle)");
+        }
+    }
+    for (k, r) in f.regions.iter().enumerate() {
+        match (n.cutting, r.fracture_toughness_j_per_m2) {
+            (CuttingSpec::Toughness, None) => {
+                bail!("regions[{k}] '{}': needle.cutting = \"toughness\" needs fracture_toughness_j_per_m2 in every region", r.name)
+            }
+            (CuttingSpec::Thresholds, Some(_)) => bail!(
+                "regions[{k}] '{}': fracture_toughness_j_per_m2 is set but needle.cutting is not \"toughness\" (the region would cut at cutting_force_n)",
+                r.name
+            ),
+            (_, Some(g)) if !(g.is_finite() && g >= 0.0) => {
+                bail!("regions[{k}] '{}': fracture_toughness_j_per_m2 = {g}: must be finite and ≥ 0", r.name)
+            }
+            _ => {}
+        }
+    }
     let max_nodes = if n.model == NeedleModelSpec::Flexible { MAX_NEEDLE_NODES_FLEXIBLE } else { MAX_NEEDLE_NODES };
     if !(1..=max_nodes).contains(&n.max_nodes) {
         bail!("needle.max_nodes = {}: must be in 1..={max_nodes}", n.max_nodes);
@@ -617,6 +678,10 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
             puncture_force_n: r.puncture_force_n,
             cutting_force_n: r.cutting_force_n,
             friction_damping_n_s_per_m2: r.friction_damping_n_s_per_m2,
+            toughness_cutting_force_n: match (f.needle.cutting, r.fracture_toughness_j_per_m2, f.needle.cutting_width_m()) {
+                (CuttingSpec::Toughness, Some(g), Some(w)) => Some(g * w),
+                _ => None,
+            },
         });
     }
     for r in &f.regions {
@@ -746,6 +811,41 @@ pub fn pose2(p: BasePose) -> Pose2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shipped energy-based variants load with $F_c = G_c w$ per region, and every wrong
+    /// combination of the keys is refused with a message naming the key.
+    #[test]
+    fn toughness_cutting_keys() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+        for (file, width_m) in [
+            ("paper-phantom-toughness.toml", 1.473e-3),
+            ("fig3-target-toughness.toml", 1.473e-3),
+            ("fig4-steering-toughness.toml", 0.718e-3),
+        ] {
+            let s = load_scene(dir.join(file).to_str().unwrap(), &MeshLimits::default()).unwrap();
+            let fc = s.params.regions[0].toughness_cutting_force_n.expect("energy-based cutting");
+            assert!((fc - 34.0 * width_m).abs() <= 1e-12, "{file}: F_c = {fc}");
+            assert_eq!(s.params.contact, ContactModel::default_points(), "{file}");
+        }
+        // The shipped node scenes keep the threshold model.
+        assert!(load_scene("paper-phantom", &MeshLimits::default()).unwrap().params.regions[0].toughness_cutting_force_n.is_none());
+        let base = std::fs::read_to_string(dir.join("paper-phantom-toughness.toml")).unwrap();
+        let err = |text: String| format!("{:#}", parse_scene(&text, Path::new("."), &MeshLimits::default()).err().expect("refused"));
+        let e = err(base.replace("contact = \"points\"", "contact = \"nodes\""));
+        assert!(e.contains("needle.cutting") && e.contains("points"), "{e}");
+        let e = err(base.replace("diameter_m = 0.001473\n", ""));
+        assert!(e.contains("diameter_m"), "{e}");
+        let e = err(base.replace("fracture_toughness_j_per_m2 = 34.0\n", ""));
+        assert!(e.contains("fracture_toughness_j_per_m2") && e.contains("tissue"), "{e}");
+        let e = err(base.replace("cutting = \"toughness\"\n", ""));
+        assert!(e.contains("fracture_toughness_j_per_m2") && e.contains("cutting"), "{e}");
+        let e = err(base.replace("= 34.0", "= -1.0"));
+        assert!(e.contains("fracture_toughness_j_per_m2 = -1"), "{e}");
+        let e = err(base.replace("diameter_m = 0.001473", "diameter_m = nan"));
+        assert!(e.contains("needle.diameter_m"), "{e}");
+        let e = err(base.replace("cutting = \"toughness\"", "cutting = \"energy\""));
+        assert!(e.contains("energy"), "{e}");
+    }
 
     #[test]
     fn shipped_examples_load() {

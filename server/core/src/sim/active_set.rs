@@ -44,7 +44,11 @@ pub(super) struct ActiveSetScratch {
 /// positions: the anchor of a stuck node; for a slipping node its position at the end of the
 /// last tick, or (`current`) in the current solution. Node $i$ between its neighbours' midpoints
 /// $[a_i, b_i]$ gets $\int_{L-b_i}^{L-a_i} q(d)\,\mathrm{d}d$ (see
-/// [`crate::RegionNeedleParams::friction_integral_n`]). The new shares are applied only when
+/// [`crate::RegionNeedleParams::friction_integral_n`]). With energy-based cutting
+/// ([`crate::RegionNeedleParams::toughness_cutting_force_n`]), while the base advances and no
+/// contact is carried by the tip, the most distal node's share also holds the cutting force,
+/// $f_{distal} \mathrel{+}= F_c = G_c w$: the tissue ahead of the tip resists the cut with it,
+/// and the node's static threshold is $\mu_s/\mu_k$ times the sum. The new shares are applied only when
 /// some slipping node's share changes by more than `min_change_n` (always when not `current`),
 /// so that the applied values always belong to the last solve. Returns the largest change (N).
 pub(super) fn update_friction(
@@ -69,6 +73,8 @@ pub(super) fn update_friction(
         order.push(slot);
     }
     let speed = ws.axial_speed_m_per_s;
+    // The tip cuts while it advances with no contact carried (a carried one is puncturing).
+    let cutting = ws.advancing && ws.nodes.iter().all(|n| n.state != NodeState::Tip);
     let nodes = &ws.nodes;
     order.sort_unstable_by(|&a, &b| nodes[a.index()].s_work_m.total_cmp(&nodes[b.index()].s_work_m));
     let k = order.len();
@@ -81,6 +87,13 @@ pub(super) fn update_friction(
         let rp = params.regions[ws.node(slot).region];
         let nn = ws.node_mut(slot);
         nn.friction_new_n = rp.friction_integral_n(s_tip - hi, s_tip - lo) + rp.friction_damping_n_s_per_m2 * speed * (hi - lo);
+        if let Some(fc) = rp.toughness_cutting_force_n
+            && cutting
+            && i + 1 == k
+        {
+            // Energy-based cutting: the most distal contact carries the tip's cutting force.
+            nn.friction_new_n += fc;
+        }
         if nn.state == NodeState::Slipping {
             max_change = max_change.max((nn.friction_new_n - nn.friction_n).abs());
         }

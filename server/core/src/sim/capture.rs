@@ -412,7 +412,9 @@ fn capture_point_within_tick(
 /// contact is carried by the tip, the tip has advanced along its axis since the last tick, and
 /// it lies `spacing_m` of arc length beyond the most distal contact, the material point the tip
 /// passed where the contact was due (located within the tick: [`capture_point_within_tick`];
-/// at the tissue's surface for the first) becomes the tip's contact: carried until its axial force exceeds the puncture or cutting force. It is
+/// at the tissue's surface for the first) becomes the tip's contact: carried until its axial force exceeds the puncture or cutting force
+/// (with energy-based cutting, inside a region it joins as a slipping shaft contact instead, and
+/// the cutting force $G_c w$ rides on the most distal contact: `active_set::update_friction`). It is
 /// taken only at a reference distance from every working point of at least both points'
 /// triangle diameters, so that no segment of the shaft inside one triangle holds two points
 /// (along a straight needle, the points' conditions are then independent). Nodes of the
@@ -524,14 +526,20 @@ pub(super) fn capture_points(
     let entering = st.ws.len() == 0 || st.last_tip_region != Some(region);
     let rp = params.regions[region];
     let bevel = st.flex.as_ref().is_some_and(|f| f.bevel_ratio > 0.0);
+    // Energy-based cutting: inside a region the tip is not carried by a point that it cuts
+    // past at a threshold; the point is taken as a slipping shaft contact, and the cutting
+    // force rides on the most distal contact (`active_set::update_friction`).
+    let carried = entering || rp.toughness_cutting_force_n.is_none();
     let ws = &mut st.ws;
     let slot = ws.solver.add_contact(&ScaledBlocks { cache: &st.cache, scale: ctx.setup.compliance_scale }, contact, angle)?;
-    let lateral = if bevel {
+    let lateral = if bevel && carried {
         ws.solver.set_condition(slot, Axis::Lateral, Condition::Force, 0.0)
     } else {
         ws.solver.set_condition(slot, Axis::Lateral, Condition::Displacement, lat_offset_m - lat0)
     };
-    let axial = lateral.and_then(|()| ws.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_tip - s0));
+    // A slipping point gets its axial force condition at the start of the active-set stage.
+    let axial = lateral
+        .and_then(|()| if carried { ws.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_tip - s0) } else { Ok(()) });
     match axial {
         Ok(()) => {}
         Err(crate::mixed::MixedError::SingularPivot { .. }) => {
@@ -551,7 +559,7 @@ pub(super) fn capture_points(
         NeedleNode {
             contact,
             x_ref_m: x,
-            state: NodeState::Tip,
+            state: if carried { NodeState::Tip } else { NodeState::Slipping },
             anchor_s_m: s_new,
             s_prev_m: s_new,
             s_work_m: s_new,

@@ -17,10 +17,14 @@
 //!    capture, nodes near the tip (spatial grid, never a scan) whose deformed position the tip
 //!    passed within the capture radius become needle nodes, the most distal one carried by the
 //!    tip when none is. The tip's contact is pushed until its axial reaction exceeds the
-//!    region's puncture force (or its cutting force inside a region). A contact whose columns
-//!    are not cached is admitted a tick later unless [`SimParams::columns_in_step`].
+//!    region's puncture force (or its cutting force inside a region). With energy-based cutting
+//!    ([`crate::RegionNeedleParams::toughness_cutting_force_n`]) only a surface or a region
+//!    boundary is punctured so; inside a region new points join as slipping shaft contacts.
+//!    A contact whose columns are not cached is admitted a tick later unless
+//!    [`SimParams::columns_in_step`].
 //! 5. **Friction** (`active_set.rs`): each shaft node gets the integral of the friction
-//!    distribution over its tributary segment (see [`crate::needle`]).
+//!    distribution over its tributary segment (see [`crate::needle`]); with energy-based
+//!    cutting the most distal one also carries the cutting force $G_c w$ while the tip advances.
 //! 6. **Active set** (`active_set.rs`): solve; stuck nodes whose axial force exceeds static
 //!    friction slip, slipping nodes whose relative motion stopped or reversed stick, the tip node
 //!    punctures or, when it no longer pushes, lets go; repeat (bounded), each change an
@@ -316,8 +320,9 @@ impl Simulation {
         let pose_before = st.pose;
         let clamped = frames::apply_pose(params, commanded, &mut st.pose, &mut st.ws, st.flex.as_mut())?;
         let t_axis = st.pose.axis();
-        st.ws.axial_speed_m_per_s =
-            ((st.pose.x_m - pose_before.x_m) * t_axis[0] + (st.pose.y_m - pose_before.y_m) * t_axis[1]).abs() * params.tick_rate_hz;
+        let advance_m = (st.pose.x_m - pose_before.x_m) * t_axis[0] + (st.pose.y_m - pose_before.y_m) * t_axis[1];
+        st.ws.axial_speed_m_per_s = advance_m.abs() * params.tick_rate_hz;
+        st.ws.advancing = advance_m > 0.0;
         frames::set_prescribed_values(&Geometry::new(params, st.pose, st.flex.as_ref()), &mut st.ws);
         lap(clock, &mut t_last, &mut stage_ns, 0);
         capture::release_withdrawn(s_tip, &mut st.ws, &mut st.stats)?;

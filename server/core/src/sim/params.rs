@@ -129,6 +129,13 @@ impl SimParams {
                 self.max_active_set_iterations
             ));
         }
+        if self.contact == ContactModel::Nodes
+            && let Some(k) = self.regions.iter().position(|r| r.toughness_cutting_force_n.is_some())
+        {
+            return bad(format!(
+                "region {k}: energy-based cutting (toughness_cutting_force_n) needs material-point contact, not the node capture"
+            ));
+        }
         if let Some(v) = &self.viscoelastic {
             v.validate().map_err(SimError::InvalidParams)?;
         }

@@ -106,6 +106,9 @@ pub(super) struct WorkingSet {
     /// The needle's axial speed over the tick, $|(b_k - b_{k-1})\cdot t|/\Delta t$ (m/s): the
     /// rate-dependent friction's slip speed $v$ ([`crate::needle`]; the tissue at rest).
     pub axial_speed_m_per_s: f64,
+    /// The base advanced along the needle's axis over the tick, $(b_k - b_{k-1})\cdot t > 0$:
+    /// the tip cuts (energy-based cutting applies its force only then).
+    pub advancing: bool,
 }
 
 impl WorkingSet {
@@ -118,6 +121,7 @@ impl WorkingSet {
             f_world: Vec::with_capacity(cap),
             u_world: Vec::with_capacity(cap),
             axial_speed_m_per_s: 0.0,
+            advancing: false,
         }
     }
     /// Number of needle nodes.

@@ -1,0 +1,73 @@
+//! The mesh-refinement study of issue 19 (`needlesim_lab::refine`): a cheap check of the
+//! energy-based cutting mechanism on two small meshes, and (ignored, slow) the whole study with
+//! its convergence criterion.
+
+use std::path::Path;
+
+use needlesim_core::mesh::MeshLimits;
+use needlesim_lab::refine::{self, Figure, Model, RIGID_DIAMETER_M, TOUGHNESS_J_PER_M2};
+use needlesim_scene::{EXAMPLES, Trajectory, parse_scene};
+
+fn measure_text(text: &str, figure: Figure) -> refine::Measured {
+    let scene = parse_scene(text, Path::new("."), &MeshLimits::default()).unwrap();
+    let csv = EXAMPLES.iter().find(|e| e.0 == figure.scene_name()).unwrap().2;
+    refine::measure(&scene, &Trajectory::parse_csv(csv).unwrap()).unwrap()
+}
+
+/// Energy-based cutting on the paper phantom, 19² and 37² nodes: no contact is carried by the
+/// tip once the surface is punctured; the mean cutting force is the toughness's $G_c w$ on both
+/// meshes (the difference to $G_c = 0$ on the same mesh is $G_c w$ within 10 %: the force rides
+/// on the most distal contact, which slides most of the time with $F_c$ on top of its friction
+/// share but sticks part of it, when its force is its elastic reaction below the static
+/// threshold; measured 93 % on 19²), and it changes by less than 5 % between them.
+#[test]
+fn toughness_cutting_force_is_g_c_w_on_two_meshes() {
+    let fc_n = TOUGHNESS_J_PER_M2 * RIGID_DIAMETER_M;
+    let mut means = Vec::new();
+    for n in [19, 37] {
+        let text = refine::variant_toml(Figure::Phantom, n, n, Model::Toughness).unwrap();
+        let tough = measure_text(&text, Figure::Phantom);
+        let zero = measure_text(
+            &text.replace(&format!("fracture_toughness_j_per_m2 = {TOUGHNESS_J_PER_M2}"), "fracture_toughness_j_per_m2 = 0"),
+            Figure::Phantom,
+        );
+        assert_eq!(tough.carried_tip_n, 0.0, "{n}²: a contact was carried by the tip after the puncture");
+        assert_eq!(tough.punctures, 1, "{n}²: only the surface is punctured");
+        let delta = tough.mean_cutting_n - zero.mean_cutting_n;
+        eprintln!("{n}²: mean cutting force {} N, {} N with G_c = 0; G_c w = {fc_n} N", tough.mean_cutting_n, zero.mean_cutting_n);
+        assert!((delta - fc_n).abs() <= 0.10 * fc_n, "{n}²: the cutting force adds {delta} N, G_c w = {fc_n} N");
+        means.push(tough.mean_cutting_n);
+    }
+    assert!(refine::rel_change(means[0], means[1]) < 0.05, "mean cutting force {means:?}");
+}
+
+/// The whole study (README "Mesh refinement"): the three figure scenes on four grids each
+/// with energy-based cutting; between the two finest meshes the phantom's peak puncture force
+/// and mean cutting force and the Fig. 3 and Fig. 4 closest approaches change by less than 5 %
+/// (issue 19's criterion). 37 s on two shared cores at load 5 (debug build, the core at
+/// opt-level 3). FAILS today on Fig. 4 (5.3 %: README "Mesh refinement", not converged).
+#[test]
+#[ignore = "slow: the whole refinement study (run with --ignored)"]
+fn refinement_study_converges_with_toughness() {
+    let mut failures = Vec::new();
+    for figure in [Figure::Phantom, Figure::Fig3, Figure::Fig4] {
+        let st = refine::study(figure, &[Model::Toughness], 4, |line| eprintln!("{line}")).unwrap();
+        eprint!("{}", refine::to_markdown(std::slice::from_ref(&st)));
+        let (a, b) = st.finest_pair(Model::Toughness).unwrap();
+        let mut check = |what: &str, x: f64, y: f64| {
+            let c = refine::rel_change(x, y);
+            if c >= 0.05 {
+                failures.push(format!("{}: {what} changes {:.1} % ({x} → {y})", figure.scene_name(), 100.0 * c));
+            }
+        };
+        if figure == Figure::Phantom {
+            // The force–depth curve's figures (the phantom's target lies on the axis).
+            check("peak puncture force", a.peak_puncture_n, b.peak_puncture_n);
+            check("mean cutting force", a.mean_cutting_n, b.mean_cutting_n);
+        } else {
+            // The miss (Fig. 3) and the hit (Fig. 4) distances.
+            check("closest approach", a.closest_m, b.closest_m);
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
