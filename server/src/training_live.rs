@@ -466,8 +466,17 @@ impl LiveExercise {
                 placements: st.placements.clone(),
                 refused_placements: st.refused.clone(),
                 markers: st.markers.clone(),
+                expert: None,
+                expert_note: None,
+                ticks_csv: None,
             }
         };
+        // The expert run the exercise names: overlaid, or a note in the report saying why not.
+        let mut run = run;
+        match needlesim_training::run::expert_for(&self.exercise, &self.spec) {
+            Ok(e) => run.expert = e,
+            Err(e) => run.expert_note = Some(format!("the expert run could not be read: {e}")),
+        }
         let html = needlesim_training::report::report_html(&run)
             .map_err(|e| Status::internal(format!("the report of session {} cannot be drawn: {e}", self.session_id)))?;
         let dir = data_dir.join("reports");

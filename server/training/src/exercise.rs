@@ -7,6 +7,8 @@
 //! scene = "fig3-target"            # a shipped scene, or a scene file relative to this file
 //! trajectory = "biopsy-2d.csv"     # optional: the example's scripted run (relative)
 //! placed_at_s = [5.5]              # optional: when the example declares "placed"
+//! expert = "biopsy-2d-expert.csv"  # optional: an expert's run (the tick series CSV that
+//!                                  # `exercise run --ticks` writes, expert.rs), overlaid in the report
 //!
 //! [[targets]]                      # optional: default = every scene target, tolerance = radius
 //! scene_target = "biopsy"          # a target of the scene (the simulation moves it), or
@@ -114,6 +116,7 @@ struct ExerciseFile {
     trajectory: Option<String>,
     #[serde(default)]
     placed_at_s: Vec<f64>,
+    expert: Option<String>,
     #[serde(default)]
     targets: Vec<TargetSpec>,
     #[serde(default)]
@@ -231,6 +234,14 @@ pub enum SceneRef {
     File { file: String, text: String, base_dir: PathBuf },
 }
 
+/// An expert run the exercise names: the file as named, and its text or why it cannot be read
+/// (kept, not refused at parse time: a live session still reports without it, with a note).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpertSource {
+    pub file: String,
+    pub text: Result<String, String>,
+}
+
 /// A validated exercise.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Exercise {
@@ -248,6 +259,8 @@ pub struct Exercise {
     /// The example's trajectory CSV text, when the exercise names one.
     pub trajectory_csv: Option<String>,
     pub placed_at_s: Vec<f64>,
+    /// The expert run to compare with (`expert`), if named.
+    pub expert: Option<ExpertSource>,
 }
 
 /// Most targets and structures of an exercise.
@@ -419,6 +432,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
     }
     let redirect_threshold_m = positive("metrics.redirect_threshold_m", f.metrics.redirect_threshold_m.unwrap_or(0.005))?;
     let trajectory_csv = f.trajectory.as_deref().map(|t| read(t).map_err(|e| invalid("trajectory", e.to_string()))).transpose()?;
+    let expert = f.expert.as_deref().map(|file| ExpertSource { file: file.to_owned(), text: read(file).map_err(|e| e.to_string()) });
     if let Some(x) = f.placed_at_s.iter().find(|x| !x.is_finite()) {
         return Err(invalid("placed_at_s", format!("{x} is not finite")));
     }
@@ -437,6 +451,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
         redirect_threshold_m,
         trajectory_csv,
         placed_at_s: f.placed_at_s,
+        expert,
     })
 }
 
