@@ -54,7 +54,10 @@ pub const EXERCISES: &[(&str, &str, ExerciseFiles)] = &[
     (
         "biopsy-2d",
         include_str!("../../scenes/exercises/biopsy-2d.toml"),
-        &[("biopsy-2d.csv", include_str!("../../scenes/exercises/biopsy-2d.csv"))],
+        &[
+            ("biopsy-2d.csv", include_str!("../../scenes/exercises/biopsy-2d.csv")),
+            ("biopsy-2d-expert.csv", include_str!("../../scenes/exercises/biopsy-2d-expert.csv")),
+        ],
     ),
     (
         "brachy-2d",
@@ -69,7 +72,10 @@ pub const EXERCISES: &[(&str, &str, ExerciseFiles)] = &[
     (
         "biopsy-3d",
         include_str!("../../scenes/exercises/biopsy-3d.toml"),
-        &[("biopsy-3d.csv", include_str!("../../scenes/exercises/biopsy-3d.csv"))],
+        &[
+            ("biopsy-3d.csv", include_str!("../../scenes/exercises/biopsy-3d.csv")),
+            ("biopsy-3d-expert.csv", include_str!("../../scenes/exercises/biopsy-3d-expert.csv")),
+        ],
     ),
     (
         "brachy-3d",
