@@ -302,6 +302,9 @@ async fn run_exercise_live(exercise: &str, dim: usize) {
     close("peak_axial_force_n", fin.peak_axial_force_n);
     close("target_0_error_m", p.error_m);
     assert!(markers.iter().any(|l| l == "instructor demo <1>"), "the marker in the report: {markers:?}");
+    // The exercise names an expert run (server/scenes/exercises/NAME-expert.csv): overlaid and compared.
+    let page = String::from_utf8(html).unwrap();
+    assert!(page.contains("<table id=\"expert\">") && page.contains(&format!("expert ({exercise}-expert.csv)")), "the expert overlay");
 
     // Observers saw the score evolve, the hand-over, and the final result.
     println!("{exercise}: the observers");

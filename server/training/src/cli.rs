@@ -39,7 +39,10 @@ pub fn run_command(cmd: &RunCommand<'_>, limits: &MeshLimits) -> anyhow::Result<
     let (trajectory, placed_at_s, report, json, max_ticks) = (cmd.trajectory, cmd.placed_at_s, cmd.report, cmd.json, cmd.max_ticks);
     let mut ex = load_exercise(exercise).with_context(|| format!("exercise {exercise}"))?;
     if let Some(p) = cmd.expert {
-        ex.expert = Some(ExpertSource { file: p.display().to_string(), text: std::fs::read_to_string(p).map_err(|e| format!("cannot read it: {e}")) });
+        ex.expert = Some(ExpertSource {
+            file: p.display().to_string(),
+            text: std::fs::read_to_string(p).map_err(|e| format!("cannot read it: {e}")),
+        });
     }
     if cmd.ticks_every == 0 {
         anyhow::bail!("--ticks-every: 0 must be at least 1");

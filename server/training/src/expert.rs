@@ -71,17 +71,7 @@ impl TickCsv {
     fn row(&self, s: &Sample, placed: u32) -> String {
         let mut r = format!(
             "{},{},{},{},{},{},{},{},{},{},{}",
-            s.t_s,
-            s.tip_m[0],
-            s.tip_m[1],
-            s.tip_m[2],
-            s.axis[0],
-            s.axis[1],
-            s.axis[2],
-            s.inserted_m,
-            s.contacts,
-            s.axial_force_n,
-            placed
+            s.t_s, s.tip_m[0], s.tip_m[1], s.tip_m[2], s.axis[0], s.axis[1], s.axis[2], s.inserted_m, s.contacts, s.axial_force_n, placed
         );
         for &i in &self.target_idx {
             let c = s.targets().get(i).map_or([f64::NAN; 3], |t| t.centre_m);
@@ -140,12 +130,15 @@ pub fn parse_ticks_csv(text: &str, file: &str, spec: &TrackerSpec) -> Result<(Ve
     for t in &spec.targets {
         let x = format!("target_{}_x_m", t.name);
         match cols.iter().position(|c| *c == x) {
-            Some(k) if cols.get(k + 1) == Some(&format!("target_{}_y_m", t.name).as_str())
-                && cols.get(k + 2) == Some(&format!("target_{}_z_m", t.name).as_str()) =>
+            Some(k)
+                if cols.get(k + 1) == Some(&format!("target_{}_y_m", t.name).as_str())
+                    && cols.get(k + 2) == Some(&format!("target_{}_z_m", t.name).as_str()) =>
             {
                 target_cols.push((t.sample_idx, Some(k)))
             }
-            Some(_) => return Err(line_err(hline, format!("target_{0}_x_m must be followed by target_{0}_y_m and target_{0}_z_m", t.name))),
+            Some(_) => {
+                return Err(line_err(hline, format!("target_{0}_x_m must be followed by target_{0}_y_m and target_{0}_z_m", t.name)));
+            }
             None => {
                 missing.push(t.name.clone());
                 target_cols.push((t.sample_idx, None));

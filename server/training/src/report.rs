@@ -51,7 +51,14 @@ pub fn expert_label(file: &str) -> String {
 }
 
 /// A line plot of the trainee's `pts` (and the expert's, labelled, when given), with red marks.
-fn line_plot(title: &str, x_desc: &str, y_desc: &str, pts: &[(f64, f64)], marks: &[(f64, f64)], expert: Option<(&str, &[(f64, f64)])>) -> PlotResult {
+fn line_plot(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    pts: &[(f64, f64)],
+    marks: &[(f64, f64)],
+    expert: Option<(&str, &[(f64, f64)])>,
+) -> PlotResult {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (640, 360)).into_drawing_area();
@@ -111,8 +118,7 @@ fn path_plot(run: &ExerciseRun) -> PlotResult {
     let names = ["x", "y", "z"];
     let mm = |p: [f64; 3]| (p[a] * 1e3, p[b] * 1e3);
     let path: Vec<(f64, f64)> = run.trace.iter().filter(|p| p.depth_m > 0.0).map(|p| mm(p.tip_m)).collect();
-    let expert_path: Vec<(f64, f64)> =
-        run.expert.iter().flat_map(|x| &x.trace).filter(|p| p.depth_m > 0.0).map(|p| mm(p.tip_m)).collect();
+    let expert_path: Vec<(f64, f64)> = run.expert.iter().flat_map(|x| &x.trace).filter(|p| p.depth_m > 0.0).map(|p| mm(p.tip_m)).collect();
     let mut all = path.clone();
     all.extend(&expert_path);
     for t in &run.targets {
@@ -365,4 +371,30 @@ fn expert_section(h: &mut String, run: &ExerciseRun) {
 
 fn nearest(pts: &[(f64, f64)], t: f64) -> f64 {
     pts.iter().min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs())).map_or(0.0, |p| p.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exercise::{ExpertSource, load_exercise};
+    use crate::run::run_exercise;
+    use needlesim_core::mesh::MeshLimits;
+
+    #[test]
+    fn an_unreadable_expert_fails_a_scripted_run_and_is_a_note_in_a_report() {
+        let mut ex = load_exercise("biopsy-2d").unwrap();
+        ex.expert = Some(ExpertSource { file: "gone.csv".into(), text: Err("cannot read it: not found".into()) });
+        let e = run_exercise(&ex, None, None, 100_000, &MeshLimits::default()).unwrap_err().to_string();
+        assert_eq!(e, "expert run gone.csv: cannot read it: not found");
+        // A live session's report: written, with the note, and no expert series.
+        ex.expert = None;
+        let mut run = run_exercise(&ex, None, None, 100_000, &MeshLimits::default()).unwrap();
+        assert!(run.expert.is_none());
+        run.expert_note = Some(format!("the expert run could not be read: {e}"));
+        let html = report_html(&run).unwrap();
+        assert!(
+            html.contains("<p id=\"expert-note\">the expert run could not be read: expert run gone.csv: cannot read it: not found</p>")
+        );
+        assert!(!html.contains("id=\"expert\"") && !html.contains("expert ("));
+    }
 }
