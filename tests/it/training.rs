@@ -335,6 +335,29 @@ print(json.dumps({"metrics": p.metrics, "errors": p.errors, "open": p.stack, "sv
     }
     let score = j["result"]["score"]["total"].as_f64().unwrap();
     assert!((hm["score"].as_f64().unwrap() - score).abs() <= 1e-12 * score.max(1.0));
+    // Tissue strain (2D scripted runs): finite, sampled every 10 ms of exercise time, reported.
+    let st = &m["strain"];
+    if j["dim"].as_u64().unwrap() == 2 {
+        let n = st["strain_samples"].as_u64().unwrap();
+        let time_s = m["time_s"].as_f64().unwrap();
+        assert_eq!(n, (time_s / 0.01).round() as u64 + 1, "{name}: a strain sample every 10 ms");
+        let peak = st["peak_strain"].as_f64().unwrap();
+        let area = st["damaged_area_m2"].as_f64().unwrap();
+        assert!(peak.is_finite() && peak > 0.0 && area.is_finite() && area >= 0.0, "{name}: strain {st}");
+        assert_eq!(area > 0.0, peak > st["damage_strain"].as_f64().unwrap(), "{name}: an area above the threshold iff the peak is: {st}");
+        assert!(st["samples_above"].as_u64().unwrap() <= n);
+        for (k, v) in [
+            ("peak_strain", peak),
+            ("damaged_area_m2", area),
+            ("strain_samples", n as f64),
+            ("strain_samples_above", st["samples_above"].as_f64().unwrap()),
+        ] {
+            let got = hm[k].as_f64().unwrap_or_else(|| panic!("{name}: no {k} in the report"));
+            assert!((got - v).abs() <= 1e-12 * v.abs().max(1.0), "{name}: {k} {got} in the report, {v} in the JSON");
+        }
+    } else {
+        assert_eq!(st["strain_samples"].as_u64().unwrap(), 0, "{name}: not computed in 3D");
+    }
     for (i, t) in m["targets"].as_array().unwrap().iter().enumerate() {
         let e = t["placement"]["error_m"].as_f64().unwrap();
         assert!((hm[format!("target_{i}_error_m")].as_f64().unwrap() - e).abs() <= 1e-12 * e.max(1.0));

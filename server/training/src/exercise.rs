@@ -38,6 +38,7 @@
 //!
 //! [metrics]
 //! redirect_threshold_m = 0.005     # the withdrawal (and re-advance) that makes a redirection
+//! damage_strain = 0.3              # equivalent strain above which tissue counts as damaged (2D, strain.rs)
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -181,6 +182,7 @@ struct WeightsFile {
 #[serde(deny_unknown_fields)]
 struct MetricsFile {
     redirect_threshold_m: Option<f64>,
+    damage_strain: Option<f64>,
 }
 
 /// Where an exercise's target comes from.
@@ -262,12 +264,19 @@ pub struct Exercise {
     pub limits: Limits,
     pub weights: Weights,
     pub redirect_threshold_m: f64,
+    /// The equivalent strain above which tissue counts as damaged ([`crate::strain`]; default
+    /// [`DEFAULT_DAMAGE_STRAIN`]).
+    pub damage_strain: f64,
     /// The example's trajectory CSV text, when the exercise names one.
     pub trajectory_csv: Option<String>,
     pub placed_at_s: Vec<f64>,
     /// The expert run to compare with (`expert`), if named.
     pub expert: Option<ExpertSource>,
 }
+
+/// The default `damage_strain`: 30 % equivalent strain (a training threshold for the shipped
+/// exercises, not a measured tissue property: set it per exercise).
+pub const DEFAULT_DAMAGE_STRAIN: f64 = 0.3;
 
 /// Most targets and structures of an exercise.
 pub const MAX_EXERCISE_TARGETS: usize = crate::sample::MAX_SAMPLE_TARGETS;
@@ -437,6 +446,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
         return Err(invalid("weights", "all are zero: at least one must be positive"));
     }
     let redirect_threshold_m = positive("metrics.redirect_threshold_m", f.metrics.redirect_threshold_m.unwrap_or(0.005))?;
+    let damage_strain = positive("metrics.damage_strain", f.metrics.damage_strain.unwrap_or(DEFAULT_DAMAGE_STRAIN))?;
     let trajectory_csv = f.trajectory.as_deref().map(|t| read(t).map_err(|e| invalid("trajectory", e.to_string()))).transpose()?;
     let expert = f.expert.as_deref().map(|file| ExpertSource { file: file.to_owned(), text: read(file).map_err(|e| e.to_string()) });
     if let Some(x) = f.placed_at_s.iter().find(|x| !x.is_finite()) {
@@ -455,6 +465,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
         limits,
         weights,
         redirect_threshold_m,
+        damage_strain,
         trajectory_csv,
         placed_at_s: f.placed_at_s,
         expert,
@@ -497,6 +508,7 @@ mod tests {
                 .starts_with("weights:")
         );
         assert!(err(&format!("{base}[metrics]\nredirect_threshold_m = nan\n")).starts_with("metrics.redirect_threshold_m:"));
+        assert!(err(&format!("{base}[metrics]\ndamage_strain = 0\n")).starts_with("metrics.damage_strain: 0 must be"));
         assert!(err(&format!("{base}[[targets]]\nname = \"t\"\n")).starts_with("targets[0].scene_target: missing"));
         assert!(err("name = \"x\"\nscene = \"no-such-scene.toml\"\n").starts_with("scene: 'no-such-scene.toml' is not a shipped scene"));
         assert!(err(&format!("{base}bogus = 1\n")).contains("bogus"));

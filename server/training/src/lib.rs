@@ -17,6 +17,7 @@ pub mod metrics;
 pub mod report;
 pub mod run;
 pub mod sample;
+pub mod strain;
 pub mod ultrasound;
 
 pub use exercise::{EXERCISES, Exercise, ExerciseError, load_exercise, parse_exercise};

@@ -231,6 +231,24 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
     row(&mut h, "max_depth_m", "deepest insertion", m.max_depth_m, "mm", 1e3);
     row(&mut h, "peak_axial_force_n", "peak axial force", m.peak_axial_force_n, "N", 1.0);
     row(&mut h, "mean_axial_force_n", "mean axial force in tissue", m.mean_axial_force_n, "N", 1.0);
+    let st = &m.strain;
+    if st.strain_samples > 0 {
+        row(&mut h, "peak_strain", "peak equivalent tissue strain", st.peak_strain, "%", 100.0);
+        row(
+            &mut h,
+            "damaged_area_m2",
+            &format!("largest tissue area above {:.0} % strain", st.damage_strain * 100.0),
+            st.damaged_area_m2,
+            "mm²",
+            1e6,
+        );
+        row(&mut h, "strain_samples_above", "strain samples above the threshold", st.samples_above as f64, "", 1.0);
+        row(&mut h, "strain_samples", "strain samples", st.strain_samples as f64, "", 1.0);
+    } else {
+        h.push_str(
+            "<tr><th>tissue strain above a damage threshold</th><td>not computed</td><td>(computed in 2D scripted runs only)</td></tr>\n",
+        );
+    }
     for (k, v) in [
         ("accuracy", s.sub.accuracy),
         ("efficiency", s.sub.efficiency),

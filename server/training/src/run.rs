@@ -20,6 +20,10 @@ use crate::exercise::{Exercise, SceneRef, Structure, TargetSource};
 use crate::expert::{ExpertError, ExpertOverlay, TickCsv, expert_overlay};
 use crate::metrics::{ExerciseResult, MetricsTracker, Placement, Trace, TracePoint, TrackedTarget, TrackerSpec};
 use crate::sample::Sample;
+use crate::strain::StrainField;
+
+/// Exercise time between two strain samples of a 2D scripted run, s (metrics.rs).
+pub const STRAIN_INTERVAL_S: f64 = 0.01;
 
 /// How many points the report's curves keep at most ([`Trace`]).
 pub const TRACE_CAPACITY: usize = 4096;
@@ -325,11 +329,30 @@ pub fn run_exercise_with(
             ticks: 0,
             ticks_csv,
         };
-        needlesim_offline::simulate::run_observed(&scene, &traj, max_ticks, None, |tick, out| {
-            f.push(&Sample::from_2d(out, tick.t_s));
+        // The same run as `simulate` (needlesim-offline's driver), with the strain sampled every
+        // STRAIN_INTERVAL_S of exercise time from the simulation's displacement field.
+        let sim_err = |e: needlesim_offline::RunError| ExerciseRunError::Simulation(format!("{e:#}"));
+        let opts = needlesim_offline::RunOptions { max_ticks, ..Default::default() };
+        let mut run = needlesim_offline::ScriptedRun::new(
+            scene.tissue.clone(),
+            scene.params.clone(),
+            needlesim_offline::Script::trajectory(&traj),
+            opts,
+        )
+        .map_err(sim_err)?;
+        let mut strain = StrainField::new(scene.tissue.mesh().nodes_m(), scene.tissue.mesh().triangles());
+        let mut next_strain_s = f64::NEG_INFINITY;
+        run.run(|tick, sim| {
+            f.push(&Sample::from_2d(sim.output(), tick.t_s));
+            if tick.t_s >= next_strain_s - 1e-9 {
+                sim.displacement_field_into(strain.displacements_mut());
+                f.tracker.push_strain(tick.t_s, &strain.evaluate(ex.damage_strain));
+                next_strain_s = if next_strain_s.is_finite() { next_strain_s + STRAIN_INTERVAL_S } else { tick.t_s + STRAIN_INTERVAL_S };
+            }
             ControlFlow::Continue(())
         })
-        .map_err(|e| ExerciseRunError::Simulation(format!("{e:#}")))?;
+        .map_err(sim_err)?;
+        run.finish().map_err(sim_err)?;
         finish(ex, scene.name.clone(), scene.params.tick_rate_hz, geom, f)
     } else {
         let Prepared3d { scene, spec, targets: geom, added_targets } = prepare_3d(ex, limits)?;
