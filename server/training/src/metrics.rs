@@ -38,8 +38,9 @@
 //!   field $u = \sum_w C_{:,w} f_w$ of the working contacts, $O(n\,d)$ each), the peak strain
 //!   $\varepsilon_{max} = \max_j \max_e \varepsilon_{eq,e,j}$ and its time, the largest damaged
 //!   area $\max_j A_{d,j}$, and the number of strain samples with $A_{d,j} > 0$ (i.e.
-//!   $\max_e \varepsilon_{eq,e,j} > \varepsilon_d$) — "samples above". Not scored. Not computed
-//!   in 3D nor in a live session (their strain sample count is 0).
+//!   $\max_e \varepsilon_{eq,e,j} > \varepsilon_d$) — "samples above". A live 2D session takes
+//!   the samples on its fan-out side from the field it computes for observers (the server's
+//!   training_live.rs). Not scored. Not computed in 3D (the strain sample count is 0).
 //!
 //! **Score.** Sub-scores in $[0, 1]$:
 //! accuracy $s_{acc} = \frac1n\sum_i a_i$ with $a_i = 1$ if $e_i \le \tau_i$,

@@ -245,9 +245,7 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
         row(&mut h, "strain_samples_above", "strain samples above the threshold", st.samples_above as f64, "", 1.0);
         row(&mut h, "strain_samples", "strain samples", st.strain_samples as f64, "", 1.0);
     } else {
-        h.push_str(
-            "<tr><th>tissue strain above a damage threshold</th><td>not computed</td><td>(computed in 2D scripted runs only)</td></tr>\n",
-        );
+        h.push_str("<tr><th>tissue strain above a damage threshold</th><td>not computed</td><td>(computed in 2D only)</td></tr>\n");
     }
     for (k, v) in [
         ("accuracy", s.sub.accuracy),
