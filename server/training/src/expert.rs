@@ -121,7 +121,7 @@ pub fn parse_ticks_csv(text: &str, file: &str, spec: &TrackerSpec) -> Result<(Ve
     if cols.len() < TICK_COLUMNS.len() || cols[..TICK_COLUMNS.len()] != TICK_COLUMNS {
         return Err(line_err(hline, format!("the header must start with {}", TICK_COLUMNS.join(","))));
     }
-    if (cols.len() - TICK_COLUMNS.len()) % 3 != 0 {
+    if !(cols.len() - TICK_COLUMNS.len()).is_multiple_of(3) {
         return Err(line_err(hline, "the target columns must come in x, y, z triples".into()));
     }
     // Per spec target: the column of its x, if present.

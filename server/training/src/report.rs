@@ -314,7 +314,8 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
     let mut place_t: Vec<(f64, f64)> = run.placements.iter().map(|(_, p)| (p.t_s, nearest(&ft, p.t_s))).collect();
     place_t.extend(run.markers.iter().map(|m| (m.t_s, nearest(&ft, m.t_s))));
     let label = run.expert.as_ref().map(|x| expert_label(&x.file));
-    let (eft, efd): (Vec<(f64, f64)>, Vec<(f64, f64)>) =
+    type Curves = (Vec<(f64, f64)>, Vec<(f64, f64)>);
+    let (eft, efd): Curves =
         run.expert.iter().flat_map(|x| &x.trace).map(|p| ((p.t_s, p.axial_force_n), (p.depth_m * 1e3, p.axial_force_n))).unzip();
     expert_section(&mut h, run);
     h.push_str("<h2>Curves</h2>\n<div class=\"plots\">\n");

@@ -75,11 +75,10 @@ impl StrainField {
     pub fn triangle_strain(&self, e: usize) -> [f64; 3] {
         let (t, g) = (&self.triangles[e], &self.grads[e]);
         let mut du = [[0.0; 2]; 2];
-        for k in 0..3 {
-            let n = t[k];
-            for c in 0..2 {
-                for d in 0..2 {
-                    du[c][d] += self.u_m[2 * n + c] * g[k][d];
+        for (&n, gk) in t.iter().zip(g) {
+            for (c, row) in du.iter_mut().enumerate() {
+                for (d, v) in row.iter_mut().enumerate() {
+                    *v += self.u_m[2 * n + c] * gk[d];
                 }
             }
         }
