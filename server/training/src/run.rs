@@ -1,9 +1,12 @@
 //! Scripted exercise runs: an exercise resolved against its scene (targets looked up or added
 //! to the simulation, tolerances defaulted to radii), a base trajectory through the scene's
-//! simulation — 2D through needlesim-offline's `simulate` driver, 3D through the same loop as
-//! `simulate3::run3` (step, then every column ahead of the tip) — each tick's output turned into
-//! a [`Sample`] for the [`MetricsTracker`] and the report's [`Trace`], and "placed" declared at
-//! the first tick at or after each given time.
+//! simulation — 2D through needlesim-offline's driver (`ScriptedRun`, the run `simulate` makes),
+//! 3D through the same loop as `simulate3::run3` (step, then every column ahead of the tip) —
+//! each tick's output turned into a [`Sample`] for the [`MetricsTracker`] and the report's
+//! [`Trace`], and "placed" declared at the first tick at or after each given time. In 2D the
+//! tissue strain is sampled every [`STRAIN_INTERVAL_S`] of exercise time from the simulation's
+//! displacement field ([`crate::strain`]). The run's tick series CSV is written on request
+//! ([`RunOptions`], [`crate::expert`]) and the expert run the exercise names is read and overlaid.
 
 use std::ops::ControlFlow;
 use std::path::Path;
