@@ -181,6 +181,16 @@ enum ExerciseCommand {
         /// Where to write the metrics (JSON).
         #[arg(long)]
         json: Option<PathBuf>,
+        /// An expert's run to overlay in the report (a tick series CSV written by --ticks),
+        /// instead of the one the exercise names.
+        #[arg(long)]
+        expert: Option<PathBuf>,
+        /// Where to write this run's tick series CSV (usable later as an expert run).
+        #[arg(long)]
+        ticks: Option<PathBuf>,
+        /// Keep every n-th tick in --ticks (placements and the last tick always kept).
+        #[arg(long, default_value_t = 1)]
+        ticks_every: u64,
         #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS)]
         max_ticks: u64,
     },
@@ -263,17 +273,30 @@ fn main() -> ExitCode {
             Ok(false) => run_plan(&args, &limits),
             Err(e) => Err(e),
         },
-        Some(Command::Exercise(ExerciseCommand::Run { exercise, trajectory, placed_at, output, json, max_ticks })) => {
-            needlesim_training::cli::run_command(
-                &exercise,
-                trajectory.as_deref(),
-                placed_at.as_deref(),
-                output.as_deref(),
-                json.as_deref(),
+        Some(Command::Exercise(ExerciseCommand::Run {
+            exercise,
+            trajectory,
+            placed_at,
+            output,
+            json,
+            expert,
+            ticks,
+            ticks_every,
+            max_ticks,
+        })) => needlesim_training::cli::run_command(
+            &needlesim_training::cli::RunCommand {
+                exercise: &exercise,
+                trajectory: trajectory.as_deref(),
+                placed_at_s: placed_at.as_deref(),
+                report: output.as_deref(),
+                json: json.as_deref(),
+                expert: expert.as_deref(),
+                ticks: ticks.as_deref(),
+                ticks_every,
                 max_ticks,
-                &limits,
-            )
-        }
+            },
+            &limits,
+        ),
         Some(Command::Exercise(ExerciseCommand::List)) => needlesim_training::cli::list_command(),
         Some(Command::Summary) => summary(&limits),
         Some(Command::Serve(args)) => run_serve(args, &limits),

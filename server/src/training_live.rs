@@ -27,6 +27,13 @@
 //! state (control, paused) and the lease change together under the exercise's state lock (lock
 //! order: exercise state, then lease).
 //!
+//! **Tissue strain (2D).** While a 2D exercise runs it subscribes to the session's displacement
+//! field (the fan-out computes it every 8 ms while anyone subscribes, $O(n\,d)$ from the contacts'
+//! compliance columns, never on the real-time thread), and the tap takes a strain sample
+//! ([`needlesim_training::strain`], metrics.rs) every `STRAIN_INTERVAL_S` (10 ms) of exercise
+//! time from the latest field: a copy and one pass over the triangles, no allocation. The field
+//! lags the record by up to a field period. The subscription ends with the exercise. 3D: none.
+//!
 //! **A trainee on a device.** A session created with a device channel is driven by the device
 //! bridge on the real-time thread, not through the lease. While the instructor has control or the
 //! exercise is paused the session's device is suspended ([`Session::suspend_device_from_io`], set
@@ -47,7 +54,8 @@ use std::sync::{Arc, Mutex, RwLock};
 use needlesim_session::control_lease::StreamLease;
 use needlesim_session::{RecordSink, Session, TickRecord};
 use needlesim_training::metrics::{Placement, Trace};
-use needlesim_training::run::{TRACE_CAPACITY, TargetGeometry};
+use needlesim_training::run::{STRAIN_INTERVAL_S, TRACE_CAPACITY, TargetGeometry};
+use needlesim_training::strain::StrainField;
 use needlesim_training::{Exercise, ExerciseRun, MetricsTracker, Sample, TimelineMarker, TrackerSpec};
 use tonic::Status;
 
@@ -127,6 +135,44 @@ pub struct LiveExercise {
     /// Set when the session closes: streams end, the renderer stops.
     pub closed: AtomicBool,
     pub ultrasound: Arc<UltrasoundHub>,
+    /// The tissue strain sampler of a 2D session (module docs), while the exercise runs.
+    strain: Mutex<Option<LiveStrain>>,
+}
+
+/// Tissue strain of a live 2D exercise (module docs): the session's displacement field (the
+/// fan-out computes it while this subscribes), read on the tap every
+/// [`STRAIN_INTERVAL_S`] of exercise time.
+struct LiveStrain {
+    field: tokio::sync::watch::Receiver<Arc<needlesim_session::Field>>,
+    subscribers: Arc<AtomicU64>,
+    strain: StrainField,
+    damage_strain: f64,
+    /// Exercise time of the next strain sample, s.
+    next_s: f64,
+}
+
+impl LiveStrain {
+    /// A strain sample at exercise time `t_s` when one is due and the field has arrived; O(n)
+    /// (a copy of the field and one pass over the triangles), no allocation.
+    fn sample(&mut self, tracker: &mut MetricsTracker, t_s: f64) {
+        if t_s < self.next_s - 2.0 * STRAIN_INTERVAL_S {
+            // The exercise was reset: its clock restarted.
+            self.next_s = t_s;
+        }
+        if t_s + 1e-9 < self.next_s {
+            return;
+        }
+        {
+            let f = self.field.borrow();
+            let u = self.strain.displacements_mut();
+            if f.displacement_m.len() != u.len() {
+                return;
+            }
+            u.copy_from_slice(&f.displacement_m);
+        }
+        tracker.push_strain(t_s, &self.strain.evaluate(self.damage_strain));
+        self.next_s = t_s + STRAIN_INTERVAL_S;
+    }
 }
 
 fn instructor_token() -> String {
@@ -178,6 +224,7 @@ impl LiveExercise {
             changes: AtomicU64::new(0),
             closed: AtomicBool::new(false),
             ultrasound,
+            strain: Mutex::new(None),
         })
     }
 
@@ -256,8 +303,32 @@ impl LiveExercise {
         st.last_tick = rec.tick;
         st.last_t_s = t_s;
         st.ticks += 1;
+        if let Some(ls) = self.strain.lock().expect("exercise strain lock").as_mut() {
+            ls.sample(&mut st.tracker, t_s);
+        }
         drop(st);
         self.changed();
+    }
+
+    /// Starts sampling the tissue strain of 2D session `s` (subscribes to its displacement field).
+    fn start_strain(&self, s: &Session) {
+        let Some(tissue) = s.tissue.two() else { return };
+        let mesh = tissue.mesh();
+        s.field_subscribers.fetch_add(1, Ordering::AcqRel);
+        *self.strain.lock().expect("exercise strain lock") = Some(LiveStrain {
+            field: s.field.clone(),
+            subscribers: s.field_subscribers.clone(),
+            strain: StrainField::new(mesh.nodes_m(), mesh.triangles()),
+            damage_strain: self.exercise.damage_strain,
+            next_s: 0.0,
+        });
+    }
+
+    /// Stops sampling the strain (unsubscribes from the field); idempotent.
+    fn stop_strain(&self) {
+        if let Some(ls) = self.strain.lock().expect("exercise strain lock").take() {
+            ls.subscribers.fetch_sub(1, Ordering::AcqRel);
+        }
     }
 
     /// Refuses the trainee's poses while the instructor has control or the exercise is paused.
@@ -452,6 +523,7 @@ impl LiveExercise {
                 return Ok(f.clone());
             }
             st.ending = true;
+            self.stop_strain();
             ExerciseRun {
                 exercise: self.exercise.name.clone(),
                 description: self.exercise.description.clone(),
@@ -466,8 +538,17 @@ impl LiveExercise {
                 placements: st.placements.clone(),
                 refused_placements: st.refused.clone(),
                 markers: st.markers.clone(),
+                expert: None,
+                expert_note: None,
+                ticks_csv: None,
             }
         };
+        // The expert run the exercise names: overlaid, or a note in the report saying why not.
+        let mut run = run;
+        match needlesim_training::run::expert_for(&self.exercise, &self.spec) {
+            Ok(e) => run.expert = e,
+            Err(e) => run.expert_note = Some(format!("the expert run could not be read: {e}")),
+        }
         let html = needlesim_training::report::report_html(&run)
             .map_err(|e| Status::internal(format!("the report of session {} cannot be drawn: {e}", self.session_id)))?;
         let dir = data_dir.join("reports");
@@ -520,6 +601,7 @@ impl RecordSink for TrainingTap {
 pub fn attach(registry: &Registry, s: &Session, ex: Arc<LiveExercise>) -> Result<(), Status> {
     s.attach_tap_from_io(Box::new(TrainingTap { ex: ex.clone() }))
         .map_err(|_| Status::failed_precondition(format!("session {} has a training tap already", s.id)))?;
+    ex.start_strain(s);
     registry.write().expect("training registry lock").insert(s.id.clone(), ex);
     Ok(())
 }

@@ -335,6 +335,29 @@ print(json.dumps({"metrics": p.metrics, "errors": p.errors, "open": p.stack, "sv
     }
     let score = j["result"]["score"]["total"].as_f64().unwrap();
     assert!((hm["score"].as_f64().unwrap() - score).abs() <= 1e-12 * score.max(1.0));
+    // Tissue strain (2D scripted runs): finite, sampled every 10 ms of exercise time, reported.
+    let st = &m["strain"];
+    if j["dim"].as_u64().unwrap() == 2 {
+        let n = st["strain_samples"].as_u64().unwrap();
+        let time_s = m["time_s"].as_f64().unwrap();
+        assert_eq!(n, (time_s / 0.01).round() as u64 + 1, "{name}: a strain sample every 10 ms");
+        let peak = st["peak_strain"].as_f64().unwrap();
+        let area = st["damaged_area_m2"].as_f64().unwrap();
+        assert!(peak.is_finite() && peak > 0.0 && area.is_finite() && area >= 0.0, "{name}: strain {st}");
+        assert_eq!(area > 0.0, peak > st["damage_strain"].as_f64().unwrap(), "{name}: an area above the threshold iff the peak is: {st}");
+        assert!(st["samples_above"].as_u64().unwrap() <= n);
+        for (k, v) in [
+            ("peak_strain", peak),
+            ("damaged_area_m2", area),
+            ("strain_samples", n as f64),
+            ("strain_samples_above", st["samples_above"].as_f64().unwrap()),
+        ] {
+            let got = hm[k].as_f64().unwrap_or_else(|| panic!("{name}: no {k} in the report"));
+            assert!((got - v).abs() <= 1e-12 * v.abs().max(1.0), "{name}: {k} {got} in the report, {v} in the JSON");
+        }
+    } else {
+        assert_eq!(st["strain_samples"].as_u64().unwrap(), 0, "{name}: not computed in 3D");
+    }
     for (i, t) in m["targets"].as_array().unwrap().iter().enumerate() {
         let e = t["placement"]["error_m"].as_f64().unwrap();
         assert!((hm[format!("target_{i}_error_m")].as_f64().unwrap() - e).abs() <= 1e-12 * e.max(1.0));
@@ -394,4 +417,172 @@ fn bad_exercises_and_placements_are_refused_naming_what() {
         !out.status.success() && stderr.contains("targets[0].scene_target: 'nope' is not a target of the scene (its targets: biopsy)"),
         "{stderr}"
     );
+}
+
+/// An expert CSV's rows (the tick series `exercise run --ticks` writes) in the terms of
+/// [`by_hand`], read here by column name; and the times at which it declared "placed".
+fn read_expert_rows(csv: &str, case: &Case) -> (Vec<Row>, Vec<f64>) {
+    let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name} in {header:?}"));
+    let mut placed = Vec::new();
+    let rows = lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap_or_else(|e| panic!("{x}: {e}"))).collect();
+            let g = |name: &str| v[col(name)];
+            for _ in 0..g("placed") as u32 {
+                placed.push(g("t_s"));
+            }
+            Row {
+                t_s: g("t_s"),
+                tip: [g("tip_x_m"), g("tip_y_m"), g("tip_z_m")],
+                axis: [g("axis_x"), g("axis_y"), g("axis_z")],
+                contacts: g("contacts") as u32,
+                axial_n: g("axial_force_n"),
+                centres: case
+                    .targets
+                    .iter()
+                    .map(|t| [g(&format!("target_{t}_x_m")), g(&format!("target_{t}_y_m")), g(&format!("target_{t}_z_m"))])
+                    .collect(),
+            }
+        })
+        .collect();
+    (rows, placed)
+}
+
+/// The report's expert table (`data-expert` / `data-trainee` cells) and every SVG text, parsed
+/// with Python's html.parser.
+fn expert_table(html: &Path) -> serde_json::Value {
+    let script = r##"
+import json, sys
+from html.parser import HTMLParser
+class P(HTMLParser):
+    def __init__(self):
+        super().__init__(convert_charrefs=True)
+        self.expert, self.trainee, self.texts, self.in_svg, self.in_text, self.note = {}, {}, [], 0, False, None
+        self.in_note = False
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "svg": self.in_svg += 1
+        if tag == "text" and self.in_svg: self.in_text = True; self.texts.append("")
+        if "data-expert" in a: self.expert[a["data-expert"]] = float(a["data-value"])
+        if "data-trainee" in a: self.trainee[a["data-trainee"]] = float(a["data-value"])
+        if a.get("id") == "expert-note": self.in_note = True; self.note = ""
+    def handle_endtag(self, tag):
+        if tag == "svg": self.in_svg -= 1
+        if tag == "text": self.in_text = False
+        if tag == "p": self.in_note = False
+    def handle_data(self, d):
+        if self.in_text: self.texts[-1] += d
+        if self.in_note: self.note += d
+p = P()
+p.feed(open(sys.argv[1], encoding="utf-8").read())
+p.close()
+print(json.dumps({"expert": p.expert, "trainee": p.trainee, "texts": p.texts, "note": p.note}))
+"##;
+    let out = run(Command::new(python()).arg("-c").arg(script).arg(html));
+    let (stdout, stderr) = text(&out);
+    assert!(out.status.success(), "html.parser: {stderr}");
+    serde_json::from_str(stdout.trim()).unwrap()
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1.0)
+}
+
+/// The shipped biopsy exercises name an expert run: the report overlays it (the legend label in
+/// the three plots) and its comparison table's expert column equals the metrics computed here
+/// from the shipped expert CSV by the definitions; the trainee column equals the run's JSON.
+#[test]
+fn the_expert_run_is_overlaid_and_its_metrics_match_a_hand_computation() {
+    let root = repo_root();
+    for name in ["biopsy-2d", "biopsy-3d"] {
+        let case = CASES.iter().find(|c| c.name == name).unwrap();
+        let tmp = TempDir::new(&format!("training-expert-{name}"));
+        let out = run(Command::new(bin("needlesim-server"))
+            .args(["exercise", "run", name, "--json"])
+            .arg(tmp.join("m.json"))
+            .arg("-o")
+            .arg(tmp.join("r.html")));
+        assert!(out.status.success(), "{name}: {}", text(&out).1);
+        check_report(&tmp.join("r.html"), &read_json(&tmp.join("m.json")), name);
+        let file = format!("{name}-expert.csv");
+        let csv = std::fs::read_to_string(root.join("server/scenes/exercises").join(&file)).unwrap();
+        let (rows, placed) = read_expert_rows(&csv, case);
+        assert_eq!(placed, case.placed_at_s, "{name}: the expert declared placed at its exercise's times");
+        let hand = by_hand(&rows, &Case { placed_at_s: Box::leak(placed.into_boxed_slice()), ..*case });
+        let r = expert_table(&tmp.join("r.html"));
+        let label = format!("expert ({file})");
+        let texts: Vec<&str> = r["texts"].as_array().unwrap().iter().map(|t| t.as_str().unwrap().trim()).collect();
+        assert_eq!(texts.iter().filter(|t| **t == label).count(), 3, "{name}: the legend label in each plot: {texts:?}");
+        assert_eq!(texts.iter().filter(|t| **t == "trainee").count(), 3, "{name}: {texts:?}");
+        let e = &r["expert"];
+        let g = |k: &str| e[k].as_f64().unwrap_or_else(|| panic!("{name}: no expert {k} in {e}"));
+        for (k, v) in [
+            ("time_s", hand.time_s),
+            ("path_length_m", hand.path_m),
+            ("peak_axial_force_n", hand.peak_n),
+            ("mean_axial_force_n", hand.mean_n),
+            ("insertions", hand.insertions as f64),
+            ("redirections", hand.redirections as f64),
+            ("target_0_error_m", hand.errors[0].expect("the expert placed the target")),
+        ] {
+            assert!(close(g(k), v), "{name}: expert {k} {} in the report, {v} by hand", g(k));
+        }
+        let j = read_json(&tmp.join("m.json"));
+        let m = &j["result"]["metrics"];
+        for k in ["time_s", "path_length_m", "peak_axial_force_n", "mean_axial_force_n"] {
+            let (a, b) = (r["trainee"][k].as_f64().unwrap(), m[k].as_f64().unwrap());
+            assert!(close(a, b), "{name}: trainee {k} {a} in the table, {b} in the JSON");
+        }
+        assert!(close(j["expert"]["result"]["metrics"]["path_length_m"].as_f64().unwrap(), hand.path_m), "{name}: the JSON's expert");
+    }
+}
+
+/// A run's own tick series (`--ticks`, every tick) read back as the expert gives exactly the
+/// run's metrics; a malformed or missing expert file is an error naming the file and line.
+#[test]
+fn a_runs_tick_series_is_its_own_expert_and_bad_expert_files_are_refused_naming_the_line() {
+    let tmp = TempDir::new("training-expert-ticks");
+    let ticks = tmp.join("ticks.csv");
+    let out = run(Command::new(bin("needlesim-server"))
+        .args(["exercise", "run", "brachy-2d", "--ticks"])
+        .arg(&ticks)
+        .arg("--json")
+        .arg(tmp.join("a.json")));
+    assert!(out.status.success(), "{}", text(&out).1);
+    let a = read_json(&tmp.join("a.json"));
+    let n_rows = std::fs::read_to_string(&ticks).unwrap().lines().filter(|l| !l.starts_with('#')).count() - 1;
+    assert_eq!(n_rows as u64, a["ticks"].as_u64().unwrap(), "one row a tick");
+    let out = run(Command::new(bin("needlesim-server"))
+        .args(["exercise", "run", "brachy-2d", "--expert"])
+        .arg(&ticks)
+        .arg("--json")
+        .arg(tmp.join("b.json")));
+    assert!(out.status.success(), "{}", text(&out).1);
+    let b = read_json(&tmp.join("b.json"));
+    let (tm, em) = (&a["result"]["metrics"], &b["expert"]["result"]["metrics"]);
+    for k in ["time_s", "path_length_m", "peak_axial_force_n", "mean_axial_force_n", "insertions", "redirections", "max_depth_m"] {
+        assert!(close(tm[k].as_f64().unwrap(), em[k].as_f64().unwrap()), "{k}: run {} vs expert {}", tm[k], em[k]);
+    }
+    for (x, y) in tm["targets"].as_array().unwrap().iter().zip(em["targets"].as_array().unwrap()) {
+        let (ex, ey) = (x["placement"]["error_m"].as_f64().unwrap(), y["placement"]["error_m"].as_f64().unwrap());
+        assert!(close(ex, ey), "{}: {ex} vs {ey}", x["name"]);
+    }
+    assert!(close(a["result"]["score"]["total"].as_f64().unwrap(), b["expert"]["result"]["score"]["total"].as_f64().unwrap()));
+    // Line 1 is the comment, 2 the header: corrupt the tip's y on line 7.
+    let mut lines: Vec<String> = std::fs::read_to_string(&ticks).unwrap().lines().map(str::to_owned).collect();
+    let mut v: Vec<String> = lines[6].split(',').map(str::to_owned).collect();
+    v[2] = "abc".into();
+    lines[6] = v.join(",");
+    let bad = tmp.join("bad.csv");
+    std::fs::write(&bad, lines.join("\n")).unwrap();
+    let out = run(Command::new(bin("needlesim-server")).args(["exercise", "run", "brachy-2d", "--expert"]).arg(&bad));
+    let (_, stderr) = text(&out);
+    let want = format!("expert run {}: line 7: column 3 ('tip_y_m'): 'abc' is not a finite number", bad.display());
+    assert!(!out.status.success() && stderr.contains(&want), "{stderr}");
+    let missing = tmp.join("no-such.csv");
+    let out = run(Command::new(bin("needlesim-server")).args(["exercise", "run", "brachy-2d", "--expert"]).arg(&missing));
+    let (_, stderr) = text(&out);
+    assert!(!out.status.success() && stderr.contains(&format!("expert run {}: cannot read it", missing.display())), "{stderr}");
 }

@@ -321,6 +321,16 @@ async fn run_exercise_live(exercise: &str, dim: usize) {
     close("peak_axial_force_n", fin.peak_axial_force_n);
     close("target_0_error_m", p.error_m);
     assert!(markers.iter().any(|l| l == "instructor demo <1>"), "the marker in the report: {markers:?}");
+    // Tissue strain: sampled live in 2D on the fan-out side from the displacement field; not in 3D.
+    if dim == 2 {
+        let (n, peak) = (m["strain_samples"].as_f64().unwrap_or(0.0), m["peak_strain"].as_f64().unwrap_or(f64::NAN));
+        assert!(n >= 1.0 && peak.is_finite() && peak > 0.0, "live strain in the report: {n} samples, peak {peak}");
+    } else {
+        assert!(m.get("strain_samples").is_none_or(|v| v.is_null()), "no strain in 3D");
+    }
+    // The exercise names an expert run (server/scenes/exercises/NAME-expert.csv): overlaid and compared.
+    let page = String::from_utf8(html).unwrap();
+    assert!(page.contains("<table id=\"expert\">") && page.contains(&format!("expert ({exercise}-expert.csv)")), "the expert overlay");
 
     // Observers saw the score evolve, the hand-over, and the final result.
     println!("{exercise}: the observers");

@@ -7,25 +7,53 @@ use std::path::Path;
 use anyhow::Context as _;
 use needlesim_core::mesh::MeshLimits;
 
-use crate::exercise::{EXERCISES, load_exercise};
+use crate::exercise::{EXERCISES, ExpertSource, load_exercise};
 use crate::report::report_html;
-use crate::run::{read_trajectory, run_exercise};
+use crate::run::{RunOptions, read_trajectory, run_exercise_with};
 
-/// Runs `exercise` (a shipped name or a TOML file) with `trajectory` (or its own) and the
-/// placements `placed_at_s` (or its own); writes `report` (HTML) and `json` (metrics) when
-/// given and prints a one-line summary on standard output.
-pub fn run_command(
-    exercise: &str,
-    trajectory: Option<&Path>,
-    placed_at_s: Option<&[f64]>,
-    report: Option<&Path>,
-    json: Option<&Path>,
-    max_ticks: u64,
-    limits: &MeshLimits,
-) -> anyhow::Result<()> {
-    let ex = load_exercise(exercise).with_context(|| format!("exercise {exercise}"))?;
+/// `exercise run`'s arguments.
+pub struct RunCommand<'a> {
+    /// A shipped exercise's name or a TOML file.
+    pub exercise: &'a str,
+    /// The base trajectory (default: the exercise's own).
+    pub trajectory: Option<&'a Path>,
+    /// When "placed" is declared (default: the exercise's own).
+    pub placed_at_s: Option<&'a [f64]>,
+    /// The HTML report to write.
+    pub report: Option<&'a Path>,
+    /// The metrics JSON to write.
+    pub json: Option<&'a Path>,
+    /// The expert run to overlay instead of the exercise's own (a tick series CSV).
+    pub expert: Option<&'a Path>,
+    /// Where to write this run's tick series CSV (an expert run for later comparisons).
+    pub ticks: Option<&'a Path>,
+    /// Keep every n-th tick in `ticks` (≥ 1).
+    pub ticks_every: u64,
+    pub max_ticks: u64,
+}
+
+/// Runs the exercise ([`RunCommand`]); writes the report (HTML), the metrics (JSON) and the
+/// tick series (CSV) when asked and prints a one-line summary on standard output.
+pub fn run_command(cmd: &RunCommand<'_>, limits: &MeshLimits) -> anyhow::Result<()> {
+    let exercise = cmd.exercise;
+    let (trajectory, placed_at_s, report, json, max_ticks) = (cmd.trajectory, cmd.placed_at_s, cmd.report, cmd.json, cmd.max_ticks);
+    let mut ex = load_exercise(exercise).with_context(|| format!("exercise {exercise}"))?;
+    if let Some(p) = cmd.expert {
+        ex.expert = Some(ExpertSource {
+            file: p.display().to_string(),
+            text: std::fs::read_to_string(p).map_err(|e| format!("cannot read it: {e}")),
+        });
+    }
+    if cmd.ticks_every == 0 {
+        anyhow::bail!("--ticks-every: 0 must be at least 1");
+    }
     let csv = trajectory.map(read_trajectory).transpose()?;
-    let run = run_exercise(&ex, csv.as_deref(), placed_at_s, max_ticks, limits).with_context(|| format!("exercise {}", ex.name))?;
+    let opts = RunOptions { ticks_every: cmd.ticks.map(|_| cmd.ticks_every) };
+    let run =
+        run_exercise_with(&ex, csv.as_deref(), placed_at_s, max_ticks, limits, opts).with_context(|| format!("exercise {}", ex.name))?;
+    if let (Some(p), Some(text)) = (cmd.ticks, &run.ticks_csv) {
+        std::fs::write(p, text).with_context(|| format!("cannot write {}", p.display()))?;
+    }
     if let Some(p) = json {
         let text = serde_json::to_string_pretty(&run)?;
         std::fs::write(p, text).with_context(|| format!("cannot write {}", p.display()))?;

@@ -7,6 +7,8 @@
 //! scene = "fig3-target"            # a shipped scene, or a scene file relative to this file
 //! trajectory = "biopsy-2d.csv"     # optional: the example's scripted run (relative)
 //! placed_at_s = [5.5]              # optional: when the example declares "placed"
+//! expert = "biopsy-2d-expert.csv"  # optional: an expert's run (the tick series CSV that
+//!                                  # `exercise run --ticks` writes, expert.rs), overlaid in the report
 //!
 //! [[targets]]                      # optional: default = every scene target, tolerance = radius
 //! scene_target = "biopsy"          # a target of the scene (the simulation moves it), or
@@ -36,6 +38,7 @@
 //!
 //! [metrics]
 //! redirect_threshold_m = 0.005     # the withdrawal (and re-advance) that makes a redirection
+//! damage_strain = 0.3              # equivalent strain above which tissue counts as damaged (2D, strain.rs)
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -52,7 +55,10 @@ pub const EXERCISES: &[(&str, &str, ExerciseFiles)] = &[
     (
         "biopsy-2d",
         include_str!("../../scenes/exercises/biopsy-2d.toml"),
-        &[("biopsy-2d.csv", include_str!("../../scenes/exercises/biopsy-2d.csv"))],
+        &[
+            ("biopsy-2d.csv", include_str!("../../scenes/exercises/biopsy-2d.csv")),
+            ("biopsy-2d-expert.csv", include_str!("../../scenes/exercises/biopsy-2d-expert.csv")),
+        ],
     ),
     (
         "brachy-2d",
@@ -67,7 +73,10 @@ pub const EXERCISES: &[(&str, &str, ExerciseFiles)] = &[
     (
         "biopsy-3d",
         include_str!("../../scenes/exercises/biopsy-3d.toml"),
-        &[("biopsy-3d.csv", include_str!("../../scenes/exercises/biopsy-3d.csv"))],
+        &[
+            ("biopsy-3d.csv", include_str!("../../scenes/exercises/biopsy-3d.csv")),
+            ("biopsy-3d-expert.csv", include_str!("../../scenes/exercises/biopsy-3d-expert.csv")),
+        ],
     ),
     (
         "brachy-3d",
@@ -114,6 +123,7 @@ struct ExerciseFile {
     trajectory: Option<String>,
     #[serde(default)]
     placed_at_s: Vec<f64>,
+    expert: Option<String>,
     #[serde(default)]
     targets: Vec<TargetSpec>,
     #[serde(default)]
@@ -172,6 +182,7 @@ struct WeightsFile {
 #[serde(deny_unknown_fields)]
 struct MetricsFile {
     redirect_threshold_m: Option<f64>,
+    damage_strain: Option<f64>,
 }
 
 /// Where an exercise's target comes from.
@@ -231,6 +242,14 @@ pub enum SceneRef {
     File { file: String, text: String, base_dir: PathBuf },
 }
 
+/// An expert run the exercise names: the file as named, and its text or why it cannot be read
+/// (kept, not refused at parse time: a live session still reports without it, with a note).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpertSource {
+    pub file: String,
+    pub text: Result<String, String>,
+}
+
 /// A validated exercise.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Exercise {
@@ -245,10 +264,19 @@ pub struct Exercise {
     pub limits: Limits,
     pub weights: Weights,
     pub redirect_threshold_m: f64,
+    /// The equivalent strain above which tissue counts as damaged ([`crate::strain`]; default
+    /// [`DEFAULT_DAMAGE_STRAIN`]).
+    pub damage_strain: f64,
     /// The example's trajectory CSV text, when the exercise names one.
     pub trajectory_csv: Option<String>,
     pub placed_at_s: Vec<f64>,
+    /// The expert run to compare with (`expert`), if named.
+    pub expert: Option<ExpertSource>,
 }
+
+/// The default `damage_strain`: 30 % equivalent strain (a training threshold for the shipped
+/// exercises, not a measured tissue property: set it per exercise).
+pub const DEFAULT_DAMAGE_STRAIN: f64 = 0.3;
 
 /// Most targets and structures of an exercise.
 pub const MAX_EXERCISE_TARGETS: usize = crate::sample::MAX_SAMPLE_TARGETS;
@@ -418,7 +446,9 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
         return Err(invalid("weights", "all are zero: at least one must be positive"));
     }
     let redirect_threshold_m = positive("metrics.redirect_threshold_m", f.metrics.redirect_threshold_m.unwrap_or(0.005))?;
+    let damage_strain = positive("metrics.damage_strain", f.metrics.damage_strain.unwrap_or(DEFAULT_DAMAGE_STRAIN))?;
     let trajectory_csv = f.trajectory.as_deref().map(|t| read(t).map_err(|e| invalid("trajectory", e.to_string()))).transpose()?;
+    let expert = f.expert.as_deref().map(|file| ExpertSource { file: file.to_owned(), text: read(file).map_err(|e| e.to_string()) });
     if let Some(x) = f.placed_at_s.iter().find(|x| !x.is_finite()) {
         return Err(invalid("placed_at_s", format!("{x} is not finite")));
     }
@@ -435,8 +465,10 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
         limits,
         weights,
         redirect_threshold_m,
+        damage_strain,
         trajectory_csv,
         placed_at_s: f.placed_at_s,
+        expert,
     })
 }
 
@@ -476,6 +508,7 @@ mod tests {
                 .starts_with("weights:")
         );
         assert!(err(&format!("{base}[metrics]\nredirect_threshold_m = nan\n")).starts_with("metrics.redirect_threshold_m:"));
+        assert!(err(&format!("{base}[metrics]\ndamage_strain = 0\n")).starts_with("metrics.damage_strain: 0 must be"));
         assert!(err(&format!("{base}[[targets]]\nname = \"t\"\n")).starts_with("targets[0].scene_target: missing"));
         assert!(err("name = \"x\"\nscene = \"no-such-scene.toml\"\n").starts_with("scene: 'no-such-scene.toml' is not a shipped scene"));
         assert!(err(&format!("{base}bogus = 1\n")).contains("bogus"));

@@ -31,9 +31,16 @@
 //!   ([`crate::geometry`]); over the run $c_j = \min_{k\in I} c_{j,k}$ ($+\infty$ if $I$ is
 //!   empty), the intrusion depth $\delta_j = \max(0, -c_j)$, touched when $c_j \le 0$, and the
 //!   number of samples touching it.
-//! - **Tissue strain above a damage threshold** is not computed: it needs the displacement
-//!   field ($O(n\,d)$ per sample), which a live session computes only for rendering (every
-//!   8 ms, while an observer asks). Left for the server integration.
+//! - **Tissue strain above a damage threshold** (2D; [`crate::strain`] for the per-triangle
+//!   equivalent strain $\varepsilon_{eq,e}$ and the damaged area $A_d$ above the exercise's
+//!   `damage_strain` $\varepsilon_d$): at strain samples $j$ (every
+//!   [`crate::run::STRAIN_INTERVAL_S`] of exercise time in a scripted run, from the displacement
+//!   field $u = \sum_w C_{:,w} f_w$ of the working contacts, $O(n\,d)$ each), the peak strain
+//!   $\varepsilon_{max} = \max_j \max_e \varepsilon_{eq,e,j}$ and its time, the largest damaged
+//!   area $\max_j A_{d,j}$, and the number of strain samples with $A_{d,j} > 0$ (i.e.
+//!   $\max_e \varepsilon_{eq,e,j} > \varepsilon_d$) — "samples above". A live 2D session takes
+//!   the samples on its fan-out side from the field it computes for observers (the server's
+//!   training_live.rs). Not scored. Not computed in 3D (the strain sample count is 0).
 //!
 //! **Score.** Sub-scores in $[0, 1]$:
 //! accuracy $s_{acc} = \frac1n\sum_i a_i$ with $a_i = 1$ if $e_i \le \tau_i$,
@@ -115,6 +122,25 @@ pub struct TargetResult {
     pub score: f64,
 }
 
+/// The tissue strain metrics (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
+pub struct StrainResult {
+    /// Strain samples taken (0: not computed: 3D, or a live session).
+    pub strain_samples: u64,
+    /// $\varepsilon_{max}$, the largest equivalent strain over the tissue and the samples.
+    pub peak_strain: f64,
+    /// When it peaked, s.
+    pub peak_strain_t_s: f64,
+    /// $\max_j A_{d,j}$, m².
+    pub damaged_area_m2: f64,
+    /// When the damaged area peaked, s.
+    pub damaged_area_t_s: f64,
+    /// Strain samples above the threshold.
+    pub samples_above: u64,
+    /// The threshold $\varepsilon_d$.
+    pub damage_strain: f64,
+}
+
 /// A structure's result.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StructureResult {
@@ -165,6 +191,8 @@ pub struct Metrics {
     pub max_depth_m: f64,
     pub targets: Vec<TargetResult>,
     pub structures: Vec<StructureResult>,
+    /// Tissue strain (module docs); `strain_samples == 0`: not computed.
+    pub strain: StrainResult,
     /// Declarations of "placed" refused because every target was placed.
     pub extra_placements: u32,
 }
@@ -210,6 +238,7 @@ pub struct MetricsTracker {
     placements: Vec<Option<Placement>>,
     closest_m: Vec<f64>,
     extra_placements: u32,
+    strain: StrainResult,
 }
 
 impl MetricsTracker {
@@ -234,6 +263,7 @@ impl MetricsTracker {
             in_tissue_samples: 0,
             max_depth_m: 0.0,
             extra_placements: 0,
+            strain: StrainResult::default(),
         }
     }
 
@@ -310,6 +340,22 @@ impl MetricsTracker {
             }
         }
         self.last = Some(*s);
+    }
+
+    /// Takes a strain sample at time `t_s` ([`crate::strain::StrainField::evaluate`]).
+    pub fn push_strain(&mut self, t_s: f64, s: &crate::strain::StrainSummary) {
+        let r = &mut self.strain;
+        if r.strain_samples == 0 || s.max_strain > r.peak_strain {
+            r.peak_strain = s.max_strain;
+            r.peak_strain_t_s = t_s;
+        }
+        if r.strain_samples == 0 || s.area_above_m2 > r.damaged_area_m2 {
+            r.damaged_area_m2 = s.area_above_m2;
+            r.damaged_area_t_s = t_s;
+        }
+        r.strain_samples += 1;
+        r.samples_above += (s.area_above_m2 > 0.0) as u64;
+        r.damage_strain = s.damage_strain;
     }
 
     /// Declares "placed" at the last sample: the nearest target not yet placed is placed
@@ -442,6 +488,7 @@ impl MetricsTracker {
                 })
                 .collect(),
             extra_placements: self.extra_placements,
+            strain: self.strain,
         }
     }
 

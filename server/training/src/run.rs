@@ -1,9 +1,12 @@
 //! Scripted exercise runs: an exercise resolved against its scene (targets looked up or added
 //! to the simulation, tolerances defaulted to radii), a base trajectory through the scene's
-//! simulation — 2D through needlesim-offline's `simulate` driver, 3D through the same loop as
-//! `simulate3::run3` (step, then every column ahead of the tip) — each tick's output turned into
-//! a [`Sample`] for the [`MetricsTracker`] and the report's [`Trace`], and "placed" declared at
-//! the first tick at or after each given time.
+//! simulation — 2D through needlesim-offline's driver (`ScriptedRun`, the run `simulate` makes),
+//! 3D through the same loop as `simulate3::run3` (step, then every column ahead of the tip) —
+//! each tick's output turned into a [`Sample`] for the [`MetricsTracker`] and the report's
+//! [`Trace`], and "placed" declared at the first tick at or after each given time. In 2D the
+//! tissue strain is sampled every [`STRAIN_INTERVAL_S`] of exercise time from the simulation's
+//! displacement field ([`crate::strain`]). The run's tick series CSV is written on request
+//! ([`RunOptions`], [`crate::expert`]) and the expert run the exercise names is read and overlaid.
 
 use std::ops::ControlFlow;
 use std::path::Path;
@@ -17,8 +20,13 @@ use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use serde::Serialize;
 
 use crate::exercise::{Exercise, SceneRef, Structure, TargetSource};
+use crate::expert::{ExpertError, ExpertOverlay, TickCsv, expert_overlay};
 use crate::metrics::{ExerciseResult, MetricsTracker, Placement, Trace, TracePoint, TrackedTarget, TrackerSpec};
 use crate::sample::Sample;
+use crate::strain::StrainField;
+
+/// Exercise time between two strain samples of a 2D scripted run, s (metrics.rs).
+pub const STRAIN_INTERVAL_S: f64 = 0.01;
 
 /// How many points the report's curves keep at most ([`Trace`]).
 pub const TRACE_CAPACITY: usize = 4096;
@@ -44,6 +52,9 @@ pub enum ExerciseRunError {
     /// The simulation failed (too long a run, a failed step: the tick is named).
     #[error("{0}")]
     Simulation(String),
+    /// The expert run the exercise names (or `--expert`) cannot be read: the file and line named.
+    #[error("{0}")]
+    Expert(#[from] ExpertError),
 }
 
 /// A target as drawn in the report.
@@ -79,6 +90,28 @@ pub struct ExerciseRun {
     pub refused_placements: Vec<(f64, String)>,
     /// Markers an instructor placed on the timeline (a live exercise; none in a scripted run).
     pub markers: Vec<TimelineMarker>,
+    /// The expert's run overlaid in the report, when the exercise names one ([`crate::expert`]).
+    pub expert: Option<ExpertOverlay>,
+    /// Why the named expert run is not overlaid (a live session's report says so instead of failing).
+    pub expert_note: Option<String>,
+    /// The run's tick series CSV, when asked for ([`RunOptions::ticks_every`]).
+    #[serde(skip)]
+    pub ticks_csv: Option<String>,
+}
+
+/// Options of a scripted run beyond the exercise's own.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunOptions {
+    /// Write the tick series CSV ([`crate::expert`]), keeping every n-th tick.
+    pub ticks_every: Option<u64>,
+}
+
+/// The expert overlay of `ex` for a tracker of `spec`: `Ok(None)` when the exercise names no
+/// expert run, an error naming the file (and line) when it cannot be read.
+pub fn expert_for(ex: &Exercise, spec: &TrackerSpec) -> Result<Option<ExpertOverlay>, ExpertError> {
+    let Some(src) = &ex.expert else { return Ok(None) };
+    let text = src.text.as_ref().map_err(|e| ExpertError::Read { file: src.file.clone(), message: e.clone() })?;
+    expert_overlay(text, &src.file, spec).map(Some)
 }
 
 /// A marker on an exercise's timeline (a live session's instructor places them).
@@ -165,6 +198,7 @@ struct Feeder<'a> {
     placements: Vec<(usize, Placement)>,
     refused: Vec<(f64, String)>,
     ticks: u64,
+    ticks_csv: Option<TickCsv>,
 }
 
 impl Feeder<'_> {
@@ -173,12 +207,17 @@ impl Feeder<'_> {
         self.trace.push(s, self.tracker.depth_m());
         self.ticks += 1;
         // A placement time on a tick's time counts at that tick (times printed to 1 µs).
+        let mut placed = 0;
         while self.next < self.placed_at_s.len() && self.placed_at_s[self.next] <= s.t_s + 1e-9 {
             match self.tracker.place() {
                 Ok(p) => self.placements.push(p),
                 Err(e) => self.refused.push((s.t_s, e.to_string())),
             }
             self.next += 1;
+            placed += 1;
+        }
+        if let Some(c) = &mut self.ticks_csv {
+            c.push(s, placed);
         }
     }
 }
@@ -247,13 +286,25 @@ pub fn prepare_3d(ex: &Exercise, limits: &MeshLimits) -> Result<Prepared3d, Exer
 }
 
 /// Runs `ex` scripted: `trajectory_csv` (or the exercise's own), "placed" declared at
-/// `placed_at_s` (or the exercise's own when `None`).
+/// `placed_at_s` (or the exercise's own when `None`); the expert run it names overlaid.
 pub fn run_exercise(
     ex: &Exercise,
     trajectory_csv: Option<&str>,
     placed_at_s: Option<&[f64]>,
     max_ticks: u64,
     limits: &MeshLimits,
+) -> Result<ExerciseRun, ExerciseRunError> {
+    run_exercise_with(ex, trajectory_csv, placed_at_s, max_ticks, limits, RunOptions::default())
+}
+
+/// [`run_exercise`] with [`RunOptions`].
+pub fn run_exercise_with(
+    ex: &Exercise,
+    trajectory_csv: Option<&str>,
+    placed_at_s: Option<&[f64]>,
+    max_ticks: u64,
+    limits: &MeshLimits,
+    opts: RunOptions,
 ) -> Result<ExerciseRun, ExerciseRunError> {
     let csv = trajectory_csv.or(ex.trajectory_csv.as_deref()).ok_or_else(|| ExerciseRunError::NoTrajectory(ex.name.clone()))?;
     let placed = placed_at_s.unwrap_or(&ex.placed_at_s);
@@ -265,6 +316,7 @@ pub fn run_exercise(
     }
     if ex.dim == 2 {
         let Prepared2d { scene, spec, targets: geom } = prepare_2d(ex, limits)?;
+        let ticks_csv = opts.ticks_every.map(|n| TickCsv::new(&spec, n, &ex.name));
         let traj = Trajectory::parse_csv(csv).map_err(|e| ExerciseRunError::Trajectory(e.to_string()))?;
         let end_s = traj.span_s().1;
         if let Some(&t) = placed.iter().find(|&&t| t > end_s + 1e-9) {
@@ -278,15 +330,36 @@ pub fn run_exercise(
             placements: vec![],
             refused: vec![],
             ticks: 0,
+            ticks_csv,
         };
-        needlesim_offline::simulate::run_observed(&scene, &traj, max_ticks, None, |tick, out| {
-            f.push(&Sample::from_2d(out, tick.t_s));
+        // The same run as `simulate` (needlesim-offline's driver), with the strain sampled every
+        // STRAIN_INTERVAL_S of exercise time from the simulation's displacement field.
+        let sim_err = |e: needlesim_offline::RunError| ExerciseRunError::Simulation(format!("{e:#}"));
+        let opts = needlesim_offline::RunOptions { max_ticks, ..Default::default() };
+        let mut run = needlesim_offline::ScriptedRun::new(
+            scene.tissue.clone(),
+            scene.params.clone(),
+            needlesim_offline::Script::trajectory(&traj),
+            opts,
+        )
+        .map_err(sim_err)?;
+        let mut strain = StrainField::new(scene.tissue.mesh().nodes_m(), scene.tissue.mesh().triangles());
+        let mut next_strain_s = f64::NEG_INFINITY;
+        run.run(|tick, sim| {
+            f.push(&Sample::from_2d(sim.output(), tick.t_s));
+            if tick.t_s >= next_strain_s - 1e-9 {
+                sim.displacement_field_into(strain.displacements_mut());
+                f.tracker.push_strain(tick.t_s, &strain.evaluate(ex.damage_strain));
+                next_strain_s = if next_strain_s.is_finite() { next_strain_s + STRAIN_INTERVAL_S } else { tick.t_s + STRAIN_INTERVAL_S };
+            }
             ControlFlow::Continue(())
         })
-        .map_err(|e| ExerciseRunError::Simulation(format!("{e:#}")))?;
-        Ok(finish(ex, scene.name.clone(), scene.params.tick_rate_hz, geom, f))
+        .map_err(sim_err)?;
+        run.finish().map_err(sim_err)?;
+        finish(ex, scene.name.clone(), scene.params.tick_rate_hz, geom, f)
     } else {
         let Prepared3d { scene, spec, targets: geom, added_targets } = prepare_3d(ex, limits)?;
+        let ticks_csv = opts.ticks_every.map(|n| TickCsv::new(&spec, n, &ex.name));
         let traj = Trajectory3::parse_csv(csv).map_err(|e| ExerciseRunError::Trajectory(e.to_string()))?;
         let (t0, t1) = traj.span_s();
         if let Some(&t) = placed.iter().find(|&&t| t > t1 + 1e-9) {
@@ -314,6 +387,7 @@ pub fn run_exercise(
             placements: vec![],
             refused: vec![],
             ticks: 0,
+            ticks_csv,
         };
         for k in 0..=last_k {
             let t_s = t0 + k as f64 / rate;
@@ -323,12 +397,19 @@ pub fn run_exercise(
             sim.prefetch_columns(usize::MAX).map_err(|e| fail(&e))?;
             f.push(&Sample::from_3d(sim.output(), t_s));
         }
-        Ok(finish(ex, scene.name.clone(), rate, geom, f))
+        finish(ex, scene.name.clone(), rate, geom, f)
     }
 }
 
-fn finish(ex: &Exercise, scene: String, rate: f64, targets: Vec<crate::run::TargetGeometry>, f: Feeder<'_>) -> ExerciseRun {
-    ExerciseRun {
+fn finish(
+    ex: &Exercise,
+    scene: String,
+    rate: f64,
+    targets: Vec<crate::run::TargetGeometry>,
+    f: Feeder<'_>,
+) -> Result<ExerciseRun, ExerciseRunError> {
+    let expert = expert_for(ex, f.tracker.spec())?;
+    Ok(ExerciseRun {
         exercise: ex.name.clone(),
         description: ex.description.clone(),
         scene,
@@ -342,7 +423,10 @@ fn finish(ex: &Exercise, scene: String, rate: f64, targets: Vec<crate::run::Targ
         placements: f.placements,
         refused_placements: f.refused,
         markers: Vec::new(),
-    }
+        expert,
+        expert_note: None,
+        ticks_csv: f.ticks_csv.map(TickCsv::finish),
+    })
 }
 
 /// Reads a trajectory file for [`run_exercise`] (a helper for the command line).
