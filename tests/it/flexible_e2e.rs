@@ -68,17 +68,7 @@ async fn issue_8_bevel_flips_over_grpc_and_the_shape_is_streamed() {
     let toml = std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/fig4-steering.toml"))
         .unwrap()
         .replace("gauge = 22", "gauge = 22\nbevel_force_ratio = 0.3");
-    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
-    let created = sessions
-        .create_session(pb::CreateSessionRequest {
-            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(toml)) }),
-            tick_rate_hz: 1000.0,
-            record: false,
-            device_channel: false,
-        })
-        .await
-        .expect("a flexible bevel-tip session")
-        .into_inner();
+    let created = needlesim_tests::create_toml_session(&ch, toml).await;
     let sid = created.session.unwrap().session_id;
     let mut observe = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
     let mut obs = observe

@@ -723,16 +723,7 @@ async fn issue_19_iteration_caps_are_counted_in_get_stats_and_metrics() {
     let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
     let mut counts = Vec::new();
     for scene in [format!("{toml}\n[limits]\nmax_active_set_iterations = 1\n"), toml.clone()] {
-        let created = sessions
-            .create_session(pb::CreateSessionRequest {
-                scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(scene)) }),
-                tick_rate_hz: 1000.0,
-                record: false,
-                device_channel: false,
-            })
-            .await
-            .expect("a paper-phantom session")
-            .into_inner();
+        let created = needlesim_tests::create_toml_session(&ch, scene).await;
         let sid = created.session.unwrap().session_id;
         // 25 mm down at the top centre, then turned ±6° about the base while going 10 mm deeper.
         let down = -std::f64::consts::FRAC_PI_2;

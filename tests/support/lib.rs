@@ -301,10 +301,22 @@ pub fn with_token<T>(msg: T, token: &str) -> tonic::Request<T> {
 
 /// Creates a 1 kHz session from a shipped example (no recording, no device channel).
 pub async fn create_example_session(ch: &tonic::transport::Channel, example: &str) -> needlesim_proto::v1::CreateSessionResponse {
+    create_session_from(ch, needlesim_proto::v1::scene_source::Source::Example(example.into())).await
+}
+
+/// Creates a 1 kHz session from a scene TOML's text (no recording, no device channel).
+pub async fn create_toml_session(ch: &tonic::transport::Channel, toml: String) -> needlesim_proto::v1::CreateSessionResponse {
+    create_session_from(ch, needlesim_proto::v1::scene_source::Source::SceneToml(toml)).await
+}
+
+async fn create_session_from(
+    ch: &tonic::transport::Channel,
+    source: needlesim_proto::v1::scene_source::Source,
+) -> needlesim_proto::v1::CreateSessionResponse {
     use needlesim_proto::v1 as pb;
     let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
     c.create_session(pb::CreateSessionRequest {
-        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example(example.into())) }),
+        scene: Some(pb::SceneSource { source: Some(source) }),
         tick_rate_hz: 1000.0,
         record: false,
         device_channel: false,

@@ -184,7 +184,8 @@ pub struct RegionNeedleParams {
     /// Static over kinetic friction (≥ 1): a stuck node slips when its axial force exceeds
     /// this ratio times its kinetic friction share.
     pub static_friction_ratio: f64,
-    /// Relative height $h$ of the friction peak behind the tip (≈ 0.3 in the paper).
+    /// Relative height $h$ of the friction peak behind the tip (≈ 0.3 in the paper). With
+    /// energy-based cutting ([`Self::toughness_cutting_force_n`]) it acts only while the tip cuts.
     pub tip_peak_ratio: f64,
     /// Width $w$ of the friction peak behind the tip, m.
     pub tip_peak_width_m: f64,
@@ -254,7 +255,15 @@ impl RegionNeedleParams {
 
     /// $\int_{\ell_1}^{\ell_2} q(\ell)\,d\ell$ for $0 \le \ell_1 \le \ell_2$ (distances behind the tip).
     pub fn friction_integral_n(&self, l1_m: f64, l2_m: f64) -> f64 {
-        let (q0, h, w) = (self.friction_n_per_m, self.tip_peak_ratio, self.tip_peak_width_m);
+        self.friction_integral_with_peak_n(l1_m, l2_m, true)
+    }
+
+    /// [`Self::friction_integral_n`] with the peak behind the tip (`peak`) or without it
+    /// ($h = 0$: the plain $q_0$). With energy-based cutting the peak, which the paper
+    /// attributes to cutting, is applied only while the tip cuts (issue 19).
+    pub fn friction_integral_with_peak_n(&self, l1_m: f64, l2_m: f64, peak: bool) -> f64 {
+        let (q0, w) = (self.friction_n_per_m, self.tip_peak_width_m);
+        let h = if peak { self.tip_peak_ratio } else { 0.0 };
         let (l1, l2) = (l1_m.max(0.0), l2_m.max(0.0));
         if l2 <= l1 {
             return 0.0;

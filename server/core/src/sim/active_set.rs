@@ -48,7 +48,9 @@ pub(super) struct ActiveSetScratch {
 /// ([`crate::RegionNeedleParams::toughness_cutting_force_n`]), while the base advances and no
 /// contact is carried by the tip, the most distal node's share also holds the cutting force,
 /// $f_{distal} \mathrel{+}= F_c = G_c w$: the tissue ahead of the tip resists the cut with it,
-/// and the node's static threshold is $\mu_s/\mu_k$ times the sum. The new shares are applied only when
+/// and the node's static threshold is $\mu_s/\mu_k$ times the sum; the friction peak behind the
+/// tip ($h$) is then part of the cut too, applied only while cutting (at rest and while
+/// withdrawing the shares are of the plain $q_0$). The new shares are applied only when
 /// some slipping node's share changes by more than `min_change_n` (always when not `current`),
 /// so that the applied values always belong to the last solve. Returns the largest change (N).
 pub(super) fn update_friction(
@@ -86,7 +88,10 @@ pub(super) fn update_friction(
         let hi = if i + 1 == k { s_tip.max(s) } else { 0.5 * (s + ws.node(order[i + 1]).s_work_m) };
         let rp = params.regions[ws.node(slot).region];
         let nn = ws.node_mut(slot);
-        nn.friction_new_n = rp.friction_integral_n(s_tip - hi, s_tip - lo) + rp.friction_damping_n_s_per_m2 * speed * (hi - lo);
+        // With energy-based cutting the peak behind the tip belongs to the cut: only while cutting.
+        let peak = rp.toughness_cutting_force_n.is_none() || cutting;
+        nn.friction_new_n =
+            rp.friction_integral_with_peak_n(s_tip - hi, s_tip - lo, peak) + rp.friction_damping_n_s_per_m2 * speed * (hi - lo);
         if let Some(fc) = rp.toughness_cutting_force_n
             && cutting
             && i + 1 == k
