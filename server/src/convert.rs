@@ -786,7 +786,7 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
         contact: if u.node_capture {
             ContactModel::Nodes
         } else {
-            ContactModel::MaterialPoints { spacing_m: or(u.contact_spacing_m, ContactModel::DEFAULT_SPACING_M) }
+            ContactModel::MaterialPoints { spacing_m: or(u.contact_spacing_m, ContactModel::DEFAULT_SPACING_M), width_m: 0.0 }
         },
         columns_in_step: false,
         capture_radius_m: or(u.capture_radius_m, 0.5 * mean_edge),

@@ -11,43 +11,177 @@
 //! with weight 1. The same condensation, pivots and rotations then work on nodes and material
 //! points alike.
 //!
-//! The type is the same in both dimensions (up to four terms; a triangle uses three): the
-//! dimension is a property of the mesh and of the solver ([`crate::mixed`]), not of where a
-//! contact sits, and [`ContactPoint::interpolate`] is generic over the vector length.
+//! The type is the same in both dimensions (a triangle's point uses three terms, a
+//! tetrahedron's four): the dimension is a property of the mesh and of the solver
+//! ([`crate::mixed`]), not of where a contact sits, and [`ContactPoint::interpolate`] is generic
+//! over the vector length.
+//!
+//! A **patch** (2D, issue 19) spreads a contact over a segment $S$ of length $w$ (the needle's
+//! width) instead of a point: its weights are the shape functions averaged over the segment,
+//! $N_k = \frac{1}{|S|}\int_S N_k(X)\,dX$ (exact: $N_k$ is linear on each triangle's piece), so
+//! its displacement is the segment's mean displacement and its force is spread evenly along it.
+//! A point load's compliance grows like $\ln(1/h)$ under refinement in 2D; a segment's is finite,
+//! so the contact's stiffness, and everything it sets, converges. Up to [`MAX_TERMS`] nodes.
 
 use crate::ids::NodeIdx;
 
+/// The most nodes a contact interpolates (a patch's; a point uses at most four).
+pub const MAX_TERMS: usize = 12;
+
+/// What a [`ContactPoint`] is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Node,
+    Triangle,
+    Tetrahedron,
+    Patch,
+}
+
 /// A contact's place in the mesh: one node (weight 1), or a material point inside triangle
 /// `tri_idx` (2D) with the triangle's three nodes, or inside tetrahedron `tet_idx` (3D) with its
-/// four nodes, and the point's barycentric weights.
+/// four nodes, and the point's barycentric weights; or a 2D patch (module docs) with up to
+/// [`MAX_TERMS`] nodes and its centre's triangle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
-    nodes: [NodeIdx; 4],
-    weights: [f64; 4],
-    /// Number of terms: 1 (a node), 3 (a triangle's point) or 4 (a tetrahedron's point).
+    nodes: [NodeIdx; MAX_TERMS],
+    weights: [f64; MAX_TERMS],
+    /// Number of terms.
     len: u8,
-    /// The element a material point lies in (a triangle when `len == 3`, a tetrahedron when
-    /// `len == 4`).
+    kind: Kind,
+    /// The element a material point lies in (a patch's: the one its centre lies in).
     elem_idx: Option<u32>,
+}
+
+/// Why [`ContactPoint::patch`] refused a patch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum PatchError {
+    /// The segment touches more than [`MAX_TERMS`] nodes (a needle far wider than the elements).
+    #[error("the contact patch touches more than {MAX_TERMS} nodes")]
+    TooManyNodes,
+    /// No part of the segment has a weight (an empty or degenerate segment).
+    #[error("the contact patch has no length inside the mesh")]
+    Empty,
 }
 
 impl ContactPoint {
     /// The mesh node `node_idx` itself.
     pub fn node(node_idx: NodeIdx) -> Self {
-        Self { nodes: [node_idx; 4], weights: [1.0, 0.0, 0.0, 0.0], len: 1, elem_idx: None }
+        let mut weights = [0.0; MAX_TERMS];
+        weights[0] = 1.0;
+        Self { nodes: [node_idx; MAX_TERMS], weights, len: 1, kind: Kind::Node, elem_idx: None }
+    }
+
+    /// The first `N` terms of `nodes`/`weights`, the rest empty.
+    fn with_terms<const N: usize>(kind: Kind, elem_idx: usize, nodes: [usize; N], weights: [f64; N]) -> Self {
+        let mut n = [NodeIdx(nodes[N - 1]); MAX_TERMS];
+        let mut w = [0.0; MAX_TERMS];
+        for k in 0..N {
+            n[k] = NodeIdx(nodes[k]);
+            w[k] = weights[k];
+        }
+        Self { nodes: n, weights: w, len: N as u8, kind, elem_idx: Some(elem_idx as u32) }
     }
 
     /// The material point of triangle `tri_idx` (nodes `nodes`) with barycentric weights
     /// `weights` (summing to 1). 2D.
     pub fn in_triangle(tri_idx: usize, nodes: [usize; 3], weights: [f64; 3]) -> Self {
-        let n = nodes.map(NodeIdx);
-        Self { nodes: [n[0], n[1], n[2], n[2]], weights: [weights[0], weights[1], weights[2], 0.0], len: 3, elem_idx: Some(tri_idx as u32) }
+        Self::with_terms(Kind::Triangle, tri_idx, nodes, weights)
     }
 
     /// The material point of tetrahedron `tet_idx` (nodes `nodes`) with barycentric weights
     /// `weights` (summing to 1). 3D.
     pub fn in_tetrahedron(tet_idx: usize, nodes: [usize; 4], weights: [f64; 4]) -> Self {
-        Self { nodes: nodes.map(NodeIdx), weights, len: 4, elem_idx: Some(tet_idx as u32) }
+        Self::with_terms(Kind::Tetrahedron, tet_idx, nodes, weights)
+    }
+
+    /// A 2D patch (module docs) whose centre lies in triangle `centre_tri_idx`, from its pieces:
+    /// `pieces` yields, for each part of the segment inside one triangle, the triangle's nodes,
+    /// the barycentric weights at the part's midpoint and the part's length. Terms of the same
+    /// node are merged and the weights normalised by the total length (so a segment partly
+    /// outside the mesh is the mean over the part inside).
+    ///
+    /// Errors: [`PatchError::TooManyNodes`] when the pieces touch more than [`MAX_TERMS`]
+    /// nodes, [`PatchError::Empty`] when their total length is not positive.
+    pub fn patch(centre_tri_idx: usize, pieces: impl IntoIterator<Item = ([usize; 3], [f64; 3], f64)>) -> Result<Self, PatchError> {
+        let mut out = Self::node(NodeIdx(0));
+        out.len = 0;
+        out.kind = Kind::Patch;
+        out.elem_idx = Some(centre_tri_idx as u32);
+        out.weights[0] = 0.0;
+        let mut total = 0.0;
+        for (nodes, bary, len_m) in pieces {
+            total += len_m;
+            for (j, b) in nodes.into_iter().zip(bary) {
+                let w = b * len_m;
+                match out.nodes[..out.len as usize].iter().position(|n| n.0 == j) {
+                    Some(k) => out.weights[k] += w,
+                    None if (out.len as usize) < MAX_TERMS => {
+                        out.nodes[out.len as usize] = NodeIdx(j);
+                        out.weights[out.len as usize] = w;
+                        out.len += 1;
+                    }
+                    None => return Err(PatchError::TooManyNodes),
+                }
+            }
+        }
+        if !(total > 0.0) {
+            return Err(PatchError::Empty);
+        }
+        for w in &mut out.weights[..out.len as usize] {
+            *w /= total;
+        }
+        Ok(out)
+    }
+
+    /// Whether this contact is a patch.
+    #[inline]
+    pub fn is_patch(&self) -> bool {
+        self.kind == Kind::Patch
+    }
+
+    /// At most three terms standing for this contact where a record keeps three (a node's or a
+    /// triangle's point's are its own, in order; otherwise the three heaviest, weights
+    /// renormalised to sum to 1): for drawing a field, never for the physics. Returns the
+    /// count used.
+    pub fn three_terms(&self) -> ([NodeIdx; 3], [f64; 3], usize) {
+        if self.len <= 3 {
+            // A node or a triangle's point: its own terms, in order.
+            let used = self.len as usize;
+            let mut nodes = [self.nodes[0]; 3];
+            let mut weights = [0.0; 3];
+            nodes[..used].copy_from_slice(&self.nodes[..used]);
+            weights[..used].copy_from_slice(&self.weights[..used]);
+            return (nodes, weights, used);
+        }
+        let mut idx = [usize::MAX; 3];
+        for slot in 0..3 {
+            let mut best: Option<usize> = None;
+            for k in 0..self.len as usize {
+                if idx[..slot].contains(&k) {
+                    continue;
+                }
+                if best.is_none_or(|b| self.weights[k] > self.weights[b]) {
+                    best = Some(k);
+                }
+            }
+            if let Some(b) = best {
+                idx[slot] = b;
+            }
+        }
+        let used = (self.len as usize).min(3);
+        let mut nodes = [self.nodes[0]; 3];
+        let mut weights = [0.0; 3];
+        for k in 0..used {
+            nodes[k] = self.nodes[idx[k]];
+            weights[k] = self.weights[idx[k]];
+        }
+        let sum: f64 = weights.iter().sum();
+        if used > 0 && sum != 0.0 {
+            for w in &mut weights[..used] {
+                *w /= sum;
+            }
+        }
+        (nodes, weights, used)
     }
 
     /// The interpolation terms $(k, N_k)$: one for a node, three for a triangle's material
@@ -73,14 +207,14 @@ impl ContactPoint {
     /// point).
     #[inline]
     pub fn tri_idx(&self) -> Option<usize> {
-        if self.len == 3 { self.elem_idx.map(|t| t as usize) } else { None }
+        if matches!(self.kind, Kind::Triangle | Kind::Patch) { self.elem_idx.map(|t| t as usize) } else { None }
     }
 
     /// The tetrahedron a 3D material point lies in (`None` for a node contact or a triangle's
     /// point).
     #[inline]
     pub fn tet_idx(&self) -> Option<usize> {
-        if self.len == 4 { self.elem_idx.map(|t| t as usize) } else { None }
+        if self.kind == Kind::Tetrahedron { self.elem_idx.map(|t| t as usize) } else { None }
     }
 
     /// The node with the largest weight (the node itself for a node contact): what a client that
@@ -110,14 +244,40 @@ impl ContactPoint {
     }
 }
 
-impl std::fmt::Display for ContactPoint {
+/// A contact's identity, for errors and messages: what it is, its element and its first four
+/// nodes (a [`ContactPoint`] without its weights and a patch's further nodes; small enough to
+/// return by value in an error).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ContactId {
+    kind: Kind,
+    elem_idx: Option<u32>,
+    nodes: [NodeIdx; 4],
+    len: u8,
+}
+
+impl ContactPoint {
+    /// This contact's identity ([`ContactId`]).
+    pub fn id(&self) -> ContactId {
+        ContactId { kind: self.kind, elem_idx: self.elem_idx, nodes: [0, 1, 2, 3].map(|k| self.nodes[k]), len: self.len }
+    }
+}
+
+impl std::fmt::Display for ContactId {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let n = &self.nodes;
-        match (self.elem_idx, self.len) {
-            (Some(t), 4) => write!(f, "the material point in tetrahedron {t} (nodes {}, {}, {}, {})", n[0], n[1], n[2], n[3]),
-            (Some(t), _) => write!(f, "the material point in triangle {t} (nodes {}, {}, {})", n[0], n[1], n[2]),
-            (None, _) => write!(f, "node {}", n[0]),
+        let t = self.elem_idx.unwrap_or(0);
+        match self.kind {
+            Kind::Tetrahedron => write!(f, "the material point in tetrahedron {t} (nodes {}, {}, {}, {})", n[0], n[1], n[2], n[3]),
+            Kind::Triangle => write!(f, "the material point in triangle {t} (nodes {}, {}, {})", n[0], n[1], n[2]),
+            Kind::Patch => write!(f, "the contact patch centred in triangle {t} ({} nodes)", self.len),
+            Kind::Node => write!(f, "node {}", n[0]),
         }
+    }
+}
+
+impl std::fmt::Display for ContactPoint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.id().fmt(f)
     }
 }
 
@@ -148,5 +308,36 @@ mod tests {
         assert_eq!(q.to_string(), "the material point in tetrahedron 5 (nodes 1, 2, 8, 6)");
         let v = q.interpolate(|k| [k.0 as f64, 1.0, -2.0]);
         assert!((v[0] - (0.1 + 0.4 + 2.4 + 2.4)).abs() < 1e-14 && (v[1] - 1.0).abs() < 1e-15 && (v[2] + 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_patch_merges_its_pieces_and_normalises_by_length() {
+        // Two pieces sharing nodes 2 and 3: lengths 1 and 3.
+        let p = ContactPoint::patch(7, [([1, 2, 3], [0.5, 0.5, 0.0], 1.0), ([2, 3, 4], [0.2, 0.3, 0.5], 3.0)]).unwrap();
+        assert!(p.is_patch() && p.as_node().is_none());
+        assert_eq!(p.tri_idx(), Some(7));
+        assert_eq!(p.nodes(), &[NodeIdx(1), NodeIdx(2), NodeIdx(3), NodeIdx(4)]);
+        let w: Vec<f64> = p.terms().map(|(_, w)| w).collect();
+        let want = [0.5 / 4.0, (0.5 + 0.6) / 4.0, 0.9 / 4.0, 1.5 / 4.0];
+        for (a, b) in w.iter().zip(want) {
+            assert!((a - b).abs() < 1e-15, "{w:?} against {want:?}");
+        }
+        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        assert_eq!(p.to_string(), "the contact patch centred in triangle 7 (4 nodes)");
+        // The three heaviest, renormalised: nodes 4, 2, 3.
+        let (n3, w3, used) = p.three_terms();
+        assert_eq!((used, n3), (3, [NodeIdx(4), NodeIdx(2), NodeIdx(3)]));
+        let s = 1.5 + 1.1 + 0.9;
+        assert!((w3[0] - 1.5 / s).abs() < 1e-15 && (w3[1] - 1.1 / s).abs() < 1e-15 && (w3[2] - 0.9 / s).abs() < 1e-15);
+        // A point's three terms are its own.
+        let q = ContactPoint::in_triangle(1, [5, 6, 7], [0.2, 0.5, 0.3]);
+        let (n3, w3, used) = q.three_terms();
+        assert_eq!(used, 3);
+        assert_eq!((n3, w3), ([NodeIdx(5), NodeIdx(6), NodeIdx(7)], [0.2, 0.5, 0.3]));
+        assert_eq!(ContactPoint::node(NodeIdx(3)).three_terms().2, 1);
+        // Too many nodes, and nothing at all.
+        let many = (0..5).map(|k| ([3 * k, 3 * k + 1, 3 * k + 2], [0.3, 0.3, 0.4], 1.0));
+        assert_eq!(ContactPoint::patch(0, many), Err(PatchError::TooManyNodes));
+        assert_eq!(ContactPoint::patch(0, std::iter::empty()), Err(PatchError::Empty));
     }
 }

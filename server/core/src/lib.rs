@@ -19,6 +19,9 @@
 // Index loops mirror the formulas (i, j over matrix entries); `!(x > 0.0)` is deliberate: it is
 // true for NaN, which must be rejected with the other invalid values.
 #![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
+// The solver's errors carry the contact they are about (a `ContactPoint` of up to twelve terms,
+// about 200 bytes) by value: they are returned on cold paths, and boxing them would allocate on
+// the real-time thread (a dependent material point is such an error, handled inside a step).
 
 pub mod assembly;
 pub mod beam;
@@ -42,7 +45,7 @@ pub mod statics;
 pub use assembly::MaterialMap;
 pub use beam::NeedleCurve;
 pub use compliance::{ColumnScratch, ComplianceCache, ComplianceCache3, TissueError, TissueModel};
-pub use contact::ContactPoint;
+pub use contact::{ContactId, ContactPoint};
 pub use ids::{Axis, NodeIdx, Slot};
 pub use material::{Material, MaterialError, PlaneModel};
 pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};

@@ -72,7 +72,7 @@
 //! Nothing here allocates after [`MixedSolver::with_capacity`].
 
 use crate::compliance::ContactBlocks;
-use crate::contact::ContactPoint;
+use crate::contact::{ContactId, ContactPoint};
 use crate::ids::{Axis, NodeIdx, Slot};
 
 /// What is prescribed on one local DOF.
@@ -95,7 +95,7 @@ pub enum MixedError {
     AlreadyWorking { node_idx: NodeIdx },
     /// The compliance columns of a contact's node(s) are not cached.
     #[error("the compliance columns of {contact} are not cached")]
-    NotCached { contact: ContactPoint },
+    NotCached { contact: ContactId },
     /// The slot does not exist.
     #[error("working slot {slot} does not exist ({n_nodes} working nodes)")]
     NoSuchSlot { slot: Slot, n_nodes: usize },
@@ -104,14 +104,14 @@ pub enum MixedError {
     /// Raised by a condition switch, and by a frame change of a slot with mixed kinds whose new
     /// prescribed direction is singular.
     #[error("prescribing the {axis} displacement of {contact} makes the working system singular (pivot {pivot:e})")]
-    SingularPivot { contact: ContactPoint, axis: Axis, pivot: f64 },
+    SingularPivot { contact: ContactId, axis: Axis, pivot: f64 },
     /// A value, angle or frame is not finite.
     #[error("{what} of working contact {contact} is not finite")]
-    NonFinite { what: &'static str, contact: ContactPoint },
+    NonFinite { what: &'static str, contact: ContactId },
     /// A frame given to [`MixedSolver::add_contact_in_frame`] or [`MixedSolver::set_frame`] is
     /// not a rotation: $\max_{ij} |(F F^\top - I)_{ij}| > 10^{-9}$ or $\det F < 0$.
     #[error("the frame of {contact} is not a rotation (orthonormality error {orthonormality_error:e}, determinant {det:e})")]
-    NotARotation { contact: ContactPoint, orthonormality_error: f64, det: f64 },
+    NotARotation { contact: ContactId, orthonormality_error: f64, det: f64 },
 }
 
 /// Counters of the updates performed.
@@ -303,7 +303,7 @@ fn det<const D: usize>(m: &Block<D>) -> f64 {
 /// Checks that `f` is a finite rotation ([`MixedError::NonFinite`], [`MixedError::NotARotation`]).
 fn check_frame<const D: usize>(f: &Block<D>, contact: ContactPoint) -> Result<(), MixedError> {
     if !f.iter().flatten().all(|v| v.is_finite()) {
-        return Err(MixedError::NonFinite { what: "the frame", contact });
+        return Err(MixedError::NonFinite { what: "the frame", contact: contact.id() });
     }
     let fft = mul_t(f, f);
     let mut err: f64 = 0.0;
@@ -314,7 +314,7 @@ fn check_frame<const D: usize>(f: &Block<D>, contact: ContactPoint) -> Result<()
     }
     let d = det(f);
     if !(err <= FRAME_TOL && d > 0.0) {
-        return Err(MixedError::NotARotation { contact, orthonormality_error: err, det: d });
+        return Err(MixedError::NotARotation { contact: contact.id(), orthonormality_error: err, det: d });
     }
     Ok(())
 }
@@ -485,12 +485,12 @@ impl<const D: usize> MixedSolver<D> {
         {
             return Err(MixedError::AlreadyWorking { node_idx });
         }
-        let c_nn_world = cache.contact_block(&contact, &contact).ok_or(MixedError::NotCached { contact })?;
+        let c_nn_world = cache.contact_block(&contact, &contact).ok_or(MixedError::NotCached { contact: contact.id() })?;
         let d = self.n_dofs();
         let st = self.stride;
         // c: local compliance between existing DOFs and the D new ones.
         for s in 0..self.n_nodes {
-            let b = cache.contact_block(&self.contact_of_slot[s], &contact).ok_or(MixedError::NotCached { contact })?;
+            let b = cache.contact_block(&self.contact_of_slot[s], &contact).ok_or(MixedError::NotCached { contact: contact.id() })?;
             let l = to_local(&b, &self.frame[s], &frame);
             for r in 0..D {
                 self.tmp_c[D * s + r] = l[r];
@@ -583,7 +583,11 @@ impl<const D: usize> MixedSolver<D> {
             Condition::Displacement => 0.0,
         };
         if !(p > threshold && p.is_finite()) {
-            return Err(MixedError::SingularPivot { contact: self.contact_of_slot[k / D], axis: Axis::of_local_dof::<D>(k), pivot: p });
+            return Err(MixedError::SingularPivot {
+                contact: self.contact_of_slot[k / D].id(),
+                axis: Axis::of_local_dof::<D>(k),
+                pivot: p,
+            });
         }
         for j in 0..d {
             self.tmp_row[j] = self.h[k * st + j];
@@ -625,7 +629,7 @@ impl<const D: usize> MixedSolver<D> {
     pub fn set_condition(&mut self, slot: Slot, axis: Axis, cond: Condition, value: f64) -> Result<(), MixedError> {
         self.check_slot(slot)?;
         if !value.is_finite() {
-            return Err(MixedError::NonFinite { what: "a prescribed value", contact: self.contact_of_slot[slot.index()] });
+            return Err(MixedError::NonFinite { what: "a prescribed value", contact: self.contact_of_slot[slot.index()].id() });
         }
         let k = Self::dof(slot, axis);
         if self.kind[k] != cond {
@@ -726,7 +730,7 @@ impl<const D: usize> MixedSolver<D> {
             if is_p[c] {
                 if !(sc[c][c] > 0.0 && sc[c][c].is_finite()) {
                     return Err(MixedError::SingularPivot {
-                        contact: self.contact_of_slot[s],
+                        contact: self.contact_of_slot[s].id(),
                         axis: Axis::of_component(c),
                         pivot: sc[c][c],
                     });
@@ -740,7 +744,7 @@ impl<const D: usize> MixedSolver<D> {
             if is_p[c] {
                 let p = sn[c][c];
                 if !(p > PIVOT_TOL * c_new[c][c] && p.is_finite()) {
-                    return Err(MixedError::SingularPivot { contact: self.contact_of_slot[s], axis: Axis::of_component(c), pivot: p });
+                    return Err(MixedError::SingularPivot { contact: self.contact_of_slot[s].id(), axis: Axis::of_component(c), pivot: p });
                 }
                 sn = pivot_block(&sn, c);
             }
@@ -762,7 +766,7 @@ impl<const D: usize> MixedSolver<D> {
             invert(&w_scaled).map(|m| -> Block<D> { std::array::from_fn(|i| std::array::from_fn(|j| m[i][j] * sc_of(j) / sc_of(i))) })
         else {
             let c = (0..D).find(|&c| is_p[c]).unwrap_or(0);
-            return Err(MixedError::SingularPivot { contact: self.contact_of_slot[s], axis: Axis::of_component(c), pivot: 0.0 });
+            return Err(MixedError::SingularPivot { contact: self.contact_of_slot[s].id(), axis: Axis::of_component(c), pivot: 0.0 });
         };
         let hss_new = mul(&v, &wi);
         let hb = mul(&hss_new, &b);
@@ -935,7 +939,7 @@ impl<const D: usize> MixedSolver<D> {
         for a in 0..self.n_nodes {
             for b in 0..self.n_nodes {
                 let (ca, cb) = (&self.contact_of_slot[a], &self.contact_of_slot[b]);
-                let blk = cache.contact_block(ca, cb).ok_or(MixedError::NotCached { contact: *cb })?;
+                let blk = cache.contact_block(ca, cb).ok_or(MixedError::NotCached { contact: cb.id() })?;
                 let l = to_local(&blk, &self.frame[a], &self.frame[b]);
                 for i in 0..D {
                     for j in 0..D {
@@ -956,7 +960,7 @@ impl<const D: usize> MixedSolver<D> {
         } else {
             let llt = cpp.llt(faer::Side::Lower).map_err(|_| {
                 let k = p[0];
-                MixedError::SingularPivot { contact: self.contact_of_slot[k / D], axis: Axis::of_local_dof::<D>(k), pivot: 0.0 }
+                MixedError::SingularPivot { contact: self.contact_of_slot[k / D].id(), axis: Axis::of_local_dof::<D>(k), pivot: 0.0 }
             })?;
             let inv = faer::linalg::solvers::DenseSolveCore::inverse(&llt);
             let hpf = -(&inv * &cpf);
@@ -1012,7 +1016,7 @@ impl MixedSolver<2> {
             return Err(MixedError::Full { cap_nodes: self.cap_nodes });
         }
         if !angle_rad.is_finite() {
-            return Err(MixedError::NonFinite { what: "the frame angle", contact });
+            return Err(MixedError::NonFinite { what: "the frame angle", contact: contact.id() });
         }
         self.border(cache, contact, frame_of_angle(angle_rad), angle_rad)
     }
@@ -1044,7 +1048,7 @@ impl MixedSolver<2> {
     pub fn set_angle(&mut self, slot: Slot, angle_rad: f64) -> Result<(), MixedError> {
         self.check_slot(slot)?;
         if !angle_rad.is_finite() {
-            return Err(MixedError::NonFinite { what: "the frame angle", contact: self.contact_of_slot[slot.index()] });
+            return Err(MixedError::NonFinite { what: "the frame angle", contact: self.contact_of_slot[slot.index()].id() });
         }
         let delta = angle_rad - self.angle_rad[slot.index()];
         if delta == 0.0 {
@@ -1084,7 +1088,11 @@ impl MixedSolver<2> {
         let f_new = frame_of_angle(angle_rad);
         let c_new = to_local(&self.c_self[slot.index()], &f_new, &f_new)[kp % 2][kp % 2];
         if !(p_new > PIVOT_TOL * c_new && p_new.is_finite()) {
-            return Err(MixedError::SingularPivot { contact: self.contact_of_slot[slot.index()], axis: Axis::of_index(kp), pivot: p_new });
+            return Err(MixedError::SingularPivot {
+                contact: self.contact_of_slot[slot.index()].id(),
+                axis: Axis::of_index(kp),
+                pivot: p_new,
+            });
         }
         let wi = [[w[1][1] / det, -w[0][1] / det], [-w[1][0] / det, w[0][0] / det]];
         // V = sJ + c H_ss; H'_ss = V W^-1.
@@ -1357,7 +1365,7 @@ mod tests {
         let mut scratch = m.column_scratch();
         let mut s = MixedSolver::with_capacity(2);
         let n = NodeIdx;
-        assert_eq!(s.add_node(&cache, n(20), 0.0).unwrap_err(), MixedError::NotCached { contact: ContactPoint::node(n(20)) });
+        assert_eq!(s.add_node(&cache, n(20), 0.0).unwrap_err(), MixedError::NotCached { contact: ContactPoint::node(n(20)).id() });
         for n in [20, 21, 0] {
             cache.ensure(&m, n, &mut scratch).unwrap();
         }
@@ -1367,7 +1375,7 @@ mod tests {
         let slot = s.add_node(&cache, n(0), 0.0).unwrap();
         let e = s.set_condition(slot, Axis::Axial, Condition::Displacement, 0.0).unwrap_err();
         assert!(
-            matches!(e, MixedError::SingularPivot { contact, axis: Axis::Axial, .. } if contact == ContactPoint::node(NodeIdx(0))),
+            matches!(e, MixedError::SingularPivot { contact, axis: Axis::Axial, .. } if contact == ContactPoint::node(NodeIdx(0)).id()),
             "{e}"
         );
         assert_eq!(s.condition(slot, Axis::Axial), Condition::Force);
@@ -1499,7 +1507,7 @@ mod tests {
         let before = s.clone();
         let e = s.set_angle(b, 0.0).unwrap_err();
         assert!(
-            matches!(e, MixedError::SingularPivot { contact, axis: Axis::Axial, pivot } if contact == ContactPoint::node(NodeIdx(1)) && pivot < 1e-15 * cx),
+            matches!(e, MixedError::SingularPivot { contact, axis: Axis::Axial, pivot } if contact == ContactPoint::node(NodeIdx(1)).id() && pivot < 1e-15 * cx),
             "{e}"
         );
         assert_eq!(s.angle_rad(b), before.angle_rad(b));
@@ -1890,7 +1898,7 @@ mod tests {
         let slot = s.add_contact_in_frame(&cache, point, identity).unwrap();
         let before = snapshot(&s);
         let e = s.set_condition(slot, Axis::Axial, Condition::Displacement, 0.0).unwrap_err();
-        assert!(matches!(e, MixedError::SingularPivot { contact, axis: Axis::Axial, .. } if contact == point), "{e}");
+        assert!(matches!(e, MixedError::SingularPivot { contact, axis: Axis::Axial, .. } if contact == point.id()), "{e}");
         assert!(e.to_string().contains("axial (t) displacement of the material point in tetrahedron 17 (nodes 0, 1, 2, 3)"), "{e}");
         assert!(snapshot(&s) == before);
         // y and z are free: prescribe them (a point held across a needle along x), then turn the
@@ -1900,12 +1908,12 @@ mod tests {
         let turned = [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]];
         let before = snapshot(&s);
         let e = s.set_frame(slot, turned).unwrap_err();
-        assert!(matches!(e, MixedError::SingularPivot { contact, axis: Axis::Lateral, .. } if contact == point), "{e}");
+        assert!(matches!(e, MixedError::SingularPivot { contact, axis: Axis::Lateral, .. } if contact == point.id()), "{e}");
         assert!(snapshot(&s) == before);
         // A small turn is fine.
         s.set_frame(slot, rotation_of_quaternion([1.0, 0.0, 0.0, 0.1])).unwrap();
         let e = s.set_frame(slot, [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]]).unwrap_err();
-        assert!(matches!(e, MixedError::NotARotation { contact, .. } if contact == point), "{e}");
+        assert!(matches!(e, MixedError::NotARotation { contact, .. } if contact == point.id()), "{e}");
         let e = s.set_frame(slot, [[1.0, 1e-6, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).unwrap_err();
         assert!(matches!(e, MixedError::NotARotation { .. }), "{e}");
         let e = s.add_contact_in_frame(&cache, ContactPoint::node(NodeIdx(5)), [[f64::NAN; 3]; 3]).unwrap_err();

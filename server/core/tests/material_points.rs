@@ -87,7 +87,7 @@ fn issue_15_the_working_set_depends_on_the_depth_not_on_the_mesh() {
 fn issue_15_points_are_never_denser_than_the_elements_can_carry() {
     let model = phantom(10);
     let h_diag = 0.1 / 9.0 * std::f64::consts::SQRT_2;
-    let (sim, run) = insert(&model, -(60f64).to_radians(), true, ContactModel::MaterialPoints { spacing_m: 0.0005 });
+    let (sim, run) = insert(&model, -(60f64).to_radians(), true, ContactModel::MaterialPoints { spacing_m: 0.0005, width_m: 0.0 });
     let pts: Vec<[f64; 2]> = sim.output().needle_nodes.iter().map(|n| n.reference_m).collect();
     assert!(pts.len() >= 4, "the needle holds the tissue: {} points", pts.len());
     for (i, a) in pts.iter().enumerate() {

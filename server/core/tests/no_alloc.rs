@@ -21,11 +21,23 @@ fn steps_allocate_nothing_after_warm_up() {
 /// point, the per-triangle spacing rule), rigid and flexible bevel-tip.
 #[test]
 fn material_point_steps_allocate_nothing_after_warm_up() {
-    run_case(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }), ContactModel::MaterialPoints { spacing_m: 0.001 });
+    run_case(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }), ContactModel::MaterialPoints { spacing_m: 0.001, width_m: 0.0 });
     let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
     f.flexural_rigidity_nm2 *= 0.3;
     f.bevel_force_ratio = 0.2;
-    run_case(NeedleShape::Flexible(f), ContactModel::MaterialPoints { spacing_m: 0.001 });
+    run_case(NeedleShape::Flexible(f), ContactModel::MaterialPoints { spacing_m: 0.001, width_m: 0.0 });
+}
+
+/// Issue 19: contacts spread over the needle's width (the patch walk across the triangles, the
+/// patch's up to twelve terms in every block), rigid and flexible bevel-tip.
+#[test]
+fn patch_contact_steps_allocate_nothing_after_warm_up() {
+    let patches = ContactModel::MaterialPoints { spacing_m: 0.001, width_m: 1.473e-3 };
+    run_case(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }), patches);
+    let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
+    f.flexural_rigidity_nm2 *= 0.3;
+    f.bevel_force_ratio = 0.2;
+    run_case(NeedleShape::Flexible(f), patches);
 }
 
 #[test]
@@ -41,11 +53,11 @@ fn flexible_bevel_needle_steps_allocate_nothing_after_warm_up() {
 #[test]
 fn viscoelastic_steps_allocate_nothing_after_warm_up() {
     let v = Some(needlesim_core::sim::Viscoelastic { long_term_ratio: 0.5, relaxation_time_s: 0.2 });
-    run_case_with(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }), ContactModel::MaterialPoints { spacing_m: 0.001 }, v);
+    run_case_with(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }), ContactModel::MaterialPoints { spacing_m: 0.001, width_m: 0.0 }, v);
     let mut f = needlesim_core::FlexibleNeedle::gauge17_steel(0.1);
     f.flexural_rigidity_nm2 *= 0.3;
     f.bevel_force_ratio = 0.2;
-    run_case_with(NeedleShape::Flexible(f), ContactModel::MaterialPoints { spacing_m: 0.001 }, v);
+    run_case_with(NeedleShape::Flexible(f), ContactModel::MaterialPoints { spacing_m: 0.001, width_m: 0.0 }, v);
 }
 
 fn run_case(needle: NeedleShape, contact: ContactModel) {
@@ -69,6 +81,7 @@ fn run_case_with(needle: NeedleShape, contact: ContactModel, viscoelastic: Optio
     poses.extend((0..=500).map(|k| base_at(0.04, a0 + 0.08 * k as f64 / 500.0)));
     poses.extend((0..=4500).map(|k| base_at(0.04 - 0.045 * k as f64 / 4500.0, a0 + 0.08)));
     let mut steps_with_allocation = 0;
+    let mut patches_seen = false;
     let mut total = 0;
     for (k, p) in poses.iter().enumerate() {
         let before = thread_allocations();
@@ -90,6 +103,7 @@ fn run_case_with(needle: NeedleShape, contact: ContactModel, viscoelastic: Optio
             total += n;
         }
         sim.prefetch_columns(16).unwrap();
+        patches_seen |= sim.output().needle_nodes.iter().any(|n| n.contact.is_patch());
     }
     let st = sim.stats();
     // Material points on this 4.2 mm grid: one per triangle crossed (5.9 mm apart), 7 in 45 mm.
@@ -97,6 +111,12 @@ fn run_case_with(needle: NeedleShape, contact: ContactModel, viscoelastic: Optio
     assert!(st.captures > min_contacts && st.releases > min_contacts && st.punctures > 3, "the run exercised the model: {st:?}");
     assert!(sim.solver().stats().n_rotations > 100);
     assert_eq!(st.column_misses, 0);
+    assert_eq!(st.patch_fallbacks, 0, "every patch was made");
+    if let ContactModel::MaterialPoints { width_m, .. } = contact
+        && width_m > 0.0
+    {
+        assert!(patches_seen, "the contacts are patches");
+    }
     assert_eq!(steps_with_allocation, 0, "{total} allocations inside steps after warm-up");
 }
 

@@ -163,7 +163,7 @@ fn issue_19_the_force_depth_curve_does_not_depend_on_the_tick_rate() {
 }
 
 /// Material points every 2 mm (the scenes' default).
-const POINTS: ContactModel = ContactModel::MaterialPoints { spacing_m: 0.002 };
+const POINTS: ContactModel = ContactModel::MaterialPoints { spacing_m: 0.002, width_m: 0.0 };
 
 /// Issue 19: the same for an oblique insertion (30° off the vertical: lateral force too) of the
 /// rigid needle and of a flexible one.

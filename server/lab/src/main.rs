@@ -86,13 +86,13 @@ enum Command {
     /// h, h/2, h/4, h/8 (the shipped grid is h/2… see `refine` module docs) with each contact
     /// model; peak puncture force, mean cutting force, sawtooth, closest approach.
     Refine {
-        /// Models to compare: nodes, points, toughness (default: all three).
+        /// Models to compare: nodes, points, toughness, width (default: all four).
         #[arg(long, value_delimiter = ',')]
         models: Vec<String>,
         /// Scenes (default: paper-phantom,fig3-target,fig4-steering).
         #[arg(long, value_delimiter = ',')]
         scenes: Vec<String>,
-        /// Only the first N grids of each scene (coarsest first; default 4).
+        /// Only the first N grids of each scene (coarsest first; default 4, at most 5).
         #[arg(long, default_value_t = 4)]
         grids: usize,
     },
@@ -162,7 +162,11 @@ fn run_motions(opts: motions::MotionOptions, json: bool, json_out: Option<PathBu
 }
 
 fn run_refine(models: &[String], scenes: &[String], grids: usize) -> Result<()> {
-    let models = if models.is_empty() { vec!["nodes".to_owned(), "points".to_owned(), "toughness".to_owned()] } else { models.to_vec() };
+    let models = if models.is_empty() {
+        vec!["nodes".to_owned(), "points".to_owned(), "toughness".to_owned(), "width".to_owned()]
+    } else {
+        models.to_vec()
+    };
     let models = models.iter().map(|m| refine::Model::parse(m)).collect::<Result<Vec<_>>>()?;
     let scenes =
         if scenes.is_empty() { vec!["paper-phantom".into(), "fig3-target".into(), "fig4-steering".into()] } else { scenes.to_vec() };

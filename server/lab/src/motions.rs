@@ -459,7 +459,7 @@ pub fn script(motion: Motion, pace: Pace) -> Result<MotionScript> {
 /// a step.
 pub fn sim_params(script: &MotionScript, model: &TissueModel, contact: ContactChoice, spacing_m: f64) -> SimParams {
     let (contact, max_needle_nodes) = match contact {
-        ContactChoice::Points => (ContactModel::MaterialPoints { spacing_m }, MAX_POINTS),
+        ContactChoice::Points => (ContactModel::MaterialPoints { spacing_m, width_m: 0.0 }, MAX_POINTS),
         ContactChoice::Nodes => (ContactModel::Nodes, MAX_CAPTURED_NODES),
     };
     SimParams {

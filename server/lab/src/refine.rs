@@ -76,11 +76,12 @@ impl Figure {
 
     /// The grids of the study, coarsest first: the shipped one is the second (the issue's
     /// "before" figures), each next one halves the element size ($n \to 2n - 1$ nodes a side).
-    pub fn grids(self) -> [(usize, usize); 4] {
+    /// The study runs the first four by default; the fifth goes one halving further.
+    pub fn grids(self) -> [(usize, usize); 5] {
         match self {
-            Figure::Phantom => [(19, 19), (37, 37), (73, 73), (145, 145)],
-            Figure::Fig3 => [(21, 13), (41, 25), (81, 49), (161, 97)],
-            Figure::Fig4 => [(10, 10), (19, 19), (37, 37), (73, 73)],
+            Figure::Phantom => [(19, 19), (37, 37), (73, 73), (145, 145), (289, 289)],
+            Figure::Fig3 => [(21, 13), (41, 25), (81, 49), (161, 97), (321, 193)],
+            Figure::Fig4 => [(10, 10), (19, 19), (37, 37), (73, 73), (145, 145)],
         }
     }
 }
@@ -95,6 +96,10 @@ pub enum Model {
     /// Material points with energy-based cutting ([`TOUGHNESS_J_PER_M2`]): puncture by the
     /// scene's force threshold on a material point, cutting by $F_c = G_c w$.
     Toughness,
+    /// Energy-based cutting as [`Model::Toughness`], each contact spread over the needle's
+    /// width (`needle.spread_contact`: a patch across the needle, whose compliance converges
+    /// where a point's grows like $\ln(1/h)$).
+    Width,
 }
 
 /// The fracture toughness of the study's energy-based variants, J/m²: $G_c w$ with a 17-gauge
@@ -109,10 +114,10 @@ impl Model {
     ///
     /// Errors: an unknown name, listing the known ones.
     pub fn parse(name: &str) -> Result<Self> {
-        [Model::Nodes, Model::Points, Model::Toughness]
+        [Model::Nodes, Model::Points, Model::Toughness, Model::Width]
             .into_iter()
             .find(|m| m.label() == name)
-            .with_context(|| format!("unknown model '{name}' (known: nodes, points, toughness)"))
+            .with_context(|| format!("unknown model '{name}' (known: nodes, points, toughness, width)"))
     }
 
     /// The model's name in tables and on the command line.
@@ -121,6 +126,7 @@ impl Model {
             Model::Nodes => "nodes",
             Model::Points => "points",
             Model::Toughness => "toughness",
+            Model::Width => "width",
         }
     }
 }
@@ -148,8 +154,11 @@ pub fn variant_toml(figure: Figure, nx: usize, ny: usize, model: Model) -> Resul
                 match model {
                     Model::Nodes => out.push_str("contact = \"nodes\"\n"),
                     Model::Points => out.push_str("contact = \"points\"\n"),
-                    Model::Toughness => {
+                    Model::Toughness | Model::Width => {
                         out.push_str("contact = \"points\"\ncutting = \"toughness\"\n");
+                        if model == Model::Width {
+                            out.push_str("spread_contact = true\n");
+                        }
                         if !text.contains("gauge") {
                             out.push_str(&format!("diameter_m = {RIGID_DIAMETER_M}\n"));
                         }
@@ -159,7 +168,7 @@ pub fn variant_toml(figure: Figure, nx: usize, ny: usize, model: Model) -> Resul
             "cutting_force_n" => {
                 out.push_str(line);
                 out.push('\n');
-                if model == Model::Toughness {
+                if matches!(model, Model::Toughness | Model::Width) {
                     out.push_str(&format!("fracture_toughness_j_per_m2 = {TOUGHNESS_J_PER_M2}\n"));
                 }
             }
@@ -194,6 +203,8 @@ pub struct Measured {
     /// Captures dropped because the working set was full (the node capture holds about one node
     /// per element along the shaft: on the finest Fig. 3 grid it passes the scenes' 128).
     pub capacity_drops: u64,
+    /// Contacts taken as points although the model spreads them (`SimStats::patch_fallbacks`).
+    pub patch_fallbacks: u64,
 }
 
 /// Runs a loaded scene along `traj` and measures it (module docs).
@@ -264,6 +275,7 @@ pub fn measure(scene: &Scene, traj: &Trajectory) -> Result<Measured> {
         closest_m: if closest_m.is_finite() { closest_m } else { f64::NAN },
         punctures: stats.punctures,
         capacity_drops: stats.capacity_drops,
+        patch_fallbacks: stats.patch_fallbacks,
     })
 }
 
@@ -338,6 +350,9 @@ pub fn to_markdown(studies: &[FigureStudy]) -> String {
                 m.slope_n_per_m,
                 m.indentation_m * 1e3,
             );
+            if m.patch_fallbacks > 0 {
+                let _ = writeln!(s, "|  | ({} contacts taken as points: the patch did not fit) | | | | | | | | |", m.patch_fallbacks);
+            }
             if m.capacity_drops > 0 {
                 let _ = writeln!(s, "|  | (working set full: {} captures dropped) | | | | | | | | |", m.capacity_drops);
             }

@@ -52,7 +52,7 @@ pub enum Run3Error {
     Setup(anyhow::Error),
     /// During the run: a step or a column solve failed at a tick.
     #[error("tick {tick} (t = {t_s} s): {source}")]
-    Step { tick: u64, t_s: f64, source: SimError3 },
+    Step { tick: u64, t_s: f64, source: Box<SimError3> },
     /// A dump tick outside the run.
     #[error("--dump-at {tick}: the run has ticks 0..={last}")]
     DumpTick { tick: u64, last: u64 },
@@ -194,12 +194,13 @@ pub fn run3(
         let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| Run3Error::Step {
             tick: k,
             t_s,
-            source: SimError3::InvalidParams(format!("the trajectory's pose: {e}")),
+            source: Box::new(SimError3::InvalidParams(format!("the trajectory's pose: {e}"))),
         })?;
         let s = Instant::now();
-        sim.step(pose).map_err(|source| Run3Error::Step { tick: k, t_s, source })?;
+        sim.step(pose).map_err(|source| Run3Error::Step { tick: k, t_s, source: Box::new(source) })?;
         summary.step_times_s.push(s.elapsed().as_secs_f64());
-        summary.prefetched_columns += sim.prefetch_columns(usize::MAX).map_err(|source| Run3Error::Step { tick: k, t_s, source })? as u64;
+        summary.prefetched_columns +=
+            sim.prefetch_columns(usize::MAX).map_err(|source| Run3Error::Step { tick: k, t_s, source: Box::new(source) })? as u64;
         let out = sim.output();
         summary.max_points = summary.max_points.max(out.contacts.len());
         for (r, t) in reports.iter_mut().zip(out.targets.as_slice()) {

@@ -221,6 +221,11 @@ pub struct NeedleSpec {
     /// The needle's outer diameter $w$, m (the crack width of energy-based cutting); default
     /// for a flexible needle with a gauge: the gauge's outer diameter.
     pub diameter_m: Option<f64>,
+    /// Spread each contact over the needle's width (`diameter_m` or the gauge's) instead of a
+    /// point: a patch across the needle, whose compliance converges under mesh refinement
+    /// (a point's grows like $\ln(1/h)$ in 2D). Needs `contact = "points"` and a width.
+    #[serde(default)]
+    pub spread_contact: bool,
 }
 
 /// How the tip cuts inside a region ([`NeedleSpec::cutting`]).
@@ -531,6 +536,14 @@ fn check_values(f: &SceneFile) -> Result<()> {
             bail!("needle.cutting = \"toughness\" needs the needle's width: give needle.diameter_m (or a gauge for a flexible needle)");
         }
     }
+    if n.spread_contact {
+        if n.contact == ContactSpec::Nodes {
+            bail!("needle.spread_contact = true needs needle.contact = \"points\" (a captured node is a node)");
+        }
+        if n.cutting_width_m().is_none() {
+            bail!("needle.spread_contact = true needs the needle's width: give needle.diameter_m (or a gauge for a flexible needle)");
+        }
+    }
     for (k, r) in f.regions.iter().enumerate() {
         match (n.cutting, r.fracture_toughness_j_per_m2) {
             (CuttingSpec::Toughness, None) => {
@@ -731,9 +744,10 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
         initial_pose: BasePose::new(n.base[0], n.base[1], n.base[2]),
         contact: match n.contact {
             ContactSpec::Nodes => ContactModel::Nodes,
-            ContactSpec::Points => {
-                ContactModel::MaterialPoints { spacing_m: n.contact_spacing_m.unwrap_or(ContactModel::DEFAULT_SPACING_M) }
-            }
+            ContactSpec::Points => ContactModel::MaterialPoints {
+                spacing_m: n.contact_spacing_m.unwrap_or(ContactModel::DEFAULT_SPACING_M),
+                width_m: if n.spread_contact { n.cutting_width_m().unwrap_or(0.0) } else { 0.0 },
+            },
         },
         // The real-time thread never runs a sparse solve: offline drivers prefetch, live
         // sessions have a column worker.
@@ -825,7 +839,8 @@ mod tests {
             let s = load_scene(dir.join(file).to_str().unwrap(), &MeshLimits::default()).unwrap();
             let fc = s.params.regions[0].toughness_cutting_force_n.expect("energy-based cutting");
             assert!((fc - 34.0 * width_m).abs() <= 1e-12, "{file}: F_c = {fc}");
-            assert_eq!(s.params.contact, ContactModel::default_points(), "{file}");
+            // Each contact spread over the needle's width (issue 19: converges under refinement).
+            assert_eq!(s.params.contact, ContactModel::MaterialPoints { spacing_m: ContactModel::DEFAULT_SPACING_M, width_m }, "{file}");
         }
         // The shipped node scenes keep the threshold model.
         assert!(load_scene("paper-phantom", &MeshLimits::default()).unwrap().params.regions[0].toughness_cutting_force_n.is_none());
@@ -835,6 +850,14 @@ mod tests {
         assert!(e.contains("needle.cutting") && e.contains("points"), "{e}");
         let e = err(base.replace("diameter_m = 0.001473\n", ""));
         assert!(e.contains("diameter_m"), "{e}");
+        // A spread contact needs material points and a width.
+        let no_toughness = base.replace("cutting = \"toughness\"\n", "").replace("fracture_toughness_j_per_m2 = 34.0\n", "");
+        let e = err(no_toughness.replace("contact = \"points\"", "contact = \"nodes\""));
+        assert!(e.contains("needle.spread_contact") && e.contains("points"), "{e}");
+        let e = err(no_toughness.replace("diameter_m = 0.001473\n", ""));
+        assert!(e.contains("needle.spread_contact") && e.contains("diameter_m"), "{e}");
+        let e = err(no_toughness.replace("diameter_m = 0.001473", "diameter_m = 0.008"));
+        assert!(e.contains("width_m = 0.008"), "{e}");
         let e = err(base.replace("fracture_toughness_j_per_m2 = 34.0\n", ""));
         assert!(e.contains("fracture_toughness_j_per_m2") && e.contains("tissue"), "{e}");
         let e = err(base.replace("cutting = \"toughness\"\n", ""));

@@ -220,7 +220,9 @@ impl LiveSim for Live2 {
                 (out.approaching[k], REQUESTED_FOR_CACHE, 0)
             } else {
                 let nn = &out.needle_nodes[(k - n_app) / 3];
-                match nn.contact.nodes().get((k - n_app) % 3) {
+                // The nodes the record keeps for the contact (a patch's three heaviest).
+                let (three, _, used) = nn.contact.three_terms();
+                match three[..used].get((k - n_app) % 3) {
                     Some(j) => (j.index(), REQUESTED_FOR_RENDER, RENDER_TAG),
                     None => continue,
                 }

@@ -26,8 +26,9 @@ pub struct NodeRecord {
     /// The node, or a material point's nearest node.
     pub node: u32,
     /// The mesh nodes the contact interpolates (`contact_nodes[..n_contact]`, 1 for a node
-    /// contact, 3 for a material point) and their weights: the contact's force loads node
-    /// `contact_nodes[k]` with `contact_weights[k]` of it.
+    /// contact, 3 for a material point; a patch's three heaviest, renormalised:
+    /// [`needlesim_core::ContactPoint::three_terms`]) and their weights: the contact's force
+    /// loads node `contact_nodes[k]` with `contact_weights[k]` of it.
     pub contact_nodes: [u32; 3],
     pub contact_weights: [f64; 3],
     pub n_contact: u8,
@@ -294,14 +295,10 @@ impl TickRecord {
         let n = out.needle_nodes.len().min(MAX_RECORD_NODES);
         self.n_nodes = n as u16;
         for (r, nn) in self.nodes.iter_mut().zip(&out.needle_nodes[..n]) {
-            let mut contact_nodes = [0u32; 3];
-            let mut contact_weights = [0.0; 3];
-            let mut n_contact = 0u8;
-            for (k, (j, w)) in nn.contact.terms().enumerate() {
-                contact_nodes[k] = j.index() as u32;
-                contact_weights[k] = w;
-                n_contact += 1;
-            }
+            // A patch keeps its three heaviest nodes here (for drawing the field only).
+            let (three, contact_weights, used) = nn.contact.three_terms();
+            let contact_nodes = three.map(|j| j.index() as u32);
+            let n_contact = used as u8;
             *r = NodeRecord {
                 node: nn.node_idx as u32,
                 contact_nodes,

@@ -130,13 +130,8 @@ impl pb::control_service_server::ControlService for Api {
             )));
         }
         let r = req.get_ref();
-        let client = if r.client_id.is_empty() { client_address(&req) } else { format!("id:{}", r.client_id) };
         // A flip is driving: one controller at a time, as for SetPose.
-        let flips_requested = s
-            .control
-            .with_unary(&client, r.take_over, || s.request_bevel_flip_from_io())
-            .await
-            .map_err(|busy| control_refused(&s, busy))?;
+        let flips_requested = drive_unary(&s, &req, &r.client_id, r.take_over, || s.request_bevel_flip_from_io()).await?;
         Ok(Response::new(convert::flip_bevel_response(flips_requested)))
     }
 
@@ -159,9 +154,8 @@ async fn set_spin(api: &Api, req: Request<pb::SetSpinRequest>) -> Result<Respons
     let r = req.get_ref();
     let spin =
         needlesim_session::spin::SpinCommand::new(r.duty_cycle, r.period_m).map_err(|e| Status::from(crate::status::ApiError::from(e)))?;
-    let client = if r.client_id.is_empty() { client_address(&req) } else { format!("id:{}", r.client_id) };
     // Spinning is driving: one controller at a time, as for a flip.
-    s.control.with_unary(&client, r.take_over, || s.set_spin_from_io(spin)).await.map_err(|busy| control_refused(&s, busy))?;
+    drive_unary(&s, &req, &r.client_id, r.take_over, || s.set_spin_from_io(spin)).await?;
     Ok(Response::new(convert::set_spin_response(&spin)))
 }
 
@@ -193,17 +187,30 @@ async fn set_pose<T>(
     let pose = pose.inspect_err(|_| {
         s.counters.rejected_poses.fetch_add(1, Ordering::Relaxed);
     })?;
-    let client = if client_id.is_empty() { client_address(req) } else { format!("id:{client_id}") };
     // One controller at a time: refused while a Control stream or another SetPose client
     // holds the lease, unless it takes over.
-    s.control
-        .with_unary(&client, take_over, || {
-            let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
-            write_pose(s, pose, seq, 0);
-        })
-        .await
-        .map_err(|busy| control_refused(s, busy))?;
+    drive_unary(s, req, client_id, take_over, || {
+        let seq = s.counters.poses_written.load(Ordering::Relaxed) + 1;
+        write_pose(s, pose, seq, 0);
+    })
+    .await?;
     Ok(Response::new(convert::control_response(&s.latest_record(), &s.target_names)))
+}
+
+/// A unary driving request (SetPose, SetPose3, FlipBevel, SetSpin): `write` runs under the
+/// session's control lease for the client `client_id` names (else its address), which takes
+/// the lease from another unary client with `take_over`.
+///
+/// Errors: FAILED_PRECONDITION when the lease is held (`control_refused`).
+async fn drive_unary<T, R>(
+    s: &Session,
+    req: &Request<T>,
+    client_id: &str,
+    take_over: bool,
+    write: impl FnOnce() -> R,
+) -> Result<R, Status> {
+    let client = if client_id.is_empty() { client_address(req) } else { format!("id:{client_id}") };
+    s.control.with_unary(&client, take_over, write).await.map_err(|busy| control_refused(s, busy))
 }
 
 /// Control and Control3: poses in, one response per tick out.

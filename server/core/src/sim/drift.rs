@@ -174,7 +174,7 @@ mod tests {
 
     fn params(needle: NeedleShape) -> SimParams {
         SimParams {
-            contact: ContactModel::MaterialPoints { spacing_m: 0.002 },
+            contact: ContactModel::MaterialPoints { spacing_m: 0.002, width_m: 0.0 },
             columns_in_step: false,
             max_needle_nodes: 48,
             initial_pose: RandomSession::new(0, needle.tip_s_m()).pose(),

@@ -329,8 +329,8 @@ impl Simulation {
         lap(clock, &mut t_last, &mut stage_ns, 1);
         match params.contact {
             ContactModel::Nodes => capture::capture(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip)?,
-            ContactModel::MaterialPoints { spacing_m } => {
-                capture::capture_points(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip, spacing_m)?
+            ContactModel::MaterialPoints { spacing_m, width_m } => {
+                capture::capture_points(&ctx, st, &mut sc.capture, &mut out.approaching, prev_tip, spacing_m, width_m)?
             }
         }
         lap(clock, &mut t_last, &mut stage_ns, 2);

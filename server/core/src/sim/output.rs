@@ -123,6 +123,10 @@ pub struct SimStats {
     /// Material points dropped because their conditions depended on the other points' (a
     /// singular pivot; not expected with the spacing rule of [`super::ContactModel`]).
     pub dependent_points: u64,
+    /// Contacts taken as points although the contact model spreads them over a width: the
+    /// patch touched more than [`crate::contact::MAX_TERMS`] nodes (a needle wider than about
+    /// two elements) or had no length inside the mesh.
+    pub patch_fallbacks: u64,
     pub clamped_ticks: u64,
     pub rejected_poses: u64,
     /// Ticks whose output is not converged ([`StepOutput::converged`] false): the stick/slip

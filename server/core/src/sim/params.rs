@@ -30,6 +30,12 @@ pub enum ContactModel {
     MaterialPoints {
         /// Arc length (m) between consecutive contact points along the shaft.
         spacing_m: f64,
+        /// Width (m) of each contact: 0 for a point; else a patch
+        /// ([`crate::ContactPoint::patch`]) spreading the contact over a segment of this
+        /// length across the needle at the point, so that the contact's compliance converges
+        /// under mesh refinement (a point's grows like $\ln(1/h)$ in 2D). The needle's width in
+        /// the mesh-refinement study (issue 19). 2D only.
+        width_m: f64,
     },
 }
 
@@ -38,7 +44,7 @@ impl ContactModel {
     pub const DEFAULT_SPACING_M: f64 = 0.002;
     /// Material points at the default spacing.
     pub const fn default_points() -> Self {
-        ContactModel::MaterialPoints { spacing_m: Self::DEFAULT_SPACING_M }
+        ContactModel::MaterialPoints { spacing_m: Self::DEFAULT_SPACING_M, width_m: 0.0 }
     }
 }
 
@@ -106,10 +112,13 @@ impl SimParams {
                 return bad(format!("{name} = {v} must be finite and > 0"));
             }
         }
-        if let ContactModel::MaterialPoints { spacing_m } = self.contact
-            && !(spacing_m.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&spacing_m))
-        {
-            return bad(format!("contact spacing_m = {spacing_m} must be in {MIN_CONTACT_SPACING_M}..={MAX_CONTACT_SPACING_M} m"));
+        if let ContactModel::MaterialPoints { spacing_m, width_m } = self.contact {
+            if !(spacing_m.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&spacing_m)) {
+                return bad(format!("contact spacing_m = {spacing_m} must be in {MIN_CONTACT_SPACING_M}..={MAX_CONTACT_SPACING_M} m"));
+            }
+            if !(width_m.is_finite() && (0.0..=MAX_CONTACT_WIDTH_M).contains(&width_m)) {
+                return bad(format!("contact width_m = {width_m} must be in 0..={MAX_CONTACT_WIDTH_M} m"));
+            }
         }
         if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
             return bad(format!("lookahead_m = {} must be finite and ≥ 0", self.lookahead_m));
@@ -154,12 +163,17 @@ impl SimParams {
 impl SimParams {
     /// The most nodes whose compliance columns a simulation keeps cached at once (the storage
     /// is reused, so the column memory is bounded by this times $2 \cdot 2n \cdot 8$ bytes):
-    /// `max_needle_nodes + CACHE_LOOKAHEAD_NODES`. A column inserted when the cache is full
+    /// `max_needle_nodes + CACHE_LOOKAHEAD_NODES`, with contact patches (a width > 0, up to
+    /// twelve nodes each, neighbours sharing some) `4 × max_needle_nodes + CACHE_LOOKAHEAD_NODES`. A column inserted when the cache is full
     /// evicts the least recently used node that no working contact uses and that was not in the
     /// last tick's lookahead; only when every cached node is in use does the cache exceed it
     /// (counted in [`crate::sim::SimStats::cache_over_cap`]).
     pub fn max_cached_nodes(&self) -> usize {
-        self.max_needle_nodes + param_limits::CACHE_LOOKAHEAD_NODES
+        let per_contact = match self.contact {
+            ContactModel::MaterialPoints { width_m, .. } if width_m > 0.0 => 4,
+            _ => 1,
+        };
+        per_contact * self.max_needle_nodes + param_limits::CACHE_LOOKAHEAD_NODES
     }
 }
 
@@ -198,6 +212,10 @@ pub mod param_limits {
     pub const MIN_CONTACT_SPACING_M: f64 = 1e-5;
     /// Largest spacing of material contact points (m).
     pub const MAX_CONTACT_SPACING_M: f64 = 1.0;
+    /// Largest width of a contact patch (m): a 7-gauge needle (a patch wider than the elements
+    /// falls back to a point when it touches more than [`crate::contact::MAX_TERMS`] nodes,
+    /// counted in `patch_fallbacks`).
+    pub const MAX_CONTACT_WIDTH_M: f64 = 0.005;
     /// Largest bound on the stick/slip iterations of one tick.
     pub const MAX_ACTIVE_SET_ITERATIONS: usize = 10_000;
 

@@ -871,6 +871,8 @@ impl Simulation3 {
     /// The material point $X$ at deformed position `p_m`: the fixed point of $X = p - u(X)$
     /// from $X_0 = p - u_0$; `Ok(None)` when it lies outside the mesh, `Err(c)` when the
     /// displacement at an iterate `c` needs blocks that are not cached.
+    // The `Ok` value holds a contact as well: both variants are the same size, on the stack.
+    #[allow(clippy::result_large_err)]
     fn material_point_at(&self, p_m: [f64; 3], u0: [f64; 3]) -> Result<Option<(ContactPoint, [f64; 3])>, ContactPoint> {
         let mut x = sub(p_m, u0);
         let tol = 1e-12 * self.sample_step_m;

@@ -260,7 +260,7 @@ impl Simulation3 {
         for a in 0..m {
             for b in 0..m {
                 let blk = super::targets::point_block(&self.cache, &contacts[a], &contacts[b])
-                    .ok_or(MixedError::NotCached { contact: contacts[b] })?;
+                    .ok_or(MixedError::NotCached { contact: contacts[b].id() })?;
                 for (r, row) in blk.iter().enumerate() {
                     s.w[(3 * a + r) * d + 3 * b..(3 * a + r) * d + 3 * b + 3].copy_from_slice(row);
                 }
