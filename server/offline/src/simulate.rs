@@ -146,11 +146,30 @@ pub fn write_csv_row(c: &mut String, out: &StepOutput, t0_s: f64) {
 }
 
 /// The final state as a static problem in the exchange format, with the solver's own results.
+///
+/// Nodes are written as `prescribed_local` conditions, material points as `points`. A contact
+/// patch (`needle.spread_contact`) has no constraint in the format (its condition is on the
+/// mean displacement of a segment): its force, which the solver found, is written as the nodal
+/// loads $w_k f$ it puts on its nodes, and the patch itself (its nodes and weights, frame angle
+/// and prescribed values) under `needle_nodes[i].patch`, so that a reference solution can be
+/// checked against the condition: $\sum_k w_k\,u_k \cdot t = u_t$, $\cdot\, n = u_n$.
 pub fn dump_state(scene: &Scene, sim: &Simulation) -> Scenario {
     let mesh = scene.tissue.mesh();
     let mats = scene.tissue.materials();
     let StateSnapshot { conditions, needle_nodes } = sim.snapshot();
-    let (nodal, points): (Vec<&LocalCondition>, Vec<&LocalCondition>) = conditions.iter().partition(|c| c.contact.as_node().is_some());
+    let (nodal, rest): (Vec<&LocalCondition>, Vec<&LocalCondition>) = conditions.iter().partition(|c| c.contact.as_node().is_some());
+    let points: Vec<&LocalCondition> = rest.into_iter().filter(|c| !c.contact.is_patch()).collect();
+    // A patch's force as the loads on its nodes (conditions and output nodes share the order).
+    let mut patch_loads = std::collections::BTreeMap::<usize, [f64; 2]>::new();
+    for (c, nn) in conditions.iter().zip(&needle_nodes) {
+        if c.contact.is_patch() {
+            for (k, w) in c.contact.terms() {
+                let l = patch_loads.entry(k.index()).or_default();
+                l[0] += w * nn.force_n[0];
+                l[1] += w * nn.force_n[1];
+            }
+        }
+    }
     let mut u = vec![0.0; 2 * mesh.n_nodes()];
     sim.displacement_field_into(&mut u);
     let plane = mats.plane();
@@ -175,6 +194,7 @@ pub fn dump_state(scene: &Scene, sim: &Simulation) -> Scenario {
             .iter()
             .filter(|c| c.load_n != [0.0; 2])
             .map(|c| Load { node: c.node_idx as i64, fx: c.load_n[0], fy: c.load_n[1] })
+            .chain(patch_loads.iter().map(|(&k, l)| Load { node: k as i64, fx: l[0], fy: l[1] }))
             .collect(),
         points: points
             .iter()
@@ -193,8 +213,22 @@ pub fn dump_state(scene: &Scene, sim: &Simulation) -> Scenario {
         needle_nodes: Some(serde_json::Value::Array(
             needle_nodes
                 .iter()
-                .map(|n| match n.contact.as_node() {
+                .zip(&conditions)
+                .map(|(n, c)| match n.contact.as_node() {
                     Some(_) => serde_json::json!({"node": n.node_idx, "state": n.state.as_str(), "fx": n.force_n[0], "fy": n.force_n[1]}),
+                    None if n.contact.is_patch() => serde_json::json!({
+                        "node": n.node_idx,
+                        "point": n.reference_m,
+                        "state": n.state.as_str(),
+                        "fx": n.force_n[0],
+                        "fy": n.force_n[1],
+                        "patch": {
+                            "terms": n.contact.terms().map(|(k, w)| serde_json::json!([k.index(), w])).collect::<Vec<_>>(),
+                            "angle_rad": c.angle_rad,
+                            "ut": c.ut_m,
+                            "un": c.un_m,
+                        },
+                    }),
                     None => serde_json::json!({
                         "node": n.node_idx,
                         "point": n.reference_m,
