@@ -105,6 +105,12 @@ pub const LOOKAHEAD_SAMPLES_PER_TICK: u64 = 2;
 const LOOKAHEAD_RING: u64 = 7;
 /// Capacity of the list of approaching nodes.
 pub const MAX_APPROACHING: usize = 128;
+/// Most points the tip passed while their columns were missing that wait to be captured
+/// ([`Sim3Stats::late_captures`]); one more is dropped and counted in
+/// [`Sim3Stats::pending_dropped`].
+pub const MAX_PENDING_CAPTURES: usize = 64;
+/// Most waiting points captured in one tick (each an $O(d^2)$ addition).
+const LATE_CAPTURES_PER_TICK: usize = 2;
 
 /// Errors of the 3D simulation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -188,6 +194,14 @@ pub struct Sim3Stats {
     pub columns_evicted: u64,
     /// Inserts past [`Sim3Params::max_cached_nodes`] with nothing evictable.
     pub cache_over_cap: u64,
+    /// Points the tip passed while their columns were missing, captured once the columns
+    /// arrived (as stuck shaft points where they then were; a live session's worker behind the
+    /// tip, issue 17). Included in `captures`.
+    pub late_captures: u64,
+    /// Waiting points given up: the tip withdrew past them, they lay too close to a held point
+    /// or outside the mesh, or the waiting list ([`MAX_PENDING_CAPTURES`]) or the working set
+    /// was full.
+    pub pending_dropped: u64,
 }
 
 /// One contact point in a step's output.
@@ -330,6 +344,13 @@ pub struct Simulation3 {
     pose: BasePose3,
     solver: MixedSolver3,
     pts: Vec<Point>,
+    /// Where the tip was when a capture was due but its columns were missing (world, m),
+    /// oldest first: captured later ([`Sim3Stats::late_captures`]).
+    pending: Vec<[f64; 3]>,
+    /// Where the tip was when the due capture first waited for columns (world, m); the tip
+    /// keeps trying where it is, and only once it has gone a spacing further (or stopped) does
+    /// this point join `pending`.
+    deferred_since_m: Option<[f64; 3]>,
     cache: ComplianceStore3,
     /// Nodes never evicted ([`Simulation3::pin_node`]).
     pinned: Vec<bool>,
@@ -401,6 +422,8 @@ impl Simulation3 {
             pose,
             solver: MixedSolver3::with_capacity(cap),
             pts: Vec::with_capacity(cap),
+            pending: Vec::with_capacity(MAX_PENDING_CAPTURES),
+            deferred_since_m: None,
             cache,
             pinned: vec![false; n_nodes],
             pins: Vec::new(),
@@ -922,9 +945,9 @@ impl Simulation3 {
     /// tetrahedron diameter of the lookahead segment) leave the list; the axis ahead and a ring
     /// of six points around each of its stations are located [`LOOKAHEAD_SAMPLES_PER_TICK`]
     /// samples per tick, round robin (a point location costs microseconds: the whole segment
-    /// each tick would cost tens), and the candidate point's
-    /// nodes go first. Sorted nearest first. $O(\text{list})$, no allocation.
-    fn update_approaching(&mut self, candidate: Option<ContactPoint>, u_d: [f64; 3], axis_pose: &BasePose3, frame: &[[f64; 3]; 3]) {
+    /// each tick would cost tens), and the candidates' nodes (a waiting point's, then the tip's)
+    /// go first. Sorted nearest first. $O(\text{list})$, no allocation.
+    fn update_approaching(&mut self, candidates: [Option<ContactPoint>; 2], u_d: [f64; 3], axis_pose: &BasePose3, frame: &[[f64; 3]; 3]) {
         let len = self.params.needle_length_m;
         let look = self.params.lookahead_m;
         let h = self.sample_step_m;
@@ -971,7 +994,8 @@ impl Simulation3 {
         }
         let key = |j: &usize| coords(*j).0;
         self.out.approaching.sort_unstable_by(|a, b| key(a).total_cmp(&key(b)));
-        if let Some(c) = candidate {
+        // The candidates' nodes go first, the first candidate's before the second's.
+        for c in candidates.into_iter().rev().flatten() {
             for k in 0..4 {
                 let node = c.nodes()[k].index();
                 if self.model.is_fixed(node) || self.cache.contains(node) {
@@ -997,9 +1021,20 @@ impl Simulation3 {
         let distal = (0..self.pts.len()).max_by(|&a, &b| self.pts[a].s_prev_m.total_cmp(&self.pts[b].s_prev_m));
         let s_distal = distal.map(|k| if self.pts[k].state == PointState3::Tip { len } else { self.pts[k].s_prev_m });
         let u_d = distal.map_or([0.0; 3], |k| self.pts[k].u_world);
+        // A waiting point counts as taken for the spacing of the next.
+        let s_pending = self.pending.iter().map(|p| dot(t, sub(*p, base))).fold(None, |m: Option<f64>, s| Some(m.map_or(s, |m| m.max(s))));
+        let s_distal = match (s_distal, s_pending) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        let pending_missing = self.capture_pending(axis_pose, frame, u_d)?;
         let s_prev_tip = dot(t, sub(prev_tip, base));
         let advancing = len - s_prev_tip > 1e-9;
         let due = !has_tip && advancing && s_distal.is_none_or(|s| len - s >= self.params.spacing_m);
+        if !due && let Some(first) = self.deferred_since_m.take() {
+            // The tip stopped (or holds a point) before the waiting capture got its columns.
+            self.push_pending(first);
+        }
         let mut missing: Option<ContactPoint> = None;
         let mut candidate = if due {
             self.material_point_at(prev_tip, u_d).unwrap_or_else(|c| {
@@ -1015,10 +1050,11 @@ impl Simulation3 {
                 candidate = None;
             }
         }
-        self.update_approaching(candidate.map(|c| c.0).or(missing), u_d, axis_pose, frame);
+        self.update_approaching([pending_missing, candidate.map(|c| c.0).or(missing)], u_d, axis_pose, frame);
         if missing.is_some() {
             // Node blocks: the fixed point needed a tetrahedron whose nodes are not cached.
             self.stats.column_deferrals += 1;
+            self.defer_capture(prev_tip, t);
             return Ok(());
         }
         let Some((contact, x)) = candidate else { return Ok(()) };
@@ -1028,6 +1064,7 @@ impl Simulation3 {
         }
         if !self.cache.contains_contact(&contact) {
             self.stats.column_deferrals += 1;
+            self.defer_capture(prev_tip, t);
             return Ok(());
         }
         let d = sub(x, base);
@@ -1055,6 +1092,7 @@ impl Simulation3 {
             }
         }
         self.last_tip_region = Some(region);
+        self.deferred_since_m = None;
         self.pts.push(Point {
             contact,
             x_ref_m: x,
@@ -1074,6 +1112,135 @@ impl Simulation3 {
         });
         self.stats.captures += 1;
         Ok(())
+    }
+
+    /// A due capture whose columns are missing at `tip_m`. The tip keeps trying where it is
+    /// each tick (a capture a tick or two late, as when an offline driver prefetches after the
+    /// step, is taken at the tip as before); once the tip has gone `spacing_m` beyond where it
+    /// first waited, that position waits in `pending` (the tissue point there is captured once
+    /// its columns arrive, [`Self::capture_pending`]) and the next capture is due a spacing
+    /// further.
+    fn defer_capture(&mut self, tip_m: [f64; 3], t: [f64; 3]) {
+        match self.deferred_since_m {
+            None => self.deferred_since_m = Some(tip_m),
+            Some(first) if dot(t, sub(tip_m, first)) >= self.params.spacing_m => {
+                self.deferred_since_m = None;
+                self.push_pending(first);
+            }
+            Some(_) => {}
+        }
+    }
+
+    fn push_pending(&mut self, p_m: [f64; 3]) {
+        if self.pending.len() < MAX_PENDING_CAPTURES {
+            self.pending.push(p_m);
+        } else {
+            self.stats.pending_dropped += 1;
+        }
+    }
+
+    /// The waiting points (issue 17: a live session's column worker behind the tip), oldest
+    /// first, at most [`LATE_CAPTURES_PER_TICK`] per tick. The tissue point at a waiting
+    /// position $p$ lies on the shaft now (the needle passed through it and nothing held it
+    /// apart), at arc length $s = t \cdot (p - x_b)$: for a rigid needle the point of the axis
+    /// there, for a flexible one $p$ itself. Its material point (the fixed point of
+    /// [`Self::material_point_at`]) joins as a stuck shaft point anchored at $s$, with its
+    /// lateral conditions as a tip capture's: no force step, the active set decides whether it
+    /// slips. Dropped (counted) when the tip withdrew past it, when it lies outside the mesh or
+    /// within a tetrahedron diameter of a held point, or when the working set is full.
+    /// Returns the contact whose columns the first still-waiting point needs (for the
+    /// prefetch), if any.
+    ///
+    /// Errors: [`SimError3::Mixed`] when the solver refuses the point for a reason other than
+    /// dependence.
+    fn capture_pending(&mut self, axis_pose: &BasePose3, frame: &[[f64; 3]; 3], u_d: [f64; 3]) -> Result<Option<ContactPoint>, SimError3> {
+        let len = self.params.needle_length_m;
+        let base = axis_pose.position_m;
+        let t = frame[0];
+        let mut first_missing = None;
+        let mut admitted = 0;
+        let mut k = 0;
+        while k < self.pending.len() {
+            let p = self.pending[k];
+            let s = dot(t, sub(p, base));
+            if s > len {
+                self.pending.remove(k);
+                self.stats.pending_dropped += 1;
+                continue;
+            }
+            if admitted == LATE_CAPTURES_PER_TICK {
+                break;
+            }
+            let q = if self.flex.is_some() { p } else { axis_pose.point_at(s) };
+            let (contact, x) = match self.material_point_at(q, u_d) {
+                Err(c) => {
+                    first_missing.get_or_insert(c);
+                    k += 1;
+                    continue;
+                }
+                Ok(None) => {
+                    self.pending.remove(k);
+                    self.stats.pending_dropped += 1;
+                    continue;
+                }
+                Ok(Some(found)) => found,
+            };
+            if !self.cache.contains_contact(&contact) {
+                first_missing.get_or_insert(contact);
+                k += 1;
+                continue;
+            }
+            self.pending.remove(k);
+            let diam = |c: &ContactPoint| c.tet_idx().map_or(0.0, |j| self.tet_diam_m[j]);
+            if self.pts.iter().any(|pt| dist(pt.x_ref_m, x) <= diam(&contact).max(diam(&pt.contact)) * (1.0 + 1e-9))
+                || self.pts.len() == self.params.max_contacts
+            {
+                self.stats.pending_dropped += 1;
+                continue;
+            }
+            let d = sub(x, base);
+            let tet = contact.tet_idx().expect("a material point lies in a tetrahedron");
+            let region = self.model.mesh().region_of_tet().get(tet).copied().unwrap_or(0);
+            let slot = self.solver.add_contact_in_frame(&self.cache, contact, *frame)?;
+            let r = self
+                .solver
+                .set_condition(slot, Axis::Lateral, Condition::Displacement, -dot(frame[1], d))
+                .and_then(|()| self.solver.set_condition(slot, Axis::Binormal, Condition::Displacement, -dot(frame[2], d)))
+                .and_then(|()| self.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s - dot(t, d)));
+            match r {
+                Ok(()) => {}
+                Err(MixedError::SingularPivot { .. }) => {
+                    self.solver.remove_slot(slot)?;
+                    self.stats.dependent_points += 1;
+                    continue;
+                }
+                Err(e) => {
+                    self.solver.remove_slot(slot)?;
+                    return Err(e.into());
+                }
+            }
+            self.pts.push(Point {
+                contact,
+                x_ref_m: x,
+                state: PointState3::Stuck,
+                anchor_s_m: s,
+                s_prev_m: s,
+                s_work_m: s,
+                friction_n: 0.0,
+                friction_new_n: 0.0,
+                slip_sign: 1.0,
+                release_force_n: self.params.regions[region].cutting_force_n,
+                region,
+                f_world: [0.0; 3],
+                u_world: sub(q, x),
+                lat_ref_m: [-dot(frame[1], d), -dot(frame[2], d)],
+                f_ref_local_n: [0.0; 3],
+            });
+            self.stats.captures += 1;
+            self.stats.late_captures += 1;
+            admitted += 1;
+        }
+        Ok(first_missing)
     }
 
     /// Stage 5: the friction shares from the points' arc lengths (the anchor of a stuck point;
