@@ -28,7 +28,11 @@
 //!    force. It is taken only when its reference distance to every working point exceeds both
 //!    points' tetrahedron diameters (so that no tetrahedron holds two points of the shaft and
 //!    the conditions are independent); a point whose nodes' columns are not cached waits
-//!    (counted in [`Sim3Stats::column_deferrals`]): the step never computes a column.
+//!    (counted in [`Sim3Stats::column_deferrals`]): the step never computes a column. The tip
+//!    keeps trying where it is; once it has gone a spacing beyond where the capture first
+//!    waited, that position waits in a list and the tissue point there joins as a stuck shaft
+//!    point when its columns arrive ([`Sim3Stats::late_captures`]), so a worker behind the tip
+//!    delays the points it passes rather than losing them.
 //! 5. **Friction**: each shaft point gets the integral of the friction distribution of the
 //!    paper's Fig. 2b over its tributary segment ([`RegionNeedleParams::friction_integral_n`]).
 //! 6. **Active set**: solve; stuck points whose $|f_t|$ exceeds static friction slip (force
@@ -1073,23 +1077,8 @@ impl Simulation3 {
         let region = self.model.mesh().region_of_tet().get(tet).copied().unwrap_or(0);
         let entering = self.pts.is_empty() || self.last_tip_region != Some(region);
         let rp: RegionNeedleParams = self.params.regions[region];
-        let slot = self.solver.add_contact_in_frame(&self.cache, contact, *frame)?;
-        let r = self
-            .solver
-            .set_condition(slot, Axis::Lateral, Condition::Displacement, -dot(frame[1], d))
-            .and_then(|()| self.solver.set_condition(slot, Axis::Binormal, Condition::Displacement, -dot(frame[2], d)))
-            .and_then(|()| self.solver.set_condition(slot, Axis::Axial, Condition::Displacement, len - dot(t, d)));
-        match r {
-            Ok(()) => {}
-            Err(MixedError::SingularPivot { .. }) => {
-                self.solver.remove_slot(slot)?;
-                self.stats.dependent_points += 1;
-                return Ok(());
-            }
-            Err(e) => {
-                self.solver.remove_slot(slot)?;
-                return Err(e.into());
-            }
+        if !self.add_held_point(contact, frame, d, len)? {
+            return Ok(());
         }
         self.last_tip_region = Some(region);
         self.deferred_since_m = None;
@@ -1112,6 +1101,33 @@ impl Simulation3 {
         });
         self.stats.captures += 1;
         Ok(())
+    }
+
+    /// Adds `contact` to the solver in `frame`, held on the axis at arc length `s_m`: its
+    /// lateral and binormal displacements put its reference position (`d` = $X - x_b$) on the
+    /// axis, its axial one at $s$ (the tip's capture: $s = L$). Returns `false` when its
+    /// conditions depend on the others' (removed again and counted in `dependent_points`).
+    ///
+    /// Errors: [`SimError3::Mixed`] when the solver refuses it for another reason.
+    fn add_held_point(&mut self, contact: ContactPoint, frame: &[[f64; 3]; 3], d: [f64; 3], s_m: f64) -> Result<bool, SimError3> {
+        let slot = self.solver.add_contact_in_frame(&self.cache, contact, *frame)?;
+        let r = self
+            .solver
+            .set_condition(slot, Axis::Lateral, Condition::Displacement, -dot(frame[1], d))
+            .and_then(|()| self.solver.set_condition(slot, Axis::Binormal, Condition::Displacement, -dot(frame[2], d)))
+            .and_then(|()| self.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s_m - dot(frame[0], d)));
+        match r {
+            Ok(()) => Ok(true),
+            Err(MixedError::SingularPivot { .. }) => {
+                self.solver.remove_slot(slot)?;
+                self.stats.dependent_points += 1;
+                Ok(false)
+            }
+            Err(e) => {
+                self.solver.remove_slot(slot)?;
+                Err(e.into())
+            }
+        }
     }
 
     /// A due capture whose columns are missing at `tip_m`. The tip keeps trying where it is
@@ -1201,23 +1217,8 @@ impl Simulation3 {
             let d = sub(x, base);
             let tet = contact.tet_idx().expect("a material point lies in a tetrahedron");
             let region = self.model.mesh().region_of_tet().get(tet).copied().unwrap_or(0);
-            let slot = self.solver.add_contact_in_frame(&self.cache, contact, *frame)?;
-            let r = self
-                .solver
-                .set_condition(slot, Axis::Lateral, Condition::Displacement, -dot(frame[1], d))
-                .and_then(|()| self.solver.set_condition(slot, Axis::Binormal, Condition::Displacement, -dot(frame[2], d)))
-                .and_then(|()| self.solver.set_condition(slot, Axis::Axial, Condition::Displacement, s - dot(t, d)));
-            match r {
-                Ok(()) => {}
-                Err(MixedError::SingularPivot { .. }) => {
-                    self.solver.remove_slot(slot)?;
-                    self.stats.dependent_points += 1;
-                    continue;
-                }
-                Err(e) => {
-                    self.solver.remove_slot(slot)?;
-                    return Err(e.into());
-                }
+            if !self.add_held_point(contact, frame, d, s)? {
+                continue;
             }
             self.pts.push(Point {
                 contact,
