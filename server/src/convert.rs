@@ -391,6 +391,8 @@ pub fn session_stats(st: &StatsSnapshot) -> pb::SessionStats {
         budget_exhausted_ticks: st.budget_exhausted_ticks,
         active_set_capped_ticks: st.active_set_capped_ticks,
         shape_capped_ticks: st.shape_capped_ticks,
+        late_captures: st.late_captures,
+        pending_captures_dropped: st.pending_captures_dropped,
         hybrid_checks: st.hybrid_checks,
         hybrid_rebuilds: st.hybrid_rebuilds,
         rejected_poses: st.rejected_poses,

@@ -754,6 +754,8 @@ async fn issue_19_iteration_caps_are_counted_in_get_stats_and_metrics() {
         // /metrics is read after GetStats: a counter can only have grown.
         assert!(gauge("active_set_capped_ticks") >= st.active_set_capped_ticks as f64, "{metrics}");
         assert!(gauge("shape_capped_ticks") >= st.shape_capped_ticks as f64, "{metrics}");
+        // 3D only: a 2D session captures at the tip, never late.
+        assert_eq!((st.late_captures, gauge("late_captures"), gauge("pending_captures_dropped")), (0, 0.0, 0.0), "{metrics}");
         assert!(!st.faulted, "{}", st.fault);
         counts.push((st.active_set_capped_ticks, st.shape_capped_ticks, gauge("active_set_capped_ticks")));
         sessions.close_session(with_token(pb::CloseSessionRequest { session_id: sid }, &created.controller_token)).await.unwrap();

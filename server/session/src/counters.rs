@@ -21,6 +21,9 @@ pub struct SessionCounters {
     /// last tick: ticks whose stick/slip iteration or flexible shape passes stopped at their cap.
     pub active_set_capped_ticks: AtomicU64,
     pub shape_capped_ticks: AtomicU64,
+    /// 3D: `Sim3Stats::late_captures` and `Sim3Stats::pending_dropped`, as of the last tick.
+    pub late_captures: AtomicU64,
+    pub pending_captures_dropped: AtomicU64,
     /// `SimStats::hybrid_checks` and `SimStats::hybrid_rebuilds`, as of the last tick.
     pub hybrid_checks: AtomicU64,
     pub hybrid_rebuilds: AtomicU64,
@@ -120,6 +123,8 @@ pub struct StatsSnapshot {
     pub budget_exhausted_ticks: u64,
     pub active_set_capped_ticks: u64,
     pub shape_capped_ticks: u64,
+    pub late_captures: u64,
+    pub pending_captures_dropped: u64,
     pub hybrid_checks: u64,
     pub hybrid_rebuilds: u64,
     pub rejected_poses: u64,

@@ -421,6 +421,8 @@ impl LiveSim for Live3 {
     fn after_step_from_rt(&mut self, counters: &SessionCounters, _misses_before: u64) -> bool {
         let st = self.sim.stats();
         counters.column_deferrals.store(st.column_deferrals, Ordering::Relaxed);
+        counters.late_captures.store(st.late_captures, Ordering::Relaxed);
+        counters.pending_captures_dropped.store(st.pending_dropped, Ordering::Relaxed);
         counters.clamped_ticks.store(st.clamped_ticks, Ordering::Relaxed);
         counters.step_errors.fetch_add(std::mem::take(&mut self.refused_payloads), Ordering::Relaxed);
         if self.sim.output().contacts.len() > MAX_RECORD_CONTACTS3 {

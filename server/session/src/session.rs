@@ -527,6 +527,8 @@ impl Session {
             budget_exhausted_ticks: c.budget_exhausted_ticks.load(Ordering::Relaxed),
             active_set_capped_ticks: c.active_set_capped_ticks.load(Ordering::Relaxed),
             shape_capped_ticks: c.shape_capped_ticks.load(Ordering::Relaxed),
+            late_captures: c.late_captures.load(Ordering::Relaxed),
+            pending_captures_dropped: c.pending_captures_dropped.load(Ordering::Relaxed),
             hybrid_checks: c.hybrid_checks.load(Ordering::Relaxed),
             hybrid_rebuilds: c.hybrid_rebuilds.load(Ordering::Relaxed),
             rejected_poses: c.rejected_poses.load(Ordering::Relaxed),
