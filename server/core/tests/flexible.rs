@@ -187,19 +187,80 @@ fn bevel_tip_curves_towards_its_side_and_a_flip_reverses_it() {
 /// stepped 5 mm sideways (angle held), then inserted 50 mm more. Returns the tip's offset from the
 /// original axis at the end of the first insertion, after the step and at the end.
 fn fig4_run() -> (f64, f64, f64, Vec<f64>) {
-    let mut sim = Simulation::new(phantom(19), params(flexible(0.0687, 0.0))).unwrap();
+    let (outs, n_insert) = fig4_outputs(phantom(19));
+    let xs: Vec<f64> = outs.iter().map(|o| o.tip_m[0] - 0.05).collect();
+    (xs[n_insert - 1], xs[n_insert + 49], xs[xs.len() - 1], xs[n_insert + 50..].to_vec())
+}
+
+/// Fig. 4's path in `model`: every tick's output, and the number of ticks of the first
+/// insertion (the step's 50 ticks follow).
+fn fig4_outputs(model: std::sync::Arc<needlesim_core::TissueModel>) -> (Vec<StepOutput>, usize) {
+    let mut sim = Simulation::new(model, params(flexible(0.0687, 0.0))).unwrap();
     let mut poses = down(0.05, 0.205, 0.165);
     let n_insert = poses.len();
     poses.extend((1..=50).map(|k| BasePose::new(0.05 + 0.005 * k as f64 / 50.0, 0.165, -FRAC_PI_2)));
     poses.extend(down(0.055, 0.165, 0.115));
-    let xs: Vec<f64> = run(&mut sim, &poses).iter().map(|o| o.tip_m[0] - 0.05).collect();
+    let outs = run(&mut sim, &poses);
     assert_eq!(sim.stats().shape_unconverged, 0);
-    (xs[n_insert - 1], xs[n_insert + 49], xs[xs.len() - 1], xs[n_insert + 50..].to_vec())
+    (outs, n_insert)
 }
 
-/// Fig. 4's non-minimum-phase response. The base moves +5 mm, away from a target on the −x
-/// side: the tip first moves the wrong way (with the base, +x), then, as the insertion goes on,
-/// the bent needle steers it the other way, across the original axis towards the target.
+/// The needle's heading where it enters the tissue: the lateral slope $dx/|dy|$ of the shape's
+/// segment that crosses the top surface ($y$ = 0.1 m) going down (negative: turned towards
+/// $-x$). NaN when no segment crosses it.
+fn entry_heading(o: &StepOutput) -> f64 {
+    o.shape_m
+        .windows(2)
+        .find(|w| (w[0][1] - 0.1) * (w[1][1] - 0.1) <= 0.0 && w[0][1] != w[1][1])
+        .map_or(f64::NAN, |w| (w[1][0] - w[0][0]) / (w[0][1] - w[1][1]).abs())
+}
+
+/// Issue 19, item 6: what Fig. 4's steering claim is everywhere, not only in the paper's
+/// free-sided block. The base steps +5 mm (away from a target on the $-x$ side): the needle's
+/// heading where it enters the tissue turns towards the target at once (every tick of the step),
+/// and after 50 mm more the tip has crossed the original axis to the target's side. Asserted
+/// in the paper's phantom (free sides) and in the same block with its sides fixed too (boxed,
+/// stiffer laterally). Whether the tip first moves with the base depends on the tissue: it does
+/// in the free-sided block (the non-minimum-phase response of the test above); in the boxed
+/// one it does not (printed, not asserted). Measured: entry heading −1.0e-3 / −1.3e-3 after the
+/// step's first tick, −5.1e-2 / −6.6e-2 after it; tip +0.95 / −0.33 mm after the step and
+/// −0.96 / −3.90 mm at the end (free / boxed).
+#[test]
+fn issue_19_fig4_the_entry_heading_turns_towards_the_target_at_once_free_or_boxed() {
+    let (mesh, mats, mut fixed) = needlesim_core::fixtures::phantom_parts(19);
+    for side in ["left", "right"] {
+        fixed.extend_from_slice(mesh.boundary_set(side).unwrap());
+    }
+    fixed.sort_unstable();
+    fixed.dedup();
+    let boxed = std::sync::Arc::new(needlesim_core::TissueModel::new(mesh, mats, &fixed).unwrap());
+    for (label, model) in [("free sides", phantom(19)), ("boxed", boxed)] {
+        let (outs, n) = fig4_outputs(model);
+        let before = entry_heading(&outs[n - 1]);
+        let during: Vec<f64> = outs[n..n + 50].iter().map(entry_heading).collect();
+        let (x_step, x_end) = (outs[n + 49].tip_m[0] - 0.05, outs[outs.len() - 1].tip_m[0] - 0.05);
+        println!(
+            "{label}: entry heading before the step {before:.2e}, after its first tick {:.2e}, after it {:.2e}; tip after the step {:.3} mm, at the end {:.3} mm",
+            during[0],
+            during[49],
+            x_step * 1e3,
+            x_end * 1e3
+        );
+        assert!(before.abs() < 1e-9, "{label}: a straight insertion enters straight: {before:e}");
+        assert!(
+            during.iter().all(|h| *h < 0.0),
+            "{label}: the entry heading turns towards the target at every tick of the step: {during:?}"
+        );
+        assert!(during[49] < during[0], "{label}: and keeps turning while the base moves");
+        assert!(x_end < -2e-4, "{label}: the tip ends across the axis, on the target's side: {x_end:e}");
+    }
+}
+
+/// Fig. 4's non-minimum-phase response in the paper's free-sided block. The base moves +5 mm,
+/// away from a target on the −x side: the tip first moves the wrong way (with the base, +x),
+/// then, as the insertion goes on, the bent needle steers it the other way, across the original
+/// axis towards the target. In a boxed block the tip turns towards the target at once: what
+/// holds everywhere is asserted by the next test.
 /// (The issue's "Done when" words this as "first opposite to the base, then follows"; the
 /// simulated response, like the paper's description of Fig. 4, has the order the other way
 /// round: see the session note.)
