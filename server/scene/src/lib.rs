@@ -145,7 +145,7 @@ pub struct RegionSpec {
     #[serde(default = "d_cutting")]
     pub cutting_force_n: f64,
     /// Viscous friction per unit length and unit slip speed, N·s/m² (rate-dependent friction,
-    /// `q₀ + b·|v|`; 0: rate-independent). 2D only.
+    /// `q₀ + b·|v|`; 0: rate-independent). 2D and 3D.
     #[serde(default)]
     pub friction_damping_n_s_per_m2: f64,
     /// Fracture toughness $G_c$, J/m², with `needle.cutting = "toughness"` (required then, for

@@ -123,6 +123,10 @@ pub struct Region3dSpec {
     pub puncture_force_n: f64,
     #[serde(default = "d_cutting")]
     pub cutting_force_n: f64,
+    /// Viscous friction per unit length and unit slip speed, N·s/m² (rate-dependent friction,
+    /// `q₀ + b·|v|`, as in 2D; 0: rate-independent).
+    #[serde(default)]
+    pub friction_damping_n_s_per_m2: f64,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -536,6 +540,10 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
             &r.name,
             [r.friction_n_per_m, r.static_friction_ratio, r.tip_peak_ratio, r.tip_peak_width_m, r.puncture_force_n, r.cutting_force_n],
         )?;
+        let b = r.friction_damping_n_s_per_m2;
+        if !(b.is_finite() && b >= 0.0) {
+            bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {b}: must be finite and ≥ 0", r.name);
+        }
     }
     for (k, t) in f.targets.iter().enumerate() {
         if let Some(first) = f.targets[..k].iter().position(|o| o.name == t.name) {
@@ -607,6 +615,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
                 tip_peak_width_m: r.tip_peak_width_m,
                 puncture_force_n: r.puncture_force_n,
                 cutting_force_n: r.cutting_force_n,
+                friction_damping_n_s_per_m2: r.friction_damping_n_s_per_m2,
                 ..Default::default()
             },
             sphere_m: r.sphere.map(|sp| (sp.center_m, sp.radius_m)),
@@ -878,6 +887,16 @@ mod tests {
         assert_eq!(parse(&small_cube("gauge = 18", "gauge = 18\nmodel = \"rigid\""), None).unwrap().needle.flexible, None);
     }
 
+    /// Rate-dependent friction reaches the 3D regions' needle parameters (0 by default).
+    #[test]
+    fn friction_damping_reaches_the_regions() {
+        let text = small_cube("gauge = 18", "gauge = 18");
+        assert_eq!(parse(&text, None).unwrap().regions[0].needle.friction_damping_n_s_per_m2, 0.0);
+        let damped = text.replace("friction_n_per_m = 10", "friction_n_per_m = 10\nfriction_damping_n_s_per_m2 = 500");
+        assert_ne!(damped, text);
+        assert_eq!(parse(&damped, None).unwrap().regions[0].needle.friction_damping_n_s_per_m2, 500.0);
+    }
+
     #[test]
     fn bad_values_name_the_key() {
         let q = "base_quat = [0.7071067811865475, 0.0, 0.7071067811865475, 0.0]";
@@ -921,6 +940,11 @@ mod tests {
             ("young_modulus_pa = 30e3", "young_modulus_pa = -1", "regions"),
             ("poisson_ratio = 0.45", "poisson_ratio = 0.5", "regions"),
             ("friction_n_per_m = 10", "friction_n_per_m = -3", "regions[0] ('gel').friction_n_per_m = -3: must be finite and ≥ 0"),
+            (
+                "friction_n_per_m = 10",
+                "friction_n_per_m = 10\nfriction_damping_n_s_per_m2 = -1",
+                "regions[0] ('gel').friction_damping_n_s_per_m2 = -1: must be finite and ≥ 0",
+            ),
             (
                 "static_friction_ratio = 1.3",
                 "static_friction_ratio = 0.5",

@@ -34,7 +34,9 @@
 //!    point when its columns arrive ([`Sim3Stats::late_captures`]), so a worker behind the tip
 //!    delays the points it passes rather than losing them.
 //! 5. **Friction**: each shaft point gets the integral of the friction distribution of the
-//!    paper's Fig. 2b over its tributary segment ([`RegionNeedleParams::friction_integral_n`]).
+//!    paper's Fig. 2b over its tributary segment ([`RegionNeedleParams::friction_integral_n`]),
+//!    plus the rate-dependent part $b_v |v| \lambda$ of [`crate::needle`] ($v$ the base's speed
+//!    along the axis over the last tick, $\lambda$ the segment's length), as in 2D.
 //! 6. **Active set**: solve; stuck points whose $|f_t|$ exceeds static friction slip (force
 //!    $f_t = \pm$ their share, against the relative motion), slipping points whose relative motion
 //!    stopped or reversed stick, the tip's point punctures or, pulled, lets go; bounded
@@ -355,6 +357,9 @@ pub struct Simulation3 {
     /// keeps trying where it is, and only once it has gone a spacing further (or stopped) does
     /// this point join `pending`.
     deferred_since_m: Option<[f64; 3]>,
+    /// The base's speed along the needle axis over the last tick, m/s (rate-dependent
+    /// friction, [`RegionNeedleParams::friction_damping_n_s_per_m2`]).
+    axial_speed_m_per_s: f64,
     cache: ComplianceStore3,
     /// Nodes never evicted ([`Simulation3::pin_node`]).
     pinned: Vec<bool>,
@@ -428,6 +433,7 @@ impl Simulation3 {
             pts: Vec::with_capacity(cap),
             pending: Vec::with_capacity(MAX_PENDING_CAPTURES),
             deferred_since_m: None,
+            axial_speed_m_per_s: 0.0,
             cache,
             pinned: vec![false; n_nodes],
             pins: Vec::new(),
@@ -755,8 +761,9 @@ impl Simulation3 {
             self.stats.clamped_ticks += 1;
         }
         let turned = pose.orientation != self.pose.orientation;
-        self.pose = pose;
         let frame = pose.frame();
+        self.axial_speed_m_per_s = dot(frame[0], sub(pose.position_m, self.pose.position_m)).abs() * self.params.tick_rate_hz;
+        self.pose = pose;
         // 2. Frames and prescribed values.
         if let Some(fx) = self.flex.as_mut() {
             fx.rod.set_base(pose.position_m, frame);
@@ -1275,7 +1282,9 @@ impl Simulation3 {
             let lo = if i == 0 { s } else { 0.5 * (s + self.pts[self.order[i - 1].index()].s_work_m) };
             let hi = if i + 1 == k { len.max(s) } else { 0.5 * (s + self.pts[self.order[i + 1].index()].s_work_m) };
             let p = &mut self.pts[self.order[i].index()];
-            p.friction_new_n = self.params.regions[p.region].friction_integral_n(len - hi, len - lo);
+            let rp = &self.params.regions[p.region];
+            p.friction_new_n =
+                rp.friction_integral_n(len - hi, len - lo) + rp.friction_damping_n_s_per_m2 * self.axial_speed_m_per_s * (hi - lo);
             if p.state == PointState3::Slipping {
                 max_change = max_change.max((p.friction_new_n - p.friction_n).abs());
             }
