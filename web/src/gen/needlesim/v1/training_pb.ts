@@ -847,7 +847,8 @@ export type UltrasoundImage = Message<"needlesim.v1.UltrasoundImage"> & {
   probe?: UltrasoundProbe | undefined;
 
   /**
-   * Time the render took on the server, µs.
+   * Time the image took on the server's renderer thread, µs: the rasterisation, and in 3D also
+   * the solve for the deformed tissue when the contacts changed.
    *
    * @generated from field: double render_us = 6;
    */
