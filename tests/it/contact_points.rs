@@ -11,37 +11,8 @@ async fn issue_15_a_live_session_holds_the_tissue_at_material_points() {
     let server = ServerProcess::start(&[]);
     let ch = connect(&server).await;
     let created = create_example_session(&ch, "bevel-tip").await;
-    let sid = created.session.unwrap().session_id;
-    let mut observe = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
-    let mut obs = observe
-        .observe(with_token(
-            pb::ObserveRequest { session_id: sid.clone(), rate_hz: 60.0, include_displacements: false },
-            &created.observer_token,
-        ))
-        .await
-        .unwrap()
-        .into_inner();
-    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
-    // 25 mm down at 25 mm/s (the tip starts 5 mm above the surface).
-    for k in 1..=50 {
-        let pose = pb::Pose2 { x_m: 0.05, y_m: 0.205 - 5e-4 * k as f64, theta_rad: -std::f64::consts::FRAC_PI_2 };
-        control
-            .set_pose(with_token(
-                pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose), client_id: String::new(), take_over: false },
-                &created.controller_token,
-            ))
-            .await
-            .unwrap();
-        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
-    }
-    let deadline = tokio::time::Instant::now() + std::time::Duration::from_secs(5);
-    let frame = loop {
-        assert!(tokio::time::Instant::now() < deadline, "no frame from after the insertion");
-        let f = obs.message().await.expect("frames").expect("the stream goes on");
-        if f.base.is_some_and(|b| b.y_m < 0.1801) {
-            break f;
-        }
-    };
+    let sid = created.session.clone().unwrap().session_id;
+    let frame = insert_25mm_and_watch(&ch, &created, &sid, false).await;
     assert!(!frame.faulted, "{:?}", frame.fault);
     let contacts = &frame.needle_nodes;
     // 20 mm in the tissue at 2 mm spacing (at most one point per 3.3 mm grid triangle: ≥ 4).
@@ -72,37 +43,8 @@ async fn issue_19_a_live_session_holds_the_tissue_with_contact_patches() {
     let server = ServerProcess::start(&[]);
     let ch = connect(&server).await;
     let created = needlesim_tests::create_toml_session(&ch, toml).await;
-    let sid = created.session.unwrap().session_id;
-    let mut observe = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
-    let mut obs = observe
-        .observe(with_token(
-            pb::ObserveRequest { session_id: sid.clone(), rate_hz: 60.0, include_displacements: true },
-            &created.observer_token,
-        ))
-        .await
-        .unwrap()
-        .into_inner();
-    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
-    // 25 mm down at 25 mm/s (the tip starts 5 mm above the surface).
-    for k in 1..=50 {
-        let pose = pb::Pose2 { x_m: 0.05, y_m: 0.205 - 5e-4 * k as f64, theta_rad: -std::f64::consts::FRAC_PI_2 };
-        control
-            .set_pose(with_token(
-                pb::SetPoseRequest { session_id: sid.clone(), base: Some(pose), client_id: String::new(), take_over: false },
-                &created.controller_token,
-            ))
-            .await
-            .unwrap();
-        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
-    }
-    let deadline = tokio::time::Instant::now() + std::time::Duration::from_secs(5);
-    let frame = loop {
-        assert!(tokio::time::Instant::now() < deadline, "no frame from after the insertion");
-        let f = obs.message().await.expect("frames").expect("the stream goes on");
-        if f.base.is_some_and(|b| b.y_m < 0.1801) && !f.node_displacement_m.is_empty() {
-            break f;
-        }
-    };
+    let sid = created.session.clone().unwrap().session_id;
+    let frame = insert_25mm_and_watch(&ch, &created, &sid, true).await;
     assert!(!frame.faulted, "{:?}", frame.fault);
     let contacts = &frame.needle_nodes;
     // 20 mm in the tissue, at most one contact per 5.6 mm grid triangle crossed: ≥ 3.
@@ -124,4 +66,44 @@ async fn issue_19_a_live_session_holds_the_tissue_with_contact_patches() {
     assert_eq!(stats.column_misses, 0, "no column computed inside a tick: {stats:?}");
     assert!(!stats.faulted, "{stats:?}");
     assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}
+
+/// Observes the session at 60 Hz (with every node's displacement when `displacements`), drives
+/// the needle 25 mm down at 25 mm/s through SetPose (the tip starts 5 mm above the surface), and
+/// returns the first frame from after the insertion (carrying the displacements, when asked).
+async fn insert_25mm_and_watch(
+    ch: &tonic::transport::Channel,
+    created: &pb::CreateSessionResponse,
+    sid: &str,
+    displacements: bool,
+) -> pb::Frame {
+    let mut observe = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+    let mut obs = observe
+        .observe(with_token(
+            pb::ObserveRequest { session_id: sid.to_owned(), rate_hz: 60.0, include_displacements: displacements },
+            &created.observer_token,
+        ))
+        .await
+        .unwrap()
+        .into_inner();
+    let mut control = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    for k in 1..=50 {
+        let pose = pb::Pose2 { x_m: 0.05, y_m: 0.205 - 5e-4 * k as f64, theta_rad: -std::f64::consts::FRAC_PI_2 };
+        control
+            .set_pose(with_token(
+                pb::SetPoseRequest { session_id: sid.to_owned(), base: Some(pose), client_id: String::new(), take_over: false },
+                &created.controller_token,
+            ))
+            .await
+            .unwrap();
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
+    }
+    let deadline = tokio::time::Instant::now() + std::time::Duration::from_secs(5);
+    loop {
+        assert!(tokio::time::Instant::now() < deadline, "no frame from after the insertion");
+        let f = obs.message().await.expect("frames").expect("the stream goes on");
+        if f.base.is_some_and(|b| b.y_m < 0.1801) && (!displacements || !f.node_displacement_m.is_empty()) {
+            return f;
+        }
+    }
 }
