@@ -59,6 +59,16 @@ fn resolve_with_reference(dir: &TempDir, dump: &Path, label: &str) -> (f64, Valu
     ((num / den).sqrt(), state)
 }
 
+/// Runs `simulate` on `scene` along `rows` with `--dump-state`, and re-solves the dumped state
+/// with the reference ([`resolve_with_reference`]).
+fn simulate_and_resolve(dir: &TempDir, scene: &Path, label: &str, rows: &[(f64, f64, f64, f64)]) -> (f64, Value) {
+    let traj = dir.join(&format!("{label}.csv"));
+    let dump = dir.join(&format!("{label}.state.json"));
+    write_traj(&traj, rows);
+    simulate_ok(&["--scene", scene.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "--dump-state", dump.to_str().unwrap()]);
+    resolve_with_reference(dir, &dump, label)
+}
+
 fn states(state: &Value) -> Vec<String> {
     state["needle_nodes"].as_array().unwrap().iter().map(|n| n["state"].as_str().unwrap().to_owned()).collect()
 }
@@ -390,11 +400,7 @@ fn issue_15_material_point_states_resolve_with_the_reference_on_200x200() {
     ];
     let mut kinds = std::collections::BTreeSet::new();
     for (label, rows) in cases {
-        let traj = dir.join(&format!("{label}.csv"));
-        let dump = dir.join(&format!("{label}.state.json"));
-        write_traj(&traj, &rows);
-        simulate_ok(&["--scene", scene.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "--dump-state", dump.to_str().unwrap()]);
-        let (rel, state) = resolve_with_reference(&dir, &dump, label);
+        let (rel, state) = simulate_and_resolve(&dir, &scene, label, &rows);
         let points = state["points"].as_array().expect("the state has material points");
         let nodes = state["needle_nodes"].as_array().unwrap();
         println!("{label}: {} contact points {:?}, rel L2 difference to fem_ref {rel:.3e}", points.len(), states(&state));
@@ -471,11 +477,7 @@ fn issue_19_contact_patches_resolve_with_the_reference_and_meet_their_conditions
     ];
     let mut kinds = std::collections::BTreeSet::new();
     for (label, rows) in cases {
-        let traj = dir.join(&format!("{label}.csv"));
-        let dump = dir.join(&format!("{label}.state.json"));
-        write_traj(&traj, &rows);
-        simulate_ok(&["--scene", scene.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "--dump-state", dump.to_str().unwrap()]);
-        let (rel, state) = resolve_with_reference(&dir, &dump, label);
+        let (rel, state) = simulate_and_resolve(&dir, &scene, label, &rows);
         assert!(rel <= 1e-9, "{label}: solver and reference differ by {rel:e}");
         assert!(state["points"].as_array().is_none_or(|p| p.is_empty()), "{label}: every contact is a patch");
         let nodes = state["needle_nodes"].as_array().unwrap();

@@ -103,11 +103,13 @@ impl ContactPoint {
     /// Errors: [`PatchError::TooManyNodes`] when the pieces touch more than [`MAX_TERMS`]
     /// nodes, [`PatchError::Empty`] when their total length is not positive.
     pub fn patch(centre_tri_idx: usize, pieces: impl IntoIterator<Item = ([usize; 3], [f64; 3], f64)>) -> Result<Self, PatchError> {
-        let mut out = Self::node(NodeIdx(0));
-        out.len = 0;
-        out.kind = Kind::Patch;
-        out.elem_idx = Some(centre_tri_idx as u32);
-        out.weights[0] = 0.0;
+        let mut out = Self {
+            nodes: [NodeIdx(0); MAX_TERMS],
+            weights: [0.0; MAX_TERMS],
+            len: 0,
+            kind: Kind::Patch,
+            elem_idx: Some(centre_tri_idx as u32),
+        };
         let mut total = 0.0;
         for (nodes, bary, len_m) in pieces {
             total += len_m;

@@ -216,26 +216,24 @@ pub fn dump_state(scene: &Scene, sim: &Simulation) -> Scenario {
                 .zip(&conditions)
                 .map(|(n, c)| match n.contact.as_node() {
                     Some(_) => serde_json::json!({"node": n.node_idx, "state": n.state.as_str(), "fx": n.force_n[0], "fy": n.force_n[1]}),
-                    None if n.contact.is_patch() => serde_json::json!({
-                        "node": n.node_idx,
-                        "point": n.reference_m,
-                        "state": n.state.as_str(),
-                        "fx": n.force_n[0],
-                        "fy": n.force_n[1],
-                        "patch": {
-                            "terms": n.contact.terms().map(|(k, w)| serde_json::json!([k.index(), w])).collect::<Vec<_>>(),
-                            "angle_rad": c.angle_rad,
-                            "ut": c.ut_m,
-                            "un": c.un_m,
-                        },
-                    }),
-                    None => serde_json::json!({
-                        "node": n.node_idx,
-                        "point": n.reference_m,
-                        "state": n.state.as_str(),
-                        "fx": n.force_n[0],
-                        "fy": n.force_n[1],
-                    }),
+                    None => {
+                        let mut point = serde_json::json!({
+                            "node": n.node_idx,
+                            "point": n.reference_m,
+                            "state": n.state.as_str(),
+                            "fx": n.force_n[0],
+                            "fy": n.force_n[1],
+                        });
+                        if n.contact.is_patch() {
+                            point["patch"] = serde_json::json!({
+                                "terms": n.contact.terms().map(|(k, w)| serde_json::json!([k.index(), w])).collect::<Vec<_>>(),
+                                "angle_rad": c.angle_rad,
+                                "ut": c.ut_m,
+                                "un": c.un_m,
+                            });
+                        }
+                        point
+                    }
                 })
                 .collect(),
         )),

@@ -211,25 +211,18 @@ impl LiveSim for Live2 {
         // the renderer's copies of the contacts' nodes (the fan-out renders their share of the
         // field; it keeps no copy of a column only the prefetch needed).
         let out = self.sim.output();
-        let n_app = out.approaching.len();
-        let n_req = n_app + 3 * out.needle_nodes.len();
+        let (requested, req_tx) = (&mut self.requested, &mut self.req_tx);
+        let cache_nodes = out.approaching.iter().map(|&j| (j, REQUESTED_FOR_CACHE, 0));
+        // The nodes the record keeps for each contact (a patch's three heaviest).
+        let render_nodes = out.needle_nodes.iter().flat_map(|nn| {
+            let (three, _, used) = nn.contact.three_terms();
+            (0..used).map(move |k| (three[k].index(), REQUESTED_FOR_RENDER, RENDER_TAG))
+        });
         let mut requested_any = false;
-        for k in 0..n_req {
-            let out = self.sim.output();
-            let (node, flag, tag) = if k < n_app {
-                (out.approaching[k], REQUESTED_FOR_CACHE, 0)
-            } else {
-                let nn = &out.needle_nodes[(k - n_app) / 3];
-                // The nodes the record keeps for the contact (a patch's three heaviest).
-                let (three, _, used) = nn.contact.three_terms();
-                match three[..used].get((k - n_app) % 3) {
-                    Some(j) => (j.index(), REQUESTED_FOR_RENDER, RENDER_TAG),
-                    None => continue,
-                }
-            };
-            if self.requested[node] & flag == 0 {
-                if self.req_tx.push(node as u32 | tag).is_ok() {
-                    self.requested[node] |= flag;
+        for (node, flag, tag) in cache_nodes.chain(render_nodes) {
+            if requested[node] & flag == 0 {
+                if req_tx.push(node as u32 | tag).is_ok() {
+                    requested[node] |= flag;
                     requested_any = true;
                 } else {
                     counters.dropped_column_requests.fetch_add(1, Ordering::Relaxed);

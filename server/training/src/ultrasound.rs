@@ -478,6 +478,21 @@ mod tests {
         Probe { origin_m: [0.005, 0.025], e_u: [1.0, 0.0], e_v: [0.0, -1.0], pixel_m: 1e-4, width: 160, height: 160 }
     }
 
+    /// The shift within ±`reach` px (10 px margin) at which `b` correlates best with `a`:
+    /// (the correlation, dx, dy).
+    fn ncc_peak(a: &[u8], b: &[u8], w: usize, h: usize, reach: isize) -> (f64, isize, isize) {
+        let mut best = (f64::NEG_INFINITY, 0, 0);
+        for dy in -reach..=reach {
+            for dx in -reach..=reach {
+                let c = ncc(a, b, w, h, dx, dy, 10);
+                if c > best.0 {
+                    best = (c, dx, dy);
+                }
+            }
+        }
+        best
+    }
+
     fn ncc(a: &[u8], b: &[u8], w: usize, h: usize, dx: isize, dy: isize, margin: usize) -> f64 {
         let (mut sa, mut sb, mut sab, mut saa, mut sbb, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         for j in margin..h - margin {
@@ -508,15 +523,7 @@ mod tests {
             // World shift: lateral +x, depth −y.
             let u = [shift_px[0] * p.pixel_m, -shift_px[1] * p.pixel_m];
             let moved = render_slice(&nodes, &vec![u; nodes.len()], &tris, &regions, &scene, &p, &mut scratch);
-            let mut best = (f64::NEG_INFINITY, 0, 0);
-            for dy in -6..=6 {
-                for dx in -6..=6 {
-                    let c = ncc(&still.pixels, &moved.pixels, p.width, p.height, dx, dy, 10);
-                    if c > best.0 {
-                        best = (c, dx, dy);
-                    }
-                }
-            }
+            let best = ncc_peak(&still.pixels, &moved.pixels, p.width, p.height, 6);
             assert!(
                 (best.1 as f64 - shift_px[0]).abs() <= 1.0 && (best.2 as f64 - shift_px[1]).abs() <= 1.0,
                 "imposed {shift_px:?} px, correlation peak at ({}, {}) (r = {:.3})",
@@ -610,15 +617,7 @@ mod tests {
         for shift_px in [[2.4, -1.7], [-3.6, 0.8]] {
             let u = [shift_px[0] * p.pixel_m, shift_px[1] * p.pixel_m, 0.0];
             let moved = render_slice_3d(&nodes, &vec![u; nodes.len()], &tets, &regions, &scene, &p, &mut scratch);
-            let mut best = (f64::NEG_INFINITY, 0, 0);
-            for dy in -6..=6 {
-                for dx in -6..=6 {
-                    let c = ncc(&still.pixels, &moved.pixels, p.width, p.height, dx, dy, 10);
-                    if c > best.0 {
-                        best = (c, dx, dy);
-                    }
-                }
-            }
+            let best = ncc_peak(&still.pixels, &moved.pixels, p.width, p.height, 6);
             assert!(
                 (best.1 as f64 - shift_px[0]).abs() <= 1.0 && (best.2 as f64 - shift_px[1]).abs() <= 1.0 && best.0 > 0.5,
                 "imposed {shift_px:?} px, peak at ({}, {}) r = {:.3}",
@@ -704,15 +703,7 @@ mod tests {
         assert!(equal(&still, &moved) < 0.2, "the slice changed where the tissue moved: {} of the pixels equal", equal(&still, &moved));
         let uc = u_at(&model, &u, near);
         let want = [dot3(uc, p.e_u) / p.pixel_m, dot3(uc, p.e_v) / p.pixel_m];
-        let mut best = (f64::NEG_INFINITY, 0, 0);
-        for dy in -8..=8 {
-            for dx in -8..=8 {
-                let c = ncc(&still.pixels, &moved.pixels, p.width, p.height, dx, dy, 10);
-                if c > best.0 {
-                    best = (c, dx, dy);
-                }
-            }
-        }
+        let best = ncc_peak(&still.pixels, &moved.pixels, p.width, p.height, 8);
         assert!(
             (best.1 as f64 - want[0]).abs() <= 1.0 && (best.2 as f64 - want[1]).abs() <= 1.0 && best.0 > 0.5,
             "solved in-plane displacement {want:?} px, speckle correlation peak at ({}, {}) r = {:.3}",

@@ -1033,11 +1033,7 @@ impl Simulation3 {
         let s_distal = distal.map(|k| if self.pts[k].state == PointState3::Tip { len } else { self.pts[k].s_prev_m });
         let u_d = distal.map_or([0.0; 3], |k| self.pts[k].u_world);
         // A waiting point counts as taken for the spacing of the next.
-        let s_pending = self.pending.iter().map(|p| dot(t, sub(*p, base))).fold(None, |m: Option<f64>, s| Some(m.map_or(s, |m| m.max(s))));
-        let s_distal = match (s_distal, s_pending) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            (a, b) => a.or(b),
-        };
+        let s_distal = self.pending.iter().map(|p| dot(t, sub(*p, base))).chain(s_distal).reduce(f64::max);
         let pending_missing = self.capture_pending(axis_pose, frame, u_d)?;
         let s_prev_tip = dot(t, sub(prev_tip, base));
         let advancing = len - s_prev_tip > 1e-9;
@@ -1055,11 +1051,8 @@ impl Simulation3 {
         } else {
             None
         };
-        if let Some((c, x)) = candidate {
-            let diam = |c: &ContactPoint| c.tet_idx().map_or(0.0, |k| self.tet_diam_m[k]);
-            if self.pts.iter().any(|p| dist(p.x_ref_m, x) <= diam(&c).max(diam(&p.contact)) * (1.0 + 1e-9)) {
-                candidate = None;
-            }
+        if candidate.is_some_and(|(c, x)| self.too_close(&c, x)) {
+            candidate = None;
         }
         self.update_approaching([pending_missing, candidate.map(|c| c.0).or(missing)], u_d, axis_pose, frame);
         if missing.is_some() {
@@ -1080,8 +1073,7 @@ impl Simulation3 {
         }
         let d = sub(x, base);
         let s_new = dot(t, sub(prev_tip, base));
-        let tet = contact.tet_idx().expect("a material point lies in a tetrahedron");
-        let region = self.model.mesh().region_of_tet().get(tet).copied().unwrap_or(0);
+        let region = self.region_of(&contact);
         let entering = self.pts.is_empty() || self.last_tip_region != Some(region);
         let rp: RegionNeedleParams = self.params.regions[region];
         if !self.add_held_point(contact, frame, d, len)? {
@@ -1108,6 +1100,19 @@ impl Simulation3 {
         });
         self.stats.captures += 1;
         Ok(())
+    }
+
+    /// The distance rule of a capture: whether the material point `contact` at reference
+    /// position `x_m` lies within both its and a held point's tetrahedron diameters of one.
+    fn too_close(&self, contact: &ContactPoint, x_m: [f64; 3]) -> bool {
+        let diam = |c: &ContactPoint| c.tet_idx().map_or(0.0, |k| self.tet_diam_m[k]);
+        self.pts.iter().any(|p| dist(p.x_ref_m, x_m) <= diam(contact).max(diam(&p.contact)) * (1.0 + 1e-9))
+    }
+
+    /// The mesh region of a material point's tetrahedron.
+    fn region_of(&self, contact: &ContactPoint) -> usize {
+        let tet = contact.tet_idx().expect("a material point lies in a tetrahedron");
+        self.model.mesh().region_of_tet().get(tet).copied().unwrap_or(0)
     }
 
     /// Adds `contact` to the solver in `frame`, held on the axis at arc length `s_m`: its
@@ -1214,16 +1219,12 @@ impl Simulation3 {
                 continue;
             }
             self.pending.remove(k);
-            let diam = |c: &ContactPoint| c.tet_idx().map_or(0.0, |j| self.tet_diam_m[j]);
-            if self.pts.iter().any(|pt| dist(pt.x_ref_m, x) <= diam(&contact).max(diam(&pt.contact)) * (1.0 + 1e-9))
-                || self.pts.len() == self.params.max_contacts
-            {
+            if self.too_close(&contact, x) || self.pts.len() == self.params.max_contacts {
                 self.stats.pending_dropped += 1;
                 continue;
             }
             let d = sub(x, base);
-            let tet = contact.tet_idx().expect("a material point lies in a tetrahedron");
-            let region = self.model.mesh().region_of_tet().get(tet).copied().unwrap_or(0);
+            let region = self.region_of(&contact);
             if !self.add_held_point(contact, frame, d, s)? {
                 continue;
             }
