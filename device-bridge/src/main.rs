@@ -12,7 +12,11 @@
 //! file was truncated, resized, overwritten, deleted or replaced (`shm.rs`: the access never
 //! faults; a watcher thread checks the file every 100 ms) is lost like a closed one: the watchdog
 //! ramps the force out, the zero wrench is written, and the bridge exits with status 1 and a
-//! message naming the cause.
+//! message naming the cause. So is a server that died without closing its channel (`kill -9`, a
+//! crash: the watcher thread checks the creator process, `needlesim_channel::liveness`), whose
+//! orphaned channel file the bridge then removes, and one from which no force came for
+//! `--server-timeout-ms` (hung, stopped, or dead out of sight in another pid namespace; its file
+//! is left to it).
 //!
 //! # 2D and 3D sessions
 //!
@@ -48,17 +52,19 @@
 //! - `force_age_us`: (time the bridge first saw a force) − its `t_ns` (the server → bridge part).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::{Parser, ValueEnum};
-use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm};
+use needlesim_bridge::device::{
+    Device, DeviceState, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm,
+};
 use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
-use needlesim_bridge::render::{Pose6, RenderParams, Renderer, ServerSample};
+use needlesim_bridge::render::{Pose6, RenderOutput, RenderParams, Renderer, ServerSample};
 use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
+use needlesim_channel::shm::{Broken, DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
 use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -144,6 +150,13 @@ struct Cli {
     /// --channel; 50 with --server, where responses arrive every tick but with network jitter).
     #[arg(long, value_name = "N")]
     watchdog_periods: Option<u64>,
+    /// With --channel: the server is taken for gone when no force came for this long (ms), even
+    /// if its channel looks intact (a hung or stopped server, or one in another pid namespace whose
+    /// death the bridge cannot see): the force is ramped to zero and the bridge exits with status 1.
+    /// A server that dies (`kill -9`, a crash) is noticed within about 100 ms whatever this is.
+    /// 0: never.
+    #[arg(long, value_name = "MS", default_value_t = 2000)]
+    server_timeout_ms: u64,
     /// Duration of the ramp to zero (and back) (ms).
     #[arg(long, value_name = "MS", default_value_t = 50.0)]
     ramp_ms: f64,
@@ -448,74 +461,125 @@ fn align_with_session(cli: &Cli, link: &Link, period: Duration) -> Option<Durati
     Some(origin.checked_sub(lead).unwrap_or(origin + period - lead))
 }
 
-fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report) -> Result<()> {
+/// The write times of the last [`RING`] poses are kept, by counter, to time the force that answers each.
+const RING: u64 = 1024;
+
+/// What the device loop carries from period to period, besides the renderer and the report.
+struct LoopState {
+    written_ns: [u64; RING as usize],
+    last_answered: u64,
+    remote_last: RemoteSample,
+    last_echo_seq: u64,
+    prev_buttons: Option<u32>,
+    flip_refused_said: bool,
+    /// The period in which the link was first found lost.
+    lost_since: Option<u64>,
+    /// `CLOCK_MONOTONIC` ns of the last fresh force from the channel (at first: the loop's start),
+    /// the server's heartbeat (`--server-timeout-ms`).
+    last_fresh_ns: u64,
+}
+
+impl LoopState {
+    fn new() -> Self {
+        Self {
+            written_ns: [0; RING as usize],
+            last_answered: 0,
+            remote_last: RemoteSample::default(),
+            last_echo_seq: 0,
+            prev_buttons: None,
+            flip_refused_said: false,
+            lost_since: None,
+            last_fresh_ns: monotonic_ns(),
+        }
+    }
+}
+
+/// The renderer's parameters from the command line and the device.
+fn render_params(cli: &Cli, device: &dyn Device) -> Result<RenderParams> {
     if !(cli.rate_hz.is_finite() && cli.rate_hz > 0.0) {
         bail!("--rate-hz must be positive, got {}", cli.rate_hz);
     }
-    let period_s = 1.0 / cli.rate_hz;
-    let watchdog_periods = cli.watchdog_periods();
     let last_force = cli.render == RenderMode::LastForce;
-    let params = RenderParams {
-        period_s,
+    Ok(RenderParams {
+        period_s: 1.0 / cli.rate_hz,
         max_force_n: cli.max_force_n,
         max_torque_nm: cli.max_torque_nm,
-        watchdog_periods,
+        watchdog_periods: cli.watchdog_periods(),
         ramp_s: cli.ramp_ms * 1e-3,
         coupling_k: if last_force { [0.0; 6] } else { RenderParams::per_axis(cli.coupling_k, cli.coupling_k_rot) },
         coupling_b: if last_force { [0.0; 6] } else { RenderParams::per_axis(cli.coupling_b, cli.coupling_b_rot) },
         output: device.output(),
-    };
-    // What the session is: a 3D one gets 6-DOF traces; the remote link asked the session (GetSession).
-    report.dimension = match link {
+    })
+}
+
+/// The session's dimension (2 or 3): from the channel's header, or asked by the remote link (GetSession).
+fn session_dimension(link: &Link) -> Result<u32> {
+    Ok(match link {
         Link::Shm(channel) => match channel.session_dimension() {
             Some(d) => d as u32,
             None => bail!("device channel: the session's dimension in the header is neither 2 nor 3"),
         },
         Link::Remote(remote) => remote.dimension() as u32,
-    };
-    let planar = report.dimension != 3;
-    let mut renderer = Renderer::new(params);
-    let mut trace = match &cli.trace {
-        Some(p) => {
-            let f = std::fs::File::create(p).with_context(|| format!("--trace {}: cannot create", p.display()))?;
-            let mut w = std::io::BufWriter::new(f);
-            if planar {
-                writeln!(w, "t_s,counter,x_m,y_m,theta_rad,fresh,tick,server_fx_n,server_fy_n,server_torque_nm,fx_n,fy_n,torque_nm,gain")?;
-            } else {
-                writeln!(
-                    w,
-                    "t_s,counter,x_m,y_m,z_m,qw,qx,qy,qz,fresh,tick,server_fx_n,server_fy_n,server_fz_n,server_tx_nm,server_ty_nm,server_tz_nm,\
-                     fx_n,fy_n,fz_n,tx_nm,ty_nm,tz_nm,gain"
-                )?;
-            }
-            Some(w)
-        }
-        None => None,
-    };
-    let periods_total = cli.seconds.map(|s| (s * cli.rate_hz).round().max(0.0) as u64);
-    let cap = periods_total.unwrap_or(60_000).min(1 << 22) as usize;
-    report.pose_to_force_ns.reserve(cap);
-    report.force_age_ns.reserve(cap);
-    // The write times of the last poses, by counter, to time the force that answers each.
-    const RING: u64 = 1024;
-    let mut written_ns = [0u64; RING as usize];
-    let mut last_answered = 0u64;
-    let mut remote_last = RemoteSample::default();
-    let mut last_echo_seq = 0u64;
-    let mut prev_buttons: Option<u32> = None;
-    let mut flip_refused_said = false;
+    })
+}
 
-    match needlesim_channel::rt::request_realtime_priority(cli.rt_priority) {
-        Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
-        Err(why) => {
-            tracing::warn!("the device loop runs without real-time priority ({why}); periods may be missed under load");
-            // Without SCHED_FIFO, sleeps wake up to 50 µs late (the timer slack) unless told otherwise.
-            let _ = needlesim_channel::rt::request_precise_timers();
-        }
+type Trace = std::io::BufWriter<std::fs::File>;
+
+/// The `--trace` CSV with its header (the 2D or the 6-DOF columns), if asked for.
+fn open_trace(cli: &Cli, planar: bool) -> Result<Option<Trace>> {
+    let Some(p) = &cli.trace else { return Ok(None) };
+    let f = std::fs::File::create(p).with_context(|| format!("--trace {}: cannot create", p.display()))?;
+    let mut w = std::io::BufWriter::new(f);
+    if planar {
+        writeln!(w, "t_s,counter,x_m,y_m,theta_rad,fresh,tick,server_fx_n,server_fy_n,server_torque_nm,fx_n,fy_n,torque_nm,gain")?;
+    } else {
+        writeln!(
+            w,
+            "t_s,counter,x_m,y_m,z_m,qw,qx,qy,qz,fresh,tick,server_fx_n,server_fy_n,server_fz_n,server_tx_nm,server_ty_nm,server_tz_nm,\
+             fx_n,fy_n,fz_n,tx_nm,ty_nm,tz_nm,gain"
+        )?;
     }
-    // Drift-free schedule: period k starts at t0 + k·Δt (needlesim_channel::schedule), t0 just
-    // before one of the session's ticks when phase-aligned.
-    let period = Duration::from_secs_f64(period_s);
+    Ok(Some(w))
+}
+
+/// One period's trace row.
+fn write_trace_row(
+    w: &mut Trace,
+    planar: bool,
+    t_s: f64,
+    counter: u64,
+    state: &DeviceState,
+    ex: &Exchange,
+    out: &RenderOutput,
+) -> Result<()> {
+    let fresh = ex.fresh.is_some() as u8;
+    if planar {
+        let [x, y, th] = state.pose.to_planar();
+        let (sw, rw) = (wrench_to_planar(ex.last_wrench), wrench_to_planar(out.wrench));
+        writeln!(
+            w,
+            "{t_s},{counter},{x},{y},{th},{fresh},{},{},{},{},{},{},{},{}",
+            ex.last_tick, sw[0], sw[1], sw[2], rw[0], rw[1], rw[2], out.gain
+        )?;
+    } else {
+        // Written field by field: nothing is allocated in the device loop.
+        write!(w, "{t_s},{counter}")?;
+        for v in state.pose.position_m.iter().chain(&state.pose.orientation) {
+            write!(w, ",{v}")?;
+        }
+        write!(w, ",{fresh},{}", ex.last_tick)?;
+        for v in ex.last_wrench.iter().chain(&out.wrench) {
+            write!(w, ",{v}")?;
+        }
+        writeln!(w, ",{}", out.gain)?;
+    }
+    Ok(())
+}
+
+/// The drift-free schedule of the device loop (period k at t0 + k·Δt: needlesim_channel::schedule),
+/// t0 just before one of the session's ticks when phase-aligned (`report.aligned`), ending after
+/// `--seconds` (executed plus missed periods = S·rate).
+fn start_schedule(cli: &Cli, link: &Link, period: Duration, periods_total: Option<u64>, report: &mut Report) -> Schedule {
     let clock = MonotonicClock::new();
     let mut schedule = match align_with_session(cli, link, period) {
         Some(phase) => {
@@ -525,12 +589,226 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
         None => Schedule::start(clock, period),
     }
     .with_spin_margin(Duration::from_micros(cli.spin_margin_us).min(period));
-    let force_wait = Duration::from_micros(cli.force_wait_us).min(period * 3 / 4);
-    // --seconds S ends the schedule at t0 + S: executed plus missed periods = S·rate.
     if let Some(n) = periods_total {
         schedule = schedule.with_period_limit(n);
     }
-    let mut stale_since: Option<u64> = None;
+    schedule
+}
+
+/// One period's exchange over shared memory: write the pose, then read the force (phase-aligned:
+/// wait for the one that answers the pose, at most `force_wait`); times the answered poses.
+fn exchange_shm(
+    channel: &mut DeviceEnd,
+    state: &DeviceState,
+    t_pose: u64,
+    force_wait: Option<Duration>,
+    st: &mut LoopState,
+    report: &mut Report,
+) -> Exchange {
+    let pose = DevicePose {
+        t_ns: t_pose,
+        position_m: state.pose.position_m,
+        orientation: state.pose.orientation,
+        buttons: state.buttons,
+        counter: 0,
+    };
+    let written = channel.write_pose_from_device(&pose).ok();
+    if let Some(c) = written {
+        report.last_counter = c;
+        st.written_ns[(c % RING) as usize] = t_pose;
+    }
+    // Phase-aligned: the tick that takes this pose is due within the lead; wait for its force
+    // (spinning: it comes within the tick's compute time), or for any force written after the pose
+    // (the tick missed it), at most `force_wait`.
+    let wait_until = force_wait.filter(|_| written.is_some()).map(|w| t_pose + w.as_nanos() as u64);
+    let mut fresh: Option<ServerForce> = None;
+    let sample = loop {
+        let sample = channel.read_force_from_device();
+        let t_seen = monotonic_ns();
+        if let (ReadStatus::Fresh, Some(f)) = (sample.status, sample.value)
+            && (f.state == ServerForce::STATE_OK || f.state == ServerForce::STATE_DEVICE_STALE)
+        {
+            st.last_fresh_ns = t_seen;
+            report.force_age_ns.push(t_seen.saturating_sub(f.t_ns));
+            // The pose it answers, timed at its first force, if still in the ring.
+            let c = f.pose_counter;
+            if c > st.last_answered && c <= report.last_counter && report.last_counter - c < RING {
+                report.pose_to_force_ns.push(t_seen.saturating_sub(st.written_ns[(c % RING) as usize]));
+                report.unanswered_poses += (c - st.last_answered - 1) * u64::from(st.last_answered > 0);
+                report.answered_poses += 1;
+                report.answered_in_period += u64::from(written == Some(c));
+                st.last_answered = c;
+            }
+            fresh = Some(f);
+        }
+        let Some(until) = wait_until else { break sample };
+        let answered = fresh.is_some_and(|f| f.t_ns >= t_pose || written.is_some_and(|c| f.pose_counter >= c));
+        if answered || matches!(sample.status, ReadStatus::Stale | ReadStatus::Broken) {
+            break sample;
+        }
+        if t_seen >= until {
+            report.waits_timed_out += 1;
+            break sample;
+        }
+        std::hint::spin_loop();
+    };
+    // The report's stiffness: the last fresh one (as with the remote link).
+    if let Some(f) = &fresh {
+        report.last_stiffness = Some(f.stiffness);
+    }
+    let sv = sample.value.unwrap_or_default();
+    Exchange {
+        fresh: fresh.as_ref().map(ServerSample::from),
+        tick: fresh.map(|f| f.tick),
+        last_tick: sv.tick,
+        last_wrench: sv.wrench(),
+        lost: matches!(sample.status, ReadStatus::Stale | ReadStatus::Broken) || !channel.is_current(),
+    }
+}
+
+/// Logs the first non-zero stiffness at the needle base (once per run).
+fn log_first_stiffness(planar: bool, k: &[[f64; 6]; 6]) {
+    if planar {
+        let j = restrict_planar_stiffness(k);
+        tracing::info!(
+            "first stiffness at the needle base: J = [{:.1} {:.1} {:.4}; {:.1} {:.1} {:.4}; {:.4} {:.4} {:.5}]",
+            j[0],
+            j[1],
+            j[2],
+            j[3],
+            j[4],
+            j[5],
+            j[6],
+            j[7],
+            j[8]
+        );
+    } else {
+        tracing::info!(
+            "first stiffness at the needle base: K_Fp = ∂F/∂p = [{:.1} {:.1} {:.1}; {:.1} {:.1} {:.1}; {:.1} {:.1} {:.1}] N/m, \
+             K_τθ diagonal [{:.5} {:.5} {:.5}] N·m/rad",
+            k[0][0],
+            k[0][1],
+            k[0][2],
+            k[1][0],
+            k[1][1],
+            k[1][2],
+            k[2][0],
+            k[2][1],
+            k[2][2],
+            k[3][3],
+            k[4][4],
+            k[5][5]
+        );
+    }
+}
+
+/// One period's exchange over the remote link: send the pose (and a bevel flip on button 0's
+/// rising edge), take the latest response.
+fn exchange_remote(
+    remote: &mut RemoteLink,
+    state: &DeviceState,
+    buttons_before: Option<u32>,
+    planar: bool,
+    t_pose: u64,
+    st: &mut LoopState,
+    report: &mut Report,
+) -> Exchange {
+    // Button 0 pressed (rising edge): flip the bevel (the shared-memory server sees the buttons itself).
+    if state.buttons & 1 != 0 && buttons_before.is_some_and(|b| b & 1 == 0) {
+        if planar {
+            remote.request_flip();
+        } else if !st.flip_refused_said {
+            // Control3 carries no bevel flip.
+            st.flip_refused_said = true;
+            tracing::warn!("button 0 (bevel flip) is ignored: a 3D session's Control3 stream has no bevel flip");
+        }
+    }
+    if let Some(c) = remote.send_pose(&state.pose, t_pose) {
+        report.last_counter = c;
+    }
+    report.dropped_poses = remote.dropped_poses;
+    let fresh = remote.latest();
+    let t_seen = monotonic_ns();
+    if let Some(r) = &fresh {
+        st.remote_last = *r;
+        report.force_age_ns.push(t_seen.saturating_sub(r.t_published_ns));
+        // The server echoes the newest pose its tick used: a true round trip.
+        if r.pose_seq > st.last_echo_seq && r.client_time_ns > 0 {
+            st.last_echo_seq = r.pose_seq;
+            report.pose_to_force_ns.push(t_seen.saturating_sub(r.client_time_ns));
+        }
+        if report.last_stiffness.is_none() && r.sample.stiffness.iter().flatten().any(|&v| v != 0.0) {
+            log_first_stiffness(planar, &r.sample.stiffness);
+        }
+        report.last_stiffness = Some(r.sample.stiffness);
+    }
+    Exchange {
+        fresh: fresh.map(|r| r.sample),
+        tick: fresh.map(|r| r.tick),
+        last_tick: st.remote_last.tick,
+        last_wrench: st.remote_last.sample.wrench,
+        lost: remote.failure().is_some(),
+    }
+}
+
+/// The error the bridge exits with once the link is lost and the force ramped out: what became of
+/// the server or the channel. A channel whose server died is removed (nobody else will).
+/// `silent_ms`: the channel is intact but no force came for that long (`--server-timeout-ms`).
+fn lost_link_error(link: &Link, silent_ms: Option<u64>) -> anyhow::Error {
+    match link {
+        Link::Shm(channel) => {
+            let path = channel.path().display();
+            match channel.broken() {
+                Some(Broken::ServerDied { pid }) => {
+                    let file = match channel.remove_if_orphaned() {
+                        Ok(true) => format!("its device channel {path} was removed"),
+                        Ok(false) => format!("its device channel {path} was re-created or removed meanwhile"),
+                        Err(e) => format!("its device channel {path} could not be removed: {e}"),
+                    };
+                    anyhow!("the server (pid {pid}) died without closing the session; the force was ramped to zero and {file}")
+                }
+                Some(why) if !channel.closed_or_recreated() => anyhow!("device channel {path} is broken: {why}"),
+                None if channel.is_current() && silent_ms.is_some() => anyhow!(
+                    "the server (pid {}) stopped answering: no force on device channel {path} for {} ms (--server-timeout-ms); \
+                     the force was ramped to zero; the channel is left to its server",
+                    channel.creator_pid(),
+                    silent_ms.unwrap_or_default()
+                ),
+                _ => anyhow!("device channel {path}: closed or re-created by the server"),
+            }
+        }
+        Link::Remote(r) => anyhow!("remote link: {}", r.failure().unwrap_or_default()),
+    }
+}
+
+fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report) -> Result<()> {
+    let params = render_params(cli, device)?;
+    let (period_s, watchdog_periods) = (params.period_s, params.watchdog_periods);
+    let last_force = cli.render == RenderMode::LastForce;
+    report.dimension = session_dimension(link)?;
+    let planar = report.dimension != 3;
+    let mut renderer = Renderer::new(params);
+    let mut trace = open_trace(cli, planar)?;
+    let periods_total = cli.seconds.map(|s| (s * cli.rate_hz).round().max(0.0) as u64);
+    let cap = periods_total.unwrap_or(60_000).min(1 << 22) as usize;
+    report.pose_to_force_ns.reserve(cap);
+    report.force_age_ns.reserve(cap);
+    // The periods the link may stay lost before the bridge gives up: the watchdog's and the ramp's.
+    let ramp_out_periods = watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1;
+    let server_timeout_ns = cli.server_timeout_ms.saturating_mul(1_000_000);
+
+    match needlesim_channel::rt::request_realtime_priority(cli.rt_priority) {
+        Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
+        Err(why) => {
+            tracing::warn!("the device loop runs without real-time priority ({why}); periods may be missed under load");
+            // Without SCHED_FIFO, sleeps wake up to 50 µs late (the timer slack) unless told otherwise.
+            let _ = needlesim_channel::rt::request_precise_timers();
+        }
+    }
+    let period = Duration::from_secs_f64(period_s);
+    let mut schedule = start_schedule(cli, link, period, periods_total, report);
+    let force_wait = report.aligned.then(|| Duration::from_micros(cli.force_wait_us).min(period * 3 / 4));
+    let mut st = LoopState::new();
     loop {
         if STOP.load(Ordering::Relaxed) {
             report.exit = "signal".into();
@@ -555,139 +833,11 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
 
         let state = device.read_pose(t_s)?;
         report.final_pose = state.pose;
-        let buttons_before = prev_buttons.replace(state.buttons);
+        let buttons_before = st.prev_buttons.replace(state.buttons);
         let t_pose = monotonic_ns();
         let ex = match link {
-            Link::Shm(channel) => {
-                let pose = DevicePose {
-                    t_ns: t_pose,
-                    position_m: state.pose.position_m,
-                    orientation: state.pose.orientation,
-                    buttons: state.buttons,
-                    counter: 0,
-                };
-                let written = channel.write_pose_from_device(&pose).ok();
-                if let Some(c) = written {
-                    report.last_counter = c;
-                    written_ns[(c % RING) as usize] = t_pose;
-                }
-                // Phase-aligned: the tick that takes this pose is due within the lead; wait for
-                // its force (spinning: it comes within the tick's compute time), or for any force
-                // written after the pose (the tick missed it), at most `force_wait`.
-                let wait_until = (report.aligned && written.is_some()).then(|| t_pose + force_wait.as_nanos() as u64);
-                let mut fresh: Option<ServerForce> = None;
-                let sample = loop {
-                    let sample = channel.read_force_from_device();
-                    let t_seen = monotonic_ns();
-                    if let (ReadStatus::Fresh, Some(f)) = (sample.status, sample.value)
-                        && (f.state == ServerForce::STATE_OK || f.state == ServerForce::STATE_DEVICE_STALE)
-                    {
-                        report.force_age_ns.push(t_seen.saturating_sub(f.t_ns));
-                        // The pose it answers, timed at its first force, if still in the ring.
-                        let c = f.pose_counter;
-                        if c > last_answered && c <= report.last_counter && report.last_counter - c < RING {
-                            report.pose_to_force_ns.push(t_seen.saturating_sub(written_ns[(c % RING) as usize]));
-                            report.unanswered_poses += (c - last_answered - 1) * u64::from(last_answered > 0);
-                            report.answered_poses += 1;
-                            report.answered_in_period += u64::from(written == Some(c));
-                            last_answered = c;
-                        }
-                        fresh = Some(f);
-                    }
-                    let Some(until) = wait_until else { break sample };
-                    let answered = fresh.is_some_and(|f| f.t_ns >= t_pose || written.is_some_and(|c| f.pose_counter >= c));
-                    if answered || matches!(sample.status, ReadStatus::Stale | ReadStatus::Broken) {
-                        break sample;
-                    }
-                    if t_seen >= until {
-                        report.waits_timed_out += 1;
-                        break sample;
-                    }
-                    std::hint::spin_loop();
-                };
-                // The report's stiffness: the last fresh one (as with the remote link).
-                if let Some(f) = &fresh {
-                    report.last_stiffness = Some(f.stiffness);
-                }
-                let sv = sample.value.unwrap_or_default();
-                Exchange {
-                    fresh: fresh.as_ref().map(ServerSample::from),
-                    tick: fresh.map(|f| f.tick),
-                    last_tick: sv.tick,
-                    last_wrench: sv.wrench(),
-                    lost: matches!(sample.status, ReadStatus::Stale | ReadStatus::Broken) || !channel.is_current(),
-                }
-            }
-            Link::Remote(remote) => {
-                // Button 0 pressed (rising edge): flip the bevel (the shared-memory server sees
-                // the buttons itself).
-                if state.buttons & 1 != 0 && buttons_before.is_some_and(|b| b & 1 == 0) {
-                    if planar {
-                        remote.request_flip();
-                    } else if !flip_refused_said {
-                        // Control3 carries no bevel flip.
-                        flip_refused_said = true;
-                        tracing::warn!("button 0 (bevel flip) is ignored: a 3D session's Control3 stream has no bevel flip");
-                    }
-                }
-                if let Some(c) = remote.send_pose(&state.pose, t_pose) {
-                    report.last_counter = c;
-                }
-                report.dropped_poses = remote.dropped_poses;
-                let fresh = remote.latest();
-                let t_seen = monotonic_ns();
-                if let Some(r) = &fresh {
-                    remote_last = *r;
-                    report.force_age_ns.push(t_seen.saturating_sub(r.t_published_ns));
-                    // The server echoes the newest pose its tick used: a true round trip.
-                    if r.pose_seq > last_echo_seq && r.client_time_ns > 0 {
-                        last_echo_seq = r.pose_seq;
-                        report.pose_to_force_ns.push(t_seen.saturating_sub(r.client_time_ns));
-                    }
-                    if report.last_stiffness.is_none() && !planar && r.sample.stiffness.iter().flatten().any(|&v| v != 0.0) {
-                        let k = &r.sample.stiffness;
-                        tracing::info!(
-                            "first stiffness at the needle base: K_Fp = ∂F/∂p = [{:.1} {:.1} {:.1}; {:.1} {:.1} {:.1}; {:.1} {:.1} {:.1}] N/m, \
-                             K_τθ diagonal [{:.5} {:.5} {:.5}] N·m/rad",
-                            k[0][0],
-                            k[0][1],
-                            k[0][2],
-                            k[1][0],
-                            k[1][1],
-                            k[1][2],
-                            k[2][0],
-                            k[2][1],
-                            k[2][2],
-                            k[3][3],
-                            k[4][4],
-                            k[5][5]
-                        );
-                    }
-                    if report.last_stiffness.is_none() && planar && r.sample.stiffness.iter().flatten().any(|&v| v != 0.0) {
-                        let j = restrict_planar_stiffness(&r.sample.stiffness);
-                        tracing::info!(
-                            "first stiffness at the needle base: J = [{:.1} {:.1} {:.4}; {:.1} {:.1} {:.4}; {:.4} {:.4} {:.5}]",
-                            j[0],
-                            j[1],
-                            j[2],
-                            j[3],
-                            j[4],
-                            j[5],
-                            j[6],
-                            j[7],
-                            j[8]
-                        );
-                    }
-                    report.last_stiffness = Some(r.sample.stiffness);
-                }
-                Exchange {
-                    fresh: fresh.map(|r| r.sample),
-                    tick: fresh.map(|r| r.tick),
-                    last_tick: remote_last.tick,
-                    last_wrench: remote_last.sample.wrench,
-                    lost: remote.failure().is_some(),
-                }
-            }
+            Link::Shm(channel) => exchange_shm(channel, &state, t_pose, force_wait, &mut st, report),
+            Link::Remote(remote) => exchange_remote(remote, &state, buttons_before, planar, t_pose, &mut st, report),
         };
         if let Some(t) = ex.tick {
             report.fresh_forces += 1;
@@ -704,62 +854,20 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
         report.max_rendered_force_n = report.max_rendered_force_n.max(force_norm(&out.wrench));
         device.write_force(out.wrench)?;
         if let Some(w) = trace.as_mut() {
-            let fresh = ex.fresh.is_some() as u8;
-            if planar {
-                let [x, y, th] = state.pose.to_planar();
-                let (sw, rw) = (wrench_to_planar(ex.last_wrench), wrench_to_planar(out.wrench));
-                writeln!(
-                    w,
-                    "{t_s},{},{x},{y},{th},{fresh},{},{},{},{},{},{},{},{}",
-                    report.last_counter, ex.last_tick, sw[0], sw[1], sw[2], rw[0], rw[1], rw[2], out.gain
-                )?;
-            } else {
-                let (p, q, sw, rw) = (state.pose.position_m, state.pose.orientation, ex.last_wrench, out.wrench);
-                writeln!(
-                    w,
-                    "{t_s},{},{},{},{},{},{},{},{},{fresh},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                    report.last_counter,
-                    p[0],
-                    p[1],
-                    p[2],
-                    q[0],
-                    q[1],
-                    q[2],
-                    q[3],
-                    ex.last_tick,
-                    sw[0],
-                    sw[1],
-                    sw[2],
-                    sw[3],
-                    sw[4],
-                    sw[5],
-                    rw[0],
-                    rw[1],
-                    rw[2],
-                    rw[3],
-                    rw[4],
-                    rw[5],
-                    out.gain
-                )?;
-            }
+            write_trace_row(w, planar, t_s, report.last_counter, &state, &ex, &out)?;
         }
-        // A re-created or closed channel, a failed remote link: let the watchdog ramp the force out, then stop.
-        if ex.lost {
-            let since = *stale_since.get_or_insert(report.periods);
-            if out.wrench == [0.0; 6] || report.periods - since > watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1 {
+        // The server's heartbeat: a channel on which no force came for --server-timeout-ms.
+        let silent_ns = t_pose.saturating_sub(st.last_fresh_ns);
+        let silent = matches!(link, Link::Shm(_)) && server_timeout_ns > 0 && silent_ns > server_timeout_ns;
+        // A re-created, closed or broken channel, a dead or silent server, a failed remote link:
+        // let the watchdog ramp the force out, then stop.
+        if ex.lost || silent {
+            let since = *st.lost_since.get_or_insert(report.periods);
+            if out.wrench == [0.0; 6] || report.periods - since > ramp_out_periods {
                 if let Some(w) = trace.as_mut() {
                     w.flush()?;
                 }
-                match link {
-                    Link::Shm(channel) => {
-                        let path = cli.channel.as_deref().unwrap_or(Path::new("?")).display();
-                        match channel.broken() {
-                            Some(why) if !channel.closed_or_recreated() => bail!("device channel {path} is broken: {why}"),
-                            _ => bail!("device channel {path}: closed or re-created by the server"),
-                        }
-                    }
-                    Link::Remote(r) => bail!("remote link: {}", r.failure().unwrap_or_default()),
-                }
+                return Err(lost_link_error(link, silent.then_some(silent_ns / 1_000_000)));
             }
         }
     }
@@ -802,9 +910,16 @@ fn main() {
     // A changed channel file that never faults (deleted, replaced, resized) is found by a watcher
     // thread (system calls stay out of the device loop); the loop sees it as a broken channel.
     if let Link::Shm(channel) = &link {
+        if !channel.server_identified() {
+            tracing::warn!(
+                pid = channel.creator_pid(),
+                "the server process that created the channel is not visible from here (another pid namespace?): \
+                 its death is noticed only when no force comes for --server-timeout-ms"
+            );
+        }
         let watch = channel.watch();
         let spawned = std::thread::Builder::new().name("channel-watch".into()).spawn(move || {
-            while !STOP.load(Ordering::Relaxed) && watch.check_file().is_ok() {
+            while !STOP.load(Ordering::Relaxed) && watch.check_file().is_ok() && watch.check_server().is_ok() {
                 std::thread::sleep(WATCH_PERIOD);
             }
         });

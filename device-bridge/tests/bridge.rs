@@ -111,6 +111,14 @@ impl FakeServer {
                     server.write_force_from_rt(&force);
                 }
             }
+            // The bridge's last pose, had it come after the last tick (the bridge has exited by now).
+            let s = server.read_pose_from_rt();
+            if s.fresh() {
+                let c = s.value.unwrap().counter;
+                st.counters_increasing &= c > st.last_counter;
+                st.last_counter = c;
+                st.fresh_poses += 1;
+            }
             (server, st)
         });
         Self { writing, quit, handle }
@@ -152,6 +160,8 @@ struct TraceRow {
     counter: u64,
     q: [f64; 3],
     fresh: bool,
+    /// The last force the server wrote (fresh this period or not): (Fx, Fy, τ).
+    server: [f64; 3],
     wrench: [f64; 3],
     gain: f64,
 }
@@ -171,6 +181,7 @@ fn read_trace(path: &Path) -> Vec<TraceRow> {
                 counter: v[1] as u64,
                 q: [v[2], v[3], v[4]],
                 fresh: v[5] == 1.0,
+                server: [v[7], v[8], v[9]],
                 wrench: [v[10], v[11], v[12]],
                 gain: v[13],
             }
@@ -178,26 +189,46 @@ fn read_trace(path: &Path) -> Vec<TraceRow> {
         .collect()
 }
 
+/// What holds however punctually the two loops ran (issue 35, item 13: a count or a latency that
+/// timing decides fails loaded machines' runs at random): every scheduled period ran or was
+/// counted missed, each period wrote one pose, the server saw them with advancing counters up to
+/// the last one, forces reached the bridge and answered its poses. How many periods were missed,
+/// how many forces were fresh and how fast they came are printed (the JSON report), and measured
+/// with the real session by the live-session benchmark (`cargo bench -p needlesim-server --bench
+/// realtime`, BENCHMARKS.md).
 fn check_rate_and_counters(json: &str, rows: &[TraceRow], st: &ServerStats, seconds: f64) {
     let periods = json_num(json, "periods");
     let missed = json_num(json, "missed_periods");
     let expect = seconds * 1000.0;
     assert!((periods + missed - expect).abs() <= 2.0, "periods {periods} + missed {missed} vs {expect}: {json}");
-    assert!(missed <= 0.05 * expect, "too many missed periods: {json}");
     assert!(json_num(json, "pose_counter") == periods, "{json}");
+    assert_eq!(rows.len() as f64, periods, "one trace row per period");
     assert!(rows.windows(2).all(|w| w[1].counter == w[0].counter + 1 && w[1].t_s > w[0].t_s));
-    // Poses reach the server at ~1 kHz with advancing counters. Both sides sample the other's latest
-    // value once per ms on independent schedules: when their phases nearly coincide, jitter makes
-    // some samples see two updates and others none, so "fresh" counts can be well below 1 per ms.
     assert!(st.counters_increasing);
-    assert!(st.last_counter + 5 >= periods as u64, "server's last counter {} of {periods}", st.last_counter);
-    assert!(st.fresh_poses as f64 >= 0.5 * expect, "server saw {} fresh poses in {seconds} s", st.fresh_poses);
-    assert!(json_num(json, "fresh_forces") >= 0.5 * expect, "{json}");
-    // Both loops at 1 kHz: a force is seen within a period or two of the pose it answers.
-    let p2f = json_field(json, "pose_to_force_us");
-    assert!(json_num(p2f, "p50") < 3000.0 && json_num(p2f, "p99") < 20_000.0, "{json}");
-    assert!(json_num(json, "answered_poses") >= 0.5 * expect, "{json}");
-    assert!(json_num(json_field(json, "force_age_us"), "p50") < 1500.0, "{json}");
+    assert_eq!(st.last_counter, periods as u64, "the server's last pose counter is the bridge's last");
+    assert!(st.fresh_poses > 0 && json_num(json, "fresh_forces") > 0.0, "{json}");
+    let answered = json_num(json, "answered_poses");
+    assert!(answered > 0.0 && answered + json_num(json, "unanswered_poses") <= periods, "{json}");
+    assert!(json_num(json_field(json, "pose_to_force_us"), "p50") > 0.0, "{json}");
+}
+
+/// Issue 35 (item 13): which pose each fresh force of the trace answers, matched by its wrench
+/// (the fake session writes `w = J q` at the pose it read, and a trajectory that moves every
+/// period makes each pose's wrench distinct): `Some(j)`, the row that wrote the pose, for each
+/// fresh row. Panics if a fresh force answers no pose written so far (a wrong or future pose).
+fn answered_rows(rows: &[TraceRow]) -> Vec<Option<usize>> {
+    let close = |a: &[f64; 3], b: &[f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * (1.0 + y.abs()));
+    rows.iter()
+        .enumerate()
+        .map(|(i, r)| {
+            r.fresh.then(|| {
+                (0..=i)
+                    .rev()
+                    .find(|&j| close(&r.server, &env_wrench(rows[j].q)))
+                    .unwrap_or_else(|| panic!("t {} s: the force {:?} answers none of the poses written so far", r.t_s, r.server))
+            })
+        })
+        .collect()
 }
 
 #[test]
@@ -309,13 +340,22 @@ fn scripted_device_against_a_fake_server() {
 }
 
 /// Issue 15: the device loop runs just before the fake session's ticks (its published phase) and
-/// renders the force of each pose in the period that wrote it; on its own phase (`--phase-lead-us
-/// 0`) a force always answers a pose of an earlier period. Counts only, no timing bound.
+/// waits for the force of each pose, to render it in the period that wrote it; on its own phase
+/// (`--phase-lead-us 0`) it never waits. Issue 35 (item 13): how many poses are answered in their
+/// own period depends on how punctually both loops wake up (a loaded machine, no SCHED_FIFO: once
+/// in CI 114 of 2,000, each answer a period late), so it is printed here and measured with the real
+/// session by the live-session benchmark (`cargo bench -p needlesim-server --bench realtime`,
+/// "poses answered in their own period"). What is asserted holds whatever the timing: the loop
+/// took the session's phase; every force it took answers a pose it had already written (matched
+/// by the pose's wrench); and the report's in-period count is the trace's.
 #[test]
 fn a_phase_aligned_loop_gets_the_force_of_each_pose_in_the_same_period() {
     let dir = temp_dir("aligned");
     let chan = dir.join("session.shm");
-    let traj = write_trajectory(&dir);
+    let trace = dir.join("trace.csv");
+    // Moving every period of the 2 s run (a distinct wrench per pose).
+    let traj = dir.join("traj.csv");
+    std::fs::write(&traj, "t_s,x_m,y_m,theta_rad\n0,0,0,0\n3,0.01,-0.005,0.1\n").unwrap();
     let run = |extra: &[&str]| {
         let server = FakeServer::start(DeviceChannel::create(&chan).unwrap());
         let mut args = vec![
@@ -327,7 +367,13 @@ fn a_phase_aligned_loop_gets_the_force_of_each_pose_in_the_same_period() {
             traj.to_str().unwrap(),
             "--seconds",
             "2",
+            "--coupling-k",
+            "0",
+            "--coupling-k-rot",
+            "0",
             "--json",
+            "--trace",
+            trace.to_str().unwrap(),
         ];
         args.extend_from_slice(extra);
         let out = bridge(&args);
@@ -336,24 +382,28 @@ fn a_phase_aligned_loop_gets_the_force_of_each_pose_in_the_same_period() {
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         let json = String::from_utf8(out.stdout).unwrap();
         eprintln!("{json}");
-        (json, st)
+        let rows = read_trace(&trace);
+        check_rate_and_counters(&json, &rows, &st, 2.0);
+        // Each fresh force answers a pose already written; those of the same row were answered in
+        // their own period, and the report counts exactly those.
+        let answers = answered_rows(&rows);
+        let in_period = answers.iter().enumerate().filter(|&(i, a)| *a == Some(i)).count() as f64;
+        assert_eq!(json_num(&json, "answered_in_period"), in_period, "the report's in-period count is not the trace's: {json}");
+        assert!(json_num(&json, "answered_poses") >= in_period, "{json}");
+        let late: Vec<usize> = answers.iter().enumerate().filter_map(|(i, a)| a.map(|j| i - j)).collect();
+        eprintln!(
+            "{} fresh forces: {in_period} answered the pose of their own period, the others {} periods late at most",
+            late.len(),
+            late.iter().max().copied().unwrap_or(0)
+        );
+        json
     };
-    let (json, st) = run(&[]);
+    let json = run(&[]);
     assert_eq!(json_field(&json, "aligned"), "true", "{json}");
-    let (periods, answered) = (json_num(&json, "periods"), json_num(&json, "answered_poses"));
-    let in_period = json_num(&json, "answered_in_period");
-    assert!(st.fresh_poses as f64 >= 0.5 * periods, "the fake session took {} poses in {periods} periods", st.fresh_poses);
-    // (A quarter at least: the fake session's wake-ups are late on a loaded machine, more so
-    // without SCHED_FIFO; aligned or not is the difference between most and none.)
-    assert!(in_period >= 0.25 * periods, "{in_period} of {periods} poses answered in their own period: {json}");
-    assert!(answered >= in_period && answered + json_num(&json, "unanswered_poses") <= periods, "{json}");
 
-    let (json, _) = run(&["--phase-lead-us", "0"]);
+    let json = run(&["--phase-lead-us", "0"]);
     assert_eq!(json_field(&json, "aligned"), "false", "{json}");
     assert_eq!(json_num(&json, "waits_timed_out"), 0.0, "an unaligned loop does not wait: {json}");
-    let periods = json_num(&json, "periods");
-    assert!(json_num(&json, "answered_poses") >= 0.5 * periods, "{json}");
-    assert!(json_num(&json, "answered_in_period") <= 0.01 * periods, "{json}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -516,7 +566,8 @@ fn sigterm_and_a_closed_channel_end_with_a_zero_force() {
 }
 
 /// The bridge against the real server (a session with a device channel, the paper phantom's insertion
-/// replayed by the scripted device), then a SIGKILLed server: the rendered force ramps to zero.
+/// replayed by the scripted device), then a SIGKILLed server: the rendered force ramps to zero, and
+/// the bridge removes the channel file and exits with status 1 naming the cause (issue 35, item 7).
 /// Needs the server and CLI binaries: `cargo build -p needlesim-server -p needlesim-client`, then
 /// `cargo test -p needlesim-bridge --test bridge -- --ignored`.
 #[test]
@@ -570,28 +621,33 @@ fn real_server_session_and_a_killed_server() {
     let traj = Path::new(env!("CARGO_MANIFEST_DIR")).join("../server/scenes/paper-phantom.csv");
     let trace = dir.join("trace.csv");
     let bridge = Command::new(BIN)
-        .args(["--channel", &chan, "--device", "scripted", "--trajectory", traj.to_str().unwrap(), "--seconds", "4", "--json"])
+        .args(["--channel", &chan, "--device", "scripted", "--trajectory", traj.to_str().unwrap(), "--seconds", "30", "--json"])
         .args(["--max-force-n", "20", "--trace", trace.to_str().unwrap()])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     std::thread::sleep(Duration::from_millis(3000));
+    let server_pid = server.0.id();
     server.0.kill().unwrap(); // SIGKILL: no closing state, the channel file stays
     server.0.wait().unwrap();
     let out = bridge.wait_with_output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(&format!("the server (pid {server_pid}) died")), "{stderr}");
+    assert!(!Path::new(&chan).exists(), "the bridge left the dead server's channel file");
     let json = String::from_utf8(out.stdout).unwrap();
     eprintln!("{json}");
     let rows = read_trace(&trace);
-    assert!(json_num(&json, "fresh_forces") > 2000.0, "{json}");
+    assert!(json_num(&json, "fresh_forces") > 0.0, "{json}");
     assert!(json_num(&json, "max_rendered_force_n") > 0.0, "the needle met no tissue: {json}");
     let last_fresh = rows.iter().rev().find(|r| r.fresh).unwrap().t_s;
-    assert!((2.5..3.5).contains(&last_fresh), "{last_fresh}");
+    assert!(last_fresh > 0.5, "{last_fresh}");
     // Default watchdog: 10 periods, then a 50 ms ramp.
     for r in rows.iter().filter(|r| r.t_s > last_fresh + 0.061) {
         assert_eq!(r.wrench, [0.0; 3], "t {}", r.t_s);
     }
+    assert_eq!(rows.last().unwrap().wrench, [0.0; 3], "the bridge exited before the ramp ended");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -865,7 +921,9 @@ fn fake_session_3d_process() {
 
 /// A 3D session in another process drives the 6-DOF example plug-in (ABI 2) through the bridge and
 /// is SIGKILLed (no closing state, the channel file stays): the bridge's commanded wrench holds for
-/// the watchdog's periods, ramps linearly to exactly zero, stays there, and the device is left at zero.
+/// the watchdog's periods, ramps linearly to exactly zero, and the device is left at zero. Issue 35
+/// (item 7): the bridge then notices that the session's process died, removes the channel file it
+/// left, and exits with status 1 naming the cause (it ran on to the end of `--seconds` and exited 0).
 #[test]
 fn a_sigkilled_3d_session_leaves_the_6dof_plugin_at_zero() {
     let dir = temp_dir("killed3d");
@@ -888,7 +946,8 @@ fn a_sigkilled_3d_session_leaves_the_6dof_plugin_at_zero() {
     let config = format!("x0=0.004 y0=-0.002 z0=0.006 vz=0.002 ax=1 ay=0 az=1 th0=0.1 om=0.2 dof=6 record={}", record.display());
     let bridge = Command::new(BIN)
         .args(["--channel", chan.to_str().unwrap(), "--device", "plugin", "--plugin", example_plugin6().to_str().unwrap()])
-        .args(["--plugin-config", &config, "--seconds", "1.5", "--watchdog-periods", "20", "--ramp-ms", "100"])
+        // Far longer than the run takes: it ends when the bridge notices the death, not at 30 s.
+        .args(["--plugin-config", &config, "--seconds", "30", "--watchdog-periods", "20", "--ramp-ms", "100"])
         .args(["--max-force-n", "1000", "--max-torque-nm", "1000", "--json", "--trace", trace.to_str().unwrap()])
         .env("RUST_LOG", "warn")
         .stdout(Stdio::piped())
@@ -896,18 +955,24 @@ fn a_sigkilled_3d_session_leaves_the_6dof_plugin_at_zero() {
         .spawn()
         .unwrap();
     std::thread::sleep(Duration::from_millis(700));
+    let session_pid = session.id();
     session.kill().unwrap(); // SIGKILL
     session.wait().unwrap();
     let out = bridge.wait_with_output().unwrap();
-    let _ = std::fs::remove_file(&chan); // left by the killed session
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let removed = !chan.exists();
+    let _ = std::fs::remove_file(&chan); // left by the killed session, if the bridge did not remove it
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(&format!("the server (pid {session_pid}) died")) && stderr.contains("was removed"), "{stderr}");
+    assert!(removed, "the bridge left the dead session's channel file {}", chan.display());
     let json = String::from_utf8(out.stdout).unwrap();
     eprintln!("{json}");
+    assert!(json_field(&json, "exit").contains("died"), "{json}");
     assert_eq!(json_num(&json, "dimension"), 3.0, "{json}");
     assert_eq!(json_field(&json, "device"), "\"plugin:libexample_device6.so\"");
     let rows = read_trace3(&trace);
     let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("some fresh forces").t_s;
-    assert!((0.3..1.2).contains(&last_fresh), "last fresh force at {last_fresh} s");
+    assert!(last_fresh > 0.05, "last fresh force at {last_fresh} s");
     let before = rows.iter().find(|r| r.t_s > last_fresh - 0.05).unwrap();
     let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     assert!(norm(&before.wrench[..3]) > 0.5 && norm(&before.wrench[3..]) > 1e-3, "not pushing before the kill: {:?}", before.wrench);
@@ -919,7 +984,10 @@ fn a_sigkilled_3d_session_leaves_the_6dof_plugin_at_zero() {
             assert_eq!(r.wrench, [0.0; 6], "t {}: still pushing after the watchdog", r.t_s);
         }
     }
-    assert!(rows.last().unwrap().t_s > last_fresh + 0.2, "the run ended before the ramp could be seen");
+    // It ran until the ramp was over (not to the end of --seconds), and ended at zero.
+    let last = rows.last().unwrap();
+    assert!(last.t_s > last_fresh + 0.12 - 1e-9 && last.t_s < 29.0, "last period at {} s (last fresh force at {last_fresh} s)", last.t_s);
+    assert_eq!((last.wrench, last.gain), ([0.0; 6], 0.0), "the bridge exited before the ramp ended");
     let f: Vec<f64> = std::fs::read_to_string(&record).unwrap().split_whitespace().map(|x| x.parse().unwrap()).collect();
     assert_eq!(&f[..6], &[0.0; 6], "the device was left pushing: {f:?}");
     assert_eq!(f[6], rows.len() as f64 + 1.0, "one write per period plus the final zero");

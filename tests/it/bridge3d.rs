@@ -23,7 +23,10 @@ use needlesim_tests::{REALTIME as ONE_AT_A_TIME, ServerProcess, TempDir, bin, co
 use tonic::transport::Channel;
 
 // The 2D end-to-end tests' session and bridge helpers serve here too.
-use crate::bridge_e2e::{MISSED_BUDGET, RemoveOnDrop, Session, frame, get_session, get_stats, num, spawn_bridge, watch};
+use crate::bridge_e2e::{
+    RemoveOnDrop, Session, check_bridge_outlived_its_server, check_session_ticked, frame, get_session, get_stats, num, spawn_bridge, wait_until_inserted,
+    watch,
+};
 
 /// The cube's needle points straight down (−z): a quarter turn about +y (its TOML's `base_quat`).
 const DOWN: [f64; 4] = [std::f64::consts::FRAC_1_SQRT_2, 0.0, std::f64::consts::FRAC_1_SQRT_2, 0.0];
@@ -194,7 +197,8 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
     let trace = dir.join(&format!("trace-{name}.csv"));
     let (stop_tx, stop_rx) = tokio::sync::oneshot::channel();
     let watcher = watch(ch, &s, stop_rx);
-    let ticks_before = get_stats(ch, &s).await.ticks;
+    let stats_before = get_stats(ch, &s).await;
+    let ticks_before = stats_before.ticks;
     let mut full = args.to_vec();
     let secs = seconds.to_string();
     full.extend_from_slice(&["--seconds", &secs, "--trace", trace.to_str().unwrap()]);
@@ -235,9 +239,10 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
         (periods + missed - seconds * 1000.0).abs() <= 1.0,
         "[{name}] periods {periods} + missed {missed} ≠ {seconds} s × 1 kHz: {report}"
     );
-    assert!(missed < MISSED_BUDGET * (periods + missed), "[{name}] {missed} missed periods exceed the 2 % budget: {report}");
-    assert!(fresh > 0.5 * periods, "[{name}] only {fresh} fresh forces in {periods} periods: {report}");
-    assert!(p50.is_finite() && p50 > 0.0 && p50 < 3000.0, "[{name}] pose→force p50 {p50} µs: {report}");
+    // Forces reached the bridge and answered its poses (how many, how fast: printed above; issue
+    // 35, item 13: budgets of missed periods and latency live in the live-session benchmark).
+    assert!(fresh > 0.0 && num(&report, &["answered_poses"]) > 0.0, "[{name}] no fresh force answered a pose: {report}");
+    assert!(p50.is_finite() && p50 > 0.0, "[{name}] pose→force p50 {p50} µs: {report}");
     assert_eq!(num(&report, &["pose_counter"]), periods, "[{name}] every period wrote a pose: {report}");
     assert_eq!(nums(&report, "final_pose").len(), 7, "[{name}] a 3D final pose is (x, y, z, qw, qx, qy, qz): {report}");
     let k = nums(&report, "stiffness");
@@ -249,11 +254,7 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
     );
     assert!(k[14] < 0.0 && k[0] < 0.0 && k[7] < 0.0, "[{name}] the stiffness at the end is not restoring: {k:?}");
     // The session went on ticking and dropped nothing.
-    assert!(
-        stats.ticks - ticks_before >= (900.0 * seconds) as u64,
-        "[{name}] the session ticked {} times in {seconds} s",
-        stats.ticks - ticks_before
-    );
+    check_session_ticked(name, stats.ticks - ticks_before, stats.missed_deadlines - stats_before.missed_deadlines, seconds);
     assert_eq!(stats.dropped_records, 0, "[{name}] {stats:?}");
     assert_eq!(info.device_channel_path, s.channel_path.display().to_string());
 
@@ -276,7 +277,8 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
     let rows = read_trace3(&trace);
     assert_eq!(rows.len() as f64, periods, "[{name}] one trace row per period");
     let up = rows.iter().filter(|r| r.fresh && r.server[2] > 0.05).collect::<Vec<_>>();
-    assert!(up.len() > 1000, "[{name}] only {} periods with a server force > 0.05 N up", up.len());
+    println!("[3D {name}] {} periods with a fresh server force > 0.05 N up", up.len());
+    assert!(!up.is_empty(), "[{name}] no period with a server force > 0.05 N up");
     // With the needle in and the server force up, the rendered force is up too, and close to it
     // (the coupling in series scales the model force by K_c / (K_c − K) ≈ 0.9 for this tissue).
     let agree = up.iter().filter(|r| r.wrench[2] > 0.0 && (r.wrench[2] - r.server[2]).abs() <= 0.3 * r.server[2]).count();
@@ -315,84 +317,59 @@ async fn scripted_virtual_and_plugin_devices_insert_into_a_3d_session_at_1khz() 
     assert!(server.child.try_wait().unwrap().is_none(), "the server died: {}", server.stderr.lock().unwrap());
 }
 
+/// Issue 35 (item 7): a SIGKILLed server (no closing state: its channel file stays) with a bridge
+/// mid-insertion into a 3D session — the scripted device (the case found: the bridge ramped its
+/// wrench to zero, then ran on to the end of `--seconds`, exited 0 and left the `/dev/shm` file) and
+/// the 6-DOF plug-in, each on a server of its own. Now, long before its `--seconds`, the bridge
+/// notices the death: the rendered force and torque ramp monotonically to exactly zero after the
+/// watchdog's periods, it removes the file and exits with status 1 naming the cause, and the
+/// plug-in device is left at zero.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_sigkilled_server_drives_the_rendered_3d_wrench_to_zero() {
+async fn issue_35_a_sigkilled_server_ends_each_3d_bridge_at_zero_force_and_removes_its_channel() {
     let _turn = ONE_AT_A_TIME.lock().await;
     let dir = TempDir::new("bridge3d-kill-server");
-    let mut server = ServerProcess::start(&["--default-scene", "none"]);
-    let ch = connect(&server).await;
-    let s = create_cube_session(&ch, true).await;
-    let _chan_file = RemoveOnDrop(s.channel_path.clone());
     let lib = example_plugin6(&dir);
-    let (trace, record) = (dir.join("trace.csv"), dir.join("record.txt"));
-    // From the tip 10 mm above the top face, 4 mm/s down: at the surface after 2.5 s, ~12 mm in at
-    // the kill (5.5 s), still moving.
+    let record = dir.join("record.txt");
+    // A rest with the tip 1 mm above the top face, then 30 mm down over 10 s, then held.
+    let traj =
+        trajectory3(&dir, "insert.csv", &[(0.0, Z_ABOVE), (REST_S, Z_ABOVE), (REST_S + 10.0, Z_ABOVE - 0.030), (1000.0, Z_ABOVE - 0.030)]);
+    // From the tip 10 mm above the top face, 4 mm/s down.
     let config = plugin_config(Z_ABOVE + 0.009, -0.004, Some(&record));
+    let devices: [(&str, Vec<&str>); 2] = [
+        ("scripted", vec!["--device", "scripted", "--trajectory", traj.to_str().unwrap()]),
+        ("plugin", vec!["--device", "plugin", "--plugin", lib.to_str().unwrap(), "--plugin-config", &config]),
+    ];
     let (watchdog, ramp_ms) = (10u64, 50.0);
-    let bridge = spawn_bridge(
-        &s.channel_path,
-        &[
-            "--device",
-            "plugin",
-            "--plugin",
-            lib.to_str().unwrap(),
-            "--plugin-config",
-            &config,
-            "--seconds",
-            "8",
-            "--watchdog-periods",
-            &watchdog.to_string(),
-            "--ramp-ms",
-            &ramp_ms.to_string(),
-            "--trace",
-            trace.to_str().unwrap(),
-        ],
-    );
-    tokio::time::sleep(Duration::from_millis(5500)).await;
-    let before = frame(&ch, &s).await;
-    assert!(before.inserted_length_m > 0.005, "not mid-insertion at the kill: {} m", before.inserted_length_m);
-    server.child.kill().expect("SIGKILL the server"); // std's kill is SIGKILL: no closing state, the file stays
-    server.child.wait().unwrap();
-    let (code, report, stderr) = finish_bridge(bridge).await;
-    println!("3D killed server: bridge report {report}");
-    assert_eq!(code, Some(0), "{stderr}");
-    assert_eq!(report["exit"], "done", "{report}");
-    assert_eq!(num(&report, &["dimension"]), 3.0, "{report}");
-
-    let rows = read_trace3(&trace);
-    let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("fresh forces before the kill").t_s;
-    assert!((5.0..6.5).contains(&last_fresh), "last fresh force at {last_fresh} s, the server was killed at ~5.5 s");
-    // The device was being pushed (force and torque) just before the kill: the zeros below prove something.
-    let window = || rows.iter().filter(|r| r.t_s > last_fresh - 0.1 && r.t_s <= last_fresh);
-    let force_before = window().map(|r| norm3(&r.wrench)).fold(0.0, f64::max);
-    let torque_before = window().map(|r| norm3(&r.wrench[3..])).fold(0.0, f64::max);
-    assert!(force_before > 0.0, "no force was rendered before the kill");
-    assert!(torque_before > 0.0, "no torque was rendered before the kill");
-    // Exactly zero, all six components, from (watchdog + ramp) after the last fresh force to the end.
-    let zero_from = last_fresh + (watchdog as f64 + ramp_ms + 1.0) * 1e-3;
-    let after: Vec<&TraceRow> = rows.iter().filter(|r| r.t_s >= zero_from).collect();
-    assert!(after.len() > 1000, "the bridge stopped tracing {} periods after the kill", after.len());
-    for r in &after {
-        assert_eq!(r.wrench, [0.0; 6], "t {} s: wrench {:?} (gain {}) after the watchdog time", r.t_s, r.wrench, r.gain);
-        assert_eq!(r.gain, 0.0, "t {} s", r.t_s);
+    for (name, args) in devices {
+        let mut server = ServerProcess::start(&["--default-scene", "none"]);
+        let ch = connect(&server).await;
+        let s = create_cube_session(&ch, true).await;
+        let _chan_file = RemoveOnDrop(s.channel_path.clone());
+        let trace = dir.join(&format!("trace-{name}.csv"));
+        let mut full = args.clone();
+        let (w, r) = (watchdog.to_string(), ramp_ms.to_string());
+        // Far longer than the run takes: it ends when the bridge notices the death, not at 600 s.
+        full.extend_from_slice(&["--seconds", "600", "--watchdog-periods", &w, "--ramp-ms", &r, "--trace", trace.to_str().unwrap()]);
+        let bridge = spawn_bridge(&s.channel_path, &full);
+        wait_until_inserted(&ch, &s, 0.005).await;
+        let server_pid = server.child.id();
+        server.child.kill().expect("SIGKILL the server"); // std's kill is SIGKILL: no closing state, the file stays
+        server.child.wait().unwrap();
+        let out = finish_bridge(bridge).await;
+        assert_eq!(num(&out.1, &["dimension"]), 3.0, "[{name}] {}", out.1);
+        let rows = read_trace3(&trace);
+        let row = |r: &TraceRow| (r.t_s, r.fresh, norm3(&r.wrench).max(norm3(&r.wrench[3..])), r.gain);
+        check_bridge_outlived_its_server(name, &out, server_pid, &s.channel_path, &rows, row, (watchdog, ramp_ms));
+        if name == "plugin" {
+            // The plug-in pushed and twisted before the death (the zeros after it prove something).
+            let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("fresh forces").t_s;
+            let torque_before = rows.iter().filter(|r| r.t_s > last_fresh - 0.1 && r.t_s <= last_fresh).map(|r| norm3(&r.wrench[3..]));
+            assert!(torque_before.fold(0.0, f64::max) > 0.0, "no torque was rendered before the kill");
+            let (last, writes) = read_record6(&record);
+            assert_eq!(last, [0.0; 6], "the plug-in was left pushing");
+            assert_eq!(writes, rows.len() as u64 + 1, "one write per period plus the final zero");
+        }
     }
-    // The ramp is monotone (no push back once it started), and the measured time to zero.
-    let ramp: Vec<f64> = rows.iter().filter(|r| r.t_s > last_fresh).map(|r| r.gain).collect();
-    assert!(ramp.windows(2).all(|w| w[1] <= w[0]), "the watchdog gain rose again without a server");
-    let zero_at = rows.iter().find(|r| r.t_s > last_fresh && r.wrench == [0.0; 6]).expect("a zero wrench after the kill").t_s;
-    let ramp_start = rows.iter().find(|r| r.t_s > last_fresh && r.gain < 1.0).map_or(f64::NAN, |r| r.t_s);
-    println!(
-        "3D killed server: last fresh force at {last_fresh:.3} s (|F| {force_before:.3} N, |τ| {torque_before:.5} N·m before), \
-         ramp from {:.1} ms, zero wrench {:.1} ms after it (bound {:.0} ms), zero for the {} periods to the end",
-        (ramp_start - last_fresh) * 1e3,
-        (zero_at - last_fresh) * 1e3,
-        watchdog as f64 + ramp_ms + 1.0,
-        after.len()
-    );
-    // The device was left with a zero wrench on exit, after one write per period.
-    let (last, writes) = read_record6(&record);
-    assert_eq!(last, [0.0; 6], "the plug-in was left pushing");
-    assert_eq!(writes, rows.len() as u64 + 1, "one write per period plus the final zero");
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -419,19 +396,19 @@ async fn a_sigkilled_bridge_leaves_the_3d_session_intact_and_reattachable() {
         if get_session(&ch, &s).await.device_stale {
             break killed.elapsed();
         }
-        assert!(killed.elapsed() < Duration::from_millis(1000), "device_stale not set 1 s after the bridge was killed");
+        // A hang guard, not a speed bound (issue 35, item 13): the time is printed.
+        assert!(killed.elapsed() < Duration::from_secs(20), "device_stale not set 20 s after the bridge was killed");
         tokio::time::sleep(Duration::from_millis(5)).await;
     };
     println!("3D killed bridge: device_stale after {stale_after:?}");
-    assert!(stale_after < Duration::from_millis(200), "device_stale took {stale_after:?}");
 
     // The session keeps ticking, drops nothing, and holds the needle (6-DOF pose, depth, tip) where it was.
     let held1 = frame(&ch, &s).await;
     tokio::time::sleep(Duration::from_millis(300)).await;
     let held2 = frame(&ch, &s).await;
     let stats_after = get_stats(&ch, &s).await;
-    assert!(held2.tick > held1.tick + 200, "frames stopped ticking: {} → {}", held1.tick, held2.tick);
-    assert!(stats_after.ticks > stats_before.ticks + 200, "stats stopped ticking: {} → {}", stats_before.ticks, stats_after.ticks);
+    assert!(held2.tick > held1.tick, "frames stopped ticking: {} → {}", held1.tick, held2.tick);
+    assert!(stats_after.ticks > stats_before.ticks, "stats stopped ticking: {} → {}", stats_before.ticks, stats_after.ticks);
     assert_eq!(stats_after.dropped_records, 0, "{stats_after:?}");
     assert_eq!(base3(&held1), base3(&held2), "the needle moved without a device");
     assert_eq!(held1.inserted_length_m, held2.inserted_length_m);
@@ -460,19 +437,21 @@ async fn a_sigkilled_bridge_leaves_the_3d_session_intact_and_reattachable() {
         if !get_session(&ch, &s).await.device_stale {
             break reattached.elapsed();
         }
-        assert!(reattached.elapsed() < Duration::from_secs(2), "device_stale still set 2 s after a new bridge attached");
+        assert!(reattached.elapsed() < Duration::from_secs(20), "device_stale still set 20 s after a new bridge attached");
         tokio::time::sleep(Duration::from_millis(5)).await;
     };
     println!("3D re-attached bridge: device_stale cleared after {fresh_again:?} (process start included)");
     tokio::time::sleep(Duration::from_millis(2200)).await;
-    let moved = frame(&ch, &s).await;
     assert!(!get_session(&ch, &s).await.device_stale, "stale while the second bridge runs");
     let (code, report, stderr) = finish_bridge(second).await;
+    // After the run (the session holds the needle where the bridge left it): where the trajectory
+    // ends, however late the bridge started or how many periods it missed.
+    let moved = frame(&ch, &s).await;
     println!("3D re-attached bridge: report {report}");
     println!("held at {:.4} m, after the second bridge {:.4} m", held2.inserted_length_m, moved.inserted_length_m);
     assert_eq!(code, Some(0), "{stderr}");
     assert_eq!(num(&report, &["dimension"]), 3.0, "{report}");
-    assert!(num(&report, &["fresh_forces"]) > 1000.0, "{report}");
+    assert!(num(&report, &["fresh_forces"]) > 0.0, "{report}");
     assert!(
         moved.inserted_length_m < held2.inserted_length_m - 0.010,
         "the second bridge did not move the needle: {} → {} m",

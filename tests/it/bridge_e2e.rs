@@ -23,9 +23,19 @@ const DOWN: f64 = -std::f64::consts::FRAC_PI_2;
 // real-time test of tests/it/).
 use needlesim_tests::REALTIME as ONE_AT_A_TIME;
 
-/// The device period budget: fewer than 2 % of the scheduled periods may be missed (a late wake-up
-/// of more than one period) on a loaded 2-core machine.
-pub(crate) const MISSED_BUDGET: f64 = 0.02;
+/// Issue 35 (item 13): these tests assert behaviour (the needle went in, forces reached the device,
+/// every scheduled period ran or was counted missed), never how many periods a machine missed or
+/// how fast a force came: a budget of either failed a quiet machine's run at random (2.44 % missed
+/// periods against a 2 % budget). The figures are printed; the budgets live in the live-session
+/// benchmark (`cargo bench -p needlesim-server --bench realtime`, BENCHMARKS.md).
+pub(crate) fn check_session_ticked(name: &str, ticks: u64, missed_deadlines: u64, seconds: f64) {
+    // The stats were read before the bridge started and after it ended, at least `seconds` apart:
+    // each tick due meanwhile ran or was counted missed (a late tick is both).
+    assert!(
+        (ticks + missed_deadlines) as f64 >= seconds * 1000.0 - 2.0,
+        "[{name}] the session ran {ticks} ticks and missed {missed_deadlines} in the bridge's {seconds} s"
+    );
+}
 
 /// A live session of these tests: its id, tokens and device channel file.
 pub(crate) struct Session {
@@ -211,7 +221,8 @@ async fn run_backend(ch: &Channel, name: &str, args: &[&str], expect_axial_force
     let seconds = 10.0;
     let (stop_tx, stop_rx) = tokio::sync::oneshot::channel();
     let watcher = watch(ch, &s, stop_rx);
-    let ticks_before = get_stats(ch, &s).await.ticks;
+    let stats_before = get_stats(ch, &s).await;
+    let ticks_before = stats_before.ticks;
     let mut full = args.to_vec();
     full.extend_from_slice(&["--seconds", "10"]);
     let bridge = spawn_bridge(&s.channel_path, &full);
@@ -244,15 +255,12 @@ async fn run_backend(ch: &Channel, name: &str, args: &[&str], expect_axial_force
     assert_eq!(code, Some(0), "[{name}] the bridge failed: {report} {stderr}");
     assert_eq!(report["exit"], "done", "[{name}] {report}");
     assert!((periods + missed - seconds * 1000.0).abs() <= 1.0, "[{name}] periods {periods} + missed {missed} ≠ 10 000: {report}");
-    // Budget: < 2 % of the periods missed.
-    assert!(missed < MISSED_BUDGET * (periods + missed), "[{name}] {missed} missed periods exceed the 2 % budget: {report}");
-    // Fresh forces for most periods (server and bridge both at 1 kHz on independent clocks).
-    assert!(fresh > 0.5 * periods, "[{name}] only {fresh} fresh forces in {periods} periods: {report}");
-    assert!(p50.is_finite() && p50 > 0.0 && p50 < 3000.0, "[{name}] pose→force p50 {p50} µs: {report}");
-    assert!(p99 < 20_000.0, "[{name}] pose→force p99 {p99} µs: {report}");
+    // Forces reached the bridge and answered its poses (how many, how fast: printed above).
+    assert!(fresh > 0.0 && num(&report, &["answered_poses"]) > 0.0, "[{name}] no fresh force answered a pose: {report}");
+    assert!(p50.is_finite() && p50 > 0.0, "[{name}] pose→force p50 {p50} µs: {report}");
     assert_eq!(num(&report, &["pose_counter"]), periods, "[{name}] every period wrote a pose: {report}");
     // The server's session went on ticking and took the device's poses.
-    assert!(stats.ticks - ticks_before >= 9000, "[{name}] the session ticked {} times in 10 s", stats.ticks - ticks_before);
+    check_session_ticked(name, stats.ticks - ticks_before, stats.missed_deadlines - stats_before.missed_deadlines, seconds);
     assert_eq!(stats.dropped_records, 0, "[{name}] {stats:?}");
     assert_eq!(info.device_channel_path, s.channel_path.display().to_string());
 
@@ -288,74 +296,105 @@ async fn scripted_virtual_and_plugin_devices_insert_at_1khz() {
     run_backend(&ch, "plugin", &["--device", "plugin", "--plugin", lib.to_str().unwrap(), "--plugin-config", &config], false).await;
 }
 
+/// Waits until the needle of `s` is `depth_m` in (the state the test wants, not a time: under load
+/// the insertion is slower); panics if it never gets there (a hang guard, not a speed bound).
+pub(crate) async fn wait_until_inserted(ch: &Channel, s: &Session, depth_m: f64) {
+    let start = Instant::now();
+    loop {
+        let f = frame(ch, s).await;
+        if f.inserted_length_m > depth_m {
+            return;
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "the needle went in only {} m, not {depth_m} m", f.inserted_length_m);
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+}
+
+/// What a bridge that outlived its server must show (issue 35, item 7): exit status 1, a message
+/// naming the dead server (`server_pid`) and the removed channel file, no channel file left, and a
+/// trace whose force was not zero before the death and ramped monotonically to exactly zero after
+/// it (zero from the watchdog's and the ramp's periods after the last fresh force to the last row).
+/// Returns the trace.
+pub(crate) fn check_bridge_outlived_its_server<R>(
+    name: &str,
+    (code, report, stderr): &(Option<i32>, serde_json::Value, String),
+    server_pid: u32,
+    channel: &Path,
+    rows: &[R],
+    row: impl Fn(&R) -> (f64, bool, f64, f64),
+    (watchdog, ramp_ms): (u64, f64),
+) {
+    println!("[{name}] bridge after the server's death: exit {code:?}, report {report}");
+    assert_eq!(*code, Some(1), "[{name}] the bridge did not fail when its server died: {stderr}");
+    let cause = format!("the server (pid {server_pid}) died");
+    assert!(stderr.contains(&cause) && stderr.contains("was removed"), "[{name}] the message does not name the cause: {stderr}");
+    assert!(report["exit"].as_str().is_some_and(|e| e.contains(&cause)), "[{name}] {report}");
+    assert!(!channel.exists(), "[{name}] the dead server's channel file {} is left", channel.display());
+    // (t_s, fresh, |rendered force or wrench|, gain) per period.
+    let rows: Vec<(f64, bool, f64, f64)> = rows.iter().map(row).collect();
+    let last_fresh = rows.iter().rev().find(|r| r.1).expect("fresh forces before the death").0;
+    let pushing = rows.iter().filter(|r| r.0 > last_fresh - 0.1 && r.0 <= last_fresh).map(|r| r.2).fold(0.0, f64::max);
+    assert!(pushing > 0.0, "[{name}] no force was rendered before the death: the zeros below prove nothing");
+    let zero_from = last_fresh + (watchdog as f64 + ramp_ms + 1.0) * 1e-3;
+    for r in rows.iter().filter(|r| r.0 >= zero_from) {
+        assert_eq!((r.2, r.3), (0.0, 0.0), "[{name}] t {} s: force {} N (gain {}) after the watchdog time", r.0, r.2, r.3);
+    }
+    let ramp: Vec<f64> = rows.iter().filter(|r| r.0 > last_fresh).map(|r| r.3).collect();
+    assert!(ramp.windows(2).all(|w| w[1] <= w[0]), "[{name}] the watchdog gain rose again without a server");
+    let last = rows.last().unwrap();
+    assert_eq!((last.2, last.3), (0.0, 0.0), "[{name}] the bridge exited before its force was ramped out: {last:?}");
+    println!(
+        "[{name}] last fresh force at {last_fresh:.3} s, force before {pushing:.3} N, last period at {:.3} s ({:.1} ms later)",
+        last.0,
+        (last.0 - last_fresh) * 1e3
+    );
+}
+
+/// Issue 35 (item 7): a SIGKILLed server (no closing state: its channel file stays) with a bridge
+/// mid-insertion — the scripted, virtual-operator and plug-in devices, each on a server of its own.
+/// The bridge ramped its force to zero but then ran on to the end of `--seconds`, exited 0 and left
+/// the file; now, long before its `--seconds`, it notices the death, ramps out, removes the file
+/// and exits with status 1 naming the cause, and the plug-in device is left at zero force.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_sigkilled_server_drives_the_rendered_force_to_zero() {
+async fn issue_35_a_sigkilled_server_ends_each_bridge_at_zero_force_and_removes_its_channel() {
     let _turn = ONE_AT_A_TIME.lock().await;
     let dir = TempDir::new("bridge-e2e-kill-server");
-    let mut server = ServerProcess::start(&["--default-scene", "none"]);
-    let ch = connect(&server).await;
-    let s = create_device_session(&ch).await;
-    let _chan_file = RemoveOnDrop(s.channel_path.clone());
     let lib = example_plugin(&dir);
-    let (trace, record) = (dir.join("trace.csv"), dir.join("record.txt"));
-    // 5 mm/s downwards: ~10 mm in at the kill (3 s), still moving.
-    let config = format!("x0=0.05 y0=0.205 th0={DOWN} vy=-0.005 record={}", record.display());
+    let record = dir.join("record.txt");
+    // 30 mm down from 5 mm above the top over 6 s, then held.
+    let traj = trajectory(&dir, "insert.csv", &[(0.0, 0.205), (6.0, 0.175), (1000.0, 0.175)]);
+    let plugin_config = format!("x0=0.05 y0=0.205 th0={DOWN} vy=-0.005 record={}", record.display());
+    let devices: [(&str, Vec<&str>); 3] = [
+        ("scripted", vec!["--device", "scripted", "--trajectory", traj.to_str().unwrap()]),
+        ("virtual", vec!["--device", "virtual", "--trajectory", traj.to_str().unwrap()]),
+        ("plugin", vec!["--device", "plugin", "--plugin", lib.to_str().unwrap(), "--plugin-config", &plugin_config]),
+    ];
     let (watchdog, ramp_ms) = (10u64, 50.0);
-    let bridge = spawn_bridge(
-        &s.channel_path,
-        &[
-            "--device",
-            "plugin",
-            "--plugin",
-            lib.to_str().unwrap(),
-            "--plugin-config",
-            &config,
-            "--seconds",
-            "5",
-            "--watchdog-periods",
-            &watchdog.to_string(),
-            "--ramp-ms",
-            &ramp_ms.to_string(),
-            "--trace",
-            trace.to_str().unwrap(),
-        ],
-    );
-    tokio::time::sleep(Duration::from_millis(3000)).await;
-    let before = frame(&ch, &s).await;
-    assert!(before.inserted_length_m > 0.005, "not mid-insertion at the kill: {} m", before.inserted_length_m);
-    server.child.kill().expect("SIGKILL the server"); // std's kill is SIGKILL: no closing state, the file stays
-    server.child.wait().unwrap();
-    let (code, report, stderr) = finish_bridge(bridge).await;
-    println!("killed server: bridge report {report}");
-    assert_eq!(code, Some(0), "{stderr}");
-    assert_eq!(report["exit"], "done", "{report}");
-
-    let rows = read_trace(&trace);
-    let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("fresh forces before the kill").t_s;
-    assert!((2.5..3.5).contains(&last_fresh), "last fresh force at {last_fresh} s, the server was killed at ~3 s");
-    // The device was being pushed just before the kill.
-    let pushing = rows.iter().filter(|r| r.t_s > last_fresh - 0.1 && r.t_s <= last_fresh).map(|r| r.wrench[0].hypot(r.wrench[1]));
-    let pushing = pushing.fold(0.0, f64::max);
-    assert!(pushing > 0.0, "no force was rendered before the kill: the zero below proves nothing");
-    // Exactly zero from (watchdog + ramp) after the last fresh force, to the end of the run.
-    let zero_from = last_fresh + (watchdog as f64 + ramp_ms + 1.0) * 1e-3;
-    let after: Vec<&TraceRow> = rows.iter().filter(|r| r.t_s >= zero_from).collect();
-    assert!(after.len() > 1000, "the bridge stopped tracing {} periods after the kill", after.len());
-    for r in &after {
-        assert_eq!(r.wrench, [0.0; 3], "t {} s: wrench {:?} (gain {}) after the watchdog time", r.t_s, r.wrench, r.gain);
-        assert_eq!(r.gain, 0.0, "t {} s", r.t_s);
+    for (name, args) in devices {
+        let mut server = ServerProcess::start(&["--default-scene", "none"]);
+        let ch = connect(&server).await;
+        let s = create_device_session(&ch).await;
+        let _chan_file = RemoveOnDrop(s.channel_path.clone());
+        let trace = dir.join(&format!("trace-{name}.csv"));
+        let mut full = args.clone();
+        let (w, r) = (watchdog.to_string(), ramp_ms.to_string());
+        // Far longer than the run takes: it ends when the bridge notices the death, not at 600 s.
+        full.extend_from_slice(&["--seconds", "600", "--watchdog-periods", &w, "--ramp-ms", &r, "--trace", trace.to_str().unwrap()]);
+        let bridge = spawn_bridge(&s.channel_path, &full);
+        wait_until_inserted(&ch, &s, 0.005).await;
+        let server_pid = server.child.id();
+        server.child.kill().expect("SIGKILL the server"); // std's kill is SIGKILL: no closing state, the file stays
+        server.child.wait().unwrap();
+        let out = finish_bridge(bridge).await;
+        let rows = read_trace(&trace);
+        let row = |r: &TraceRow| (r.t_s, r.fresh, r.wrench[0].hypot(r.wrench[1]), r.gain);
+        check_bridge_outlived_its_server(name, &out, server_pid, &s.channel_path, &rows, row, (watchdog, ramp_ms));
+        if name == "plugin" {
+            let (last, writes) = read_record(&record);
+            assert_eq!(last, [0.0; 3], "the plug-in was left pushing");
+            assert_eq!(writes, rows.len() as u64 + 1, "one write per period plus the final zero");
+        }
     }
-    // And the ramp is monotone: no push back after it started.
-    let ramp: Vec<f64> = rows.iter().filter(|r| r.t_s > last_fresh).map(|r| r.gain).collect();
-    assert!(ramp.windows(2).all(|w| w[1] <= w[0]), "the watchdog gain rose again without a server");
-    println!(
-        "killed server: last fresh force at {last_fresh:.3} s, force before {pushing:.3} N, zero from {zero_from:.3} s for {} periods",
-        after.len()
-    );
-    // The device was left with a zero force on exit.
-    let (last, writes) = read_record(&record);
-    assert_eq!(last, [0.0; 3], "the plug-in was left pushing");
-    assert_eq!(writes, rows.len() as u64 + 1, "one write per period plus the final zero");
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -381,19 +420,19 @@ async fn a_sigkilled_bridge_leaves_the_session_healthy_and_reattachable() {
         if get_session(&ch, &s).await.device_stale {
             break killed.elapsed();
         }
-        assert!(killed.elapsed() < Duration::from_millis(1000), "device_stale not set 1 s after the bridge was killed");
+        // A hang guard, not a speed bound (issue 35, item 13): the time is printed.
+        assert!(killed.elapsed() < Duration::from_secs(20), "device_stale not set 20 s after the bridge was killed");
         tokio::time::sleep(Duration::from_millis(5)).await;
     };
     println!("killed bridge: device_stale after {stale_after:?}");
-    assert!(stale_after < Duration::from_millis(200), "device_stale took {stale_after:?}");
 
     // The session keeps ticking, drops nothing, and holds the needle where it was.
     let held1 = frame(&ch, &s).await;
     tokio::time::sleep(Duration::from_millis(300)).await;
     let held2 = frame(&ch, &s).await;
     let stats_after = get_stats(&ch, &s).await;
-    assert!(held2.tick > held1.tick + 200, "frames stopped ticking: {} → {}", held1.tick, held2.tick);
-    assert!(stats_after.ticks > stats_before.ticks + 200, "stats stopped ticking: {} → {}", stats_before.ticks, stats_after.ticks);
+    assert!(held2.tick > held1.tick, "frames stopped ticking: {} → {}", held1.tick, held2.tick);
+    assert!(stats_after.ticks > stats_before.ticks, "stats stopped ticking: {} → {}", stats_before.ticks, stats_after.ticks);
     assert_eq!(stats_after.dropped_records, 0, "{stats_after:?}");
     assert_eq!(held1.base, held2.base, "the needle moved without a device");
     assert_eq!(held1.inserted_length_m, held2.inserted_length_m);
@@ -417,18 +456,20 @@ async fn a_sigkilled_bridge_leaves_the_session_healthy_and_reattachable() {
         if !get_session(&ch, &s).await.device_stale {
             break reattached.elapsed();
         }
-        assert!(reattached.elapsed() < Duration::from_secs(2), "device_stale still set 2 s after a new bridge attached");
+        assert!(reattached.elapsed() < Duration::from_secs(20), "device_stale still set 20 s after a new bridge attached");
         tokio::time::sleep(Duration::from_millis(5)).await;
     };
     println!("re-attached bridge: device_stale cleared after {fresh_again:?} (process start included)");
     tokio::time::sleep(Duration::from_millis(2200)).await;
-    let moved = frame(&ch, &s).await;
     assert!(!get_session(&ch, &s).await.device_stale, "stale while the second bridge runs");
     let (code, report, stderr) = finish_bridge(second).await;
+    // After the run (the session holds the needle where the bridge left it): where the trajectory
+    // ends, however late the bridge started or how many periods it missed.
+    let moved = frame(&ch, &s).await;
     println!("re-attached bridge: report {report}");
     println!("held at {:.4} m, after the second bridge {:.4} m", held2.inserted_length_m, moved.inserted_length_m);
     assert_eq!(code, Some(0), "{stderr}");
-    assert!(num(&report, &["fresh_forces"]) > 1000.0, "{report}");
+    assert!(num(&report, &["fresh_forces"]) > 0.0, "{report}");
     assert!(
         moved.inserted_length_m < held2.inserted_length_m - 0.010,
         "the second bridge did not move the needle: {} → {} m",

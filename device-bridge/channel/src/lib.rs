@@ -5,6 +5,7 @@
 //! Architecture invariant: no async runtime, RPC, protocol, plug-in loading or logging crate
 //! (see Cargo.toml); its code runs on real-time threads.
 
+pub mod liveness;
 pub mod rt;
 pub mod schedule;
 pub mod shm;

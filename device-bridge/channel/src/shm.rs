@@ -211,7 +211,8 @@ fn layout_name(version: u32) -> &'static str {
 #[error("device channel is stale (re-created or closed by the server) or broken")]
 pub struct Stale;
 
-/// Why a channel is broken: its file was changed by someone else. Once broken, an end stays broken.
+/// Why a channel is broken: its file was changed by someone else, or (device end) the server that
+/// created it died. Once broken, an end stays broken.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 pub enum Broken {
     /// An access to the mapping raised `SIGBUS` (the file was truncated below the page touched);
@@ -231,6 +232,10 @@ pub enum Broken {
     /// garbage); on the server end also: the generation is not its own (re-initialised by someone else).
     #[error("its header was overwritten (garbage in magic, version, size or generation)")]
     BadHeader,
+    /// [`ChannelWatch::check_server`] (device end): the server process that created the channel,
+    /// identified at attach, is gone (killed, crashed: it never closed the channel).
+    #[error("the server (pid {pid}) that created it died without closing it")]
+    ServerDied { pid: u32 },
 }
 
 impl Broken {
@@ -242,6 +247,7 @@ impl Broken {
             Broken::Deleted => 3,
             Broken::Replaced => 4,
             Broken::BadHeader => 5,
+            Broken::ServerDied { pid } => 6 | (u64::from(pid) << 8),
         }
     }
 
@@ -252,6 +258,7 @@ impl Broken {
             2 => Broken::Resized { found_bytes: code >> 8 },
             3 => Broken::Deleted,
             4 => Broken::Replaced,
+            6 => Broken::ServerDied { pid: (code >> 8) as u32 },
             _ => Broken::BadHeader,
         })
     }
@@ -760,6 +767,8 @@ struct Shared {
     path: PathBuf,
     /// (dev, ino) of the mapped file.
     file_id: (u64, u64),
+    /// Device end: the creator process, if it could be identified at attach ([`crate::liveness`]).
+    server: std::sync::OnceLock<crate::liveness::ProcessIdentity>,
 }
 
 impl Shared {
@@ -809,6 +818,25 @@ impl ChannelWatch {
         // The server end may have started closing (and removed the file) during the checks.
         match cause {
             Some(c) if !sh.closing.load(Ordering::Acquire) => Err(sh.set_broken(c)),
+            _ => Ok(()),
+        }
+    }
+
+    /// Device end: checks that the server process that created the channel (identified at
+    /// attach: [`DeviceEnd::server_identified`]) still runs, and marks the channel broken with
+    /// [`Broken::ServerDied`] if it does not: its pid is gone, a zombie, or another process. `Ok`
+    /// when the creator could not be identified (another pid namespace: see [`crate::liveness`]),
+    /// and on the server end. Makes system calls (reads `/proc/PID/stat`): a non-real-time thread,
+    /// every [`WATCH_PERIOD`] or so, as [`Self::check_file`].
+    pub fn check_server(&self) -> Result<(), Broken> {
+        let sh = &self.shared;
+        if let Some(b) = sh.broken() {
+            return Err(b);
+        }
+        match sh.server.get() {
+            Some(id) if crate::liveness::state_of(id) == crate::liveness::ProcessState::Dead => {
+                Err(sh.set_broken(Broken::ServerDied { pid: id.pid }))
+            }
             _ => Ok(()),
         }
     }
@@ -1060,6 +1088,12 @@ impl DeviceChannel {
         if mapped.faulted() {
             return Err(ShmError::Broken { path: p(), cause: Broken::Faulted });
         }
+        // The creator, to watch for its death (ChannelWatch::check_server), if it is visible here.
+        let creator = mapped.layout().header.creator_pid.load(Ordering::Relaxed);
+        let (dev, ino) = mapped.shared.file_id;
+        if let Some(id) = crate::liveness::identify_mapper(creator, dev, ino) {
+            let _ = mapped.shared.server.set(id);
+        }
         Ok(DeviceEnd { m: mapped, counter, force: ReaderState::default() })
     }
 }
@@ -1080,6 +1114,7 @@ fn map(file: File, path: &Path) -> Result<Mapped, ShmError> {
         file,
         path: path.to_path_buf(),
         file_id: (meta.dev(), meta.ino()),
+        server: std::sync::OnceLock::new(),
     });
     Ok(Mapped { map, shared, slot, generation: 0 })
 }
@@ -1285,6 +1320,32 @@ impl DeviceEnd {
 
     pub fn creator_pid(&self) -> u32 {
         self.m.layout().header.creator_pid.load(Ordering::Relaxed)
+    }
+
+    /// True if the server process was identified at attach (it runs in this pid namespace and maps
+    /// the file), so that [`ChannelWatch::check_server`] can tell when it dies.
+    pub fn server_identified(&self) -> bool {
+        self.m.shared.server.get().is_some()
+    }
+
+    /// Removes the channel's file after its server died ([`Broken::ServerDied`]): nobody else will
+    /// (a killed server never closes it), and shared memory outlives processes. Only if the path
+    /// still names the mapped file and no new server re-created the channel in it (the
+    /// generation is still the one attached to). `Ok(true)` if the file was removed.
+    pub fn remove_if_orphaned(&self) -> io::Result<bool> {
+        if !matches!(self.m.shared.broken(), Some(Broken::ServerDied { .. })) || self.m.faulted() {
+            return Ok(false);
+        }
+        if !self.m.header_valid() || self.m.layout().header.generation.load(Ordering::Acquire) != self.m.generation {
+            return Ok(false);
+        }
+        let sh = &self.m.shared;
+        match std::fs::symlink_metadata(&sh.path) {
+            Ok(meta) if (meta.dev(), meta.ino()) == sh.file_id => std::fs::remove_file(&sh.path).map(|()| true),
+            Ok(_) => Ok(false),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(false),
+            Err(e) => Err(e),
+        }
     }
 
     pub fn generation(&self) -> u64 {

@@ -1,14 +1,20 @@
 //! A session's real-time thread allocates nothing inside a tick once warmed up: a counting global
-//! allocator counts allocations made while `session::IN_TICK` is set, during a 3 s insertion at
+//! allocator counts allocations made while `session::IN_TICK` is set, during an insertion at
 //! 1 kHz driven through the shared-memory device channel, with observers attached; the
 //! stiffness Jacobian is refreshed inside ticks too, and the fan-out's and the column worker's
 //! doorbells are rung inside them (a wake is an unpark: no allocation).
+//!
+//! The device is paced by the session's own tick counter, not the wall clock (issue 35, item 13):
+//! it rests through the warm-up, inserts over [`INSERT_TICKS`] ticks and holds for
+//! [`HOLD_TICKS`], however fast this machine runs the session, so that every run inserts the same
+//! depth inside counted ticks. The tests assert behaviour (the needle went in, forces reached the
+//! device, no allocation), not how much got done in a given time.
 
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 use needlesim_alloc_count::{CountingAlloc, allocations};
-use needlesim_channel::shm::{DeviceChannel, DevicePose, monotonic_ns};
+use needlesim_channel::shm::{DeviceChannel, DeviceEnd, DevicePose, ServerForce, monotonic_ns};
 use needlesim_core::{BasePose, MeshLimits};
 use needlesim_session::{IN_TICK, Session, WARM_UP_TICKS};
 
@@ -23,6 +29,50 @@ static GLOBAL: CountingAlloc = CountingAlloc::counting_when(in_tick);
 /// The tests take turns: the allocation count is the process's.
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
+/// Session ticks over which the device inserts the needle, after the warm-up.
+const INSERT_TICKS: u64 = 3000;
+/// Session ticks the device then holds still.
+const HOLD_TICKS: u64 = 300;
+/// Only a guard against a session that stopped ticking (a hang), not a speed bound.
+const HANG_GUARD: Duration = Duration::from_secs(300);
+
+/// Drives the device through the insertion paced by `ticks()` (the session's tick counter): `pose`
+/// of the fraction inserted (0 through the warm-up, 1 from [`INSERT_TICKS`] after it), every
+/// 0.5 ms, until [`HOLD_TICKS`] after the end; `between` runs after every pose (the observers).
+/// Returns the number of fresh forces the device read.
+fn drive_by_ticks(ticks: impl Fn() -> u64, device: &mut DeviceEnd, pose: impl Fn(f64) -> DevicePose, mut between: impl FnMut()) -> u64 {
+    let start = Instant::now();
+    let mut forces = 0;
+    loop {
+        let k = ticks();
+        if k >= WARM_UP_TICKS + INSERT_TICKS + HOLD_TICKS {
+            return forces;
+        }
+        assert!(start.elapsed() < HANG_GUARD, "the session stopped ticking at tick {k}");
+        let a = (k.saturating_sub(WARM_UP_TICKS) as f64 / INSERT_TICKS as f64).min(1.0);
+        device.write_pose_from_device(&pose(a)).unwrap();
+        forces += device.read_force_from_device().fresh() as u64;
+        between();
+        std::thread::sleep(Duration::from_micros(500));
+    }
+}
+
+/// After the drive: waits for a fresh force from a tick at or after `tick` (forces reach the
+/// device to the end, not only early on) and returns it.
+fn force_from_tick_on(device: &mut DeviceEnd, tick: u64) -> ServerForce {
+    let start = Instant::now();
+    loop {
+        let f = device.read_force_from_device();
+        if let (true, Some(v)) = (f.fresh(), f.value)
+            && v.tick >= tick
+        {
+            return v;
+        }
+        assert!(start.elapsed() < HANG_GUARD, "no force from tick {tick} on reached the device");
+        std::thread::sleep(Duration::from_micros(200));
+    }
+}
+
 #[test]
 fn real_time_ticks_allocate_nothing_after_warm_up() {
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
@@ -35,20 +85,19 @@ fn real_time_ticks_allocate_nothing_after_warm_up() {
     let mut device = DeviceChannel::attach(session.device_channel_path.as_ref().unwrap()).unwrap();
     let mut latest = session.latest.clone();
     let mut all = session.all_ticks.subscribe();
-    let secs = 3.0;
-    let start = Instant::now();
-    let mut forces = 0;
-    while start.elapsed().as_secs_f64() < secs + 0.3 {
-        let t = start.elapsed().as_secs_f64().min(secs);
-        let p = BasePose::new(0.05, 0.205 - 0.05 * t / secs, -std::f64::consts::FRAC_PI_2);
-        device.write_pose_from_device(&DevicePose::planar(monotonic_ns(), [p.x_m, p.y_m, p.theta_rad], 0)).unwrap();
-        forces += device.read_force_from_device().fresh() as u64;
+    // From the tip 5 mm above the top edge to 45 mm deep, straight down.
+    let pose = |a: f64| {
+        let p = BasePose::new(0.05, 0.205 - 0.05 * a, -std::f64::consts::FRAC_PI_2);
+        DevicePose::planar(monotonic_ns(), [p.x_m, p.y_m, p.theta_rad], 0)
+    };
+    let ticks = || session.counters.ticks.load(Ordering::Relaxed);
+    let forces = drive_by_ticks(ticks, &mut device, pose, || {
         while all.try_recv().is_ok() {}
         let _ = latest.borrow_and_update();
-        std::thread::sleep(Duration::from_micros(500));
-    }
-    let ticks = session.counters.ticks.load(Ordering::Relaxed);
+    });
     let rec = session.latest_record();
+    let last_force = force_from_tick_on(&mut device, rec.tick);
+    let ticks = ticks();
     drop(device);
     session.close();
     let _ = std::fs::remove_dir_all(&dir);
@@ -57,9 +106,12 @@ fn real_time_ticks_allocate_nothing_after_warm_up() {
         rec.n_nodes,
         allocations() - before
     );
-    assert!(ticks > WARM_UP_TICKS + 2000, "the session ticked ({ticks})");
-    assert!(forces > 1000, "the device read the server's forces");
-    assert!(rec.n_nodes >= 5 && rec.force_axial_n < 0.0, "the device drove the needle into the tissue");
+    assert!(forces > 0, "the device read the server's forces");
+    assert!(last_force.force_n[1] > 0.0, "the device got the tissue's force to the end: {last_force:?}");
+    // The base is where the device put it (tick-paced: the same every run), 45 mm in, and resisted.
+    assert!((rec.base.y_m - 0.155).abs() < 1e-6, "the session did not follow the device: {:?}", rec.base);
+    assert!(rec.inserted_length_m > 0.03, "the needle went in only {} m", rec.inserted_length_m);
+    assert!(rec.n_nodes >= 1 && rec.force_axial_n < 0.0, "the device drove the needle into the tissue");
     assert!(rec.stiffness.iter().any(|v| *v != 0.0), "the stiffness is computed in ticks too");
     assert_eq!(session.counters.column_misses.load(Ordering::Relaxed), 0, "the worker delivered columns ahead of the tip");
     assert!(session.counters.fanout_wakes.load(Ordering::Relaxed) > 0, "the doorbell rang inside counted ticks");
@@ -101,26 +153,14 @@ fn real_time_3d_ticks_allocate_nothing_after_warm_up() {
         let mut device = DeviceChannel::attach(session.device_channel_path.as_ref().unwrap()).unwrap();
         assert_eq!(device.session_dimension(), Some(Dimension::Three), "a 3D session's channel says so");
         let mut all = session.all_ticks.subscribe();
-        let (secs, q) = (3.0, scene.initial_pose.quat_wxyz);
-        let start = Instant::now();
-        let mut forces = 0;
-        while start.elapsed().as_secs_f64() < secs + 0.3 {
-            let t = start.elapsed().as_secs_f64().min(secs);
-            // From the tip 5 mm above the top face to 40 mm deep, straight down.
-            let pose = DevicePose {
-                t_ns: monotonic_ns(),
-                position_m: [0.05, 0.05, 0.205 - 0.045 * t / secs],
-                orientation: q,
-                ..Default::default()
-            };
-            device.write_pose_from_device(&pose).unwrap();
-            forces += device.read_force_from_device().fresh() as u64;
-            while all.try_recv().is_ok() {}
-            std::thread::sleep(Duration::from_micros(500));
-        }
-        let ticks = session.counters.ticks.load(Ordering::Relaxed);
+        let q = scene.initial_pose.quat_wxyz;
+        // From the tip 5 mm above the top face to 40 mm deep, straight down.
+        let pose = |a: f64| DevicePose { t_ns: monotonic_ns(), position_m: [0.05, 0.05, 0.205 - 0.045 * a], orientation: q, ..Default::default() };
+        let ticks = || session.counters.ticks.load(Ordering::Relaxed);
+        let forces = drive_by_ticks(ticks, &mut device, pose, || while all.try_recv().is_ok() {});
         let rec = session.latest_record();
-        let force = device.read_force_from_device().value.unwrap();
+        let force = force_from_tick_on(&mut device, rec.tick);
+        let ticks = ticks();
         drop(device);
         session.close();
         let _ = std::fs::remove_dir_all(&dir);
@@ -130,9 +170,17 @@ fn real_time_3d_ticks_allocate_nothing_after_warm_up() {
             rec.d3.force_n,
             allocations() - before
         );
-        assert!(ticks > WARM_UP_TICKS + 2000, "the session ticked ({ticks})");
-        assert!(forces > 1000, "the device read the server's forces");
-        assert!(rec.dimension == 3 && rec.d3.n_contacts >= 5, "the device drove the needle into the tissue");
+        assert!(forces > 0, "the device read the server's forces");
+        // The base is where the device put it (tick-paced: the same every run), the needle 40 mm
+        // in, held by contact points along its inserted part (how many depends on how soon the
+        // compliance worker delivered the nodes ahead of the tip: counted, not fixed).
+        assert!(rec.dimension == 3 && (rec.d3.position_m[2] - 0.16).abs() < 1e-6, "the session did not follow the device: {:?}", rec.d3.position_m);
+        assert!(rec.inserted_length_m > 0.03, "the needle went in only {} m", rec.inserted_length_m);
+        let (tip_z, top_z) = (rec.d3.tip_m[2], 0.1);
+        assert!(rec.d3.n_contacts >= 1, "the device drove the needle into the tissue: no contact point");
+        for c in rec.d3.contacts() {
+            assert!((tip_z - 1e-3..=top_z + 1e-3).contains(&c.x_m[2]), "a contact point off the inserted needle: {c:?} (tip z {tip_z})");
+        }
         assert!(rec.d3.force_n[2] > 0.0, "the tissue pushes the needle back up: {:?}", rec.d3.force_n);
         assert!(rec.d3.stiffness.iter().flatten().any(|v| *v != 0.0), "the 6×6 stiffness is computed in ticks");
         assert!(
