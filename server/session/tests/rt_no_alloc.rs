@@ -5,10 +5,11 @@
 //! doorbells are rung inside them (a wake is an unpark: no allocation).
 //!
 //! The device is paced by the session's own tick counter, not the wall clock (issue 35, item 13):
-//! it rests through the warm-up, inserts over [`INSERT_TICKS`] ticks and holds for
-//! [`HOLD_TICKS`], however fast this machine runs the session, so that every run inserts the same
-//! depth inside counted ticks. The tests assert behaviour (the needle went in, forces reached the
-//! device, no allocation), not how much got done in a given time.
+//! it rests through the warm-up (and, in 3D, longer: [`Pace`]), inserts over a number of ticks and
+//! holds, however fast this machine runs the session, so that every run inserts the same depth
+//! inside counted ticks. The tests assert behaviour (the needle went in, forces reached the
+//! device, no allocation), not how much got done in a given time (a contact count that depended
+//! on how far a 3 s wall-clock insertion got failed a quiet machine's run).
 
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
@@ -29,27 +30,38 @@ static GLOBAL: CountingAlloc = CountingAlloc::counting_when(in_tick);
 /// The tests take turns: the allocation count is the process's.
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
-/// Session ticks over which the device inserts the needle, after the warm-up.
-const INSERT_TICKS: u64 = 3000;
-/// Session ticks the device then holds still.
-const HOLD_TICKS: u64 = 300;
+/// The insertion's pace in session ticks: at rest until `rest` ticks after the warm-up, then in
+/// over `insert` ticks, then held for `hold`.
+struct Pace {
+    rest: u64,
+    insert: u64,
+    hold: u64,
+}
+
 /// Only a guard against a session that stopped ticking (a hang), not a speed bound.
 const HANG_GUARD: Duration = Duration::from_secs(300);
 
 /// Drives the device through the insertion paced by `ticks()` (the session's tick counter): `pose`
-/// of the fraction inserted (0 through the warm-up, 1 from [`INSERT_TICKS`] after it), every
-/// 0.5 ms, until [`HOLD_TICKS`] after the end; `between` runs after every pose (the observers).
+/// of the fraction inserted (0 until the rest is over, 1 from `insert` ticks after), every
+/// 0.5 ms, until the hold is over; `between` runs after every pose (the observers).
 /// Returns the number of fresh forces the device read.
-fn drive_by_ticks(ticks: impl Fn() -> u64, device: &mut DeviceEnd, pose: impl Fn(f64) -> DevicePose, mut between: impl FnMut()) -> u64 {
+fn drive_by_ticks(
+    ticks: impl Fn() -> u64,
+    pace: Pace,
+    device: &mut DeviceEnd,
+    pose: impl Fn(f64) -> DevicePose,
+    mut between: impl FnMut(),
+) -> u64 {
     let start = Instant::now();
     let mut forces = 0;
+    let from = WARM_UP_TICKS + pace.rest;
     loop {
         let k = ticks();
-        if k >= WARM_UP_TICKS + INSERT_TICKS + HOLD_TICKS {
+        if k >= from + pace.insert + pace.hold {
             return forces;
         }
         assert!(start.elapsed() < HANG_GUARD, "the session stopped ticking at tick {k}");
-        let a = (k.saturating_sub(WARM_UP_TICKS) as f64 / INSERT_TICKS as f64).min(1.0);
+        let a = (k.saturating_sub(from) as f64 / pace.insert as f64).min(1.0);
         device.write_pose_from_device(&pose(a)).unwrap();
         forces += device.read_force_from_device().fresh() as u64;
         between();
@@ -91,7 +103,8 @@ fn real_time_ticks_allocate_nothing_after_warm_up() {
         DevicePose::planar(monotonic_ns(), [p.x_m, p.y_m, p.theta_rad], 0)
     };
     let ticks = || session.counters.ticks.load(Ordering::Relaxed);
-    let forces = drive_by_ticks(ticks, &mut device, pose, || {
+    let pace = Pace { rest: 0, insert: 3000, hold: 300 };
+    let forces = drive_by_ticks(ticks, pace, &mut device, pose, || {
         while all.try_recv().is_ok() {}
         let _ = latest.borrow_and_update();
     });
@@ -154,10 +167,15 @@ fn real_time_3d_ticks_allocate_nothing_after_warm_up() {
         assert_eq!(device.session_dimension(), Some(Dimension::Three), "a 3D session's channel says so");
         let mut all = session.all_ticks.subscribe();
         let q = scene.initial_pose.quat_wxyz;
-        // From the tip 5 mm above the top face to 40 mm deep, straight down.
-        let pose = |a: f64| DevicePose { t_ns: monotonic_ns(), position_m: [0.05, 0.05, 0.205 - 0.045 * a], orientation: q, ..Default::default() };
+        // From the tip 1 mm above the top face to 30 mm deep, straight down at 3 mm/s (at 1 kHz),
+        // after a 3 s rest: a 3D session's worker computes the compliance of the nodes ahead of
+        // the tip meanwhile (a needle pushed in at once, or fast, outruns it on a loaded machine
+        // and passes through the surface without capturing it: tests/it/bridge3d.rs).
+        let pose =
+            |a: f64| DevicePose { t_ns: monotonic_ns(), position_m: [0.05, 0.05, 0.201 - 0.031 * a], orientation: q, ..Default::default() };
         let ticks = || session.counters.ticks.load(Ordering::Relaxed);
-        let forces = drive_by_ticks(ticks, &mut device, pose, || while all.try_recv().is_ok() {});
+        let pace = Pace { rest: 3000, insert: 10_000, hold: 300 };
+        let forces = drive_by_ticks(ticks, pace, &mut device, pose, || while all.try_recv().is_ok() {});
         let rec = session.latest_record();
         let force = force_from_tick_on(&mut device, rec.tick);
         let ticks = ticks();
@@ -171,11 +189,15 @@ fn real_time_3d_ticks_allocate_nothing_after_warm_up() {
             allocations() - before
         );
         assert!(forces > 0, "the device read the server's forces");
-        // The base is where the device put it (tick-paced: the same every run), the needle 40 mm
+        // The base is where the device put it (tick-paced: the same every run), the needle 30 mm
         // in, held by contact points along its inserted part (how many depends on how soon the
         // compliance worker delivered the nodes ahead of the tip: counted, not fixed).
-        assert!(rec.dimension == 3 && (rec.d3.position_m[2] - 0.16).abs() < 1e-6, "the session did not follow the device: {:?}", rec.d3.position_m);
-        assert!(rec.inserted_length_m > 0.03, "the needle went in only {} m", rec.inserted_length_m);
+        assert!(
+            rec.dimension == 3 && (rec.d3.position_m[2] - 0.17).abs() < 1e-6,
+            "the session did not follow the device: {:?}",
+            rec.d3.position_m
+        );
+        assert!(rec.inserted_length_m > 0.02, "the needle went in only {} m", rec.inserted_length_m);
         let (tip_z, top_z) = (rec.d3.tip_m[2], 0.1);
         assert!(rec.d3.n_contacts >= 1, "the device drove the needle into the tissue: no contact point");
         for c in rec.d3.contacts() {
