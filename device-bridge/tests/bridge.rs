@@ -510,6 +510,47 @@ fn watchdog_ramps_the_plugin_force_to_zero_when_the_server_stops() {
     assert_eq!(f[3], rows.len() as f64 + 1.0, "one write per period plus the final zero");
 }
 
+/// Issue 35 (item 7): a server that is alive but stopped answering (hung, stopped, or dead out of
+/// the bridge's sight in another pid namespace) ends the bridge after `--server-timeout-ms` without
+/// a force: the watchdog ramps the force out, and the bridge exits with status 1 naming the cause,
+/// leaving the channel file to its server.
+#[test]
+fn issue_35_a_silent_server_ends_the_bridge_after_the_server_timeout() {
+    let dir = temp_dir("silent");
+    let chan = dir.join("session.shm");
+    let trace = dir.join("trace.csv");
+    let traj = write_trajectory(&dir);
+    let server = FakeServer::start(DeviceChannel::create(&chan).unwrap());
+    let child = Command::new(BIN)
+        .args(["--channel", chan.to_str().unwrap(), "--device", "scripted", "--trajectory", traj.to_str().unwrap()])
+        .args(["--seconds", "60", "--server-timeout-ms", "300", "--json", "--trace", trace.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Answer until the bridge has seen forces, then fall silent (the process and the channel stay).
+    let t = Instant::now();
+    while !std::fs::read_to_string(&trace).is_ok_and(|text| text.lines().skip(1).any(|l| l.split(',').nth(5) == Some("1"))) {
+        assert!(t.elapsed() < Duration::from_secs(60), "the bridge never got a force");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    server.writing.store(false, Ordering::Relaxed);
+    let out = child.wait_with_output().unwrap();
+    let (server_end, _st) = server.stop();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let cause = format!("the server (pid {}) stopped answering: no force on device channel {}", std::process::id(), chan.display());
+    assert!(stderr.contains(&cause) && stderr.contains("(--server-timeout-ms)"), "{stderr}");
+    assert!(chan.exists(), "the bridge removed the channel of a live server");
+    let rows = read_trace(&trace);
+    let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("fresh forces").t_s;
+    let last = rows.last().unwrap();
+    assert!(last.t_s >= last_fresh + 0.3 - 1e-9, "it gave up {} s after the last force", last.t_s - last_fresh);
+    assert_eq!((last.wrench, last.gain), ([0.0; 3], 0.0), "the force was not ramped out");
+    drop(server_end);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn exit_leaves_a_zero_force_on_the_device_even_under_full_force() {
     // The server feeds until after the bridge exits: the last rendered wrench is not zero.
