@@ -759,6 +759,8 @@ fn lost_link_error(link: &Link, silent_ms: Option<u64>) -> anyhow::Error {
         Link::Shm(channel) => {
             let path = channel.path().display();
             match channel.broken() {
+                // The normal ends first: a server that closed the channel (and may have exited since).
+                _ if channel.closed_or_recreated() => anyhow!("device channel {path}: closed or re-created by the server"),
                 Some(Broken::ServerDied { pid }) => {
                     let file = match channel.remove_if_orphaned() {
                         Ok(true) => format!("its device channel {path} was removed"),
@@ -767,7 +769,7 @@ fn lost_link_error(link: &Link, silent_ms: Option<u64>) -> anyhow::Error {
                     };
                     anyhow!("the server (pid {pid}) died without closing the session; the force was ramped to zero and {file}")
                 }
-                Some(why) if !channel.closed_or_recreated() => anyhow!("device channel {path} is broken: {why}"),
+                Some(why) => anyhow!("device channel {path} is broken: {why}"),
                 None if channel.is_current() && silent_ms.is_some() => anyhow!(
                     "the server (pid {}) stopped answering: no force on device channel {path} for {} ms (--server-timeout-ms); \
                      the force was ramped to zero; the channel is left to its server",
