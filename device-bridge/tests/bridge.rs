@@ -597,7 +597,9 @@ fn sigterm_and_a_closed_channel_end_with_a_zero_force() {
             // Ramped out by the watchdog (10 periods + 50 ms), then an error exit.
             assert_eq!(out.status.code(), Some(1), "{stderr}");
             assert!(stderr.contains("closed or re-created by the server"), "{stderr}");
-            assert!(elapsed < Duration::from_secs(2), "{elapsed:?}");
+            // (How soon is printed, not asserted: issue 35, item 13. Without --seconds, only the
+            // close ends the run: the exit status and the message above are the behaviour.)
+            eprintln!("the bridge exited {elapsed:?} after the channel was closed");
         }
         let f: Vec<f64> = std::fs::read_to_string(&record).unwrap().split_whitespace().map(|x| x.parse().unwrap()).collect();
         assert_eq!(&f[..3], &[0.0, 0.0, 0.0], "{mode}");
