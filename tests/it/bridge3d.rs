@@ -24,8 +24,8 @@ use tonic::transport::Channel;
 
 // The 2D end-to-end tests' session and bridge helpers serve here too.
 use crate::bridge_e2e::{
-    RemoveOnDrop, Session, check_bridge_outlived_its_server, check_session_ticked, frame, get_session, get_stats, num, spawn_bridge, wait_until_inserted,
-    watch,
+    RemoveOnDrop, Session, check_bridge_outlived_its_server, check_session_ticked, frame, get_session, get_stats, num, spawn_bridge,
+    wait_until_inserted, watch,
 };
 
 /// The cube's needle points straight down (−z): a quarter turn about +y (its TOML's `base_quat`).
