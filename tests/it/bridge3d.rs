@@ -252,7 +252,13 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
         "[3D {name}] last stiffness: K_xx {:.1}, K_yy {:.1}, K_zz {:.1} N/m; K_θxθx {:.4}, K_θyθy {:.4} N·m/rad",
         k[0], k[7], k[14], k[21], k[28]
     );
-    assert!(k[0] < 0.0 && k[7] < 0.0, "[{name}] the lateral stiffness at the end is not restoring: {k:?}");
+    assert!(
+        k[0] < 0.0 && k[7] < 0.0,
+        "[{name}] the lateral stiffness at the end is not restoring: {k:?} (session faulted: {} {:?}, column deferrals {})",
+        stats.faulted,
+        stats.fault,
+        stats.column_deferrals
+    );
     // Axially: restoring for a needle held still at the end (its contacts stick); the plug-in still
     // pushes in at the end, and contacts that slip (kinetic friction) carry no axial stiffness, so
     // whether its last force came from a sticking or a slipping tick is timing (it was -0.0 N/m,
