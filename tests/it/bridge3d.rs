@@ -306,7 +306,11 @@ async fn run_backend(ch: &Channel, dir: &TempDir, name: &str, args: &[&str]) -> 
     rows
 }
 
+// A live 3D session whose column worker must keep up with the needle's tip: beside other tests on
+// the two cores its captures can be lost (issue 35, 13: 5 of 10 runs at load 14 never gripped), so
+// it runs in tests/run's alone phase.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+#[ignore = "a live 3D session: run alone (tests/run's alone phase)"]
 async fn scripted_virtual_and_plugin_devices_insert_into_a_3d_session_at_1khz() {
     let _turn = ONE_AT_A_TIME.lock().await;
     let dir = TempDir::new("bridge3d");
