@@ -153,6 +153,64 @@ async fn issue_35_silent_connections_are_closed_and_connections_are_bounded() {
         .expect("a new connection");
 }
 
+/// Item 6 over TLS: a connection that sends nothing, and one that stops inside its ClientHello,
+/// are closed at the deadline; a TLS client that made its handshake outlives it and works.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_silent_connections_are_closed_on_a_tls_port() {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let dir = needlesim_tests::TempDir::new("tls35");
+    std::fs::write(
+        dir.join("ext.cnf"),
+        "subjectAltName=DNS:localhost,IP:127.0.0.1\nbasicConstraints=CA:FALSE\nextendedKeyUsage=serverAuth\n",
+    )
+    .unwrap();
+    let openssl = |args: &[&str]| {
+        let o = std::process::Command::new("openssl").args(args).current_dir(dir.path()).output().expect("openssl runs");
+        assert!(o.status.success(), "openssl {args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    };
+    let ec = ["-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes"];
+    openssl(&[&["req", "-x509"][..], &ec, &["-days", "1", "-subj", "/CN=test CA", "-keyout", "ca.key", "-out", "ca.pem"]].concat());
+    openssl(&[&["req"][..], &ec, &["-subj", "/CN=localhost", "-keyout", "key.pem", "-out", "leaf.csr"]].concat());
+    #[rustfmt::skip]
+    openssl(&["x509", "-req", "-in", "leaf.csr", "-CA", "ca.pem", "-CAkey", "ca.key", "-CAcreateserial", "-days", "1", "-out", "cert.pem", "-extfile", "ext.cnf"]);
+    let (cert, key) = (dir.join("cert.pem"), dir.join("key.pem"));
+    let server = ServerProcess::start(&[
+        "--default-scene",
+        "none",
+        "--tls-cert",
+        cert.to_str().unwrap(),
+        "--tls-key",
+        key.to_str().unwrap(),
+        "--handshake-timeout-ms",
+        "2000",
+    ]);
+    let ca = tonic::transport::Certificate::from_pem(std::fs::read(dir.join("ca.pem")).unwrap());
+    let tls = tonic::transport::ClientTlsConfig::new().ca_certificate(ca).domain_name("localhost");
+    let ch = tonic::transport::Channel::from_shared(format!("https://{}", server.addr))
+        .unwrap()
+        .tls_config(tls)
+        .unwrap()
+        .connect()
+        .await
+        .unwrap();
+    let mut tr = pb::training_service_client::TrainingServiceClient::new(ch);
+    tr.list_exercises(pb::ListExercisesRequest {}).await.expect("a call over TLS");
+    let silent = tokio::net::TcpStream::connect(&server.addr).await.unwrap();
+    let mut partial = tokio::net::TcpStream::connect(&server.addr).await.unwrap();
+    // The first bytes of a TLS record header of a ClientHello, then nothing.
+    partial.write_all(&[0x16, 0x03, 0x01, 0x02, 0x00]).await.unwrap();
+    for (what, mut s) in [("silent", silent), ("a partial ClientHello", partial)] {
+        let mut b = [0u8; 64];
+        // A generous bound, not a timing budget.
+        match tokio::time::timeout(Duration::from_secs(60), s.read(&mut b)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => {}
+            Ok(Ok(n)) => panic!("{what}: the server sent {n} bytes"),
+            Err(_) => panic!("{what}: the connection is still open after 60 s"),
+        }
+    }
+    tr.list_exercises(pb::ListExercisesRequest {}).await.expect("the TLS connection outlived the deadline");
+}
+
 /// Item 14 (part): after EndExercise, TakeControl, HandBackControl and SetPaused are
 /// FAILED_PRECONDITION (the proto's rule for an ended exercise); an instructor who had control at
 /// the end has let it go.
