@@ -13,6 +13,7 @@ pub mod foxglove_live;
 pub mod grpc;
 pub mod grpc_identify;
 pub mod jobs;
+pub mod listener;
 pub mod recording;
 pub mod serve;
 pub mod status;

@@ -53,9 +53,22 @@ struct ServeArgs {
     /// Most sessions at once.
     #[arg(long, default_value_t = 16)]
     max_sessions: usize,
-    /// Most observers per session.
+    /// Most streams open on one session: its Observe, WatchScore, WatchUltrasound and GetReport
+    /// calls count together; one more is refused with RESOURCE_EXHAUSTED.
     #[arg(long, default_value_t = 256)]
     max_observers: usize,
+    /// Most server-streaming calls open at once on the whole server (Observe, WatchScore,
+    /// WatchUltrasound, GetReport, DownloadRecording); one more is refused with RESOURCE_EXHAUSTED.
+    #[arg(long, default_value_t = grpc::ServerLimits::default().max_streams)]
+    max_streams: usize,
+    /// Most connections open at once on the gRPC port; one more is closed at once. Default: half
+    /// the limit of open files (`ulimit -n`), at most 4096.
+    #[arg(long, value_name = "N")]
+    max_connections: Option<usize>,
+    /// A connection that has not sent its handshake (HTTP/2 preface, TLS ClientHello or HTTP/1
+    /// request) within this time is closed, in ms.
+    #[arg(long, value_name = "MS", default_value_t = 5000, value_parser = clap::value_parser!(u64).range(1..))]
+    handshake_timeout_ms: u64,
     /// Largest gRPC message accepted, in bytes.
     #[arg(long, default_value_t = 64 << 20)]
     max_message_bytes: usize,
@@ -702,6 +715,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         limits: grpc::ServerLimits {
             max_sessions: args.max_sessions,
             max_observers_per_session: args.max_observers,
+            max_streams: args.max_streams,
             mesh: *limits,
             max_session_bytes: args.max_session_memory_mb.saturating_mul(1 << 20),
             max_simulate_ticks: args.max_simulate_ticks,
@@ -716,6 +730,10 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
         foxglove: args.foxglove_addr,
         exercise: args.exercise,
+        connections: needlesim_server::listener::ConnLimits {
+            max_connections: args.max_connections.unwrap_or_else(needlesim_server::listener::default_max_connections),
+            handshake_timeout: std::time::Duration::from_millis(args.handshake_timeout_ms),
+        },
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     if let Some(cfg) = fleet {

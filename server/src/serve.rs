@@ -10,7 +10,6 @@ use std::sync::atomic::Ordering;
 
 use anyhow::{Context, Result};
 use needlesim_proto::v1 as pb;
-use tokio_stream::wrappers::TcpListenerStream;
 
 use crate::grpc::{Api, ServerLimits, ServerState};
 
@@ -35,10 +34,13 @@ pub struct ServeConfig {
     /// A shipped exercise to start a session of at start-up (`--exercise`, issue 20): its URLs for
     /// the trainee, the instructor and observers are printed.
     pub exercise: Option<String>,
+    /// The port's connection bounds (`--max-connections`, `--handshake-timeout-ms`; `listener.rs`).
+    pub connections: crate::listener::ConnLimits,
 }
 
-/// Prometheus text exposition of every session's counters and percentiles.
-fn metrics_text(state: &ServerState) -> String {
+/// Prometheus text exposition of every session's counters and percentiles, and the server's
+/// streams and connections.
+fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> String {
     use prometheus_client::encoding::EncodeLabelSet;
     use prometheus_client::metrics::family::Family;
     use prometheus_client::metrics::gauge::Gauge;
@@ -147,6 +149,15 @@ fn metrics_text(state: &ServerState) -> String {
             "Offline calls refused: the server ran its limit (--max-offline-jobs, --max-plans)",
             state.jobs.rejected() as f64,
         ),
+        (
+            "streams_open",
+            "Server-streaming calls open (Observe, WatchScore, WatchUltrasound, GetReport, DownloadRecording)",
+            state.streams.open() as f64,
+        ),
+        ("streams_refused", "Streams refused: a session's --max-observers or the server's --max-streams", state.streams.refused() as f64),
+        ("connections_open", "Connections open on the gRPC port", conns.open() as f64),
+        ("connections_refused", "Connections closed at once: --max-connections were open", conns.refused() as f64),
+        ("connections_timed_out", "Connections closed: no handshake within --handshake-timeout-ms", conns.timed_out() as f64),
     ];
     for (name, help, v) in jobs {
         let g: Gauge<f64, std::sync::atomic::AtomicU64> = Gauge::default();
@@ -231,6 +242,34 @@ async fn play_demo(session: Arc<needlesim_session::Session>, traj: needlesim_sce
     }
 }
 
+/// Interval of the HTTP/2 pings on a connection, and how long its peer has to answer one.
+const HTTP2_KEEPALIVE_INTERVAL: std::time::Duration = std::time::Duration::from_secs(30);
+const HTTP2_KEEPALIVE_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(20);
+
+/// Gives the memory of closed streams back to the system (issue 35): glibc keeps freed blocks in
+/// its per-thread arenas, so a burst of large messages (a status with 1,000 markers is 219 kB)
+/// would stay with the process after its streams closed. Every 2 s, if streams closed since, the
+/// free pages are returned (`malloc_trim`, off the async runtime; the real-time threads do not
+/// allocate, so they never wait on it).
+async fn give_back_stream_memory(state: SharedState) {
+    let mut every = tokio::time::interval(std::time::Duration::from_secs(2));
+    every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
+    loop {
+        every.tick().await;
+        if Arc::strong_count(&state) == 1 {
+            return;
+        }
+        if state.streams.take_closed() == 0 {
+            continue;
+        }
+        #[cfg(all(target_os = "linux", target_env = "gnu"))]
+        {
+            // SAFETY: malloc_trim only releases free memory of the allocator's arenas.
+            let _ = tokio::task::spawn_blocking(|| unsafe { libc::malloc_trim(0) }).await;
+        }
+    }
+}
+
 /// Runs the server until `shutdown` resolves. Prints `listening on ADDR` once bound.
 pub async fn serve(config: ServeConfig, shutdown: impl std::future::Future<Output = ()> + Send + 'static) -> Result<()> {
     serve_with(config, |_| shutdown).await
@@ -301,19 +340,26 @@ where
         .routes();
     // gRPC-web on the gRPC routes only: as a plain layer it would answer 400 to static files.
     let metrics_state = state.clone();
+    let conns = Arc::new(crate::listener::ConnCounters::default());
+    let metrics_conns = conns.clone();
     let app = routes
         .into_axum_router()
         .route_layer(tonic_web::GrpcWebLayer::new())
-        .route("/metrics", axum::routing::get(move || std::future::ready(metrics_text(&metrics_state))))
+        .route("/metrics", axum::routing::get(move || std::future::ready(metrics_text(&metrics_state, &metrics_conns))))
         .fallback(static_or_unimplemented(config.web_dir.clone()))
         .layer(tower::util::MapResponseLayer::new(size_limit_status));
-    let mut server = tonic::transport::Server::builder().accept_http1(true);
+    // An idle HTTP/2 connection is pinged; one whose peer does not answer is closed (issue 35).
+    let mut server = tonic::transport::Server::builder()
+        .accept_http1(true)
+        .http2_keepalive_interval(Some(HTTP2_KEEPALIVE_INTERVAL))
+        .http2_keepalive_timeout(Some(HTTP2_KEEPALIVE_TIMEOUT));
     if let Some((cert, key)) = &config.tls {
         let cert = std::fs::read(cert).with_context(|| format!("cannot read the TLS certificate {}", cert.display()))?;
         let key = std::fs::read(key).with_context(|| format!("cannot read the TLS key {}", key.display()))?;
-        server = server
-            .tls_config(tonic::transport::ServerTlsConfig::new().identity(tonic::transport::Identity::from_pem(cert, key)))
-            .context("TLS configuration")?;
+        let tls = tonic::transport::ServerTlsConfig::new()
+            .identity(tonic::transport::Identity::from_pem(cert, key))
+            .timeout(config.connections.handshake_timeout);
+        server = server.tls_config(tls).context("TLS configuration")?;
     }
     let listener = tokio::net::TcpListener::bind(config.listen).await.with_context(|| format!("cannot listen on {}", config.listen))?;
     let addr = listener.local_addr()?;
@@ -351,8 +397,9 @@ where
     drop(demo_session);
     drop(default_session);
     let shutdown = shutdown(state.clone());
-    let result =
-        server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(TcpListenerStream::new(listener), shutdown).await;
+    tokio::spawn(give_back_stream_memory(state.clone()));
+    let incoming = crate::listener::incoming(listener, config.connections, conns);
+    let result = server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(incoming, shutdown).await;
     let closing = state.clone();
     tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
     result.context("server")?;

@@ -135,6 +135,9 @@ pub struct LiveExercise {
     /// Set when the session closes: streams end, the renderer stops.
     pub closed: AtomicBool,
     pub ultrasound: Arc<UltrasoundHub>,
+    /// The last status built for the score watchers, with the change count it was built at
+    /// (`training_service.rs`: built once per change for all watchers; issue 35).
+    pub status_cache: Mutex<Option<(u64, Arc<needlesim_proto::v1::ExerciseStatus>)>>,
     /// The tissue strain sampler of a 2D session (module docs), while the exercise runs.
     strain: Mutex<Option<LiveStrain>>,
 }
@@ -224,6 +227,7 @@ impl LiveExercise {
             changes: AtomicU64::new(0),
             closed: AtomicBool::new(false),
             ultrasound,
+            status_cache: Mutex::new(None),
             strain: Mutex::new(None),
         })
     }
@@ -387,28 +391,57 @@ impl LiveExercise {
         }
     }
 
-    /// The instructor takes control (idempotent): the exclusive lease, the device suspended.
-    pub fn take_control(&self, s: &Session) {
+    /// The instructor takes control (idempotent): the exclusive lease, the device suspended;
+    /// FAILED_PRECONDITION once the exercise has ended.
+    pub fn take_control(&self, s: &Session) -> Result<(), Status> {
         let mut st = self.lock();
+        if st.ending {
+            return Err(self.ended());
+        }
         st.instructor_control = true;
         Self::hold(&mut st, s);
         drop(st);
         self.changed();
+        Ok(())
     }
 
     /// The instructor hands control back (idempotent); the lease is let go and the device drives
-    /// again unless paused.
-    pub fn hand_back(&self, s: &Session) {
+    /// again unless paused. FAILED_PRECONDITION once the exercise has ended (its end handed
+    /// control back already: [`LiveExercise::release_at_end`]).
+    pub fn hand_back(&self, s: &Session) -> Result<(), Status> {
         let mut st = self.lock();
+        if st.ending {
+            return Err(self.ended());
+        }
         st.instructor_control = false;
+        Self::release_if_free(&mut st, s);
+        drop(st);
+        self.changed();
+        Ok(())
+    }
+
+    /// After the end: the instructor's control and a pause no longer apply (they could not be
+    /// handed back or resumed once the calls refuse an ended exercise), so the lease is let go
+    /// and the device drives again.
+    pub fn release_at_end(&self, s: &Session) {
+        let mut st = self.lock();
+        if !st.ending || (!st.instructor_control && !st.paused) {
+            return;
+        }
+        st.instructor_control = false;
+        st.paused = false;
         Self::release_if_free(&mut st, s);
         drop(st);
         self.changed();
     }
 
     /// Pauses or resumes (module docs); the lease is held and the device suspended while paused.
-    pub fn set_paused(&self, s: &Session, paused: bool) {
+    /// FAILED_PRECONDITION once the exercise has ended.
+    pub fn set_paused(&self, s: &Session, paused: bool) -> Result<(), Status> {
         let mut st = self.lock();
+        if st.ending {
+            return Err(self.ended());
+        }
         st.paused = paused;
         if paused {
             Self::hold(&mut st, s);
@@ -417,6 +450,7 @@ impl LiveExercise {
         }
         drop(st);
         self.changed();
+        Ok(())
     }
 
     /// Restarts the metrics, placements and markers (the clock from zero at the next record).
@@ -768,7 +802,7 @@ mod tests {
         let ex = exercise();
         let mut trainee = s.control.acquire_stream("trainee", false).await.unwrap();
         assert!(ex.refuse_trainee().is_ok(), "the trainee's check passes");
-        ex.take_control(&s);
+        ex.take_control(&s).unwrap();
         trainee.revoked().await;
         assert!(!trainee.write_if_held(|| panic!("the revoked trainee writes")));
         assert!(s.device_suspended());
@@ -778,16 +812,43 @@ mod tests {
         ex.write_as_instructor(|| wrote = true).unwrap();
         assert!(wrote, "the instructor drives");
         // Paused, then handed back: still locked (the pause holds); resumed: free.
-        ex.set_paused(&s, true);
-        ex.hand_back(&s);
+        ex.set_paused(&s, true).unwrap();
+        ex.hand_back(&s).unwrap();
         assert!(s.device_suspended(), "paused: the device stays suspended");
         assert_eq!(ex.refuse_trainee().unwrap_err().code(), tonic::Code::FailedPrecondition);
         assert_eq!(s.control.acquire_stream("trainee", true).await.err(), Some(Busy::Exclusive));
-        ex.set_paused(&s, false);
+        ex.set_paused(&s, false).unwrap();
         assert!(!s.device_suspended());
         assert!(ex.refuse_trainee().is_ok());
         assert!(s.control.acquire_stream("trainee", false).await.is_ok(), "the lease is free again");
         s.close();
+    }
+
+    /// Issue 35: TakeControl, HandBackControl and SetPaused after the end are FAILED_PRECONDITION;
+    /// an instructor who held control at the end has let it go (the trainee drives again).
+    #[tokio::test]
+    async fn issue_35_control_calls_after_the_end_are_refused_and_the_hold_is_let_go() {
+        let scene = needlesim_scene::load_scene("paper-phantom", &needlesim_core::MeshLimits::default()).unwrap();
+        let s = Session::start(&scene, 1000.0, None).unwrap();
+        let ex = exercise();
+        ex.take_control(&s).unwrap();
+        assert!(s.device_suspended());
+        let dir = std::env::temp_dir().join(format!("needlesim-training-end-{}", std::process::id()));
+        ex.end(&dir).unwrap();
+        ex.release_at_end(&s);
+        assert!(!s.device_suspended(), "the end lets the instructor's hold go");
+        assert!(ex.refuse_trainee().is_ok());
+        assert!(s.control.acquire_stream("trainee", false).await.is_ok(), "the lease is free after the end");
+        for (what, r) in
+            [("TakeControl", ex.take_control(&s)), ("HandBackControl", ex.hand_back(&s)), ("SetPaused", ex.set_paused(&s, true))]
+        {
+            let e = r.unwrap_err();
+            assert_eq!(e.code(), tonic::Code::FailedPrecondition, "{what}");
+            assert!(e.message().contains("has ended"), "{what}: {}", e.message());
+        }
+        assert!(!s.device_suspended(), "nothing refused took hold");
+        s.close();
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

@@ -9,11 +9,9 @@ use needlesim_proto::v1 as pb;
 use needlesim_session::Session;
 use needlesim_training::run::{prepare_2d, prepare_3d};
 use needlesim_training::{EXERCISES, load_exercise};
-use tokio::sync::mpsc;
-use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
-use crate::grpc::{Api, BoxStream, ServerState, token_of};
+use crate::grpc::{Api, BoxStream, ServerState, StreamPermit, token_of};
 use crate::status::quote;
 use crate::training_convert as tc;
 use crate::training_live::{LiveExercise, Who};
@@ -109,6 +107,21 @@ fn status_now(ex: &LiveExercise) -> pb::ExerciseStatus {
     tc::status(ex, &ex.snapshot())
 }
 
+/// The status now, built once per change of the exercise for all its watchers (a status with
+/// many markers is large; issue 35).
+fn shared_status(ex: &LiveExercise) -> Arc<pb::ExerciseStatus> {
+    let changes = ex.changes();
+    let mut cache = ex.status_cache.lock().expect("status cache lock");
+    if let Some((c, st)) = cache.as_ref()
+        && *c == changes
+    {
+        return st.clone();
+    }
+    let st = Arc::new(status_now(ex));
+    *cache = Some((changes, st.clone()));
+    st
+}
+
 #[tonic::async_trait]
 impl pb::training_service_server::TrainingService for Api {
     async fn create_exercise_session(
@@ -155,30 +168,37 @@ impl pb::training_service_server::TrainingService for Api {
         if !(rate.is_finite() && (1.0..=60.0).contains(&rate)) {
             return Err(Status::invalid_argument(format!("rate_hz = {rate}: 1..60 updates per second")));
         }
-        let (_, ex, _) = self.exercise_for(&req, &r.session_id, ALL, "WatchScore")?;
-        let (tx, rx) = mpsc::channel(4);
-        tokio::spawn(async move {
-            let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / rate));
-            every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
-            let mut seen = None;
+        let (s, ex, _) = self.exercise_for(&req, &r.session_id, ALL, "WatchScore")?;
+        let permit = self.state.admit_stream(Some(&s), "WatchScore")?;
+        let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / rate));
+        every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
+        // Pulled (issue 35): a status is made when the client's connection takes one, so a reader
+        // that stops holds none queued; the status is built once per change for every watcher.
+        struct Watch {
+            ex: Arc<LiveExercise>,
+            every: tokio::time::Interval,
+            seen: Option<u64>,
+            done: bool,
+            _permit: StreamPermit,
+        }
+        let st = Watch { ex, every, seen: None, done: false, _permit: permit };
+        let statuses = futures_util::stream::unfold(st, |mut st| async move {
+            if st.done {
+                return None;
+            }
             loop {
-                every.tick().await;
-                let changes = ex.changes();
-                if seen == Some(changes) {
-                    if tx.is_closed() {
-                        return;
-                    }
+                st.every.tick().await;
+                let changes = st.ex.changes();
+                if st.seen == Some(changes) {
                     continue;
                 }
-                seen = Some(changes);
-                let st = status_now(&ex);
-                let finished = st.finished;
-                if tx.send(Ok(st)).await.is_err() || finished {
-                    return;
-                }
+                st.seen = Some(changes);
+                let status = shared_status(&st.ex);
+                st.done = status.finished;
+                return Some((Ok(status.as_ref().clone()), st));
             }
         });
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(Response::new(Box::pin(statuses)))
     }
 
     async fn get_status(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
@@ -188,21 +208,21 @@ impl pb::training_service_server::TrainingService for Api {
 
     async fn take_control(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "TakeControl")?;
-        ex.take_control(&s);
+        ex.take_control(&s)?;
         tracing::info!(session = %s.id, "the instructor took control");
         Ok(Response::new(status_now(&ex)))
     }
 
     async fn hand_back_control(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "HandBackControl")?;
-        ex.hand_back(&s);
+        ex.hand_back(&s)?;
         tracing::info!(session = %s.id, "the instructor handed control back");
         Ok(Response::new(status_now(&ex)))
     }
 
     async fn set_paused(&self, req: Request<pb::SetPausedRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, INSTRUCTOR, "SetPaused")?;
-        ex.set_paused(&s, req.get_ref().paused);
+        ex.set_paused(&s, req.get_ref().paused)?;
         Ok(Response::new(status_now(&ex)))
     }
 
@@ -219,10 +239,12 @@ impl pb::training_service_server::TrainingService for Api {
     }
 
     async fn end_exercise(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
-        let (_, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, DRIVERS, "EndExercise")?;
+        let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, DRIVERS, "EndExercise")?;
         let dir = self.state.data_dir.clone();
         let ex2 = ex.clone();
         tokio::task::spawn_blocking(move || ex2.end(&dir)).await.map_err(|e| Status::internal(format!("report task: {e}")))??;
+        // Control and pause are refused from now on: the instructor's are let go.
+        ex.release_at_end(&s);
         Ok(Response::new(status_now(&ex)))
     }
 
@@ -233,10 +255,18 @@ impl pb::training_service_server::TrainingService for Api {
         let Some(f) = ex.snapshot().finished else {
             return Err(Status::failed_precondition(format!("session {}: the exercise has not ended (EndExercise)", s.id)));
         };
+        let permit = self.state.admit_stream(Some(&s), "GetReport")?;
         let html = tokio::fs::read(&f.report_path).await.map_err(|e| Status::internal(format!("cannot read the report: {e}")))?;
-        let chunks: Vec<Result<pb::ExerciseReportChunk, Status>> =
-            html.chunks(REPORT_CHUNK_BYTES).map(|c| Ok(pb::ExerciseReportChunk { html: c.to_vec() })).collect();
-        Ok(Response::new(Box::pin(tokio_stream::iter(chunks))))
+        // One copy of the report, cut into chunks as the client takes them.
+        let html = bytes::Bytes::from(html);
+        let chunks = futures_util::stream::unfold((html, permit), |(mut rest, permit)| async move {
+            if rest.is_empty() {
+                return None;
+            }
+            let chunk = rest.split_to(rest.len().min(REPORT_CHUNK_BYTES));
+            Some((Ok(pb::ExerciseReportChunk { html: chunk.to_vec() }), (rest, permit)))
+        });
+        Ok(Response::new(Box::pin(chunks)))
     }
 
     type WatchUltrasoundStream = BoxStream<pb::UltrasoundImage>;
@@ -251,37 +281,41 @@ impl pb::training_service_server::TrainingService for Api {
             )));
         }
         let (s, ex, _) = self.exercise_for(&req, &r.session_id, ALL, "WatchUltrasound")?;
+        let permit = self.state.admit_stream(Some(&s), "WatchUltrasound")?;
         let ex_closed = ex.clone();
         let closed = Arc::new(move || ex_closed.closed.load(std::sync::atomic::Ordering::Acquire));
-        let (mut images, watching) = ex
+        let (images, watching) = ex
             .ultrasound
             .watch(s.clone(), closed, rate)
             .map_err(|e| Status::internal(format!("cannot start the ultrasound renderer: {e}")))?;
-        let (tx, rx) = mpsc::channel(2);
-        tokio::spawn(async move {
-            let _watching = watching;
+        // Pulled (issue 35): the latest image when the client's connection takes one.
+        struct Watch {
+            ex: Arc<LiveExercise>,
+            images: tokio::sync::watch::Receiver<Option<Arc<crate::training_ultrasound::SliceImage>>>,
+            _watching: crate::training_ultrasound::Watching,
+            _permit: StreamPermit,
+        }
+        let st = Watch { ex, images, _watching: watching, _permit: permit };
+        let images = futures_util::stream::unfold(st, |mut st| async move {
             loop {
-                if ex.closed.load(std::sync::atomic::Ordering::Acquire) {
-                    return;
+                if st.ex.closed.load(std::sync::atomic::Ordering::Acquire) {
+                    return None;
                 }
-                // Woken by a new image, the client leaving, or every 0.5 s to see the session closed.
+                // Woken by a new image, or every 0.5 s to see the session closed.
                 let changed = tokio::select! {
-                    c = images.changed() => c,
-                    () = tx.closed() => return,
+                    c = st.images.changed() => c,
                     () = tokio::time::sleep(Duration::from_millis(500)) => continue,
                 };
                 if changed.is_err() {
-                    return;
+                    return None;
                 }
-                let img = images.borrow_and_update().clone();
-                if let Some(img) = img
-                    && tx.send(Ok(tc::ultrasound_image(&img))).await.is_err()
-                {
-                    return;
+                let img = st.images.borrow_and_update().clone();
+                if let Some(img) = img {
+                    return Some((Ok(tc::ultrasound_image(&img)), st));
                 }
             }
         });
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(Response::new(Box::pin(images)))
     }
 
     async fn set_probe(&self, req: Request<pb::SetProbeRequest>) -> Result<Response<pb::UltrasoundProbe>, Status> {

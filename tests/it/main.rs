@@ -31,6 +31,7 @@ mod session3d;
 mod sim3;
 mod simulate;
 mod simulate3;
+mod stream_limits;
 mod training;
 mod training_device;
 mod training_live;

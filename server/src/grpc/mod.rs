@@ -10,9 +10,11 @@ pub mod plan;
 mod recordings;
 mod sessions;
 mod simulate;
+mod streams;
 
 pub(crate) use recordings::start_recording;
 pub use simulate::SERIES_CHUNK_ROWS;
+pub use streams::{StreamLimiter, StreamPermit};
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -36,7 +38,11 @@ pub(crate) type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Se
 #[derive(Debug, Clone)]
 pub struct ServerLimits {
     pub max_sessions: usize,
+    /// Most streams a client holds open on one session (Observe, WatchScore, WatchUltrasound,
+    /// GetReport; `--max-observers`).
     pub max_observers_per_session: usize,
+    /// Most server-streaming calls open at once on the whole server (`--max-streams`; `streams.rs`).
+    pub max_streams: usize,
     pub mesh: MeshLimits,
     /// Largest trajectory accepted by Simulate, in samples.
     pub max_trajectory_samples: usize,
@@ -64,6 +70,7 @@ impl Default for ServerLimits {
         Self {
             max_sessions: 16,
             max_observers_per_session: 256,
+            max_streams: 1024,
             mesh: MeshLimits { max_nodes: 250_000, max_triangles: 500_000 },
             max_trajectory_samples: 1_000_000,
             max_simulate_ticks: needlesim_offline::DEFAULT_MAX_TICKS,
@@ -91,6 +98,8 @@ pub struct ServerState {
     draining: AtomicBool,
     /// The live exercises, by session id (issue 20, `training_live.rs`).
     pub training: crate::training_live::Registry,
+    /// The open server-streaming calls (issue 35, `streams.rs`).
+    pub streams: StreamLimiter,
 }
 
 /// A place among the `max_sessions` sessions, held while a session starts; given back when
@@ -116,6 +125,7 @@ impl ServerState {
     /// A state whose `admin_token` (if any) opens every recording; only its digest is kept.
     pub fn with_admin_token(limits: ServerLimits, data_dir: PathBuf, admin_token: Option<&str>) -> Arc<Self> {
         let jobs = JobLimiter::new(limits.max_offline_jobs, limits.max_plans);
+        let streams = StreamLimiter::new(limits.max_streams);
         Arc::new(Self {
             sessions: RwLock::default(),
             pending_sessions: Arc::default(),
@@ -125,6 +135,7 @@ impl ServerState {
             jobs,
             draining: AtomicBool::new(false),
             training: Default::default(),
+            streams,
         })
     }
 
@@ -161,6 +172,12 @@ impl ServerState {
     pub(crate) fn device_dir(&self) -> PathBuf {
         let shm = std::path::Path::new("/dev/shm");
         if shm.is_dir() { shm.to_path_buf() } else { self.data_dir.join("devices") }
+    }
+
+    /// A permit for one `what` stream, of `session` if it watches one: counted against
+    /// `--max-observers` there and `--max-streams` on the server (`streams.rs`).
+    pub(crate) fn admit_stream(&self, session: Option<&Session>, what: &str) -> Result<StreamPermit, Status> {
+        self.streams.admit(session, self.limits.max_observers_per_session, what)
     }
 
     /// Starts a session and registers it.

@@ -4,8 +4,6 @@
 use std::sync::Arc;
 
 use needlesim_proto::v1 as pb;
-use tokio::sync::mpsc;
-use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
 use needlesim_session::Session;
@@ -145,29 +143,36 @@ impl pb::recording_service_server::RecordingService for Api {
         })
         .await
         .map_err(|e| Status::internal(format!("download task: {e}")))??;
-        let (tx, rx) = mpsc::channel(8);
-        tokio::task::spawn_blocking(move || {
-            use std::io::Read;
-            let mut file = file;
-            let mut offset = 0u64;
+        let permit = self.state.admit_stream(None, "DownloadRecording")?;
+        // Read as the client takes the chunks (issue 35): a reader that stops holds one chunk and
+        // no thread.
+        struct Download {
+            file: tokio::fs::File,
+            offset: u64,
+            done: bool,
+            _permit: super::StreamPermit,
+        }
+        let st = Download { file: tokio::fs::File::from_std(file), offset: 0, done: false, _permit: permit };
+        let chunks = futures_util::stream::unfold(st, |mut st| async move {
+            use tokio::io::AsyncReadExt;
+            if st.done {
+                return None;
+            }
             let mut buf = vec![0u8; 256 * 1024];
-            loop {
-                match file.read(&mut buf) {
-                    Ok(0) => return,
-                    Ok(n) => {
-                        let chunk = convert::recording_chunk(buf[..n].to_vec(), offset);
-                        offset += n as u64;
-                        if tx.blocking_send(Ok(chunk)).is_err() {
-                            return;
-                        }
-                    }
-                    Err(e) => {
-                        let _ = tx.blocking_send(Err(Status::internal(format!("reading the recording: {e}"))));
-                        return;
-                    }
+            match st.file.read(&mut buf).await {
+                Ok(0) => None,
+                Ok(n) => {
+                    buf.truncate(n);
+                    let chunk = convert::recording_chunk(buf, st.offset);
+                    st.offset += n as u64;
+                    Some((Ok(chunk), st))
+                }
+                Err(e) => {
+                    st.done = true;
+                    Some((Err(Status::internal(format!("reading the recording: {e}"))), st))
                 }
             }
         });
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(Response::new(Box::pin(chunks)))
     }
 }
