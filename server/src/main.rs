@@ -112,6 +112,10 @@ struct ServeArgs {
     /// or a trusted network.
     #[arg(long, value_name = "ADDR")]
     foxglove_addr: Option<std::net::SocketAddr>,
+    /// Connections the Foxglove endpoint holds at once (more are closed at once; a connection
+    /// without a WebSocket handshake within 5 s is closed too).
+    #[arg(long, value_name = "N", default_value_t = needlesim_foxglove::LiveOptions::default().max_clients)]
+    foxglove_max_clients: usize,
 }
 
 #[derive(Subcommand)]
@@ -715,6 +719,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         demo: args.demo,
         admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
         foxglove: args.foxglove_addr,
+        foxglove_max_clients: args.foxglove_max_clients,
         exercise: args.exercise,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
