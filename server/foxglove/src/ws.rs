@@ -513,7 +513,7 @@ mod tests {
         while let Some(Message::Text(t)) = o.pop() {
             out.push(t.to_string());
         }
-        assert_eq!(out, ["scene b", "f2", "f3"]);
+        assert_eq!(out, ["f2", "scene b", "f3"], "in the order logged");
         assert_eq!(o.bytes, 0);
         assert!(o.per_channel.is_empty());
         for i in 0..MAX_CONTROL_QUEUE + 1 {
