@@ -140,13 +140,13 @@ impl Outbox {
     fn push_data(&mut self, ch: u64, keep: usize, m: Message) -> u64 {
         let mut dropped = 0;
         let n = self.per_channel.entry(ch).or_default();
-        if *n >= keep.max(1) {
-            if let Some(i) = self.data.iter().position(|(c, _)| *c == ch) {
-                let (_, old) = self.data.remove(i).expect("a position in the queue");
-                self.bytes -= old.len();
-                *n -= 1;
-                dropped = 1;
-            }
+        if *n >= keep.max(1)
+            && let Some(i) = self.data.iter().position(|(c, _)| *c == ch)
+        {
+            let (_, old) = self.data.remove(i).expect("a position in the queue");
+            self.bytes -= old.len();
+            *n -= 1;
+            dropped = 1;
         }
         *n += 1;
         self.bytes += m.len();
@@ -372,10 +372,10 @@ impl Hub {
             Some("unsubscribe") => {
                 for sub in v["subscriptionIds"].as_array().into_iter().flatten().filter_map(serde_json::Value::as_u64) {
                     let Some((&ch, _)) = o.subs.iter().find(|(_, s)| u64::from(**s) == sub) else { continue };
-                    if o.drop_channel(ch) {
-                        if let Some(info) = channels.get(&ch) {
-                            info.subscribers.fetch_sub(1, Ordering::Relaxed);
-                        }
+                    if o.drop_channel(ch)
+                        && let Some(info) = channels.get(&ch)
+                    {
+                        info.subscribers.fetch_sub(1, Ordering::Relaxed);
                     }
                 }
             }
@@ -417,6 +417,8 @@ pub(crate) async fn serve(hub: Arc<Hub>, listener: TcpListener, mut stop: watch:
 }
 
 /// Picks the subprotocol from a handshake's offered ones.
+// The error type is tungstenite's callback's, not ours to box.
+#[allow(clippy::result_large_err)]
 fn negotiate(req: &Request, mut res: Response) -> Result<Response, ErrorResponse> {
     let offered = req.headers().get_all("sec-websocket-protocol").iter().flat_map(|h| h.to_str().unwrap_or_default().split(','));
     let chosen = offered.map(str::trim).filter(|p| SUBPROTOCOLS.contains(p)).min_by_key(|p| SUBPROTOCOLS.iter().position(|s| s == p));
