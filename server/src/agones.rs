@@ -58,6 +58,12 @@ pub const DEFAULT_SDK_HTTP_PORT: u16 = 9358;
 pub const SESSIONS_COUNTER: &str = "sessions";
 /// The longest a single SDK call may take (they are local); a slower one counts as failed.
 const CALL_TIMEOUT: Duration = Duration::from_secs(2);
+/// The longest line of the watch stream kept, bytes (a GameServer's JSON is a few kB): a longer
+/// one drops the connection, which is then made again after a backoff (issue 35).
+pub const MAX_WATCH_LINE_BYTES: usize = 1 << 20;
+/// The first and the longest wait before the watch stream is opened again, after it ended.
+const WATCH_BACKOFF_MIN: Duration = Duration::from_millis(500);
+const WATCH_BACKOFF_MAX: Duration = Duration::from_secs(30);
 
 /// What goes wrong talking to the SDK server.
 #[derive(Debug, thiserror::Error)]
@@ -77,6 +83,10 @@ pub enum AgonesError {
     /// The SDK server did not answer within [`CALL_TIMEOUT`].
     #[error("{method} {path} to the Agones SDK server: no answer within {CALL_TIMEOUT:?}")]
     Timeout { method: Method, path: String },
+    /// A line of the watch stream is longer than [`MAX_WATCH_LINE_BYTES`] (the connection is
+    /// dropped).
+    #[error("GET /watch/gameserver: a line of the Agones SDK server's stream exceeds {MAX_WATCH_LINE_BYTES} bytes without a newline")]
+    WatchLineTooLong,
     /// The SDK server answered with an error status (e.g. 404 for a Counter the GameServer's spec
     /// does not declare, 400 for a count over the capacity).
     #[error("{method} {path}: the Agones SDK server answered {status}: {body}")]
@@ -249,26 +259,76 @@ impl SdkClient {
     }
 
     /// `GET /watch/gameserver`: calls `on_state` with the GameServer's `status.state` of every
-    /// update (newline-delimited JSON `{"result": GameServer}`) until the stream ends.
-    pub async fn watch(&self, mut on_state: impl FnMut(&str)) -> Result<(), AgonesError> {
+    /// update (newline-delimited JSON `{"result": GameServer}`) until the stream ends; calls
+    /// `on_line` after every complete line (the caller resets its backoff on it).
+    ///
+    /// Errors: [`AgonesError::WatchLineTooLong`] when a line exceeds [`MAX_WATCH_LINE_BYTES`]
+    /// (the connection is dropped), and the transport's errors.
+    pub async fn watch(&self, mut on_state: impl FnMut(&str), mut on_line: impl FnMut()) -> Result<(), AgonesError> {
         let path = "/watch/gameserver";
         let resp = tokio::time::timeout(CALL_TIMEOUT, self.send(Method::GET, path, ""))
             .await
             .map_err(|_| AgonesError::Timeout { method: Method::GET, path: path.into() })??;
         let mut body = resp.into_body();
-        let mut buf: Vec<u8> = Vec::new();
+        let mut lines = LineBuffer::new(MAX_WATCH_LINE_BYTES);
         while let Some(frame) = body.frame().await {
             let frame = frame.map_err(|source| AgonesError::Http { method: Method::GET, path: path.into(), source })?;
             let Ok(data) = frame.into_data() else { continue };
-            buf.extend_from_slice(&data);
-            while let Some(nl) = buf.iter().position(|b| *b == b'\n') {
-                let line: Vec<u8> = buf.drain(..=nl).collect();
-                if let Some(state) = watch_line_state(&line) {
+            lines.push(&data, |line| {
+                if let Some(state) = watch_line_state(line) {
                     on_state(&state);
                 }
-            }
+                on_line();
+            })?;
         }
         Ok(())
+    }
+}
+
+/// Splits a byte stream into newline-terminated lines of at most `max` bytes (the newline
+/// included), scanning each byte once.
+#[derive(Debug)]
+pub struct LineBuffer {
+    buf: Vec<u8>,
+    max: usize,
+}
+
+impl LineBuffer {
+    pub fn new(max: usize) -> Self {
+        Self { buf: Vec::new(), max }
+    }
+
+    /// Adds `data`, calling `on_line` with each line it completes (without its newline).
+    ///
+    /// Errors: [`AgonesError::WatchLineTooLong`] when a line would exceed the bound (the buffer
+    /// is then emptied; the caller drops the stream).
+    pub fn push(&mut self, mut data: &[u8], mut on_line: impl FnMut(&[u8])) -> Result<(), AgonesError> {
+        while let Some(nl) = data.iter().position(|b| *b == b'\n') {
+            let (head, rest) = (&data[..nl], &data[nl + 1..]);
+            if self.buf.len() + head.len() + 1 > self.max {
+                self.buf = Vec::new();
+                return Err(AgonesError::WatchLineTooLong);
+            }
+            if self.buf.is_empty() {
+                on_line(head);
+            } else {
+                self.buf.extend_from_slice(head);
+                on_line(&self.buf);
+                self.buf.clear();
+            }
+            data = rest;
+        }
+        if self.buf.len() + data.len() >= self.max {
+            self.buf = Vec::new();
+            return Err(AgonesError::WatchLineTooLong);
+        }
+        self.buf.extend_from_slice(data);
+        Ok(())
+    }
+
+    /// The bytes of the unfinished line held.
+    pub fn pending(&self) -> usize {
+        self.buf.len()
     }
 }
 
@@ -481,29 +541,60 @@ async fn supervise(sdk: SdkClient, cfg: AgonesConfig, state: Arc<ServerState>, s
     }
 }
 
-/// Follows the SDK's game-server updates (reconnecting): logs each state, remembers Allocated,
-/// drains on Shutdown.
+/// Follows the SDK's game-server updates (reconnecting, with a backoff that doubles while the
+/// stream fails before its first line, up to [`WATCH_BACKOFF_MAX`]): logs each state, remembers
+/// Allocated, drains on Shutdown. A line over [`MAX_WATCH_LINE_BYTES`] is logged once as a warning
+/// (then at debug level) and counted ([`watch_overlong_lines`], `/metrics`
+/// `needlesim_agones_watch_overlong_lines`).
 async fn watch_game_server(sdk: SdkClient, shared: Arc<Shared>) {
     let mut last = String::new();
+    let mut backoff = WATCH_BACKOFF_MIN;
+    let mut warned = false;
     loop {
+        let mut got_line = false;
         let r = sdk
-            .watch(|state| {
-                if state != last {
-                    tracing::info!(state, "Agones game server state");
-                    last = state.to_owned();
-                }
-                match state {
-                    "Allocated" => shared.allocated.store(true, Ordering::Release),
-                    "Shutdown" => shared.request_drain("the game server's state is Shutdown"),
-                    _ => {}
-                }
-            })
+            .watch(
+                |state| {
+                    if state != last {
+                        tracing::info!(state, "Agones game server state");
+                        last = state.to_owned();
+                    }
+                    match state {
+                        "Allocated" => shared.allocated.store(true, Ordering::Release),
+                        "Shutdown" => shared.request_drain("the game server's state is Shutdown"),
+                        _ => {}
+                    }
+                },
+                || got_line = true,
+            )
             .await;
-        if let Err(e) = r {
-            tracing::debug!(error = %e, "Agones watch ended");
+        if got_line {
+            backoff = WATCH_BACKOFF_MIN;
         }
-        tokio::time::sleep(Duration::from_millis(500)).await;
+        match r {
+            Err(e @ AgonesError::WatchLineTooLong) => {
+                WATCH_OVERLONG_LINES.fetch_add(1, Ordering::Relaxed);
+                if !warned {
+                    warned = true;
+                    tracing::warn!(error = %e, "Agones watch stream dropped; reconnecting with backoff (logged once)");
+                } else {
+                    tracing::debug!(error = %e, "Agones watch stream dropped");
+                }
+            }
+            Err(e) => tracing::debug!(error = %e, "Agones watch ended"),
+            Ok(()) => {}
+        }
+        tokio::time::sleep(backoff).await;
+        backoff = (backoff * 2).min(WATCH_BACKOFF_MAX);
     }
+}
+
+/// Watch-stream lines over [`MAX_WATCH_LINE_BYTES`] since start (each dropped the connection).
+static WATCH_OVERLONG_LINES: AtomicU64 = AtomicU64::new(0);
+
+/// Watch-stream lines over [`MAX_WATCH_LINE_BYTES`] since start (each dropped the connection).
+pub fn watch_overlong_lines() -> u64 {
+    WATCH_OVERLONG_LINES.load(Ordering::Relaxed)
 }
 
 /// How long the test-only SIGUSR2 handler blocks, ns.
@@ -563,6 +654,30 @@ mod tests {
         assert_eq!(watch_line_state(line).as_deref(), Some("Allocated"));
         assert_eq!(watch_line_state(b"{\"result\":{}}"), None);
         assert_eq!(watch_line_state(b"not json"), None);
+    }
+
+    #[test]
+    fn issue_35_watch_lines_split_across_chunks_are_joined_and_an_overlong_line_is_refused() {
+        let mut lines = LineBuffer::new(16);
+        let mut got: Vec<Vec<u8>> = Vec::new();
+        lines.push(b"ab\ncd", |l| got.push(l.to_vec())).unwrap();
+        lines.push(b"ef\n\ngh", |l| got.push(l.to_vec())).unwrap();
+        assert_eq!(got, [b"ab".to_vec(), b"cdef".to_vec(), b"".to_vec()]);
+        assert_eq!(lines.pending(), 2);
+        // 15 bytes and the newline fit; 16 without a newline do not.
+        lines.push(b"0123456789abc\n", |l| got.push(l.to_vec())).unwrap();
+        assert_eq!(got.last().unwrap(), b"gh0123456789abc");
+        let mut lines = LineBuffer::new(16);
+        for _ in 0..3 {
+            lines.push(b"xxxxx", |_| panic!("no line")).unwrap();
+        }
+        assert!(matches!(lines.push(b"x", |_| panic!("no line")), Err(AgonesError::WatchLineTooLong)));
+        assert_eq!(lines.pending(), 0, "the partial line is let go");
+        let mut lines = LineBuffer::new(16);
+        assert!(matches!(lines.push(&[b'y'; 40], |_| panic!("no line")), Err(AgonesError::WatchLineTooLong)));
+        let mut lines = LineBuffer::new(16);
+        lines.push(b"yyyyyyyy", |_| panic!("no line")).unwrap();
+        assert!(matches!(lines.push(b"yyyyyyyyy\n", |_| panic!("no line")), Err(AgonesError::WatchLineTooLong)));
     }
 
     #[test]

@@ -9,13 +9,14 @@
 //! reaches its port. It binds where the operator says (loopback in the README's examples).
 use std::collections::HashSet;
 use std::net::SocketAddr;
-use std::sync::Arc;
 use std::sync::atomic::Ordering;
+use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
 use anyhow::{Context as _, Result};
 use needlesim_foxglove::{
-    ForceSample, FoxgloveLive, PointState, SceneFrame, ScenePoint, SceneTarget, SessionChannels, Surface, scene_update,
+    ForceSample, FoxgloveLive, LiveOptions, LiveStats, PointState, SceneFrame, ScenePoint, SceneTarget, SessionChannels, Surface,
+    scene_update,
 };
 use needlesim_session::{Session, SessionTissue, TickRecord};
 
@@ -26,12 +27,25 @@ pub const FORCE_HZ: f64 = 100.0;
 /// Scenes at `FORCE_HZ / SCENE_EVERY` ≈ 33 Hz.
 pub const SCENE_EVERY: u32 = 3;
 
-/// Starts the endpoint on `addr` and the watcher that gives every session its channels.
-pub async fn start(addr: SocketAddr, state: SharedState) -> Result<u16> {
-    let live =
-        FoxgloveLive::start(&addr.ip().to_string(), addr.port(), "needlesim").await.with_context(|| format!("--foxglove-addr {addr}"))?;
+/// The endpoint of this process, once started (for `/metrics`).
+static ENDPOINT: OnceLock<Arc<FoxgloveLive>> = OnceLock::new();
+
+/// The endpoint's counters, if it was started.
+pub fn stats() -> Option<LiveStats> {
+    ENDPOINT.get().map(|l| l.stats())
+}
+
+/// Starts the endpoint on `addr` (at most `max_clients` connections at once) and the watcher that
+/// gives every session its channels.
+pub async fn start(addr: SocketAddr, max_clients: usize, state: SharedState) -> Result<u16> {
+    anyhow::ensure!(max_clients > 0, "--foxglove-max-clients must be at least 1");
+    let opts = LiveOptions { max_clients, ..LiveOptions::default() };
+    let live = FoxgloveLive::start(&addr.ip().to_string(), addr.port(), "needlesim", opts)
+        .await
+        .with_context(|| format!("--foxglove-addr {addr}"))?;
     let port = live.port();
     let live = Arc::new(live);
+    let _ = ENDPOINT.set(live.clone());
     tokio::spawn(async move {
         let mut known: HashSet<String> = HashSet::new();
         let mut every = tokio::time::interval(Duration::from_millis(500));

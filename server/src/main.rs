@@ -125,6 +125,10 @@ struct ServeArgs {
     /// or a trusted network.
     #[arg(long, value_name = "ADDR")]
     foxglove_addr: Option<std::net::SocketAddr>,
+    /// Connections the Foxglove endpoint holds at once (more are closed at once; a connection
+    /// without a WebSocket handshake within 5 s is closed too).
+    #[arg(long, value_name = "N", default_value_t = needlesim_foxglove::LiveOptions::default().max_clients)]
+    foxglove_max_clients: usize,
 }
 
 #[derive(Subcommand)]
@@ -729,6 +733,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         demo: args.demo,
         admin_token: args.admin_token_file.as_deref().map(read_admin_token).transpose()?,
         foxglove: args.foxglove_addr,
+        foxglove_max_clients: args.foxglove_max_clients,
         exercise: args.exercise,
         connections: needlesim_server::listener::ConnLimits {
             max_connections: args.max_connections.unwrap_or_else(needlesim_server::listener::default_max_connections),

@@ -31,6 +31,8 @@ pub struct ServeConfig {
     pub admin_token: Option<String>,
     /// Where the live Foxglove endpoint listens (`--foxglove-addr`), if anywhere.
     pub foxglove: Option<SocketAddr>,
+    /// Connections the Foxglove endpoint holds at once (`--foxglove-max-clients`).
+    pub foxglove_max_clients: usize,
     /// A shipped exercise to start a session of at start-up (`--exercise`, issue 20): its URLs for
     /// the trainee, the instructor and observers are printed.
     pub exercise: Option<String>,
@@ -159,7 +161,31 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
         ("connections_refused", "Connections closed at once: --max-connections were open", conns.refused() as f64),
         ("connections_timed_out", "Connections closed: no handshake within --handshake-timeout-ms", conns.timed_out() as f64),
     ];
-    for (name, help, v) in jobs {
+    let fx = crate::foxglove_live::stats().unwrap_or_default();
+    let endpoint = [
+        (
+            "agones_watch_overlong_lines",
+            "Lines of the Agones SDK's watch stream over its bound (each dropped the connection)",
+            crate::agones::watch_overlong_lines() as f64,
+        ),
+        ("foxglove_connections", "Connections to the Foxglove endpoint open now", fx.connections as f64),
+        ("foxglove_clients", "Foxglove clients connected now (handshake done)", fx.clients as f64),
+        (
+            "foxglove_refused_connections",
+            "Foxglove connections closed at once: --foxglove-max-clients were open",
+            fx.refused_connections as f64,
+        ),
+        (
+            "foxglove_failed_handshakes",
+            "Foxglove connections closed without a WebSocket handshake (too slow or not Foxglove's)",
+            fx.failed_handshakes as f64,
+        ),
+        ("foxglove_dropped_messages", "Foxglove messages dropped for slow clients (a newer one replaced them)", fx.dropped_messages as f64),
+        ("foxglove_stalled_clients", "Foxglove clients closed because they did not read", fx.stalled_clients as f64),
+        ("foxglove_queued_messages_max", "The most Foxglove messages waiting for one client now", fx.queued_messages_max as f64),
+        ("foxglove_queued_bytes", "Bytes of Foxglove messages waiting for all clients now", fx.queued_bytes as f64),
+    ];
+    for (name, help, v) in jobs.into_iter().chain(endpoint) {
         let g: Gauge<f64, std::sync::atomic::AtomicU64> = Gauge::default();
         g.set(v);
         registry.register(name, help, g);
@@ -366,7 +392,7 @@ where
     tracing::info!(%addr, tls = config.tls.is_some(), data_dir = %config.data_dir.display(), "needlesim-server listening");
     println!("listening on {addr}");
     if let Some(fx) = config.foxglove {
-        let port = crate::foxglove_live::start(fx, state.clone()).await?;
+        let port = crate::foxglove_live::start(fx, config.foxglove_max_clients, state.clone()).await?;
         tracing::info!(port, "Foxglove endpoint listening");
         println!("foxglove on ws://{}:{port} (Foxglove app: Open connection → Foxglove WebSocket)", fx.ip());
     }

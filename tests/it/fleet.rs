@@ -43,6 +43,11 @@ struct Sdk {
 
 impl Sdk {
     fn start() -> Self {
+        Self::start_with(&[])
+    }
+
+    /// The stand-in with `extra` options (e.g. `--watch-no-newline`).
+    fn start_with(extra: &[&str]) -> Self {
         let dir = TempDir::new("agones-sdk");
         let log = dir.join("calls.jsonl");
         let port_file = dir.join("port");
@@ -53,6 +58,7 @@ impl Sdk {
             .arg("--port-file")
             .arg(&port_file)
             .args(["--counter", "sessions=0"])
+            .args(extra)
             .spawn()
             .expect("the stand-in SDK server starts");
         let deadline = Instant::now() + Duration::from_secs(20);
@@ -380,6 +386,53 @@ async fn the_end_of_an_allocations_sessions_shuts_the_server_down() {
     let status = server.wait_exit(Duration::from_secs(10));
     assert!(status.success(), "exit status {status:?}: {}", server.stderr.lock().unwrap());
     assert_eq!(sdk.times("/shutdown").len(), 1);
+}
+
+/// Issue 35: a watch stream from the SDK sidecar that never sends a newline is not buffered
+/// without bound: once a line passes the bound (1 MiB) the server drops the connection, says so
+/// once in its log, counts it in /metrics, and opens the stream again after a backoff.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_watch_stream_without_newlines_is_dropped_and_reopened() {
+    let sdk = Sdk::start_with(&["--watch-no-newline"]);
+    let server = Server::start(&sdk);
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let ended = loop {
+        let ended: Vec<u64> =
+            sdk.calls().iter().filter(|c| c.method == "WATCH_END").map(|c| c.body["bytes"].as_u64().expect("bytes sent")).collect();
+        if ended.len() >= 3 {
+            break ended;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "the server did not drop the endless line and reconnect (streams ended: {ended:?}); stderr: {}",
+            server.stderr.lock().unwrap()
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let opened = sdk.calls().iter().filter(|c| c.method == "GET" && c.path == "/watch/gameserver").count();
+    assert!(opened >= 3, "the watch stream was opened {opened} times");
+    // What the stand-in got out before the drop: the 1 MiB the server held, plus what the
+    // sockets' buffers took (a few MiB on loopback) — not an unbounded stream.
+    for b in &ended {
+        assert!(*b >= 1 << 20 && *b < 64 << 20, "bytes sent per dropped stream: {ended:?}");
+    }
+    let log = server.stderr.lock().unwrap().clone();
+    assert_eq!(log.matches("Agones watch stream dropped").count(), 1, "the drop is logged once: {log}");
+    assert!(log.contains("exceeds 1048576 bytes without a newline"), "{log}");
+    let metrics = {
+        let mut s = std::net::TcpStream::connect(&server.addr).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+        s.write_all(b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").unwrap();
+        let mut out = String::new();
+        let _ = s.read_to_string(&mut out);
+        out
+    };
+    let overlong: f64 = metrics
+        .lines()
+        .find_map(|l| l.strip_prefix("needlesim_agones_watch_overlong_lines "))
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no needlesim_agones_watch_overlong_lines in /metrics: {metrics}"));
+    assert!(overlong >= ended.len() as f64, "overlong lines counted: {overlong}, streams ended: {ended:?}");
 }
 
 /// The resident memory of process `pid`, bytes (VmRSS).

@@ -187,3 +187,204 @@ async fn issue_17_a_foxglove_client_sees_a_live_3d_session() {
     assert!(with_field >= 2.0 && with_field <= 10.0 * seconds + 2.0, "fields in the frames, at most 10 a second over {seconds} s: {check}");
     assert_eq!(check["displacement_lengths"], serde_json::json!([3 * surface.node_ids.len()]), "{check}");
 }
+
+/// The Foxglove port a server printed (`foxglove on ws://127.0.0.1:PORT`).
+async fn foxglove_port(server: &ServerProcess) -> u16 {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    loop {
+        let out = server.stdout.lock().unwrap().clone();
+        if let Some(p) =
+            out.lines().find_map(|l| l.strip_prefix("foxglove on ws://127.0.0.1:")).and_then(|r| r.split_whitespace().next()?.parse().ok())
+        {
+            return p;
+        }
+        assert!(std::time::Instant::now() < deadline, "the server did not print its Foxglove port: {out}");
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+}
+
+/// The server's /metrics page.
+fn metrics(server: &ServerProcess) -> String {
+    use std::io::{Read, Write};
+    let mut s = std::net::TcpStream::connect(&server.addr).unwrap();
+    s.set_read_timeout(Some(std::time::Duration::from_secs(10))).unwrap();
+    s.write_all(b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").unwrap();
+    let mut out = String::new();
+    let _ = s.read_to_string(&mut out);
+    out
+}
+
+/// The value of the unlabelled metric `needlesim_{name}`.
+fn gauge(metrics: &str, name: &str) -> f64 {
+    let prefix = format!("needlesim_{name} ");
+    metrics
+        .lines()
+        .find_map(|l| l.strip_prefix(prefix.as_str()))
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no needlesim_{name} in /metrics:\n{metrics}"))
+}
+
+/// The sum of `needlesim_{name}{…}` over its labels.
+fn gauge_sum(metrics: &str, name: &str) -> f64 {
+    let prefix = format!("needlesim_{name}{{");
+    metrics.lines().filter(|l| l.starts_with(&prefix)).filter_map(|l| l.rsplit(' ').next()?.parse::<f64>().ok()).sum()
+}
+
+type Ws = tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>>;
+
+/// A Foxglove WebSocket client on `port` (its socket's receive buffer `rcvbuf` bytes when given),
+/// subscribed to every channel advertised within 30 s of a session's two: the subscription ids
+/// 1, 2, … in the order advertised.
+async fn subscribed_client(port: u16, rcvbuf: Option<u32>) -> Ws {
+    let sock = tokio::net::TcpSocket::new_v4().unwrap();
+    if let Some(n) = rcvbuf {
+        sock.set_recv_buffer_size(n).unwrap();
+    }
+    let tcp = sock.connect(([127, 0, 0, 1], port).into()).await.expect("connect to the Foxglove port");
+    let mut req = format!("ws://127.0.0.1:{port}").into_client_request().unwrap();
+    req.headers_mut().insert("sec-websocket-protocol", "foxglove.sdk.v1".parse().unwrap());
+    let (mut ws, _) = tokio_tungstenite::client_async(req, tokio_tungstenite::MaybeTlsStream::Plain(tcp))
+        .await
+        .expect("the Foxglove endpoint accepts a ws-protocol client");
+    let mut channels = Vec::new();
+    let deadline = tokio::time::Instant::now() + std::time::Duration::from_secs(30);
+    while channels.len() < 2 {
+        assert!(tokio::time::Instant::now() < deadline, "no session's channels were advertised");
+        let Ok(Some(Ok(Message::Text(t)))) = tokio::time::timeout(std::time::Duration::from_secs(1), ws.next()).await else { continue };
+        let v: serde_json::Value = serde_json::from_str(&t).unwrap();
+        if v["op"] == "advertise" {
+            channels.extend(v["channels"].as_array().unwrap().iter().map(|c| c["id"].as_u64().unwrap()));
+        }
+    }
+    let subs: Vec<_> = channels.iter().enumerate().map(|(i, c)| serde_json::json!({"id": i + 1, "channelId": c})).collect();
+    ws.send(Message::Text(serde_json::json!({"op": "subscribe", "subscriptions": subs}).to_string().into())).await.unwrap();
+    ws
+}
+
+/// The resident memory of process `pid`, bytes (VmRSS).
+fn rss_bytes(pid: u32) -> u64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc/PID/status");
+    status.lines().find_map(|l| l.strip_prefix("VmRSS:")).and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok()).expect("VmRSS")
+        * 1024
+}
+
+/// Issue 35: Foxglove clients that subscribe to a live session and never read cost the server at
+/// most the latest scene and a few force samples each — older messages are dropped and counted —
+/// not an ever-growing backlog (19 MB a client before), and the session keeps ticking.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_foxglove_clients_that_never_read_hold_only_the_latest_messages() {
+    let _turn = needlesim_tests::REALTIME.lock().await;
+    // The default session: the paper phantom, live at 1 kHz.
+    let server = ServerProcess::start(&["--foxglove-addr", "127.0.0.1:0"]);
+    let port = foxglove_port(&server).await;
+    const CLIENTS: usize = 12;
+    let mut idle = Vec::new();
+    for _ in 0..CLIENTS {
+        idle.push(subscribed_client(port, Some(4096)).await);
+    }
+    let rss_before = rss_bytes(server.child.id());
+    // Until the server has dropped plenty for them (their sockets are full): far more than one
+    // client's bound of messages each.
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    let page = loop {
+        let page = metrics(&server);
+        if gauge(&page, "foxglove_dropped_messages") > (CLIENTS * 100) as f64 {
+            break page;
+        }
+        assert!(std::time::Instant::now() < deadline, "no messages dropped for the clients that do not read:\n{page}");
+        tokio::time::sleep(std::time::Duration::from_millis(200)).await;
+    };
+    assert_eq!(gauge(&page, "foxglove_clients"), CLIENTS as f64, "{page}");
+    // The bound: the latest scene and 16 force samples per client (needlesim_foxglove's
+    // SCENE_KEEP and FORCE_KEEP).
+    let queued = gauge(&page, "foxglove_queued_messages_max");
+    assert!(queued <= 17.0, "{queued} messages wait for one client");
+    let rss_after = rss_bytes(server.child.id());
+    let growth_mb = (rss_after as f64 - rss_before as f64) / 1e6;
+    eprintln!("RSS {:.1} MB → {:.1} MB with {CLIENTS} clients not reading", rss_before as f64 / 1e6, rss_after as f64 / 1e6);
+    // Loose: a 2D scene is tens of kB, so the bound is well under a MB a client.
+    assert!(growth_mb < 100.0, "the server grew by {growth_mb:.0} MB for {CLIENTS} clients that do not read");
+    // The session ticks on.
+    let ticks = gauge_sum(&page, "ticks");
+    tokio::time::sleep(std::time::Duration::from_millis(500)).await;
+    let later = gauge_sum(&metrics(&server), "ticks");
+    assert!(later > ticks + 100.0, "the session stopped ticking: {ticks} → {later}");
+    // A client that reads still gets the session's scene and force.
+    let mut ws = subscribed_client(port, None).await;
+    let mut seen = std::collections::BTreeSet::new();
+    let deadline = tokio::time::Instant::now() + std::time::Duration::from_secs(30);
+    while seen.len() < 2 {
+        assert!(tokio::time::Instant::now() < deadline, "the reading client got only subscriptions {seen:?}");
+        let Ok(Some(Ok(Message::Binary(b)))) = tokio::time::timeout(std::time::Duration::from_secs(1), ws.next()).await else { continue };
+        assert_eq!(b[0], 1, "messageData opcode");
+        seen.insert(u32::from_le_bytes(b[1..5].try_into().unwrap()));
+    }
+    drop(idle);
+}
+
+/// Whether the peer closed `s` (EOF or reset) within `limit`.
+fn closed_within(s: &mut std::net::TcpStream, limit: std::time::Duration) -> Result<(), String> {
+    use std::io::Read;
+    s.set_read_timeout(Some(limit)).unwrap();
+    let mut buf = [0u8; 1024];
+    loop {
+        match s.read(&mut buf) {
+            Ok(0) => return Ok(()),
+            Ok(_) => continue, // an HTTP error answer, then the close
+            Err(e) if e.kind() == std::io::ErrorKind::ConnectionReset => return Ok(()),
+            Err(e) => return Err(format!("still open after {limit:?}: {e}")),
+        }
+    }
+}
+
+/// Issue 35: connections to the Foxglove port that never complete the WebSocket handshake (none
+/// sent, or a request dribbled byte by byte) are closed within a few seconds, connections over
+/// `--foxglove-max-clients` are closed at once, and a Foxglove client connects afterwards.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_foxglove_connections_without_a_handshake_are_closed_and_bounded() {
+    use std::io::Write;
+    let server = ServerProcess::start(&["--default-scene", "none", "--foxglove-addr", "127.0.0.1:0", "--foxglove-max-clients", "4"]);
+    let port = foxglove_port(&server).await;
+    let mut idle: Vec<std::net::TcpStream> = (0..4).map(|_| std::net::TcpStream::connect(("127.0.0.1", port)).unwrap()).collect();
+    idle[0].write_all(b"GET / HTTP/1.1\r\nHost: x\r\n").unwrap();
+    // Over the bound: closed at once.
+    let mut over = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+    closed_within(&mut over, std::time::Duration::from_secs(3)).expect("a connection over --foxglove-max-clients");
+    // The idle ones, within the handshake's few seconds (one keeps sending a header line a
+    // second meanwhile).
+    let dribble = {
+        let mut s = idle[0].try_clone().unwrap();
+        std::thread::spawn(move || {
+            for i in 0..30 {
+                std::thread::sleep(std::time::Duration::from_secs(1));
+                if s.write_all(format!("X-Slow-{i}: 1\r\n").as_bytes()).is_err() {
+                    return;
+                }
+            }
+        })
+    };
+    for (i, s) in idle.iter_mut().enumerate() {
+        closed_within(s, std::time::Duration::from_secs(20)).unwrap_or_else(|e| panic!("connection {i} without a handshake: {e}"));
+    }
+    dribble.join().unwrap();
+    // Counted (the counters follow the close by a moment).
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+    let page = loop {
+        let page = metrics(&server);
+        if gauge(&page, "foxglove_failed_handshakes") >= 4.0 && gauge(&page, "foxglove_connections") == 0.0 {
+            break page;
+        }
+        assert!(std::time::Instant::now() < deadline, "{page}");
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    };
+    assert!(gauge(&page, "foxglove_refused_connections") >= 1.0, "{page}");
+    assert_eq!(gauge(&page, "foxglove_failed_handshakes"), 4.0, "{page}");
+    // A Foxglove client still connects and is greeted.
+    let mut req = format!("ws://127.0.0.1:{port}").into_client_request().unwrap();
+    req.headers_mut().insert("sec-websocket-protocol", "foxglove.sdk.v1".parse().unwrap());
+    let (mut ws, _) = tokio_tungstenite::connect_async(req).await.expect("a Foxglove client connects after the idle ones went");
+    let Ok(Some(Ok(Message::Text(t)))) = tokio::time::timeout(std::time::Duration::from_secs(10), ws.next()).await else {
+        panic!("no serverInfo")
+    };
+    assert!(t.contains("\"serverInfo\""), "{t}");
+}

@@ -16,7 +16,11 @@ clock the test reads too), "method", "path", "body"}. The state follows the call
 server's does (Ready, Allocated, Shutdown), and a test may set it with POST /__test/state
 {"state": "Allocated"} (not part of the Agones API; not logged).
 
-Usage: agones_sdk_stub.py --log calls.jsonl --port-file port [--counter sessions=0]
+With --watch-no-newline (issue 35), GET /watch/gameserver streams bytes without a newline, as
+fast as the client reads them, and logs {"method": "WATCH_END", "body": {"bytes": n}} when the
+client drops the stream.
+
+Usage: agones_sdk_stub.py --log calls.jsonl --port-file port [--counter sessions=0] [--watch-no-newline]
 """
 
 import argparse
@@ -35,8 +39,9 @@ LABEL_VALUE = re.compile(r"^([A-Za-z0-9]([-A-Za-z0-9_.]{0,61}[A-Za-z0-9])?)?$")
 class Sdk:
     """The GameServer as the SDK server sees it, and the call log."""
 
-    def __init__(self, log_path, counters):
+    def __init__(self, log_path, counters, watch_no_newline=False):
         self.lock = threading.Condition()
+        self.watch_no_newline = watch_no_newline
         self.log_path = log_path
         self.state = "Scheduled"
         self.labels = {}
@@ -180,6 +185,8 @@ def make_handler(sdk):
             self.send_response(200)
             self.send_header("Content-Type", "application/json")
             self.end_headers()
+            if sdk.watch_no_newline:
+                return self.watch_without_newlines()
             seen = -1
             try:
                 while True:
@@ -192,6 +199,16 @@ def make_handler(sdk):
                     self.wfile.flush()
             except (BrokenPipeError, ConnectionResetError):
                 return
+
+        def watch_without_newlines(self):
+            chunk = b"x" * 65536
+            sent = 0
+            try:
+                while True:
+                    self.wfile.write(chunk)
+                    sent += len(chunk)
+            except (BrokenPipeError, ConnectionResetError):
+                sdk.record("WATCH_END", self.path, {"bytes": sent})
 
         def do_GET(self):
             self.handle_any("GET")
@@ -214,12 +231,14 @@ def main():
     ap.add_argument("--port-file", required=True, help="write the port listened on here")
     ap.add_argument("--counter", action="append", default=[], metavar="NAME=CAPACITY",
                     help="a Counter the GameServer's spec declares (count 0)")
+    ap.add_argument("--watch-no-newline", action="store_true",
+                    help="the watch stream sends bytes without a newline, without end")
     a = ap.parse_args()
     counters = {}
     for c in a.counter:
         name, _, cap = c.partition("=")
         counters[name] = {"count": 0, "capacity": int(cap or 0)}
-    sdk = Sdk(a.log, counters)
+    sdk = Sdk(a.log, counters, a.watch_no_newline)
     server = ThreadingHTTPServer(("127.0.0.1", 0), make_handler(sdk))
     server.daemon_threads = True
     tmp = a.port_file + ".tmp"

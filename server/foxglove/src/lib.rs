@@ -1,6 +1,6 @@
 //! needlesim in Foxglove: a simulation state as Foxglove scene entities and a force sample, the
-//! MCAP channels that carry them in a recording, and a live WebSocket endpoint (the Foxglove SDK's
-//! server) with a channel pair per session.
+//! MCAP channels that carry them in a recording, and a live WebSocket endpoint (Foxglove's
+//! ws-protocol, with bounded clients and queues) with a channel pair per session.
 //!
 //! The service layer converts its own records into [`SceneFrame`] (plain data: positions in
 //! metres in the tissue's world frame, 2D sessions embedded at z = 0) and calls [`scene_update`] /
@@ -20,8 +20,9 @@ pub use foxglove;
 pub mod live;
 pub mod mcap_channels;
 pub mod scene;
+mod ws;
 
-pub use live::{FoxgloveLive, LiveError, SessionChannels};
+pub use live::{FoxgloveLive, LiveError, LiveOptions, LiveStats, SessionChannels};
 pub use mcap_channels::McapChannels;
 pub use scene::{
     FORCE_SCHEMA_JSON, FORCE_SCHEMA_NAME, FRAME_ID, ForceSample, PointState, SceneFrame, ScenePoint, SceneTarget, Surface, Vec3Json,

@@ -1,122 +1,140 @@
-//! The live Foxglove endpoint: the Foxglove SDK's WebSocket server on its own port (the Foxglove
-//! app connects to `ws://host:port`), with a scene and a force channel per session. Logging to a
-//! channel nobody subscribed to costs a flag read; the SDK's server drops messages for a slow
-//! client rather than queueing without bound (`message_backlog_size`).
+//! The live Foxglove endpoint: a Foxglove WebSocket server on its own port (the Foxglove app
+//! connects to `ws://host:port`), with a scene and a force channel per session. Logging to a
+//! channel nobody subscribed to costs a flag read. The server ([`crate::ws`]) bounds what a client
+//! can hold (issue 35): connections, the handshake's time, and the messages waiting for a slow
+//! client — the latest scene and the last [`FORCE_KEEP`] force samples; older ones are dropped and
+//! counted ([`LiveStats`]).
 //!
 //! No access control: Foxglove's WebSocket protocol carries no tokens, so the endpoint binds to
 //! the loopback interface unless the operator says otherwise (the server's `--foxglove-addr`).
 use std::sync::Arc;
 
+use foxglove::Encode;
 use foxglove::messages::SceneUpdate;
-use foxglove::{Channel, Context, RawChannel, Schema, WebSocketServer, WebSocketServerHandle};
+use tokio::sync::watch;
 
 use crate::scene::{FORCE_SCHEMA_JSON, FORCE_SCHEMA_NAME, ForceSample};
+use crate::ws::{ChannelInfo, Hub};
+pub use crate::ws::{LiveOptions, LiveStats};
 use crate::{force_topic, scene_topic};
 
-/// Messages kept per client before the oldest are dropped (about 2 s of scenes at 30 Hz and
-/// forces at 100 Hz).
-pub const CLIENT_BACKLOG: usize = 256;
+/// Scenes kept per slow client: a newer scene replaces an unsent one.
+pub const SCENE_KEEP: usize = 1;
+/// Force samples kept per slow client before the oldest is dropped (160 ms at 100 Hz).
+pub const FORCE_KEEP: usize = 16;
 
 /// What goes wrong starting the endpoint or opening a session's channels.
 #[derive(Debug, thiserror::Error)]
 pub enum LiveError {
     /// When the WebSocket server cannot start (the port is taken, the address is not local).
     #[error("the Foxglove endpoint could not start on {addr}: {source}")]
-    Start { addr: String, source: foxglove::FoxgloveError },
-    /// When the SDK refuses a session's channel (it checks only that a message encoding is set).
-    #[error("the Foxglove channel {topic} could not be opened: {source}")]
-    Channel { topic: String, source: foxglove::FoxgloveError },
+    Start { addr: String, source: std::io::Error },
+    /// When a message type has no schema to advertise (not expected: Foxglove's messages have).
+    #[error("the Foxglove channel {topic} could not be opened: its message type has no schema")]
+    Channel { topic: String },
 }
 
-/// The endpoint: one SDK context (so channels never mix with another endpoint's) and its server.
+/// The endpoint: its server's shared state and the signal that stops its tasks.
 pub struct FoxgloveLive {
-    ctx: Arc<Context>,
-    handle: Option<WebSocketServerHandle>,
+    hub: Arc<Hub>,
+    port: u16,
+    stop: watch::Sender<bool>,
 }
 
 impl std::fmt::Debug for FoxgloveLive {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("FoxgloveLive").field("port", &self.port()).finish()
+        f.debug_struct("FoxgloveLive").field("port", &self.port).finish()
     }
 }
 
 impl FoxgloveLive {
     /// Starts the WebSocket server on `host:port` (port 0: any free port) on the caller's tokio
-    /// runtime.
-    pub async fn start(host: &str, port: u16, name: &str) -> Result<Self, LiveError> {
-        let ctx = Context::new();
-        let handle = WebSocketServer::new()
-            .name(name)
-            .bind(host, port)
-            .context(&ctx)
-            .message_backlog_size(CLIENT_BACKLOG)
-            .start()
-            .await
-            .map_err(|source| LiveError::Start { addr: format!("{host}:{port}"), source })?;
-        Ok(Self { ctx, handle: Some(handle) })
+    /// runtime, with the bounds of `opts`.
+    pub async fn start(host: &str, port: u16, name: &str, opts: LiveOptions) -> Result<Self, LiveError> {
+        let addr = format!("{host}:{port}");
+        let listener =
+            tokio::net::TcpListener::bind((host, port)).await.map_err(|source| LiveError::Start { addr: addr.clone(), source })?;
+        let port = listener.local_addr().map_err(|source| LiveError::Start { addr, source })?.port();
+        let hub = Arc::new(Hub::new(name, opts));
+        let (stop, stopped) = watch::channel(false);
+        tokio::spawn(crate::ws::serve(hub.clone(), listener, stopped));
+        Ok(Self { hub, port, stop })
     }
 
     /// The port the endpoint listens on.
     pub fn port(&self) -> u16 {
-        self.handle.as_ref().map_or(0, WebSocketServerHandle::port)
+        self.port
+    }
+
+    /// The endpoint's counters and present load.
+    pub fn stats(&self) -> LiveStats {
+        self.hub.stats()
     }
 
     /// Opens the channels of a session (closed when the returned value is dropped). Session ids
     /// are unique, so their topics are too.
     ///
-    /// Errors: [`LiveError::Channel`] if the SDK refuses the channel.
+    /// Errors: [`LiveError::Channel`] if a message type has no schema.
     pub fn open_session(&self, session: &str) -> Result<SessionChannels, LiveError> {
-        let scene: Channel<SceneUpdate> = self.ctx.channel_builder(scene_topic(session)).build();
-        let force = self
-            .ctx
-            .channel_builder(force_topic(session))
-            .message_encoding("json")
-            .schema(Schema::new(FORCE_SCHEMA_NAME, "jsonschema", FORCE_SCHEMA_JSON.as_bytes().to_vec()))
-            .build_raw();
-        let force = force.map_err(|source| LiveError::Channel { topic: force_topic(session), source })?;
-        Ok(SessionChannels { scene, force })
+        let schema = SceneUpdate::get_schema().ok_or_else(|| LiveError::Channel { topic: scene_topic(session) })?;
+        let scene = self.hub.add_channel(
+            scene_topic(session),
+            &SceneUpdate::get_message_encoding(),
+            &schema.name,
+            &schema.encoding,
+            &schema.data,
+            SCENE_KEEP,
+        );
+        let force =
+            self.hub.add_channel(force_topic(session), "json", FORCE_SCHEMA_NAME, "jsonschema", FORCE_SCHEMA_JSON.as_bytes(), FORCE_KEEP);
+        Ok(SessionChannels { hub: self.hub.clone(), scene, force })
     }
 }
 
 impl Drop for FoxgloveLive {
     fn drop(&mut self) {
-        if let Some(h) = self.handle.take() {
-            // Stops accepting and closes the clients; the returned handle only waits for that.
-            drop(h.stop());
-        }
+        // Stops accepting and closes the clients.
+        let _ = self.stop.send(true);
     }
 }
 
 /// A session's two channels on the endpoint.
 pub struct SessionChannels {
-    scene: Channel<SceneUpdate>,
-    force: Arc<RawChannel>,
+    hub: Arc<Hub>,
+    scene: Arc<ChannelInfo>,
+    force: Arc<ChannelInfo>,
 }
 
 impl SessionChannels {
     /// Whether a client subscribed to the scene (build the update only then).
     pub fn wants_scene(&self) -> bool {
-        self.scene.has_sinks()
+        self.scene.has_subscribers()
     }
 
     /// Whether a client subscribed to the force.
     pub fn wants_force(&self) -> bool {
-        self.force.has_sinks()
+        self.force.has_subscribers()
     }
 
     pub fn log_scene(&self, time_ns: u64, update: &SceneUpdate) {
-        self.scene.log_with_time(update, time_ns);
+        if !self.wants_scene() {
+            return;
+        }
+        let mut buf = Vec::with_capacity(update.encoded_len().unwrap_or(1024));
+        if update.encode(&mut buf).is_ok() {
+            self.hub.log(&self.scene, time_ns, &buf);
+        }
     }
 
     pub fn log_force(&self, time_ns: u64, sample: &ForceSample) {
-        self.force.log_with_meta(&sample.to_json(), foxglove::PartialMetadata { log_time: Some(time_ns) });
+        self.hub.log(&self.force, time_ns, &sample.to_json());
     }
 }
 
 impl Drop for SessionChannels {
     fn drop(&mut self) {
-        self.scene.close();
-        self.force.close();
+        self.hub.remove_channel(self.scene.id);
+        self.hub.remove_channel(self.force.id);
     }
 }
 
@@ -133,7 +151,7 @@ mod tests {
     /// and force messages.
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
     async fn a_foxglove_client_subscribes_and_receives_the_scene_and_the_force() {
-        let live = FoxgloveLive::start("127.0.0.1", 0, "needlesim-test").await.unwrap();
+        let live = FoxgloveLive::start("127.0.0.1", 0, "needlesim-test", LiveOptions::default()).await.unwrap();
         let session = live.open_session("abc").unwrap();
         let mut req = format!("ws://127.0.0.1:{}", live.port()).into_client_request().unwrap();
         req.headers_mut().insert("sec-websocket-protocol", "foxglove.sdk.v1".parse().unwrap());
