@@ -7,7 +7,7 @@
 use std::io::Read;
 use std::path::Path;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, bail};
 
 /// Largest local file a scene, its mesh or its trajectory may be, in bytes (256 MiB: above the
 /// text of a mesh at the default node limits, far below the memory of a machine).
@@ -32,7 +32,7 @@ impl SceneFiles<'_> {
     /// The error of a refused or unreadable file never holds the file's contents.
     pub fn read(&self, file: &str) -> Result<String> {
         match self {
-            SceneFiles::Local(dir) => read_local_file(&dir.join(file), MAX_LOCAL_FILE_BYTES),
+            SceneFiles::Local(dir) => Ok(read_local_file(&dir.join(file), MAX_LOCAL_FILE_BYTES)?),
             SceneFiles::None => {
                 bail!(
                     "a scene sent to the server cannot name files: send the mesh with the scene (scene.uploaded, scene.uploaded3d) or use a generated mesh, and the trajectory in the request"
@@ -70,20 +70,32 @@ fn kind_of(t: std::fs::FileType) -> &'static str {
     if t.is_dir() { "a directory" } else { "not a file" }
 }
 
+/// Why a local file was not read: it could not be (the system's error), or it was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum LocalFileError {
+    /// Opening, inspecting or reading it failed (missing, no permission, …).
+    #[error("cannot read {path}: {source}")]
+    Io { path: String, source: std::io::Error },
+    /// It is not a file to read: a link, not a regular file, too large, not UTF-8.
+    #[error("{path}: {problem}")]
+    Refused { path: String, problem: String },
+}
+
 /// Reads a local text file of at most `max_bytes` bytes: refused, naming the path and the
 /// problem, when it is a symbolic link (the last component: name the file it points to), not a
 /// regular file (a directory, a device such as /dev/zero, a FIFO, a socket), larger than
 /// `max_bytes`, or not UTF-8. The file is opened without following a link and without blocking
 /// (a FIFO swapped in after the check), checked again on the open handle, and read at most
 /// `max_bytes + 1` bytes (a file that grows). Errors never hold the file's contents.
-pub fn read_local_file(path: &Path, max_bytes: u64) -> Result<String> {
-    let shown = path.display();
-    let meta = std::fs::symlink_metadata(path).with_context(|| format!("cannot read {shown}"))?;
+pub fn read_local_file(path: &Path, max_bytes: u64) -> Result<String, LocalFileError> {
+    let io = |source| LocalFileError::Io { path: path.display().to_string(), source };
+    let refused = |problem: String| LocalFileError::Refused { path: path.display().to_string(), problem };
+    let meta = std::fs::symlink_metadata(path).map_err(io)?;
     if meta.file_type().is_symlink() {
-        bail!("{shown}: is a symbolic link; name the file it points to");
+        return Err(refused("is a symbolic link; name the file it points to".into()));
     }
     if !meta.is_file() {
-        bail!("{shown}: not a regular file ({})", kind_of(meta.file_type()));
+        return Err(refused(format!("not a regular file ({})", kind_of(meta.file_type()))));
     }
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
@@ -92,21 +104,21 @@ pub fn read_local_file(path: &Path, max_bytes: u64) -> Result<String> {
         use std::os::unix::fs::OpenOptionsExt;
         options.custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK);
     }
-    let file = options.open(path).with_context(|| format!("cannot read {shown}"))?;
-    let meta = file.metadata().with_context(|| format!("cannot read {shown}"))?;
+    let file = options.open(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
     if !meta.is_file() {
-        bail!("{shown}: not a regular file ({})", kind_of(meta.file_type()));
+        return Err(refused(format!("not a regular file ({})", kind_of(meta.file_type()))));
     }
-    let over = |n: u64| anyhow!("{shown}: {n} bytes, over the limit of {max_bytes} bytes");
+    let over = |n: u64| refused(format!("{n} bytes, over the limit of {max_bytes} bytes"));
     if meta.len() > max_bytes {
         return Err(over(meta.len()));
     }
     let mut bytes = Vec::with_capacity(meta.len() as usize);
-    file.take(max_bytes.saturating_add(1)).read_to_end(&mut bytes).with_context(|| format!("cannot read {shown}"))?;
+    file.take(max_bytes.saturating_add(1)).read_to_end(&mut bytes).map_err(io)?;
     if bytes.len() as u64 > max_bytes {
         return Err(over(bytes.len() as u64));
     }
-    String::from_utf8(bytes).map_err(|e| anyhow!("{shown}: not UTF-8 text (invalid byte at offset {})", e.utf8_error().valid_up_to()))
+    String::from_utf8(bytes).map_err(|e| refused(format!("not UTF-8 text (invalid byte at offset {})", e.utf8_error().valid_up_to())))
 }
 
 #[cfg(test)]
@@ -184,5 +196,30 @@ mod tests {
         }
         assert_eq!(SceneFiles::Local(&dir).read("a.msh").unwrap(), "secret");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn issue_35_scene_loaders_apply_the_rule() {
+        use crate::{EXAMPLES, SceneLimits, load_scene, load_scene3d, parse_scene, parse_scene_with, parse_scene3d_with};
+        let limits = SceneLimits::from(&needlesim_core::MeshLimits::default());
+        let phantom = EXAMPLES[0].1;
+        let grid = "[mesh]\ntype = \"grid\"\nnx = 19\nny = 19\nwidth_m = 0.1\nheight_m = 0.1\n";
+        assert!(phantom.contains(grid));
+        let with_mesh = |f: &str| phantom.replace(grid, &format!("[mesh]\ntype = \"msh\"\nfile = \"{f}\"\n"));
+        // From a client: nothing is opened, the key is named.
+        let e = format!("{:#}", parse_scene_with(&with_mesh("/etc/passwd"), SceneFiles::None, &limits).err().unwrap());
+        assert!(e.contains("mesh.file = \"/etc/passwd\": a scene sent to the server cannot name files") && !e.contains("root:"), "{e}");
+        let cube = include_str!("../../scenes/cube-phantom-3d.toml").replace("cube-phantom-3d.csv", "/etc/passwd");
+        let e = format!("{:#}", parse_scene3d_with(&cube, SceneFiles::None, &limits).err().unwrap());
+        assert!(e.contains("trajectory = \"/etc/passwd\": a scene sent to the server cannot name files") && !e.contains("root:"), "{e}");
+        // Local: /dev/zero as the scene or as its mesh is refused unread.
+        for e in [
+            format!("{:#}", load_scene("/dev/zero", &limits).err().unwrap()),
+            format!("{:#}", load_scene3d("/dev/zero", &limits).unwrap_err()),
+        ] {
+            assert!(e.contains("/dev/zero: not a regular file (a character device)"), "{e}");
+        }
+        let e = format!("{:#}", parse_scene(&with_mesh("/dev/zero"), Path::new("."), &limits).err().unwrap());
+        assert!(e.contains("mesh.file = \"/dev/zero\"") && e.contains("not a regular file"), "{e}");
     }
 }

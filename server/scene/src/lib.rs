@@ -22,7 +22,7 @@ use needlesim_core::{
 };
 use serde::Deserialize;
 
-pub use files::{MAX_LOCAL_FILE_BYTES, SceneFiles, read_local_file};
+pub use files::{LocalFileError, MAX_LOCAL_FILE_BYTES, SceneFiles, read_local_file};
 pub use limit::SizeLimit;
 pub use needlesim_trajectory::{Pose2, Trajectory, TrajectoryError};
 pub use needlesim_trajectory::{Pose3, Trajectory3, Trajectory3Error};
