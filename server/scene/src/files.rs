@@ -201,25 +201,25 @@ mod tests {
     #[test]
     fn issue_35_scene_loaders_apply_the_rule() {
         use crate::{EXAMPLES, SceneLimits, load_scene, load_scene3d, parse_scene, parse_scene_with, parse_scene3d_with};
-        let limits = SceneLimits::from(&needlesim_core::MeshLimits::default());
+        let limits = &SceneLimits::from(&needlesim_core::MeshLimits::default());
         let phantom = EXAMPLES[0].1;
         let grid = "[mesh]\ntype = \"grid\"\nnx = 19\nny = 19\nwidth_m = 0.1\nheight_m = 0.1\n";
         assert!(phantom.contains(grid));
         let with_mesh = |f: &str| phantom.replace(grid, &format!("[mesh]\ntype = \"msh\"\nfile = \"{f}\"\n"));
         // From a client: nothing is opened, the key is named.
-        let e = format!("{:#}", parse_scene_with(&with_mesh("/etc/passwd"), SceneFiles::None, &limits).err().unwrap());
+        let e = format!("{:#}", parse_scene_with(&with_mesh("/etc/passwd"), SceneFiles::None, limits).err().unwrap());
         assert!(e.contains("mesh.file = \"/etc/passwd\": a scene sent to the server cannot name files") && !e.contains("root:"), "{e}");
         let cube = include_str!("../../scenes/cube-phantom-3d.toml").replace("cube-phantom-3d.csv", "/etc/passwd");
-        let e = format!("{:#}", parse_scene3d_with(&cube, SceneFiles::None, &limits).err().unwrap());
+        let e = format!("{:#}", parse_scene3d_with(&cube, SceneFiles::None, limits).err().unwrap());
         assert!(e.contains("trajectory = \"/etc/passwd\": a scene sent to the server cannot name files") && !e.contains("root:"), "{e}");
         // Local: /dev/zero as the scene or as its mesh is refused unread.
         for e in [
-            format!("{:#}", load_scene("/dev/zero", &limits).err().unwrap()),
-            format!("{:#}", load_scene3d("/dev/zero", &limits).unwrap_err()),
+            format!("{:#}", load_scene("/dev/zero", limits).err().unwrap()),
+            format!("{:#}", load_scene3d("/dev/zero", limits).unwrap_err()),
         ] {
             assert!(e.contains("/dev/zero: not a regular file (a character device)"), "{e}");
         }
-        let e = format!("{:#}", parse_scene(&with_mesh("/dev/zero"), Path::new("."), &limits).err().unwrap());
+        let e = format!("{:#}", parse_scene(&with_mesh("/dev/zero"), Path::new("."), limits).err().unwrap());
         assert!(e.contains("mesh.file = \"/dev/zero\"") && e.contains("not a regular file"), "{e}");
     }
 }
