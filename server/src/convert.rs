@@ -14,7 +14,7 @@ use needlesim_proto::v1 as pb;
 
 use crate::status::quote;
 use needlesim_core::sim3::BasePose3;
-use needlesim_scene::{Scene, Scene3d, SceneLimits, Trajectory};
+use needlesim_scene::{Scene, Scene3d, SceneFiles, SceneLimits, Trajectory};
 
 /// The needle working-set capacity of an uploaded scene.
 const UPLOADED_MAX_NEEDLE_NODES: usize = 128;
@@ -635,15 +635,14 @@ pub fn trajectory_from_pb(samples: &[pb::TrajectorySample]) -> Result<Trajectory
 pub fn scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Result<Scene> {
     let src = src.and_then(|s| s.source.as_ref()).context("scene: one of example, scene_toml or uploaded is required")?;
     match src {
-        pb::scene_source::Source::Example(name) => {
-            if !needlesim_scene::EXAMPLES.iter().any(|e| e.0 == name) {
-                let names: Vec<&str> = needlesim_scene::EXAMPLES.iter().map(|e| e.0).collect();
-                bail!("scene.example: '{}' is not a shipped example ({})", quote(name), names.join(", "));
-            }
-            needlesim_scene::load_scene(name, limits)
-        }
+        // A client's name resolves to a shipped example only, never to a path; its TOML names no
+        // files (`SceneFiles::None`): the server opens no file a client names.
+        pb::scene_source::Source::Example(name) => needlesim_scene::example_scene(name, limits).unwrap_or_else(|| {
+            let names: Vec<&str> = needlesim_scene::EXAMPLES.iter().map(|e| e.0).collect();
+            bail!("scene.example: '{}' is not a shipped example ({})", quote(name), names.join(", "))
+        }),
         pb::scene_source::Source::SceneToml(text) => {
-            needlesim_scene::parse_scene(text, std::path::Path::new("/nonexistent"), limits).context("scene.scene_toml")
+            needlesim_scene::parse_scene_with(text, SceneFiles::None, limits).context("scene.scene_toml")
         }
         pb::scene_source::Source::Uploaded(u) => uploaded_scene(u, limits),
         pb::scene_source::Source::Uploaded3d(_) => bail!("scene.uploaded3d: a 3D scene makes a live session only (CreateSession)"),
@@ -672,10 +671,11 @@ pub fn scene_source_is_3d(src: Option<&pb::SceneSource>) -> bool {
 pub fn session_scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits) -> Result<SessionScene> {
     match src.and_then(|s| s.source.as_ref()) {
         Some(pb::scene_source::Source::Example(name)) if needlesim_scene::EXAMPLES3D.iter().any(|e| e.0 == name) => {
-            Ok(SessionScene::Three(Box::new(needlesim_scene::load_scene3d(name, limits)?)))
+            let scene = needlesim_scene::example_scene3d(name, limits).context("scene.example: not a shipped 3D example")??;
+            Ok(SessionScene::Three(Box::new(scene)))
         }
         Some(pb::scene_source::Source::SceneToml(text)) if needlesim_scene::scene_dim(text).is_ok_and(|d| d == 3) => {
-            let scene = needlesim_scene::parse_scene3d(text, std::path::Path::new("/nonexistent"), limits).context("scene.scene_toml")?;
+            let scene = needlesim_scene::parse_scene3d_with(text, SceneFiles::None, limits).context("scene.scene_toml")?;
             Ok(SessionScene::Three(Box::new(scene)))
         }
         Some(pb::scene_source::Source::Uploaded3d(u)) => uploaded_scene3d(u, limits).map(|s| SessionScene::Three(Box::new(s))),
@@ -683,8 +683,8 @@ pub fn session_scene_from_pb(src: Option<&pb::SceneSource>, limits: &SceneLimits
     }
 }
 
-/// An uploaded 3D scene: its mesh file written to a private temporary directory for the 3D
-/// loader (which reads the file the TOML names, within its limits), removed afterwards.
+/// An uploaded 3D scene: its TOML may name the uploaded mesh, by `mesh_file_name`, and no other
+/// file (`SceneFiles::Given`: resolved in memory, nothing is written or opened).
 fn uploaded_scene3d(u: &pb::UploadedScene3d, limits: &SceneLimits) -> Result<Scene3d> {
     let name = &u.mesh_file_name;
     let plain = !name.is_empty()
@@ -707,16 +707,8 @@ fn uploaded_scene3d(u: &pb::UploadedScene3d, limits: &SceneLimits) -> Result<Sce
             hint: " (the server's node limit bounds the mesh text)".into(),
         }));
     }
-    static UPLOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let n = UPLOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    // Unique to this process and call; `create_dir` refuses one that exists.
-    let dir = std::env::temp_dir().join(format!("needlesim-upload3d-{}-{n}", std::process::id()));
-    std::fs::create_dir(&dir).with_context(|| format!("scene.uploaded3d: cannot create {}", dir.display()))?;
-    let result = std::fs::write(dir.join(name), &u.mesh_text)
-        .with_context(|| "scene.uploaded3d: cannot store the mesh".to_string())
-        .and_then(|()| needlesim_scene::parse_scene3d(&u.scene_toml, &dir, limits).context("scene.uploaded3d"));
-    let _ = std::fs::remove_dir_all(&dir);
-    result
+    let files = [(name.as_str(), u.mesh_text.as_str())];
+    needlesim_scene::parse_scene3d_with(&u.scene_toml, SceneFiles::Given(&files), limits).context("scene.uploaded3d")
 }
 
 /// The boundary surface of a 3D session's tissue.

@@ -329,7 +329,7 @@ fn main() -> ExitCode {
 }
 
 fn solve(scenario: &std::path::Path, output: Option<&std::path::Path>, limits: &MeshLimits) -> Result<()> {
-    let text = std::fs::read_to_string(scenario).with_context(|| format!("cannot read {}", scenario.display()))?;
+    let text = read_local(scenario)?;
     let sc = exchange::parse_any_scenario(&text).with_context(|| format!("{} is not a valid scenario", scenario.display()))?;
     let t0 = std::time::Instant::now();
     let result = exchange::solve_any(&sc, limits).with_context(|| format!("{}", scenario.display()))?;
@@ -360,7 +360,7 @@ fn run_simulate(
     let scene = scene::load_scene(scene_spec, limits)?;
     let traj = match (trajectory, scene.example_trajectory) {
         (Some(p), _) => {
-            let text = std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?;
+            let text = read_local(p)?;
             scene::Trajectory::parse_csv(&text).with_context(|| format!("{}", p.display()))?
         }
         (None, Some(text)) => scene::Trajectory::parse_csv(text)?,
@@ -413,10 +413,10 @@ fn is_3d_scene(spec: &str) -> Result<bool> {
         return Ok(true);
     }
     let path = std::path::Path::new(spec);
-    if !path.is_file() {
-        return Ok(false);
+    if !std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+        return Ok(false); // a link, a device, a FIFO: the 2D loader names the problem
     }
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = read_local(path)?;
     Ok(scene::scene_dim(&text).with_context(|| format!("scene {}", path.display()))? == 3)
 }
 
@@ -436,7 +436,7 @@ fn run_simulate3(
     let scene = scene::load_scene3d(scene_spec, limits)?;
     let traj = match (trajectory, &scene.trajectory) {
         (Some(p), _) => {
-            let text = std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?;
+            let text = read_local(p)?;
             if text
                 .lines()
                 .find(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
@@ -691,6 +691,12 @@ fn summary(limits: &MeshLimits) -> Result<()> {
     println!("step time: p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs (debug builds are slower; use --release)", p(0.5), p(0.99), p(1.0));
     println!("full time series: needlesim-server simulate --scene paper-phantom -o paper-phantom.csv");
     Ok(())
+}
+
+/// A local file named on the command line (scenario, trajectory, scene): a regular file, not a
+/// link, of at most [`scene::MAX_LOCAL_FILE_BYTES`] ([`scene::read_local_file`]).
+fn read_local(path: &std::path::Path) -> Result<String> {
+    Ok(scene::read_local_file(path, scene::MAX_LOCAL_FILE_BYTES)?)
 }
 
 /// The admin token in `path`: its first line, trimmed, of at least 16 characters.

@@ -43,8 +43,8 @@ fn solve<'py>(py: Python<'py>, scenario: &Bound<'py, PyAny>) -> PyResult<Bound<'
         (scenario.extract::<String>()?, "the scenario".to_owned())
     } else {
         let path: PathBuf = scenario.extract()?;
-        let text =
-            std::fs::read_to_string(&path).map_err(|e| errors::ScenarioError::new_err(format!("cannot read {}: {e}", path.display())))?;
+        let text = needlesim_scene::read_local_file(&path, needlesim_scene::MAX_LOCAL_FILE_BYTES)
+            .map_err(|e| errors::ScenarioError::new_err(format!("{e:#}")))?;
         (text, path.display().to_string())
     };
     let result = py

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use needlesim_core::MeshLimits;
 use needlesim_core::d3::TetTissueModel;
-use needlesim_scene::{EXAMPLES, EXAMPLES3D, Scene, Scene3d};
+use needlesim_scene::{EXAMPLES, EXAMPLES3D, MAX_LOCAL_FILE_BYTES, Scene, Scene3d, read_local_file};
 use numpy::{IntoPyArray, PyArray1, PyArray2, ndarray::Array2};
 use pyo3::prelude::*;
 
@@ -44,12 +44,13 @@ pub fn load(spec: &str, scale: &[(String, f64)]) -> anyhow::Result<SceneKind> {
         3
     } else {
         let path = Path::new(spec);
-        if !path.exists() {
+        if std::fs::symlink_metadata(path).is_err() {
             let d2: Vec<&str> = EXAMPLES.iter().map(|e| e.0).collect();
             let d3: Vec<&str> = EXAMPLES3D.iter().map(|e| e.0).collect();
             anyhow::bail!("scene '{spec}' is neither a file nor a shipped example (examples: {}; 3D: {})", d2.join(", "), d3.join(", "));
         }
-        let text = std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
+        // A regular file of bounded size, not a link: /dev/zero or a FIFO is refused unread.
+        let text = read_local_file(path, MAX_LOCAL_FILE_BYTES)?;
         needlesim_scene::scene_dim(&text).map_err(|e| e.context(format!("scene {}", path.display())))?
     };
     if dim == 2 && scale.is_empty() {
@@ -88,7 +89,7 @@ fn load_scaled(spec: &str, scale: &[(String, f64)], limits: &MeshLimits) -> anyh
         Some((_, toml_text, csv)) => ((*toml_text).to_owned(), PathBuf::from("server/scenes"), Some(*csv)),
         None => {
             let path = Path::new(spec);
-            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+            let text = read_local_file(path, MAX_LOCAL_FILE_BYTES)?;
             (text, path.parent().unwrap_or(Path::new(".")).to_path_buf(), None)
         }
     };

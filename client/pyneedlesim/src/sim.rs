@@ -530,7 +530,8 @@ fn read_trajectory(py: Python<'_>, scene: &SceneKind, obj: Option<&Bound<'_, PyA
     };
     let (text, label) = if obj.is_instance_of::<pyo3::types::PyString>() || obj.hasattr("__fspath__")? {
         let path: PathBuf = obj.extract()?;
-        let text = std::fs::read_to_string(&path).map_err(|e| TrajectoryError::new_err(format!("cannot read {}: {e}", path.display())))?;
+        let text = needlesim_scene::read_local_file(&path, needlesim_scene::MAX_LOCAL_FILE_BYTES)
+            .map_err(|e| TrajectoryError::new_err(format!("{e:#}")))?;
         (text, path.display().to_string())
     } else {
         let np = py.import("numpy")?;

@@ -11,6 +11,7 @@ which sets NEEDLESIM_SERVER to the needlesim-server binary; by hand:
 
 import os
 import pydoc
+import re
 import subprocess
 
 import numpy as np
@@ -221,6 +222,31 @@ def test_errors_raise_typed_exceptions_with_the_commands_messages(tmp_path):
     with pytest.raises(Stop):
         sim.run(progress=stop_at_2000)
     assert sim.last.tick == 1999, "the simulation holds the state of the last tick run"
+
+
+def test_issue_35_devices_fifos_and_links_are_refused_unread(tmp_path):
+    # /dev/zero would be read without end, a FIFO would block: both are refused at once, as
+    # scene, as mesh file, as trajectory and as scenario, naming the path and the problem.
+    fifo = tmp_path / "pipe.toml"
+    os.mkfifo(fifo)
+    link = tmp_path / "link.toml"
+    link.symlink_to("/dev/zero")
+    for path, problem in [("/dev/zero", "not a regular file (a character device)"), (fifo, "not a regular file (a FIFO)"), (link, "is a symbolic link")]:
+        with pytest.raises(needlesim.SceneError, match=re.escape(f"{path}: {problem}")):
+            needlesim.load_scene(path)
+        with pytest.raises(needlesim.SceneError, match=re.escape(f"{path}: {problem}")):
+            needlesim.load_scene(path, scale={"young_modulus_pa": 2.0})
+    with_mesh = tmp_path / "mesh.toml"
+    grid = '[mesh]\ntype = "grid"\nnx = 19\nny = 19\nwidth_m = 0.1\nheight_m = 0.1\n'
+    assert grid in needlesim_example_toml()
+    with_mesh.write_text(needlesim_example_toml().replace(grid, '[mesh]\ntype = "msh"\nfile = "/dev/zero"\n'))
+    with pytest.raises(needlesim.SceneError, match=re.escape('mesh.file = "/dev/zero"') + ".*not a regular file"):
+        needlesim.load_scene(with_mesh)
+    sim = needlesim.Simulation(needlesim.load_scene("paper-phantom"))
+    with pytest.raises(needlesim.TrajectoryError, match="/dev/zero: not a regular file"):
+        sim.run("/dev/zero")
+    with pytest.raises(needlesim.ScenarioError, match="/dev/zero: not a regular file"):
+        needlesim.solve("/dev/zero")
 
 
 def needlesim_example_toml():

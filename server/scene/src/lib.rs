@@ -5,6 +5,7 @@
 
 pub mod exchange;
 pub mod exchange3d;
+pub mod files;
 pub mod limit;
 pub mod scene3d;
 
@@ -21,10 +22,13 @@ use needlesim_core::{
 };
 use serde::Deserialize;
 
+pub use files::{LocalFileError, MAX_LOCAL_FILE_BYTES, SceneFiles, read_local_file};
 pub use limit::SizeLimit;
 pub use needlesim_trajectory::{Pose2, Trajectory, TrajectoryError};
 pub use needlesim_trajectory::{Pose3, Trajectory3, Trajectory3Error};
-pub use scene3d::{EXAMPLES3D, Scene3d, estimated_session_bytes_3d, load_scene3d, parse_scene3d, scene_dim};
+pub use scene3d::{
+    EXAMPLES3D, Scene3d, estimated_session_bytes_3d, example_scene3d, load_scene3d, parse_scene3d, parse_scene3d_with, scene_dim,
+};
 
 /// The shipped examples: (name, scene TOML, trajectory CSV).
 pub const EXAMPLES: &[(&str, &str, &str)] = &[
@@ -457,20 +461,30 @@ pub fn check_session_memory(n_nodes: usize, max_needle_nodes: usize, limits: &Sc
     })
 }
 
-/// Reads a scene: a path to a TOML file, or the name of a shipped example.
+/// A shipped example by name ([`EXAMPLES`]), never a path: `None` for any other name. What a
+/// name from a client resolves to.
+pub fn example_scene(name: &str, limits: impl Into<SceneLimits>) -> Option<Result<Scene>> {
+    let (name, toml_text, csv) = EXAMPLES.iter().find(|e| e.0 == name)?;
+    let scene = parse_scene_with(toml_text, SceneFiles::None, limits).with_context(|| format!("example scene {name}"));
+    Some(scene.map(|mut s| {
+        s.example_trajectory = Some(csv);
+        s
+    }))
+}
+
+/// Reads a local scene: the name of a shipped example, else a path to a TOML file (read by
+/// [`read_local_file`], as are the files it names).
 pub fn load_scene(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene> {
     let limits = &limits.into();
-    if let Some((name, toml_text, csv)) = EXAMPLES.iter().find(|e| e.0 == spec) {
-        let mut scene = parse_scene(toml_text, Path::new("server/scenes"), limits).with_context(|| format!("example scene {name}"))?;
-        scene.example_trajectory = Some(csv);
-        return Ok(scene);
+    if let Some(scene) = example_scene(spec, limits) {
+        return scene;
     }
     let path = Path::new(spec);
-    if !path.exists() {
+    if std::fs::symlink_metadata(path).is_err() {
         let names: Vec<&str> = EXAMPLES.iter().map(|e| e.0).collect();
         bail!("scene '{spec}' is neither a file nor a shipped example (examples: {})", names.join(", "));
     }
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = read_local_file(path, MAX_LOCAL_FILE_BYTES)?;
     parse_scene(&text, path.parent().unwrap_or(Path::new(".")), limits).with_context(|| format!("scene {}", path.display()))
 }
 
@@ -480,8 +494,14 @@ pub fn load_scene(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene> {
 /// debug build (about 0.9 kB a level).
 pub const MAX_TOML_BRACKETS: usize = 1024;
 
-/// Parses scene TOML; `base_dir` resolves relative mesh files.
+/// Parses a local scene's TOML; `base_dir` resolves relative mesh files ([`SceneFiles::Local`]).
 pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) -> Result<Scene> {
+    parse_scene_with(text, SceneFiles::Local(base_dir), limits)
+}
+
+/// Parses scene TOML, the mesh file it names (if any) coming from `files`: [`SceneFiles::None`]
+/// for a scene from a client.
+pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLimits>) -> Result<Scene> {
     let brackets = text.bytes().filter(|b| matches!(b, b'[' | b'{')).count();
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
@@ -490,7 +510,7 @@ pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) 
         bail!("dim = 3: this is a 3D scene; load it with the 3D scene loader (needlesim_scene::load_scene3d)");
     }
     let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
-    build_scene(&file, base_dir, &limits.into())
+    build_scene(&file, files, &limits.into())
 }
 
 /// Checks every number of the scene that the mesh and material checks do not, before anything
@@ -646,7 +666,7 @@ pub(crate) fn check_limits(l: &LimitsSpec) -> Result<()> {
     Ok(())
 }
 
-fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Result<Scene> {
+fn build_scene(f: &SceneFile, files: SceneFiles, scene_limits: &SceneLimits) -> Result<Scene> {
     let limits = &scene_limits.mesh;
     if f.regions.is_empty() {
         bail!("regions: at least one region is needed");
@@ -668,9 +688,10 @@ fn build_scene(f: &SceneFile, base_dir: &Path, scene_limits: &SceneLimits) -> Re
             assign_disc_regions(m, &f.regions, limits)?
         }
         MeshSpec::Msh { file } => {
-            let path = base_dir.join(file);
-            let text = std::fs::read_to_string(&path).with_context(|| format!("mesh.file: cannot read {}", path.display()))?;
-            needlesim_core::msh::parse_msh(&text, limits).with_context(|| format!("mesh.file {}", path.display()))?.mesh
+            let file = file.to_string_lossy();
+            let key = || format!("mesh.file = \"{}\"", limit::quote(&file));
+            let text = files.read(&file).with_context(key)?;
+            needlesim_core::msh::parse_msh(&text, limits).with_context(key)?.mesh
         }
     };
     // Materials and needle parameters in the mesh's region order, matched by name.

@@ -40,8 +40,8 @@ use serde::Deserialize;
 
 use crate::limit::{self, SizeLimit};
 use crate::{
-    GAUGES, LimitsSpec, MAX_TOML_BRACKETS, SceneLimits, check_limits, check_region_needle_values, d_cutting, d_friction, d_peak, d_peak_w,
-    d_puncture, d_static, default_rate,
+    GAUGES, LimitsSpec, MAX_LOCAL_FILE_BYTES, MAX_TOML_BRACKETS, SceneFiles, SceneLimits, check_limits, check_region_needle_values,
+    d_cutting, d_friction, d_peak, d_peak_w, d_puncture, d_static, default_rate, read_local_file,
 };
 
 /// The mesh files a shipped example names: (file, text).
@@ -358,39 +358,51 @@ pub fn scene_dim(text: &str) -> Result<u8> {
     }
 }
 
-/// Reads a 3D scene: a path to a TOML file, or the name of a shipped example ([`EXAMPLES3D`],
-/// whose files are embedded).
-pub fn load_scene3d(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene3d> {
-    let limits = &limits.into();
-    if let Some((name, toml_text, csv, files)) = EXAMPLES3D.iter().find(|e| e.0 == spec) {
-        let read = |f: &str| -> Result<String> {
-            if f.ends_with(".csv") {
-                return Ok((*csv).to_owned());
-            }
-            files.iter().find(|(n, _)| *n == f).map(|(_, t)| (*t).to_owned()).with_context(|| format!("{f} is not shipped"))
-        };
-        let mut scene = parse_with(toml_text, &read, limits).with_context(|| format!("example scene {name}"))?;
+/// A shipped 3D example by name ([`EXAMPLES3D`], its files embedded), never a path: `None` for
+/// any other name. What a name from a client resolves to.
+pub fn example_scene3d(name: &str, limits: impl Into<SceneLimits>) -> Option<Result<Scene3d>> {
+    let (name, toml_text, csv, files) = EXAMPLES3D.iter().find(|e| e.0 == name)?;
+    let read = |f: &str| -> Result<String> {
+        if f.ends_with(".csv") {
+            return Ok((*csv).to_owned());
+        }
+        files.iter().find(|(n, _)| *n == f).map(|(_, t)| (*t).to_owned()).with_context(|| format!("{f} is not shipped"))
+    };
+    let scene = parse_with(toml_text, &read, &limits.into()).with_context(|| format!("example scene {name}"));
+    Some(scene.and_then(|mut scene| {
         if scene.trajectory.is_none() {
             scene.trajectory = Some(Trajectory3::parse_csv(csv).with_context(|| format!("example scene {name}: trajectory"))?);
         }
-        return Ok(scene);
+        Ok(scene)
+    }))
+}
+
+/// Reads a local 3D scene: the name of a shipped example, else a path to a TOML file (read by
+/// [`read_local_file`], as are the files it names).
+pub fn load_scene3d(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene3d> {
+    let limits = &limits.into();
+    if let Some(scene) = example_scene3d(spec, limits) {
+        return scene;
     }
     let path = Path::new(spec);
-    if !path.exists() {
+    if std::fs::symlink_metadata(path).is_err() {
         let names: Vec<&str> = EXAMPLES3D.iter().map(|e| e.0).collect();
         bail!("3D scene '{spec}' is neither a file nor a shipped example (examples: {})", names.join(", "));
     }
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = read_local_file(path, MAX_LOCAL_FILE_BYTES)?;
     parse_scene3d(&text, path.parent().unwrap_or(Path::new(".")), limits).with_context(|| format!("scene {}", path.display()))
 }
 
-/// Parses 3D scene TOML; `base_dir` resolves the mesh and trajectory files it names.
+/// Parses a local 3D scene's TOML; `base_dir` resolves the mesh and trajectory files it names
+/// ([`SceneFiles::Local`]).
 pub fn parse_scene3d(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) -> Result<Scene3d> {
-    let read = |f: &str| -> Result<String> {
-        let p = base_dir.join(f);
-        std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))
-    };
-    parse_with(text, &read, &limits.into())
+    parse_scene3d_with(text, SceneFiles::Local(base_dir), limits)
+}
+
+/// Parses 3D scene TOML, the mesh and trajectory files it names coming from `files`:
+/// [`SceneFiles::None`] for a scene from a client, [`SceneFiles::Given`] for an upload.
+pub fn parse_scene3d_with(text: &str, files: SceneFiles, limits: impl Into<SceneLimits>) -> Result<Scene3d> {
+    parse_with(text, &|f: &str| files.read(f), &limits.into())
 }
 
 fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String>, limits: &SceneLimits) -> Result<Scene3d> {
@@ -585,8 +597,9 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
             if let Some((k, r)) = f.regions.iter().enumerate().find(|(_, r)| r.sphere.is_some() || r.cuboid.is_some()) {
                 bail!("regions[{k}] ('{}'): sphere and cuboid apply to box meshes; a Gmsh mesh's regions are its physical volumes", r.name);
             }
-            let text = read(file).with_context(|| format!("mesh.file = \"{file}\""))?;
-            let m = needlesim_core::msh::parse_msh3d(&text, &tet_limits).with_context(|| format!("mesh.file = \"{file}\""))?;
+            let key = || format!("mesh.file = \"{}\"", limit::quote(file));
+            let text = read(file).with_context(key)?;
+            let m = needlesim_core::msh::parse_msh3d(&text, &tet_limits).with_context(key)?;
             (m.mesh, MeshSource3d::Msh { file: file.clone(), version: m.version })
         }
     };
@@ -650,8 +663,9 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
     let trajectory = match &f.trajectory {
         None => None,
         Some(file) => {
-            let text = read(file).with_context(|| format!("trajectory = \"{file}\""))?;
-            Some(Trajectory3::parse_csv(&text).with_context(|| format!("trajectory = \"{file}\""))?)
+            let key = || format!("trajectory = \"{}\"", limit::quote(file));
+            let text = read(file).with_context(key)?;
+            Some(Trajectory3::parse_csv(&text).with_context(key)?)
         }
     };
     Ok(Scene3d {

@@ -41,7 +41,10 @@ pub fn run_command(cmd: &RunCommand<'_>, limits: &MeshLimits) -> anyhow::Result<
     if let Some(p) = cmd.expert {
         ex.expert = Some(ExpertSource {
             file: p.display().to_string(),
-            text: std::fs::read_to_string(p).map_err(|e| format!("cannot read it: {e}")),
+            text: needlesim_scene::read_local_file(p, needlesim_scene::MAX_LOCAL_FILE_BYTES).map_err(|e| match e {
+                needlesim_scene::LocalFileError::Io { source, .. } => format!("cannot read it: {source}"),
+                needlesim_scene::LocalFileError::Refused { problem, .. } => format!("cannot read it: {problem}"),
+            }),
         });
     }
     if cmd.ticks_every == 0 {

@@ -299,17 +299,24 @@ pub fn load_exercise(spec: &str) -> Result<Exercise, ExerciseError> {
         let names: Vec<&str> = EXERCISES.iter().map(|e| e.0).collect();
         return Err(ExerciseError::NotFound(spec.to_owned(), names.join(", ")));
     }
-    let text = std::fs::read_to_string(path).map_err(|source| ExerciseError::Read { path: path.display().to_string(), source })?;
+    let text = read_local(path)?;
     parse_exercise(&text, path.parent().unwrap_or(Path::new(".")))
 }
 
 /// Parses exercise TOML; `base_dir` resolves the files it names.
 pub fn parse_exercise(text: &str, base_dir: &Path) -> Result<Exercise, ExerciseError> {
-    let read = |f: &str| -> Result<String, ExerciseError> {
-        let p = base_dir.join(f);
-        std::fs::read_to_string(&p).map_err(|source| ExerciseError::Read { path: p.display().to_string(), source })
-    };
+    let read = |f: &str| read_local(&base_dir.join(f));
     parse_with(text, &read, base_dir)
+}
+
+/// A local file an exercise names: a regular file, not a link, of bounded size
+/// ([`needlesim_scene::read_local_file`]); the error names the path and the problem.
+fn read_local(path: &Path) -> Result<String, ExerciseError> {
+    use needlesim_scene::LocalFileError;
+    needlesim_scene::read_local_file(path, needlesim_scene::MAX_LOCAL_FILE_BYTES).map_err(|e| match e {
+        LocalFileError::Io { path, source } => ExerciseError::Read { path, source },
+        LocalFileError::Refused { path, problem } => ExerciseError::Read { path, source: std::io::Error::other(problem) },
+    })
 }
 
 fn positive(key: &str, v: f64) -> Result<f64, ExerciseError> {

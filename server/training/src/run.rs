@@ -431,7 +431,8 @@ fn finish(
 
 /// Reads a trajectory file for [`run_exercise`] (a helper for the command line).
 pub fn read_trajectory(path: &Path) -> Result<String, ExerciseRunError> {
-    std::fs::read_to_string(path).map_err(|e| ExerciseRunError::Trajectory(format!("cannot read {}: {e}", path.display())))
+    needlesim_scene::read_local_file(path, needlesim_scene::MAX_LOCAL_FILE_BYTES)
+        .map_err(|e| ExerciseRunError::Trajectory(format!("{e:#}")))
 }
 
 #[cfg(test)]
