@@ -490,7 +490,7 @@ pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) 
     if scene_dim(text)? == 3 {
         bail!("dim = 3: this is a 3D scene; load it with the 3D scene loader (needlesim_scene::load_scene3d)");
     }
-    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
+    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e)))?;
     build_scene(&file, base_dir, &limits.into())
 }
 

@@ -399,7 +399,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String>, limits: &SceneL
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
     }
-    let file: Scene3dFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
+    let file: Scene3dFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e)))?;
     build(&file, read, limits)
 }
 
