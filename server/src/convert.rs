@@ -324,7 +324,7 @@ pub fn trajectory3_from_pb(samples: &[pb::TrajectorySample]) -> Result<needlesim
     if out.is_empty() {
         bail!("trajectory is empty");
     }
-    Ok(needlesim_scene::Trajectory3 { samples: out })
+    Ok(needlesim_scene::Trajectory3::from_samples(out))
 }
 
 /// What a session is, for listings.

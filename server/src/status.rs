@@ -8,6 +8,7 @@
 //! an `anyhow::Error` chain (scene loading, trajectories, identify); [`ApiError::from_chain`] finds
 //! the typed cause in the chain by downcasting, never by matching text.
 
+use needlesim_core::d3::TetMeshError;
 use needlesim_core::mesh::MeshError;
 use needlesim_core::msh::MshError;
 use needlesim_core::sim::SimError;
@@ -70,6 +71,16 @@ impl ApiError {
             {
                 return Self::ResourceExhausted(msg);
             }
+            if let Some(m) = cause.downcast_ref::<TetMeshError>()
+                && tet_mesh_is_size_limit(m)
+            {
+                return Self::ResourceExhausted(msg);
+            }
+            if let Some(MshError::TetMesh(m)) = cause.downcast_ref::<MshError>()
+                && tet_mesh_is_size_limit(m)
+            {
+                return Self::ResourceExhausted(msg);
+            }
             if let Some(p) = cause.downcast_ref::<PlanInputError>() {
                 return Self::invalid(p.field, msg);
             }
@@ -107,6 +118,11 @@ impl ApiError {
 /// Whether a mesh error is a size limit (RESOURCE_EXHAUSTED) rather than a bad mesh.
 pub fn mesh_is_size_limit(e: &MeshError) -> bool {
     matches!(e, MeshError::TooManyNodes { .. } | MeshError::TooManyTriangles { .. })
+}
+
+/// Whether a tetrahedral mesh error is a size limit (RESOURCE_EXHAUSTED), as in 2D.
+pub fn tet_mesh_is_size_limit(e: &TetMeshError) -> bool {
+    matches!(e, TetMeshError::TooManyNodes { .. } | TetMeshError::TooManyTets { .. })
 }
 
 impl From<&SimError> for ApiError {
@@ -203,7 +219,8 @@ impl From<SizeLimit> for ApiError {
 
 impl From<ApiError> for Status {
     fn from(e: ApiError) -> Self {
-        let m = |s: String| clip(&s, MAX_MESSAGE_CHARS);
+        // At most MAX_MESSAGE_CHARS characters, the "…" of a cut message included.
+        let m = |s: String| if s.chars().count() <= MAX_MESSAGE_CHARS { s } else { clip(&s, MAX_MESSAGE_CHARS - 1) };
         match e {
             ApiError::InvalidArgument { field, message } => Status::invalid_argument(m(if message.starts_with(&field) {
                 message
@@ -262,5 +279,29 @@ mod tests {
     fn messages_are_bounded() {
         let st = Status::from(ApiError::Internal("x".repeat(1 << 20)));
         assert!(st.message().chars().count() <= MAX_MESSAGE_CHARS + 1);
+    }
+
+    #[test]
+    fn issue_35_messages_are_at_most_the_limit_with_the_ellipsis() {
+        for n in [MAX_MESSAGE_CHARS - 1, MAX_MESSAGE_CHARS, MAX_MESSAGE_CHARS + 1, 1 << 20] {
+            let st = Status::from(ApiError::Internal("é".repeat(n)));
+            assert_eq!(st.message().chars().count(), n.min(MAX_MESSAGE_CHARS), "{n}");
+            assert_eq!(st.message().ends_with('…'), n > MAX_MESSAGE_CHARS, "{n}");
+            // With the field's prefix.
+            let st = Status::from(ApiError::invalid("scene", "x".repeat(n)));
+            assert!(st.message().chars().count() <= MAX_MESSAGE_CHARS, "{n}");
+        }
+    }
+
+    #[test]
+    fn issue_35_a_tet_mesh_over_its_limits_is_resource_exhausted() {
+        for e in [TetMeshError::TooManyNodes { n_nodes: 10, max_nodes: 5 }, TetMeshError::TooManyTets { n_tets: 10, max_tets: 5 }] {
+            let chain = anyhow::Error::new(e.clone()).context("mesh");
+            assert_eq!(Status::from(ApiError::from_chain("scene", &chain)).code(), tonic::Code::ResourceExhausted);
+            let chain = anyhow::Error::new(MshError::TetMesh(e)).context("mesh.file");
+            assert_eq!(Status::from(ApiError::from_chain("scene", &chain)).code(), tonic::Code::ResourceExhausted);
+        }
+        let bad = anyhow::Error::new(TetMeshError::Empty).context("mesh");
+        assert_eq!(Status::from(ApiError::from_chain("scene", &bad)).code(), tonic::Code::InvalidArgument);
     }
 }

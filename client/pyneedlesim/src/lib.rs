@@ -81,6 +81,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PlanError", py.get_type::<errors::PlanError>())?;
     m.add("CONTACT_STATES", sim::CONTACT_STATES.to_vec())?;
     m.add("DEFAULT_MAX_TICKS", needlesim_offline::DEFAULT_MAX_TICKS)?;
+    m.add("MAX_TICKS_LIMIT", needlesim_offline::MAX_TICKS_LIMIT)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -19,7 +19,7 @@ use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
 use needlesim_core::sim::{NodeState, Simulation, StepOutput};
 use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
-use needlesim_offline::{DEFAULT_PREFETCH_NODES_PER_TICK, RunOptions, Script, ScriptedRun, simulate};
+use needlesim_offline::{DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, RunOptions, Script, ScriptedRun, preallocated_ticks, simulate};
 use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
@@ -587,18 +587,15 @@ impl Progress<'_> {
     }
 }
 
-/// The last tick of a 3D run of `traj` at `rate_hz`, `K = round((t1 - t0) rate)`; an error
-/// message when it is over `max_ticks`.
-fn last_tick3(traj: &Trajectory3, rate_hz: f64, max_ticks: u64) -> Result<u64, String> {
-    let (t0, t1) = traj.span_s();
-    let last_k = ((t1 - t0) * rate_hz).round();
-    match last_k.partial_cmp(&(max_ticks as f64)) {
-        Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal) => Ok(last_k as u64),
-        _ => Err(format!(
-            "the trajectory lasts {} s, {last_k} ticks at {rate_hz} Hz, over the limit of {max_ticks} ticks; its last sample is at t = {t1} s",
-            t1 - t0
-        )),
+/// Refuses a `max_ticks` argument over [`MAX_TICKS_LIMIT`] (a run's results are held in memory),
+/// naming the argument and the limit.
+fn check_max_ticks(max_ticks: u64) -> PyResult<()> {
+    if max_ticks > MAX_TICKS_LIMIT {
+        return Err(TrajectoryError::new_err(format!(
+            "max_ticks = {max_ticks} is over the limit of {MAX_TICKS_LIMIT} ticks (needlesim.MAX_TICKS_LIMIT): a run's results are held in memory"
+        )));
     }
+    Ok(())
 }
 
 /// Why a 3D run failed.
@@ -609,20 +606,20 @@ enum Run3Failure {
 }
 
 /// The 3D scripted run, as the 3D `simulate` does it: tick `k = 0..=K` steps the trajectory's
-/// pose at `t0 + k / rate` (`K = round((t1 - t0) rate)`), starting at the first sample's pose;
+/// pose at `t0 + k / rate` (`K = last_k = round((t1 - t0) rate)`, checked against the tick limit
+/// by the caller), starting at the first sample's pose;
 /// after each step every approaching node's columns are computed. Minimal: targets are not
 /// tracked, no CSV. To be replaced by `needlesim_offline::simulate3`'s loop once that lands.
 fn run3(
     scene: &Scene3d,
     tissue: &Arc<TetTissueModel>,
     traj: &Trajectory3,
-    max_ticks: u64,
+    last_k: u64,
     series: &mut Series,
     progress: &mut Progress<'_>,
 ) -> Result<(Simulation3, u64), Run3Failure> {
     let rate = scene.tick_rate_hz;
     let t0 = traj.span_s().0;
-    let last_k = last_tick3(traj, rate, max_ticks).map_err(Run3Failure::Trajectory)?;
     let first = traj.samples[0].1;
     let initial = BasePose3::new(first.position_m, first.quat_wxyz)
         .map_err(|e| Run3Failure::Trajectory(format!("the trajectory's first pose: {e}")))?;
@@ -744,7 +741,8 @@ impl PySimulation {
     /// exception raised there (or KeyboardInterrupt) stops the run and propagates, the
     /// simulation then holding the state of the last tick run.
     ///
-    /// Raises TrajectoryError (unreadable or invalid trajectory, longer than ``max_ticks``),
+    /// Raises TrajectoryError (unreadable or invalid trajectory, longer than ``max_ticks``, or
+    /// ``max_ticks`` over ``needlesim.MAX_TICKS_LIMIT``),
     /// PoseError (a pose that is not finite), SimulationError (a failed step); after those the
     /// simulation is unchanged.
     #[pyo3(signature = (trajectory=None, *, progress=None, progress_every=1000, max_ticks=simulate::DEFAULT_MAX_TICKS))]
@@ -756,14 +754,15 @@ impl PySimulation {
         progress_every: u64,
         max_ticks: u64,
     ) -> PyResult<RunResult> {
+        check_max_ticks(max_ticks)?;
         let traj = read_trajectory(py, &self.scene, trajectory)?;
         let scene = self.scene.clone();
         match (&*scene, traj) {
             (SceneKind::D2(s), Traj::D2(traj)) => {
                 let rate = s.params.tick_rate_hz;
-                let total = traj.tick_count(rate, max_ticks).map_or(0, |n| n + 1);
+                let total = traj.tick_count(rate, max_ticks).map_err(|e| trajectory_error(&e))? + 1;
                 let t0 = traj.span_s().0;
-                let mut series = Series::with_capacity(2, s.target_names.len(), total as usize);
+                let mut series = Series::with_capacity(2, s.target_names.len(), preallocated_ticks(total));
                 let mut prog = Progress { callback: progress.as_ref(), every: progress_every, total, error: None };
                 let r = py.detach(|| {
                     simulate::run_observed(s, &traj, max_ticks, None, |tick, out| {
@@ -789,11 +788,10 @@ impl PySimulation {
                 })
             }
             (SceneKind::D3 { scene: s, tissue }, Traj::D3(traj)) => {
-                let (t0, t1) = traj.span_s();
-                let total = ((t1 - t0) * s.tick_rate_hz).round().min(max_ticks as f64) as u64 + 1;
-                let mut series = Series::with_capacity(3, s.targets.len(), total as usize);
+                let total = traj.tick_count(s.tick_rate_hz, max_ticks).map_err(|e| trajectory_error(&e))? + 1;
+                let mut series = Series::with_capacity(3, s.targets.len(), preallocated_ticks(total));
                 let mut prog = Progress { callback: progress.as_ref(), every: progress_every, total, error: None };
-                let r = py.detach(|| run3(s, tissue, &traj, max_ticks, &mut series, &mut prog));
+                let r = py.detach(|| run3(s, tissue, &traj, total - 1, &mut series, &mut prog));
                 let (sim, prefetched) = r.map_err(|f| match f {
                     Run3Failure::Trajectory(m) => TrajectoryError::new_err(m),
                     Run3Failure::Setup(e) => e,
@@ -918,7 +916,7 @@ type TickPoses<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
 /// (ticks, 3) in 2D (x_m, y_m, theta_rad), (ticks, 7) in 3D (x_m, y_m, z_m, qw, qx, qy, qz).
 /// Stepping ``Simulation(scene, initial_pose=poses[0])`` through them reproduces the run.
 ///
-/// ``trajectory`` is as for :meth:`Simulation.run`. Raises TrajectoryError.
+/// ``trajectory`` and ``max_ticks`` are as for :meth:`Simulation.run`. Raises TrajectoryError.
 #[pyfunction]
 #[pyo3(signature = (scene, trajectory=None, *, max_ticks=simulate::DEFAULT_MAX_TICKS))]
 pub fn tick_poses<'py>(
@@ -927,6 +925,7 @@ pub fn tick_poses<'py>(
     trajectory: Option<&Bound<'py, PyAny>>,
     max_ticks: u64,
 ) -> PyResult<TickPoses<'py>> {
+    check_max_ticks(max_ticks)?;
     let kind = scene.inner.clone();
     let traj = read_trajectory(py, &kind, trajectory)?;
     match (&*kind, traj) {
@@ -948,7 +947,7 @@ pub fn tick_poses<'py>(
         (SceneKind::D3 { scene: s, .. }, Traj::D3(traj)) => {
             let rate = s.tick_rate_hz;
             let t0 = traj.span_s().0;
-            let n = last_tick3(&traj, rate, max_ticks).map_err(TrajectoryError::new_err)? as usize + 1;
+            let n = traj.tick_count(rate, max_ticks).map_err(|e| trajectory_error(&e))? as usize + 1;
             let t: Vec<f64> = (0..n).map(|k| t0 + k as f64 / rate).collect();
             let p: Vec<f64> = t
                 .iter()

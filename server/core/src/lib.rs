@@ -36,6 +36,7 @@ pub mod mesh;
 pub mod mixed;
 pub mod msh;
 pub mod needle;
+pub mod num;
 pub mod rod3;
 pub mod sim;
 pub mod sim3;

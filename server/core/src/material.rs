@@ -9,13 +9,13 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MaterialError {
     /// Young's modulus is not a finite positive number.
-    #[error("{region}: Young's modulus E = {young_modulus_pa} Pa must be finite and > 0")]
+    #[error("{region}: Young's modulus E = {} Pa must be finite and > 0", crate::num::num(*young_modulus_pa))]
     YoungModulus { region: String, young_modulus_pa: f64 },
     /// Poisson's ratio is outside (−1, 0.5] in plane stress, or outside (−1, 0.5) in plane strain.
-    #[error("{region}: Poisson ratio ν = {poisson_ratio} must be finite and in {}", if *.plane_strain { "(−1, 0.5) in plane strain (ν = 0.5, incompressible, makes λ infinite)" } else { "(−1, 0.5] in plane stress" })]
+    #[error("{region}: Poisson ratio ν = {} must be finite and in {}", crate::num::num(*poisson_ratio), if *.plane_strain { "(−1, 0.5) in plane strain (ν = 0.5, incompressible, makes λ infinite)" } else { "(−1, 0.5] in plane stress" })]
     PoissonRatio { region: String, poisson_ratio: f64, plane_strain: bool },
     /// The plane-stress thickness is not a finite positive number.
-    #[error("thickness {thickness_m} m must be finite and > 0")]
+    #[error("thickness {} m must be finite and > 0", crate::num::num(*thickness_m))]
     Thickness { thickness_m: f64 },
     /// The number of materials does not match the number of regions of the mesh.
     #[error("the mesh has {n_regions} region(s) but {n_materials} material(s) were given")]

@@ -70,7 +70,9 @@ pub enum MeshError {
     /// Two nodes lie within [`DUPLICATE_NODE_TOL`] × the bounding-box diagonal of each other: a
     /// mesh that repeats a node instead of sharing it is cut apart there.
     #[error(
-        "nodes {first_idx} and {second_idx} coincide at ({x}, {y}) (within {tol_m:e} m): a node must appear once and be shared by its triangles"
+        "nodes {first_idx} and {second_idx} coincide at ({}, {}) (within {tol_m:e} m): a node must appear once and be shared by its triangles",
+        crate::num::num(*x),
+        crate::num::num(*y)
     )]
     DuplicateNode { first_idx: usize, second_idx: usize, x: f64, y: f64, tol_m: f64 },
     /// Two triangles have the same three nodes (in any order).
@@ -500,7 +502,11 @@ impl RectMeshParams {
             return Err(MeshError::InvalidRectangle(format!("nx and ny must be at least 2, got {nx} × {ny}")));
         }
         if !(width_m.is_finite() && width_m > 0.0 && height_m.is_finite() && height_m > 0.0) {
-            return Err(MeshError::InvalidRectangle(format!("width and height must be finite and positive, got {width_m} × {height_m}")));
+            return Err(MeshError::InvalidRectangle(format!(
+                "width and height must be finite and positive, got {} × {}",
+                crate::num::num(width_m),
+                crate::num::num(height_m)
+            )));
         }
         if !(origin_m[0].is_finite() && origin_m[1].is_finite()) {
             return Err(MeshError::InvalidRectangle(format!("origin must be finite, got {origin_m:?}")));

@@ -155,21 +155,21 @@ impl NeedleShape {
     pub fn validate(&self) -> Result<(), String> {
         let length_m = self.tip_s_m();
         if !(length_m.is_finite() && length_m > 0.0) {
-            return Err(format!("needle length {length_m} m must be finite and > 0"));
+            return Err(format!("needle length {} m must be finite and > 0", crate::num::num(length_m)));
         }
         if let NeedleShape::Flexible(f) = self {
             let ei = f.flexural_rigidity_nm2;
             if !(ei.is_finite() && ei > 0.0) {
-                return Err(format!("needle flexural_rigidity_nm2 = {ei} must be finite and > 0"));
+                return Err(format!("needle flexural_rigidity_nm2 = {} must be finite and > 0", crate::num::num(ei)));
             }
             if !(2..=4096).contains(&f.n_links) {
                 return Err(format!("needle n_links = {} must be in 2..=4096", f.n_links));
             }
             if !(f.bevel_force_ratio.is_finite() && f.bevel_force_ratio >= 0.0 && f.bevel_force_ratio <= 10.0) {
-                return Err(format!("needle bevel_force_ratio = {} must be finite and in [0, 10]", f.bevel_force_ratio));
+                return Err(format!("needle bevel_force_ratio = {} must be finite and in [0, 10]", crate::num::num(f.bevel_force_ratio)));
             }
             if f.bevel_side != 1.0 && f.bevel_side != -1.0 {
-                return Err(format!("needle bevel_side = {} must be +1 or -1", f.bevel_side));
+                return Err(format!("needle bevel_side = {} must be +1 or -1", crate::num::num(f.bevel_side)));
             }
         }
         Ok(())
@@ -247,7 +247,7 @@ impl RegionNeedleParams {
                     "tip_peak_width_m" => "finite and > 0",
                     _ => "finite and ≥ 0",
                 };
-                return Err(format!("region {region}: {name} = {v} must be {rule}"));
+                return Err(format!("region {region}: {name} = {} must be {rule}", crate::num::num(v)));
             }
         }
         Ok(())

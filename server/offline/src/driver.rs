@@ -28,6 +28,20 @@ use needlesim_trajectory::TrajectoryError;
 /// `simulate` command's `--max-ticks` (10⁶ ticks: 1000 s at 1 kHz, 8 MB of step times).
 pub const DEFAULT_MAX_TICKS: u64 = 1_000_000;
 
+/// The most ticks a caller may ask an in-memory run for (`max_ticks` of the Python package,
+/// whose results hold about 150 bytes a tick, more with targets: 1.5 GB here): 10⁷ ticks, 10,000 s
+/// at 1 kHz. A larger `max_ticks` is refused, not clamped.
+pub const MAX_TICKS_LIMIT: u64 = 10 * DEFAULT_MAX_TICKS;
+
+/// The most rows a run's per-tick storage reserves before it runs; it grows beyond as ticks run,
+/// so memory follows the ticks simulated, not a length asked for.
+pub const PREALLOCATED_TICKS: u64 = 1 << 16;
+
+/// The capacity to reserve for a run of `ticks` ticks: at most [`PREALLOCATED_TICKS`].
+pub fn preallocated_ticks(ticks: u64) -> usize {
+    ticks.min(PREALLOCATED_TICKS) as usize
+}
+
 /// Compliance columns computed between two steps, by default (the budget a worker would have).
 pub const DEFAULT_PREFETCH_NODES_PER_TICK: usize = 8;
 
@@ -152,7 +166,7 @@ impl<'a> ScriptedRun<'a> {
         let (t0_s, ticks_total) = match script {
             Script::Trajectory { trajectory, end_s: None } => {
                 params.initial_pose = needlesim_scene::base_pose(trajectory.samples[0].1);
-                (trajectory.span_s().0, trajectory.tick_count(rate_hz, opts.max_ticks)? + 1)
+                (trajectory.span_s().0, trajectory.tick_count(rate_hz, opts.max_ticks)?.saturating_add(1))
             }
             Script::Trajectory { trajectory, end_s: Some(end_s) } => {
                 params.initial_pose = needlesim_scene::base_pose(trajectory.samples[0].1);
@@ -161,7 +175,7 @@ impl<'a> ScriptedRun<'a> {
                     return Err(RunError::BadEnd { end_s, start_s: t0 });
                 }
                 let cut = Trajectory::from_samples(vec![trajectory.samples[0], (t1.min(end_s), trajectory.samples[0].1)]);
-                (t0, cut.tick_count(rate_hz, opts.max_ticks)? + 1)
+                (t0, cut.tick_count(rate_hz, opts.max_ticks)?.saturating_add(1))
             }
             Script::Poses(poses) => {
                 let n = poses.len() as u64;

@@ -10,4 +10,7 @@ pub mod plan3;
 pub mod simulate;
 pub mod simulate3;
 
-pub use driver::{DEFAULT_MAX_TICKS, DEFAULT_PREFETCH_NODES_PER_TICK, RunError, RunOptions, RunTotals, Script, ScriptedRun, Tick};
+pub use driver::{
+    DEFAULT_MAX_TICKS, DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, PREALLOCATED_TICKS, RunError, RunOptions, RunTotals, Script,
+    ScriptedRun, Tick, preallocated_ticks,
+};

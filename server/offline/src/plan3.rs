@@ -222,9 +222,9 @@ impl Plan3 {
 
     /// The trajectory as the scene module's type (what `simulate` replays).
     pub fn trajectory3(&self) -> Trajectory3 {
-        Trajectory3 {
-            samples: self.trajectory.iter().map(|&[t, x, y, z, qw, qx, qy, qz]| (t, Pose3::new([x, y, z], [qw, qx, qy, qz]))).collect(),
-        }
+        Trajectory3::from_samples(
+            self.trajectory.iter().map(|&[t, x, y, z, qw, qx, qy, qz]| (t, Pose3::new([x, y, z], [qw, qx, qy, qz]))).collect(),
+        )
     }
 }
 
@@ -498,7 +498,7 @@ fn trajectory(p: &Problem3, c: &Candidate, roll0: f64, depth_m: f64, outside_m: 
     if hold_s > 0.0 {
         samples.push((t + hold_s, pose(depth_m, roll)));
     }
-    Trajectory3 { samples }
+    Trajectory3::from_samples(samples)
 }
 
 /// A simulated candidate.

@@ -70,7 +70,8 @@ pub fn run_observed(
     let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::trajectory(traj), opts)?;
     let rate = scene.params.tick_rate_hz;
     let t0 = run.t0_s();
-    let mut summary = RunSummary { step_times_s: Vec::with_capacity(run.ticks_total() as usize), ..Default::default() };
+    let mut summary =
+        RunSummary { step_times_s: Vec::with_capacity(crate::driver::preallocated_ticks(run.ticks_total())), ..Default::default() };
     if let Some(c) = csv.as_deref_mut() {
         c.push_str(&csv_header(&scene.target_names));
         c.push('\n');

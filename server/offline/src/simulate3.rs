@@ -34,16 +34,17 @@ use std::time::Instant;
 use needlesim_core::d3::assembly::{element_stiffness, element_stresses_pa, tet_dofs};
 use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simulation3, Target3, TargetState3};
 use needlesim_scene::exchange3d::{PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, scenario_from_snapshot};
-use needlesim_scene::{Scene3d, Trajectory3};
+use needlesim_scene::{Scene3d, Trajectory3, TrajectoryError};
+
+use crate::driver::preallocated_ticks;
 
 /// Why a 3D run failed; each names what.
 #[derive(Debug, thiserror::Error)]
 pub enum Run3Error {
-    /// Before the run: the trajectory lasts more ticks than allowed.
-    #[error(
-        "the trajectory lasts {span_s} s, {ticks} ticks at {rate_hz} Hz, over the limit of {max_ticks} ticks (--max-ticks); its last sample is at t = {end_s} s"
-    )]
-    TooLong { span_s: f64, ticks: u64, rate_hz: f64, max_ticks: u64, end_s: f64 },
+    /// Before the run: the trajectory lasts more ticks than allowed (the error names its last
+    /// sample's line, as in 2D).
+    #[error(transparent)]
+    TooLong(#[from] TrajectoryError),
     /// Before the run: a pose of the trajectory is not a valid base pose.
     #[error("the trajectory's first pose: {0}")]
     Pose(String),
@@ -155,10 +156,7 @@ pub fn run3(
 ) -> Result<Run3Output, Run3Error> {
     let rate = scene.tick_rate_hz;
     let (t0, t1) = traj.span_s();
-    let last_k = ((t1 - t0) * rate).round() as u64;
-    if last_k > max_ticks {
-        return Err(Run3Error::TooLong { span_s: t1 - t0, ticks: last_k + 1, rate_hz: rate, max_ticks, end_s: t1 });
-    }
+    let last_k = traj.tick_count(rate, max_ticks)?;
     if let Some(&bad) = dump_ticks.iter().find(|&&k| k > last_k) {
         return Err(Run3Error::DumpTick { tick: bad, last: last_k });
     }
@@ -187,7 +185,7 @@ pub fn run3(
         c.push_str(&csv_header3(&names));
         c.push('\n');
     }
-    let mut summary = RunSummary3 { step_times_s: Vec::with_capacity(last_k as usize + 1), factorise_s, ..Default::default() };
+    let mut summary = RunSummary3 { step_times_s: Vec::with_capacity(preallocated_ticks(last_k)), factorise_s, ..Default::default() };
     let mut dumps = Vec::new();
     for k in 0..=last_k {
         let t_s = t0 + k as f64 / rate;
@@ -498,5 +496,18 @@ radius_m = 0.001
         assert!(e.contains("--dump-at 9999") && e.contains("0..=3500"), "{e}");
         let e = run3(&scene(), &traj, 100, &[], None).err().unwrap().to_string();
         assert!(e.contains("over the limit of 100 ticks"), "{e}");
+    }
+
+    /// Issue 35 item 14: a trajectory 1e17 s long is refused naming its last line and the
+    /// number of ticks it would take (not a count that wrapped to 0), before anything runs.
+    #[test]
+    fn issue_35_a_trajectory_of_1e17_s_is_refused_naming_its_line_and_ticks() {
+        let text = "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0.05,0.05,0.11,0.7071067811865476,0,0.7071067811865476,0\n# a comment\n1e17,0.05,0.05,0.1,0.7071067811865476,0,0.7071067811865476,0\n";
+        let traj = Trajectory3::parse_csv(text).unwrap();
+        for max_ticks in [1_000_000, u64::MAX] {
+            let e = run3(&scene(), &traj, max_ticks, &[], None).err().unwrap().to_string();
+            assert!(e.starts_with("trajectory line 4: t_s = 1e17 ends 1e17 s after the first sample, 1e20 ticks at 1000 Hz"), "{e}");
+            assert!(e.contains(&format!("over the limit of {max_ticks} ticks")), "{e}");
+        }
     }
 }

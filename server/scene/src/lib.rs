@@ -15,6 +15,7 @@ use std::sync::Arc;
 use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::mesh::DiagonalPattern;
+use needlesim_core::num::num;
 use needlesim_core::sim::{ContactModel, SimParams, TargetParams, Viscoelastic};
 use needlesim_core::{
     BasePose, FlexibleNeedle, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams,
@@ -509,7 +510,7 @@ pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLi
     if scene_dim(text)? == 3 {
         bail!("dim = 3: this is a 3D scene; load it with the 3D scene loader (needlesim_scene::load_scene3d)");
     }
-    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
+    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e)))?;
     build_scene(&file, files, &limits.into())
 }
 
@@ -518,19 +519,19 @@ pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLi
 fn check_values(f: &SceneFile) -> Result<()> {
     use needlesim_core::sim::param_limits::{MAX_NEEDLE_NODES, MAX_NEEDLE_NODES_FLEXIBLE};
     if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
-        bail!("tick_rate_hz = {}: must be between 100 and 10000", f.tick_rate_hz);
+        bail!("tick_rate_hz = {}: must be between 100 and 10000", num(f.tick_rate_hz));
     }
     let n = &f.needle;
     if !(n.length_m.is_finite() && n.length_m > 0.0) {
-        bail!("needle.length_m = {}: must be finite and > 0", n.length_m);
+        bail!("needle.length_m = {}: must be finite and > 0", num(n.length_m));
     }
     if !n.base.iter().all(|v| v.is_finite()) {
-        bail!("needle.base = [{}, {}, {}]: must be finite", n.base[0], n.base[1], n.base[2]);
+        bail!("needle.base = [{}, {}, {}]: must be finite", num(n.base[0]), num(n.base[1]), num(n.base[2]));
     }
     if let Some(s) = n.contact_spacing_m {
         use needlesim_core::sim::param_limits::{MAX_CONTACT_SPACING_M, MIN_CONTACT_SPACING_M};
         if !(s.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&s)) {
-            bail!("needle.contact_spacing_m = {s}: must be between {MIN_CONTACT_SPACING_M} and {MAX_CONTACT_SPACING_M} m");
+            bail!("needle.contact_spacing_m = {}: must be between {MIN_CONTACT_SPACING_M} and {MAX_CONTACT_SPACING_M} m", num(s));
         }
         if n.contact == ContactSpec::Nodes {
             bail!("needle.contact_spacing_m is set but needle.contact = \"nodes\": the spacing applies to material points only");
@@ -539,12 +540,12 @@ fn check_values(f: &SceneFile) -> Result<()> {
     if let Some(r) = n.capture_radius_m
         && !(r.is_finite() && r > 0.0)
     {
-        bail!("needle.capture_radius_m = {r}: must be finite and > 0");
+        bail!("needle.capture_radius_m = {}: must be finite and > 0", num(r));
     }
     if let Some(d) = n.diameter_m
         && !(d.is_finite() && d > 0.0 && d <= 0.02)
     {
-        bail!("needle.diameter_m = {d}: must be finite, > 0 and ≤ 0.02 m");
+        bail!("needle.diameter_m = {}: must be finite, > 0 and ≤ 0.02 m", num(d));
     }
     if n.cutting == CuttingSpec::Toughness {
         if n.contact == ContactSpec::Nodes {
@@ -574,7 +575,7 @@ fn check_values(f: &SceneFile) -> Result<()> {
                 r.name
             ),
             (_, Some(g)) if !(g.is_finite() && g >= 0.0) => {
-                bail!("regions[{k}] '{}': fracture_toughness_j_per_m2 = {g}: must be finite and ≥ 0", r.name)
+                bail!("regions[{k}] '{}': fracture_toughness_j_per_m2 = {}: must be finite and ≥ 0", r.name, num(g))
             }
             _ => {}
         }
@@ -598,26 +599,26 @@ fn check_values(f: &SceneFile) -> Result<()> {
             bail!("targets[{k}]: the name '{}' is already used by targets[{first}]; target names must be unique", t.name);
         }
         if !t.center_m.iter().all(|v| v.is_finite()) {
-            bail!("targets[{k}] ('{}').center_m = [{}, {}]: must be finite", t.name, t.center_m[0], t.center_m[1]);
+            bail!("targets[{k}] ('{}').center_m = [{}, {}]: must be finite", t.name, num(t.center_m[0]), num(t.center_m[1]));
         }
         if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
-            bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, t.radius_m);
+            bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, num(t.radius_m));
         }
     }
     for (k, r) in f.regions.iter().enumerate() {
         let b = r.friction_damping_n_s_per_m2;
         if !(b.is_finite() && b >= 0.0) {
-            bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {b}: must be finite and ≥ 0", r.name);
+            bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {}: must be finite and ≥ 0", r.name, num(b));
         }
     }
     if let Some(v) = f.viscoelastic {
         let g = v.long_term_ratio;
         if !(g.is_finite() && g > 0.0 && g <= 1.0) {
-            bail!("viscoelastic.long_term_ratio = {g}: must be in (0, 1] (E∞/E₀)");
+            bail!("viscoelastic.long_term_ratio = {}: must be in (0, 1] (E∞/E₀)", num(g));
         }
         let tau = v.relaxation_time_s;
         if !(tau.is_finite() && tau > 0.0) {
-            bail!("viscoelastic.relaxation_time_s = {tau}: must be finite and > 0");
+            bail!("viscoelastic.relaxation_time_s = {}: must be finite and > 0", num(tau));
         }
     }
     if let Some(d) = f.dim
@@ -643,7 +644,7 @@ pub(crate) fn check_region_needle_values(k: usize, name: &str, values: [f64; 6])
     ];
     for ((key, v), (ok, rule)) in keys.into_iter().zip(values).zip(rules) {
         if !(v.is_finite() && ok(v)) {
-            bail!("regions[{k}] ('{name}').{key} = {v}: must be {rule}");
+            bail!("regions[{k}] ('{name}').{key} = {}: must be {rule}", num(v));
         }
     }
     Ok(())
@@ -654,14 +655,14 @@ pub(crate) fn check_limits(l: &LimitsSpec) -> Result<()> {
     use needlesim_core::sim::param_limits::MAX_ACTIVE_SET_ITERATIONS;
     for (key, v) in [("max_base_step_m", l.max_base_step_m), ("max_base_step_rad", l.max_base_step_rad)] {
         if !(v.is_finite() && v > 0.0) {
-            bail!("limits.{key} = {v}: must be finite and > 0");
+            bail!("limits.{key} = {}: must be finite and > 0", num(v));
         }
     }
     if !(1..=MAX_ACTIVE_SET_ITERATIONS).contains(&l.max_active_set_iterations) {
         bail!("limits.max_active_set_iterations = {}: must be in 1..={MAX_ACTIVE_SET_ITERATIONS}", l.max_active_set_iterations);
     }
     if !(l.lookahead_m.is_finite() && l.lookahead_m >= 0.0) {
-        bail!("limits.lookahead_m = {}: must be finite and ≥ 0", l.lookahead_m);
+        bail!("limits.lookahead_m = {}: must be finite and ≥ 0", num(l.lookahead_m));
     }
     Ok(())
 }

@@ -33,6 +33,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::d3::{BoxGridParams, TetLocator, TetMaterials, TetMesh, TetMeshLimits, TetTissueModel};
+use needlesim_core::num::num;
 use needlesim_core::{Material, RegionNeedleParams};
 use needlesim_trajectory::pose3::{RotationError, quat_from_axis_roll, unit};
 use needlesim_trajectory::{Pose3, Trajectory3};
@@ -410,7 +411,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String>, limits: &SceneL
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
     }
-    let file: Scene3dFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::clip(e.to_string().trim_end(), 512)))?;
+    let file: Scene3dFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e)))?;
     build(&file, read, limits)
 }
 
@@ -434,7 +435,7 @@ fn base_orientation(n: &Needle3dSpec) -> Result<[f64; 4]> {
             let a = unit(a).map_err(|e| anyhow::anyhow!("needle.base_axis = {a:?}: {}", why(e)))?;
             let roll = n.base_roll_rad.unwrap_or(0.0);
             if !(roll.is_finite() && roll.abs() <= 100.0) {
-                bail!("needle.base_roll_rad = {roll}: must be finite and within ±100 rad");
+                bail!("needle.base_roll_rad = {}: must be finite and within ±100 rad", num(roll));
             }
             Ok(quat_from_axis_roll(a, roll))
         }
@@ -444,7 +445,7 @@ fn base_orientation(n: &Needle3dSpec) -> Result<[f64; 4]> {
 fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
     use needlesim_core::sim::param_limits::{MAX_CONTACT_SPACING_M, MAX_NEEDLE_NODES, MIN_CONTACT_SPACING_M};
     if !(n.length_m.is_finite() && n.length_m > 0.0) {
-        bail!("needle.length_m = {}: must be finite and > 0", n.length_m);
+        bail!("needle.length_m = {}: must be finite and > 0", num(n.length_m));
     }
     let diameter_m = match (n.gauge, n.diameter_m) {
         (Some(_), Some(_)) => bail!("needle: give either gauge or diameter_m, not both"),
@@ -454,7 +455,7 @@ fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
         },
         (None, Some(d)) => {
             if !(d.is_finite() && d > 0.0 && d <= 0.01) {
-                bail!("needle.diameter_m = {d}: must be finite, > 0 and at most 0.01 m");
+                bail!("needle.diameter_m = {}: must be finite, > 0 and at most 0.01 m", num(d));
             }
             d
         }
@@ -462,7 +463,7 @@ fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
     };
     let spacing = n.contact_spacing_m.unwrap_or(needlesim_core::sim::ContactModel::DEFAULT_SPACING_M);
     if !(spacing.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&spacing)) {
-        bail!("needle.contact_spacing_m = {spacing}: must be between {MIN_CONTACT_SPACING_M} and {MAX_CONTACT_SPACING_M} m");
+        bail!("needle.contact_spacing_m = {}: must be between {MIN_CONTACT_SPACING_M} and {MAX_CONTACT_SPACING_M} m", num(spacing));
     }
     if !(1..=MAX_NEEDLE_NODES).contains(&n.max_points) {
         bail!("needle.max_points = {}: must be in 1..={MAX_NEEDLE_NODES}", n.max_points);
@@ -501,7 +502,7 @@ fn flexible(n: &Needle3dSpec) -> Result<Option<needlesim_core::needle::FlexibleN
         }
         (None, Some(ei)) => {
             if !(ei.is_finite() && ei > 0.0) {
-                bail!("needle.flexural_rigidity_nm2 = {ei}: must be finite and > 0");
+                bail!("needle.flexural_rigidity_nm2 = {}: must be finite and > 0", num(ei));
             }
             f.flexural_rigidity_nm2 = ei;
         }
@@ -518,13 +519,13 @@ fn flexible(n: &Needle3dSpec) -> Result<Option<needlesim_core::needle::FlexibleN
     }
     if let Some(b) = n.bevel_force_ratio {
         if !(b.is_finite() && (0.0..=10.0).contains(&b)) {
-            bail!("needle.bevel_force_ratio = {b}: must be finite, ≥ 0 and at most 10");
+            bail!("needle.bevel_force_ratio = {}: must be finite, ≥ 0 and at most 10", num(b));
         }
         f.bevel_force_ratio = b;
     }
     if let Some(side) = n.bevel_side {
         if side != 1.0 && side != -1.0 {
-            bail!("needle.bevel_side = {side}: must be +1 or -1");
+            bail!("needle.bevel_side = {}: must be +1 or -1", num(side));
         }
         f.bevel_side = side;
     }
@@ -536,7 +537,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
         bail!("dim = {}: a 3D scene has dim = 3 (2D scenes load with the 2D loader)", f.dim);
     }
     if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
-        bail!("tick_rate_hz = {}: must be between 100 and 10000", f.tick_rate_hz);
+        bail!("tick_rate_hz = {}: must be between 100 and 10000", num(f.tick_rate_hz));
     }
     if f.regions.is_empty() {
         bail!("regions: at least one region is needed");
@@ -554,7 +555,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
         )?;
         let b = r.friction_damping_n_s_per_m2;
         if !(b.is_finite() && b >= 0.0) {
-            bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {b}: must be finite and ≥ 0", r.name);
+            bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {}: must be finite and ≥ 0", r.name, num(b));
         }
     }
     for (k, t) in f.targets.iter().enumerate() {
@@ -565,7 +566,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
             bail!("targets[{k}] ('{}').center_m = {:?}: must be finite", t.name, t.center_m);
         }
         if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
-            bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, t.radius_m);
+            bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, num(t.radius_m));
         }
     }
     check_limits(&f.limits)?;

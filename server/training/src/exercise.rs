@@ -43,6 +43,7 @@
 
 use std::path::{Path, PathBuf};
 
+use needlesim_core::num::num;
 use serde::Deserialize;
 
 use crate::geometry::Shape;
@@ -320,7 +321,7 @@ fn read_local(path: &Path) -> Result<String, ExerciseError> {
 }
 
 fn positive(key: &str, v: f64) -> Result<f64, ExerciseError> {
-    if v.is_finite() && v > 0.0 && v <= 1e6 { Ok(v) } else { Err(invalid(key, format!("{v} must be finite and in (0, 1e6]"))) }
+    if v.is_finite() && v > 0.0 && v <= 1e6 { Ok(v) } else { Err(invalid(key, format!("{} must be finite and in (0, 1e6]", num(v)))) }
 }
 
 fn point(key: &str, v: &[f64], dim: u8) -> Result<[f64; 3], ExerciseError> {
@@ -328,7 +329,7 @@ fn point(key: &str, v: &[f64], dim: u8) -> Result<[f64; 3], ExerciseError> {
         return Err(invalid(key, format!("has {} values, the scene is {dim}D: give {dim}", v.len())));
     }
     if let Some(x) = v.iter().find(|x| !x.is_finite() || x.abs() > 1e3) {
-        return Err(invalid(key, format!("{x} must be finite and within ±1e3 m")));
+        return Err(invalid(key, format!("{} must be finite and within ±1e3 m", num(*x))));
     }
     Ok([v[0], v[1], if dim == 3 { v[2] } else { 0.0 }])
 }
@@ -338,7 +339,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
     if brackets > needlesim_scene::MAX_TOML_BRACKETS {
         return Err(ExerciseError::Toml(format!("{brackets} brackets, more than {}", needlesim_scene::MAX_TOML_BRACKETS)));
     }
-    let f: ExerciseFile = toml::from_str(text).map_err(|e| ExerciseError::Toml(e.to_string()))?;
+    let f: ExerciseFile = toml::from_str(text).map_err(|e| ExerciseError::Toml(needlesim_scene::limit::toml_message(&e)))?;
     if f.name.trim().is_empty() || f.name.len() > 128 {
         return Err(invalid("name", "must be 1 to 128 characters"));
     }
@@ -415,6 +416,12 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
             other => return Err(invalid(key("shape"), format!("'{other}': expected \"sphere\" (\"circle\") or \"box\" (\"rectangle\")"))),
         };
         let margin_m = positive(&key("margin_m"), s.margin_m.unwrap_or(0.002))?;
+        if let Some(first) = spare.iter().position(|x: &Structure| x.name == s.name) {
+            return Err(invalid(
+                key("name"),
+                format!("'{}' is already the name of spare[{first}]: structure names must be unique", s.name),
+            ));
+        }
         spare.push(Structure { name: s.name.clone(), shape, margin_m });
     }
     let l = &f.limits;
@@ -424,7 +431,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
     }
     let penalty = l.penalty.unwrap_or(10.0);
     if !(penalty.is_finite() && (0.0..=100.0).contains(&penalty)) {
-        return Err(invalid("limits.penalty", format!("{penalty} must be in [0, 100]")));
+        return Err(invalid("limits.penalty", format!("{} must be in [0, 100]", num(penalty))));
     }
     let limits = Limits {
         time_s: positive("limits.time_s", l.time_s.unwrap_or(600.0))?,
@@ -438,7 +445,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
         if v.is_finite() && (0.0..=1e3).contains(&v) {
             Ok(v)
         } else {
-            Err(invalid(format!("weights.{key}"), format!("{v} must be in [0, 1000]")))
+            Err(invalid(format!("weights.{key}"), format!("{} must be in [0, 1000]", num(v))))
         }
     };
     let weights = Weights {
@@ -520,5 +527,25 @@ mod tests {
         assert!(err("name = \"x\"\nscene = \"no-such-scene.toml\"\n").starts_with("scene: 'no-such-scene.toml' is not a shipped scene"));
         assert!(err(&format!("{base}bogus = 1\n")).contains("bogus"));
         assert!(err(&format!("{base}placed_at_s = [2.0, 1.0]\n")).starts_with("placed_at_s:"));
+    }
+
+    #[test]
+    fn issue_35_two_structures_of_one_name_are_refused_naming_it() {
+        let base = "name = \"x\"\nscene = \"fig3-target\"\n";
+        let sphere =
+            |name: &str, x: f64| format!("[[spare]]\nname = \"{name}\"\nshape = \"sphere\"\ncenter_m = [{x}, 0.05]\nradius_m = 0.003\n");
+        let two = format!("{base}{}{}", sphere("vessel", 0.01), sphere("nerve", 0.02));
+        assert_eq!(parse_exercise(&two, Path::new(".")).unwrap().spare.len(), 2);
+        let e = err(&format!("{base}{}{}{}", sphere("vessel", 0.01), sphere("nerve", 0.02), sphere("vessel", 0.03)));
+        assert!(e.starts_with("spare[2].name: 'vessel' is already the name of spare[0]"), "{e}");
+    }
+
+    #[test]
+    fn issue_35_numbers_in_exercise_errors_are_short() {
+        let base = "name = \"x\"\nscene = \"fig3-target\"\n";
+        let e = err(&format!("{base}[[targets]]\nscene_target = \"biopsy\"\ntolerance_m = 1e300\n"));
+        assert_eq!(e, "targets[0].tolerance_m: 1e300 must be finite and in (0, 1e6]");
+        let e = err(&format!("{base}[weights]\naccuracy = -1e300\n"));
+        assert_eq!(e, "weights.accuracy: -1e300 must be in [0, 1000]");
     }
 }

@@ -175,16 +175,7 @@ impl Trajectory {
     /// `max_ticks`; otherwise an error naming the last sample's line. Computed in floating point
     /// and compared before any conversion, so no end time overflows the count.
     pub fn tick_count(&self, rate_hz: f64, max_ticks: u64) -> Result<u64, TrajectoryError> {
-        let (t0, t1) = self.span_s();
-        let ticks = ((t1 - t0) * rate_hz).round();
-        if ticks.is_nan() || ticks > max_ticks as f64 {
-            let at = match self.end_line {
-                Some(l) => format!("trajectory line {l}"),
-                None => format!("trajectory[{}]", self.samples.len() - 1),
-            };
-            return Err(TrajectoryError::TooLong { at, end_s: t1, span_s: t1 - t0, ticks, rate_hz, max_ticks });
-        }
-        Ok(ticks as u64)
+        tick_count(self.span_s(), self.end_line, self.samples.len(), rate_hz, max_ticks)
     }
 
     /// The pose at time `t_s`, linearly interpolated (held constant beyond the ends).
@@ -219,6 +210,28 @@ impl Trajectory {
         let (t0, t1) = self.span_s();
         t1 - t0
     }
+}
+
+/// The ticks from `t0` to `t1` at `rate_hz`, `round((t1 - t0) rate_hz)`, if at most `max_ticks`;
+/// else [`TrajectoryError::TooLong`] naming the last sample: `trajectory line {end_line}` (read
+/// from CSV) or `trajectory[{n_samples - 1}]`. Compared in floating point before any conversion,
+/// so no span overflows the count. Shared by 2D and 3D trajectories.
+pub(crate) fn tick_count(
+    (t0, t1): (f64, f64),
+    end_line: Option<u64>,
+    n_samples: usize,
+    rate_hz: f64,
+    max_ticks: u64,
+) -> Result<u64, TrajectoryError> {
+    let ticks = ((t1 - t0) * rate_hz).round();
+    if ticks.is_nan() || ticks > max_ticks as f64 {
+        let at = match end_line {
+            Some(l) => format!("trajectory line {l}"),
+            None => format!("trajectory[{}]", n_samples.saturating_sub(1)),
+        };
+        return Err(TrajectoryError::TooLong { at, end_s: t1, span_s: t1 - t0, ticks, rate_hz, max_ticks });
+    }
+    Ok(ticks as u64)
 }
 
 /// At most `n` characters of `s`, with "…" appended when cut: a client's text quoted in a

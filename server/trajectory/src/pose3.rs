@@ -187,6 +187,8 @@ pub enum Trajectory3Error {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory3 {
     pub samples: Vec<(f64, Pose3)>,
+    /// The line of the last sample in the CSV it was read from (None when not read from text).
+    pub end_line: Option<u64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -217,6 +219,7 @@ impl Trajectory3 {
         }
         let mut lines = LineCounter::new(text);
         let mut samples: Vec<(f64, Pose3)> = Vec::new();
+        let mut end_line = 0;
         let mut record = csv::StringRecord::new();
         loop {
             let more = rdr.read_record(&mut record).map_err(|e| {
@@ -263,11 +266,25 @@ impl Trajectory3 {
                 }
             }
             samples.push((row.t_s, Pose3::new([row.x_m, row.y_m, row.z_m], q)));
+            end_line = line;
         }
         if samples.is_empty() {
             return Err(Trajectory3Error::Empty);
         }
-        Ok(Self { samples })
+        Ok(Self { samples, end_line: Some(end_line) })
+    }
+
+    /// A trajectory from samples not read from text (at least one, times increasing, unit
+    /// quaternions: the caller's to ensure).
+    pub fn from_samples(samples: Vec<(f64, Pose3)>) -> Self {
+        Self { samples, end_line: None }
+    }
+
+    /// The number of ticks from the first to the last sample at `rate_hz`, if at most
+    /// `max_ticks`; otherwise [`crate::TrajectoryError::TooLong`] naming the last sample's line
+    /// (as [`crate::Trajectory::tick_count`]).
+    pub fn tick_count(&self, rate_hz: f64, max_ticks: u64) -> Result<u64, crate::TrajectoryError> {
+        crate::tick_count(self.span_s(), self.end_line, self.samples.len(), rate_hz, max_ticks)
     }
 
     /// The pose at `t_s` (module docs: linear position, slerp orientation, ends held).

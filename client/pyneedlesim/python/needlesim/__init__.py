@@ -29,6 +29,7 @@ __path__ = extend_path(__path__, __name__)
 from ._native import (  # noqa: E402
     CONTACT_STATES,
     DEFAULT_MAX_TICKS,
+    MAX_TICKS_LIMIT,
     NeedlesimError,
     PlanError,
     PoseError,
@@ -51,6 +52,7 @@ from ._native import (  # noqa: E402
 __all__ = [
     "CONTACT_STATES",
     "DEFAULT_MAX_TICKS",
+    "MAX_TICKS_LIMIT",
     "NeedlesimError",
     "PlanError",
     "PoseError",

@@ -11,6 +11,8 @@ __version__: Final[str]
 CONTACT_STATES: Final[list[str]]
 #: The longest scripted run by default, in ticks (1000 s at 1 kHz).
 DEFAULT_MAX_TICKS: Final[int]
+#: The largest ``max_ticks`` a run or ``tick_poses`` accepts (10,000 s at 1 kHz): results are held in memory.
+MAX_TICKS_LIMIT: Final[int]
 
 F64Array = npt.NDArray[np.float64]
 #: A trajectory: None (the scene's own), a CSV path, or an array-like of shape (n, 4) in 2D

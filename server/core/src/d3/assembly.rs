@@ -22,10 +22,10 @@ use crate::material::Material;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TetMaterialError {
     /// Young's modulus is not a finite positive number.
-    #[error("{item}: Young's modulus E = {young_modulus_pa} Pa must be finite and > 0")]
+    #[error("{item}: Young's modulus E = {} Pa must be finite and > 0", crate::num::num(*young_modulus_pa))]
     YoungModulus { item: String, young_modulus_pa: f64 },
     /// Poisson's ratio is outside (−1, 0.5) (ν = 0.5, incompressible, makes λ infinite).
-    #[error("{item}: Poisson ratio ν = {poisson_ratio} must be finite and in (−1, 0.5) in 3D (ν = 0.5 makes λ infinite)")]
+    #[error("{item}: Poisson ratio ν = {} must be finite and in (−1, 0.5) in 3D (ν = 0.5 makes λ infinite)", crate::num::num(*poisson_ratio))]
     PoissonRatio { item: String, poisson_ratio: f64 },
     /// The number of materials does not match the regions (or tetrahedra) of the mesh.
     #[error("the mesh has {expected} {what} but {n_materials} material(s) were given")]

@@ -30,7 +30,7 @@ pub struct PointLocation {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LocateError {
     /// No tetrahedron holds the point (within [`BARYCENTRIC_TOL`]).
-    #[error("the point ({}, {}, {}) m lies outside the mesh", x_m[0], x_m[1], x_m[2])]
+    #[error("the point ({}, {}, {}) m lies outside the mesh", crate::num::num(x_m[0]), crate::num::num(x_m[1]), crate::num::num(x_m[2]))]
     Outside { x_m: [f64; 3] },
     /// A coordinate of the point is NaN or infinite.
     #[error("the point {x_m:?} has a non-finite coordinate")]

@@ -94,12 +94,13 @@ impl SimParams {
     /// non-positive rate, radius or step bound, a negative lookahead, a capacity or iteration
     /// bound outside [`param_limits`], a target with a non-finite centre or negative radius).
     pub fn validate(&self) -> Result<(), SimError> {
+        use crate::num::num;
         use param_limits::*;
         let bad = |m: String| Err(SimError::InvalidParams(m));
         self.needle.validate().map_err(SimError::InvalidParams)?;
         if !self.initial_pose.is_finite() {
             let p = self.initial_pose;
-            return bad(format!("initial_pose = ({}, {}, {}) must be finite", p.x_m, p.y_m, p.theta_rad));
+            return bad(format!("initial_pose = ({}, {}, {}) must be finite", num(p.x_m), num(p.y_m), num(p.theta_rad)));
         }
         let positive = [
             ("capture_radius_m", self.capture_radius_m),
@@ -109,19 +110,22 @@ impl SimParams {
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{name} = {v} must be finite and > 0"));
+                return bad(format!("{name} = {} must be finite and > 0", num(v)));
             }
         }
         if let ContactModel::MaterialPoints { spacing_m, width_m } = self.contact {
             if !(spacing_m.is_finite() && (MIN_CONTACT_SPACING_M..=MAX_CONTACT_SPACING_M).contains(&spacing_m)) {
-                return bad(format!("contact spacing_m = {spacing_m} must be in {MIN_CONTACT_SPACING_M}..={MAX_CONTACT_SPACING_M} m"));
+                return bad(format!(
+                    "contact spacing_m = {} must be in {MIN_CONTACT_SPACING_M}..={MAX_CONTACT_SPACING_M} m",
+                    num(spacing_m)
+                ));
             }
             if !(width_m.is_finite() && (0.0..=MAX_CONTACT_WIDTH_M).contains(&width_m)) {
-                return bad(format!("contact width_m = {width_m} must be in 0..={MAX_CONTACT_WIDTH_M} m"));
+                return bad(format!("contact width_m = {} must be in 0..={MAX_CONTACT_WIDTH_M} m", num(width_m)));
             }
         }
         if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
-            return bad(format!("lookahead_m = {} must be finite and ≥ 0", self.lookahead_m));
+            return bad(format!("lookahead_m = {} must be finite and ≥ 0", num(self.lookahead_m)));
         }
         if self.max_needle_nodes == 0 || self.max_needle_nodes > MAX_NEEDLE_NODES {
             return bad(format!("max_needle_nodes = {} must be in 1..={MAX_NEEDLE_NODES}", self.max_needle_nodes));
@@ -150,7 +154,7 @@ impl SimParams {
         }
         for t in &self.targets {
             if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
-                return bad(format!("target '{}': radius_m = {} must be finite and ≥ 0", t.name, t.radius_m));
+                return bad(format!("target '{}': radius_m = {} must be finite and ≥ 0", t.name, num(t.radius_m)));
             }
             if !(t.center_m[0].is_finite() && t.center_m[1].is_finite()) {
                 return bad(format!("target '{}': center_m {:?} is not finite", t.name, t.center_m));

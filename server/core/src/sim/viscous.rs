@@ -66,11 +66,11 @@ impl Viscoelastic {
     pub fn validate(&self) -> Result<(), String> {
         let g = self.long_term_ratio;
         if !(g.is_finite() && g > 0.0 && g <= 1.0) {
-            return Err(format!("viscoelastic long_term_ratio = {g} must be in (0, 1]"));
+            return Err(format!("viscoelastic long_term_ratio = {} must be in (0, 1]", crate::num::num(g)));
         }
         let tau = self.relaxation_time_s;
         if !(tau.is_finite() && tau > 0.0) {
-            return Err(format!("viscoelastic relaxation_time_s = {tau} must be finite and > 0"));
+            return Err(format!("viscoelastic relaxation_time_s = {} must be finite and > 0", crate::num::num(tau)));
         }
         Ok(())
     }

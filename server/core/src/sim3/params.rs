@@ -134,14 +134,16 @@ impl Sim3Params {
     /// Checks every value against its range, and the regions against the mesh's
     /// `n_regions`; the message names the field.
     pub fn validate(&self, n_regions: usize) -> Result<(), String> {
-        let pos = |name: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("{name} = {v} must be finite and > 0")) };
+        let pos = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("{name} = {} must be finite and > 0", crate::num::num(v))) }
+        };
         pos("needle_length_m", self.needle_length_m)?;
         pos("spacing_m", self.spacing_m)?;
         pos("tick_rate_hz", self.tick_rate_hz)?;
         pos("max_base_step_m", self.max_base_step_m)?;
         pos("max_base_step_rad", self.max_base_step_rad)?;
         if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
-            return Err(format!("lookahead_m = {} must be finite and ≥ 0", self.lookahead_m));
+            return Err(format!("lookahead_m = {} must be finite and ≥ 0", crate::num::num(self.lookahead_m)));
         }
         if !(1..=4096).contains(&self.max_contacts) {
             return Err(format!("max_contacts = {} must be in 1..=4096", self.max_contacts));
@@ -172,19 +174,23 @@ impl Sim3Params {
     fn validate_needle(&self) -> Result<(), String> {
         let Some(f) = self.needle.flexible() else { return Ok(()) };
         if f.length_m != self.needle_length_m {
-            return Err(format!("needle.length_m = {} must equal needle_length_m = {}", f.length_m, self.needle_length_m));
+            return Err(format!(
+                "needle.length_m = {} must equal needle_length_m = {}",
+                crate::num::num(f.length_m),
+                crate::num::num(self.needle_length_m)
+            ));
         }
         if !(f.flexural_rigidity_nm2.is_finite() && f.flexural_rigidity_nm2 > 0.0) {
-            return Err(format!("needle.flexural_rigidity_nm2 = {} must be finite and > 0", f.flexural_rigidity_nm2));
+            return Err(format!("needle.flexural_rigidity_nm2 = {} must be finite and > 0", crate::num::num(f.flexural_rigidity_nm2)));
         }
         if !(1..=400).contains(&f.n_links) {
             return Err(format!("needle.n_links = {} must be in 1..=400", f.n_links));
         }
         if !(f.bevel_force_ratio.is_finite() && f.bevel_force_ratio >= 0.0) {
-            return Err(format!("needle.bevel_force_ratio = {} must be finite and ≥ 0", f.bevel_force_ratio));
+            return Err(format!("needle.bevel_force_ratio = {} must be finite and ≥ 0", crate::num::num(f.bevel_force_ratio)));
         }
         if f.bevel_side != 1.0 && f.bevel_side != -1.0 {
-            return Err(format!("needle.bevel_side = {} must be +1 or -1", f.bevel_side));
+            return Err(format!("needle.bevel_side = {} must be +1 or -1", crate::num::num(f.bevel_side)));
         }
         Ok(())
     }
@@ -201,7 +207,7 @@ impl Sim3Params {
                 return Err(format!("targets[{k}]: centre_m = {:?} must be finite", t.centre_m));
             }
             if !(t.radius_m.is_finite() && t.radius_m > 0.0) {
-                return Err(format!("targets[{k}]: radius_m = {} must be finite and > 0", t.radius_m));
+                return Err(format!("targets[{k}]: radius_m = {} must be finite and > 0", crate::num::num(t.radius_m)));
             }
         }
         Ok(())

@@ -25,7 +25,7 @@ pub enum PoseError {
         what: &'static str,
     },
     /// The orientation quaternion's norm is farther than [`UNIT_QUATERNION_TOL`] from 1.
-    #[error("the base orientation quaternion has norm {norm}, not 1 (tolerance {UNIT_QUATERNION_TOL:e})")]
+    #[error("the base orientation quaternion has norm {}, not 1 (tolerance {UNIT_QUATERNION_TOL:e})", crate::num::num(*norm))]
     NotUnit { norm: f64 },
 }
 
