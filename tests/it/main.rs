@@ -13,6 +13,7 @@ mod cli;
 mod cli3d;
 mod cli_errors;
 mod contact_points;
+mod convergence;
 mod fleet;
 mod fleet_alloc;
 mod flexible_e2e;

@@ -232,7 +232,10 @@ fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
     let (session, mut device) = attempt.expect("a session faulted");
     let fault = session.counters.fault().expect("the session faulted");
     assert_eq!(session.counters.faults.load(Ordering::Relaxed), 1);
-    assert!(fault.message().contains("the solve diverged"), "{}", fault.message());
+    // Since issue 35 a tick that does not converge faults the session as a divergence does;
+    // on this path its shape passes reach their cap before anything diverges.
+    let m = fault.message();
+    assert!(m.contains("the solve diverged") || m.contains("the tick did not converge"), "{m}");
     // The device keeps getting fresh wrenches, all zero, wherever it moves.
     let mut fresh = 0;
     for k in 0..200 {
