@@ -147,3 +147,57 @@ fn issue_35_a_run_that_does_not_converge_stops_naming_the_tick_unless_kept() {
     assert!(unconverged.len() > 100, "{} unconverged ticks", unconverged.len());
     println!("{} of {} ticks unconverged, the first at tick {tick}", unconverged.len(), rows.len());
 }
+
+/// The same through the Simulate RPC: FAILED_PRECONDITION naming the tick, or with
+/// `keep_unconverged` the whole series, its unconverged rows marked.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_simulate_rpc_stops_at_an_unconverged_tick_unless_kept() {
+    use needlesim_proto::v1 as pb;
+    use tokio_stream::StreamExt;
+    let server = needlesim_tests::ServerProcess::start(&["--default-scene", "none"]);
+    let ch = needlesim_tests::connect(&server).await;
+    let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch);
+    let dir = TempDir::new("issue35-rpc");
+    let scene = std::fs::read_to_string(sticky_fig4(&dir)).unwrap();
+    let csv = std::fs::read_to_string(repo_root().join("server/scenes/fig4-steering.csv")).unwrap();
+    let trajectory: Vec<pb::TrajectorySample> = csv
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("t_s") && !l.trim().is_empty())
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.trim().parse().unwrap()).collect();
+            pb::TrajectorySample { t_s: v[0], base: Some(pb::Pose2 { x_m: v[1], y_m: v[2], theta_rad: v[3] }), base3: None }
+        })
+        .collect();
+    let req = |keep: bool| pb::SimulateRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(scene.clone())) }),
+        trajectory: trajectory.clone(),
+        decimate: 1,
+        keep_unconverged: keep,
+    };
+    let mut stream = sim.simulate(req(false)).await.expect("Simulate starts").into_inner();
+    let mut error = None;
+    while let Some(m) = stream.next().await {
+        if let Err(e) = m {
+            error = Some(e);
+            break;
+        }
+    }
+    let e = error.expect("the stream ends with an error");
+    assert_eq!(e.code(), tonic::Code::FailedPrecondition, "{}", e.message());
+    assert!(e.message().contains("the run stopped at tick ") && e.message().contains("did not converge"), "{}", e.message());
+    let mut stream = sim.simulate(req(true)).await.expect("Simulate starts").into_inner();
+    let mut marks = Vec::new();
+    let mut finished = false;
+    while let Some(m) = stream.next().await {
+        match m.expect("a kept run streams to the end").event {
+            Some(pb::simulate_response::Event::Series(c)) => marks.extend(c.rows.iter().map(|r| r.unconverged)),
+            Some(pb::simulate_response::Event::Result(_)) => finished = true,
+            _ => {}
+        }
+    }
+    assert!(finished, "the kept run ends with its result");
+    let first = marks.iter().position(|&u| u).expect("unconverged rows are marked");
+    assert!(e.message().contains(&format!("the run stopped at tick {first} ")), "the first marked row {first}: {}", e.message());
+    assert!(marks.iter().filter(|&&u| u).count() > 100);
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}
