@@ -598,7 +598,7 @@ async fn simulate(c: &Conn, a: &SimulateArgs, (scene, what): (pb::SceneSource, S
     let mut sim = pb::simulation_service_client::SimulationServiceClient::new(c.channel.clone());
     let what = format!("simulating {what}");
     let mut stream = sim
-        .simulate(c.request(pb::SimulateRequest { scene: Some(scene), trajectory, decimate: a.decimate })?)
+        .simulate(c.request(pb::SimulateRequest { scene: Some(scene), trajectory, decimate: a.decimate, keep_unconverged: false })?)
         .await
         .map_err(|s| c.status_error(&what, Role::None, None, &s))?
         .into_inner();

@@ -240,6 +240,7 @@ pub fn series_row(o: &StepOutput, t0_s: f64, target_names: &[String]) -> pb::Ser
         n_tip: o.n_tip as u32,
         targets: o.targets.iter().enumerate().map(|(i, t)| target_state(target_names, i, t.position_m, t.distance_m, t.hit)).collect(),
         d3: None,
+        unconverged: o.unconverged().is_some(),
     }
 }
 
@@ -289,6 +290,7 @@ pub fn series_row3(o: &needlesim_core::sim3::StepOutput3, t_s: f64, target_names
                 .collect(),
             stiffness: vec![],
         }),
+        unconverged: o.unconverged().is_some(),
     }
 }
 

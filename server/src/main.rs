@@ -172,6 +172,11 @@ enum Command {
         /// lasting longer is an error naming its last line.
         #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS)]
         max_ticks: u64,
+        /// Keep ticks whose step did not converge (the stick/slip iteration or the flexible
+        /// needle's shape passes at their cap), marked 0 in a last CSV column `converged`;
+        /// without it the first such tick stops the run with an error naming it.
+        #[arg(long)]
+        keep_unconverged: bool,
     },
     /// Plan an insertion that reaches a target despite the tissue deformation it causes.
     Plan(PlanArgs),
@@ -271,20 +276,25 @@ fn main() -> ExitCode {
     let limits = MeshLimits { max_nodes: cli.limits.max_nodes, max_triangles: cli.limits.max_triangles };
     let result = match cli.command {
         Some(Command::Solve { scenario, output }) => solve(&scenario, output.as_deref(), &limits),
-        Some(Command::Simulate { scene, trajectory, output, dump_state, dump_at, max_ticks }) => match is_3d_scene(&scene) {
-            Ok(true) => run_simulate3(
-                &scene,
-                trajectory.as_deref(),
-                output.as_deref(),
-                dump_state.as_deref(),
-                dump_at.as_deref().unwrap_or_default(),
-                max_ticks,
-                &limits,
-            ),
-            Ok(false) if dump_at.is_some() => Err(anyhow::anyhow!("--dump-at is for 3D scenes (dim = 3); scene '{scene}' is 2D")),
-            Ok(false) => run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), max_ticks, &limits),
-            Err(e) => Err(e),
-        },
+        Some(Command::Simulate { scene, trajectory, output, dump_state, dump_at, max_ticks, keep_unconverged }) => {
+            let convergence = needlesim_offline::ConvergencePolicy::keeping(keep_unconverged);
+            match is_3d_scene(&scene) {
+                Ok(true) => run_simulate3(
+                    &scene,
+                    trajectory.as_deref(),
+                    output.as_deref(),
+                    dump_state.as_deref(),
+                    dump_at.as_deref().unwrap_or_default(),
+                    (max_ticks, convergence),
+                    &limits,
+                ),
+                Ok(false) if dump_at.is_some() => Err(anyhow::anyhow!("--dump-at is for 3D scenes (dim = 3); scene '{scene}' is 2D")),
+                Ok(false) => {
+                    run_simulate(&scene, trajectory.as_deref(), output.as_deref(), dump_state.as_deref(), (max_ticks, convergence), &limits)
+                }
+                Err(e) => Err(e),
+            }
+        }
         Some(Command::Plan(args)) => match is_3d_scene(&args.scene) {
             Ok(true) => run_plan3(&args, &limits),
             Ok(false) => run_plan(&args, &limits),
@@ -354,7 +364,7 @@ fn run_simulate(
     trajectory: Option<&std::path::Path>,
     output: Option<&std::path::Path>,
     dump: Option<&std::path::Path>,
-    max_ticks: u64,
+    (max_ticks, convergence): (u64, needlesim_offline::ConvergencePolicy),
     limits: &MeshLimits,
 ) -> Result<()> {
     let scene = scene::load_scene(scene_spec, limits)?;
@@ -368,7 +378,7 @@ fn run_simulate(
     };
     let mut csv = String::new();
     let t0 = std::time::Instant::now();
-    let (sim, summary) = simulate::run(&scene, &traj, max_ticks, Some(&mut csv))?;
+    let (sim, summary) = simulate::run(&scene, &traj, max_ticks, convergence, Some(&mut csv))?;
     let mut times = summary.step_times_s.clone();
     times.sort_by(f64::total_cmp);
     let pct = |q: f64| times.get(((times.len() as f64 - 1.0) * q).round() as usize).copied().unwrap_or(0.0) * 1e6;
@@ -391,7 +401,7 @@ fn run_simulate(
     );
     if summary.active_set_capped_ticks + summary.shape_capped_ticks > 0 {
         tracing::warn!(
-            "{} ticks ended at the stick/slip iteration cap and {} at the flexible needle's shape-pass cap: their contact conditions or needle shape are the last iterate, not converged",
+            "{} ticks ended at the stick/slip iteration cap and {} at the flexible needle's shape-pass cap: their contact conditions or needle shape are the last iterate, not converged (kept by --keep-unconverged: the CSV's converged column is 0 there)",
             summary.active_set_capped_ticks,
             summary.shape_capped_ticks
         );
@@ -427,7 +437,7 @@ fn run_simulate3(
     output: Option<&std::path::Path>,
     dump: Option<&std::path::Path>,
     dump_at: &[u64],
-    max_ticks: u64,
+    (max_ticks, convergence): (u64, needlesim_offline::ConvergencePolicy),
     limits: &MeshLimits,
 ) -> Result<()> {
     if !dump_at.is_empty() && dump.is_none() {
@@ -462,7 +472,7 @@ fn run_simulate3(
     ticks.dedup();
     let mut csv = String::new();
     let t0 = std::time::Instant::now();
-    let (_sim, summary, dumps) = simulate3::run3(&scene, &traj, max_ticks, &ticks, Some(&mut csv))?;
+    let (_sim, summary, dumps) = simulate3::run3(&scene, &traj, max_ticks, &ticks, convergence, Some(&mut csv))?;
     let mut times = summary.step_times_s.clone();
     times.sort_by(f64::total_cmp);
     let pct = |q: f64| times.get(((times.len() as f64 - 1.0) * q).round() as usize).copied().unwrap_or(0.0) * 1e6;
@@ -484,6 +494,12 @@ fn run_simulate3(
         wall_s = t0.elapsed().as_secs_f64(),
         "simulated"
     );
+    if summary.unconverged_ticks > 0 {
+        tracing::warn!(
+            "{} ticks did not converge (kept by --keep-unconverged: the CSV's converged column is 0 there)",
+            summary.unconverged_ticks
+        );
+    }
     let rate = scene.tick_rate_hz;
     for t in &summary.targets {
         let u = t.displacement_at_closest_m;
@@ -663,7 +679,8 @@ fn summary(limits: &MeshLimits) -> Result<()> {
     let scene = scene::load_scene("paper-phantom", limits)?;
     let traj = scene::Trajectory::parse_csv(scene.example_trajectory.expect("a shipped example has a trajectory"))?;
     let mut csv = String::new();
-    let (sim, summary) = simulate::run(&scene, &traj, simulate::DEFAULT_MAX_TICKS, Some(&mut csv))?;
+    let (sim, summary) =
+        simulate::run(&scene, &traj, simulate::DEFAULT_MAX_TICKS, needlesim_offline::ConvergencePolicy::Fail, Some(&mut csv))?;
     println!(
         "needlesim: {} ({} nodes), {} ticks at {} Hz",
         scene.name,

@@ -168,6 +168,8 @@ impl From<&RunError> for ApiError {
                 ApiError::invalid("trajectory", with_causes(e))
             }
             RunError::Step { .. } | RunError::Prefetch { .. } => ApiError::Internal(with_causes(e)),
+            // Well-formed input whose run does not converge: kept only when the caller asks.
+            RunError::Unconverged(_) => ApiError::FailedPrecondition(with_causes(e)),
         }
     }
 }

@@ -92,13 +92,14 @@ async fn issue_13_simulate_and_track_stay_within_a_memory_budget() {
     let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch.clone());
 
     // 10 000 s at 1 kHz: 10 million ticks, over the limit.
-    let req = pb::SimulateRequest { scene: example("paper-phantom"), trajectory: insertion(10_000.0), decimate: 1 };
+    let req =
+        pb::SimulateRequest { scene: example("paper-phantom"), trajectory: insertion(10_000.0), decimate: 1, keep_unconverged: false };
     let e = sim.simulate(req).await.expect_err("a 10M-tick Simulate is refused");
     assert_eq!(e.code(), Code::ResourceExhausted, "{}", e.message());
     assert!(e.message().contains("10000000 ticks") && e.message().contains("--max-simulate-ticks"), "{}", e.message());
 
     // 100 s: 100 001 rows, streamed in chunks of at most 1000 rows, none over 1 MiB.
-    let req = pb::SimulateRequest { scene: example("paper-phantom"), trajectory: insertion(100.0), decimate: 1 };
+    let req = pb::SimulateRequest { scene: example("paper-phantom"), trajectory: insertion(100.0), decimate: 1, keep_unconverged: false };
     let mut stream = sim.simulate(req).await.expect("Simulate starts").into_inner();
     let (mut rows, mut chunks, mut largest_bytes, mut result) = (0usize, 0usize, 0usize, None);
     while let Some(m) = stream.next().await {
@@ -145,7 +146,12 @@ async fn issue_13_forty_concurrent_simulates_are_limited_to_max_offline_jobs() {
         .map(|_| {
             let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch.clone());
             tokio::spawn(async move {
-                let req = pb::SimulateRequest { scene: example("paper-phantom"), trajectory: insertion(600.0), decimate: 1000 };
+                let req = pb::SimulateRequest {
+                    scene: example("paper-phantom"),
+                    trajectory: insertion(600.0),
+                    decimate: 1000,
+                    keep_unconverged: false,
+                };
                 sim.simulate(req).await.map(|r| r.into_inner())
             })
         })
@@ -181,7 +187,7 @@ async fn issue_13_forty_concurrent_simulates_are_limited_to_max_offline_jobs() {
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
     let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch.clone());
-    let req = pb::SimulateRequest { scene: example("paper-phantom"), trajectory: insertion(2.0), decimate: 10 };
+    let req = pb::SimulateRequest { scene: example("paper-phantom"), trajectory: insertion(2.0), decimate: 10, keep_unconverged: false };
     let mut s = sim.simulate(req).await.expect("accepted once the slots are free").into_inner();
     while let Some(m) = s.next().await {
         m.expect("a simulate message");
@@ -242,7 +248,7 @@ async fn issue_13_bad_scene_values_are_invalid_argument_naming_the_field() {
         let e = sessions.create_session(req).await.expect_err(field);
         assert_eq!(e.code(), Code::InvalidArgument, "{field}: {}", e.message());
         assert!(e.message().contains(field), "{field}: {}", e.message());
-        let req = pb::SimulateRequest { scene: toml(text), trajectory: insertion(2.0), decimate: 10 };
+        let req = pb::SimulateRequest { scene: toml(text), trajectory: insertion(2.0), decimate: 10, keep_unconverged: false };
         let e = sim.simulate(req).await.expect_err(field);
         assert_eq!(e.code(), Code::InvalidArgument, "Simulate, {field}: {}", e.message());
         assert!(e.message().contains(field), "{field}: {}", e.message());

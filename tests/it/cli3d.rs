@@ -358,6 +358,7 @@ fn mismatches_bad_rows_toml_and_mesh_upload() {
             scene: example(scene),
             trajectory: vec![pb::TrajectorySample { t_s: 0.0, base, base3 }, pb::TrajectorySample { t_s: 0.1, base, base3 }],
             decimate: 1,
+            keep_unconverged: false,
         };
         let e = match sim.simulate(req("cube-phantom-3d", Some(p2), None)).await {
             Ok(_) => panic!("2D poses for a 3D scene were accepted"),

@@ -13,6 +13,7 @@ mod cli;
 mod cli3d;
 mod cli_errors;
 mod contact_points;
+mod convergence;
 mod file_refs;
 mod fleet;
 mod fleet_alloc;

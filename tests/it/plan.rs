@@ -150,7 +150,8 @@ async fn planning_service_streams_progress_and_a_plan_that_hits() {
 
     // Replayed by Simulate on the same server.
     let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch.clone());
-    let sreq = pb::SimulateRequest { scene: example("fig3-target"), trajectory: r.trajectory.clone(), decimate: 1 };
+    let sreq =
+        pb::SimulateRequest { scene: example("fig3-target"), trajectory: r.trajectory.clone(), decimate: 1, keep_unconverged: false };
     let mut stream = sim.simulate(sreq).await.expect("Simulate starts").into_inner();
     let mut rows = Vec::new();
     while let Some(m) = stream.next().await {

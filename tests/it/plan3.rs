@@ -108,7 +108,7 @@ async fn planning_service_plans_in_3d_and_simulate_replays_the_plan() {
     let trajectory: Vec<pb::TrajectorySample> =
         r.trajectory.iter().map(|s| pb::TrajectorySample { t_s: s.t_s, base: None, base3: s.base }).collect();
     let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch);
-    let sreq = pb::SimulateRequest { scene: toml_source(scene_toml(true)), trajectory, decimate: 1 };
+    let sreq = pb::SimulateRequest { scene: toml_source(scene_toml(true)), trajectory, decimate: 1, keep_unconverged: false };
     let mut stream = sim.simulate(sreq).await.expect("Simulate starts").into_inner();
     let mut rows = Vec::new();
     while let Some(m) = stream.next().await {

@@ -114,6 +114,6 @@ pub fn run_error(e: &RunError) -> PyErr {
     match e {
         RunError::TooLong(_) | RunError::BadEnd { .. } => TrajectoryError::new_err(msg),
         RunError::Step { source, .. } if matches!(**source, SimError::NonFinitePose { .. }) => PoseError::new_err(msg),
-        RunError::Setup(_) | RunError::Step { .. } | RunError::Prefetch { .. } => SimulationError::new_err(msg),
+        RunError::Setup(_) | RunError::Step { .. } | RunError::Prefetch { .. } | RunError::Unconverged(_) => SimulationError::new_err(msg),
     }
 }

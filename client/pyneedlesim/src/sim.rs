@@ -19,7 +19,7 @@ use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
 use needlesim_core::sim::{NodeState, Simulation, StepOutput};
 use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
-use needlesim_offline::{DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, RunOptions, Script, ScriptedRun, preallocated_ticks, simulate};
+use needlesim_offline::{ConvergencePolicy, DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, RunOptions, Script, ScriptedRun, preallocated_ticks, simulate};
 use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
@@ -80,7 +80,8 @@ pub struct StepResult {
     /// Whether the commanded pose jumped further than the scene allows per tick and was clamped.
     #[pyo3(get)]
     clamped: bool,
-    /// Whether the active set settled within its iteration bound.
+    /// Whether the step converged: the active set settled within its iteration bound and a
+    /// flexible needle's shape passes within theirs.
     #[pyo3(get)]
     converged: bool,
     /// The axial force the tissue resists the needle with, N (positive pushing in).
@@ -121,7 +122,7 @@ impl StepResult {
             tick: out.tick,
             time_s: out.time_s,
             clamped: out.clamped,
-            converged: out.converged,
+            converged: out.unconverged().is_none(),
             force_axial_n: out.force_axial_n,
             force_lateral_n: Some(out.force_lateral_n),
             inserted_length_m: out.inserted_length_m,
@@ -150,7 +151,7 @@ impl StepResult {
             tick: out.tick,
             time_s: out.time_s,
             clamped: out.clamped,
-            converged: out.converged,
+            converged: out.unconverged().is_none(),
             force_axial_n: out.axial_force_n,
             force_lateral_n: None,
             inserted_length_m: out.inserted_length_m,
@@ -296,6 +297,7 @@ struct Series {
     target_positions_m: Vec<f64>,
     target_hits: Vec<bool>,
     step_times_s: Vec<f64>,
+    converged: Vec<bool>,
 }
 
 impl Series {
@@ -317,11 +319,13 @@ impl Series {
             target_positions_m: Vec::with_capacity(ticks * n_targets * dim),
             target_hits: Vec::with_capacity(ticks * n_targets),
             step_times_s: Vec::with_capacity(ticks),
+            converged: Vec::with_capacity(ticks),
         }
     }
 
     fn push2(&mut self, out: &StepOutput, t_s: f64, step_s: f64) {
         let b = out.base;
+        self.converged.push(out.unconverged().is_none());
         self.t_s.push(t_s);
         self.pose.extend([b.x_m, b.y_m, b.theta_rad]);
         self.force_n.extend(out.force_n);
@@ -341,6 +345,7 @@ impl Series {
 
     fn push3(&mut self, out: &StepOutput3, t_s: f64, step_s: f64) {
         let count = |s: PointState3| out.contacts.iter().filter(|p| p.state == s).count() as i64;
+        self.converged.push(out.unconverged().is_none());
         self.t_s.push(t_s);
         self.pose.extend(pose3_values(&out.pose));
         self.force_n.extend(out.base_force_n);
@@ -405,6 +410,12 @@ impl RunResult {
     #[getter]
     fn inserted_length_m<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.series.inserted_length_m.clone().into_pyarray(py)
+    }
+    /// Whether each tick converged: bool array (ticks,); all true unless the run was asked to
+    /// keep unconverged ticks (``keep_unconverged=True``).
+    #[getter]
+    fn converged<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
+        self.series.converged.clone().into_pyarray(py)
     }
     /// Contacts stuck, slipping and carried by the tip at each tick: int64 array (ticks, 3).
     #[getter]
@@ -603,6 +614,7 @@ enum Run3Failure {
     Trajectory(String),
     Setup(PyErr),
     Step { k: u64, t_s: f64, source: SimError3 },
+    Unconverged(needlesim_offline::UnconvergedTick),
 }
 
 /// The 3D scripted run, as the 3D `simulate` does it: tick `k = 0..=K` steps the trajectory's
@@ -614,7 +626,7 @@ fn run3(
     scene: &Scene3d,
     tissue: &Arc<TetTissueModel>,
     traj: &Trajectory3,
-    last_k: u64,
+    (last_k, convergence): (u64, ConvergencePolicy),
     series: &mut Series,
     progress: &mut Progress<'_>,
 ) -> Result<(Simulation3, u64), Run3Failure> {
@@ -637,6 +649,7 @@ fn run3(
         let stepped = sim.step(pose).map(|_| ());
         let step_s = started.elapsed().as_secs_f64();
         stepped.map_err(|source| Run3Failure::Step { k, t_s, source })?;
+        convergence.check(k, t_s, sim.output().unconverged()).map_err(Run3Failure::Unconverged)?;
         series.push3(sim.output(), t_s, step_s);
         prefetched += sim.prefetch_columns(usize::MAX).map_err(|source| Run3Failure::Step { k, t_s, source })? as u64;
         if progress.tick(k + 1).is_break() {
@@ -741,11 +754,16 @@ impl PySimulation {
     /// exception raised there (or KeyboardInterrupt) stops the run and propagates, the
     /// simulation then holding the state of the last tick run.
     ///
+    /// A tick whose step did not converge (the stick/slip iteration or a flexible needle's
+    /// shape passes at their cap) stops the run with SimulationError naming it, as
+    /// ``simulate`` does, unless ``keep_unconverged`` is true (then ``RunResult.converged`` is
+    /// false at such ticks).
+    ///
     /// Raises TrajectoryError (unreadable or invalid trajectory, longer than ``max_ticks``, or
     /// ``max_ticks`` over ``needlesim.MAX_TICKS_LIMIT``),
-    /// PoseError (a pose that is not finite), SimulationError (a failed step); after those the
-    /// simulation is unchanged.
-    #[pyo3(signature = (trajectory=None, *, progress=None, progress_every=1000, max_ticks=simulate::DEFAULT_MAX_TICKS))]
+    /// PoseError (a pose that is not finite), SimulationError (a failed or unconverged step);
+    /// after those the simulation is unchanged.
+    #[pyo3(signature = (trajectory=None, *, progress=None, progress_every=1000, max_ticks=simulate::DEFAULT_MAX_TICKS, keep_unconverged=false))]
     fn run(
         &mut self,
         py: Python<'_>,
@@ -753,8 +771,10 @@ impl PySimulation {
         progress: Option<Py<PyAny>>,
         progress_every: u64,
         max_ticks: u64,
+        keep_unconverged: bool,
     ) -> PyResult<RunResult> {
         check_max_ticks(max_ticks)?;
+        let convergence = ConvergencePolicy::keeping(keep_unconverged);
         let traj = read_trajectory(py, &self.scene, trajectory)?;
         let scene = self.scene.clone();
         match (&*scene, traj) {
@@ -765,7 +785,7 @@ impl PySimulation {
                 let mut series = Series::with_capacity(2, s.target_names.len(), preallocated_ticks(total));
                 let mut prog = Progress { callback: progress.as_ref(), every: progress_every, total, error: None };
                 let r = py.detach(|| {
-                    simulate::run_observed(s, &traj, max_ticks, None, |tick, out| {
+                    simulate::run_observed(s, &traj, max_ticks, convergence, None, |tick, out| {
                         series.push2(out, t0 + out.time_s, tick.step_s);
                         prog.tick(tick.k + 1)
                     })
@@ -791,10 +811,11 @@ impl PySimulation {
                 let total = traj.tick_count(s.tick_rate_hz, max_ticks).map_err(|e| trajectory_error(&e))? + 1;
                 let mut series = Series::with_capacity(3, s.targets.len(), preallocated_ticks(total));
                 let mut prog = Progress { callback: progress.as_ref(), every: progress_every, total, error: None };
-                let r = py.detach(|| run3(s, tissue, &traj, total - 1, &mut series, &mut prog));
+                let r = py.detach(|| run3(s, tissue, &traj, (total - 1, convergence), &mut series, &mut prog));
                 let (sim, prefetched) = r.map_err(|f| match f {
                     Run3Failure::Trajectory(m) => TrajectoryError::new_err(m),
                     Run3Failure::Setup(e) => e,
+                    Run3Failure::Unconverged(e) => SimulationError::new_err(e.to_string()),
                     Run3Failure::Step { k, t_s, source } => {
                         let msg = format!("the run stopped at tick {k} (t = {t_s:.4} s): {}", chain(&source));
                         match source {
@@ -814,7 +835,7 @@ impl PySimulation {
                     dim: 3,
                     ticks,
                     clamped_ticks: st.clamped_ticks,
-                    unconverged_ticks: st.unconverged_ticks,
+                    unconverged_ticks: series.converged.iter().filter(|c| !**c).count() as u64,
                     column_misses: 0,
                     column_deferrals: st.column_deferrals,
                     prefetched_columns: prefetched,

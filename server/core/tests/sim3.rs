@@ -169,6 +169,15 @@ fn the_surface_punctures_with_a_peak_then_a_drop() {
     assert_eq!(recs[first - 1].n_tip, 1);
 }
 
+/// Issue 35: tearing (a held point's force across the shaft past its region's tear force) is
+/// for tissue dragged by centimetres; the 10° turn of this scenario, with its steering wrench,
+/// tears nothing.
+#[test]
+fn issue_35_a_10_degree_turn_tears_nothing() {
+    let (sim, _) = scenario();
+    assert_eq!(sim.stats().tears, 0, "{:?}", sim.stats());
+}
+
 #[test]
 fn withdrawal_pulls_outward_and_releases_every_point() {
     let (sim, recs) = scenario();

@@ -32,6 +32,7 @@ use needlesim_core::fixtures::{self, PHANTOM_SIDE_M};
 use needlesim_core::mixed::MixedStats;
 use needlesim_core::sim::{ContactModel, SimParams, SimStats};
 use needlesim_core::{BasePose, MeshLimits, NeedleShape, RegionNeedleParams, RigidNeedle};
+use needlesim_offline::ConvergencePolicy;
 use needlesim_offline::driver::{DEFAULT_PREFETCH_NODES_PER_TICK, RunOptions, Script, ScriptedRun};
 use serde_json::{Value, json};
 
@@ -713,7 +714,7 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
         model.clone(),
         params,
         Script::Poses(&script.poses),
-        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 0 },
+        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 0, convergence: ConvergencePolicy::Keep },
     )?;
     let mut res = CaseResult {
         motion: script.motion,

@@ -12,7 +12,8 @@
 //! a time series off the tick grid. A trajectory read from CSV never yields one (needlesim-trajectory
 //! bounds poses to ±1e3 and sample gaps to ≥ 1 ns); samples that come from the API are checked
 //! for finiteness only, so two near ±1.8e308 can interpolate to infinity, which stops the run
-//! here with that error.
+//! here with that error. A tick that did not converge stops the run too
+//! ([`RunError::Unconverged`]), unless [`RunOptions::convergence`] keeps it.
 
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -23,6 +24,8 @@ use needlesim_core::compliance::TissueModel;
 use needlesim_core::sim::{SimError, SimParams, Simulation, StepOutput};
 use needlesim_scene::Trajectory;
 use needlesim_trajectory::TrajectoryError;
+
+use crate::convergence::{ConvergencePolicy, UnconvergedTick};
 
 /// The longest offline simulation, in ticks, by default: the server's Simulate limit and the
 /// `simulate` command's `--max-ticks` (10⁶ ticks: 1000 s at 1 kHz, 8 MB of step times).
@@ -64,6 +67,9 @@ pub enum RunError {
     /// Computing the columns of approaching nodes after a step failed.
     #[error("the run stopped at tick {tick} (t = {t_s:.4} s): compliance columns")]
     Prefetch { tick: u64, t_s: f64, source: Box<SimError> },
+    /// A tick did not converge and the run's [`ConvergencePolicy`] is `Fail`.
+    #[error(transparent)]
+    Unconverged(#[from] UnconvergedTick),
 }
 
 fn step_context(tick: u64, t_s: f64, source: &SimError) -> String {
@@ -78,7 +84,7 @@ impl RunError {
     pub fn sim_error(&self) -> Option<&SimError> {
         match self {
             RunError::Setup(e) | RunError::Step { source: e, .. } | RunError::Prefetch { source: e, .. } => Some(&**e),
-            RunError::TooLong(_) | RunError::BadEnd { .. } => None,
+            RunError::TooLong(_) | RunError::BadEnd { .. } | RunError::Unconverged(_) => None,
         }
     }
 }
@@ -109,11 +115,18 @@ pub struct RunOptions {
     /// Nodes whose compliance columns are computed after each step (0: none; the caller then
     /// provides them, e.g. from a dense inverse, through [`ScriptedRun::sim_mut`]).
     pub prefetch_nodes_per_tick: usize,
+    /// What a tick that did not converge does: stops the run ([`RunError::Unconverged`], the
+    /// default) or is kept ([`crate::convergence`]).
+    pub convergence: ConvergencePolicy,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        Self { max_ticks: DEFAULT_MAX_TICKS, prefetch_nodes_per_tick: DEFAULT_PREFETCH_NODES_PER_TICK }
+        Self {
+            max_ticks: DEFAULT_MAX_TICKS,
+            prefetch_nodes_per_tick: DEFAULT_PREFETCH_NODES_PER_TICK,
+            convergence: ConvergencePolicy::Fail,
+        }
     }
 }
 
@@ -155,6 +168,7 @@ pub struct ScriptedRun<'a> {
     prefetch_due: bool,
     prefetch_nodes_per_tick: usize,
     prefetched_columns: u64,
+    convergence: ConvergencePolicy,
 }
 
 impl<'a> ScriptedRun<'a> {
@@ -203,6 +217,7 @@ impl<'a> ScriptedRun<'a> {
             prefetch_due: false,
             prefetch_nodes_per_tick: opts.prefetch_nodes_per_tick,
             prefetched_columns: 0,
+            convergence: opts.convergence,
         })
     }
 
@@ -248,6 +263,7 @@ impl<'a> ScriptedRun<'a> {
         let stepped = self.sim.step(pose).map(|_| ());
         let step_s = started.elapsed().as_secs_f64();
         stepped.map_err(|source| RunError::Step { tick: k, t_s, source: Box::new(source) })?;
+        self.convergence.check(k, t_s, self.sim.output().unconverged())?;
         self.next_k = k + 1;
         self.prefetch_due = true;
         Ok(Some(Tick { k, t_s, step_s }))

@@ -577,6 +577,7 @@ fn evaluate(ctx: &Ctx, cand: Candidate) -> Result<Eval> {
         let q = traj.pose_at(t);
         let pose = BasePose3::new(q.position_m, q.quat_wxyz).map_err(|e| anyhow::anyhow!("tick {k}: {e}"))?;
         sim.step(pose).with_context(|| format!("tick {k}"))?;
+        crate::ConvergencePolicy::Fail.check(k, t, sim.output().unconverged())?;
         sim.prefetch_columns(usize::MAX).with_context(|| format!("tick {k}: columns"))?;
         let out = sim.output();
         let tgs = out.targets.as_slice();

@@ -6,6 +6,7 @@ use std::ops::ControlFlow;
 
 use needlesim_core::sim::{LocalCondition, Simulation, StateSnapshot, StepOutput};
 
+use crate::convergence::ConvergencePolicy;
 use crate::driver::{RunError, RunOptions, Script, ScriptedRun, Tick};
 
 use needlesim_scene::exchange::{Load, PointCondition, PrescribedLocal, Scenario};
@@ -50,8 +51,18 @@ pub fn csv_header(target_names: &[String]) -> String {
 /// steps, as a worker would. A trajectory longer than `max_ticks` is an error naming its last
 /// line; a failed step (a diverged solve, a pose that is not finite, …) stops the run with an
 /// error naming the tick and time ([`RunError`]).
-pub fn run(scene: &Scene, traj: &Trajectory, max_ticks: u64, csv: Option<&mut String>) -> Result<(Simulation, RunSummary), RunError> {
-    run_observed(scene, traj, max_ticks, csv, |_, _| ControlFlow::Continue(()))
+///
+/// A tick that did not converge stops the run too ([`RunError::Unconverged`]) unless
+/// `convergence` is [`ConvergencePolicy::Keep`]; the CSV then ends each row with a `converged`
+/// column (1, or 0 for a kept unconverged tick).
+pub fn run(
+    scene: &Scene,
+    traj: &Trajectory,
+    max_ticks: u64,
+    convergence: ConvergencePolicy,
+    csv: Option<&mut String>,
+) -> Result<(Simulation, RunSummary), RunError> {
+    run_observed(scene, traj, max_ticks, convergence, csv, |_, _| ControlFlow::Continue(()))
 }
 
 /// [`run`], calling `observe` with each tick and its step's output after the CSV row is written
@@ -63,10 +74,12 @@ pub fn run_observed(
     scene: &Scene,
     traj: &Trajectory,
     max_ticks: u64,
+    convergence: ConvergencePolicy,
     mut csv: Option<&mut String>,
     mut observe: impl FnMut(&Tick, &StepOutput) -> ControlFlow<()>,
 ) -> Result<(Simulation, RunSummary), RunError> {
-    let opts = RunOptions { max_ticks, ..RunOptions::default() };
+    let opts = RunOptions { max_ticks, convergence, ..RunOptions::default() };
+    let mark = convergence == ConvergencePolicy::Keep;
     let mut run = ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), Script::trajectory(traj), opts)?;
     let rate = scene.params.tick_rate_hz;
     let t0 = run.t0_s();
@@ -74,6 +87,9 @@ pub fn run_observed(
         RunSummary { step_times_s: Vec::with_capacity(crate::driver::preallocated_ticks(run.ticks_total())), ..Default::default() };
     if let Some(c) = csv.as_deref_mut() {
         c.push_str(&csv_header(&scene.target_names));
+        if mark {
+            c.push_str(",converged");
+        }
         c.push('\n');
     }
     let mut clamp_run_start: Option<u64> = None;
@@ -96,6 +112,10 @@ pub fn run_observed(
         }
         if let Some(c) = csv.as_deref_mut() {
             write_csv_row(c, out, t0);
+            if mark {
+                c.pop();
+                c.push_str(if out.unconverged().is_some() { ",0\n" } else { ",1\n" });
+            }
         }
         observe(tick, out)
     })?;

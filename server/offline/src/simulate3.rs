@@ -38,6 +38,8 @@ use needlesim_scene::{Scene3d, Trajectory3, TrajectoryError};
 
 use crate::driver::preallocated_ticks;
 
+use crate::convergence::{ConvergencePolicy, UnconvergedTick};
+
 /// Why a 3D run failed; each names what.
 #[derive(Debug, thiserror::Error)]
 pub enum Run3Error {
@@ -61,6 +63,9 @@ pub enum Run3Error {
     /// cannot cause it), or a column solve for the target failed.
     #[error("{0}")]
     Tissue(String),
+    /// During the run: a tick did not converge and the policy is `Fail` ([`crate::convergence`]).
+    #[error(transparent)]
+    Unconverged(#[from] UnconvergedTick),
 }
 
 /// A target's record over a run.
@@ -93,6 +98,8 @@ pub struct RunSummary3 {
     /// Ticks at which a new point waited for its columns (admitted later).
     pub column_deferrals: u64,
     pub prefetched_columns: u64,
+    /// Ticks that did not converge (the stick/slip or the shape-pass cap): kept only by
+    /// [`ConvergencePolicy::Keep`].
     pub unconverged_ticks: u64,
     pub numeric_factorisations: u64,
     pub max_points: usize,
@@ -103,11 +110,16 @@ pub struct RunSummary3 {
     pub factorise_s: f64,
 }
 
-/// The 3D simulation parameters of a scene: its needle, regions and tick rate; the base starts at
-/// `initial`.
+/// The 3D simulation parameters of a scene: its needle, regions, tick rate and `[limits]`
+/// (`max_base_step_m`, `max_base_step_rad`, `max_active_set_iterations`; every 3D driver, live or
+/// scripted, builds its parameters here; `lookahead_m` stays the 3D default, 20 mm); the base
+/// starts at `initial`.
 pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
     let mut p = Sim3Params::new(scene.needle.length_m, initial);
     p.spacing_m = scene.needle.contact_spacing_m;
+    p.max_base_step_m = scene.limits.max_base_step_m;
+    p.max_base_step_rad = scene.limits.max_base_step_rad;
+    p.max_active_set_iterations = scene.limits.max_active_set_iterations;
     p.regions = scene.regions.iter().map(|r| r.needle).collect();
     p.tick_rate_hz = scene.tick_rate_hz;
     p.max_contacts = scene.needle.max_points;
@@ -152,6 +164,7 @@ pub fn run3(
     traj: &Trajectory3,
     max_ticks: u64,
     dump_ticks: &[u64],
+    convergence: ConvergencePolicy,
     mut csv: Option<&mut String>,
 ) -> Result<Run3Output, Run3Error> {
     let rate = scene.tick_rate_hz;
@@ -183,6 +196,9 @@ pub fn run3(
     if let Some(c) = csv.as_deref_mut() {
         let names: Vec<String> = scene.targets.iter().map(|t| t.name.clone()).collect();
         c.push_str(&csv_header3(&names));
+        if convergence == ConvergencePolicy::Keep {
+            c.push_str(",converged");
+        }
         c.push('\n');
     }
     let mut summary = RunSummary3 { step_times_s: Vec::with_capacity(preallocated_ticks(last_k)), factorise_s, ..Default::default() };
@@ -197,6 +213,8 @@ pub fn run3(
         let s = Instant::now();
         sim.step(pose).map_err(|source| Run3Error::Step { tick: k, t_s, source: Box::new(source) })?;
         summary.step_times_s.push(s.elapsed().as_secs_f64());
+        convergence.check(k, t_s, sim.output().unconverged())?;
+        summary.unconverged_ticks += sim.output().unconverged().is_some() as u64;
         summary.prefetched_columns +=
             sim.prefetch_columns(usize::MAX).map_err(|source| Run3Error::Step { tick: k, t_s, source: Box::new(source) })? as u64;
         let out = sim.output();
@@ -213,6 +231,10 @@ pub fn run3(
         }
         if let Some(c) = csv.as_deref_mut() {
             write_csv_row3(c, k, t_s, out);
+            if convergence == ConvergencePolicy::Keep {
+                c.pop();
+                c.push_str(if out.unconverged().is_some() { ",0\n" } else { ",1\n" });
+            }
         }
         if dump_ticks.contains(&k) {
             dumps.push((k, dump_state(scene, &sim).map_err(|e| Run3Error::Tissue(format!("tick {k}: {e:#}")))?));
@@ -222,7 +244,6 @@ pub fn run3(
     summary.ticks = last_k + 1;
     summary.clamped_ticks = st.clamped_ticks;
     summary.column_deferrals = st.column_deferrals;
-    summary.unconverged_ticks = st.unconverged_ticks;
     summary.numeric_factorisations = model.cholesky().n_numeric_factorisations();
     summary.targets = reports;
     Ok((sim, summary, dumps))
@@ -457,7 +478,7 @@ radius_m = 0.001
         let sc = scene();
         let traj = Trajectory3::parse_csv(TRAJ).unwrap();
         let mut csv = String::new();
-        let (sim, summary, dumps) = run3(&sc, &traj, 10_000, &[2000, 3500], Some(&mut csv)).unwrap();
+        let (sim, summary, dumps) = run3(&sc, &traj, 10_000, &[2000, 3500], ConvergencePolicy::Fail, Some(&mut csv)).unwrap();
         assert_eq!(summary.ticks, 3501);
         assert_eq!(dumps.iter().map(|d| d.0).collect::<Vec<_>>(), vec![2000, 3500]);
         assert_eq!(csv.lines().count(), 3502);
@@ -489,12 +510,39 @@ radius_m = 0.001
         assert!(summary.targets[0].closest_distance_m.is_finite());
     }
 
+    /// Issue 35: a 3D scene's `[limits] max_base_step_m` and `max_base_step_rad` reach the
+    /// simulation (they were validated and dropped: every 3D driver moved the base 2 mm and
+    /// 0.05 rad a tick): a jump commanded at once is taken at most that far each tick.
+    #[test]
+    fn issue_35_a_3d_scenes_base_step_limits_bound_every_tick() {
+        let text = SCENE.replace("[[targets]]", "[limits]\nmax_base_step_m = 1e-4\nmax_base_step_rad = 1e-3\n\n[[targets]]");
+        let sc = needlesim_scene::parse_scene3d(&text, std::path::Path::new("."), &needlesim_core::MeshLimits::default()).unwrap();
+        let params = sim3_params(&sc, base_pose3(&sc.initial_pose).unwrap());
+        assert_eq!((params.max_base_step_m, params.max_base_step_rad), (1e-4, 1e-3));
+        let mut sim = Simulation3::new(Arc::new(sc.tissue_model().unwrap()), params).unwrap();
+        let start = sim.pose();
+        // 5 mm sideways and turned 0.1 rad, above the tissue (the tip starts 5 mm above it).
+        let p = start.position_m;
+        let far = BasePose3::from_rotation([p[0] + 0.005, p[1], p[2]], start.orientation).rotated_about_axis(p, [0.0, 1.0, 0.0], 0.1);
+        let mut prev = start;
+        for k in 0..30 {
+            let o = sim.step(far).unwrap();
+            let moved_m = dist(o.pose.position_m, prev.position_m);
+            let turned_rad = prev.orientation.angle_to(&o.pose.orientation);
+            assert!(o.clamped, "tick {k}: the jump was taken at once");
+            assert!(moved_m <= 1e-4 * (1.0 + 1e-9), "tick {k}: the base moved {moved_m} m, over max_base_step_m = 1e-4");
+            assert!(turned_rad <= 1e-3 * (1.0 + 1e-9), "tick {k}: the base turned {turned_rad} rad, over max_base_step_rad = 1e-3");
+            assert!(moved_m > 0.5e-4 || turned_rad > 0.5e-3, "tick {k}: the base did not move towards the pose");
+            prev = o.pose;
+        }
+    }
+
     #[test]
     fn a_dump_tick_past_the_run_is_refused() {
         let traj = Trajectory3::parse_csv(TRAJ).unwrap();
-        let e = run3(&scene(), &traj, 10_000, &[9999], None).err().unwrap().to_string();
+        let e = run3(&scene(), &traj, 10_000, &[9999], ConvergencePolicy::Fail, None).err().unwrap().to_string();
         assert!(e.contains("--dump-at 9999") && e.contains("0..=3500"), "{e}");
-        let e = run3(&scene(), &traj, 100, &[], None).err().unwrap().to_string();
+        let e = run3(&scene(), &traj, 100, &[], ConvergencePolicy::Fail, None).err().unwrap().to_string();
         assert!(e.contains("over the limit of 100 ticks"), "{e}");
     }
 

@@ -23,7 +23,7 @@ fn replay(scene: &Scene3d, plan: &Plan3) -> (f64, Vec<f64>) {
     for st in &plan.structures {
         s.targets.push(Target3d { name: st.name.clone(), center_m: st.center_m, radius_m: st.radius_m });
     }
-    let (_, summary, _) = run3(&s, &plan.trajectory3(), 10_000_000, &[], None).unwrap();
+    let (_, summary, _) = run3(&s, &plan.trajectory3(), 10_000_000, &[], needlesim_offline::ConvergencePolicy::Fail, None).unwrap();
     let lesion = summary.targets.iter().find(|t| t.name == plan.target).unwrap().closest_distance_m;
     let clear = plan
         .structures

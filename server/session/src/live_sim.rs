@@ -27,7 +27,8 @@ const REQUESTED_FOR_RENDER: u8 = 2;
 pub(crate) enum StepFail {
     /// The pose was refused (not finite, not unit): counted, the last pose held, no fault.
     RejectedPose,
-    /// The step failed; `diverged` faults at once, anything else after a run of failures.
+    /// The step failed; `diverged` (a diverged solve, or a tick that did not converge) faults
+    /// at once, anything else after a run of failures.
     Failed { diverged: bool, fault: SessionFault },
 }
 
@@ -149,10 +150,15 @@ impl LiveSim for Live2 {
 
     fn step_from_rt(&mut self, pose: BasePose, rec: &mut TickRecord) -> Result<(), StepFail> {
         match self.sim.step(pose) {
-            Ok(out) => {
-                rec.fill_from_rt(out);
-                Ok(())
-            }
+            // The convergence policy of a live session: a tick that did not converge is not
+            // an answer to push a device with; the session faults (needlesim-offline's runs stop).
+            Ok(out) => match out.unconverged() {
+                Some(why) => Err(StepFail::Failed { diverged: true, fault: SessionFault::unconverged(why, out.tick) }),
+                None => {
+                    rec.fill_from_rt(out);
+                    Ok(())
+                }
+            },
             Err(SimError::NonFinitePose { .. }) => Err(StepFail::RejectedPose),
             Err(e) => Err(StepFail::Failed {
                 diverged: matches!(e, SimError::Diverged { .. }),
@@ -359,11 +365,14 @@ impl LiveSim for Live3 {
         let mut rolled = pose;
         self.spin.apply_from_rt(self.spin_word, &mut rolled);
         match self.sim.step(rolled) {
-            Ok(out) => {
-                self.applied_roll_rad = self.spin.roll_rad();
-                rec.fill_from_rt3(out, &self.radii_m);
-                Ok(())
-            }
+            Ok(out) => match out.unconverged() {
+                Some(why) => Err(StepFail::Failed { diverged: true, fault: SessionFault::unconverged(why, out.tick) }),
+                None => {
+                    self.applied_roll_rad = self.spin.roll_rad();
+                    rec.fill_from_rt3(out, &self.radii_m);
+                    Ok(())
+                }
+            },
             Err(SimError3::Pose { .. }) => Err(StepFail::RejectedPose),
             Err(e) => Err(StepFail::Failed { diverged: false, fault: SessionFault::of3(&e, tick) }),
         }

@@ -3,7 +3,7 @@
 //! real-time thread stores as a code and numbers (put into words off it).
 
 use needlesim_core::BasePose;
-use needlesim_core::sim::{Divergence, NodeState, SimError, StepOutput};
+use needlesim_core::sim::{Divergence, NodeState, SimError, StepOutput, Unconverged};
 use needlesim_core::sim3::{PointState3, SimError3, StepOutput3, TargetState3};
 
 /// Needle nodes carried by one tick record (a simulation may have more; they are counted).
@@ -202,6 +202,8 @@ pub const FAULT_TISSUE: u8 = 101;
 pub const FAULT_SOLVER: u8 = 102;
 /// Fault code: any other simulation error.
 pub const FAULT_OTHER: u8 = 103;
+/// Fault codes: a tick that did not converge, `FAULT_UNCONVERGED + Unconverged::code()`.
+pub const FAULT_UNCONVERGED: u8 = 110;
 
 impl SessionFault {
     /// The fault of a failed step at `tick` (not for a rejected pose, which is no fault).
@@ -224,8 +226,20 @@ impl SessionFault {
         Self { tick, code, value: 0.0, bound: 0.0 }
     }
 
+    /// The fault of a tick that did not converge ([`Unconverged`]): the live counterpart of an
+    /// offline run's stop (needlesim-offline's convergence policy).
+    pub fn unconverged(why: Unconverged, tick: u64) -> Self {
+        Self { tick, code: FAULT_UNCONVERGED + why.code(), value: 0.0, bound: 0.0 }
+    }
+
     /// The fault in words (allocates: for the IO side).
     pub fn message(&self) -> String {
+        if let Some(why) = self.code.checked_sub(FAULT_UNCONVERGED).and_then(Unconverged::from_code) {
+            return format!(
+                "tick {}: the tick did not converge ({why}); the session stopped rather than push with an unconverged answer",
+                self.tick
+            );
+        }
         let what = match Divergence::from_code(self.code) {
             Some(what) => return SimError::Diverged { tick: self.tick, what, value: self.value, bound: self.bound }.to_string(),
             None if self.code == FAULT_TISSUE => "the tissue model failed (a compliance column)",

@@ -259,7 +259,10 @@ fn issue_13_a_faulted_session_renders_zero_force_to_the_device() {
     let (session, mut device) = attempt.expect("in 10 runs the test thread was late for a tick every time (a loaded machine)");
     let fault = session.counters.fault().expect("the session faulted");
     assert_eq!(session.counters.faults.load(Ordering::Relaxed), 1);
-    assert!(fault.message().contains("the solve diverged"), "{}", fault.message());
+    // Since issue 35 a tick that does not converge faults the session as a divergence does;
+    // on this path its shape passes may reach their cap before anything diverges.
+    let m = fault.message();
+    assert!(m.contains("the solve diverged") || m.contains("the tick did not converge"), "{m}");
     // The device keeps getting fresh wrenches, all zero, wherever it moves (30 of them: the
     // session ticks on; the loop is bounded only as a guard against a hang).
     let (mut fresh, start) = (0, Instant::now());

@@ -86,13 +86,16 @@ impl pb::simulation_service_server::SimulationService for Api {
         .await
         .map_err(|e| Status::internal(format!("simulate task: {e}")))??;
         let decimate = r.decimate.max(1) as u64;
+        let convergence = needlesim_offline::ConvergencePolicy::keeping(r.keep_unconverged);
         let limits_ticks = self.state.limits.max_simulate_ticks;
         // A worker thread of the blocking pool: never a session's real-time thread.
         tokio::task::spawn_blocking(move || {
             let _permit = permit;
             let result = match &job {
-                Job::Two(scene, traj) => run_offline(scene, traj, limits_ticks, decimate, &tx).map_err(|e| ApiError::from(&e)),
-                Job::Three(scene, traj) => run_offline3(scene, traj, decimate, &tx),
+                Job::Two(scene, traj) => {
+                    run_offline(scene, traj, (limits_ticks, convergence), decimate, &tx).map_err(|e| ApiError::from(&e))
+                }
+                Job::Three(scene, traj) => run_offline3(scene, traj, (decimate, convergence), &tx),
             };
             if let Err(e) = result {
                 let _ = tx.blocking_send(Err(e.into()));
@@ -118,13 +121,13 @@ pub const SERIES_CHUNK_ROWS: usize = 1000;
 fn run_offline(
     scene: &needlesim_scene::Scene,
     traj: &needlesim_scene::Trajectory,
-    max_ticks: u64,
+    (max_ticks, convergence): (u64, needlesim_offline::ConvergencePolicy),
     decimate: u64,
     tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
 ) -> Result<(), needlesim_offline::RunError> {
     let send = |response: pb::SimulateResponse| tx.blocking_send(Ok(response)).is_ok();
     let started = std::time::Instant::now();
-    let opts = needlesim_offline::RunOptions { max_ticks, ..Default::default() };
+    let opts = needlesim_offline::RunOptions { max_ticks, convergence, ..Default::default() };
     let mut run =
         needlesim_offline::ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), needlesim_offline::Script::trajectory(traj), opts)?;
     let (t0, n_ticks) = (run.t0_s(), run.last_tick());
@@ -172,7 +175,7 @@ fn run_offline(
 fn run_offline3(
     scene: &needlesim_scene::Scene3d,
     traj: &needlesim_scene::Trajectory3,
-    decimate: u64,
+    (decimate, convergence): (u64, needlesim_offline::ConvergencePolicy),
     tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
 ) -> Result<(), ApiError> {
     use needlesim_offline::simulate3::{base_pose3, sim3_params};
@@ -202,6 +205,7 @@ fn run_offline3(
         let s = std::time::Instant::now();
         sim.step(pose).map_err(|e| at_tick(k, t_s, ApiError::from(&e)))?;
         step_ns.saturating_record((s.elapsed().as_nanos() as u64).max(1));
+        convergence.check(k, t_s, sim.output().unconverged()).map_err(|e| ApiError::from(&needlesim_offline::RunError::Unconverged(e)))?;
         sim.prefetch_columns(usize::MAX).map_err(|e| at_tick(k, t_s, ApiError::from(&e)))?;
         if k % decimate == 0 || k == n_ticks {
             chunk.push(convert::series_row3(sim.output(), t_s, &names, &radii_m));

@@ -394,6 +394,11 @@ pub fn run_exercise_with(
             let fail = |e: &dyn std::fmt::Display| ExerciseRunError::Simulation(format!("tick {k} (t = {t_s} s): {e}"));
             let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| fail(&e))?;
             sim.step(pose).map_err(|e| fail(&e))?;
+            // One convergence policy with `simulate` (needlesim-offline): an exercise is scored
+            // on converged ticks only.
+            needlesim_offline::ConvergencePolicy::Fail
+                .check(k, t_s, sim.output().unconverged())
+                .map_err(|e| ExerciseRunError::Simulation(e.to_string()))?;
             sim.prefetch_columns(usize::MAX).map_err(|e| fail(&e))?;
             f.push(&Sample::from_3d(sim.output(), t_s));
         }

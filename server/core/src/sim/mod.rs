@@ -69,6 +69,7 @@ mod params;
 mod scratch;
 mod setup;
 mod state;
+mod unconverged;
 mod viscous;
 
 use std::sync::Arc;
@@ -82,6 +83,7 @@ pub use divergence::DivergenceBounds;
 pub use error::{Divergence, SimError};
 pub use output::{LocalCondition, NeedleNodeOut, SimStats, StateSnapshot, StepOutput, TargetOut};
 pub use params::{ContactModel, SimParams, TargetParams, param_limits};
+pub use unconverged::Unconverged;
 pub use viscous::Viscoelastic;
 
 pub use state::NodeState;

@@ -78,6 +78,7 @@ mod pose;
 pub mod stiffness;
 mod store;
 pub mod targets;
+mod tear;
 mod worker;
 
 use std::sync::Arc;
@@ -97,6 +98,7 @@ pub use pose::{BasePose3, PoseError, UNIT_QUATERNION_TOL, unit_axis};
 pub use stiffness::WrenchStiffness3;
 pub use store::{Block3, BlockPayload, BlockRequest, BlockStoreError, ComplianceStore3, NodeBlockStore};
 pub use targets::{MAX_TARGETS, Target3, TargetOut3, TargetState3, TargetsOut3};
+pub use tear::DEFAULT_TEAR_FORCE_FACTOR;
 pub use worker::{ROWS_BATCH, Sim3BlockWorker, WorkerStats};
 
 /// Fixed-point iterations locating the material point at a deformed position.
@@ -194,6 +196,12 @@ pub struct Sim3Stats {
     pub clamped_ticks: u64,
     /// Ticks whose active set did not settle within the iteration bound.
     pub unconverged_ticks: u64,
+    /// Flexible needle: ticks whose shape passes stopped at [`SHAPE_PASSES`] with the settled
+    /// shape still more than [`SHAPE_GAP_TOL_M`] off ([`StepOutput3::shape_passes_capped`]).
+    pub shape_capped_ticks: u64,
+    /// Held points torn free: their force across the shaft exceeded what their region's tissue
+    /// holds (`needlesim_core::sim3::tear`; also counted in `releases`).
+    pub tears: u64,
     /// Approaching nodes not reported (list full).
     pub approaching_overflow: u64,
     /// Cached nodes evicted to make room.
@@ -253,7 +261,12 @@ pub struct StepOutput3 {
     /// first: what [`Simulation3::prefetch_columns`] computes.
     pub approaching: Vec<usize>,
     pub active_set_iterations: usize,
+    /// The stick/slip iteration settled within `max_active_set_iterations` passes
+    /// ([`StepOutput3::unconverged`] says why not).
     pub converged: bool,
+    /// Flexible needle: the shape passes stopped at their cap with the shape still changing
+    /// (counted in [`Sim3Stats::shape_capped_ticks`]); always `false` for a rigid needle.
+    pub shape_passes_capped: bool,
     /// The targets ([`Sim3Params::targets`]): displaced centres, distances, latched states
     /// ([`targets`]).
     pub targets: TargetsOut3,
@@ -421,6 +434,7 @@ impl Simulation3 {
             approaching: Vec::with_capacity(MAX_APPROACHING),
             active_set_iterations: 0,
             converged: true,
+            shape_passes_capped: false,
             targets: TargetsOut3::default(),
         };
         targets.initial_output(out.tip_m, pose.axis(), &mut out.targets);
@@ -811,10 +825,15 @@ impl Simulation3 {
         let (mut iterations, mut converged) = self.resolve_active_set(&frame)?;
         // A flexible needle comes to equilibrium with the tick's forces; where that moves it
         // off the held points, the active set is solved again on the new shape.
+        let mut shape_capped = false;
         for pass in 1..=flex::SHAPE_PASSES {
             let Some(fx) = self.flex.as_mut() else { break };
             let gap = fx.settle(&self.solver, &mut self.pts);
-            if gap <= flex::SHAPE_GAP_TOL_M || pass == flex::SHAPE_PASSES {
+            if gap <= flex::SHAPE_GAP_TOL_M {
+                break;
+            }
+            if pass == flex::SHAPE_PASSES {
+                shape_capped = true;
                 break;
             }
             fx.shape_passes += 1;
@@ -824,12 +843,19 @@ impl Simulation3 {
             iterations += it;
             converged = conv;
         }
+        // Tissue dragged past what it holds tears free ([`tear`]).
+        if let Some((it, conv)) = self.tear_overloaded(&frame)? {
+            iterations += it;
+            converged = conv;
+        }
         if !converged {
             self.stats.unconverged_ticks += 1;
         }
+        self.stats.shape_capped_ticks += shape_capped as u64;
         self.solver.solve();
         // 7. Output.
         self.write_output(&frame, clamped, iterations, converged);
+        self.out.shape_passes_capped = shape_capped;
         let target_frame = if self.flex.is_some() { axis_frame_now(self) } else { frame };
         self.update_targets(&target_frame);
         self.tick += 1;

@@ -48,6 +48,10 @@ pub struct Sim3Params {
     /// The needle: rigid (the default) or a flexible rod, optionally with a bevel tip
     /// ([`NeedleShape3`]).
     pub needle: NeedleShape3,
+    /// $\kappa$: a held point tears free when its force across the shaft exceeds $\kappa$ times
+    /// its region's largest cutting resistance, `max(puncture_force_n, cutting_force_n)`
+    /// (`needlesim_core::sim3::tear`; default [`super::DEFAULT_TEAR_FORCE_FACTOR`]).
+    pub tear_force_factor: f64,
 }
 
 /// The needle of a 3D simulation.
@@ -128,6 +132,7 @@ impl Sim3Params {
             store: StoreKind3::Auto,
             max_block_nodes: 384,
             needle: NeedleShape3::Rigid,
+            tear_force_factor: super::DEFAULT_TEAR_FORCE_FACTOR,
         }
     }
 
@@ -142,14 +147,16 @@ impl Sim3Params {
         pos("tick_rate_hz", self.tick_rate_hz)?;
         pos("max_base_step_m", self.max_base_step_m)?;
         pos("max_base_step_rad", self.max_base_step_rad)?;
+        pos("tear_force_factor", self.tear_force_factor)?;
         if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
             return Err(format!("lookahead_m = {} must be finite and ≥ 0", crate::num::num(self.lookahead_m)));
         }
         if !(1..=4096).contains(&self.max_contacts) {
             return Err(format!("max_contacts = {} must be in 1..=4096", self.max_contacts));
         }
-        if !(1..=1000).contains(&self.max_active_set_iterations) {
-            return Err(format!("max_active_set_iterations = {} must be in 1..=1000", self.max_active_set_iterations));
+        let max_iter = crate::sim::param_limits::MAX_ACTIVE_SET_ITERATIONS;
+        if !(1..=max_iter).contains(&self.max_active_set_iterations) {
+            return Err(format!("max_active_set_iterations = {} must be in 1..={max_iter}", self.max_active_set_iterations));
         }
         if !(16..=2048).contains(&self.max_block_nodes) {
             return Err(format!("max_block_nodes = {} must be in 16..=2048", self.max_block_nodes));
