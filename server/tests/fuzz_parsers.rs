@@ -1,4 +1,5 @@
-//! Fuzzing harness for every parser of an input file (issue 13): Gmsh MSH, scene TOML, the three
+//! Fuzzing harness for every parser of an input file (issue 13): Gmsh MSH (2D, and 3D with the
+//! overlapping and cracked meshes of issue 35), scene TOML, the three
 //! trajectory CSV readers (server, client, device bridge), the validation exchange JSON,
 //! marker-track CSV, the identification probe and force logs (CSV) and PNG frames. Each case
 //! mutates a real seed file or generates an input from a grammar, runs the parser in-process, and
@@ -27,6 +28,7 @@ use std::time::Duration;
 
 use fuzz::{Target, Verdict, verdict};
 use needlesim_core::MeshLimits;
+use needlesim_core::d3::{TetMesh, TetMeshLimits};
 use needlesim_identify::logs::{ForceLog, ProbeLog};
 use needlesim_identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
 use needlesim_identify::tracks::MarkerTracks;
@@ -191,6 +193,228 @@ fn msh_target() -> Target {
         mutate: None,
         check: check_msh,
         cases: 1000,
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gmsh MSH with tetrahedra (issue 35: overlapping and cracked meshes)
+
+/// Tetrahedral mesh limits for the 3D parser.
+const PARSE_LIMITS_3D: TetMeshLimits = TetMeshLimits { max_nodes: 20_000, max_tets: 120_000 };
+
+/// The 3D seeds: the shipped brachytherapy mesh, and the validation cube when present.
+fn msh3d_seeds() -> Vec<Vec<u8>> {
+    let mut seeds = vec![std::fs::read(repo().join("server/scenes/brachy-3d.msh")).expect("server/scenes/brachy-3d.msh")];
+    let shared = validation_dir().join("meshes");
+    for name in ["cube_sphere_v41.msh", "cube_sphere_v22.msh"] {
+        if let Ok(b) = std::fs::read(shared.join(name)) {
+            seeds.push(b);
+        }
+    }
+    seeds
+}
+
+/// Whether the interior of tetrahedron `p` holds `x` (every barycentric weight above 1e-9).
+fn strictly_inside(p: [[f64; 3]; 4], x: [f64; 3]) -> bool {
+    let vol = |a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]| {
+        let (u, v, w) = ([0, 1, 2].map(|k| b[k] - a[k]), [0, 1, 2].map(|k| c[k] - a[k]), [0, 1, 2].map(|k| d[k] - a[k]));
+        u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])
+    };
+    let v = vol(p[0], p[1], p[2], p[3]);
+    let w = [vol(x, p[1], p[2], p[3]), vol(p[0], x, p[2], p[3]), vol(p[0], p[1], x, p[3]), vol(p[0], p[1], p[2], x)];
+    w.iter().all(|wi| wi / v > 1e-9)
+}
+
+/// An accepted 3D mesh must be conforming, checked here independently of the parser's own
+/// checks: no two nodes within 1e-9 of the bounding-box diagonal (brute force; exact repeats by
+/// sorting on large meshes), no face in more than two tetrahedra, and (on meshes up to 1,500
+/// tetrahedra, brute force) no tetrahedron's centroid inside another.
+fn conforming(mesh: &TetMesh) -> Verdict {
+    let (nodes, tets) = (mesh.nodes_m(), mesh.tets());
+    let (lo, hi) = mesh.bounding_box_m();
+    let tol = 1e-9 * (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    let d2 = |a: [f64; 3], b: [f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>();
+    if nodes.len() <= 2_000 {
+        for i in 0..nodes.len() {
+            if let Some(j) = (i + 1..nodes.len()).find(|&j| d2(nodes[i], nodes[j]) <= tol * tol) {
+                return Err(format!("accepted a mesh with nodes {i} and {j} at the same place (a crack)"));
+            }
+        }
+    } else {
+        let mut sorted: Vec<[u64; 3]> = nodes.iter().map(|p| p.map(f64::to_bits)).collect();
+        sorted.sort_unstable();
+        if sorted.windows(2).any(|w| w[0] == w[1]) {
+            return Err("accepted a mesh with two nodes at the same place (a crack)".into());
+        }
+    }
+    let mut faces = std::collections::HashMap::<[usize; 3], usize>::new();
+    for t in tets {
+        for skip in 0..4 {
+            let mut f: Vec<usize> = (0..4).filter(|&k| k != skip).map(|k| t[k]).collect();
+            f.sort_unstable();
+            *faces.entry([f[0], f[1], f[2]]).or_default() += 1;
+        }
+    }
+    if let Some((f, n)) = faces.iter().find(|(_, n)| **n > 2) {
+        return Err(format!("accepted a mesh whose face {f:?} belongs to {n} tetrahedra"));
+    }
+    if tets.len() <= 1_500 {
+        for a in 0..tets.len() {
+            let p = mesh.tet_points_m(a);
+            let c = [0, 1, 2].map(|k| p.iter().map(|q| q[k]).sum::<f64>() / 4.0);
+            if let Some(b) = (0..tets.len()).find(|&b| b != a && strictly_inside(mesh.tet_points_m(b), c)) {
+                return Err(format!("accepted overlapping tetrahedra {a} and {b} (the centroid of {a} lies inside {b})"));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_msh3d(input: &[u8]) -> Verdict {
+    verdict(needlesim_core::msh::parse_msh3d(&fuzz::text(input), &PARSE_LIMITS_3D), |m| {
+        let mesh = &m.mesh;
+        let n = mesh.n_nodes();
+        if n == 0 || mesh.n_tets() == 0 || m.node_tags.len() != n || m.element_tags.len() != mesh.n_tets() {
+            return Err(format!("accepted a mesh of {n} nodes, {} tetrahedra, {} tags", mesh.n_tets(), m.node_tags.len()));
+        }
+        if !mesh.nodes_m().iter().all(|p| finite(p)) || mesh.tets().iter().flatten().any(|&i| i >= n) {
+            return Err("accepted a mesh with a non-finite node or a dangling tetrahedron".into());
+        }
+        if (0..mesh.n_tets()).any(|t| !(mesh.volume_m3(t) > 0.0)) {
+            return Err("accepted a tetrahedron that is not positive".into());
+        }
+        conforming(mesh)
+    })
+}
+
+/// A small box of tetrahedra (`nx × ny × nz` nodes, 1 cm apart, 6 positive tetrahedra per cell,
+/// a physical volume), in MSH 2.2 or 4.1, sometimes made non-conforming the ways issue 35 found:
+/// a tetrahedron overlapping others (of new nodes inside a cell, or on an outer face reaching
+/// inwards), or a crack (the tetrahedra on one side of a grid plane given their own copies of its
+/// nodes, coincident or within round-off). Counts are sometimes wrong, as in [`generate_msh`].
+fn generate_msh3d(rng: &mut SmallRng) -> Vec<u8> {
+    let n = [rng.random_range(2..5usize), rng.random_range(2..5usize), rng.random_range(2..5usize)];
+    let node = |i: usize, j: usize, k: usize| i + n[0] * (j + n[1] * k);
+    let mut xyz: Vec<[f64; 3]> = Vec::new();
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                xyz.push([i as f64 * 0.01, j as f64 * 0.01, k as f64 * 0.01]);
+            }
+        }
+    }
+    let vol = |t: [usize; 4], xyz: &[[f64; 3]]| {
+        let p = t.map(|i| xyz[i]);
+        let (u, v, w) = ([0, 1, 2].map(|k| p[1][k] - p[0][k]), [0, 1, 2].map(|k| p[2][k] - p[0][k]), [0, 1, 2].map(|k| p[3][k] - p[0][k]));
+        u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])
+    };
+    let mut tets: Vec<[usize; 4]> = Vec::new();
+    for k in 0..n[2] - 1 {
+        for j in 0..n[1] - 1 {
+            for i in 0..n[0] - 1 {
+                for order in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
+                    let mut c = [i, j, k];
+                    let mut t = [node(i, j, k); 4];
+                    for (s, axis) in order.into_iter().enumerate() {
+                        c[axis] += 1;
+                        t[s + 1] = node(c[0], c[1], c[2]);
+                    }
+                    tets.push(t);
+                }
+            }
+        }
+    }
+    match rng.random_range(0..6) {
+        // A small tetrahedron of new nodes inside the first cell.
+        0 => {
+            let b = xyz.len();
+            xyz.extend([[0.002, 0.001, 0.001], [0.005, 0.001, 0.001], [0.002, 0.004, 0.001], [0.002, 0.001, 0.004]]);
+            tets.push([b, b + 1, b + 2, b + 3]);
+        }
+        // On the bottom face (0,0,0), (1,0,0), (1,1,0), reaching the top corner of the grid.
+        1 => tets.push([node(0, 0, 0), node(1, 0, 0), node(1, 1, 0), node(1, 1, n[2] - 1)]),
+        // A crack along the plane i = 1 (when there is a cell beyond it).
+        2 | 3 if n[0] >= 3 => {
+            let near = rng.random_bool(0.5);
+            let mut copy = std::collections::BTreeMap::new();
+            for t in tets.iter_mut() {
+                if t.iter().any(|&v| v % n[0] >= 2) {
+                    for v in t.iter_mut().filter(|v| **v % n[0] == 1) {
+                        *v = *copy.entry(*v).or_insert_with(|| {
+                            let mut p = xyz[*v];
+                            if near {
+                                p[1] += 1e-13;
+                            }
+                            xyz.push(p);
+                            xyz.len() - 1
+                        });
+                    }
+                }
+            }
+        }
+        _ => {}
+    }
+    for t in tets.iter_mut() {
+        if vol(*t, &xyz) < 0.0 {
+            t.swap(2, 3);
+        }
+    }
+    let v4 = rng.random_bool(0.5);
+    let n_nodes = xyz.len();
+    let mut s = format!("$MeshFormat\n{} 0 8\n$EndMeshFormat\n", if v4 { "4.1" } else { "2.2" });
+    s += &format!("$PhysicalNames\n{}\n3 1 \"tissue\"\n$EndPhysicalNames\n", count(rng, 1));
+    let line = |p: &[f64; 3]| format!("{} {} {}\n", p[0], p[1], p[2]);
+    if v4 {
+        s += &format!("$Entities\n0 0 0 {}\n1 0 0 0 0.03 0.03 0.03 1 1 0\n$EndEntities\n", count(rng, 1));
+        s += &format!("$Nodes\n1 {} 1 {n_nodes}\n3 1 0 {}\n", count(rng, n_nodes), count(rng, n_nodes));
+        s += &(1..=n_nodes).map(|k| format!("{k}\n")).collect::<String>();
+        s += &xyz.iter().map(line).collect::<String>();
+        s += "$EndNodes\n";
+        s += &format!("$Elements\n1 {} 1 {}\n3 1 4 {}\n", count(rng, tets.len()), tets.len(), count(rng, tets.len()));
+        s += &tets
+            .iter()
+            .enumerate()
+            .map(|(e, t)| format!("{} {} {} {} {}\n", e + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1))
+            .collect::<String>();
+        s += "$EndElements\n";
+    } else {
+        s += &format!("$Nodes\n{}\n", count(rng, n_nodes));
+        s += &xyz.iter().enumerate().map(|(k, p)| format!("{} {}", k + 1, line(p))).collect::<String>();
+        s += "$EndNodes\n";
+        s += &format!("$Elements\n{}\n", count(rng, tets.len()));
+        s += &tets
+            .iter()
+            .enumerate()
+            .map(|(e, t)| format!("{} 4 2 1 1 {} {} {} {}\n", e + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1))
+            .collect::<String>();
+        s += "$EndElements\n";
+    }
+    s.into_bytes()
+}
+
+fn msh3d_target() -> Target {
+    Target {
+        name: "msh3d",
+        seeds: msh3d_seeds(),
+        dict: dict(&[
+            "$Nodes\n",
+            "$EndNodes\n",
+            "$Elements\n",
+            "$EndElements\n",
+            "$PhysicalNames\n",
+            "$EndPhysicalNames\n",
+            "$Entities\n",
+            "4.1 0 8\n",
+            "2.2 0 8\n",
+            " 4 ",
+            " 2 ",
+            " 3 ",
+            "\n",
+        ]),
+        generate: Some(generate_msh3d),
+        mutate: None,
+        check: check_msh3d,
+        cases: 200,
     }
 }
 
@@ -709,6 +933,7 @@ fn png_target() -> Target {
 fn all_targets() -> Vec<Target> {
     vec![
         msh_target(),
+        msh3d_target(),
         scene_target(),
         traj_target("trajectory", check_traj),
         exchange_target(),
@@ -721,6 +946,11 @@ fn all_targets() -> Vec<Target> {
 #[test]
 fn issue_13_fuzz_msh() {
     msh_target().run_bounded();
+}
+
+#[test]
+fn issue_35_fuzz_msh3d_with_overlaps_and_cracks() {
+    msh3d_target().run_bounded();
 }
 
 #[test]

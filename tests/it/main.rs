@@ -21,6 +21,7 @@ mod flexible_e2e;
 mod foxglove;
 mod identify_fit;
 mod identify_track;
+mod meshes3d;
 mod plan;
 mod plan3;
 mod python_client;

@@ -15,10 +15,13 @@
 //! out-of-range and repeated node ids, degenerate tetrahedra ($|V| \le 10^{-12} h^3$ with $h$ the
 //! element's longest edge), two tetrahedra with the same node set, non-finite coordinates, nodes
 //! used by no tetrahedron, region and boundary-set inconsistencies, and meshes over the
-//! [`TetMeshLimits`]. (Overlapping non-identical tetrahedra are not searched for.)
+//! [`TetMeshLimits`]; and what a conforming mesh cannot have ([`super::conform`]): coincident
+//! nodes (a crack), a face shared by more than two tetrahedra or by two on the same side of it,
+//! and tissue just outside a boundary face (a tetrahedron or a part lying inside others).
 
 use std::collections::BTreeMap;
 
+use super::conform;
 use crate::mesh::MeshLimits;
 
 /// The limits a tetrahedral mesh is checked against, so that a user's mesh cannot exhaust memory.
@@ -87,6 +90,19 @@ pub enum TetMeshError {
     /// A boundary set names a node that does not exist.
     #[error("boundary set '{set}' names node {node_idx}, but the mesh has only {n_nodes} nodes")]
     BoundaryNodeOutOfRange { set: String, node_idx: usize, n_nodes: usize },
+    /// Two nodes lie within [`super::conform::DUPLICATE_NODE_TOL`] × the bounding-box diagonal of
+    /// each other: a mesh that repeats a node instead of sharing it is cut apart there (a crack).
+    #[error(
+        "nodes {first_idx} and {second_idx} coincide at ({}, {}, {}) m (within {tol_m:e} m): a node must appear once and be shared by its tetrahedra; a repeated node cuts the mesh apart (a crack)",
+        x_m[0], x_m[1], x_m[2]
+    )]
+    DuplicateNode { first_idx: usize, second_idx: usize, x_m: [f64; 3], tol_m: f64 },
+    /// A triangular face belongs to more than two tetrahedra.
+    #[error("the face with nodes {face:?} belongs to {n_tets} tetrahedra ({}, {}, {}, …): at most two tetrahedra meet at a face", tets[0], tets[1], tets[2])]
+    FaceSharedByMany { face: [usize; 3], tets: [usize; 3], n_tets: usize },
+    /// The interiors of two tetrahedra intersect: the tissue there would be counted twice.
+    #[error("tetrahedra {first_idx} (nodes {first_nodes:?}) and {second_idx} (nodes {second_nodes:?}) overlap")]
+    OverlappingTets { first_idx: usize, first_nodes: [usize; 4], second_idx: usize, second_nodes: [usize; 4] },
     /// Box grid parameters are out of range.
     #[error("invalid box grid: {0}")]
     InvalidBox(String),
@@ -241,7 +257,10 @@ impl TetMesh {
         if let Some(w) = sorted.windows(2).find(|w| w[0].0 == w[1].0) {
             return Err(TetMeshError::DuplicateTet { first_idx: w[0].1, second_idx: w[1].1, nodes: w[0].0 });
         }
-        Ok(())
+        drop(sorted);
+        conform::check_duplicate_nodes(self)?;
+        let boundary = conform::check_faces(self)?;
+        conform::check_boundary_probes(self, &boundary)
     }
 
     /// Number of nodes.

@@ -1,6 +1,7 @@
 //! The static 3D tissue core: linear 4-node tetrahedra.
 //!
-//! [`mesh`] (the tetrahedral mesh, its validation, structured box grids), [`locate`] (which
+//! [`mesh`] (the tetrahedral mesh, its validation, structured box grids), [`conform`] (its
+//! conformity checks: no cracks, no overlaps), [`locate`] (which
 //! tetrahedron holds a point, and its barycentric weights), [`assembly`] (3D Hooke, element
 //! matrices, sparse $K$, stresses), [`statics`] (static solves with world, local-frame and
 //! material-point conditions, reactions), [`tissue`] (one factorisation of $K_{ff}$, compliance
@@ -12,6 +13,7 @@
 //! Node DOFs are $[u_x, u_y, u_z]$ per node, DOF $= 3\cdot\mathrm{node} + \mathrm{axis}$, everywhere.
 
 pub mod assembly;
+pub mod conform;
 pub mod locate;
 pub mod mesh;
 pub mod sparse_compliance;

@@ -178,7 +178,7 @@ pub(super) fn resolve_active_set(
         for _ in 0..FRICTION_SWEEPS {
             let geo = Geometry::new(params, st.pose, st.flex.as_ref());
             let friction_change = update_friction(params, &geo, &mut st.ws, &mut sc.order, true, tol);
-            let bevel_change = st.flex.as_ref().map_or(0.0, |fx| flexible::update_bevel_force(&mut st.ws, fx));
+            let bevel_change = st.flex.as_ref().map_or(0.0, |fx| flexible::update_bevel_force(&mut st.ws, fx, tol));
             if friction_change <= tol && bevel_change <= tol {
                 break;
             }

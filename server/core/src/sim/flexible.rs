@@ -69,18 +69,31 @@ pub(super) fn solve_working_set(ws: &mut WorkingSet, flex: Option<(&mut FlexStat
 }
 
 /// A bevel tip's lateral force $f_n = -s_b\,\beta\,\max(f_t, 0)$ from the tip node's current
-/// axial force; returns the largest change of a prescribed value (N).
-pub(super) fn update_bevel_force(ws: &mut WorkingSet, fx: &FlexState) -> f64 {
+/// axial force; returns the largest change of a prescribed value (N). As with the friction
+/// ([`super::active_set::update_friction`]), the new values are applied only when that change
+/// exceeds `min_change_n`: a smaller one ends the friction sweep without another solve, and the
+/// conditions must stay those the last solve used, so that the state (and a snapshot of it)
+/// is the solution of its own conditions.
+pub(super) fn update_bevel_force(ws: &mut WorkingSet, fx: &FlexState, min_change_n: f64) -> f64 {
     if fx.bevel_ratio == 0.0 {
         return 0.0;
     }
     let (ratio, side) = (fx.bevel_ratio, fx.bevel_side);
+    let is_bevel_tip =
+        |ws: &WorkingSet, slot| ws.node(slot).state == NodeState::Tip && ws.solver.condition(slot, Axis::Lateral) == Condition::Force;
+    let value = |ws: &WorkingSet, slot| -side * ratio * ws.solver.force_local(slot)[Axis::Axial].max(0.0);
     let mut change: f64 = 0.0;
     for slot in ws.slots() {
-        if ws.node(slot).state == NodeState::Tip && ws.solver.condition(slot, Axis::Lateral) == Condition::Force {
-            let value = -side * ratio * ws.solver.force_local(slot)[Axis::Axial].max(0.0);
-            change = change.max((value - ws.solver.prescribed_value(slot, Axis::Lateral)).abs());
-            ws.solver.set_value(slot, Axis::Lateral, value);
+        if is_bevel_tip(ws, slot) {
+            change = change.max((value(ws, slot) - ws.solver.prescribed_value(slot, Axis::Lateral)).abs());
+        }
+    }
+    if change > min_change_n {
+        for slot in ws.slots() {
+            if is_bevel_tip(ws, slot) {
+                let v = value(ws, slot);
+                ws.solver.set_value(slot, Axis::Lateral, v);
+            }
         }
     }
     change
