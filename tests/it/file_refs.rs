@@ -116,6 +116,7 @@ async fn issue_35_scenes_from_clients_open_no_file_they_name() {
             scene: source(pb::scene_source::Source::SceneToml(scene)),
             trajectory: vec![],
             decimate: 1,
+            ..Default::default()
         });
         r.set_timeout(Duration::from_secs(20));
         let e = sim.simulate(r).await.err().expect("Simulate refuses the scene before it streams");

@@ -168,7 +168,7 @@ pub fn run3(
     mut csv: Option<&mut String>,
 ) -> Result<Run3Output, Run3Error> {
     let rate = scene.tick_rate_hz;
-    let (t0, t1) = traj.span_s();
+    let t0 = traj.span_s().0;
     let last_k = traj.tick_count(rate, max_ticks)?;
     if let Some(&bad) = dump_ticks.iter().find(|&&k| k > last_k) {
         return Err(Run3Error::DumpTick { tick: bad, last: last_k });
@@ -553,7 +553,7 @@ radius_m = 0.001
         let text = "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0.05,0.05,0.11,0.7071067811865476,0,0.7071067811865476,0\n# a comment\n1e17,0.05,0.05,0.1,0.7071067811865476,0,0.7071067811865476,0\n";
         let traj = Trajectory3::parse_csv(text).unwrap();
         for max_ticks in [1_000_000, u64::MAX] {
-            let e = run3(&scene(), &traj, max_ticks, &[], None).err().unwrap().to_string();
+            let e = run3(&scene(), &traj, max_ticks, &[], ConvergencePolicy::Fail, None).err().unwrap().to_string();
             assert!(e.starts_with("trajectory line 4: t_s = 1e17 ends 1e17 s after the first sample, 1e20 ticks at 1000 Hz"), "{e}");
             assert!(e.contains(&format!("over the limit of {max_ticks} ticks")), "{e}");
         }
