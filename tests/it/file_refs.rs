@@ -119,7 +119,7 @@ async fn issue_35_scenes_from_clients_open_no_file_they_name() {
             ..Default::default()
         });
         r.set_timeout(Duration::from_secs(20));
-        let e = sim.simulate(r).await.err().expect("Simulate refuses the scene before it streams");
+        let e = sim.simulate(r).await.expect_err("Simulate refuses the scene before it streams");
         assert_refused(&format!("Simulate, {key} = the token file"), &e, "scene.scene_toml", key);
     }
     // An example's name is a name, never a path.
