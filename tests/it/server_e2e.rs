@@ -652,7 +652,15 @@ async fn issue_13_a_diverging_live_session_faults_with_zero_force() {
         let mut s = sessions.clone();
         async move { s.get_stats(req).await.expect("GetStats").into_inner() }
     };
-    assert!(st.fault.contains("the solve diverged") && st.fault.starts_with("tick "), "{}", st.fault);
+    // Since issue 35 a tick that does not converge faults the session as a divergence does; on
+    // this path the stick/slip iteration usually reaches its cap before anything diverges (the
+    // divergence bounds themselves are tested offline: simulate.rs, issue_13, with
+    // --keep-unconverged).
+    assert!(
+        (st.fault.contains("the solve diverged") || st.fault.contains("the tick did not converge")) && st.fault.starts_with("tick "),
+        "{}",
+        st.fault
+    );
     // The session steps no more: its last frame is the faulted one, with zero force.
     let mut obs = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
     let req =

@@ -92,9 +92,28 @@ fn a_rigid_needle_plan_reaches_the_lesion_behind_the_vessel() {
 /// A bevel-tip needle from the same entry point: aimed straight it crosses the vessel and misses
 /// the lesion; the plan rolls the bevel towards the vessel before entering and aims so that the
 /// arc passes the vessel and ends in the lesion.
+///
+/// Ignored since issue 35: the 3D bevel needle's shape passes do not converge at its first contact
+/// (tick 126 of the straight aim; the issue "3D physics at 2D's fidelity", item 4: the bevel
+/// slides through the tissue), and an unconverged run is no answer; the plan below was computed
+/// on those ticks. Un-ignore when the 3D bevel needle holds the tissue.
 #[test]
+#[ignore = "issue 37: the 3D bevel needle's shape passes do not converge (see issue_35_a_plan_whose_simulation_does_not_converge_says_so)"]
 fn a_bevel_needle_plan_steers_around_the_vessel() {
     let plan = plan_and_check("behind-vessel-bevel-3d");
     assert_eq!(plan.plan.entry_m, plan.straight.entry_m, "the bevel plan keeps the entry point");
     assert_eq!(plan.plan.rolls.len(), 1);
+}
+
+/// Issue 35, item 11: a plan whose candidate simulation does not converge stops with an error
+/// naming the tick rather than planning on the solver's last iterate (on ba75e0e this scene
+/// planned on unconverged ticks).
+#[test]
+fn issue_35_a_plan_whose_simulation_does_not_converge_says_so() {
+    let scene = scene("behind-vessel-bevel-3d");
+    let req = Plan3Request { target: "lesion".into(), ..Default::default() };
+    let e = plan3(&scene, &req, &PlanOptions::default(), |_| std::ops::ControlFlow::Continue(()))
+        .expect_err("the bevel scene's straight aim does not converge");
+    let m = format!("{e:#}");
+    assert!(m.contains("the run stopped at tick") && m.contains("did not converge"), "{m}");
 }
