@@ -356,7 +356,8 @@ async fn issue_35_a_3d_node_limit_is_resource_exhausted_and_numbers_are_echoed_s
     let e = sessions.create_session(pb::CreateSessionRequest { scene: toml(big.clone()), ..Default::default() }).await.unwrap_err();
     assert_eq!(e.code(), Code::ResourceExhausted, "{}", e.message());
     assert!(e.message().contains("1030301 nodes, over the limit of 1000000"), "{}", e.message());
-    let e = sim.simulate(pb::SimulateRequest { scene: toml(big), trajectory: vec![], decimate: 10, ..Default::default() }).await.unwrap_err();
+    let e =
+        sim.simulate(pb::SimulateRequest { scene: toml(big), trajectory: vec![], decimate: 10, ..Default::default() }).await.unwrap_err();
     assert_eq!(e.code(), Code::ResourceExhausted, "Simulate: {}", e.message());
     // 1e300, 2D and 3D.
     for (dim, text) in [(2, PHANTOM.to_owned()), (3, cube)] {

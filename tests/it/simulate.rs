@@ -316,8 +316,10 @@ fn issue_13_a_diverging_offline_run_stops_naming_the_tick() {
     std::fs::write(&path, scene.replace("friction_n_per_m = 10\n", "friction_n_per_m = 3e4\n")).unwrap();
     let traj = needlesim_tests::repo_root().join("server/scenes/fig4-steering.csv");
     let out = dir.join("series.csv");
-    let (ok, err) =
-        simulate_within(&["--scene", path.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "-o", out.to_str().unwrap(), "--keep-unconverged"], 300);
+    let (ok, err) = simulate_within(
+        &["--scene", path.to_str().unwrap(), "--trajectory", traj.to_str().unwrap(), "-o", out.to_str().unwrap(), "--keep-unconverged"],
+        300,
+    );
     assert!(!ok, "the diverging run exited 0: {err}");
     let line = error_line(&err);
     let tick: u64 = line
