@@ -19,7 +19,9 @@ use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
 use needlesim_core::sim::{NodeState, Simulation, StepOutput};
 use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
-use needlesim_offline::{ConvergencePolicy, DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, RunOptions, Script, ScriptedRun, preallocated_ticks, simulate};
+use needlesim_offline::{
+    ConvergencePolicy, DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, RunOptions, Script, ScriptedRun, preallocated_ticks, simulate,
+};
 use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
