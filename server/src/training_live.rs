@@ -407,7 +407,7 @@ impl LiveExercise {
 
     /// The instructor hands control back (idempotent); the lease is let go and the device drives
     /// again unless paused. FAILED_PRECONDITION once the exercise has ended (its end handed
-    /// control back already: [`LiveExercise::release_at_end`]).
+    /// control back already: [`LiveExercise::end`]).
     pub fn hand_back(&self, s: &Session) -> Result<(), Status> {
         let mut st = self.lock();
         if st.ending {
@@ -418,21 +418,6 @@ impl LiveExercise {
         drop(st);
         self.changed();
         Ok(())
-    }
-
-    /// After the end: the instructor's control and a pause no longer apply (they could not be
-    /// handed back or resumed once the calls refuse an ended exercise), so the lease is let go
-    /// and the device drives again.
-    pub fn release_at_end(&self, s: &Session) {
-        let mut st = self.lock();
-        if !st.ending || (!st.instructor_control && !st.paused) {
-            return;
-        }
-        st.instructor_control = false;
-        st.paused = false;
-        Self::release_if_free(&mut st, s);
-        drop(st);
-        self.changed();
     }
 
     /// Pauses or resumes (module docs); the lease is held and the device suspended while paused.
@@ -546,10 +531,12 @@ impl LiveExercise {
         }
     }
 
-    /// Ends the exercise (idempotent): scores nothing more, renders the report and writes it to
-    /// `<data_dir>/reports/<session>-<exercise>.html`. Blocking (the report's plots): call it off
-    /// the async runtime.
-    pub fn end(&self, data_dir: &Path) -> Result<Finished, Status> {
+    /// Ends the exercise (idempotent): scores nothing more, lets the instructor's control and a
+    /// pause go (they could not be handed back or resumed once the calls refuse an ended
+    /// exercise, so the lease is freed and `s`'s device drives again, even if the report then
+    /// fails), renders the report and writes it to `<data_dir>/reports/<session>-<exercise>.html`.
+    /// Blocking (the report's plots): call it off the async runtime.
+    pub fn end(&self, s: &Session, data_dir: &Path) -> Result<Finished, Status> {
         let _serial = self.end_lock.lock().expect("exercise end lock");
         let run = {
             let mut st = self.lock();
@@ -557,6 +544,11 @@ impl LiveExercise {
                 return Ok(f.clone());
             }
             st.ending = true;
+            if st.instructor_control || st.paused {
+                st.instructor_control = false;
+                st.paused = false;
+                Self::release_if_free(&mut st, s);
+            }
             self.stop_strain();
             ExerciseRun {
                 exercise: self.exercise.name.clone(),
@@ -677,12 +669,12 @@ pub fn authorize_pose<T>(registry: &Registry, req: &tonic::Request<T>, s: &Sessi
 }
 
 /// The session closes: its exercise ends (report written) and leaves the registry. Blocking.
-pub fn on_close(registry: &Registry, data_dir: &Path, session_id: &str) {
-    let ex = registry.write().expect("training registry lock").remove(session_id);
+pub fn on_close(registry: &Registry, data_dir: &Path, s: &Session) {
+    let ex = registry.write().expect("training registry lock").remove(&s.id);
     if let Some(ex) = ex {
         ex.closed.store(true, Ordering::Release);
-        if let Err(e) = ex.end(data_dir) {
-            tracing::error!(session = %session_id, "the exercise's report: {}", e.message());
+        if let Err(e) = ex.end(s, data_dir) {
+            tracing::error!(session = %s.id, "the exercise's report: {}", e.message());
         }
         ex.changed();
     }
@@ -834,8 +826,7 @@ mod tests {
         ex.take_control(&s).unwrap();
         assert!(s.device_suspended());
         let dir = std::env::temp_dir().join(format!("needlesim-training-end-{}", std::process::id()));
-        ex.end(&dir).unwrap();
-        ex.release_at_end(&s);
+        ex.end(&s, &dir).unwrap();
         assert!(!s.device_suspended(), "the end lets the instructor's hold go");
         assert!(ex.refuse_trainee().is_ok());
         assert!(s.control.acquire_stream("trainee", false).await.is_ok(), "the lease is free after the end");
@@ -853,6 +844,8 @@ mod tests {
 
     #[test]
     fn markers_are_checked_and_an_ended_exercise_takes_nothing() {
+        let scene = needlesim_scene::load_scene("paper-phantom", &needlesim_core::MeshLimits::default()).unwrap();
+        let s = Session::start(&scene, 1000.0, None).unwrap();
         let ex = exercise();
         assert_eq!(ex.add_marker(&"x".repeat(201)).unwrap_err().code(), tonic::Code::InvalidArgument);
         assert_eq!(ex.add_marker("a\nb").unwrap_err().code(), tonic::Code::InvalidArgument);
@@ -860,7 +853,7 @@ mod tests {
         ex.score_record(&record(0, 0.0));
         assert_eq!(ex.place().unwrap_err().code(), tonic::Code::FailedPrecondition);
         let dir = std::env::temp_dir().join(format!("needlesim-training-live-{}", std::process::id()));
-        let f = ex.end(&dir).unwrap();
+        let f = ex.end(&s, &dir).unwrap();
         assert!(f.report_path.is_file());
         let html = std::fs::read_to_string(&f.report_path).unwrap();
         assert!(html.contains("Refused declarations"), "the refused placement is in the report");
@@ -868,7 +861,8 @@ mod tests {
         ex.score_record(&record(1, 0.0));
         assert_eq!(ex.snapshot().metrics.samples, samples, "an ended exercise scores no more records");
         assert_eq!(ex.add_marker("late").unwrap_err().code(), tonic::Code::FailedPrecondition);
-        assert_eq!(ex.end(&dir).unwrap().report_name, f.report_name, "ending twice: the same report");
+        assert_eq!(ex.end(&s, &dir).unwrap().report_name, f.report_name, "ending twice: the same report");
+        s.close();
         let _ = std::fs::remove_dir_all(&dir);
     }
 

@@ -241,10 +241,8 @@ impl pb::training_service_server::TrainingService for Api {
     async fn end_exercise(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, DRIVERS, "EndExercise")?;
         let dir = self.state.data_dir.clone();
-        let ex2 = ex.clone();
-        tokio::task::spawn_blocking(move || ex2.end(&dir)).await.map_err(|e| Status::internal(format!("report task: {e}")))??;
-        // Control and pause are refused from now on: the instructor's are let go.
-        ex.release_at_end(&s);
+        let (ex2, s2) = (ex.clone(), s.clone());
+        tokio::task::spawn_blocking(move || ex2.end(&s2, &dir)).await.map_err(|e| Status::internal(format!("report task: {e}")))??;
         Ok(Response::new(status_now(&ex)))
     }
 
