@@ -28,7 +28,8 @@ use std::time::Duration;
 
 use fuzz::{Target, Verdict, verdict};
 use needlesim_core::MeshLimits;
-use needlesim_core::d3::{TetMesh, TetMeshLimits};
+use needlesim_core::d3::mesh::signed_volume_m3;
+use needlesim_core::d3::{BoxGridParams, TetMesh, TetMeshLimits};
 use needlesim_identify::logs::{ForceLog, ProbeLog};
 use needlesim_identify::track::{Polarity, Scale, TrackParams, track_png_bytes};
 use needlesim_identify::tracks::MarkerTracks;
@@ -280,7 +281,7 @@ fn check_msh3d(input: &[u8]) -> Verdict {
         if !mesh.nodes_m().iter().all(|p| finite(p)) || mesh.tets().iter().flatten().any(|&i| i >= n) {
             return Err("accepted a mesh with a non-finite node or a dangling tetrahedron".into());
         }
-        if (0..mesh.n_tets()).any(|t| !(mesh.volume_m3(t) > 0.0)) {
+        if (0..mesh.n_tets()).any(|t| mesh.volume_m3(t).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)) {
             return Err("accepted a tetrahedron that is not positive".into());
         }
         conforming(mesh)
@@ -294,36 +295,10 @@ fn check_msh3d(input: &[u8]) -> Verdict {
 /// nodes, coincident or within round-off). Counts are sometimes wrong, as in [`generate_msh`].
 fn generate_msh3d(rng: &mut SmallRng) -> Vec<u8> {
     let n = [rng.random_range(2..5usize), rng.random_range(2..5usize), rng.random_range(2..5usize)];
-    let node = |i: usize, j: usize, k: usize| i + n[0] * (j + n[1] * k);
-    let mut xyz: Vec<[f64; 3]> = Vec::new();
-    for k in 0..n[2] {
-        for j in 0..n[1] {
-            for i in 0..n[0] {
-                xyz.push([i as f64 * 0.01, j as f64 * 0.01, k as f64 * 0.01]);
-            }
-        }
-    }
-    let vol = |t: [usize; 4], xyz: &[[f64; 3]]| {
-        let p = t.map(|i| xyz[i]);
-        let (u, v, w) = ([0, 1, 2].map(|k| p[1][k] - p[0][k]), [0, 1, 2].map(|k| p[2][k] - p[0][k]), [0, 1, 2].map(|k| p[3][k] - p[0][k]));
-        u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])
-    };
-    let mut tets: Vec<[usize; 4]> = Vec::new();
-    for k in 0..n[2] - 1 {
-        for j in 0..n[1] - 1 {
-            for i in 0..n[0] - 1 {
-                for order in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
-                    let mut c = [i, j, k];
-                    let mut t = [node(i, j, k); 4];
-                    for (s, axis) in order.into_iter().enumerate() {
-                        c[axis] += 1;
-                        t[s + 1] = node(c[0], c[1], c[2]);
-                    }
-                    tets.push(t);
-                }
-            }
-        }
-    }
+    let grid = BoxGridParams::new(n, n.map(|k| (k - 1) as f64 * 0.01));
+    let node = |i: usize, j: usize, k: usize| grid.node(i, j, k);
+    let boxed = grid.build(&TetMeshLimits::default()).expect("a small box grid");
+    let (mut xyz, mut tets) = (boxed.nodes_m().to_vec(), boxed.tets().to_vec());
     match rng.random_range(0..6) {
         // A small tetrahedron of new nodes inside the first cell.
         0 => {
@@ -355,7 +330,7 @@ fn generate_msh3d(rng: &mut SmallRng) -> Vec<u8> {
         _ => {}
     }
     for t in tets.iter_mut() {
-        if vol(*t, &xyz) < 0.0 {
+        if signed_volume_m3(xyz[t[0]], xyz[t[1]], xyz[t[2]], xyz[t[3]]) < 0.0 {
             t.swap(2, 3);
         }
     }

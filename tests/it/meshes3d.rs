@@ -4,6 +4,8 @@
 
 use std::process::Command;
 
+use needlesim_core::d3::mesh::signed_volume_m3;
+use needlesim_core::d3::{BoxGridParams, TetMeshLimits};
 use needlesim_proto::v1 as pb;
 use needlesim_tests::{ServerProcess, TempDir, bin, connect, repo_root, run, text, with_token};
 use tonic::Code;
@@ -25,40 +27,11 @@ enum Defect {
     Crack,
 }
 
-fn signed_volume(p: [[f64; 3]; 4]) -> f64 {
-    let d = |a: [f64; 3], b: [f64; 3]| [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let (u, v, w) = (d(p[0], p[1]), d(p[0], p[2]), d(p[0], p[3]));
-    u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])
-}
-
 /// The cube as Gmsh MSH 2.2: positive tetrahedra (6 per cell) in physical volume 1 "gel", the
 /// bottom face's triangles in physical surface 2 "bottom".
 fn cube_msh(defect: Defect) -> String {
-    let h = 0.1 / (N - 1) as f64;
-    let mut xyz = Vec::new();
-    for k in 0..N {
-        for j in 0..N {
-            for i in 0..N {
-                xyz.push([i as f64 * h, j as f64 * h, k as f64 * h]);
-            }
-        }
-    }
-    let mut tets = Vec::new();
-    for k in 0..N - 1 {
-        for j in 0..N - 1 {
-            for i in 0..N - 1 {
-                for order in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
-                    let mut c = [i, j, k];
-                    let mut t = [node(i, j, k); 4];
-                    for (s, axis) in order.into_iter().enumerate() {
-                        c[axis] += 1;
-                        t[s + 1] = node(c[0], c[1], c[2]);
-                    }
-                    tets.push(t);
-                }
-            }
-        }
-    }
+    let boxed = BoxGridParams::new([N; 3], [0.1; 3]).build(&TetMeshLimits::default()).expect("the cube");
+    let (mut xyz, mut tets) = (boxed.nodes_m().to_vec(), boxed.tets().to_vec());
     match defect {
         Defect::None => {}
         Defect::Overlap => tets.push([node(0, 0, 0), node(1, 0, 0), node(1, 1, 0), node(1, 1, 2)]),
@@ -77,7 +50,7 @@ fn cube_msh(defect: Defect) -> String {
         }
     }
     for t in tets.iter_mut() {
-        if signed_volume(t.map(|i| xyz[i])) < 0.0 {
+        if signed_volume_m3(xyz[t[0]], xyz[t[1]], xyz[t[2]], xyz[t[3]]) < 0.0 {
             t.swap(2, 3);
         }
     }
