@@ -32,6 +32,18 @@ max_base_step_m = 1e-4
 max_base_step_rad = 1e-3
 "#;
 
+/// `needlesim-server simulate` of `scene` along `traj` into `out` (`--keep-unconverged` when
+/// `keep`): whether it succeeded, and its standard error.
+fn simulate(scene: &std::path::Path, traj: &std::path::Path, out: &std::path::Path, keep: bool) -> (bool, String) {
+    let mut cmd = Command::new(bin("needlesim-server"));
+    cmd.arg("simulate");
+    if keep {
+        cmd.arg("--keep-unconverged");
+    }
+    let o = run(cmd.arg("--scene").arg(scene).arg("--trajectory").arg(traj).arg("-o").arg(out));
+    (o.status.success(), text(&o).1)
+}
+
 /// A CSV's header and rows of numbers.
 fn read_csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = std::fs::read_to_string(path).unwrap();
@@ -65,15 +77,8 @@ fn issue_35_simulate_applies_a_3d_scenes_base_step_limits() {
     )
     .unwrap();
     let out = dir.path().join("out.csv");
-    let o = run(Command::new(bin("needlesim-server"))
-        .args(["simulate", "--scene"])
-        .arg(&scene)
-        .arg("--trajectory")
-        .arg(&traj)
-        .arg("-o")
-        .arg(&out));
-    let (_, err) = text(&o);
-    assert!(o.status.success(), "simulate failed: {err}");
+    let (ok, err) = simulate(&scene, &traj, &out, false);
+    assert!(ok, "simulate failed: {err}");
     let (header, rows) = read_csv(&out);
     let col = |n: &str| header.iter().position(|h| h == n).unwrap();
     let (x, qw, qy) = (col("x_m"), col("qw"), col("qy"));
@@ -112,15 +117,8 @@ fn issue_35_a_run_that_does_not_converge_stops_naming_the_tick_unless_kept() {
     let scene = sticky_fig4(&dir);
     let traj = repo_root().join("server/scenes/fig4-steering.csv");
     let out = dir.path().join("out.csv");
-    let o = run(Command::new(bin("needlesim-server"))
-        .args(["simulate", "--scene"])
-        .arg(&scene)
-        .arg("--trajectory")
-        .arg(&traj)
-        .arg("-o")
-        .arg(&out));
-    let (_, err) = text(&o);
-    assert!(!o.status.success(), "simulate exited 0 on a run that does not converge: {err}");
+    let (ok, err) = simulate(&scene, &traj, &out, false);
+    assert!(!ok, "simulate exited 0 on a run that does not converge: {err}");
     assert!(!err.contains("panicked"), "{err}");
     let at = err.find("the run stopped at tick ").unwrap_or_else(|| panic!("the error names no tick: {err}"));
     let tick: u64 = err[at + "the run stopped at tick ".len()..].split(' ').next().unwrap().parse().unwrap();
@@ -129,15 +127,8 @@ fn issue_35_a_run_that_does_not_converge_stops_naming_the_tick_unless_kept() {
 
     // Kept: the run ends, and the CSV's last column marks the ticks that did not converge, the
     // first of them the tick the default run stopped at.
-    let o = run(Command::new(bin("needlesim-server"))
-        .args(["simulate", "--keep-unconverged", "--scene"])
-        .arg(&scene)
-        .arg("--trajectory")
-        .arg(&traj)
-        .arg("-o")
-        .arg(&out));
-    let (_, err) = text(&o);
-    assert!(o.status.success(), "simulate --keep-unconverged failed: {err}");
+    let (ok, err) = simulate(&scene, &traj, &out, true);
+    assert!(ok, "simulate --keep-unconverged failed: {err}");
     let (header, rows) = read_csv(&out);
     assert_eq!(header.last().map(String::as_str), Some("converged"), "{header:?}");
     let c = header.len() - 1;
