@@ -39,18 +39,6 @@ fn proc_status_kb(pid: u32, field: &str) -> u64 {
     line.split_whitespace().nth(1).and_then(|v| v.parse().ok()).expect("a number of kB")
 }
 
-/// A value of the server's Prometheus metrics.
-fn metric(server: &ServerProcess, name: &str) -> f64 {
-    use std::io::{Read, Write};
-    let mut s = std::net::TcpStream::connect(&server.addr).unwrap();
-    s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
-    s.write_all(b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").unwrap();
-    let mut out = String::new();
-    let _ = s.read_to_string(&mut out);
-    let line = out.lines().find(|l| l.split_whitespace().next() == Some(name)).unwrap_or_else(|| panic!("no metric {name} in:\n{out}"));
-    line.split_whitespace().nth(1).and_then(|v| v.parse().ok()).expect("a number")
-}
-
 /// A 16000 × 16000 8-bit gray PNG, all black: 256 megapixels in about 250 kB (made by Python's
 /// zlib: the test crate has no PNG encoder).
 fn huge_png() -> Vec<u8> {
@@ -171,9 +159,9 @@ async fn issue_13_forty_concurrent_simulates_are_limited_to_max_offline_jobs() {
     println!("{} accepted, {refused} refused", streams.len());
     assert_eq!(streams.len(), 3, "exactly the limit runs ({refused} refused)");
     assert_eq!(refused, 37);
-    assert_eq!(metric(&server, "needlesim_offline_jobs_running"), 3.0);
-    assert_eq!(metric(&server, "needlesim_offline_jobs_peak"), 3.0);
-    assert_eq!(metric(&server, "needlesim_offline_jobs_rejected"), 37.0);
+    assert_eq!(server.metric("needlesim_offline_jobs_running"), 3.0);
+    assert_eq!(server.metric("needlesim_offline_jobs_peak"), 3.0);
+    assert_eq!(server.metric("needlesim_offline_jobs_rejected"), 37.0);
     // The accepted ones are running: each streams progress.
     for s in &mut streams {
         let m = tokio::time::timeout(Duration::from_secs(120), s.next()).await.expect("progress in time");
@@ -182,7 +170,7 @@ async fn issue_13_forty_concurrent_simulates_are_limited_to_max_offline_jobs() {
     // Clients that go away free their slots: a new call is accepted again.
     drop(streams);
     let deadline = std::time::Instant::now() + Duration::from_secs(60);
-    while metric(&server, "needlesim_offline_jobs_running") > 0.0 {
+    while server.metric("needlesim_offline_jobs_running") > 0.0 {
         assert!(std::time::Instant::now() < deadline, "the cancelled jobs did not end");
         tokio::time::sleep(Duration::from_millis(50)).await;
     }

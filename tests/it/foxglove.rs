@@ -203,17 +203,6 @@ async fn foxglove_port(server: &ServerProcess) -> u16 {
     }
 }
 
-/// The server's /metrics page.
-fn metrics(server: &ServerProcess) -> String {
-    use std::io::{Read, Write};
-    let mut s = std::net::TcpStream::connect(&server.addr).unwrap();
-    s.set_read_timeout(Some(std::time::Duration::from_secs(10))).unwrap();
-    s.write_all(b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").unwrap();
-    let mut out = String::new();
-    let _ = s.read_to_string(&mut out);
-    out
-}
-
 /// The value of the unlabelled metric `needlesim_{name}`.
 fn gauge(metrics: &str, name: &str) -> f64 {
     let prefix = format!("needlesim_{name} ");
@@ -287,7 +276,7 @@ async fn issue_35_foxglove_clients_that_never_read_hold_only_the_latest_messages
     // client's bound of messages each.
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
     let page = loop {
-        let page = metrics(&server);
+        let page = server.metrics();
         if gauge(&page, "foxglove_dropped_messages") > (CLIENTS * 100) as f64 {
             break page;
         }
@@ -307,7 +296,7 @@ async fn issue_35_foxglove_clients_that_never_read_hold_only_the_latest_messages
     // The session ticks on.
     let ticks = gauge_sum(&page, "ticks");
     tokio::time::sleep(std::time::Duration::from_millis(500)).await;
-    let later = gauge_sum(&metrics(&server), "ticks");
+    let later = gauge_sum(&server.metrics(), "ticks");
     assert!(later > ticks + 100.0, "the session stopped ticking: {ticks} → {later}");
     // A client that reads still gets the session's scene and force.
     let mut ws = subscribed_client(port, None).await;
@@ -370,7 +359,7 @@ async fn issue_35_foxglove_connections_without_a_handshake_are_closed_and_bounde
     // Counted (the counters follow the close by a moment).
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
     let page = loop {
-        let page = metrics(&server);
+        let page = server.metrics();
         if gauge(&page, "foxglove_failed_handshakes") >= 4.0 && gauge(&page, "foxglove_connections") == 0.0 {
             break page;
         }

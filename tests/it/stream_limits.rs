@@ -10,18 +10,6 @@ use needlesim_proto::v1 as pb;
 use needlesim_tests::{REALTIME, ServerProcess, connect, with_token};
 use tonic::Code;
 
-/// A value of the server's Prometheus metrics.
-fn metric(server: &ServerProcess, name: &str) -> f64 {
-    use std::io::{Read, Write};
-    let mut s = std::net::TcpStream::connect(&server.addr).unwrap();
-    s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
-    s.write_all(b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").unwrap();
-    let mut out = String::new();
-    let _ = s.read_to_string(&mut out);
-    let line = out.lines().find(|l| l.split_whitespace().next() == Some(name)).unwrap_or_else(|| panic!("no metric {name} in:\n{out}"));
-    line.split_whitespace().nth(1).and_then(|v| v.parse().ok()).expect("a number")
-}
-
 /// An exercise session of biopsy-2d: (session id, observer token, instructor token).
 async fn exercise(ch: &tonic::transport::Channel) -> (String, String, String) {
     let mut tr = pb::training_service_client::TrainingServiceClient::new(ch.clone());
@@ -99,8 +87,8 @@ async fn issue_35_watch_streams_count_against_max_observers_and_max_streams() {
     let o1 = ob.observe(observe(&sid2, &plain.observer_token)).await.expect("Observe 1 of session 2").into_inner();
     let o2 = ob.observe(observe(&sid2, &plain.observer_token)).await.expect("Observe 2 of session 2").into_inner();
     assert_exhausted(ob.observe(observe(&sid2, &plain.observer_token)).await, "a 6th stream", "limit of 5 open streams (--max-streams)");
-    assert_eq!(metric(&server, "needlesim_streams_open"), 5.0);
-    assert!(metric(&server, "needlesim_streams_refused") >= 10.0);
+    assert_eq!(server.metric("needlesim_streams_open"), 5.0);
+    assert!(server.metric("needlesim_streams_refused") >= 10.0);
     drop(again_score);
     until_observers(&ch, &sid, 2).await;
     let o3 = ob.observe(observe(&sid2, &plain.observer_token)).await.expect("Observe once a place is free").into_inner();
@@ -142,8 +130,8 @@ async fn issue_35_silent_connections_are_closed_and_connections_are_bounded() {
         }
     }
     assert_eq!(closed, 100, "every silent connection is closed by the server");
-    assert_eq!(metric(&server, "needlesim_connections_refused"), 37.0, "past --max-connections: closed at once");
-    assert_eq!(metric(&server, "needlesim_connections_timed_out"), 63.0, "no handshake: closed at the deadline");
+    assert_eq!(server.metric("needlesim_connections_refused"), 37.0, "past --max-connections: closed at once");
+    assert_eq!(server.metric("needlesim_connections_timed_out"), 63.0, "no handshake: closed at the deadline");
     // The handshaken connection outlived the deadline and still works.
     tr.list_exercises(pb::ListExercisesRequest {}).await.expect("a call after, on the same connection");
     let ch2 = connect(&server).await;

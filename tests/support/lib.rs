@@ -278,6 +278,24 @@ impl ServerProcess {
     pub fn url(&self) -> String {
         format!("http://{}", self.addr)
     }
+
+    /// The server's `/metrics` page (Prometheus text, with the HTTP response's head).
+    pub fn metrics(&self) -> String {
+        use std::io::{Read, Write};
+        let mut s = std::net::TcpStream::connect(&self.addr).unwrap();
+        s.set_read_timeout(Some(std::time::Duration::from_secs(10))).unwrap();
+        s.write_all(b"GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").unwrap();
+        let mut out = String::new();
+        let _ = s.read_to_string(&mut out);
+        out
+    }
+
+    /// The value of the metric `name` (its first line).
+    pub fn metric(&self, name: &str) -> f64 {
+        let out = self.metrics();
+        let line = out.lines().find(|l| l.split_whitespace().next() == Some(name)).unwrap_or_else(|| panic!("no metric {name} in:\n{out}"));
+        line.split_whitespace().nth(1).and_then(|v| v.parse().ok()).expect("a number")
+    }
 }
 
 impl Drop for ServerProcess {
