@@ -77,8 +77,8 @@ struct ServeArgs {
     /// Simulate, Plan and Identify calls.
     #[arg(long, default_value_t = grpc::ServerLimits::default().max_session_bytes >> 20)]
     max_session_memory_mb: u64,
-    /// Longest Simulate call (and each simulation of a plan), in ticks.
-    #[arg(long, default_value_t = grpc::ServerLimits::default().max_simulate_ticks)]
+    /// Longest Simulate call (and each simulation of a plan), in ticks (1 to 10⁷).
+    #[arg(long, default_value_t = grpc::ServerLimits::default().max_simulate_ticks, value_parser = clap::value_parser!(u64).range(1..=needlesim_offline::MAX_TICKS_LIMIT))]
     max_simulate_ticks: u64,
     /// Offline calls (Simulate, Plan, every Identify call) running at once; more are refused with
     /// RESOURCE_EXHAUSTED.
@@ -170,7 +170,7 @@ enum Command {
         dump_at: Option<Vec<u64>>,
         /// The longest run, in ticks (the server's Simulate limit by default): a trajectory
         /// lasting longer is an error naming its last line.
-        #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS)]
+        #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS, value_parser = clap::value_parser!(u64).range(1..=needlesim_offline::MAX_TICKS_LIMIT))]
         max_ticks: u64,
         /// Keep ticks whose step did not converge (the stick/slip iteration or the flexible
         /// needle's shape passes at their cap), marked 0 in a last CSV column `converged`;
@@ -213,7 +213,7 @@ enum ExerciseCommand {
         /// Keep every n-th tick in --ticks (placements and the last tick always kept).
         #[arg(long, default_value_t = 1)]
         ticks_every: u64,
-        #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS)]
+        #[arg(long, default_value_t = simulate::DEFAULT_MAX_TICKS, value_parser = clap::value_parser!(u64).range(1..=needlesim_offline::MAX_TICKS_LIMIT))]
         max_ticks: u64,
     },
     /// List the shipped exercises.
@@ -772,4 +772,28 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         agones::terminate_signal().await;
         tracing::info!("shutting down");
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::Cli;
+
+    /// Tick limits a run holds in memory are bounded by `MAX_TICKS_LIMIT` at the command line
+    /// (issue 35's hostile pass: `--max-ticks` and `--max-simulate-ticks` were taken unchecked).
+    #[test]
+    fn issue_35_tick_limits_over_max_ticks_limit_are_refused_naming_the_flag() {
+        let over = (needlesim_offline::MAX_TICKS_LIMIT + 1).to_string();
+        for args in [
+            vec!["needlesim-server", "--max-simulate-ticks", &over],
+            vec!["needlesim-server", "simulate", "--scene", "s.toml", "--max-ticks", &over],
+            vec!["needlesim-server", "simulate", "--scene", "s.toml", "--max-ticks", "0"],
+        ] {
+            let e = Cli::try_parse_from(&args).err().unwrap_or_else(|| panic!("{args:?} was accepted")).to_string();
+            assert!(e.contains("max-") && e.contains("ticks"), "{args:?}: {e}");
+        }
+        let at = needlesim_offline::MAX_TICKS_LIMIT.to_string();
+        assert!(Cli::try_parse_from(["needlesim-server", "--max-simulate-ticks", &at]).is_ok());
+    }
 }
