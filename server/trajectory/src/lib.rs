@@ -106,7 +106,7 @@ impl Trajectory {
         let headers =
             rdr.headers().map_err(|e| TrajectoryError::Header { found: format!("an unreadable line ({})", csv_kind(&e)) })?.clone();
         if headers.iter().ne(HEADER) {
-            return Err(TrajectoryError::Header { found: headers.iter().collect::<Vec<_>>().join(",") });
+            return Err(TrajectoryError::Header { found: clip(&headers.iter().collect::<Vec<_>>().join(","), 64) });
         }
         let mut samples: Vec<(f64, Pose2)> = Vec::new();
         let mut end_line = 0;
@@ -327,6 +327,9 @@ mod tests {
         assert_eq!(e, "trajectory line 3: t_s = 0 does not increase (previous 0)");
         let e = err("t,x,y\n0,0,0\n");
         assert_eq!(e, "trajectory line 1: the header must be t_s,x_m,y_m,theta_rad, found t,x,y");
+        // issue 35's hostile pass: a long header is quoted clipped (the 3D reader already was).
+        let e = err(&format!("{}\n0,0,0,0\n", "x".repeat(100_000)));
+        assert!(e.len() < 200 && e.ends_with('…'), "{} characters: {}", e.len(), clip(&e, 300));
         let e = err(&format!("{H}0,0,0,0\n1,NaN,2,0\n"));
         assert_eq!(e, "trajectory row 2 (line 3): x_m is NaN, not a finite number");
         assert_eq!(err(H), "trajectory: no samples");
