@@ -136,9 +136,9 @@ async fn insertion_at_1khz_with_50_observers_and_a_full_rate_logger() {
     assert!(received > 4000, "the logger kept up with most ticks: {received}");
     // Every renderer got frames at about its rate.
     assert!(frames.iter().all(|&f| f >= 150), "each 60 Hz renderer gets frames: {frames:?}");
-    // Missed deadlines within budget: at most 2 % of the ticks on a shared 2-core machine.
+    // The ticks ran; missed deadlines are printed above, not asserted (issue 35, item 13: budgets
+    // of time live in the live-session benchmark, BENCHMARKS.md).
     assert!(stats.ticks > 4500);
-    assert!((stats.missed_deadlines as f64) < 0.02 * stats.ticks as f64, "{} missed of {}", stats.missed_deadlines, stats.ticks);
     assert_eq!(stats.dropped_records, 0);
 }
 

@@ -62,13 +62,21 @@ async fn cube_at_1khz_with_50_observers_and_a_logger_matches_simulate() {
         renderers.push(tokio::spawn(async move {
             let mut c = pb::observe_service_client::ObserveServiceClient::new(ch);
             let mut stream = c.observe(req).await.expect("observe").into_inner();
-            let (mut frames, mut last) = (0u64, None);
+            let (mut frames, mut last, mut min_uz) = (0u64, None, 0.0f64);
+            // The surface field comes from a niced thread, a few a second, fewer on a loaded
+            // machine (issue 36): the observer that asks for it waits up to 20 s more for one.
             let end = Instant::now() + Duration::from_secs_f64(secs + 0.5);
-            while let Ok(Some(Ok(f))) = tokio::time::timeout_at(end.into(), stream.next()).await {
-                frames += 1;
-                last = Some(f);
+            let field_end = end + Duration::from_secs(if k == 0 { 20 } else { 0 });
+            loop {
+                let until = if Instant::now() < end || min_uz < 0.0 { end } else { field_end };
+                let Ok(Some(Ok(f))) = tokio::time::timeout_at(until.into(), stream.next()).await else { break };
+                min_uz = f.surface_displacement_m.chunks(3).map(|u| u[2]).fold(min_uz, f64::min);
+                if Instant::now() < end {
+                    frames += 1;
+                    last = Some(f);
+                }
             }
-            (frames, last)
+            (frames, last, min_uz)
         }));
     }
     // One logger at the full tick rate.
@@ -141,24 +149,30 @@ async fn cube_at_1khz_with_50_observers_and_a_logger_matches_simulate() {
         rendered.iter().map(|r| r.0).collect::<Vec<_>>()
     );
 
-    // The controller drove the needle in: the response's 3D state says so.
+    // The controller drove the needle in: the response's 3D state says so. How many points it
+    // holds is not asserted: a capture the compliance worker could not serve in time is dropped
+    // (`pending_captures_dropped`, printed above), which timing decides (issue 35, item 13: a
+    // quiet machine's run held 2 points with 8 captures dropped). That the tip is 10 mm into the
+    // cube (top face z = 0.1 m) and something holds it is behaviour.
     let r = last_resp.expect("responses arrived").d3.expect("a 3D session's responses carry d3");
-    assert!(r.contacts.len() >= 3, "the needle holds tissue points: {}", r.contacts.len());
+    assert!(v3(&r.tip_m)[2] < 0.1 - 0.01, "the tip went 10 mm into the tissue: {:?}", r.tip_m);
+    assert!(!r.contacts.is_empty(), "the needle holds tissue points: {}", r.contacts.len());
     assert!(v3(&r.force_n)[2] > 0.0 && r.axial_force_n > 0.0, "the tissue resists the insertion: {r:?}");
     assert_eq!(r.stiffness.len(), 36, "the 6×6 stiffness");
     // The logger saw every tick of its span, or was told exactly how many it missed.
     assert_eq!(frames.len() as u64 + missed, last - first + 1, "every tick is either received or counted as missed");
-    // Missed deadlines within the 2D budget: at most 2 % of the ticks on a shared 2-core machine.
-    assert!((stats.missed_deadlines as f64) < 0.02 * stats.ticks as f64, "{} missed of {}", stats.missed_deadlines, stats.ticks);
-    // Every observer got frames, about 60 per second.
-    for (k, (n, last)) in rendered.iter().enumerate() {
-        assert!(*n as f64 > 0.5 * 60.0 * secs, "observer {k} got {n} frames");
-        let f = last.as_ref().unwrap();
+    // Missed deadlines are printed above, not asserted (issue 35, item 13: budgets of time live
+    // in the live-session benchmark, BENCHMARKS.md); the ticks ran.
+    assert!(stats.ticks as f64 > 0.8 * 1000.0 * secs, "{} ticks in {secs} s", stats.ticks);
+    // Every observer got frames to the end (how many a second is printed above: timing decides
+    // it, 121 of a 60 Hz stream's 300 with two builds beside the test).
+    for (k, (n, last_frame, min_uz)) in rendered.iter().enumerate() {
+        let f = last_frame.as_ref().unwrap();
+        assert!(*n >= 5 && f.tick + 1000 >= last, "observer {k} got {n} frames, the last of tick {} (the logger's {last})", f.tick);
         assert!(f.d3.is_some(), "observer {k}'s frames carry the 3D state");
         if k == 0 {
             assert_eq!(f.surface_displacement_m.len(), 3 * surface.node_ids.len(), "a displacement per surface node");
-            let top = f.surface_displacement_m.chunks(3).map(|u| u[2]).fold(0.0, f64::min);
-            assert!(top < 0.0, "the insertion pulls the surface down: min u_z = {top}");
+            assert!(*min_uz < 0.0, "the insertion pulls the surface down: min u_z = {min_uz}");
         } else {
             assert!(f.surface_displacement_m.is_empty(), "only observers that ask get the surface field");
         }
