@@ -978,7 +978,7 @@ fn fuzz_all_parsers_for_a_while() {
     println!("fuzzing {} parser(s) for {seconds} s each ({total} s in all), base seed {:#x}:", targets.len(), fuzz::base_seed());
     for (t, s) in targets.iter().zip(&stats) {
         println!(
-            "  {:<18} {:>9} cases, {:>8} accepted, peak {:>7.1} MB, slowest {:?}",
+            "  {:<18} {:>9} cases, {:>8} accepted, peak {:>7.1} MB, slowest {:?} CPU",
             t.name,
             s.cases,
             s.accepted,
