@@ -710,3 +710,63 @@ fn issue_35_out_of_range_bridge_flags_are_refused_naming_the_flag() {
         assert!(stderr.contains("no such file"), "{args:?}: {stderr}");
     }
 }
+
+/// Issue 35 (L4): 81 `/dev/shm/needlesim-*` files were left after test runs and killed servers:
+/// a SIGKILLed server (a crash, `kill -9`) closes none of its sessions, and shared memory outlives
+/// processes. A server now removes, as it starts, the channel files of servers that are gone, and
+/// never a live server's: server A is killed with a device-channel session open, server B runs
+/// one; server C starts: A's file is gone, B's is still there and B's session still ticks. A
+/// foreign file under a channel's name (not a channel) is left alone. Closing B's session removes
+/// its file.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_starting_server_removes_the_channels_of_a_killed_server_and_no_live_ones() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let mut a = ServerProcess::start(&["--default-scene", "none"]);
+    let sa = create_device_session(&connect(&a).await).await;
+    let b = ServerProcess::start(&["--default-scene", "none"]);
+    let ch_b = connect(&b).await;
+    let sb = create_device_session(&ch_b).await;
+    let foreign = PathBuf::from(format!("/dev/shm/needlesim-{:012x}", 0xf0_4e16_0000u64 + u64::from(std::process::id())));
+    std::fs::write(&foreign, b"not a needlesim channel").unwrap();
+    let _foreign = RemoveOnDrop(foreign.clone());
+    // SIGKILL (not ServerProcess::kill, which cleans up after it): A's file stays behind.
+    a.child.kill().unwrap();
+    a.child.wait().unwrap();
+    assert!(sa.channel_path.is_file(), "the killed server's channel file {} is expected to stay behind", sa.channel_path.display());
+    let ticks_before = get_stats(&ch_b, &sb).await.ticks;
+
+    let c = ServerProcess::start(&["--default-scene", "none"]);
+    assert!(!sa.channel_path.exists(), "the starting server left the dead server's channel file {}", sa.channel_path.display());
+    assert!(sb.channel_path.is_file(), "the starting server removed the live server's channel file {}", sb.channel_path.display());
+    assert!(foreign.is_file(), "the starting server removed a file that is not a channel");
+    let log = c.stderr.lock().unwrap().clone();
+    assert!(log.contains("removed the device channel files of servers that are gone"), "{log}");
+    // B's session is untouched: it ticks on and its channel is intact.
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    assert!(get_stats(&ch_b, &sb).await.ticks > ticks_before, "the live server's session stopped");
+    let info = get_session(&ch_b, &sb).await;
+    assert!(!info.device_channel_broken, "{info:?}");
+    // A normal end: closing the session removes its file.
+    pb::session_service_client::SessionServiceClient::new(ch_b.clone())
+        .close_session(with_token(pb::CloseSessionRequest { session_id: sb.id.clone() }, &sb.controller_token))
+        .await
+        .expect("CloseSession");
+    assert!(!sb.channel_path.exists(), "closing the session left its channel file {}", sb.channel_path.display());
+}
+
+/// Issue 35 (L4): the tests' server harness cleaned up nothing: a `ServerProcess` dropped (SIGKILL)
+/// with a device-channel session open left the session's file in /dev/shm. It now removes the
+/// files its server created, and only those: another server's live channel stays.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_dropped_test_server_leaves_no_channel_file() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let other = ServerProcess::start(&["--default-scene", "none"]);
+    let kept = create_device_session(&connect(&other).await).await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let s = create_device_session(&connect(&server).await).await;
+    drop(server);
+    assert!(!s.channel_path.exists(), "the dropped server's channel file {} is left", s.channel_path.display());
+    assert!(kept.channel_path.is_file(), "another server's live channel file {} was removed", kept.channel_path.display());
+    drop(other);
+    assert!(!kept.channel_path.exists(), "the other server's channel file {} is left", kept.channel_path.display());
+}
