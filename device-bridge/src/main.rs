@@ -57,7 +57,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use anyhow::{Context, Result, anyhow, bail};
-use clap::{Parser, ValueEnum};
+use clap::{CommandFactory, Parser, ValueEnum};
 use needlesim_bridge::device::{
     Device, DeviceState, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm,
 };
@@ -81,9 +81,9 @@ enum DeviceKind {
 #[derive(Debug, Parser)]
 #[command(name = "needlesim-bridge", version)]
 struct Cli {
-    /// SCHED_FIFO priority of the device loop (1..99; 0 = normal scheduling). Needs CAP_SYS_NICE
+    /// SCHED_FIFO priority of the device loop (1..=99; 0 = normal scheduling). Needs CAP_SYS_NICE
     /// or root; without it the bridge says so and runs at normal priority.
-    #[arg(long, default_value_t = 40)]
+    #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(i32).range(0..=99))]
     rt_priority: i32,
     /// The session's device channel file (created by the server), for a bridge on the server's host.
     #[arg(long, value_name = "PATH", required_unless_present = "server", conflicts_with = "server")]
@@ -99,8 +99,8 @@ struct Cli {
     #[arg(long, value_name = "TOKEN", requires = "server")]
     token: Option<String>,
     /// Delay every pose going out by N/2 ms and every response coming in by N/2 ms (--server; a
-    /// delay line in the bridge, to test latency without a real network).
-    #[arg(long, value_name = "N", default_value_t = 0.0, requires = "server")]
+    /// delay line in the bridge, to test latency without a real network). 0..=10000.
+    #[arg(long, value_name = "N", default_value_t = 0.0, requires = "server", value_parser = bounded(0.0, 10_000.0))]
     inject_rtt_ms: f64,
     /// How to render between server updates: the local linear model w_s + J (q − q_s) behind the
     /// virtual coupling, or only the last received wrench (no J term, no coupling: the naive scheme).
@@ -121,68 +121,75 @@ struct Cli {
     /// The string passed to the plug-in's nsd_open.
     #[arg(long, value_name = "STR", default_value = "")]
     plugin_config: String,
-    /// Device rate (Hz).
-    #[arg(long, default_value_t = 1000.0)]
+    /// Device rate (Hz), 1..=10000 (haptic devices run at 500–4000 Hz).
+    #[arg(long, default_value_t = 1000.0, value_parser = bounded(1.0, 10_000.0))]
     rate_hz: f64,
     /// With --channel: write each pose this long (µs) before the session's tick deadline and
     /// render the force computed from it in the same period (the session publishes its tick phase
     /// on the channel; --rate-hz must equal its tick rate). 0: run on the loop's own phase.
-    #[arg(long, value_name = "US", default_value_t = 100)]
+    /// 0..=1000000 (a lead not shorter than the period runs on the loop's own phase).
+    #[arg(long, value_name = "US", default_value_t = 100, value_parser = clap::value_parser!(u64).range(0..=1_000_000))]
     phase_lead_us: u64,
     /// Phase-aligned only: the longest the loop waits (spinning) after writing a pose for the force
-    /// that answers it, in µs (at most 3/4 of the period); past it, it renders what it has.
-    #[arg(long, value_name = "US", default_value_t = 400)]
+    /// that answers it, in µs (at most 3/4 of the period); past it, it renders what it has. 0..=1000000.
+    #[arg(long, value_name = "US", default_value_t = 400, value_parser = clap::value_parser!(u64).range(0..=1_000_000))]
     force_wait_us: u64,
     /// Sleep until this long (µs) before each period, then spin (0: sleep to the period's start).
     /// Spinning starts the period on time at the cost of that much of a core every period.
-    #[arg(long, value_name = "US", default_value_t = 150)]
+    /// 0..=1000000 (capped at the period).
+    #[arg(long, value_name = "US", default_value_t = 150, value_parser = clap::value_parser!(u64).range(0..=1_000_000))]
     spin_margin_us: u64,
-    /// Stop after this many seconds (default: until Ctrl-C / SIGTERM).
-    #[arg(long, value_name = "S")]
+    /// Stop after this many seconds, more than 0 and at most 604800 (a week) (default: until
+    /// Ctrl-C / SIGTERM).
+    #[arg(long, value_name = "S", value_parser = bounded_above_zero(604_800.0))]
     seconds: Option<f64>,
-    /// Limit on |F| sent to the device (N).
-    #[arg(long, value_name = "F", default_value_t = 5.0)]
+    /// Limit on |F| sent to the device (N), more than 0 and at most 50 (desktop haptic devices
+    /// peak at 3–40 N).
+    #[arg(long, value_name = "F", default_value_t = 5.0, value_parser = bounded_above_zero(MAX_FORCE_N))]
     max_force_n: f64,
-    /// Limit on |τ| sent to the device (N·m).
-    #[arg(long, value_name = "T", default_value_t = 0.05)]
+    /// Limit on |τ| sent to the device (N·m), more than 0 and at most 5 (6-DOF desktop devices peak
+    /// at 0.1–3 N·m).
+    #[arg(long, value_name = "T", default_value_t = 0.05, value_parser = bounded_above_zero(MAX_TORQUE_NM))]
     max_torque_nm: f64,
     /// Device periods without a fresh server force before the ramp to zero starts (default: 10 with
     /// --channel; 50 with --server, where responses arrive every tick but with network jitter).
-    #[arg(long, value_name = "N")]
+    /// 1..=10000, and at most 1 s at --rate-hz (the time the device keeps pushing the last force).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000))]
     watchdog_periods: Option<u64>,
     /// With --channel: the server is taken for gone when no force came for this long (ms), even
     /// if its channel looks intact (a hung or stopped server, or one in another pid namespace whose
     /// death the bridge cannot see): the force is ramped to zero and the bridge exits with status 1.
     /// A server that dies (`kill -9`, a crash) is noticed within about 100 ms whatever this is.
-    /// 0: never.
-    #[arg(long, value_name = "MS", default_value_t = 2000)]
+    /// 0: never. 0..=600000.
+    #[arg(long, value_name = "MS", default_value_t = 2000, value_parser = clap::value_parser!(u64).range(0..=600_000))]
     server_timeout_ms: u64,
-    /// Duration of the ramp to zero (and back) (ms).
-    #[arg(long, value_name = "MS", default_value_t = 50.0)]
+    /// Duration of the ramp to zero (and back) (ms), 0 (a step) ..=60000.
+    #[arg(long, value_name = "MS", default_value_t = 50.0, value_parser = bounded(0.0, 60_000.0))]
     ramp_ms: f64,
-    /// Virtual-coupling stiffness in x, y and z (N/m); 0 (with --coupling-k-rot 0) disables the coupling.
-    #[arg(long, value_name = "N_PER_M", default_value_t = 2000.0)]
+    /// Virtual-coupling stiffness in x, y and z (N/m), 0..=50000 (desktop devices render at most a
+    /// few N/mm); 0 (with --coupling-k-rot 0) disables the coupling.
+    #[arg(long, value_name = "N_PER_M", default_value_t = 2000.0, value_parser = bounded(0.0, 50_000.0))]
     coupling_k: f64,
-    /// Virtual-coupling stiffness about x, y and z (N·m/rad).
-    #[arg(long, value_name = "NM_PER_RAD", default_value_t = 2.0)]
+    /// Virtual-coupling stiffness about x, y and z (N·m/rad), 0..=50.
+    #[arg(long, value_name = "NM_PER_RAD", default_value_t = 2.0, value_parser = bounded(0.0, 50.0))]
     coupling_k_rot: f64,
-    /// Virtual-coupling damping in x, y and z (N·s/m).
-    #[arg(long, value_name = "NS_PER_M", default_value_t = 2.0)]
+    /// Virtual-coupling damping in x, y and z (N·s/m), 0..=1000.
+    #[arg(long, value_name = "NS_PER_M", default_value_t = 2.0, value_parser = bounded(0.0, 1_000.0))]
     coupling_b: f64,
-    /// Virtual-coupling damping about x, y and z (N·m·s/rad).
-    #[arg(long, value_name = "NMS_PER_RAD", default_value_t = 0.002)]
+    /// Virtual-coupling damping about x, y and z (N·m·s/rad), 0..=10.
+    #[arg(long, value_name = "NMS_PER_RAD", default_value_t = 0.002, value_parser = bounded(0.0, 10.0))]
     coupling_b_rot: f64,
-    /// Virtual operator (--device virtual): mass in x, y and z (kg).
-    #[arg(long, value_name = "KG")]
+    /// Virtual operator (--device virtual): mass in x, y and z (kg), 0.01..=10 (a hand on a stylus).
+    #[arg(long, value_name = "KG", value_parser = bounded(0.01, 10.0))]
     operator_mass: Option<f64>,
-    /// Virtual operator: damping in x, y and z (N·s/m).
-    #[arg(long, value_name = "NS_PER_M")]
+    /// Virtual operator: damping in x, y and z (N·s/m), 0..=1000.
+    #[arg(long, value_name = "NS_PER_M", value_parser = bounded(0.0, 1_000.0))]
     operator_damping: Option<f64>,
-    /// Virtual operator: PD proportional gain (grip stiffness) in x, y and z (N/m).
-    #[arg(long, value_name = "N_PER_M")]
+    /// Virtual operator: PD proportional gain (grip stiffness) in x, y and z (N/m), 0..=100000.
+    #[arg(long, value_name = "N_PER_M", value_parser = bounded(0.0, 100_000.0))]
     operator_kp: Option<f64>,
-    /// Virtual operator: PD derivative gain in x, y and z (N·s/m).
-    #[arg(long, value_name = "NS_PER_M")]
+    /// Virtual operator: PD derivative gain in x, y and z (N·s/m), 0..=1000.
+    #[arg(long, value_name = "NS_PER_M", value_parser = bounded(0.0, 1_000.0))]
     operator_kd: Option<f64>,
     /// Print the report as one JSON object on stdout (else a summary on stderr).
     #[arg(long)]
@@ -192,6 +199,33 @@ struct Cli {
     /// the six wrench components (N, N·m, world).
     #[arg(long, value_name = "CSV")]
     trace: Option<PathBuf>,
+}
+
+/// The largest `--max-force-n` (N): above what any desktop haptic device exerts (Geomagic Touch
+/// 3.3 N, Force Dimension omega.x 12 N, sigma.7 20 N, Haption Virtuose 6D 31 N peak).
+const MAX_FORCE_N: f64 = 50.0;
+/// The largest `--max-torque-nm` (N·m): above the 6-DOF desktop devices' peak torques
+/// (sigma.7 0.4 N·m, Phantom Premium 6DOF 0.5 N·m, Virtuose 6D 3.1 N·m).
+const MAX_TORQUE_NM: f64 = 5.0;
+/// The longest the watchdog may keep rendering the last force without a fresh one
+/// (`--watchdog-periods` / `--rate-hz`).
+const MAX_WATCHDOG_S: f64 = 1.0;
+
+/// A clap value parser for a finite number in `[lo, hi]`: the error names the range, clap names
+/// the flag (issue 35: `--ramp-ms 1e300` panicked, `--max-force-n nan` or `inf` disabled the limit).
+fn bounded(lo: f64, hi: f64) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
+    move |s: &str| {
+        let v: f64 = s.trim().parse().map_err(|e| format!("{e}"))?;
+        if v.is_finite() && (lo..=hi).contains(&v) { Ok(v) } else { Err(format!("must be a finite number from {lo} to {hi}")) }
+    }
+}
+
+/// As [`bounded`], for a number that must be more than 0 and at most `hi`.
+fn bounded_above_zero(hi: f64) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
+    move |s: &str| {
+        let v: f64 = s.trim().parse().map_err(|e| format!("{e}"))?;
+        if v.is_finite() && v > 0.0 && v <= hi { Ok(v) } else { Err(format!("must be a finite number more than 0 and at most {hi}")) }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -205,6 +239,21 @@ enum RenderMode {
 impl Cli {
     fn watchdog_periods(&self) -> u64 {
         self.watchdog_periods.unwrap_or(if self.server.is_some() { 50 } else { 10 })
+    }
+
+    /// What one flag's range cannot say: the watchdog's time, `--watchdog-periods` (or its default)
+    /// at `--rate-hz`, is at most [`MAX_WATCHDOG_S`]. Checked before anything starts.
+    fn check_combined(&self) -> Result<(), String> {
+        let watchdog_s = self.watchdog_periods() as f64 / self.rate_hz;
+        if watchdog_s > MAX_WATCHDOG_S {
+            return Err(format!(
+                "--watchdog-periods {} at --rate-hz {} keeps the last force for {watchdog_s} s without a fresh one: at most {MAX_WATCHDOG_S} s \
+                 (lower --watchdog-periods or raise --rate-hz)",
+                self.watchdog_periods(),
+                self.rate_hz
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -881,15 +930,14 @@ fn main() {
         .with_env_filter(tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "info".into()))
         .init();
     let cli = Cli::parse();
+    if let Err(msg) = cli.check_combined() {
+        Cli::command().error(clap::error::ErrorKind::ValueValidation, msg).exit();
+    }
     install_signal_handlers();
     // The link first: a missing or stale channel, an unreachable server never touches the device.
     let link = match (&cli.channel, &cli.server) {
         (Some(path), _) => DeviceChannel::attach(path).map(|end| Link::Shm(Box::new(end))).map_err(anyhow::Error::from),
         (None, Some(url)) => {
-            if !(cli.inject_rtt_ms.is_finite() && cli.inject_rtt_ms >= 0.0) {
-                eprintln!("needlesim-bridge: --inject-rtt-ms must be non-negative, got {}", cli.inject_rtt_ms);
-                std::process::exit(2);
-            }
             RemoteLink::connect(RemoteConfig {
                 url: url.clone(),
                 session_id: cli.session.clone().unwrap_or_default(),

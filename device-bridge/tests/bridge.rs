@@ -917,9 +917,9 @@ fn scripted_3d_trajectory_renders_the_6x6_against_a_fake_3d_session() {
         "--coupling-k-rot",
         "0",
         "--max-force-n",
-        "1000",
+        "50",
         "--max-torque-nm",
-        "1000",
+        "5",
         "--json",
         "--trace",
         trace.to_str().unwrap(),
@@ -991,7 +991,7 @@ fn a_sigkilled_3d_session_leaves_the_6dof_plugin_at_zero() {
         .args(["--channel", chan.to_str().unwrap(), "--device", "plugin", "--plugin", example_plugin6().to_str().unwrap()])
         // Far longer than the run takes: it ends when the bridge notices the death, not at 30 s.
         .args(["--plugin-config", &config, "--seconds", "30", "--watchdog-periods", "20", "--ramp-ms", "100"])
-        .args(["--max-force-n", "1000", "--max-torque-nm", "1000", "--json", "--trace", trace.to_str().unwrap()])
+        .args(["--max-force-n", "50", "--max-torque-nm", "5", "--json", "--trace", trace.to_str().unwrap()])
         .env("RUST_LOG", "warn")
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -1134,9 +1134,9 @@ fn virtual_operator_in_3d_rests_where_its_grip_balances_the_rendered_wrench() {
         "--seconds",
         "2.5",
         "--max-force-n",
-        "1000",
+        "50",
         "--max-torque-nm",
-        "1000",
+        "5",
         "--json",
         "--trace",
         trace.to_str().unwrap(),
@@ -1192,7 +1192,7 @@ fn a_force_only_plugin_gets_the_force_position_block_and_no_torque() {
         "--coupling-k-rot",
         "0",
         "--max-force-n",
-        "1000",
+        "50",
         "--json",
         "--trace",
         trace.to_str().unwrap(),

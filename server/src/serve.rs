@@ -309,6 +309,7 @@ where
 {
     std::fs::create_dir_all(&config.data_dir).with_context(|| format!("cannot create the data directory {}", config.data_dir.display()))?;
     let state = ServerState::with_admin_token(config.limits.clone(), config.data_dir.clone(), config.admin_token.as_deref());
+    remove_stale_device_channels(&state.device_dir());
     let mut demo_session = None;
     let mut default_session = None;
     if let Some(name) = &config.default_scene {
@@ -423,6 +424,14 @@ where
     drop(demo_session);
     drop(default_session);
     let shutdown = shutdown(state.clone());
+    // The sessions close (their device channel files are removed) as soon as the server is told to
+    // stop, not once every connection has ended: the graceful drain below waits for open streams,
+    // which a client may hold for as long as it likes (issue 35: channel files left behind).
+    let closing = state.clone();
+    let shutdown = async move {
+        shutdown.await;
+        tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
+    };
     tokio::spawn(give_back_stream_memory(state.clone()));
     let incoming = crate::listener::incoming(listener, config.connections, conns);
     let result = server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(incoming, shutdown).await;
@@ -430,6 +439,26 @@ where
     tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
     result.context("server")?;
     Ok(())
+}
+
+/// Removes the device channel files in `dir` left by servers that died without closing their
+/// sessions (`kill -9`, a crash: shared memory outlives processes), never a live server's
+/// (`needlesim_channel::shm::remove_stale_channels`: a live channel's creator holds a lock on it).
+/// Issue 35: 81 such files had piled up in /dev/shm.
+fn remove_stale_device_channels(dir: &std::path::Path) {
+    match needlesim_channel::shm::remove_stale_channels(dir, None) {
+        Ok(sweep) => {
+            if !sweep.removed.is_empty() {
+                tracing::info!(dir = %dir.display(), removed = sweep.removed.len(), live = sweep.live, "removed the device channel files of servers that are gone");
+            }
+            for (path, e) in &sweep.errors {
+                tracing::warn!(path = %path.display(), "cannot check or remove a stale device channel file: {e}");
+            }
+        }
+        // No device directory yet (data_dir/devices is created with the first channel): nothing left over.
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => tracing::warn!(dir = %dir.display(), "cannot look for stale device channel files: {e}"),
+    }
 }
 
 /// Shared handle for tests and benchmarks that embed the server.

@@ -624,3 +624,149 @@ async fn issue_13_a_changed_channel_file_spares_the_server_and_ends_the_bridge_a
     let log = server.stderr.lock().unwrap().clone();
     assert!(log.contains("device channel broken"), "the server did not log the broken channels: {log}");
 }
+
+/// Issue 35 (M3): every numeric flag of the bridge has a physical range, checked before anything
+/// starts. `--ramp-ms 1e300` panicked (a `Duration` overflow); `--max-force-n nan` or `inf`,
+/// `--max-torque-nm inf`, `--coupling-k nan`, `--watchdog-periods 0` and `--rate-hz 1e9` were
+/// taken, which disables the limits, the watchdog or the loop. Each bad value now ends the bridge
+/// with the usage status 2 and an error naming the flag, no panic, before it touches the channel
+/// (which does not exist here: a bridge that took the value would fail on it with status 1).
+/// Values at the bounds are taken (and then fail on the missing channel).
+#[test]
+fn issue_35_out_of_range_bridge_flags_are_refused_naming_the_flag() {
+    let dir = TempDir::new("bridge-flags");
+    let missing = dir.join("no-such-channel");
+    let traj = trajectory(&dir, "t.csv", &[(0.0, 0.205), (1.0, 0.205)]);
+    let run = |extra: &[&str], remote: bool| {
+        let mut cmd = std::process::Command::new(bin("needlesim-bridge"));
+        if remote {
+            // Nothing listens on port 1: a bridge that took the value would fail to connect (status 1).
+            cmd.args(["--server", "http://127.0.0.1:1", "--session", "s", "--token", "t"]);
+        } else {
+            cmd.arg("--channel").arg(&missing);
+        }
+        cmd.args(["--device", "virtual", "--trajectory", traj.to_str().unwrap()]).args(extra).env("RUST_LOG", "warn");
+        let out = needlesim_tests::run_within(&mut cmd, Duration::from_secs(60));
+        let (stdout, stderr) = needlesim_tests::text(&out);
+        (out.status.code(), stdout, stderr)
+    };
+    let bad: &[(&str, &[&str])] = &[
+        ("--ramp-ms", &["1e300", "-1", "nan", "inf", "60001"]),
+        ("--max-force-n", &["nan", "inf", "-inf", "0", "-5", "50.5", "1e300"]),
+        ("--max-torque-nm", &["inf", "nan", "0", "-0.1", "5.01"]),
+        ("--coupling-k", &["nan", "inf", "-1", "1e9"]),
+        ("--coupling-k-rot", &["nan", "-1", "51"]),
+        ("--coupling-b", &["nan", "-0.5", "1001"]),
+        ("--coupling-b-rot", &["inf", "-1e-9", "11"]),
+        ("--watchdog-periods", &["0", "10001", "-1", "1e3"]),
+        ("--rate-hz", &["1e9", "0", "-1000", "nan", "inf", "0.5", "10001"]),
+        ("--seconds", &["nan", "inf", "-1", "0", "1e9"]),
+        ("--rt-priority", &["100", "-1"]),
+        ("--phase-lead-us", &["1000001", "18446744073709551615"]),
+        ("--force-wait-us", &["2000000"]),
+        ("--spin-margin-us", &["99999999999"]),
+        ("--server-timeout-ms", &["600001", "18446744073709551615"]),
+        ("--operator-mass", &["0", "nan", "-1", "0.001", "11"]),
+        ("--operator-damping", &["-1", "inf", "1001"]),
+        ("--operator-kp", &["inf", "-1", "1e6"]),
+        ("--operator-kd", &["nan", "-1", "1001"]),
+    ];
+    let mut cases: Vec<(String, Vec<String>, bool)> = Vec::new();
+    for (flag, values) in bad {
+        for v in *values {
+            cases.push((flag.to_string(), vec![format!("{flag}={v}")], false));
+        }
+    }
+    for v in ["nan", "inf", "-1", "1e300", "10001"] {
+        cases.push(("--inject-rtt-ms".into(), vec![format!("--inject-rtt-ms={v}")], true));
+    }
+    // In range alone, out of range together: the watchdog's time (periods / rate) is at most 1 s.
+    cases.push(("--watchdog-periods".into(), vec!["--watchdog-periods=2000".into()], false));
+    cases.push(("--watchdog-periods".into(), vec!["--watchdog-periods=200".into(), "--rate-hz=100".into()], false));
+    // The defaults (10 periods; 50 with --server) at a rate too low for them.
+    cases.push(("--watchdog-periods".into(), vec!["--rate-hz=5".into()], false));
+    for (flag, args, remote) in &cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, stdout, stderr) = run(&args, *remote);
+        assert!(!stderr.contains("panicked"), "{args:?}: the bridge panicked: {stderr}");
+        assert_eq!(code, Some(2), "{args:?}: exit {code:?}, not the usage error: {stderr}");
+        assert!(stderr.contains(flag.as_str()), "{args:?}: the error does not name {flag}: {stderr}");
+        assert!(!stderr.contains("device channel") && stdout.is_empty(), "{args:?}: the bridge went on: {stdout} {stderr}");
+    }
+    // At the bounds: taken (the run then fails on the missing channel, status 1).
+    let at_bounds: &[&[&str]] = &[
+        &["--max-force-n=50", "--max-torque-nm=5", "--ramp-ms=60000", "--rate-hz=10000", "--watchdog-periods=10000"],
+        &["--max-force-n=0.001", "--max-torque-nm=1e-6", "--ramp-ms=0", "--rate-hz=1", "--watchdog-periods=1", "--seconds=604800"],
+        &["--coupling-k=0", "--coupling-k-rot=0", "--coupling-b=0", "--coupling-b-rot=0", "--rt-priority=0", "--server-timeout-ms=0"],
+        &["--coupling-k=50000", "--coupling-k-rot=50", "--coupling-b=1000", "--coupling-b-rot=10", "--rt-priority=99"],
+        &["--operator-mass=0.01", "--operator-damping=0", "--operator-kp=0", "--operator-kd=0", "--phase-lead-us=1000000"],
+        &["--operator-mass=10", "--operator-damping=1000", "--operator-kp=100000", "--operator-kd=1000", "--force-wait-us=0"],
+        &["--spin-margin-us=1000000", "--server-timeout-ms=600000", "--seconds=0.001", "--phase-lead-us=0"],
+    ];
+    for args in at_bounds {
+        let (code, _, stderr) = run(args, false);
+        assert!(!stderr.contains("panicked"), "{args:?}: the bridge panicked: {stderr}");
+        assert_eq!(code, Some(1), "{args:?}: refused at the bounds: {stderr}");
+        assert!(stderr.contains("no such file"), "{args:?}: {stderr}");
+    }
+}
+
+/// Issue 35 (L4): 81 `/dev/shm/needlesim-*` files were left after test runs and killed servers:
+/// a SIGKILLed server (a crash, `kill -9`) closes none of its sessions, and shared memory outlives
+/// processes. A server now removes, as it starts, the channel files of servers that are gone, and
+/// never a live server's: server A is killed with a device-channel session open, server B runs
+/// one; server C starts: A's file is gone, B's is still there and B's session still ticks. A
+/// foreign file under a channel's name (not a channel) is left alone. Closing B's session removes
+/// its file.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_starting_server_removes_the_channels_of_a_killed_server_and_no_live_ones() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let mut a = ServerProcess::start(&["--default-scene", "none"]);
+    let sa = create_device_session(&connect(&a).await).await;
+    let b = ServerProcess::start(&["--default-scene", "none"]);
+    let ch_b = connect(&b).await;
+    let sb = create_device_session(&ch_b).await;
+    let foreign = PathBuf::from(format!("/dev/shm/needlesim-{:012x}", 0xf0_4e16_0000u64 + u64::from(std::process::id())));
+    std::fs::write(&foreign, b"not a needlesim channel").unwrap();
+    let _foreign = RemoveOnDrop(foreign.clone());
+    // SIGKILL (not ServerProcess::kill, which cleans up after it): A's file stays behind.
+    a.child.kill().unwrap();
+    a.child.wait().unwrap();
+    assert!(sa.channel_path.is_file(), "the killed server's channel file {} is expected to stay behind", sa.channel_path.display());
+    let ticks_before = get_stats(&ch_b, &sb).await.ticks;
+
+    let c = ServerProcess::start(&["--default-scene", "none"]);
+    assert!(!sa.channel_path.exists(), "the starting server left the dead server's channel file {}", sa.channel_path.display());
+    assert!(sb.channel_path.is_file(), "the starting server removed the live server's channel file {}", sb.channel_path.display());
+    assert!(foreign.is_file(), "the starting server removed a file that is not a channel");
+    let log = c.stderr.lock().unwrap().clone();
+    assert!(log.contains("removed the device channel files of servers that are gone"), "{log}");
+    // B's session is untouched: it ticks on and its channel is intact.
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    assert!(get_stats(&ch_b, &sb).await.ticks > ticks_before, "the live server's session stopped");
+    let info = get_session(&ch_b, &sb).await;
+    assert!(!info.device_channel_broken, "{info:?}");
+    // A normal end: closing the session removes its file.
+    pb::session_service_client::SessionServiceClient::new(ch_b.clone())
+        .close_session(with_token(pb::CloseSessionRequest { session_id: sb.id.clone() }, &sb.controller_token))
+        .await
+        .expect("CloseSession");
+    assert!(!sb.channel_path.exists(), "closing the session left its channel file {}", sb.channel_path.display());
+}
+
+/// Issue 35 (L4): the tests' server harness cleaned up nothing: a `ServerProcess` dropped (SIGKILL)
+/// with a device-channel session open left the session's file in /dev/shm. It now removes the
+/// files its server created, and only those: another server's live channel stays.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_dropped_test_server_leaves_no_channel_file() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let other = ServerProcess::start(&["--default-scene", "none"]);
+    let kept = create_device_session(&connect(&other).await).await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let s = create_device_session(&connect(&server).await).await;
+    drop(server);
+    assert!(!s.channel_path.exists(), "the dropped server's channel file {} is left", s.channel_path.display());
+    assert!(kept.channel_path.is_file(), "another server's live channel file {} was removed", kept.channel_path.display());
+    drop(other);
+    assert!(!kept.channel_path.exists(), "the other server's channel file {} is left", kept.channel_path.display());
+}

@@ -559,6 +559,45 @@ async fn sigterm_closes_sessions_and_removes_device_channels() {
     assert!(!path.exists(), "the device channel {} was removed", path.display());
 }
 
+/// Issue 35 (L4): SIGTERM closed the sessions only once every connection had ended, and an open
+/// stream (an observer, a browser) holds its connection for as long as its client likes: the
+/// server went on draining with its sessions open, and a `kill -9` then left their device channel
+/// files. The sessions now close, and their files go, as soon as the signal comes.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_sigterm_removes_device_channels_while_an_observer_stream_is_open() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let created = pb::session_service_client::SessionServiceClient::new(ch.clone())
+        .create_session(pb::CreateSessionRequest {
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+            tick_rate_hz: 1000.0,
+            record: false,
+            device_channel: true,
+        })
+        .await
+        .unwrap()
+        .into_inner();
+    let info = created.session.unwrap();
+    let path = std::path::PathBuf::from(&info.device_channel_path);
+    assert!(path.is_file(), "the device channel {} exists", path.display());
+    let req = with_token(
+        pb::ObserveRequest { session_id: info.session_id.clone(), rate_hz: 30.0, include_displacements: false },
+        &created.observer_token,
+    );
+    let mut frames = pb::observe_service_client::ObserveServiceClient::new(ch.clone()).observe(req).await.unwrap().into_inner();
+    assert!(tokio::time::timeout(Duration::from_secs(10), frames.next()).await.expect("a frame").is_some());
+    let o = std::process::Command::new("kill").args(["-TERM", &server.child.id().to_string()]).output().unwrap();
+    assert!(o.status.success());
+    // A hang guard, not a speed bound.
+    let t0 = Instant::now();
+    while path.exists() {
+        assert!(t0.elapsed() < Duration::from_secs(30), "30 s after SIGTERM the device channel {} is still there", path.display());
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    drop(frames);
+}
+
 /// The Fig. 4 steering path, four times faster, as a pose at `t` seconds.
 fn steering_pose_at(t: f64) -> pb::Pose2 {
     let keys = [(0.0, 0.05, 0.205), (1.0, 0.05, 0.165), (1.0125, 0.055, 0.165), (2.2625, 0.055, 0.115)];

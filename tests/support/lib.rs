@@ -266,10 +266,16 @@ impl ServerProcess {
         }
     }
 
-    /// Kills the server and starts another on the same data directory with `extra` arguments.
-    pub fn restart(mut self, extra: &[&str]) -> Self {
+    /// Kills the server (SIGKILL) and removes the device channel files it left (issue 35).
+    pub fn kill(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();
+        remove_channels_of(self.child.id());
+    }
+
+    /// Kills the server and starts another on the same data directory with `extra` arguments.
+    pub fn restart(mut self, extra: &[&str]) -> Self {
+        self.kill();
         let data_dir = std::mem::replace(&mut self.data_dir, TempDir::new("server-placeholder"));
         Self::start_in(data_dir, extra)
     }
@@ -300,8 +306,18 @@ impl ServerProcess {
 
 impl Drop for ServerProcess {
     fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        self.kill();
+    }
+}
+
+/// Removes the device channel files in /dev/shm that the dead process `pid` created (a SIGKILLed
+/// server closes none of its sessions, and shared memory outlives processes: issue 35 found 81 such
+/// files after test runs). Only files whose creator is gone (nobody holds their owner lock) and
+/// whose header names `pid`: another test's live server is never touched.
+pub fn remove_channels_of(pid: u32) {
+    let dir = Path::new("/dev/shm");
+    if dir.is_dir() {
+        let _ = needlesim_channel::shm::remove_stale_channels(dir, Some(pid));
     }
 }
 

@@ -75,6 +75,16 @@ pub fn identify_mapper(pid: u32, dev: u64, ino: u64) -> Option<ProcessIdentity> 
     maps_file(&maps, dev, ino).then_some(ProcessIdentity { pid, start_ticks })
 }
 
+/// True if a process visible here (`/proc/*/maps`) maps the file of device `dev` and inode `ino`.
+/// Processes whose maps cannot be read (another user's, exiting) are not counted.
+pub fn mapped_by_a_visible_process(dev: u64, ino: u64) -> bool {
+    let Ok(procs) = std::fs::read_dir("/proc") else { return false };
+    procs
+        .filter_map(Result::ok)
+        .filter(|e| e.file_name().to_str().is_some_and(|n| n.bytes().all(|b| b.is_ascii_digit())))
+        .any(|e| std::fs::read_to_string(e.path().join("maps")).is_ok_and(|maps| maps_file(&maps, dev, ino)))
+}
+
 /// What became of a process identified earlier.
 pub fn state_of(id: &ProcessIdentity) -> ProcessState {
     match read_stat(id.pid) {

@@ -17,7 +17,7 @@
 //! |-------:|-----:|-------|
 //! | 0   | 8 | magic `b"NDLSIMv1"` |
 //! | 8   | 4 | layout version (`u32`) |
-//! | 12  | 4 | reserved (0) |
+//! | 12  | 4 | owner lock (`u32`): [`OWNER_LOCK`] when the creator holds a shared `flock` on the file for the life of its end; 0 in files of earlier builds |
 //! | 16  | 8 | total size in bytes (`u64`, 768) |
 //! | 24  | 8 | generation (`u64`, random, never 0; 0 while `create` is initialising) |
 //! | 32  | 4 | creator pid (`u32`) |
@@ -64,6 +64,15 @@
 //! accepts a value only if that generation is its own and the slot's sequence advanced since its
 //! last accepted read, so values from an earlier run (or a late write from a bridge of an earlier
 //! generation) are never taken as fresh.
+//!
+//! # Files left behind (issue 35)
+//!
+//! The file outlives its processes: a server that dies without dropping its end (`kill -9`, a
+//! crash) leaves it. Its creator therefore holds a shared `flock` on the file from `create` until
+//! its end (and every watch handle) is dropped, and says so in the header ([`OWNER_LOCK`]); locks
+//! die with their process and work across pid namespaces, so [`remove_stale_channels`] (a server
+//! calls it at start-up) can tell a dead creator's file, which nobody holds, from a live one's. A
+//! bridge that sees its server die removes the file itself ([`DeviceEnd::remove_if_orphaned`]).
 //!
 //! # Memory ordering (the seqlock)
 //!
@@ -147,6 +156,11 @@ pub const CHANNEL_SIZE: u64 = size_of::<Layout>() as u64;
 pub const READ_RETRIES: u32 = 64;
 /// Channel mappings one process can hold at once (slots of the `SIGBUS` registry; the handler scans them all).
 pub const MAX_MAPPINGS: usize = 1024;
+/// The header's owner-lock word in a channel whose creator holds a shared `flock` on its file for
+/// as long as its end lives ([`remove_stale_channels`]).
+pub const OWNER_LOCK: u32 = 1;
+/// The file name of a session's channel is this prefix and the session id (12 lowercase hex digits).
+pub const CHANNEL_FILE_PREFIX: &str = "needlesim-";
 /// How often a watcher should call [`ChannelWatch::check_file`].
 pub const WATCH_PERIOD: Duration = Duration::from_millis(100);
 
@@ -450,6 +464,116 @@ pub fn pid_alive(pid: u32) -> bool {
     r == 0 || io::Error::last_os_error().raw_os_error() == Some(libc::EPERM)
 }
 
+/// Takes a shared `flock` on the channel file (the creator's mark: [`OWNER_LOCK`]). Shared, so
+/// that a channel re-created in place while an earlier end still holds the file is marked by both;
+/// a sweep holds an exclusive lock for a few system calls, so a busy lock is retried for up to 100 ms.
+fn lock_shared(file: &File) -> io::Result<()> {
+    use std::os::fd::AsRawFd;
+    for _ in 0..100 {
+        // SAFETY: flock on a descriptor this function borrows; no memory is passed.
+        if unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_SH | libc::LOCK_NB) } == 0 {
+            return Ok(());
+        }
+        let e = io::Error::last_os_error();
+        match e.raw_os_error() {
+            Some(libc::EINTR) => {}
+            Some(libc::EWOULDBLOCK) => std::thread::sleep(Duration::from_millis(1)),
+            _ => return Err(e),
+        }
+    }
+    Err(io::Error::from_raw_os_error(libc::EWOULDBLOCK))
+}
+
+/// True for the name of a session's channel file: [`CHANNEL_FILE_PREFIX`] and 12 lowercase hex digits.
+pub fn is_channel_file_name(name: &str) -> bool {
+    name.strip_prefix(CHANNEL_FILE_PREFIX)
+        .is_some_and(|id| id.len() == 12 && id.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b)))
+}
+
+/// What [`remove_stale_channels`] found.
+#[derive(Debug, Default)]
+pub struct Sweep {
+    /// The stale channel files removed.
+    pub removed: Vec<PathBuf>,
+    /// Channel files left because a live process owns or maps them.
+    pub live: usize,
+    /// Files that could not be examined or removed, with the reason.
+    pub errors: Vec<(PathBuf, io::Error)>,
+}
+
+/// Removes the channel files in `dir` that this user owns and whose creator is gone (issue 35: a
+/// server killed with `kill -9`, or a crash, leaves its sessions' files in /dev/shm, which outlives
+/// processes). A server calls it at start-up on its device directory. A file is removed only if
+/// all of these hold:
+/// - its name is a session channel's ([`is_channel_file_name`]), it is a regular file (not a link)
+///   owned by this process's effective user, and its first 8 bytes are [`MAGIC`];
+/// - nobody holds a lock on it (an exclusive `flock` is taken, and held while it is removed): every
+///   live end created by this build holds a shared one ([`OWNER_LOCK`]), whatever pid namespace
+///   its process runs in;
+/// - a file without the owner-lock mark (written by an earlier build, which took no lock): no
+///   process visible here maps it (`/proc/*/maps`). An earlier build's live server in another pid
+///   namespace sharing the directory is invisible here: its channel would be taken for stale (the
+///   one case this cannot tell);
+/// - the path still names the file examined.
+///
+/// With `creator` set, only files whose header names that creator pid are considered (a test
+/// harness cleaning up after the server it killed). Files of other names, other users, other
+/// formats, and live channels are never touched. Makes system calls: not for a real-time thread.
+pub fn remove_stale_channels(dir: &Path, creator: Option<u32>) -> io::Result<Sweep> {
+    let mut sweep = Sweep::default();
+    for entry in std::fs::read_dir(dir)? {
+        let Ok(entry) = entry else { continue };
+        let path = entry.path();
+        if !entry.file_name().to_str().is_some_and(is_channel_file_name) {
+            continue;
+        }
+        match remove_if_stale(&path, creator) {
+            Ok(Some(true)) => sweep.removed.push(path),
+            Ok(Some(false)) => sweep.live += 1,
+            Ok(None) => {}
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+            Err(e) => sweep.errors.push((path, e)),
+        }
+    }
+    Ok(sweep)
+}
+
+/// One file of [`remove_stale_channels`]: `Some(true)` removed, `Some(false)` live, `None` not a
+/// channel of this user (or of `creator`).
+fn remove_if_stale(path: &Path, creator: Option<u32>) -> io::Result<Option<bool>> {
+    use std::os::fd::AsRawFd;
+    let meta = std::fs::symlink_metadata(path)?;
+    // SAFETY: geteuid has no preconditions.
+    if !meta.file_type().is_file() || meta.uid() != unsafe { libc::geteuid() } {
+        return Ok(None);
+    }
+    let file = OpenOptions::new().read(true).custom_flags(libc::O_NOFOLLOW | libc::O_CLOEXEC | libc::O_NONBLOCK).open(path)?;
+    let held = file.metadata()?;
+    let mut head = [0u8; 40];
+    if held.len() < head.len() as u64 || file.read_exact_at(&mut head, 0).is_err() || head[..8] != MAGIC {
+        return Ok(None);
+    }
+    let word = |at: usize| u32::from_le_bytes([head[at], head[at + 1], head[at + 2], head[at + 3]]);
+    if creator.is_some_and(|pid| word(32) != pid) {
+        return Ok(None);
+    }
+    // SAFETY: flock on a descriptor this function owns; no memory is passed.
+    if unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } != 0 {
+        let e = io::Error::last_os_error();
+        return if e.raw_os_error() == Some(libc::EWOULDBLOCK) { Ok(Some(false)) } else { Err(e) };
+    }
+    let marked = word(8) == LAYOUT_VERSION && word(12) == OWNER_LOCK;
+    if !marked && crate::liveness::mapped_by_a_visible_process(held.dev(), held.ino()) {
+        return Ok(Some(false));
+    }
+    // Still the file examined (not replaced meanwhile): remove it while the lock is held.
+    match std::fs::symlink_metadata(path) {
+        Ok(now) if (now.dev(), now.ino()) == (held.dev(), held.ino()) => std::fs::remove_file(path).map(|()| Some(true)),
+        Ok(_) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Layout
 
@@ -457,7 +581,7 @@ pub fn pid_alive(pid: u32) -> bool {
 struct Header {
     magic: AtomicU64,
     version: AtomicU32,
-    _reserved0: AtomicU32,
+    owner_lock: AtomicU32,
     total_size: AtomicU64,
     generation: AtomicU64,
     creator_pid: AtomicU32,
@@ -489,6 +613,7 @@ const _: () = {
     assert!(size_of::<Layout>() == 768);
     assert!(offset_of!(Layout, header) == 0);
     assert!(offset_of!(Header, version) == 8);
+    assert!(offset_of!(Header, owner_lock) == 12);
     assert!(offset_of!(Header, total_size) == 16);
     assert!(offset_of!(Header, generation) == 24);
     assert!(offset_of!(Header, creator_pid) == 32);
@@ -987,6 +1112,9 @@ impl DeviceChannel {
             .custom_flags(libc::O_NOFOLLOW | libc::O_CLOEXEC)
             .open(path)
             .map_err(io_err(path, "create"))?;
+        // The owner's mark, before the file holds anything: while this end (its descriptor) lives,
+        // remove_stale_channels leaves the file alone, however this process is seen from elsewhere.
+        lock_shared(&file).map_err(io_err(path, "flock"))?;
         // An existing file keeps its mode on open: force 0600.
         file.set_permissions(std::fs::Permissions::from_mode(0o600)).map_err(io_err(path, "fchmod"))?;
         file.set_len(CHANNEL_SIZE).map_err(io_err(path, "set_len"))?;
@@ -996,7 +1124,7 @@ impl DeviceChannel {
         l.header.closed.store(0, Ordering::Relaxed);
         l.header.magic.store(u64::from_le_bytes(MAGIC), Ordering::Relaxed);
         l.header.version.store(LAYOUT_VERSION, Ordering::Relaxed);
-        l.header._reserved0.store(0, Ordering::Relaxed);
+        l.header.owner_lock.store(OWNER_LOCK, Ordering::Relaxed);
         l.header.total_size.store(CHANNEL_SIZE, Ordering::Relaxed);
         l.header.creator_pid.store(std::process::id(), Ordering::Relaxed);
         l.header.attacher_pid.store(0, Ordering::Relaxed);
@@ -1887,5 +2015,66 @@ mod tests {
         }
         let slots_in_use = REGISTRY.iter().filter(|s| s.start.load(Ordering::Relaxed) != 0).count();
         assert!(slots_in_use < 64, "{slots_in_use} registry slots still in use after every channel was dropped");
+    }
+
+    /// Issue 35 (L4): stale channel files piled up in /dev/shm. A sweep removes the channels whose
+    /// creator is gone and nothing else: not a live channel (its creator holds the owner lock),
+    /// not an unmarked channel of an earlier build that a live process maps, not a file under
+    /// another name, not a file that is not a channel, not a symbolic link; with a creator pid,
+    /// only that creator's.
+    #[test]
+    fn issue_35_a_sweep_removes_only_the_channels_whose_creator_is_gone() {
+        static N: AtomicUsize = AtomicUsize::new(0);
+        let dir = std::env::temp_dir().join(format!("needlesim-sweep-{}-{}", std::process::id(), N.fetch_add(1, Ordering::Relaxed)));
+        std::fs::create_dir(&dir).unwrap();
+        let at = |id: &str| dir.join(format!("{CHANNEL_FILE_PREFIX}{id}"));
+        let live = DeviceChannel::create(at("000000000001")).unwrap();
+        let bytes = std::fs::read(live.path()).unwrap();
+        assert_eq!(u32::from_le_bytes(bytes[12..16].try_into().unwrap()), OWNER_LOCK, "create marks the header");
+        let copy = |id: &str, patches: &[(usize, &[u8])]| {
+            let mut b = bytes.clone();
+            for (offset, with) in patches {
+                b[*offset..*offset + with.len()].copy_from_slice(with);
+            }
+            std::fs::write(at(id), b).unwrap();
+            at(id)
+        };
+        // A marked channel nobody holds: its creator is gone.
+        let stale = copy("000000000002", &[]);
+        // Unmarked (an earlier build's): gone unless a visible process maps it.
+        let unmarked = copy("000000000003", &[(12, &0u32.to_le_bytes())]);
+        let unmarked_mapped = copy("000000000004", &[(12, &0u32.to_le_bytes())]);
+        let mapping = unsafe { memmap2::Mmap::map(&File::open(&unmarked_mapped).unwrap()) }.unwrap();
+        // Another creator's stale channel: left by a sweep for this creator only.
+        let other_creator = copy("000000000005", &[(32, &0x7fff_fff0u32.to_le_bytes())]);
+        // Not ours to judge: other names, other contents, a link to a stale channel.
+        let other_name = copy("shm-test-x", &[]);
+        let upper_case = copy("00000000000A", &[]);
+        let not_a_channel = at("000000000006");
+        std::fs::write(&not_a_channel, [0x5Au8; 768]).unwrap();
+        let target = copy("link-target", &[]);
+        let link = at("000000000008");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+
+        let me = std::process::id();
+        let sweep = remove_stale_channels(&dir, Some(me)).unwrap();
+        assert!(sweep.errors.is_empty(), "{:?}", sweep.errors);
+        let mut removed = sweep.removed.clone();
+        removed.sort();
+        assert_eq!(removed, vec![stale.clone(), unmarked.clone()]);
+        assert_eq!(sweep.live, 2, "the live channel and the mapped unmarked one");
+        for kept in [live.path(), &unmarked_mapped, &other_creator, &other_name, &upper_case, &not_a_channel, &target, &link] {
+            assert!(std::fs::symlink_metadata(kept).is_ok(), "{} was removed", kept.display());
+        }
+        let sweep = remove_stale_channels(&dir, None).unwrap();
+        assert_eq!(sweep.removed, vec![other_creator.clone()]);
+        // The live channel keeps working, and its end removes its file when dropped.
+        assert!(live.broken().is_none());
+        let live_path = live.path().to_path_buf();
+        drop(live);
+        assert!(!live_path.exists());
+        drop(mapping);
+        assert_eq!(remove_stale_channels(&dir, None).unwrap().removed, vec![unmarked_mapped]);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }
