@@ -12,6 +12,8 @@
 //! final result is always delivered), and inconsistencies found by the fit itself (time stamps
 //! that do not overlap, no usable frame) end the stream with INVALID_ARGUMENT.
 
+use std::ops::ControlFlow;
+
 use needlesim_identify::logs::{ForceLog, ProbeLog};
 use needlesim_identify::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_scene};
 use needlesim_identify::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
@@ -51,19 +53,30 @@ fn progress(done: usize, total: usize, stage: &str) -> pb::IdentifyProgress {
 
 /// Runs `work` on the blocking pool, holding `permit` until it ends, with a progress callback
 /// that never blocks; sends its result (or its error's status: RESOURCE_EXHAUSTED for a size
-/// limit, else INVALID_ARGUMENT) as the last stream item.
+/// limit, else INVALID_ARGUMENT) as the last stream item. When the client goes away (it cancels,
+/// disconnects or drops the stream) the callback stops the work at its next frame or model
+/// evaluation, as Simulate stops at its next tick, and the permit (`--max-offline-jobs`) is free
+/// again (issue 35).
 fn spawn_work<F>(stage: &'static str, permit: JobPermit, work: F) -> Response<ProgressStream>
 where
-    F: FnOnce(&mut dyn FnMut(usize, usize)) -> anyhow::Result<pb::identify_progress::Result> + Send + 'static,
+    F: FnOnce(needlesim_identify::Progress<'_>) -> anyhow::Result<pb::identify_progress::Result> + Send + 'static,
 {
     let (tx, rx) = mpsc::channel(16);
     tokio::task::spawn_blocking(move || {
         let _permit = permit;
         let mut report = |done: usize, total: usize| {
+            if tx.is_closed() {
+                return ControlFlow::Break(());
+            }
             let _ = tx.try_send(Ok(progress(done, total, stage)));
+            ControlFlow::Continue(())
         };
         let item = match work(&mut report) {
             Ok(r) => Ok(pb::IdentifyProgress { stage: "done".to_owned(), result: Some(r), ..Default::default() }),
+            Err(e) if e.chain().any(|c| c.is::<needlesim_identify::Cancelled>()) => {
+                tracing::info!(stage, "identify call cancelled: the client went away");
+                return;
+            }
             Err(e) => Err(status_of("", &e)),
         };
         let _ = tx.blocking_send(item);
@@ -134,7 +147,7 @@ impl pb::identify_service_server::IdentifyService for Api {
         p.validate().map_err(invalid("track parameters"))?;
         Ok(spawn_work("track", permit, move |report| {
             let frames: Vec<(f64, &[u8])> = r.frames.iter().map(|f| (f.t_s, f.png.as_slice())).collect();
-            let tracks = track_png_bytes(&frames, &p, report).map_err(|e| anyhow::anyhow!("frames: {e:#}"))?;
+            let tracks = track_png_bytes(&frames, &p, report).map_err(|e| e.context("frames"))?;
             Ok(pb::identify_progress::Result::Track(pb::TrackResult {
                 n_markers: tracks.n_markers as u32,
                 n_frames: tracks.n_frames() as u32,

@@ -14,6 +14,7 @@ pub mod grpc;
 pub mod grpc_identify;
 pub mod jobs;
 pub mod listener;
+pub mod quota;
 pub mod recording;
 pub mod serve;
 pub mod status;

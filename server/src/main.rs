@@ -90,6 +90,21 @@ struct ServeArgs {
     /// Largest image a Track call decodes, in pixels (width × height from the PNG header).
     #[arg(long, default_value_t = grpc::ServerLimits::default().max_image_pixels)]
     max_image_pixels: u64,
+    /// Most recordings (`.mcap` files) in `<data-dir>/recordings/`: StartRecording is refused
+    /// with RESOURCE_EXHAUSTED when it holds this many.
+    #[arg(long, value_name = "N", default_value_t = grpc::ServerLimits::default().max_recordings)]
+    max_recordings: usize,
+    /// Most MiB in `<data-dir>/recordings/`: StartRecording is refused when too little is left
+    /// to start (512 KiB), and a recording that would grow past the limit is stopped and finished.
+    #[arg(long, value_name = "MIB", default_value_t = grpc::ServerLimits::default().max_recordings_bytes >> 20)]
+    max_recordings_mb: u64,
+    /// Most after-action reports (`.html` files) in `<data-dir>/reports/`: ending an exercise
+    /// whose report would pass it answers RESOURCE_EXHAUSTED and writes no report.
+    #[arg(long, value_name = "N", default_value_t = grpc::ServerLimits::default().max_reports)]
+    max_reports: usize,
+    /// Most MiB in `<data-dir>/reports/` (as --max-reports).
+    #[arg(long, value_name = "MIB", default_value_t = grpc::ServerLimits::default().max_reports_bytes >> 20)]
+    max_reports_mb: u64,
     /// The example scene of the default session ("none" for no default session).
     #[arg(long, default_value = "paper-phantom")]
     default_scene: String,
@@ -749,6 +764,10 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
             max_offline_jobs: args.max_offline_jobs,
             max_plans: args.max_plans,
             max_image_pixels: args.max_image_pixels,
+            max_recordings: args.max_recordings,
+            max_recordings_bytes: needlesim_server::quota::mib(args.max_recordings_mb),
+            max_reports: args.max_reports,
+            max_reports_bytes: needlesim_server::quota::mib(args.max_reports_mb),
             ..Default::default()
         },
         max_message_bytes: args.max_message_bytes,

@@ -14,6 +14,12 @@
 //! SHA-256 digests of its tokens (never the tokens) next to it, in `<name>.owner`, which outlives
 //! the session and the server. Files are opened without following symbolic links and only when
 //! they are regular files (a FIFO never blocks a reader).
+//!
+//! Recordings are bounded on disk (issue 35; `quota.rs`): [`Recorder::start_within`] admits a
+//! recording against the directory's [`DirQuota`] (`--max-recordings` files,
+//! `--max-recordings-mb` bytes), and the writer thread reserves every message's bytes before
+//! writing it; the first that does not fit stops the recording, which is then finished (last
+//! chunk, summary and footer: a valid MCAP file) and drops the session's later frames.
 
 use std::collections::BTreeMap;
 use std::fmt;
@@ -30,6 +36,8 @@ use needlesim_proto::v1::Frame;
 use needlesim_session::{RecordSink, Session, TickRecord};
 use prost::Message as _;
 
+use crate::quota::{DirQuota, QuotaExceeded, Reservation};
+
 /// The topic of the frames in a recording.
 pub const FRAME_TOPIC: &str = "/needlesim/frames";
 /// The schema name of the frames: the full name of the protobuf message.
@@ -44,6 +52,18 @@ pub const CHUNK_BYTES: usize = 64 * 1024;
 pub const FLUSH_INTERVAL: Duration = Duration::from_secs(1);
 /// Frames that can wait for the writer thread before [`Recorder::write_from_fanout`] drops them.
 pub const QUEUE_FRAMES: usize = 8192;
+/// The longest recording name, in bytes (a file name of the usual file systems).
+pub const MAX_NAME_BYTES: usize = 255;
+/// The longest session id a recording is named after: its name adds `-<UTC time>-<n>.mcap`.
+pub const MAX_SESSION_ID_BYTES: usize = 200;
+/// Bytes a recording needs to start: its header (the schemas), the summary and footer that
+/// finish it, its owner file and a first chunk.
+pub const START_BYTES: u64 = 512 * 1024;
+/// Bytes reserved per message beyond its data: the record and index entries (47 bytes) and the
+/// chunk compressor's worst case.
+const MESSAGE_OVERHEAD_BYTES: u64 = 64;
+/// Bytes of the summary per chunk (its chunk index), held until the recording finishes.
+const CHUNK_INDEX_BYTES: u64 = 256;
 
 /// Why a recording could not be started, written, finished or opened.
 #[derive(Debug)]
@@ -77,6 +97,8 @@ pub enum RecordingError {
     NotRegularFile { name: String },
     /// [`write_owner`]: the owner file could not be written.
     WriteOwner { path: PathBuf, source: io::Error },
+    /// [`Recorder::start_within`]: the recordings directory holds its limit of files or bytes.
+    Quota(QuotaExceeded),
 }
 
 impl fmt::Display for RecordingError {
@@ -95,6 +117,7 @@ impl fmt::Display for RecordingError {
             Self::Open { name, source } => write!(f, "cannot open the recording {name:?}: {source}"),
             Self::NotRegularFile { name } => write!(f, "no recording named {name:?} (it is not a regular file)"),
             Self::WriteOwner { path, source } => write!(f, "cannot write the recording's owner file {}: {source}", path.display()),
+            Self::Quota(e) => write!(f, "cannot start a recording: {e}"),
         }
     }
 }
@@ -108,6 +131,7 @@ impl std::error::Error for RecordingError {
             | Self::WriteOwner { source, .. } => Some(source),
             Self::SpawnThread(e) => Some(e),
             Self::Mcap(e) => Some(e),
+            Self::Quota(e) => Some(e),
             Self::InvalidSessionId { .. }
             | Self::WriterPanicked
             | Self::InvalidName { .. }
@@ -319,6 +343,8 @@ struct Counters {
     /// Bytes handed to the OS.
     size_bytes: AtomicU64,
     finished: AtomicBool,
+    /// The writer stopped: the next message would have passed the directory's byte limit.
+    stopped_at_limit: AtomicBool,
 }
 
 /// Which channel a queued message goes to.
@@ -357,10 +383,21 @@ impl Recorder {
     /// (never overwriting a file), writes the MCAP header, the schema and the channel, and starts
     /// the writer thread.
     pub fn start(dir: &Path, session_id: &str) -> Result<Recorder, RecordingError> {
-        if session_id.is_empty() || !session_id.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.')) {
+        Self::start_within(dir, session_id, &DirQuota::unlimited("recordings", EXTENSION))
+    }
+
+    /// [`Recorder::start`] within `quota` (the directory's bound on files and bytes): refused with
+    /// [`RecordingError::Quota`] when the directory is full; the recording stops, finished, when
+    /// its next message would pass the byte limit.
+    pub fn start_within(dir: &Path, session_id: &str, quota: &Arc<DirQuota>) -> Result<Recorder, RecordingError> {
+        if session_id.is_empty()
+            || session_id.len() > MAX_SESSION_ID_BYTES
+            || !session_id.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+        {
             return Err(RecordingError::InvalidSessionId { session_id: session_id.to_owned() });
         }
         fs::create_dir_all(dir).map_err(|source| RecordingError::CreateDir { dir: dir.to_owned(), source })?;
+        let mut reservation = quota.admit(dir, START_BYTES).map_err(RecordingError::Quota)?;
         let now = SystemTime::now().duration_since(UNIX_EPOCH).unwrap_or_default();
         let stamp = utc_stamp(now.as_secs());
         let (name, path, file) = create_unique(dir, &format!("{session_id}-{stamp}"))?;
@@ -386,6 +423,16 @@ impl Recorder {
         ]);
         writer.write_metadata(&mcap::records::Metadata { name: "needlesim".to_owned(), metadata })?;
         writer.flush()?;
+        // The header is written, out of START_BYTES; the rest is held for the summary (which
+        // repeats the schemas: twice the header, with the tissue's) and the owner file.
+        let header_bytes = counters.size_bytes.load(Ordering::Relaxed);
+        reservation.spend(header_bytes, header_bytes);
+        let finish_bytes = 2 * header_bytes + 2 * OWNER_MAX_BYTES;
+        if reservation.held() < finish_bytes && !reservation.try_reserve(finish_bytes - reservation.held()) {
+            tracing::warn!(recording = %path.display(), "recording stopped at once: the recordings directory is at its byte limit");
+            reservation.count_stop();
+            counters.stopped_at_limit.store(true, Ordering::Relaxed);
+        }
 
         let (tx, rx) = mpsc::sync_channel(QUEUE_FRAMES);
         let thread_counters = Arc::clone(&counters);
@@ -402,6 +449,9 @@ impl Recorder {
                     counters: thread_counters,
                     pending_bytes: 0,
                     pending_messages: 0,
+                    reservation,
+                    chunk_overhead: header_bytes + 4096,
+                    chunk_reserved: 0,
                 };
                 w.run(rx)
             })
@@ -421,6 +471,11 @@ impl Recorder {
     /// [`Recorder::write_from_fanout`].
     fn queue_from_fanout(&self, queued: Queued) -> bool {
         let Some(tx) = &self.tx else { return false };
+        if self.counters.stopped_at_limit.load(Ordering::Relaxed) {
+            // Stopped at the directory's byte limit: the file is finished.
+            self.counters.dropped.fetch_add(1, Ordering::Relaxed);
+            return false;
+        }
         match tx.try_send(queued) {
             Ok(()) => true,
             Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) => {
@@ -506,15 +561,41 @@ struct WriterThread {
     /// Message bytes and messages in the open chunk.
     pending_bytes: usize,
     pending_messages: u64,
+    /// The recording's bytes in the directory's quota: held for the summary, and for the open
+    /// chunk (`chunk_reserved`) until it is written.
+    reservation: Reservation,
+    /// Bytes reserved with a chunk's first message: the chunk's own records and the schemas and
+    /// channels a chunk may repeat (at most the header's).
+    chunk_overhead: u64,
+    chunk_reserved: u64,
 }
 
 impl WriterThread {
     fn run(mut self, rx: Receiver<Queued>) -> Result<(), RecordingError> {
         let mut last_flush = Instant::now();
         loop {
+            if self.counters.stopped_at_limit.load(Ordering::Relaxed) {
+                // At the byte limit: finish the file now; later frames are dropped.
+                let counters = Arc::clone(&self.counters);
+                self.finish()?;
+                for _ in rx.iter() {
+                    counters.dropped.fetch_add(1, Ordering::Relaxed);
+                }
+                return Ok(());
+            }
             let timeout = FLUSH_INTERVAL.saturating_sub(last_flush.elapsed());
             match rx.recv_timeout(timeout) {
                 Ok(queued) => {
+                    if !self.reserve(&queued) {
+                        tracing::warn!(
+                            bytes = self.counters.size_bytes.load(Ordering::Relaxed),
+                            "recording stopped: its next message would pass the recordings directory's byte limit (--max-recordings-mb)"
+                        );
+                        self.counters.dropped.fetch_add(1, Ordering::Relaxed);
+                        self.reservation.count_stop();
+                        self.counters.stopped_at_limit.store(true, Ordering::Relaxed);
+                        continue;
+                    }
                     if let Err(e) = self.write(&queued) {
                         self.counters.dropped.fetch_add(1, Ordering::Relaxed);
                         return Err(self.fail(e, rx));
@@ -537,10 +618,35 @@ impl WriterThread {
                 Err(RecvTimeoutError::Disconnected) => break,
             }
         }
+        self.finish()
+    }
+
+    /// Reserves the bytes of `queued` in the directory's quota (and the chunk's overhead with a
+    /// chunk's first message); false when they would pass the limit.
+    fn reserve(&mut self, queued: &Queued) -> bool {
+        let data = queued.data.len() as u64;
+        let mut need = data + data / 128 + MESSAGE_OVERHEAD_BYTES;
+        if self.pending_messages == 0 {
+            need += self.chunk_overhead + CHUNK_INDEX_BYTES;
+        }
+        if !self.reservation.try_reserve(need) {
+            return false;
+        }
+        self.chunk_reserved += need;
+        true
+    }
+
+    /// Writes the open chunk, the summary and the footer; the bytes written are the
+    /// recording's last in the quota (what it still held is given back).
+    fn finish(mut self) -> Result<(), RecordingError> {
+        let before = self.counters.size_bytes.load(Ordering::Relaxed);
         self.writer.finish()?;
         // `finish` leaves the summary and footer in the buffer.
         self.writer.into_inner().flush().map_err(mcap::McapError::from)?;
         self.counters.flushed_messages.fetch_add(self.pending_messages, Ordering::Relaxed);
+        let written = self.counters.size_bytes.load(Ordering::Relaxed).saturating_sub(before);
+        let held = self.reservation.held();
+        self.reservation.spend(held, written);
         self.counters.finished.store(true, Ordering::Relaxed);
         Ok(())
     }
@@ -583,9 +689,15 @@ impl WriterThread {
         Ok(())
     }
 
-    /// Closes the open chunk and hands it to the OS.
+    /// Closes the open chunk and hands it to the OS; its reservation becomes the bytes written
+    /// (its chunk index's stays held for the summary).
     fn flush(&mut self) -> Result<(), mcap::McapError> {
+        let before = self.counters.size_bytes.load(Ordering::Relaxed);
         self.writer.flush()?;
+        let written = self.counters.size_bytes.load(Ordering::Relaxed).saturating_sub(before);
+        let chunks = u64::from(self.pending_messages > 0);
+        self.reservation.spend(self.chunk_reserved.saturating_sub(chunks * CHUNK_INDEX_BYTES), written);
+        self.chunk_reserved = 0;
         self.counters.flushed_messages.fetch_add(self.pending_messages, Ordering::Relaxed);
         self.pending_bytes = 0;
         self.pending_messages = 0;
@@ -729,9 +841,10 @@ pub fn list_recordings(dir: &Path) -> Vec<RecordingInfo> {
     list
 }
 
-/// Opens the recording `name` in `dir` for reading. `name` must be a plain file name ending in
-/// `.mcap`.
-pub fn open_recording(dir: &Path, name: &str) -> Result<File, RecordingError> {
+/// Checks that `name` is the plain file name of a recording, never a path: at most
+/// [`MAX_NAME_BYTES`] bytes of ASCII letters, digits, `-`, `_` and `.` (so no separator, no NUL,
+/// no control or shell character), no `..`, not starting with `.`, ending in `.mcap`.
+pub fn check_name(name: &str) -> Result<(), RecordingError> {
     let invalid = |reason| Err(RecordingError::InvalidName { name: name.to_owned(), reason });
     if name.contains('/') || name.contains('\\') || name.contains(std::path::MAIN_SEPARATOR) {
         return invalid("it holds a path separator");
@@ -742,9 +855,25 @@ pub fn open_recording(dir: &Path, name: &str) -> Result<File, RecordingError> {
     if name.contains('\0') {
         return invalid("it holds a NUL character");
     }
+    if name.len() > MAX_NAME_BYTES {
+        return invalid("it is longer than 255 bytes");
+    }
+    if !name.bytes().all(|b| b.is_ascii_alphanumeric() || matches!(b, b'-' | b'_' | b'.')) {
+        return invalid("use ASCII letters, digits, '-', '_' and '.' only");
+    }
+    if name.starts_with('.') {
+        return invalid("it starts with '.'");
+    }
     if !name.ends_with(".mcap") || name.len() <= ".mcap".len() {
         return invalid("it does not end in .mcap");
     }
+    Ok(())
+}
+
+/// Opens the recording `name` in `dir` for reading. `name` must be a plain file name ending in
+/// `.mcap` ([`check_name`]).
+pub fn open_recording(dir: &Path, name: &str) -> Result<File, RecordingError> {
+    check_name(name)?;
     match open_regular(&dir.join(name)) {
         Ok(file) => Ok(file),
         Err(OpenRegularError::NotFound) => Err(RecordingError::NotFound { name: name.to_owned() }),

@@ -160,6 +160,31 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
         ("connections_open", "Connections open on the gRPC port", conns.open() as f64),
         ("connections_refused", "Connections closed at once: --max-connections were open", conns.refused() as f64),
         ("connections_timed_out", "Connections closed: no handshake within --handshake-timeout-ms", conns.timed_out() as f64),
+        (
+            "recordings_bytes",
+            "Bytes in the recordings directory (at the last start, plus writes and reservations since)",
+            state.recordings_quota.bytes_used() as f64,
+        ),
+        (
+            "recordings_refused",
+            "StartRecording refused: --max-recordings or --max-recordings-mb reached",
+            state.recordings_quota.refused() as f64,
+        ),
+        (
+            "recordings_stopped_at_limit",
+            "Recordings stopped and finished because their next message would pass --max-recordings-mb",
+            state.recordings_quota.stopped() as f64,
+        ),
+        (
+            "reports_bytes",
+            "Bytes in the after-action reports directory (at the last report, plus its own)",
+            state.reports_quota.bytes_used() as f64,
+        ),
+        (
+            "reports_refused",
+            "After-action reports not written: --max-reports or --max-reports-mb reached",
+            state.reports_quota.refused() as f64,
+        ),
     ];
     let fx = crate::foxglove_live::stats().unwrap_or_default();
     let endpoint = [

@@ -17,8 +17,10 @@ use needlesim_offline::RunError;
 use needlesim_offline::plan::PlanInputError;
 use tonic::Status;
 
+use crate::quota::QuotaExceeded;
 use crate::recording::RecordingError;
 use needlesim_session::SessionError;
+use needlesim_training::run::ExerciseRunError;
 
 pub use needlesim_scene::limit::{MAX_QUOTE_CHARS, SizeLimit, clip, quote};
 
@@ -191,6 +193,28 @@ impl From<SessionError> for ApiError {
     }
 }
 
+impl From<&QuotaExceeded> for ApiError {
+    /// A directory of the data directory at its `--max-…` limit (`quota.rs`).
+    fn from(e: &QuotaExceeded) -> Self {
+        ApiError::ResourceExhausted(e.to_string())
+    }
+}
+
+impl From<&ExerciseRunError> for ApiError {
+    /// A shipped exercise that does not start: its scene over the server's size limits
+    /// (`--max-nodes`, `--max-triangles`) is RESOURCE_EXHAUSTED, as CreateSession's is (issue 35
+    /// item 14); anything else is the server's (INTERNAL): the client only named the exercise.
+    fn from(e: &ExerciseRunError) -> Self {
+        match e {
+            ExerciseRunError::Scene(scene) => match ApiError::from_chain("exercise", scene) {
+                ApiError::ResourceExhausted(_) => ApiError::ResourceExhausted(e.to_string()),
+                _ => ApiError::Internal(e.to_string()),
+            },
+            _ => ApiError::Internal(e.to_string()),
+        }
+    }
+}
+
 impl From<&RecordingError> for ApiError {
     fn from(e: &RecordingError) -> Self {
         match e {
@@ -198,6 +222,7 @@ impl From<&RecordingError> for ApiError {
                 ApiError::NotFound(format!("no recording '{}'", quote(name)))
             }
             RecordingError::InvalidName { name, reason } => ApiError::invalid("name", format!("'{}': {reason}", quote(name))),
+            RecordingError::Quota(_) => ApiError::ResourceExhausted(e.to_string()),
             _ => ApiError::Internal(e.to_string()),
         }
     }

@@ -534,9 +534,11 @@ impl LiveExercise {
     /// Ends the exercise (idempotent): scores nothing more, lets the instructor's control and a
     /// pause go (they could not be handed back or resumed once the calls refuse an ended
     /// exercise, so the lease is freed and `s`'s device drives again, even if the report then
-    /// fails), renders the report and writes it to `<data_dir>/reports/<session>-<exercise>.html`.
-    /// Blocking (the report's plots): call it off the async runtime.
-    pub fn end(&self, s: &Session, data_dir: &Path) -> Result<Finished, Status> {
+    /// fails), renders the report and writes it to `<data_dir>/reports/<session>-<exercise>.html`
+    /// within `reports` (`--max-reports`, `--max-reports-mb`: past them no report is written and
+    /// the call is RESOURCE_EXHAUSTED naming the flag). Blocking (the report's plots): call it off
+    /// the async runtime.
+    pub fn end(&self, s: &Session, data_dir: &Path, reports: &Arc<crate::quota::DirQuota>) -> Result<Finished, Status> {
         let _serial = self.end_lock.lock().expect("exercise end lock");
         let run = {
             let mut st = self.lock();
@@ -581,7 +583,12 @@ impl LiveExercise {
         std::fs::create_dir_all(&dir).map_err(|e| Status::internal(format!("cannot create {}: {e}", dir.display())))?;
         let report_name = format!("{}-{}.html", self.session_id, self.exercise.name);
         let report_path = dir.join(&report_name);
-        std::fs::write(&report_path, html).map_err(|e| Status::internal(format!("cannot write {}: {e}", report_path.display())))?;
+        let mut room = reports.admit(&dir, html.len() as u64).map_err(|e| {
+            tracing::warn!(session = %self.session_id, "no after-action report: {e}");
+            Status::from(crate::status::ApiError::from(&e))
+        })?;
+        std::fs::write(&report_path, &html).map_err(|e| Status::internal(format!("cannot write {}: {e}", report_path.display())))?;
+        room.spend(html.len() as u64, html.len() as u64);
         tracing::info!(session = %self.session_id, exercise = %self.exercise.name, score = run.result.score.total, report = %report_path.display(), "exercise ended");
         let f = Finished { report_name, report_path };
         self.lock().finished = Some(f.clone());
@@ -669,11 +676,11 @@ pub fn authorize_pose<T>(registry: &Registry, req: &tonic::Request<T>, s: &Sessi
 }
 
 /// The session closes: its exercise ends (report written) and leaves the registry. Blocking.
-pub fn on_close(registry: &Registry, data_dir: &Path, s: &Session) {
+pub fn on_close(registry: &Registry, data_dir: &Path, reports: &Arc<crate::quota::DirQuota>, s: &Session) {
     let ex = registry.write().expect("training registry lock").remove(&s.id);
     if let Some(ex) = ex {
         ex.closed.store(true, Ordering::Release);
-        if let Err(e) = ex.end(s, data_dir) {
+        if let Err(e) = ex.end(s, data_dir, reports) {
             tracing::error!(session = %s.id, "the exercise's report: {}", e.message());
         }
         ex.changed();
@@ -826,7 +833,7 @@ mod tests {
         ex.take_control(&s).unwrap();
         assert!(s.device_suspended());
         let dir = std::env::temp_dir().join(format!("needlesim-training-end-{}", std::process::id()));
-        ex.end(&s, &dir).unwrap();
+        ex.end(&s, &dir, &crate::quota::DirQuota::unlimited("reports", "html")).unwrap();
         assert!(!s.device_suspended(), "the end lets the instructor's hold go");
         assert!(ex.refuse_trainee().is_ok());
         assert!(s.control.acquire_stream("trainee", false).await.is_ok(), "the lease is free after the end");
@@ -853,7 +860,7 @@ mod tests {
         ex.score_record(&record(0, 0.0));
         assert_eq!(ex.place().unwrap_err().code(), tonic::Code::FailedPrecondition);
         let dir = std::env::temp_dir().join(format!("needlesim-training-live-{}", std::process::id()));
-        let f = ex.end(&s, &dir).unwrap();
+        let f = ex.end(&s, &dir, &crate::quota::DirQuota::unlimited("reports", "html")).unwrap();
         assert!(f.report_path.is_file());
         let html = std::fs::read_to_string(&f.report_path).unwrap();
         assert!(html.contains("Refused declarations"), "the refused placement is in the report");
@@ -861,7 +868,11 @@ mod tests {
         ex.score_record(&record(1, 0.0));
         assert_eq!(ex.snapshot().metrics.samples, samples, "an ended exercise scores no more records");
         assert_eq!(ex.add_marker("late").unwrap_err().code(), tonic::Code::FailedPrecondition);
-        assert_eq!(ex.end(&s, &dir).unwrap().report_name, f.report_name, "ending twice: the same report");
+        assert_eq!(
+            ex.end(&s, &dir, &crate::quota::DirQuota::unlimited("reports", "html")).unwrap().report_name,
+            f.report_name,
+            "ending twice: the same report"
+        );
         s.close();
         let _ = std::fs::remove_dir_all(&dir);
     }

@@ -12,7 +12,7 @@ use needlesim_training::{EXERCISES, load_exercise};
 use tonic::{Request, Response, Status};
 
 use crate::grpc::{Api, BoxStream, ServerState, StreamPermit, token_of};
-use crate::status::quote;
+use crate::status::{ApiError, quote};
 use crate::training_convert as tc;
 use crate::training_live::{LiveExercise, Who};
 use crate::training_ultrasound::{ProbeSpec, UltrasoundHub, default_probe_2d, default_probe_3d};
@@ -51,7 +51,10 @@ pub fn create_exercise_session(
             Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")))
         }
     };
-    let prepare_err = |e: needlesim_training::ExerciseRunError| Status::internal(format!("shipped exercise {name}: {e}"));
+    let prepare_err = |e: needlesim_training::ExerciseRunError| match ApiError::from(&e) {
+        ApiError::ResourceExhausted(m) => Status::resource_exhausted(format!("exercise {name}: {m}")),
+        _ => Status::internal(format!("shipped exercise {name}: {e}")),
+    };
     let (s, spec, targets, probe) = if ex.dim == 2 {
         let p = prepare_2d(&ex, &limits).map_err(prepare_err)?;
         let rate = check_rate(p.scene.params.tick_rate_hz)?;
@@ -240,9 +243,11 @@ impl pb::training_service_server::TrainingService for Api {
 
     async fn end_exercise(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
         let (s, ex, _) = self.exercise_for(&req, &req.get_ref().session_id, DRIVERS, "EndExercise")?;
-        let dir = self.state.data_dir.clone();
+        let (dir, reports) = (self.state.data_dir.clone(), self.state.reports_quota.clone());
         let (ex2, s2) = (ex.clone(), s.clone());
-        tokio::task::spawn_blocking(move || ex2.end(&s2, &dir)).await.map_err(|e| Status::internal(format!("report task: {e}")))??;
+        tokio::task::spawn_blocking(move || ex2.end(&s2, &dir, &reports))
+            .await
+            .map_err(|e| Status::internal(format!("report task: {e}")))??;
         Ok(Response::new(status_now(&ex)))
     }
 

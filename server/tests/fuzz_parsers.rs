@@ -886,8 +886,8 @@ fn check_png(input: &[u8]) -> Verdict {
         }
     };
     // The mutated image as frame 0 (detection), then as frame 1 after a good frame 0 (tracking).
-    verdict(track_png_bytes(&[(0.0, input)], &params, &mut |_, _| {}), valid(1))?;
-    verdict(track_png_bytes(&[(0.0, first_frame()), (0.1, input)], &params, &mut |_, _| {}), valid(2))
+    verdict(track_png_bytes(&[(0.0, input)], &params, &mut needlesim_identify::no_progress), valid(1))?;
+    verdict(track_png_bytes(&[(0.0, first_frame()), (0.1, input)], &params, &mut needlesim_identify::no_progress), valid(2))
 }
 
 fn png_target() -> Target {

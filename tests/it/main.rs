@@ -6,6 +6,7 @@
 
 mod access_e2e;
 mod api_limits;
+mod api_limits_issue35;
 mod bench;
 mod bridge3d;
 mod bridge_e2e;

@@ -144,7 +144,8 @@ fn solve_w(obs: &[Obs], w: f64, hold_h: Option<f64>) -> (f64, f64, f64, f64) {
     (q, b, sse, s22 / det)
 }
 
-/// Fits the friction distribution of an insertion.
+/// Fits the friction distribution of an insertion; `progress(k, n_frames)` is called before each
+/// frame (`Break` stops the fit with [`crate::Cancelled`]).
 ///
 /// Errors (before any work): a marker count different from the mesh's node count, a marker that
 /// the mesh does not cover or that is not on a node (or two on one node), a force log and
@@ -157,7 +158,7 @@ pub fn fit_needle(
     log: &ForceLog,
     traj: &Trajectory,
     opts: &NeedleFitOptions,
-    progress: &mut dyn FnMut(usize, usize),
+    progress: crate::Progress<'_>,
 ) -> Result<NeedleFit> {
     let tissue = &scene.tissue;
     let mesh = tissue.mesh();
@@ -199,7 +200,7 @@ pub fn fit_needle(
     // Per used frame: (frame, time, observations, tip force, node axial sum).
     let mut per_frame: Vec<(usize, f64, Vec<Obs>, f64, f64)> = Vec::new();
     for k in 1..nf {
-        progress(k, nf);
+        crate::report(progress, k, nf)?;
         let t = tracks.times_s[k];
         if t < a || t > b {
             continue;
@@ -421,7 +422,7 @@ mod tests {
         let traj = Trajectory::parse_csv(scene.example_trajectory.unwrap()).unwrap();
         let p = NeedleSynthParams { t_end_s: Some(4.0), ..Default::default() };
         let ex = synth_needle(&scene, &traj, &p).unwrap();
-        let fit = fit_needle(&scene, &ex.tracks, &ex.log, &traj, &NeedleFitOptions::default(), &mut |_, _| {}).unwrap();
+        let fit = fit_needle(&scene, &ex.tracks, &ex.log, &traj, &NeedleFitOptions::default(), &mut crate::no_progress).unwrap();
         let truth = scene.params.regions[0];
         let q_err = (fit.friction_n_per_m / truth.friction_n_per_m - 1.0).abs();
         assert!(q_err < 0.05, "q0 = {} (truth {})", fit.friction_n_per_m, truth.friction_n_per_m);

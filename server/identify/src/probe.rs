@@ -341,7 +341,7 @@ fn best_nu(tracks: &MarkerTracks, data: &Data, eval: &mut dyn FnMut(f64) -> Resu
 }
 
 /// Fits E and ν. `progress(done, total)` is called after every model evaluation (`total` is an
-/// estimate).
+/// estimate; `Break` stops the fit with [`crate::Cancelled`]).
 ///
 /// Errors (checked before any solve): fewer than 2 frames; a probe log that does not cover the
 /// reference frame's time ("probe log covers t = a..b s but frames cover c..d s"); a probe marker
@@ -353,7 +353,7 @@ pub fn fit_probe(
     log: &ProbeLog,
     model: &ProbeModel,
     opts: &ProbeFitOptions,
-    progress: &mut dyn FnMut(usize, usize),
+    progress: crate::Progress<'_>,
 ) -> Result<ProbeFit> {
     let nf = tracks.n_frames();
     if nf < 2 {
@@ -423,7 +423,7 @@ pub fn fit_probe(
     let mut eval = |nu: f64| -> Result<Unit> {
         let u = unit_solutions(model, probe_node, nu)?;
         evals += 1;
-        progress(evals, total_est);
+        crate::report(progress, evals, total_est)?;
         Ok(u)
     };
     let mut sigma_u = opts.marker_sigma_m.unwrap_or(0.0);
@@ -513,7 +513,7 @@ mod tests {
         let p = ProbeSynthParams::default();
         let ex = synth_probe(&p).unwrap();
         let model = grid_model(&ex.tracks, p.nx, p.ny, p.width_m, p.height_m, p.plane, 1).unwrap();
-        let fit = fit_probe(&ex.tracks, &ex.log, &model, &ProbeFitOptions::default(), &mut |_, _| {}).unwrap();
+        let fit = fit_probe(&ex.tracks, &ex.log, &model, &ProbeFitOptions::default(), &mut crate::no_progress).unwrap();
         assert_eq!(fit.probe_marker, ex.probe_marker);
         let e_err = (fit.young_modulus_pa / 30e3 - 1.0).abs();
         assert!(e_err < 0.02, "E = {} ± {}", fit.young_modulus_pa, fit.young_modulus_sigma_pa);
@@ -530,7 +530,7 @@ mod tests {
         for t in &mut late.times_s {
             *t += 100.0;
         }
-        let e = fit_probe(&ex.tracks, &late, &model, &ProbeFitOptions::default(), &mut |_, _| {}).unwrap_err().to_string();
+        let e = fit_probe(&ex.tracks, &late, &model, &ProbeFitOptions::default(), &mut crate::no_progress).unwrap_err().to_string();
         assert!(e.contains("probe log covers t = 100..102.5 s but frames cover 0..2.5 s"), "{e}");
         let e = grid_model(&ex.tracks, 10, 11, 0.1, 0.1, p.plane, 1).unwrap_err().to_string();
         assert!(e.contains("110 nodes but the tracks have 121 markers"), "{e}");

@@ -714,30 +714,30 @@ fn mutual_nearest(pred: &[[f64; 2]], det: &[[f64; 2]], gate: f64) -> Vec<Option<
 }
 
 /// Tracks a sequence of 8-bit frames `(t_s, image)`; `progress(done, total)` is called after each
-/// frame. Errors: as [`Tracker::push_png`] (naming the frame), or an empty sequence.
-pub fn track_frames(frames: &[(f64, GrayImage)], p: &TrackParams, progress: &mut dyn FnMut(usize, usize)) -> Result<MarkerTracks> {
+/// frame (`Break` stops the call with [`crate::Cancelled`]). Errors: as [`Tracker::push_png`] (naming the frame), or an empty sequence.
+pub fn track_frames(frames: &[(f64, GrayImage)], p: &TrackParams, progress: crate::Progress<'_>) -> Result<MarkerTracks> {
     if frames.is_empty() {
         bail!("track: no frames");
     }
     let mut tr = Tracker::new(p.clone())?;
     for (i, (t, img)) in frames.iter().enumerate() {
         tr.push_image(*t, img)?;
-        progress(i + 1, frames.len());
+        crate::report(progress, i + 1, frames.len())?;
     }
     tr.finish()
 }
 
 /// Tracks a sequence of PNG-encoded frames `(t_s, png bytes)`, decoding one at a time;
-/// `progress(done, total)` is called after each frame. Errors: as [`Tracker::push_png`] (naming
+/// `progress(done, total)` is called after each frame (`Break`: [`crate::Cancelled`]). Errors: as [`Tracker::push_png`] (naming
 /// the frame), or an empty sequence.
-pub fn track_png_bytes(frames: &[(f64, &[u8])], p: &TrackParams, progress: &mut dyn FnMut(usize, usize)) -> Result<MarkerTracks> {
+pub fn track_png_bytes(frames: &[(f64, &[u8])], p: &TrackParams, progress: crate::Progress<'_>) -> Result<MarkerTracks> {
     if frames.is_empty() {
         bail!("track: no frames");
     }
     let mut tr = Tracker::new(p.clone())?;
     for (i, (t, png)) in frames.iter().enumerate() {
         tr.push_png(*t, png)?;
-        progress(i + 1, frames.len());
+        crate::report(progress, i + 1, frames.len())?;
     }
     tr.finish()
 }
@@ -796,7 +796,7 @@ mod tests {
     fn issue_13_an_image_over_the_pixel_limit_is_refused_from_its_header() {
         let png = GrayImage::new(100, 80).to_png().unwrap();
         let p = TrackParams { max_image_pixels: 7999, ..params() };
-        let e = track_png_bytes(&[(0.0, &png)], &p, &mut |_, _| {}).unwrap_err();
+        let e = track_png_bytes(&[(0.0, &png)], &p, &mut crate::no_progress).unwrap_err();
         let size = e.downcast_ref::<SizeLimit>().unwrap_or_else(|| panic!("not a size limit: {e:#}"));
         assert_eq!((size.amount, size.limit), (8000, 7999));
         assert!(e.to_string().contains("frame 0 (100 × 80 pixels)"), "{e}");
@@ -874,10 +874,10 @@ mod tests {
             })
             .collect();
         let p = TrackParams { max_missing_frames: 1, ..params() };
-        let e = format!("{:#}", track_frames(&frames, &p, &mut |_, _| {}).unwrap_err());
+        let e = format!("{:#}", track_frames(&frames, &p, &mut crate::no_progress).unwrap_err());
         assert!(e.contains("frame 3: marker 5") && e.contains("frames 2–3") && e.contains("marker count changed"), "{e}");
         let p = TrackParams { expected_markers: Some(17), ..params() };
-        let e = format!("{:#}", track_frames(&frames, &p, &mut |_, _| {}).unwrap_err());
+        let e = format!("{:#}", track_frames(&frames, &p, &mut crate::no_progress).unwrap_err());
         assert!(e.contains("frame 0: found 16 markers but 17 are expected"), "{e}");
     }
 
@@ -888,24 +888,24 @@ mod tests {
         let img = render_frame(&[[30.0, 30.0]], &rp, 0);
         let small = render_frame(&[[20.0, 20.0]], &RenderParams { width_px: 50, ..rp.clone() }, 0);
         let p = params();
-        let e = track_frames(&[(0.0, img.clone()), (1.0, small)], &p, &mut |_, _| {}).unwrap_err().to_string();
+        let e = track_frames(&[(0.0, img.clone()), (1.0, small)], &p, &mut crate::no_progress).unwrap_err().to_string();
         assert!(e.contains("frame 1: the image is 50×60 pixels but frame 0 is 60×60"), "{e}");
-        let e = track_frames(&[(0.0, img.clone()), (0.0, img.clone())], &p, &mut |_, _| {}).unwrap_err().to_string();
+        let e = track_frames(&[(0.0, img.clone()), (0.0, img.clone())], &p, &mut crate::no_progress).unwrap_err().to_string();
         assert!(e.contains("frame 1: time stamp 0 s does not come after"), "{e}");
         let blank = render_frame(&[], &rp, 0);
-        let e = track_frames(&[(0.0, blank)], &p, &mut |_, _| {}).unwrap_err().to_string();
+        let e = track_frames(&[(0.0, blank)], &p, &mut crate::no_progress).unwrap_err().to_string();
         assert!(e.contains("frame 0: no dark markers found (automatic threshold"), "{e}");
-        let e = track_frames(&[(0.0, img.clone())], &TrackParams { polarity: Polarity::Bright, ..p.clone() }, &mut |_, _| {})
+        let e = track_frames(&[(0.0, img.clone())], &TrackParams { polarity: Polarity::Bright, ..p.clone() }, &mut crate::no_progress)
             .unwrap_err()
             .to_string();
         assert!(e.contains("frame 0: no bright markers found"), "{e}");
-        let e = format!("{:#}", track_png_bytes(&[(0.0, b"not a png".as_slice())], &p, &mut |_, _| {}).unwrap_err());
+        let e = format!("{:#}", track_png_bytes(&[(0.0, b"not a png".as_slice())], &p, &mut crate::no_progress).unwrap_err());
         assert!(e.contains("frame 0: not a decodable PNG"), "{e}");
-        assert!(track_frames(&[], &p, &mut |_, _| {}).is_err());
+        assert!(track_frames(&[], &p, &mut crate::no_progress).is_err());
         // A speckle of isolated dark pixels: 40 000 one-pixel blobs, none of them markers.
         let speckle = GrayImage::from_fn(402, 402, |x, y| if x % 2 == 1 && y % 2 == 1 { 0 } else { 200 });
         let loose = TrackParams { min_area_px: 1, ..p.clone() };
-        let e = track_frames(&[(0.0, speckle)], &loose, &mut |_, _| {}).err().map(|e| format!("{e:#}")).unwrap_or_default();
+        let e = track_frames(&[(0.0, speckle)], &loose, &mut crate::no_progress).err().map(|e| format!("{e:#}")).unwrap_or_default();
         assert!(e.contains("frame 0:") && e.contains("40000 blobs found, more than 20000"), "{e}");
         let e = TrackParams { max_jump_px: -1.0, ..p }.validate().unwrap_err().to_string();
         assert!(e.contains("max jump"), "{e}");
@@ -925,7 +925,7 @@ mod tests {
             ..TrackParams::new(Polarity::Dark, Scale::MarkerSpacing { spacing_m: 0.01, origin_m: [0.005, 0.002] })
         };
         let frames: Vec<(f64, &[u8])> = vec![(0.0, &pngs[0]), (0.04, &pngs[1])];
-        let tr = track_png_bytes(&frames, &p, &mut |_, _| {}).unwrap();
+        let tr = track_png_bytes(&frames, &p, &mut crate::no_progress).unwrap();
         // Row-major from the top-left: marker 15 is the bottom-left one, the origin.
         let o = tr.position_m(0, 15);
         assert!((o[0] - 0.005).abs() < 1e-9 && (o[1] - 0.002).abs() < 1e-9, "{o:?}");
@@ -937,7 +937,7 @@ mod tests {
         }
         // The same frames as images give the same tracks.
         let imgs: Vec<(f64, GrayImage)> = frames.iter().zip(rendered).map(|((t, _), img)| (*t, img)).collect();
-        assert_eq!(track_frames(&imgs, &p, &mut |_, _| {}).unwrap(), tr);
+        assert_eq!(track_frames(&imgs, &p, &mut crate::no_progress).unwrap(), tr);
     }
 
     #[cfg(feature = "synthetic")]
@@ -984,8 +984,8 @@ mod tests {
             v[2]
         };
         let p = TrackParams { expected_markers: Some(100), ..params() };
-        let images = median_ms(&mut || assert_eq!(track_frames(&frames, &p, &mut |_, _| {}).unwrap().n_markers, 100));
-        let decoded = median_ms(&mut || assert_eq!(track_png_bytes(&png_refs, &p, &mut |_, _| {}).unwrap().n_markers, 100));
+        let images = median_ms(&mut || assert_eq!(track_frames(&frames, &p, &mut crate::no_progress).unwrap().n_markers, 100));
+        let decoded = median_ms(&mut || assert_eq!(track_png_bytes(&png_refs, &p, &mut crate::no_progress).unwrap().n_markers, 100));
         println!(
             "640×480, 100 markers: {images:.2} ms per frame from images, {decoded:.2} ms per frame from PNG bytes (decoding included)"
         );

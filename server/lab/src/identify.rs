@@ -349,7 +349,7 @@ fn run_probe(a: ProbeArgs) -> anyhow::Result<()> {
     };
     let opts = ProbeFitOptions { probe_marker: a.probe_marker, marker_sigma_m: a.marker_sigma_m, force_sigma_n: a.force_sigma_n };
     let started = std::time::Instant::now();
-    let fit = fit_probe(&tracks, &log, &model, &opts, &mut |_, _| {})?;
+    let fit = fit_probe(&tracks, &log, &model, &opts, &mut needlesim_identify::no_progress)?;
     let mut v = serde_json::to_value(&fit)?;
     v["fit_time_s"] = serde_json::json!(started.elapsed().as_secs_f64());
     println!("{}", serde_json::to_string_pretty(&v)?);
@@ -416,7 +416,7 @@ fn run_needle(a: NeedleArgs) -> anyhow::Result<()> {
         &log,
         &traj,
         &NeedleFitOptions { band_m: a.band_m, tip_tol_m: None, tip_peak_ratio: a.tip_peak_ratio },
-        &mut |_, _| {},
+        &mut needlesim_identify::no_progress,
     )?;
     let elapsed = started.elapsed().as_secs_f64();
     if let Some(r) = &a.region {

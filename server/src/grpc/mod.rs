@@ -56,6 +56,14 @@ pub struct ServerLimits {
     pub max_plans: usize,
     /// Largest image a Track call decodes, in pixels (width × height, read from the header).
     pub max_image_pixels: u64,
+    /// Most recordings (`.mcap` files) in `<data dir>/recordings/` (`--max-recordings`).
+    pub max_recordings: usize,
+    /// Most bytes in `<data dir>/recordings/` (`--max-recordings-mb`).
+    pub max_recordings_bytes: u64,
+    /// Most after-action reports (`.html` files) in `<data dir>/reports/` (`--max-reports`).
+    pub max_reports: usize,
+    /// Most bytes in `<data dir>/reports/` (`--max-reports-mb`).
+    pub max_reports_bytes: u64,
 }
 
 impl ServerLimits {
@@ -78,6 +86,10 @@ impl Default for ServerLimits {
             max_offline_jobs: 4,
             max_plans: 2,
             max_image_pixels: needlesim_identify::track::DEFAULT_MAX_IMAGE_PIXELS,
+            max_recordings: 1000,
+            max_recordings_bytes: crate::quota::mib(10240),
+            max_reports: 1000,
+            max_reports_bytes: crate::quota::mib(1024),
         }
     }
 }
@@ -100,6 +112,10 @@ pub struct ServerState {
     pub training: crate::training_live::Registry,
     /// The open server-streaming calls (issue 35, `streams.rs`).
     pub streams: StreamLimiter,
+    /// The bound on `<data dir>/recordings/` (issue 35, `quota.rs`).
+    pub recordings_quota: Arc<crate::quota::DirQuota>,
+    /// The bound on `<data dir>/reports/`, the after-action reports (issue 35, `quota.rs`).
+    pub reports_quota: Arc<crate::quota::DirQuota>,
 }
 
 /// A place among the `max_sessions` sessions, held while a session starts; given back when
@@ -126,6 +142,18 @@ impl ServerState {
     pub fn with_admin_token(limits: ServerLimits, data_dir: PathBuf, admin_token: Option<&str>) -> Arc<Self> {
         let jobs = JobLimiter::new(limits.max_offline_jobs, limits.max_plans);
         let streams = StreamLimiter::new(limits.max_streams);
+        let recordings_quota = crate::quota::DirQuota::new(
+            "recordings",
+            crate::recording::EXTENSION,
+            ("--max-recordings", limits.max_recordings),
+            ("--max-recordings-mb", limits.max_recordings_bytes),
+        );
+        let reports_quota = crate::quota::DirQuota::new(
+            "reports",
+            "html",
+            ("--max-reports", limits.max_reports),
+            ("--max-reports-mb", limits.max_reports_bytes),
+        );
         Arc::new(Self {
             sessions: RwLock::default(),
             pending_sessions: Arc::default(),
@@ -136,6 +164,8 @@ impl ServerState {
             draining: AtomicBool::new(false),
             training: Default::default(),
             streams,
+            recordings_quota,
+            reports_quota,
         })
     }
 

@@ -19,7 +19,9 @@ pub(crate) fn start_recording(state: &ServerState, s: &Arc<Session>, include_dis
         return Err(Status::failed_precondition(format!("session {} is already recording to {}", s.id, r.name)));
     }
     let dir = state.data_dir.join("recordings");
-    let rec = crate::recording::Recorder::start(&dir, &s.id).map_err(|e| Status::internal(format!("cannot start the recording: {e}")))?;
+    // A full directory (--max-recordings, --max-recordings-mb) is RESOURCE_EXHAUSTED naming the flag.
+    let rec =
+        crate::recording::Recorder::start_within(&dir, &s.id, &state.recordings_quota).map_err(|e| Status::from(ApiError::from(&e)))?;
     // The recording belongs to this session: its tokens (their digests) open it, also later.
     let owner = crate::recording::RecordingOwner {
         session_id: s.id.clone(),

@@ -83,7 +83,7 @@ impl pb::session_service_server::SessionService for Api {
         tokio::task::spawn_blocking(move || {
             s.close();
             // An exercise ends with its session: its report is written (training_live.rs).
-            crate::training_live::on_close(&state.training, &state.data_dir, &s);
+            crate::training_live::on_close(&state.training, &state.data_dir, &state.reports_quota, &s);
         })
         .await
         .map_err(|e| Status::internal(format!("close: {e}")))?;
