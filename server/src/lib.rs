@@ -22,3 +22,4 @@ pub mod training_convert;
 pub mod training_live;
 pub mod training_service;
 pub mod training_ultrasound;
+pub mod web_files;

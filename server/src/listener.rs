@@ -1,24 +1,39 @@
 //! The gRPC port's connections (issue 35): at most `--max-connections` open at once (one more is
-//! accepted and closed at once, never queued), and a connection must send its handshake — the
-//! first [`HANDSHAKE_BYTES`] bytes (HTTP/2's preface is 24; a TLS ClientHello or an HTTP/1
-//! request is longer) — within `--handshake-timeout-ms` or it is closed. TLS handshakes are
-//! bounded by the same time (`serve.rs`); an idle HTTP/2 connection is pinged and closed when its
-//! peer is gone (`serve.rs`). Counted in /metrics.
+//! accepted and closed at once, never queued), and none holds its place without working:
+//!
+//! - a connection must bring its first request — its headers parsed and handed to the service,
+//!   over HTTP/2, HTTP/1.1 or TLS alike — within `--handshake-timeout-ms` of opening, or it is
+//!   closed (a bare HTTP/2 preface, a TLS handshake, half of an HTTP/1 request's headers do not
+//!   count);
+//! - an HTTP/1.1 connection must bring its next request within the same time of its last
+//!   response ending (an idle keep-alive connection is closed);
+//! - an HTTP/1.1 request body that sends nothing for the same time is ended with an error (its
+//!   connection then closes). HTTP/2 request streams are never timed out: `Control` streams stay
+//!   open for hours; an idle HTTP/2 connection is pinged and closed when its peer is gone
+//!   (`serve.rs`).
+//!
+//! The connection ([`GuardedStream`]) carries a shared state in its `ConnectInfo`
+//! ([`GuardInfo`]), which [`ConnGuardLayer`] marks as each request reaches the service and as
+//! its response ends. TLS handshakes are bounded by the same time (`serve.rs`). Counted in
+//! /metrics.
 
+use std::future::Future;
 use std::io;
 use std::net::SocketAddr;
 use std::pin::Pin;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::task::{Context, Poll};
 use std::time::Duration;
 
+use axum::http::{Request, Response, Version};
+use bytes::Bytes;
+use futures_util::task::AtomicWaker;
+use http_body::{Body, Frame, SizeHint};
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::net::{TcpListener, TcpStream};
 use tokio_stream::Stream;
-
-/// Bytes a connection must send before its handshake deadline.
-pub const HANDSHAKE_BYTES: usize = 24;
+use tonic::transport::server::TcpConnectInfo;
 
 /// The connections of the port.
 #[derive(Debug, Default)]
@@ -26,6 +41,8 @@ pub struct ConnCounters {
     open: AtomicUsize,
     refused: AtomicU64,
     timed_out: AtomicU64,
+    idle_closed: AtomicU64,
+    stalled_bodies: AtomicU64,
 }
 
 impl ConnCounters {
@@ -39,9 +56,19 @@ impl ConnCounters {
         self.refused.load(Ordering::Relaxed)
     }
 
-    /// Connections closed because they sent no handshake in time.
+    /// Connections closed because their first request did not arrive in time.
     pub fn timed_out(&self) -> u64 {
         self.timed_out.load(Ordering::Relaxed)
+    }
+
+    /// HTTP/1.1 connections closed because their next request did not arrive in time.
+    pub fn idle_closed(&self) -> u64 {
+        self.idle_closed.load(Ordering::Relaxed)
+    }
+
+    /// HTTP/1.1 request bodies ended because they sent nothing for the timeout.
+    pub fn stalled_bodies(&self) -> u64 {
+        self.stalled_bodies.load(Ordering::Relaxed)
     }
 }
 
@@ -49,6 +76,8 @@ impl ConnCounters {
 #[derive(Debug, Clone, Copy)]
 pub struct ConnLimits {
     pub max_connections: usize,
+    /// Time to the first request; for HTTP/1.1 also between requests and between the frames of a
+    /// request body.
     pub handshake_timeout: Duration,
 }
 
@@ -61,14 +90,39 @@ pub fn default_max_connections() -> usize {
     usize::try_from(nofile / 2).unwrap_or(usize::MAX).clamp(16, 4096)
 }
 
-/// A connection holding its place among `max_connections`, closed (its reads fail) when it has
-/// not sent [`HANDSHAKE_BYTES`] by its deadline.
+/// What the service tells a connection about its requests.
+#[derive(Debug, Default)]
+struct ConnState {
+    /// A request has reached the service.
+    served: AtomicBool,
+    /// It was HTTP/1 (requests one after another on the connection).
+    http1: AtomicBool,
+    /// Requests reached the service whose responses have not ended.
+    in_flight: AtomicUsize,
+    /// The connection's reader, woken when its last request in flight ends (an HTTP/1.1
+    /// connection then waits for its next request within the deadline).
+    reader: AtomicWaker,
+}
+
+/// A connection's `ConnectInfo`: its addresses and what [`ConnGuardLayer`] tells it.
+#[derive(Debug, Clone)]
+pub struct GuardInfo {
+    tcp: TcpConnectInfo,
+    state: Arc<ConnState>,
+}
+
+/// A connection holding its place among `max_connections`, closed (its reads fail) while it has
+/// no request in progress past its deadline (see the module's documentation).
 pub struct GuardedStream {
     inner: TcpStream,
     counters: Arc<ConnCounters>,
-    /// Until the handshake bytes arrived.
-    deadline: Option<Pin<Box<tokio::time::Sleep>>>,
-    read_bytes: usize,
+    state: Arc<ConnState>,
+    timeout: Duration,
+    /// The deadline, while one runs.
+    deadline: Pin<Box<tokio::time::Sleep>>,
+    armed: bool,
+    /// The deadline passed: every read fails.
+    expired: bool,
 }
 
 impl Drop for GuardedStream {
@@ -77,27 +131,42 @@ impl Drop for GuardedStream {
     }
 }
 
+impl GuardedStream {
+    /// Whether the connection must bring a request by the deadline now: before its first
+    /// request; for HTTP/1.1, also while no request is in progress.
+    fn waits_for_a_request(&self) -> bool {
+        let s = &self.state;
+        !s.served.load(Ordering::Acquire) || (s.http1.load(Ordering::Acquire) && s.in_flight.load(Ordering::Acquire) == 0)
+    }
+}
+
 impl AsyncRead for GuardedStream {
     fn poll_read(mut self: Pin<&mut Self>, cx: &mut Context<'_>, buf: &mut ReadBuf<'_>) -> Poll<io::Result<()>> {
         let this = &mut *self;
-        if let Some(d) = this.deadline.as_mut()
-            && d.as_mut().poll(cx).is_ready()
-        {
-            this.deadline = None;
-            this.read_bytes = HANDSHAKE_BYTES;
-            this.counters.timed_out.fetch_add(1, Ordering::Relaxed);
-            // hyper (or the TLS handshake) ends the connection on the error: the socket closes.
-            return Poll::Ready(Err(io::Error::new(io::ErrorKind::TimedOut, "no handshake before the deadline")));
+        if this.expired {
+            return Poll::Ready(Err(io::Error::new(io::ErrorKind::TimedOut, "closed at its request deadline")));
         }
-        let before = buf.filled().len();
-        let r = Pin::new(&mut this.inner).poll_read(cx, buf);
-        if this.deadline.is_some() {
-            this.read_bytes += buf.filled().len() - before;
-            if this.read_bytes >= HANDSHAKE_BYTES {
-                this.deadline = None;
+        // Registered before the state is read: a request ending after the read below wakes us.
+        this.state.reader.register(cx.waker());
+        if this.waits_for_a_request() {
+            if !this.armed {
+                this.armed = true;
+                let at = tokio::time::Instant::now() + this.timeout;
+                this.deadline.as_mut().reset(at);
             }
+            if this.deadline.as_mut().poll(cx).is_ready() {
+                this.expired = true;
+                let first = !this.state.served.load(Ordering::Acquire);
+                let counter = if first { &this.counters.timed_out } else { &this.counters.idle_closed };
+                counter.fetch_add(1, Ordering::Relaxed);
+                // The error ends the connection in hyper (or the TLS handshake): the socket closes.
+                let what = if first { "no request before the deadline" } else { "no next request before the deadline" };
+                return Poll::Ready(Err(io::Error::new(io::ErrorKind::TimedOut, what)));
+            }
+        } else {
+            this.armed = false;
         }
-        r
+        Pin::new(&mut this.inner).poll_read(cx, buf)
     }
 }
 
@@ -124,10 +193,10 @@ impl AsyncWrite for GuardedStream {
 }
 
 impl tonic::transport::server::Connected for GuardedStream {
-    type ConnectInfo = tonic::transport::server::TcpConnectInfo;
+    type ConnectInfo = GuardInfo;
 
     fn connect_info(&self) -> Self::ConnectInfo {
-        tonic::transport::server::Connected::connect_info(&self.inner)
+        GuardInfo { tcp: tonic::transport::server::Connected::connect_info(&self.inner), state: self.state.clone() }
     }
 }
 
@@ -160,10 +229,197 @@ pub fn incoming(
             let conn = GuardedStream {
                 inner: tcp,
                 counters: counters.clone(),
-                deadline: Some(Box::pin(tokio::time::sleep(limits.handshake_timeout))),
-                read_bytes: 0,
+                state: Arc::default(),
+                timeout: limits.handshake_timeout,
+                // Runs from the accept.
+                deadline: Box::pin(tokio::time::sleep(limits.handshake_timeout)),
+                armed: true,
+                expired: false,
             };
             return Some((Ok(conn), (listener, counters)));
         }
     })
+}
+
+/// The layer (on the whole server) that tells each connection about its requests, and bounds
+/// the pauses of HTTP/1.1 request bodies. It puts the connection's [`TcpConnectInfo`] into the
+/// request, where tonic's `remote_addr()` finds it.
+#[derive(Debug, Clone)]
+pub struct ConnGuardLayer {
+    counters: Arc<ConnCounters>,
+    body_timeout: Duration,
+}
+
+impl ConnGuardLayer {
+    pub fn new(counters: Arc<ConnCounters>, limits: ConnLimits) -> Self {
+        Self { counters, body_timeout: limits.handshake_timeout }
+    }
+}
+
+impl<S> tower::Layer<S> for ConnGuardLayer {
+    type Service = ConnGuard<S>;
+
+    fn layer(&self, inner: S) -> ConnGuard<S> {
+        ConnGuard { inner, layer: self.clone() }
+    }
+}
+
+/// See [`ConnGuardLayer`].
+#[derive(Debug, Clone)]
+pub struct ConnGuard<S> {
+    inner: S,
+    layer: ConnGuardLayer,
+}
+
+/// One request in progress on its connection, until its response body is dropped (sent, or the
+/// call cancelled).
+struct InFlight(Arc<ConnState>);
+
+impl InFlight {
+    fn start(state: Arc<ConnState>, version: Version) -> Self {
+        if version < Version::HTTP_2 {
+            state.http1.store(true, Ordering::Release);
+        }
+        state.in_flight.fetch_add(1, Ordering::AcqRel);
+        state.served.store(true, Ordering::Release);
+        Self(state)
+    }
+}
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        if self.0.in_flight.fetch_sub(1, Ordering::AcqRel) == 1 {
+            self.0.reader.wake();
+        }
+    }
+}
+
+type BoxError = Box<dyn std::error::Error + Send + Sync>;
+
+impl<S> tower::Service<Request<tonic::body::Body>> for ConnGuard<S>
+where
+    S: tower::Service<Request<tonic::body::Body>, Response = Response<tonic::body::Body>> + Send,
+    S::Future: Send + 'static,
+{
+    type Response = Response<tonic::body::Body>;
+    type Error = S::Error;
+    type Future = Pin<Box<dyn Future<Output = Result<Self::Response, S::Error>> + Send>>;
+
+    fn poll_ready(&mut self, cx: &mut Context<'_>) -> Poll<Result<(), S::Error>> {
+        self.inner.poll_ready(cx)
+    }
+
+    fn call(&mut self, mut req: Request<tonic::body::Body>) -> Self::Future {
+        // tonic puts the connection's ConnectInfo into each request (over TLS too, beside its
+        // TlsConnectInfo).
+        let info = req.extensions().get::<GuardInfo>().cloned();
+        let version = req.version();
+        let in_flight = info.map(|info| {
+            req.extensions_mut().insert(info.tcp);
+            InFlight::start(info.state, version)
+        });
+        if version < Version::HTTP_2 {
+            let (timeout, counters) = (self.layer.body_timeout, self.layer.counters.clone());
+            req = req.map(|body| tonic::body::Body::new(IdleBody::new(body, timeout, counters)));
+        }
+        let fut = self.inner.call(req);
+        Box::pin(async move {
+            let resp = fut.await?;
+            Ok(match in_flight {
+                Some(guard) => resp.map(|body| tonic::body::Body::new(GuardedBody { inner: body, _in_flight: guard })),
+                None => resp,
+            })
+        })
+    }
+}
+
+/// A response body that holds its request [`InFlight`] until it is dropped.
+struct GuardedBody<B> {
+    inner: B,
+    _in_flight: InFlight,
+}
+
+impl<B: Body<Data = Bytes> + Unpin> Body for GuardedBody<B> {
+    type Data = Bytes;
+    type Error = B::Error;
+
+    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<Frame<Bytes>, B::Error>>> {
+        Pin::new(&mut self.inner).poll_frame(cx)
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.inner.is_end_stream()
+    }
+
+    fn size_hint(&self) -> SizeHint {
+        self.inner.size_hint()
+    }
+}
+
+/// An HTTP/1.1 request body that sent nothing for the timeout while the service waited for it.
+#[derive(Debug, thiserror::Error)]
+#[error("the request body sent nothing for {} ms", .0.as_millis())]
+pub struct BodyStalled(Duration);
+
+/// An HTTP/1.1 request body whose frames must each arrive within `timeout` of the service
+/// asking for them; past it, the body ends with [`BodyStalled`] (and hyper closes the
+/// connection, whose request was not read to its end).
+struct IdleBody<B> {
+    inner: B,
+    timeout: Duration,
+    counters: Arc<ConnCounters>,
+    /// Runs while the service waits for a frame (made at the first wait).
+    wait: Option<Pin<Box<tokio::time::Sleep>>>,
+    waiting: bool,
+    stalled: bool,
+}
+
+impl<B> IdleBody<B> {
+    fn new(inner: B, timeout: Duration, counters: Arc<ConnCounters>) -> Self {
+        Self { inner, timeout, counters, wait: None, waiting: false, stalled: false }
+    }
+}
+
+impl<B> Body for IdleBody<B>
+where
+    B: Body<Data = Bytes> + Unpin,
+    B::Error: Into<BoxError>,
+{
+    type Data = Bytes;
+    type Error = BoxError;
+
+    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<Frame<Bytes>, BoxError>>> {
+        let this = &mut *self;
+        if this.stalled {
+            return Poll::Ready(None);
+        }
+        match Pin::new(&mut this.inner).poll_frame(cx) {
+            Poll::Ready(frame) => {
+                this.waiting = false;
+                Poll::Ready(frame.map(|f| f.map_err(Into::into)))
+            }
+            Poll::Pending => {
+                let at = tokio::time::Instant::now() + this.timeout;
+                let wait = this.wait.get_or_insert_with(|| Box::pin(tokio::time::sleep_until(at)));
+                if !this.waiting {
+                    this.waiting = true;
+                    wait.as_mut().reset(at);
+                }
+                if wait.as_mut().poll(cx).is_pending() {
+                    return Poll::Pending;
+                }
+                this.stalled = true;
+                this.counters.stalled_bodies.fetch_add(1, Ordering::Relaxed);
+                Poll::Ready(Some(Err(BodyStalled(this.timeout).into())))
+            }
+        }
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.stalled || self.inner.is_end_stream()
+    }
+
+    fn size_hint(&self) -> SizeHint {
+        if self.stalled { SizeHint::with_exact(0) } else { self.inner.size_hint() }
+    }
 }

@@ -65,8 +65,10 @@ struct ServeArgs {
     /// the limit of open files (`ulimit -n`), at most 4096.
     #[arg(long, value_name = "N")]
     max_connections: Option<usize>,
-    /// A connection that has not sent its handshake (HTTP/2 preface, TLS ClientHello or HTTP/1
-    /// request) within this time is closed, in ms.
+    /// A connection whose first request (its headers, over HTTP/2, HTTP/1.1 or TLS) has not
+    /// arrived within this time is closed, in ms; so is an HTTP/1.1 connection without a next
+    /// request this long after a response, and an HTTP/1.1 request body that sends nothing this
+    /// long is ended. HTTP/2 streams (Control) are never timed out.
     #[arg(long, value_name = "MS", default_value_t = 5000, value_parser = clap::value_parser!(u64).range(1..))]
     handshake_timeout_ms: u64,
     /// Largest gRPC message accepted, in bytes.

@@ -1,7 +1,7 @@
 //! The network server: every gRPC service of `needlesim.v1`, gRPC health checking
 //! (grpc.health.v1), server reflection, gRPC-web (applied to the gRPC routes only), Prometheus
-//! metrics at `/metrics` and the static files of web/, all on one port; TLS when a certificate is
-//! configured.
+//! metrics at `/metrics` and the web viewer's built files (`web_files.rs`), all on one port; TLS
+//! when a certificate is configured.
 
 use std::net::SocketAddr;
 use std::path::PathBuf;
@@ -159,7 +159,21 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
         ("streams_refused", "Streams refused: a session's --max-observers or the server's --max-streams", state.streams.refused() as f64),
         ("connections_open", "Connections open on the gRPC port", conns.open() as f64),
         ("connections_refused", "Connections closed at once: --max-connections were open", conns.refused() as f64),
-        ("connections_timed_out", "Connections closed: no handshake within --handshake-timeout-ms", conns.timed_out() as f64),
+        (
+            "connections_timed_out",
+            "Connections closed: no first request within --handshake-timeout-ms of opening",
+            conns.timed_out() as f64,
+        ),
+        (
+            "connections_idle_closed",
+            "HTTP/1.1 connections closed: no next request within --handshake-timeout-ms of the last response",
+            conns.idle_closed() as f64,
+        ),
+        (
+            "connections_stalled_bodies",
+            "HTTP/1.1 request bodies ended: nothing arrived for --handshake-timeout-ms",
+            conns.stalled_bodies() as f64,
+        ),
         (
             "recordings_bytes",
             "Bytes in the recordings directory (at the last start, plus writes and reservations since)",
@@ -224,15 +238,13 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
 }
 
 /// The fallback route: a gRPC request for a service this server does not have gets the gRPC
-/// status UNIMPLEMENTED (not an HTTP error from the static files); anything else is a static file
-/// of the web viewer.
+/// status UNIMPLEMENTED (not an HTTP error from the static files); anything else is one of the web
+/// viewer's built files or 404 (`web_files.rs`).
 fn static_or_unimplemented(
     web_dir: PathBuf,
 ) -> impl Fn(axum::extract::Request) -> std::pin::Pin<Box<dyn std::future::Future<Output = axum::response::Response> + Send>> + Clone {
-    use tower::ServiceExt;
-    let files = tower_http::services::ServeDir::new(web_dir);
     move |req: axum::extract::Request| {
-        let files = files.clone();
+        let web_dir = web_dir.clone();
         Box::pin(async move {
             let is_grpc = req
                 .headers()
@@ -243,14 +255,7 @@ fn static_or_unimplemented(
                 let path = req.uri().path().to_owned();
                 return tonic::Status::unimplemented(format!("no such gRPC method: {path}")).into_http();
             }
-            match files.oneshot(req).await {
-                Ok(resp) => resp.map(axum::body::Body::new),
-                Err(e) => {
-                    let mut r = axum::response::Response::new(axum::body::Body::from(format!("static files: {e}")));
-                    *r.status_mut() = axum::http::StatusCode::INTERNAL_SERVER_ERROR;
-                    r
-                }
-            }
+            crate::web_files::respond(web_dir, req.method(), req.uri().path()).await
         })
     }
 }
@@ -458,8 +463,11 @@ where
         tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
     };
     tokio::spawn(give_back_stream_memory(state.clone()));
+    // Tells each connection when its requests arrive and end (the deadlines of `listener.rs`) and
+    // bounds the pauses of HTTP/1.1 request bodies.
+    let guard = crate::listener::ConnGuardLayer::new(conns.clone(), config.connections);
     let incoming = crate::listener::incoming(listener, config.connections, conns);
-    let result = server.add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(incoming, shutdown).await;
+    let result = server.layer(guard).add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(incoming, shutdown).await;
     let closing = state.clone();
     tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
     result.context("server")?;

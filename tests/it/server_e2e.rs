@@ -364,10 +364,9 @@ async fn one_port_serves_metrics_static_files_and_grpc_web() {
     {
         assert!(metrics.contains(&format!("needlesim_{name}{{")), "{name}: {metrics}");
     }
-    // A static file of web/.
-    let page =
-        String::from_utf8_lossy(&http1(&server.addr, b"GET /README.md HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")).into_owned();
-    assert!(page.starts_with("HTTP/1.1 200") && page.contains("web viewer"), "{page}");
+    // The web viewer's page (issue 35: its built files only; tests/it/web.rs).
+    let page = String::from_utf8_lossy(&http1(&server.addr, b"GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")).into_owned();
+    assert!(page.starts_with("HTTP/1.1 200") && page.contains("dist/app.js"), "{page}");
     // gRPC-web over HTTP/1.1, as a browser sends it: ListSessions with an empty message.
     let req = b"POST /needlesim.v1.SessionService/ListSessions HTTP/1.1\r\nHost: x\r\nContent-Type: application/grpc-web+proto\r\nX-Grpc-Web: 1\r\nContent-Length: 5\r\nConnection: close\r\n\r\n\x00\x00\x00\x00\x00";
     let resp = http1(&server.addr, req);

@@ -1,7 +1,8 @@
 //! Issue 35, items 4, 6 and part of 14, through the real server binary: every server-streaming
 //! call counts against its session's `--max-observers` and the server's `--max-streams` (a
-//! cancelled stream gives its place back); connections that send no handshake are closed and the
-//! number of connections is bounded (`--max-connections`, `--handshake-timeout-ms`); TakeControl,
+//! cancelled stream gives its place back); connections that bring no request are closed and the
+//! number of connections is bounded (`--max-connections`, `--handshake-timeout-ms`: a connection's
+//! first request, an HTTP/1.1 connection's next one, an HTTP/1.1 body that stalls); TakeControl,
 //! HandBackControl and SetPaused after EndExercise are FAILED_PRECONDITION.
 
 use std::time::{Duration, Instant};
@@ -197,6 +198,30 @@ async fn issue_35_silent_connections_are_closed_on_a_tls_port() {
         }
     }
     tr.list_exercises(pb::ListExercisesRequest {}).await.expect("the TLS connection outlived the deadline");
+    // Round 2: a client that completes the TLS handshake but sends no request is closed too
+    // (was: open for good). `openssl s_client` exits when the server closes the connection.
+    let mut client = std::process::Command::new("openssl")
+        .args(["s_client", "-connect", &server.addr, "-quiet"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("openssl s_client runs");
+    let t0 = Instant::now();
+    let exited = loop {
+        if let Some(st) = client.try_wait().unwrap() {
+            break Some(st);
+        }
+        if t0.elapsed() > Duration::from_secs(20) {
+            break None;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    };
+    let _ = client.kill();
+    let out = client.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(exited.is_some(), "a TLS connection without a request is still open after 20 s: {err}");
+    assert!(err.contains("verify return"), "the TLS handshake was made before the close: {err}");
 }
 
 /// Item 14 (part): after EndExercise, TakeControl, HandBackControl and SetPaused are
@@ -226,4 +251,179 @@ async fn issue_35_control_calls_after_end_exercise_are_failed_precondition() {
     }
     let st = tr.get_status(req()).await.unwrap().into_inner();
     assert!(!st.paused && st.controller == pb::ControllerRole::Trainee as i32, "nothing refused took hold: {st:?}");
+}
+
+/// Reads `s` until the server closes it (EOF or a reset) within `limit`; the bytes it sent
+/// before (an HTTP answer, HTTP/2 settings), or an error if it is still open.
+async fn closed_within(s: &mut tokio::net::TcpStream, limit: Duration) -> Result<Vec<u8>, String> {
+    use tokio::io::AsyncReadExt;
+    let mut got = Vec::new();
+    let mut buf = [0u8; 4096];
+    let end = tokio::time::Instant::now() + limit;
+    loop {
+        match tokio::time::timeout_at(end, s.read(&mut buf)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => return Ok(got),
+            Ok(Ok(n)) => got.extend_from_slice(&buf[..n]),
+            Err(_) => return Err(format!("still open after {limit:?}; it sent: {:?}", String::from_utf8_lossy(&got))),
+        }
+    }
+}
+
+/// A connection to the server that has sent `bytes`.
+async fn sent(server: &ServerProcess, bytes: &[u8]) -> tokio::net::TcpStream {
+    use tokio::io::AsyncWriteExt;
+    let mut s = tokio::net::TcpStream::connect(&server.addr).await.expect("TCP connect");
+    s.write_all(bytes).await.expect("write");
+    s
+}
+
+/// HTTP/2's client preface.
+const H2_PREFACE: &[u8] = b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n";
+
+/// A generous bound for a close due after a 1 s deadline (the machine stalls; not a budget).
+const CLOSE_BOUND: Duration = Duration::from_secs(15);
+
+/// Item 6, round 2: the deadline ends at a connection's first request, not at its first bytes.
+/// With `--handshake-timeout-ms 1000`, a connection that sends only HTTP/2's preface, one that
+/// sends the preface and its SETTINGS (the whole HTTP/2 handshake) but no request, and one that
+/// sends half of an HTTP/1.1 request's headers are all closed within a few seconds (were: open
+/// for good, open for good, closed by hyper after 30 s), counted as timed out; a gRPC client that
+/// made its call keeps its connection past the deadline.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_connections_are_closed_until_their_first_request_arrives() {
+    let server = ServerProcess::start(&["--default-scene", "none", "--handshake-timeout-ms", "1000"]);
+    let ch = connect(&server).await;
+    let mut tr = pb::training_service_client::TrainingServiceClient::new(ch.clone());
+    tr.list_exercises(pb::ListExercisesRequest {}).await.expect("a call before");
+    let settings: &[u8] = &[0, 0, 0, 4, 0, 0, 0, 0, 0];
+    let mut conns = vec![
+        ("the HTTP/2 preface alone", sent(&server, H2_PREFACE).await),
+        ("the HTTP/2 preface and SETTINGS", sent(&server, &[H2_PREFACE, settings].concat()).await),
+        ("half of an HTTP/1.1 request's headers", sent(&server, b"GET /metrics HTTP/1.1\r\nHost: x\r\n").await),
+    ];
+    for (what, s) in &mut conns {
+        closed_within(s, CLOSE_BOUND).await.unwrap_or_else(|e| panic!("{what}: {e}"));
+    }
+    assert_eq!(server.metric("needlesim_connections_timed_out"), 3.0, "each closed at its deadline");
+    tr.list_exercises(pb::ListExercisesRequest {}).await.expect("the gRPC connection outlived the deadline");
+}
+
+/// A gRPC-web (HTTP/1.1) request for `path` carrying `msg`, with `extra` header lines.
+fn grpc_web_request(path: &str, msg: &impl prost::Message, extra: &str) -> Vec<u8> {
+    let body = msg.encode_to_vec();
+    let mut framed = vec![0u8];
+    framed.extend_from_slice(&u32::try_from(body.len()).unwrap().to_be_bytes());
+    framed.extend_from_slice(&body);
+    let head = format!(
+        "POST {path} HTTP/1.1\r\nHost: x\r\nContent-Type: application/grpc-web+proto\r\nX-Grpc-Web: 1\r\nContent-Length: {}\r\n{extra}\r\n",
+        framed.len()
+    );
+    [head.as_bytes(), &framed].concat()
+}
+
+/// Item 6, round 2: an HTTP/1.1 request whose headers are complete but whose body stalls (no
+/// byte of it, or 10 of 1000) is ended after `--handshake-timeout-ms` and its connection closed
+/// within a few seconds (was: open for good), counted in `needlesim_connections_stalled_bodies`;
+/// HTTP/2 streams are not timed out: a Control stream whose client sends nothing for 4 s (four
+/// deadlines) still moves the needle afterwards.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_stalled_http1_request_body_is_ended_but_not_an_idle_control_stream() {
+    let _turn = REALTIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none", "--handshake-timeout-ms", "1000"]);
+    let head = "POST /needlesim.v1.SessionService/ListSessions HTTP/1.1\r\nHost: x\r\nContent-Type: application/grpc-web+proto\r\n\
+                X-Grpc-Web: 1\r\nContent-Length: 1000\r\n\r\n";
+    let mut conns = vec![
+        ("headers, no body", sent(&server, head.as_bytes()).await),
+        ("headers, 10 of 1000 body bytes", sent(&server, &[head.as_bytes(), &[0u8; 10]].concat()).await),
+    ];
+    for (what, s) in &mut conns {
+        closed_within(s, CLOSE_BOUND).await.unwrap_or_else(|e| panic!("{what}: {e}"));
+    }
+    assert_eq!(server.metric("needlesim_connections_stalled_bodies"), 2.0);
+
+    let ch = connect(&server).await;
+    let created = needlesim_tests::create_example_session(&ch, "fig3-target").await;
+    let sid = created.session.unwrap().session_id;
+    let (tx, rx) = tokio::sync::mpsc::channel::<pb::ControlRequest>(4);
+    let pose = |seq: u64| pb::ControlRequest {
+        session_id: if seq == 1 { sid.clone() } else { String::new() },
+        base: Some(pb::Pose2 { x_m: 0.05, y_m: 0.205 - 0.001 * seq as f64, theta_rad: -std::f64::consts::FRAC_PI_2 }),
+        seq,
+        ..Default::default()
+    };
+    tx.send(pose(1)).await.unwrap();
+    let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let mut responses = ctl
+        .control(with_token(tokio_stream::wrappers::ReceiverStream::new(rx), &created.controller_token))
+        .await
+        .expect("a Control stream")
+        .into_inner();
+    // Read every tick's response, and note the newest pose the session used.
+    let (seq_tx, mut seq_rx) = tokio::sync::watch::channel(0u64);
+    let reader = tokio::spawn(async move {
+        while let Ok(Some(r)) = responses.message().await {
+            seq_tx.send_replace(r.pose_seq);
+        }
+    });
+    let until_seq = |rx: &mut tokio::sync::watch::Receiver<u64>, seq: u64| {
+        let mut rx = rx.clone();
+        async move { tokio::time::timeout(Duration::from_secs(20), rx.wait_for(|s| *s >= seq)).await.is_ok_and(|r| r.is_ok()) }
+    };
+    assert!(until_seq(&mut seq_rx, 1).await, "the first pose was used");
+    // The client's request stream sends nothing for four deadlines.
+    tokio::time::sleep(Duration::from_secs(4)).await;
+    tx.send(pose(2)).await.expect("the Control stream is still open");
+    assert!(until_seq(&mut seq_rx, 2).await, "a pose after the pause was used: the stream was not timed out");
+    assert!(!reader.is_finished(), "the responses still flow");
+    drop(tx);
+    let _ = tokio::time::timeout(Duration::from_secs(20), reader).await;
+}
+
+/// Item 6, round 2: an HTTP/1.1 keep-alive connection that sends no next request after its
+/// response is closed within a few seconds of the 1 s deadline (was: after hyper's 30 s), counted
+/// in `needlesim_connections_idle_closed`; a long gRPC-web response over HTTP/1.1 (a browser's
+/// Observe) is a request in progress: it outlives four deadlines.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_an_idle_http1_keep_alive_connection_is_closed_but_not_a_streaming_one() {
+    use tokio::io::AsyncReadExt;
+    let _turn = REALTIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none", "--handshake-timeout-ms", "1000"]);
+    let mut s = sent(&server, b"GET /metrics HTTP/1.1\r\nHost: x\r\n\r\n").await;
+    let t0 = Instant::now();
+    let answer = closed_within(&mut s, CLOSE_BOUND).await.unwrap_or_else(|e| panic!("an idle keep-alive connection: {e}"));
+    let answer = String::from_utf8_lossy(&answer);
+    assert!(answer.starts_with("HTTP/1.1 200") && answer.contains("needlesim_sessions"), "the request was answered first: {answer}");
+    println!("idle keep-alive connection closed after {:.1} s", t0.elapsed().as_secs_f64());
+    assert_eq!(server.metric("needlesim_connections_idle_closed"), 1.0);
+
+    let ch = connect(&server).await;
+    let created = needlesim_tests::create_example_session(&ch, "fig3-target").await;
+    let observe = pb::ObserveRequest { session_id: created.session.unwrap().session_id, rate_hz: 30.0, include_displacements: false };
+    let mut s = sent(
+        &server,
+        &grpc_web_request(
+            "/needlesim.v1.ObserveService/Observe",
+            &observe,
+            &format!("Authorization: Bearer {}\r\n", created.observer_token),
+        ),
+    )
+    .await;
+    let t0 = Instant::now();
+    let (mut total, mut late) = (0usize, 0usize);
+    let mut buf = [0u8; 65536];
+    while t0.elapsed() < Duration::from_secs(5) {
+        match tokio::time::timeout(Duration::from_secs(5), s.read(&mut buf)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => {
+                panic!("the Observe stream over HTTP/1.1 was closed after {:.1} s ({total} bytes)", t0.elapsed().as_secs_f64())
+            }
+            Ok(Ok(n)) => {
+                total += n;
+                if t0.elapsed() > Duration::from_secs(4) {
+                    late += n;
+                }
+            }
+            Err(_) => panic!("no frame for 5 s"),
+        }
+    }
+    assert!(late > 0, "frames still arrive after four deadlines ({total} bytes in all)");
 }

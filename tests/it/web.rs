@@ -237,3 +237,89 @@ fn issue_17_page_shows_and_drives_a_3d_session_in_headless_chromium() {
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 5000, "{name} is not a real screenshot ({} bytes)", png.len());
     }
 }
+
+/// A raw HTTP/1.1 exchange (`Connection: close`) of `method path` on loopback: the path is sent as
+/// written (no client normalises `..` away); returns the status code and the whole answer.
+fn http1(addr: &str, method: &str, path: &str) -> (u16, String) {
+    use std::io::{Read, Write};
+    let mut s = std::net::TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(std::time::Duration::from_secs(20))).unwrap();
+    s.write_all(format!("{method} {path} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes()).unwrap();
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    let text = String::from_utf8_lossy(&out).into_owned();
+    let code =
+        text.split_whitespace().nth(1).and_then(|c| c.parse().ok()).unwrap_or_else(|| panic!("{method} {path}: no status: {text:?}"));
+    (code, text)
+}
+
+/// Issue 35: the server serves the viewer's built page and nothing else of its `--web-dir`: `/`
+/// (index.html) and dist/app.js, dist/app.css with their types; the sources, README.md,
+/// package.json, the tests, a symbolic link inside dist/ (to a file outside), other methods and
+/// paths that try to leave the folder (`..`, `%2e%2e`, `//`) are 404 (were: 200 for README.md,
+/// package.json, src/, test/ and the link). Needs no Node.
+#[test]
+fn issue_35_only_the_viewer_s_built_files_are_served() {
+    let web = web_dir();
+    let tmp = TempDir::new("web-served");
+    let dir = tmp.join("web");
+    copy_tree(&web.join("dist"), &dir.join("dist"));
+    for f in ["index.html", "README.md", "package.json", "build.sh", "tsconfig.json"] {
+        std::fs::copy(web.join(f), dir.join(f)).unwrap_or_else(|e| panic!("cannot copy web/{f}: {e}"));
+    }
+    copy_tree(&web.join("test"), &dir.join("test"));
+    std::fs::create_dir_all(dir.join("src")).unwrap();
+    std::fs::copy(web.join("src/main.ts"), dir.join("src/main.ts")).unwrap();
+    std::fs::write(tmp.join("secret.txt"), "SECRET-OUTSIDE-WEB").unwrap();
+    std::os::unix::fs::symlink(tmp.join("secret.txt"), dir.join("dist/secret.js")).unwrap();
+    std::os::unix::fs::symlink(tmp.join("secret.txt"), dir.join("dist/secret.css")).unwrap();
+    let server = ServerProcess::start(&["--default-scene", "none", "--web-dir", dir.to_str().unwrap()]);
+
+    let (code, page) = http1(&server.addr, "GET", "/?session=abc&token=def");
+    assert_eq!(code, 200, "{page}");
+    assert!(page.to_ascii_lowercase().contains("content-type: text/html") && page.contains("dist/app.js"), "{page}");
+    let (code, index) = http1(&server.addr, "GET", "/index.html");
+    assert_eq!(code, 200, "{index}");
+    for (path, ty, file) in [("/dist/app.js", "text/javascript", "dist/app.js"), ("/dist/app.css", "text/css", "dist/app.css")] {
+        let (code, text) = http1(&server.addr, "GET", path);
+        assert_eq!(code, 200, "{path}: {}", &text[..text.len().min(300)]);
+        assert!(text.to_ascii_lowercase().contains(&format!("content-type: {ty}")), "{path}: {}", &text[..300]);
+        let len = std::fs::metadata(web.join(file)).unwrap().len();
+        assert!(text.to_ascii_lowercase().contains(&format!("content-length: {len}")), "{path}: {}", &text[..300]);
+    }
+    let (code, head) = http1(&server.addr, "HEAD", "/dist/app.js");
+    assert_eq!(code, 200, "{head}");
+
+    for path in [
+        "/README.md",
+        "/package.json",
+        "/build.sh",
+        "/tsconfig.json",
+        "/src/main.ts",
+        "/test/history.test.mjs",
+        "/dist/secret.js",
+        "/dist/secret.css",
+        "/dist/",
+        "/dist",
+        "/dist/../README.md",
+        "/../secret.txt",
+        "/dist/../../secret.txt",
+        "/%2e%2e/secret.txt",
+        "/dist/%2e%2e/%2e%2e/secret.txt",
+        "/dist/..%2f..%2fsecret.txt",
+        "/%2fetc%2fpasswd",
+        "//etc/passwd",
+        "/dist//etc/passwd",
+        "/dist/app.js/",
+        "/index.html/..",
+        "/nope.html",
+    ] {
+        let (code, text) = http1(&server.addr, "GET", path);
+        assert_eq!(code, 404, "GET {path}: {text}");
+        assert!(!text.contains("SECRET-OUTSIDE-WEB") && !text.contains("\"name\": \"needlesim-web\""), "GET {path}: {text}");
+    }
+    let (code, text) = http1(&server.addr, "POST", "/index.html");
+    assert_eq!(code, 405, "POST /index.html: {text}");
+    let (code, text) = http1(&server.addr, "DELETE", "/README.md");
+    assert_eq!(code, 404, "DELETE /README.md: {text}");
+}

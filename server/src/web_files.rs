@@ -1,0 +1,201 @@
+//! The web viewer's files on the gRPC port (issue 35): the built page and nothing else —
+//! `index.html` (at `/` and `/index.html`) and the files of its build output `dist/` that
+//! web/build.sh makes (esbuild's `app.js` and `app.css`: one level, names of ASCII letters,
+//! digits, `.`, `_` and `-`, ending `.js`, `.css` or `.map`), the same set the container image
+//! copies. Each is opened below `--web-dir` one component at a time without following a symbolic
+//! link (`openat` with `O_NOFOLLOW`), as a regular file of at most [`MAX_ASSET_BYTES`]. Every other
+//! path is 404: the rest of web/ (README.md, package.json, src/, test/, node_modules/), a link
+//! inside web/, and paths that try to leave it (`..`, `%2e%2e`, `//etc/passwd`), which match no
+//! name (nothing is decoded).
+
+use std::ffi::CString;
+use std::io::{self, Read};
+use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
+use std::os::unix::ffi::OsStrExt;
+use std::path::{Path, PathBuf};
+
+use axum::http::{HeaderValue, Method, StatusCode, header};
+use axum::response::Response;
+
+/// The largest file served (the viewer's bundle is under 1 MB).
+pub const MAX_ASSET_BYTES: u64 = 32 << 20;
+
+/// One of the viewer's files: its directory below `--web-dir` (none, or `dist`), its name and
+/// its media type.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Asset {
+    dir: Option<&'static str>,
+    name: String,
+    content_type: &'static str,
+}
+
+/// Why a file is not served.
+#[derive(Debug, thiserror::Error)]
+pub enum AssetError {
+    #[error("not one of the viewer's files")]
+    NotFound,
+    #[error("{0} bytes, over the bound of {MAX_ASSET_BYTES}")]
+    TooLarge(u64),
+    #[error("cannot read the file: {0}")]
+    Io(#[from] io::Error),
+}
+
+/// The viewer's file a request path names, if any (the path exactly, not decoded).
+pub fn asset(path: &str) -> Option<Asset> {
+    if path == "/" || path == "/index.html" {
+        return Some(Asset { dir: None, name: "index.html".into(), content_type: "text/html; charset=utf-8" });
+    }
+    let name = path.strip_prefix("/dist/")?;
+    let plain = name.bytes().all(|b| b.is_ascii_alphanumeric() || matches!(b, b'.' | b'_' | b'-'));
+    if name.is_empty() || name.len() > 128 || name.starts_with('.') || !plain {
+        return None;
+    }
+    let content_type = match name.rsplit_once('.')?.1 {
+        "js" => "text/javascript; charset=utf-8",
+        "css" => "text/css; charset=utf-8",
+        "map" => "application/json",
+        _ => return None,
+    };
+    Some(Asset { dir: Some("dist"), name: name.into(), content_type })
+}
+
+/// `openat(dir, name, flags | O_CLOEXEC)`.
+fn open_at(dir: Option<&OwnedFd>, name: &[u8], flags: libc::c_int) -> Result<OwnedFd, AssetError> {
+    let name = CString::new(name).map_err(|_| AssetError::NotFound)?;
+    let at = dir.map_or(libc::AT_FDCWD, |d| d.as_raw_fd());
+    // SAFETY: `name` is a NUL-terminated string that outlives the call; `at` is AT_FDCWD or an
+    // open descriptor borrowed for the call.
+    let fd = unsafe { libc::openat(at, name.as_ptr(), flags | libc::O_CLOEXEC) };
+    if fd < 0 {
+        let e = io::Error::last_os_error();
+        return Err(match e.raw_os_error() {
+            // Missing, a symbolic link (O_NOFOLLOW), or not a directory on the way.
+            Some(libc::ENOENT | libc::ELOOP | libc::ENOTDIR) => AssetError::NotFound,
+            _ => AssetError::Io(e),
+        });
+    }
+    // SAFETY: `fd` was just opened and is owned by nobody else.
+    Ok(unsafe { OwnedFd::from_raw_fd(fd) })
+}
+
+/// The contents of `asset` below `web_dir` (which itself may be a link, as the operator set it).
+pub fn read(web_dir: &Path, asset: &Asset) -> Result<Vec<u8>, AssetError> {
+    let mut dir = open_at(None, web_dir.as_os_str().as_bytes(), libc::O_RDONLY | libc::O_DIRECTORY)?;
+    if let Some(sub) = asset.dir {
+        dir = open_at(Some(&dir), sub.as_bytes(), libc::O_RDONLY | libc::O_DIRECTORY | libc::O_NOFOLLOW)?;
+    }
+    // O_NONBLOCK: a FIFO put there does not block the open (and is refused below).
+    let fd = open_at(Some(&dir), asset.name.as_bytes(), libc::O_RDONLY | libc::O_NOFOLLOW | libc::O_NONBLOCK)?;
+    let file = std::fs::File::from(fd);
+    let meta = file.metadata()?;
+    if !meta.file_type().is_file() {
+        return Err(AssetError::NotFound);
+    }
+    if meta.len() > MAX_ASSET_BYTES {
+        return Err(AssetError::TooLarge(meta.len()));
+    }
+    let mut out = Vec::with_capacity(usize::try_from(meta.len()).unwrap_or(0));
+    file.take(MAX_ASSET_BYTES + 1).read_to_end(&mut out)?;
+    if out.len() as u64 > MAX_ASSET_BYTES {
+        return Err(AssetError::TooLarge(out.len() as u64));
+    }
+    Ok(out)
+}
+
+fn plain(status: StatusCode, text: &'static str) -> Response {
+    let mut r = Response::new(axum::body::Body::from(text));
+    *r.status_mut() = status;
+    r.headers_mut().insert(header::CONTENT_TYPE, HeaderValue::from_static("text/plain; charset=utf-8"));
+    r
+}
+
+/// The answer to a request for a static file: the file (GET, HEAD), 405 (another method on one
+/// of the files), 404 (anything else), 500 (a file that cannot be read; logged, not quoted).
+pub async fn respond(web_dir: PathBuf, method: &Method, path: &str) -> Response {
+    let Some(asset) = asset(path) else {
+        return plain(StatusCode::NOT_FOUND, "not found\n");
+    };
+    if method != Method::GET && method != Method::HEAD {
+        let mut r = plain(StatusCode::METHOD_NOT_ALLOWED, "method not allowed\n");
+        r.headers_mut().insert(header::ALLOW, HeaderValue::from_static("GET, HEAD"));
+        return r;
+    }
+    let content_type = asset.content_type;
+    let read = tokio::task::spawn_blocking(move || read(&web_dir, &asset).map_err(|e| (e, web_dir, asset))).await;
+    let bytes = match read {
+        Ok(Ok(bytes)) => bytes,
+        Ok(Err((AssetError::NotFound, ..))) => return plain(StatusCode::NOT_FOUND, "not found\n"),
+        Ok(Err((e, dir, asset))) => {
+            tracing::warn!(web_dir = %dir.display(), file = ?asset, error = %e, "cannot serve a file of the web viewer");
+            return plain(StatusCode::INTERNAL_SERVER_ERROR, "cannot read the file\n");
+        }
+        Err(e) => {
+            tracing::warn!(error = %e, "the web viewer's file task failed");
+            return plain(StatusCode::INTERNAL_SERVER_ERROR, "cannot read the file\n");
+        }
+    };
+    let len = bytes.len();
+    let mut r = Response::new(if method == Method::HEAD { axum::body::Body::empty() } else { axum::body::Body::from(bytes) });
+    let h = r.headers_mut();
+    h.insert(header::CONTENT_TYPE, HeaderValue::from_static(content_type));
+    h.insert(header::CONTENT_LENGTH, HeaderValue::from(len));
+    // A rebuilt web/ is picked up at the next load.
+    h.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-cache"));
+    h.insert(header::X_CONTENT_TYPE_OPTIONS, HeaderValue::from_static("nosniff"));
+    r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_built_page_is_named() {
+        for ok in ["/", "/index.html", "/dist/app.js", "/dist/app.css", "/dist/app.js.map", "/dist/chunk-AB12_c.js"] {
+            assert!(asset(ok).is_some(), "{ok}");
+        }
+        for no in [
+            "",
+            "/README.md",
+            "/package.json",
+            "/src/main.ts",
+            "/test/history.test.mjs",
+            "/dist/",
+            "/dist/.hidden.js",
+            "/dist/../README.md",
+            "/dist/%2e%2e/README.md",
+            "/%2e%2e/%2e%2e/etc/passwd",
+            "//etc/passwd",
+            "/dist//etc/passwd.js",
+            "/dist/sub/app.js",
+            "/dist/app.ts",
+            "/dist/app",
+            "/index.html/",
+            "/dist/app.js\0.css",
+        ] {
+            assert!(asset(no).is_none(), "{no:?}");
+        }
+    }
+
+    #[test]
+    fn links_and_non_files_are_not_read() {
+        let dir = std::env::temp_dir().join(format!("needlesim-web-files-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(dir.join("dist")).unwrap();
+        std::fs::write(dir.join("index.html"), "<html>").unwrap();
+        std::fs::write(dir.join("secret.txt"), "secret").unwrap();
+        std::fs::write(dir.join("dist/app.js"), "js").unwrap();
+        std::os::unix::fs::symlink(dir.join("secret.txt"), dir.join("dist/link.js")).unwrap();
+        std::fs::create_dir(dir.join("dist/dir.js")).unwrap();
+        assert_eq!(read(&dir, &asset("/").unwrap()).unwrap(), b"<html>");
+        assert_eq!(read(&dir, &asset("/dist/app.js").unwrap()).unwrap(), b"js");
+        for no in ["/dist/link.js", "/dist/dir.js", "/dist/missing.js"] {
+            assert!(matches!(read(&dir, &asset(no).unwrap()), Err(AssetError::NotFound)), "{no}");
+        }
+        // dist/ itself a link: not followed.
+        std::fs::rename(dir.join("dist"), dir.join("real")).unwrap();
+        std::os::unix::fs::symlink(dir.join("real"), dir.join("dist")).unwrap();
+        assert!(matches!(read(&dir, &asset("/dist/app.js").unwrap()), Err(AssetError::NotFound)));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
