@@ -313,6 +313,12 @@ async fn watch(c: &Conn, a: &WatchArgs) -> Result<()> {
                     eprintln!("the server ended the stream of session {} (closed?)", a.id);
                     return Ok(());
                 }
+                // The session was closed while watched (the server's NOT_FOUND "session X was
+                // closed"): the end of the watch, as before, not a failure.
+                Some(Some(Err(s))) if s.code() == tonic::Code::NotFound => {
+                    eprintln!("{}", s.message());
+                    return Ok(());
+                }
                 Some(Some(Err(s))) => return Err(c.status_error(&format!("watching session {}", a.id), Role::Observer, Some(&a.id), &s)),
                 Some(Some(Ok(f))) => f,
             };

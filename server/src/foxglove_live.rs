@@ -180,7 +180,7 @@ impl Drop for FieldInterest<'_> {
     }
 }
 
-/// One session's publisher: until the session ends.
+/// One session's publisher: until the session closes (its channels are then removed).
 async fn publish(s: Arc<Session>, ch: SessionChannels) {
     let surface = surface_of(&s);
     let dims = if matches!(s.tissue, SessionTissue::Three { .. }) { 3 } else { 2 };
@@ -191,8 +191,14 @@ async fn publish(s: Arc<Session>, ch: SessionChannels) {
     let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / FORCE_HZ));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     let (mut last_tick, mut period) = (u64::MAX, 0u32);
+    let closed = s.closed();
+    tokio::pin!(closed);
     loop {
-        every.tick().await;
+        tokio::select! {
+            // The session closed: its channels go (unadvertised) and so does this task's hold on it.
+            () = &mut closed => return,
+            _ = every.tick() => {}
+        }
         match latest.has_changed() {
             Err(_) => return,
             Ok(false) => continue,

@@ -143,6 +143,13 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
     let n_sessions: Gauge<f64, std::sync::atomic::AtomicU64> = Gauge::default();
     n_sessions.set(sessions.len() as f64);
     registry.register("sessions", "Sessions running", n_sessions);
+    let alive: Gauge<f64, std::sync::atomic::AtomicU64> = Gauge::default();
+    alive.set(needlesim_session::sessions_alive() as f64);
+    registry.register(
+        "sessions_alive",
+        "Session objects in memory, closed ones still held by something included (issue 35: returns to `sessions` once closed sessions' streams have ended)",
+        alive,
+    );
     let jobs = [
         ("offline_jobs_running", "Offline calls (Simulate, Plan, Identify) running", state.jobs.running() as f64),
         ("offline_jobs_peak", "The most offline calls that ever ran at once", state.jobs.peak() as f64),
@@ -285,7 +292,7 @@ async fn play_demo(session: Arc<needlesim_session::Session>, traj: needlesim_sce
             tracing::info!(session = %session.id, "a client took control: the demo stops");
             return;
         }
-        if Arc::strong_count(&session) == 1 {
+        if session.is_closed() || Arc::strong_count(&session) == 1 {
             return;
         }
         let t = t0 + start.elapsed().as_secs_f64() % (t1 - t0).max(1e-3);
@@ -302,20 +309,24 @@ async fn play_demo(session: Arc<needlesim_session::Session>, traj: needlesim_sce
 const HTTP2_KEEPALIVE_INTERVAL: std::time::Duration = std::time::Duration::from_secs(30);
 const HTTP2_KEEPALIVE_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(20);
 
-/// Gives the memory of closed streams back to the system (issue 35): glibc keeps freed blocks in
-/// its per-thread arenas, so a burst of large messages (a status with 1,000 markers is 219 kB)
-/// would stay with the process after its streams closed. Every 2 s, if streams closed since, the
+/// Gives the memory of closed streams and closed sessions back to the system (issue 35): glibc
+/// keeps freed blocks in its per-thread arenas, so a burst of large messages (a status with 1,000
+/// markers is 219 kB) would stay with the process after its streams closed, and so would part of
+/// a closed session's matrices. Every 2 s, if streams closed or sessions were freed since, the
 /// free pages are returned (`malloc_trim`, off the async runtime; the real-time threads do not
 /// allocate, so they never wait on it).
 async fn give_back_stream_memory(state: SharedState) {
     let mut every = tokio::time::interval(std::time::Duration::from_secs(2));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
+    let mut alive = needlesim_session::sessions_alive();
     loop {
         every.tick().await;
         if Arc::strong_count(&state) == 1 {
             return;
         }
-        if state.streams.take_closed() == 0 {
+        let (was, now) = (alive, needlesim_session::sessions_alive());
+        alive = now;
+        if state.streams.take_closed() == 0 && now >= was {
             continue;
         }
         #[cfg(all(target_os = "linux", target_env = "gnu"))]
@@ -454,9 +465,9 @@ where
     drop(demo_session);
     drop(default_session);
     let shutdown = shutdown(state.clone());
-    // The sessions close (their device channel files are removed) as soon as the server is told to
-    // stop, not once every connection has ended: the graceful drain below waits for open streams,
-    // which a client may hold for as long as it likes (issue 35: channel files left behind).
+    // At the signal the sessions close first (their device channel files are removed, and their
+    // streams end with NOT_FOUND, `grpc/streams.rs`): the graceful drain below waits for every
+    // open stream, which a client may hold for as long as it likes (issue 35).
     let closing = state.clone();
     let shutdown = async move {
         shutdown.await;

@@ -201,7 +201,7 @@ impl pb::training_service_server::TrainingService for Api {
                 return Some((Ok(status.as_ref().clone()), st));
             }
         });
-        Ok(Response::new(Box::pin(statuses)))
+        Ok(Response::new(crate::grpc::of_session(&s, Box::pin(statuses))))
     }
 
     async fn get_status(&self, req: Request<pb::ExerciseRequest>) -> Result<Response<pb::ExerciseStatus>, Status> {
@@ -269,7 +269,7 @@ impl pb::training_service_server::TrainingService for Api {
             let chunk = rest.split_to(rest.len().min(REPORT_CHUNK_BYTES));
             Some((Ok(pb::ExerciseReportChunk { html: chunk.to_vec() }), (rest, permit)))
         });
-        Ok(Response::new(Box::pin(chunks)))
+        Ok(Response::new(crate::grpc::of_session(&s, Box::pin(chunks))))
     }
 
     type WatchUltrasoundStream = BoxStream<pb::UltrasoundImage>;
@@ -318,7 +318,7 @@ impl pb::training_service_server::TrainingService for Api {
                 }
             }
         });
-        Ok(Response::new(Box::pin(images)))
+        Ok(Response::new(crate::grpc::of_session(&s, Box::pin(images))))
     }
 
     async fn set_probe(&self, req: Request<pb::SetProbeRequest>) -> Result<Response<pb::UltrasoundProbe>, Status> {

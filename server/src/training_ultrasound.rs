@@ -347,7 +347,7 @@ impl UltrasoundHub {
         loop {
             let period = {
                 let mut run = self.run.lock().expect("renderer lock");
-                if self.watchers.load(Ordering::Acquire) == 0 || closed() {
+                if self.watchers.load(Ordering::Acquire) == 0 || closed() || s.is_closed() {
                     *run = (false, DEFAULT_RATE_HZ);
                     break;
                 }

@@ -32,6 +32,7 @@ mod rate_physics;
 mod scenes3d;
 mod server_e2e;
 mod session3d;
+mod session_close;
 mod sim3;
 mod simulate;
 mod simulate3;

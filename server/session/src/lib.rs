@@ -40,5 +40,7 @@ pub use rt_loop::{
     DEVICE_CATCH_UP_M_PER_S, DEVICE_CATCH_UP_RAD_PER_S, DEVICE_FORCE_RAMP_S, FLIP_BEVEL_BUTTON, IN_TICK, WARM_UP_TICKS,
     request_realtime_priority,
 };
-pub use session::{DEFAULT_SPIN_MARGIN, Session, SessionError, SessionTissue, WrongDimension, set_rt_priority, set_spin_margin};
+pub use session::{
+    DEFAULT_SPIN_MARGIN, Session, SessionError, SessionTissue, WrongDimension, sessions_alive, set_rt_priority, set_spin_margin,
+};
 pub use surface::BoundarySurface;

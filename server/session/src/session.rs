@@ -133,6 +133,19 @@ pub struct Session {
     /// The fan-out's and the column worker's doorbells, rung at close so that they stop at once.
     bells: [Arc<Doorbell>; 2],
     threads: Mutex<Vec<JoinHandle<()>>>,
+    /// Set (to `true`) first thing in [`Session::close`]: every stream of the session selects on
+    /// it ([`Session::closed`]) and ends, dropping its `Arc<Session>` (issue 35, H1).
+    closed: tokio::sync::watch::Sender<bool>,
+}
+
+/// `Session` objects alive in this process ([`sessions_alive`]).
+static SESSIONS_ALIVE: AtomicU64 = AtomicU64::new(0);
+
+/// How many `Session` objects are alive in this process: counted when one starts, uncounted when
+/// the last `Arc` of it is dropped, so a closed session whose streams or tasks still hold it
+/// (and with it its tissue, its solver's matrices) shows here (issue 35, H1; `/metrics`).
+pub fn sessions_alive() -> u64 {
+    SESSIONS_ALIVE.load(Ordering::Relaxed)
 }
 
 /// The SCHED_FIFO priority real-time threads ask for (0: none); set once at start-up.
@@ -386,6 +399,7 @@ impl Session {
             stop: stop.clone(),
         };
         threads.push(std::thread::Builder::new().name(format!("fanout-{id}")).spawn(move || fan.run()).map_err(SessionError::Thread)?);
+        SESSIONS_ALIVE.fetch_add(1, Ordering::Relaxed);
         let created_unix_ms = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_millis() as u64);
         Ok(Arc::new(Self {
             id,
@@ -414,6 +428,7 @@ impl Session {
             tap,
             bells: [fanout_bell, column_bell],
             threads: Mutex::new(threads),
+            closed: tokio::sync::watch::Sender::new(false),
         }))
     }
 
@@ -585,9 +600,26 @@ impl Session {
         self.tap.lock().expect("record tap lock").take()
     }
 
-    /// Stops the threads and waits for them, then drops the sink, if any (a recording finishes
-    /// when dropped).
+    /// Whether [`Session::close`] has begun.
+    pub fn is_closed(&self) -> bool {
+        *self.closed.borrow()
+    }
+
+    /// Resolves once [`Session::close`] begins (at once if it has; also if the session is
+    /// dropped). Holds no reference to the session: a stream that selects on it and ends drops
+    /// its own.
+    pub fn closed(&self) -> impl std::future::Future<Output = ()> + Send + 'static {
+        let mut rx = self.closed.subscribe();
+        async move {
+            // An error is the sender gone with the session: closed too.
+            let _ = rx.wait_for(|closed| *closed).await;
+        }
+    }
+
+    /// Signals the close to the session's streams ([`Session::closed`]), stops the threads and
+    /// waits for them, then drops the sink, if any (a recording finishes when dropped).
     pub fn close(&self) {
+        self.closed.send_replace(true);
         self.stop.store(true, Ordering::Relaxed);
         for bell in &self.bells {
             bell.wake_from_io();
@@ -603,6 +635,7 @@ impl Session {
 
 impl Drop for Session {
     fn drop(&mut self) {
+        SESSIONS_ALIVE.fetch_sub(1, Ordering::Relaxed);
         self.stop.store(true, Ordering::Relaxed);
         for bell in &self.bells {
             bell.wake_from_io();

@@ -213,7 +213,8 @@ async fn drive_unary<T, R>(
     s.control.with_unary(&client, take_over, write).await.map_err(|busy| control_refused(s, busy))
 }
 
-/// Control and Control3: poses in, one response per tick out.
+/// Control and Control3: poses in, one response per tick out; both tasks end, and the response
+/// stream with NOT_FOUND, when the session closes (issue 35, H1).
 async fn control_stream<M: ControlMessage>(
     api: &Api,
     req: Request<Streaming<M>>,
@@ -254,11 +255,16 @@ async fn control_stream<M: ControlMessage>(
     let s_in = s.clone();
     let tx_err = tx.clone();
     let done_in = client_done.clone();
+    let closed_in = s.closed();
     tokio::spawn(async move {
         let _done = SetOnDrop(done_in);
         let mut seq = first.seq().max(1);
+        tokio::pin!(closed_in);
         loop {
             let msg = tokio::select! {
+                // The session closed: the response stream ends with the status (`of_session`);
+                // this task lets go of the session and its lease.
+                () = &mut closed_in => return,
                 m = inbound.message() => m,
                 () = lease.revoked() => {
                     let _ = tx_err.send(Err(Status::aborted(format!(
@@ -298,15 +304,24 @@ async fn control_stream<M: ControlMessage>(
     });
     // Responses out: one per tick; a slow controller skips ticks rather than delaying anyone.
     let mut ticks = s.all_ticks.subscribe();
-    let s_out = s.clone();
+    let names = s.target_names.clone();
+    let closed_out = s.closed();
     tokio::spawn(async move {
+        tokio::pin!(closed_out);
         loop {
             if client_done.load(Ordering::Relaxed) {
                 return;
             }
-            match ticks.recv().await {
+            // Ends at the session's close (whose `all_ticks` sender lives as long as the session:
+            // no `Closed` comes while anything holds it) and when the response stream is dropped.
+            let tick = tokio::select! {
+                () = &mut closed_out => return,
+                () = tx.closed() => return,
+                t = ticks.recv() => t,
+            };
+            match tick {
                 Ok(rec) => {
-                    if tx.send(Ok(convert::control_response(&rec, &s_out.target_names))).await.is_err() {
+                    if tx.send(Ok(convert::control_response(&rec, &names))).await.is_err() {
                         return;
                     }
                 }
@@ -315,7 +330,8 @@ async fn control_stream<M: ControlMessage>(
             }
         }
     });
-    Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+    // Ends with NOT_FOUND when the session closes (`streams::of_session`).
+    Ok(Response::new(super::streams::of_session(&s, Box::pin(ReceiverStream::new(rx)))))
 }
 
 /// Who sends a request, for the control lease: its IP address (the port changes with each

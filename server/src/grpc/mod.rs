@@ -14,6 +14,7 @@ mod streams;
 
 pub(crate) use recordings::start_recording;
 pub use simulate::SERIES_CHUNK_ROWS;
+pub(crate) use streams::of_session;
 pub use streams::{StreamLimiter, StreamPermit};
 
 use std::collections::HashMap;

@@ -3,6 +3,7 @@
 //! The streams are pulled (issue 35): a frame is made only when the client's connection takes
 //! one, so a reader that stops holds no queue of frames — the every-tick stream counts what it
 //! missed from the session's shared broadcast, the rate stream skips to the latest record.
+//! Both end when the session closes (`streams::of_session`).
 
 use std::time::Duration;
 
@@ -75,7 +76,7 @@ impl pb::observe_service_server::ObserveService for Api {
                     }
                 }
             });
-            return Ok(Response::new(Box::pin(frames)));
+            return Ok(Response::new(super::streams::of_session(&s, Box::pin(frames))));
         }
         // Rendering: the latest frame at the requested rate; a slow client only slows itself.
         let period = Duration::from_secs_f64(1.0 / r.rate_hz);
@@ -126,6 +127,6 @@ impl pb::observe_service_server::ObserveService for Api {
                 return Some((Ok(frame), st));
             }
         });
-        Ok(Response::new(Box::pin(frames)))
+        Ok(Response::new(super::streams::of_session(&s, Box::pin(frames))))
     }
 }
