@@ -155,7 +155,10 @@ impl pb::identify_service_server::IdentifyService for Api {
                 (Some(g), None) => {
                     let thickness_m = if r.thickness_m == 0.0 { 0.01 } else { r.thickness_m };
                     if !(thickness_m.is_finite() && thickness_m > 0.0) {
-                        return Err(Status::invalid_argument(format!("thickness_m = {} must be finite and > 0", needlesim_core::num::num(thickness_m))));
+                        return Err(Status::invalid_argument(format!(
+                            "thickness_m = {} must be finite and > 0",
+                            needlesim_core::num::num(thickness_m)
+                        )));
                     }
                     let plane = match r.plane.as_str() {
                         "" | "stress" => needlesim_core::PlaneModel::Stress { thickness_m },

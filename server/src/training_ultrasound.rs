@@ -261,7 +261,10 @@ pub fn checked_probe(
     for (field, v) in [("e_u", e_u), ("e_v", e_v)] {
         let n = dot3(v, v).sqrt();
         if !n.is_finite() || (n - 1.0).abs() > 1e-3 {
-            return bad(field, format!("length {}: must be a unit vector{}", needlesim_core::num::num(n), if dim == 2 { " in the x–y plane" } else { "" }));
+            return bad(
+                field,
+                format!("length {}: must be a unit vector{}", needlesim_core::num::num(n), if dim == 2 { " in the x–y plane" } else { "" }),
+            );
         }
     }
     if dot3(e_u, e_v).abs() > 1e-3 {

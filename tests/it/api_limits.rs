@@ -373,7 +373,9 @@ async fn issue_35_targets_are_bounded_and_live_frames_carry_every_one() {
     let one = "[[targets]]\nname = \"centre\"\ncenter_m = [0.05, 0.05]\nradius_m = 0.002\n";
     assert!(PHANTOM.contains(one));
     let targets2 = |n: usize| -> String {
-        (0..n).map(|k| format!("[[targets]]\nname = \"t{k}\"\ncenter_m = [0.05, {}]\nradius_m = 0.002\n\n", 0.02 + 0.004 * k as f64)).collect()
+        (0..n)
+            .map(|k| format!("[[targets]]\nname = \"t{k}\"\ncenter_m = [0.05, {}]\nradius_m = 0.002\n\n", 0.02 + 0.004 * k as f64))
+            .collect()
     };
     let want = "targets: 17 given, at most 16";
     let text = PHANTOM.replace(one, &targets2(17));
@@ -400,11 +402,8 @@ async fn issue_35_targets_are_bounded_and_live_frames_carry_every_one() {
     assert_eq!(e.code(), Code::InvalidArgument, "3D: {}", e.message());
     assert!(e.message().contains(want), "3D: {}", e.message());
     // An upload.
-    let mesh = pb::Mesh {
-        node_xy_m: vec![0.0, 0.0, 0.1, 0.0, 0.1, 0.1, 0.0, 0.1],
-        triangle_nodes: vec![0, 1, 2, 0, 2, 3],
-        ..Default::default()
-    };
+    let mesh =
+        pb::Mesh { node_xy_m: vec![0.0, 0.0, 0.1, 0.0, 0.1, 0.1, 0.0, 0.1], triangle_nodes: vec![0, 1, 2, 0, 2, 3], ..Default::default() };
     let target = |k: usize| pb::Target { name: format!("u{k}"), center_m: Some(pb::Vec2 { x: 0.05, y: 0.05 }), radius_m: 0.001 };
     let up = |n: usize, young_modulus_pa: f64| pb::UploadedScene {
         mesh: Some(mesh.clone()),

@@ -512,7 +512,12 @@ fn new_sim2(scene: &Scene, initial: Option<BasePose>) -> PyResult<Simulation> {
     if let Some(p) = initial {
         if ![p.x_m, p.y_m, p.theta_rad].iter().all(|v| v.is_finite()) {
             let num = needlesim_core::num::num;
-            return Err(PoseError::new_err(format!("the initial pose ({}, {}, {}) is not finite", num(p.x_m), num(p.y_m), num(p.theta_rad))));
+            return Err(PoseError::new_err(format!(
+                "the initial pose ({}, {}, {}) is not finite",
+                num(p.x_m),
+                num(p.y_m),
+                num(p.theta_rad)
+            )));
         }
         params.initial_pose = p;
     }
@@ -641,7 +646,9 @@ impl<'a, 'py> FromPyObject<'a, 'py> for MaxTicks {
         let text = obj.str().map(|s| s.to_string()).unwrap_or_else(|_| "an int of more than 4300 digits".to_owned());
         let text = needlesim_scene::limit::quote(&text);
         if obj.lt(0)? {
-            return Err(TrajectoryError::new_err(format!("max_ticks = {text} must be ≥ 0 (at most {MAX_TICKS_LIMIT}, needlesim.MAX_TICKS_LIMIT)")));
+            return Err(TrajectoryError::new_err(format!(
+                "max_ticks = {text} must be ≥ 0 (at most {MAX_TICKS_LIMIT}, needlesim.MAX_TICKS_LIMIT)"
+            )));
         }
         Err(TrajectoryError::new_err(format!(
             "max_ticks = {text} is over the limit of {MAX_TICKS_LIMIT} ticks (needlesim.MAX_TICKS_LIMIT): a run's results are held in memory"

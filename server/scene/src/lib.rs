@@ -586,7 +586,12 @@ fn check_values(f: &SceneFile) -> Result<()> {
             _ => {}
         }
         let toughness = r.fracture_toughness_j_per_m2.unwrap_or(0.0);
-        check_region_bounds(k, &r.name, r.young_modulus_pa, &[("friction_damping_n_s_per_m2", r.friction_damping_n_s_per_m2), ("fracture_toughness_j_per_m2", toughness)])?;
+        check_region_bounds(
+            k,
+            &r.name,
+            r.young_modulus_pa,
+            &[("friction_damping_n_s_per_m2", r.friction_damping_n_s_per_m2), ("fracture_toughness_j_per_m2", toughness)],
+        )?;
     }
     let max_nodes = if n.model == NeedleModelSpec::Flexible { MAX_NEEDLE_NODES_FLEXIBLE } else { MAX_NEEDLE_NODES };
     if !(1..=max_nodes).contains(&n.max_nodes) {
@@ -1047,10 +1052,18 @@ mod tests {
             ("length_m = 0.1", "length_m = 11", "needle.length_m = 11: must be at most 10 m"),
             ("thickness_m = 0.01", "thickness_m = 1e300", "plane.thickness_m = 1e300: must be at most 10 m"),
             ("thickness_m = 0.01", "thickness_m = -1", "plane.thickness_m = -1: must be finite and > 0"),
-            ("young_modulus_pa = 30e3", "young_modulus_pa = 1e13", "regions[0] ('tissue').young_modulus_pa = 10000000000000: must be at most 1e12 Pa"),
+            (
+                "young_modulus_pa = 30e3",
+                "young_modulus_pa = 1e13",
+                "regions[0] ('tissue').young_modulus_pa = 10000000000000: must be at most 1e12 Pa",
+            ),
             ("friction_n_per_m = 10", "friction_n_per_m = 1e7", "regions[0] ('tissue').friction_n_per_m = 10000000: must be at most 1e6"),
             ("puncture_force_n = 0.3", "puncture_force_n = 1e300", "regions[0] ('tissue').puncture_force_n = 1e300: must be at most 1e6"),
-            ("static_friction_ratio = 1.3", "static_friction_ratio = 2e6", "regions[0] ('tissue').static_friction_ratio = 2000000: must be at most 1e6"),
+            (
+                "static_friction_ratio = 1.3",
+                "static_friction_ratio = 2e6",
+                "regions[0] ('tissue').static_friction_ratio = 2000000: must be at most 1e6",
+            ),
             ("tip_peak_width_m = 0.005", "tip_peak_width_m = 12", "regions[0] ('tissue').tip_peak_width_m = 12: must be at most 10 m"),
             (
                 "cutting_force_n = 0.05",
@@ -1070,7 +1083,8 @@ mod tests {
         }
         // The bounds themselves are accepted.
         let base = include_str!("../../scenes/paper-phantom.toml");
-        let edge = base.replace("young_modulus_pa = 30e3", "young_modulus_pa = 1e12").replace("friction_n_per_m = 10", "friction_n_per_m = 1e6");
+        let edge =
+            base.replace("young_modulus_pa = 30e3", "young_modulus_pa = 1e12").replace("friction_n_per_m = 10", "friction_n_per_m = 1e6");
         parse_scene(&edge, Path::new("."), &MeshLimits::default()).unwrap();
     }
 

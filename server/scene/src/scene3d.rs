@@ -41,8 +41,9 @@ use serde::Deserialize;
 
 use crate::limit::{self, SizeLimit};
 use crate::{
-    GAUGES, LimitsSpec, MAX_LOCAL_FILE_BYTES, MAX_TOML_BRACKETS, SceneFiles, SceneLimits, check_length, check_limits, check_names, check_region_bounds, check_region_needle_values,
-    d_cutting, d_friction, d_peak, d_peak_w, d_puncture, d_static, default_rate, read_local_file,
+    GAUGES, LimitsSpec, MAX_LOCAL_FILE_BYTES, MAX_TOML_BRACKETS, SceneFiles, SceneLimits, check_length, check_limits, check_names,
+    check_region_bounds, check_region_needle_values, d_cutting, d_friction, d_peak, d_peak_w, d_puncture, d_static, default_rate,
+    read_local_file,
 };
 
 /// The mesh files a shipped example names: (file, text).

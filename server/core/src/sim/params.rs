@@ -157,7 +157,12 @@ impl SimParams {
         check_target_names(self.targets.iter().map(|t| t.name.as_str())).map_err(SimError::InvalidParams)?;
         for t in &self.targets {
             if !(t.radius_m.is_finite() && (0.0..=MAX_LENGTH_M).contains(&t.radius_m)) {
-                return bad(format!("target '{}': radius_m = {} must be finite, ≥ 0 and ≤ {} m", t.name, num(t.radius_m), num(MAX_LENGTH_M)));
+                return bad(format!(
+                    "target '{}': radius_m = {} must be finite, ≥ 0 and ≤ {} m",
+                    t.name,
+                    num(t.radius_m),
+                    num(MAX_LENGTH_M)
+                ));
             }
             if !(t.center_m[0].is_finite() && t.center_m[1].is_finite()) {
                 return bad(format!("target '{}': center_m {:?} is not finite", t.name, t.center_m));
