@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
+use needlesim_core::num::num;
 use needlesim_core::sim::{ContactModel, SimParams, StepOutput, TargetParams};
 use needlesim_core::{BasePose, Material, MaterialMap, Mesh, NeedleShape, PlaneModel, RegionNeedleParams, RigidNeedle};
 use needlesim_proto::v1 as pb;
@@ -29,7 +30,7 @@ pub fn checked_pose_from_pb(p: Option<&pb::Pose2>, field: &str) -> Result<BasePo
     let p = p.ok_or_else(|| ApiError::invalid(field, format!("{field} is missing")))?;
     let pose = pose_from_pb(p);
     if !pose.is_finite() {
-        return Err(ApiError::invalid(field, format!("{field} ({}, {}, {}) is not finite", p.x_m, p.y_m, p.theta_rad)));
+        return Err(ApiError::invalid(field, format!("{field} ({}, {}, {}) is not finite", num(p.x_m), num(p.y_m), num(p.theta_rad))));
     }
     Ok(pose)
 }
@@ -186,14 +187,20 @@ pub fn checked_pose3_from_pb(p: Option<&pb::Pose3>, field: &str) -> Result<BaseP
     let v = p.position_m.as_ref().ok_or_else(|| ApiError::invalid(&pos_field, format!("{pos_field} is missing")))?;
     let position_m = [v.x, v.y, v.z];
     if !position_m.iter().all(|c| c.is_finite()) {
-        return Err(ApiError::invalid(&pos_field, format!("{pos_field} ({}, {}, {}) is not finite", v.x, v.y, v.z)));
+        return Err(ApiError::invalid(&pos_field, format!("{pos_field} ({}, {}, {}) is not finite", num(v.x), num(v.y), num(v.z))));
     }
     let q = p.orientation.as_ref().ok_or_else(|| ApiError::invalid(&q_field, format!("{q_field} is missing")))?;
     let wxyz = [q.w, q.x, q.y, q.z];
     BasePose3::new(position_m, wxyz).map_err(|e| {
         ApiError::invalid(
             &q_field,
-            format!("{q_field} (w {}, x {}, y {}, z {}): {e} (a unit quaternion w, x, y, z is needed)", q.w, q.x, q.y, q.z),
+            format!(
+                "{q_field} (w {}, x {}, y {}, z {}): {e} (a unit quaternion w, x, y, z is needed)",
+                num(q.w),
+                num(q.x),
+                num(q.y),
+                num(q.z)
+            ),
         )
     })
 }
@@ -308,15 +315,16 @@ pub fn trajectory3_from_pb(samples: &[pb::TrajectorySample]) -> Result<needlesim
             other => anyhow::anyhow!("{field}: {other:?}"),
         })?;
         if !s.t_s.is_finite() {
-            bail!("trajectory[{i}].t_s = {} is not a finite number", s.t_s);
+            bail!("trajectory[{i}].t_s = {} is not a finite number", num(s.t_s));
         }
         if let Some((t_prev, _)) = out.last() {
             let gap_s = s.t_s - *t_prev;
             if !(gap_s.is_finite() && gap_s >= needlesim_trajectory::MIN_SAMPLE_GAP_S) {
                 bail!(
-                    "trajectory[{i}].t_s = {} does not increase by at least {:e} s (previous {t_prev})",
-                    s.t_s,
-                    needlesim_trajectory::MIN_SAMPLE_GAP_S
+                    "trajectory[{i}].t_s = {} does not increase by at least {:e} s (previous {})",
+                    num(s.t_s),
+                    needlesim_trajectory::MIN_SAMPLE_GAP_S,
+                    num(*t_prev)
                 );
             }
         }
@@ -622,7 +630,7 @@ pub fn trajectory_from_pb(samples: &[pb::TrajectorySample]) -> Result<Trajectory
         if let Some((t_prev, _)) = out.last()
             && s.t_s <= *t_prev
         {
-            bail!("trajectory[{i}].t_s = {} does not increase (previous {t_prev})", s.t_s);
+            bail!("trajectory[{i}].t_s = {} does not increase (previous {})", num(s.t_s), num(*t_prev));
         }
         out.push((s.t_s, needlesim_scene::pose2(p)));
     }
@@ -774,7 +782,7 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
     let or = |v: f64, dflt: f64| if v == 0.0 { dflt } else { v };
     let base = u.needle_base.as_ref().context("scene.uploaded.needle_base is missing")?;
     if !pose_from_pb(base).is_finite() {
-        bail!("scene.uploaded.needle_base ({}, {}, {}) is not finite", base.x_m, base.y_m, base.theta_rad);
+        bail!("scene.uploaded.needle_base ({}, {}, {}) is not finite", num(base.x_m), num(base.y_m), num(base.theta_rad));
     }
     let params = SimParams {
         needle: NeedleShape::Rigid(RigidNeedle { length_m: or(u.needle_length_m, 0.1) }),

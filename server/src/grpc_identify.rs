@@ -168,7 +168,10 @@ impl pb::identify_service_server::IdentifyService for Api {
                 (Some(g), None) => {
                     let thickness_m = if r.thickness_m == 0.0 { 0.01 } else { r.thickness_m };
                     if !(thickness_m.is_finite() && thickness_m > 0.0) {
-                        return Err(Status::invalid_argument(format!("thickness_m = {thickness_m} must be finite and > 0")));
+                        return Err(Status::invalid_argument(format!(
+                            "thickness_m = {} must be finite and > 0",
+                            needlesim_core::num::num(thickness_m)
+                        )));
                     }
                     let plane = match r.plane.as_str() {
                         "" | "stress" => needlesim_core::PlaneModel::Stress { thickness_m },
@@ -244,7 +247,7 @@ impl pb::identify_service_server::IdentifyService for Api {
         if let Some(h) = r.tip_peak_ratio
             && !(h.is_finite() && h >= 0.0)
         {
-            return Err(Status::invalid_argument(format!("tip_peak_ratio = {h} must be finite and ≥ 0")));
+            return Err(Status::invalid_argument(format!("tip_peak_ratio = {} must be finite and ≥ 0", needlesim_core::num::num(h))));
         }
         let opts = NeedleFitOptions { tip_peak_ratio: r.tip_peak_ratio, ..Default::default() };
         Ok(spawn_work("needle", permit, move |report| {

@@ -48,7 +48,7 @@ pub fn create_exercise_session(
         if rate.is_finite() && (500.0..=1000.0).contains(&rate) {
             Ok(rate)
         } else {
-            Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")))
+            Err(Status::invalid_argument(format!("tick_rate_hz = {}: a session runs at 500..1000 Hz", needlesim_core::num::num(rate))))
         }
     };
     let prepare_err = |e: needlesim_training::ExerciseRunError| match ApiError::from(&e) {
@@ -169,7 +169,7 @@ impl pb::training_service_server::TrainingService for Api {
         let r = req.get_ref();
         let rate = if r.rate_hz == 0.0 { 10.0 } else { r.rate_hz };
         if !(rate.is_finite() && (1.0..=60.0).contains(&rate)) {
-            return Err(Status::invalid_argument(format!("rate_hz = {rate}: 1..60 updates per second")));
+            return Err(Status::invalid_argument(format!("rate_hz = {}: 1..60 updates per second", needlesim_core::num::num(rate))));
         }
         let (s, ex, _) = self.exercise_for(&req, &r.session_id, ALL, "WatchScore")?;
         let permit = self.state.admit_stream(Some(&s), "WatchScore")?;

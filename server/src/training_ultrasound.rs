@@ -242,10 +242,10 @@ pub fn checked_probe(
 ) -> Result<ProbeSpec, ProbeError> {
     let bad = |field: &'static str, message: String| Err(ProbeError { field, message });
     if let Some(x) = origin_m.iter().find(|x| !x.is_finite() || x.abs() > 1e3) {
-        return bad("origin_m", format!("{x} must be finite and within ±1e3 m"));
+        return bad("origin_m", format!("{} must be finite and within ±1e3 m", needlesim_core::num::num(*x)));
     }
     if !(pixel_m.is_finite() && pixel_m > 1e-6 && pixel_m <= 1e-2) {
-        return bad("pixel_m", format!("{pixel_m} must be in (1e-6, 1e-2] m"));
+        return bad("pixel_m", format!("{} must be in (1e-6, 1e-2] m", needlesim_core::num::num(pixel_m)));
     }
     for (field, v) in [("width", width), ("height", height)] {
         if !(MIN_PROBE_PIXELS..=MAX_PROBE_PIXELS).contains(&v) {
@@ -261,11 +261,14 @@ pub fn checked_probe(
     for (field, v) in [("e_u", e_u), ("e_v", e_v)] {
         let n = dot3(v, v).sqrt();
         if !n.is_finite() || (n - 1.0).abs() > 1e-3 {
-            return bad(field, format!("length {n}: must be a unit vector{}", if dim == 2 { " in the x–y plane" } else { "" }));
+            return bad(
+                field,
+                format!("length {}: must be a unit vector{}", needlesim_core::num::num(n), if dim == 2 { " in the x–y plane" } else { "" }),
+            );
         }
     }
     if dot3(e_u, e_v).abs() > 1e-3 {
-        return bad("e_v", format!("e_u · e_v = {}: must be orthogonal to e_u", dot3(e_u, e_v)));
+        return bad("e_v", format!("e_u · e_v = {}: must be orthogonal to e_u", needlesim_core::num::num(dot3(e_u, e_v))));
     }
     e_u = unit3(e_u);
     let c = dot3(e_u, e_v);
@@ -282,7 +285,7 @@ pub fn checked_probe(
         }));
     }
     if !(thickness_m.is_finite() && thickness_m > 0.0 && thickness_m <= 0.05) {
-        return bad("thickness_m", format!("{thickness_m} must be in (0, 0.05] m"));
+        return bad("thickness_m", format!("{} must be in (0, 0.05] m", needlesim_core::num::num(thickness_m)));
     }
     Ok(ProbeSpec::Three(Probe3 { origin_m, e_u, e_v, pixel_m, width, height, thickness_m }))
 }

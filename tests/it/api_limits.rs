@@ -358,3 +358,82 @@ async fn issue_35_a_3d_node_limit_is_resource_exhausted_and_numbers_are_echoed_s
     }
     assert!(!server.stderr.lock().unwrap().contains("panicked"));
 }
+
+/// Issue 35 (hardening, inputs): a scene's targets are bounded by core's limit, 16, 2D and 3D,
+/// from CreateSession, Simulate and an upload (INVALID_ARGUMENT naming the bound); a 2D session
+/// with 16 targets carries every one in its live frames (a tick record held 8 and dropped the
+/// rest); a 17th target's physics past its bounds (a 1e13 Pa region) is refused by name.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_targets_are_bounded_and_live_frames_carry_every_one() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch.clone());
+    let one = "[[targets]]\nname = \"centre\"\ncenter_m = [0.05, 0.05]\nradius_m = 0.002\n";
+    assert!(PHANTOM.contains(one));
+    let targets2 = |n: usize| -> String {
+        (0..n)
+            .map(|k| format!("[[targets]]\nname = \"t{k}\"\ncenter_m = [0.05, {}]\nradius_m = 0.002\n\n", 0.02 + 0.004 * k as f64))
+            .collect()
+    };
+    let want = "targets: 17 given, at most 16";
+    let text = PHANTOM.replace(one, &targets2(17));
+    let e = sessions
+        .create_session(pb::CreateSessionRequest { scene: toml(text.clone()), tick_rate_hz: 1000.0, ..Default::default() })
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "{}", e.message());
+    assert!(e.message().contains(want), "{}", e.message());
+    let e = sim.simulate(pb::SimulateRequest { scene: toml(text), trajectory: insertion(2.0), decimate: 10, ..Default::default() }).await;
+    let e = match e {
+        Err(e) => e,
+        Ok(r) => r.into_inner().next().await.expect("a message").expect_err("17 targets"),
+    };
+    assert_eq!(e.code(), Code::InvalidArgument, "Simulate: {}", e.message());
+    assert!(e.message().contains(want), "Simulate: {}", e.message());
+    // 3D, as TOML.
+    let cube: String = CUBE3D.lines().filter(|l| !l.starts_with("trajectory")).map(|l| format!("{l}\n")).collect();
+    let one3 = "[[targets]]\nname = \"centre\"\ncenter_m = [0.05, 0.05, 0.05]\nradius_m = 0.002\n";
+    assert!(cube.contains(one3));
+    let many3: String = (0..17).map(|k| one3.replace("centre", &format!("c{k}"))).collect();
+    let e = sessions.create_session(pb::CreateSessionRequest { scene: toml(cube.replace(one3, &many3)), ..Default::default() }).await;
+    let e = e.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "3D: {}", e.message());
+    assert!(e.message().contains(want), "3D: {}", e.message());
+    // An upload.
+    let mesh =
+        pb::Mesh { node_xy_m: vec![0.0, 0.0, 0.1, 0.0, 0.1, 0.1, 0.0, 0.1], triangle_nodes: vec![0, 1, 2, 0, 2, 3], ..Default::default() };
+    let target = |k: usize| pb::Target { name: format!("u{k}"), center_m: Some(pb::Vec2 { x: 0.05, y: 0.05 }), radius_m: 0.001 };
+    let up = |n: usize, young_modulus_pa: f64| pb::UploadedScene {
+        mesh: Some(mesh.clone()),
+        regions: vec![pb::Region { name: "t".into(), young_modulus_pa, poisson_ratio: 0.3, ..Default::default() }],
+        fixed_nodes: vec![0, 1],
+        needle_base: Some(pb::Pose2 { x_m: 0.05, y_m: 0.2, theta_rad: -std::f64::consts::FRAC_PI_2 }),
+        targets: (0..n).map(target).collect(),
+        ..Default::default()
+    };
+    let uploaded = |u| pb::CreateSessionRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Uploaded(u)) }),
+        ..Default::default()
+    };
+    let e = sessions.create_session(uploaded(up(17, 1e4))).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "upload: {}", e.message());
+    assert!(e.message().contains(want), "upload: {}", e.message());
+    let e = sessions.create_session(uploaded(up(1, 1e13))).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "upload, 1e13 Pa: {}", e.message());
+    assert!(e.message().contains("Young's modulus E = 10000000000000 Pa must be finite, > 0 and ≤ 1e12 Pa"), "{}", e.message());
+    // 16 targets: every live frame carries all of them, by name.
+    let text = PHANTOM.replace(one, &targets2(16));
+    let made = sessions
+        .create_session(pb::CreateSessionRequest { scene: toml(text), tick_rate_hz: 1000.0, ..Default::default() })
+        .await
+        .expect("16 targets")
+        .into_inner();
+    let sid = made.session.expect("session").session_id;
+    let frame = needlesim_tests::latest_frame(&ch, &sid, &made.observer_token).await;
+    let names: Vec<&str> = frame.targets.iter().map(|t| t.name.as_str()).collect();
+    let want_names: Vec<String> = (0..16).map(|k| format!("t{k}")).collect();
+    assert_eq!(names, want_names.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}

@@ -257,7 +257,7 @@ fn inconsistent_inputs_are_errors_naming_the_problem() {
     assert!(e.contains("mesh does not cover marker 6 at (0.0"), "{e}");
     // The grid does not match the marker count.
     let e = identify_err(&[&base[..], &["--grid", "10,11,0.1,0.1"]].concat());
-    assert!(e.contains("--grid 10,11 has 110 nodes but the tracks have 121 markers"), "{e}");
+    assert!(e.contains("--grid: a grid of 10 × 11 markers has 110 nodes but the tracks have 121 markers"), "{e}");
     // Force and image time stamps that do not overlap.
     let shifted = dir.join("late-log.csv");
     std::fs::write(&shifted, shift_times(&log, 100.0)).unwrap();

@@ -586,3 +586,20 @@ fn a_runs_tick_series_is_its_own_expert_and_bad_expert_files_are_refused_naming_
     let (_, stderr) = text(&out);
     assert!(!out.status.success() && stderr.contains(&format!("expert run {}: cannot read it", missing.display())), "{stderr}");
 }
+
+/// Issue 35 (careless input): `exercise run --placed-at nan` was silently ignored (a time never
+/// reached: "placed" never declared, exit 0); a time that is not finite is refused naming the flag,
+/// and a huge one is echoed compactly.
+#[test]
+fn issue_35_a_placement_time_that_is_not_finite_is_refused_naming_the_flag() {
+    for (arg, want) in [
+        ("nan", "placed-at: NaN is not a finite time (s)"),
+        ("1,inf", "placed-at: inf is not a finite time (s)"),
+        ("-inf", "placed-at: -inf is not a finite time (s)"),
+        ("1e300", "placed at t = 1e300 s: after the trajectory's end at t = 6 s"),
+    ] {
+        let out = run(Command::new(bin("needlesim-server")).args(["exercise", "run", "biopsy-2d", &format!("--placed-at={arg}")]));
+        let (_, stderr) = text(&out);
+        assert!(!out.status.success() && stderr.contains(want), "--placed-at {arg}: {stderr}");
+    }
+}

@@ -99,10 +99,14 @@ fn load_scaled(spec: &str, scale: &[(String, f64)], limits: &MeshLimits) -> anyh
     };
     for (key, factor) in scale {
         if !SCALABLE_REGION_KEYS.contains(&key.as_str()) {
-            anyhow::bail!("scale: '{key}' is not a region value that can be scaled (one of: {})", SCALABLE_REGION_KEYS.join(", "));
+            anyhow::bail!(
+                "scale: '{}' is not a region value that can be scaled (one of: {})",
+                needlesim_scene::limit::quote(key),
+                SCALABLE_REGION_KEYS.join(", ")
+            );
         }
         if !(factor.is_finite() && *factor > 0.0) {
-            anyhow::bail!("scale: the factor of '{key}' is {factor}; it must be finite and > 0");
+            anyhow::bail!("scale: the factor of '{key}' is {}; it must be finite and > 0", needlesim_core::num::num(*factor));
         }
         for (k, region) in regions.iter_mut().enumerate() {
             let value = region.get(key.as_str()).and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)));

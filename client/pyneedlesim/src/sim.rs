@@ -22,7 +22,7 @@ use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepO
 use needlesim_offline::{
     ConvergencePolicy, DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, RunOptions, Script, ScriptedRun, preallocated_ticks, simulate,
 };
-use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
+use needlesim_scene::{MAX_ABS_POSE, Scene, Scene3d, Trajectory, Trajectory3};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -475,9 +475,27 @@ pub struct PySimulation {
 
 fn pose2(v: &[f64]) -> PyResult<BasePose> {
     match v {
-        [x, y, th] => Ok(BasePose::new(*x, *y, *th)),
+        [x, y, th] => {
+            check_range(&[("x_m", *x), ("y_m", *y), ("theta_rad", *th)])?;
+            Ok(BasePose::new(*x, *y, *th))
+        }
         _ => Err(PoseError::new_err(format!("a 2D pose is (x_m, y_m, theta_rad): 3 numbers, not {}", v.len()))),
     }
+}
+
+/// A stepped pose's positions and angles within ±[`MAX_ABS_POSE`], the bound a trajectory's are
+/// held to (`run` refused what `step` took): PoseError naming the component, the state unchanged.
+/// A NaN or infinite component is the step's to refuse (the simulation's non-finite pose error).
+fn check_range(values: &[(&str, f64)]) -> PyResult<()> {
+    for &(name, v) in values {
+        if v.is_finite() && v.abs() > MAX_ABS_POSE {
+            return Err(PoseError::new_err(format!(
+                "{name} = {} is out of range (at most {MAX_ABS_POSE:e} in magnitude, as in a trajectory); the pose was rejected and the state kept",
+                needlesim_core::num::num(v)
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// A 3D pose from 7 numbers; a refused one is reported as the step would (naming `tick`).
@@ -485,6 +503,7 @@ fn pose3(v: &[f64], tick: u64) -> PyResult<BasePose3> {
     let [x, y, z, qw, qx, qy, qz] = v else {
         return Err(PoseError::new_err(format!("a 3D pose is (x_m, y_m, z_m, qw, qx, qy, qz): 7 numbers, not {}", v.len())));
     };
+    check_range(&[("x_m", *x), ("y_m", *y), ("z_m", *z)])?;
     BasePose3::new([*x, *y, *z], [*qw, *qx, *qy, *qz]).map_err(|source| sim3_error(&SimError3::Pose { tick, source }))
 }
 
@@ -492,7 +511,13 @@ fn new_sim2(scene: &Scene, initial: Option<BasePose>) -> PyResult<Simulation> {
     let mut params = scene.params.clone();
     if let Some(p) = initial {
         if ![p.x_m, p.y_m, p.theta_rad].iter().all(|v| v.is_finite()) {
-            return Err(PoseError::new_err(format!("the initial pose ({}, {}, {}) is not finite", p.x_m, p.y_m, p.theta_rad)));
+            let num = needlesim_core::num::num;
+            return Err(PoseError::new_err(format!(
+                "the initial pose ({}, {}, {}) is not finite",
+                num(p.x_m),
+                num(p.y_m),
+                num(p.theta_rad)
+            )));
         }
         params.initial_pose = p;
     }
@@ -597,6 +622,37 @@ impl Progress<'_> {
                 ControlFlow::Break(())
             }
         }
+    }
+}
+
+/// A `max_ticks` argument: any Python int, one that no `u64` holds (negative, or 2**64 and up)
+/// refused with TrajectoryError naming `max_ticks`, as one over [`MAX_TICKS_LIMIT`] is by
+/// [`check_max_ticks`] (PyO3's own extraction raised OverflowError, not a NeedlesimError).
+/// Anything but an int is PyO3's TypeError naming the argument.
+#[derive(Debug, Clone, Copy)]
+pub struct MaxTicks(pub u64);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for MaxTicks {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(v) = obj.extract::<u64>() {
+            return Ok(MaxTicks(v));
+        }
+        if !obj.is_instance_of::<pyo3::types::PyInt>() {
+            return obj.extract::<u64>().map(MaxTicks);
+        }
+        // An int is printed (clipped: str() refuses past 4300 digits) in the message.
+        let text = obj.str().map(|s| s.to_string()).unwrap_or_else(|_| "an int of more than 4300 digits".to_owned());
+        let text = needlesim_scene::limit::quote(&text);
+        if obj.lt(0)? {
+            return Err(TrajectoryError::new_err(format!(
+                "max_ticks = {text} must be ≥ 0 (at most {MAX_TICKS_LIMIT}, needlesim.MAX_TICKS_LIMIT)"
+            )));
+        }
+        Err(TrajectoryError::new_err(format!(
+            "max_ticks = {text} is over the limit of {MAX_TICKS_LIMIT} ticks (needlesim.MAX_TICKS_LIMIT): a run's results are held in memory"
+        )))
     }
 }
 
@@ -765,16 +821,17 @@ impl PySimulation {
     /// ``max_ticks`` over ``needlesim.MAX_TICKS_LIMIT``),
     /// PoseError (a pose that is not finite), SimulationError (a failed or unconverged step);
     /// after those the simulation is unchanged.
-    #[pyo3(signature = (trajectory=None, *, progress=None, progress_every=1000, max_ticks=simulate::DEFAULT_MAX_TICKS, keep_unconverged=false))]
+    #[pyo3(signature = (trajectory=None, *, progress=None, progress_every=1000, max_ticks=MaxTicks(simulate::DEFAULT_MAX_TICKS), keep_unconverged=false))]
     fn run(
         &mut self,
         py: Python<'_>,
         trajectory: Option<&Bound<'_, PyAny>>,
         progress: Option<Py<PyAny>>,
         progress_every: u64,
-        max_ticks: u64,
+        max_ticks: MaxTicks,
         keep_unconverged: bool,
     ) -> PyResult<RunResult> {
+        let max_ticks = max_ticks.0;
         check_max_ticks(max_ticks)?;
         let convergence = ConvergencePolicy::keeping(keep_unconverged);
         let traj = read_trajectory(py, &self.scene, trajectory)?;
@@ -941,13 +998,14 @@ type TickPoses<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
 ///
 /// ``trajectory`` and ``max_ticks`` are as for :meth:`Simulation.run`. Raises TrajectoryError.
 #[pyfunction]
-#[pyo3(signature = (scene, trajectory=None, *, max_ticks=simulate::DEFAULT_MAX_TICKS))]
+#[pyo3(signature = (scene, trajectory=None, *, max_ticks=MaxTicks(simulate::DEFAULT_MAX_TICKS)))]
 pub fn tick_poses<'py>(
     py: Python<'py>,
     scene: PyRef<'_, PyScene>,
     trajectory: Option<&Bound<'py, PyAny>>,
-    max_ticks: u64,
+    max_ticks: MaxTicks,
 ) -> PyResult<TickPoses<'py>> {
+    let max_ticks = max_ticks.0;
     check_max_ticks(max_ticks)?;
     let kind = scene.inner.clone();
     let traj = read_trajectory(py, &kind, trajectory)?;

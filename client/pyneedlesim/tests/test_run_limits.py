@@ -83,3 +83,34 @@ def test_issue_35_a_3d_trajectory_over_the_limit_names_its_line_and_its_ticks():
     for line in lines[1:]:
         assert line.startswith("TrajectoryError trajectory line 3: t_s = 1e17 ends 1e17 s after the first sample, 1e20 ticks at 1000 Hz"), line
         assert f"over the limit of {needlesim.DEFAULT_MAX_TICKS} ticks" in line, line
+
+
+def test_issue_35_a_max_ticks_no_u64_holds_raises_the_packages_error_naming_it():
+    scene = needlesim.load_scene("paper-phantom")
+    short = np.array([[0.0, 0.05, 0.21, DOWN], [0.01, 0.05, 0.2, DOWN]])
+    for call in (lambda m: needlesim.Simulation(scene).run(short, max_ticks=m), lambda m: needlesim.tick_poses(scene, short, max_ticks=m)):
+        with pytest.raises(needlesim.TrajectoryError, match=r"^max_ticks = -1 must be ≥ 0"):
+            call(-1)
+        with pytest.raises(needlesim.TrajectoryError, match=r"^max_ticks = 18446744073709551616 is over the limit of"):
+            call(2**64)
+        with pytest.raises(needlesim.TrajectoryError, match=r"^max_ticks = 1{64}… is over the limit of"):
+            call(int("1" * 5000))
+        # Not an int at all: Python's TypeError naming the argument, as before.
+        with pytest.raises(TypeError, match="max_ticks"):
+            call("ten")
+    assert needlesim.Simulation(scene).run(short, max_ticks=11).ticks == 11
+
+
+def test_issue_35_step_refuses_the_poses_run_refuses():
+    sim = needlesim.Simulation(needlesim.load_scene("paper-phantom"))
+    with pytest.raises(needlesim.TrajectoryError, match=r"x_m = 1e308 is out of range \(at most 1e3 in magnitude\)"):
+        sim.run(np.array([[0.0, 1e308, 0.2, DOWN], [0.01, 0.05, 0.2, DOWN]]))
+    for pose, name in (((1e308, 0.2, DOWN), "x_m = 1e308"), ((0.05, -1001.0, DOWN), "y_m = -1001"), ((0.05, 0.2, 2e3), "theta_rad = 2000")):
+        with pytest.raises(needlesim.PoseError, match=f"{name} is out of range \\(at most 1e3 in magnitude"):
+            sim.step(pose)
+    # The refused poses left the state alone: the first step taken is tick 0.
+    assert sim.step((0.05, 0.205, DOWN)).tick == 0
+    sim.step((1e3, 0.205, DOWN))  # at the bound: accepted (clamped to the per-tick step)
+    sim3 = needlesim.Simulation(needlesim.load_scene("cube-phantom-3d"))
+    with pytest.raises(needlesim.PoseError, match=r"z_m = -1e300 is out of range"):
+        sim3.step((0.05, 0.05, -1e300) + QUAT_DOWN)

@@ -8,14 +8,15 @@
 /// Errors in material parameters, naming the region.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MaterialError {
-    /// Young's modulus is not a finite positive number.
-    #[error("{region}: Young's modulus E = {} Pa must be finite and > 0", crate::num::num(*young_modulus_pa))]
+    /// Young's modulus is not finite, positive and at most
+    /// [`crate::sim::param_limits::MAX_YOUNG_MODULUS_PA`].
+    #[error("{region}: Young's modulus E = {} Pa must be finite, > 0 and ≤ {:e} Pa", crate::num::num(*young_modulus_pa), crate::sim::param_limits::MAX_YOUNG_MODULUS_PA)]
     YoungModulus { region: String, young_modulus_pa: f64 },
     /// Poisson's ratio is outside (−1, 0.5] in plane stress, or outside (−1, 0.5) in plane strain.
     #[error("{region}: Poisson ratio ν = {} must be finite and in {}", crate::num::num(*poisson_ratio), if *.plane_strain { "(−1, 0.5) in plane strain (ν = 0.5, incompressible, makes λ infinite)" } else { "(−1, 0.5] in plane stress" })]
     PoissonRatio { region: String, poisson_ratio: f64, plane_strain: bool },
-    /// The plane-stress thickness is not a finite positive number.
-    #[error("thickness {} m must be finite and > 0", crate::num::num(*thickness_m))]
+    /// The thickness is not finite, positive and at most [`crate::sim::param_limits::MAX_LENGTH_M`].
+    #[error("thickness {} m must be finite, > 0 and ≤ {} m", crate::num::num(*thickness_m), crate::num::num(crate::sim::param_limits::MAX_LENGTH_M))]
     Thickness { thickness_m: f64 },
     /// The number of materials does not match the number of regions of the mesh.
     #[error("the mesh has {n_regions} region(s) but {n_materials} material(s) were given")]
@@ -52,7 +53,7 @@ impl PlaneModel {
     /// Checks the thickness.
     pub fn validate(&self) -> Result<(), MaterialError> {
         let thickness_m = self.thickness_m();
-        if !(thickness_m.is_finite() && thickness_m > 0.0) {
+        if !(thickness_m.is_finite() && thickness_m > 0.0 && thickness_m <= crate::sim::param_limits::MAX_LENGTH_M) {
             return Err(MaterialError::Thickness { thickness_m });
         }
         Ok(())
@@ -64,7 +65,7 @@ impl Material {
     /// `region tissue` or `element 12`.
     pub fn validate(&self, plane: PlaneModel, region: &str) -> Result<(), MaterialError> {
         let (e, nu) = (self.young_modulus_pa, self.poisson_ratio);
-        if !(e.is_finite() && e > 0.0) {
+        if !(e.is_finite() && e > 0.0 && e <= crate::sim::param_limits::MAX_YOUNG_MODULUS_PA) {
             return Err(MaterialError::YoungModulus { region: region.to_owned(), young_modulus_pa: e });
         }
         // ν = 0.5 (incompressible) is a valid thin sheet in plane stress, but makes λ infinite in plane strain.

@@ -14,18 +14,32 @@ use std::collections::{BTreeMap, HashMap};
 use crate::d3::mesh::{TetMesh, TetMeshError, TetMeshLimits, longest_edge_m, signed_volume_m3};
 use crate::mesh::{Mesh, MeshError, MeshLimits};
 
+impl From<MeshError> for MshError {
+    fn from(e: MeshError) -> Self {
+        MshError::Mesh(e)
+    }
+}
+
+impl From<TetMeshError> for MshError {
+    fn from(e: TetMeshError) -> Self {
+        MshError::TetMesh(e)
+    }
+}
+
 /// An error in an MSH file, with the 1-based line where it was found.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MshError {
     /// The text is not a valid MSH file.
     #[error("MSH line {line}: {message}")]
     Syntax { line: usize, message: String },
-    /// The file parsed, but the mesh it describes is invalid.
+    /// The file parsed, but the mesh it describes is invalid. Its words are in the message, and
+    /// it is not also the error's source: a chain printed whole (`{:#}`) says them once.
     #[error("MSH mesh: {0}")]
-    Mesh(#[from] MeshError),
-    /// The file parsed, but the tetrahedral mesh it describes is invalid.
+    Mesh(MeshError),
+    /// The file parsed, but the tetrahedral mesh it describes is invalid (said once, as
+    /// [`MshError::Mesh`]).
     #[error("MSH mesh: {0}")]
-    TetMesh(#[from] TetMeshError),
+    TetMesh(TetMeshError),
     /// A tetrahedron is invalid (degenerate, repeated, a node twice, or inverted: negative volume),
     /// named by its line and Gmsh element tag.
     #[error("MSH line {line}: tetrahedron with element tag {tag}: {message}")]
@@ -96,24 +110,24 @@ impl<'a> Cursor<'a> {
     }
     fn usize(&mut self, what: &str) -> Result<usize, MshError> {
         let t = self.token(what)?;
-        t.parse().map_err(|_| syntax(self.line, format!("{what} must be a non-negative integer, found '{t}'")))
+        t.parse().map_err(|_| syntax(self.line, format!("{what} must be a non-negative integer, found '{}'", truncate(t))))
     }
     fn i64(&mut self, what: &str) -> Result<i64, MshError> {
         let t = self.token(what)?;
-        t.parse().map_err(|_| syntax(self.line, format!("{what} must be an integer, found '{t}'")))
+        t.parse().map_err(|_| syntax(self.line, format!("{what} must be an integer, found '{}'", truncate(t))))
     }
     fn f64(&mut self, what: &str) -> Result<f64, MshError> {
         let t = self.token(what)?;
-        let v: f64 = t.parse().map_err(|_| syntax(self.line, format!("{what} must be a number, found '{t}'")))?;
+        let v: f64 = t.parse().map_err(|_| syntax(self.line, format!("{what} must be a number, found '{}'", truncate(t))))?;
         if !v.is_finite() {
-            return Err(syntax(self.line, format!("{what} is not finite: '{t}'")));
+            return Err(syntax(self.line, format!("{what} is not finite: '{}'", truncate(t))));
         }
         Ok(v)
     }
     fn end_of_line(&mut self) -> Result<(), MshError> {
         match self.tokens.next() {
             None => Ok(()),
-            Some(t) => Err(syntax(self.line, format!("unexpected '{t}' at the end of the line"))),
+            Some(t) => Err(syntax(self.line, format!("unexpected '{}' at the end of the line", truncate(t)))),
         }
     }
     fn expect_line(&mut self, marker: &str) -> Result<(), MshError> {
@@ -699,6 +713,31 @@ mod tests {
         let small = TetMeshLimits { max_nodes: 10, max_tets: 1 };
         let e = parse_msh3d(TETS_V22, &small).unwrap_err();
         assert!(e.to_string().contains("2 tetrahedra, over the limit of 1"), "{e}");
+    }
+
+    #[test]
+    fn issue_35_a_mesh_error_says_its_words_once_and_quotes_a_token_clipped() {
+        // The whole chain (what `{:#}` prints) holds the mesh's words once, not "…: … overlap".
+        let chain = |e: &MshError| {
+            let mut out = e.to_string();
+            let mut src = std::error::Error::source(e);
+            while let Some(s) = src {
+                out.push_str(": ");
+                out.push_str(&s.to_string());
+                src = s.source();
+            }
+            out
+        };
+        let small = TetMeshLimits { max_nodes: 10, max_tets: 1 };
+        let m = chain(&parse_msh3d(TETS_V22, &small).unwrap_err());
+        assert_eq!(m.matches("2 tetrahedra, over the limit of 1").count(), 1, "{m}");
+        let flat = MeshLimits { max_nodes: 2, ..MeshLimits::default() };
+        let m = chain(&parse_msh(V22, &flat).unwrap_err());
+        assert_eq!(m.matches("over the limit of 2").count(), 1, "{m}");
+        // A 100 kB token is quoted clipped.
+        let long = TETS_V22.replace("2 1 0 0\n", &format!("2 {} 0 0\n", "x".repeat(100_000)));
+        let m = chain(&parse_msh3d(&long, &TetMeshLimits::default()).unwrap_err());
+        assert!(m.contains("must be a number, found 'xxxx") && m.len() < 200, "{m}");
     }
 
     #[test]

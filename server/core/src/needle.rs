@@ -154,8 +154,9 @@ impl NeedleShape {
     /// Checks the shape's parameters.
     pub fn validate(&self) -> Result<(), String> {
         let length_m = self.tip_s_m();
-        if !(length_m.is_finite() && length_m > 0.0) {
-            return Err(format!("needle length {} m must be finite and > 0", crate::num::num(length_m)));
+        let max_len = crate::sim::param_limits::MAX_LENGTH_M;
+        if !(length_m.is_finite() && length_m > 0.0 && length_m <= max_len) {
+            return Err(format!("needle length {} m must be finite, > 0 and ≤ {} m", crate::num::num(length_m), crate::num::num(max_len)));
         }
         if let NeedleShape::Flexible(f) = self {
             let ei = f.flexural_rigidity_nm2;
@@ -240,14 +241,17 @@ impl RegionNeedleParams {
             ("friction_damping_n_s_per_m2", self.friction_damping_n_s_per_m2, self.friction_damping_n_s_per_m2 >= 0.0),
             ("toughness_cutting_force_n", fc, fc >= 0.0),
         ];
+        use crate::sim::param_limits::{MAX_LENGTH_M, MAX_REGION_VALUE};
         for (name, v, ok) in checks {
-            if !(v.is_finite() && ok) {
+            let max = if name == "tip_peak_width_m" { MAX_LENGTH_M } else { MAX_REGION_VALUE };
+            if !(v.is_finite() && ok && v <= max) {
                 let rule = match name {
                     "static_friction_ratio" => "finite and ≥ 1",
                     "tip_peak_width_m" => "finite and > 0",
                     _ => "finite and ≥ 0",
                 };
-                return Err(format!("region {region}: {name} = {} must be {rule}", crate::num::num(v)));
+                let bound = if name == "tip_peak_width_m" { format!("{} m", crate::num::num(max)) } else { format!("{max:e}") };
+                return Err(format!("region {region}: {name} = {} must be {rule}, at most {bound}", crate::num::num(v)));
             }
         }
         Ok(())

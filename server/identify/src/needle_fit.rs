@@ -189,7 +189,7 @@ pub fn fit_needle(
     if let Some(h) = opts.tip_peak_ratio
         && !(h.is_finite() && h >= 0.0)
     {
-        bail!("tip_peak_ratio = {h} must be finite and ≥ 0");
+        bail!("tip_peak_ratio = {} must be finite and ≥ 0", needlesim_core::num::num(h));
     }
     let tip_tol = opts.tip_tol_m.unwrap_or(0.02 * edge);
     let region = mesh.region_names().first().cloned().unwrap_or_else(|| "tissue".to_owned());

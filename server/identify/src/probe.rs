@@ -107,7 +107,8 @@ fn covers(mesh: &Mesh, p: [f64; 2], tol_m: f64) -> bool {
 /// finer than the markers' grid (`refine` ≥ 1; the markers sit on every `refine`-th node).
 ///
 /// Errors: the grid's node count differs from the marker count, `refine` is 0 or makes a mesh
-/// beyond the mesh limits, a marker not on a grid node.
+/// beyond the mesh limits, a marker not on a grid node. The words name the grid, not how it was
+/// given: the API's field `grid` and the CLI's flag `--grid` are each added by their caller.
 pub fn grid_model(
     tracks: &MarkerTracks,
     nx: usize,
@@ -118,7 +119,7 @@ pub fn grid_model(
     refine: usize,
 ) -> Result<ProbeModel> {
     if nx.saturating_mul(ny) != tracks.n_markers {
-        bail!("--grid {nx},{ny} has {} nodes but the tracks have {} markers", nx.saturating_mul(ny), tracks.n_markers);
+        bail!("a grid of {nx} × {ny} markers has {} nodes but the tracks have {} markers", nx.saturating_mul(ny), tracks.n_markers);
     }
     if refine == 0 {
         bail!("refine = 0: the model mesh must be at least the markers' grid (refine ≥ 1)");
@@ -128,7 +129,7 @@ pub fn grid_model(
     let (mx, my) = ((nx.saturating_sub(1)).saturating_mul(refine) + 1, (ny.saturating_sub(1)).saturating_mul(refine) + 1);
     let mut g = RectMeshParams::new(mx, my, width_m, height_m);
     g.origin_m = origin;
-    let mesh = g.build(&MeshLimits::default()).with_context(|| format!("--grid {nx},{ny} refined {refine} times"))?;
+    let mesh = g.build(&MeshLimits::default()).with_context(|| format!("a grid of {nx} × {ny} markers refined {refine} times"))?;
     let tol = 0.25 * (width_m / (nx - 1) as f64).min(height_m / (ny - 1) as f64) / refine as f64;
     let marker_node = register_markers(&mesh, &p0, tol)?;
     let fixed_nodes = mesh.boundary_set("bottom").map(<[usize]>::to_vec).unwrap_or_default();
@@ -519,6 +520,18 @@ mod tests {
         assert!(e_err < 0.02, "E = {} ± {}", fit.young_modulus_pa, fit.young_modulus_sigma_pa);
         assert!((fit.poisson_ratio - 0.45).abs() < 0.02, "ν = {} ± {}", fit.poisson_ratio, fit.poisson_ratio_sigma);
         assert!(fit.young_modulus_sigma_pa > 0.0 && fit.poisson_ratio_sigma > 0.0);
+    }
+
+    /// Issue 35: Identify's API (field `grid`) quoted the CLI's flag ("grid: --grid 10,11 has …").
+    #[test]
+    fn issue_35_grid_errors_name_the_grid_not_the_cli_flag() {
+        let p = ProbeSynthParams::default();
+        let ex = synth_probe(&p).unwrap();
+        let e = grid_model(&ex.tracks, 10, 11, 0.1, 0.1, p.plane, 1).unwrap_err();
+        assert_eq!(format!("{e:#}"), "a grid of 10 × 11 markers has 110 nodes but the tracks have 121 markers");
+        let e = grid_model(&ex.tracks, 11, 11, 0.1, 0.1, p.plane, 100_000).unwrap_err();
+        let m = format!("{e:#}");
+        assert!(m.starts_with("a grid of 11 × 11 markers refined 100000 times: ") && !m.contains("--"), "{m}");
     }
 
     #[test]

@@ -337,7 +337,9 @@ fn run_probe(a: ProbeArgs) -> anyhow::Result<()> {
     let tracks = read_tracks(&a.tracks)?;
     let log = needlesim_identify::logs::ProbeLog::from_csv(&read_text(&a.probe_log)?).with_context(|| a.probe_log.display().to_string())?;
     let model = match (&a.grid, &a.scene) {
-        (Some((nx, ny, w, h)), _) => grid_model(&tracks, *nx, *ny, *w, *h, plane_of(&a.plane, a.thickness_m)?, a.refine)?,
+        (Some((nx, ny, w, h)), _) => {
+            grid_model(&tracks, *nx, *ny, *w, *h, plane_of(&a.plane, a.thickness_m)?, a.refine).context("--grid")?
+        }
         (None, Some(spec)) => {
             let scene = needlesim_scene::load_scene(spec, &needlesim_core::MeshLimits::default())?;
             let mesh = scene.tissue.mesh().clone();

@@ -16,7 +16,7 @@ use anyhow::{Context, Result, bail};
 use needlesim_core::compliance::TissueModel;
 use needlesim_core::mesh::DiagonalPattern;
 use needlesim_core::num::num;
-use needlesim_core::sim::{ContactModel, SimParams, TargetParams, Viscoelastic};
+use needlesim_core::sim::{ContactModel, SimParams, TargetParams, Viscoelastic, param_limits};
 use needlesim_core::{
     BasePose, FlexibleNeedle, Material, MaterialMap, Mesh, MeshLimits, NeedleShape, PlaneModel, RectMeshParams, RegionNeedleParams,
     RigidNeedle,
@@ -25,7 +25,7 @@ use serde::Deserialize;
 
 pub use files::{LocalFileError, MAX_LOCAL_FILE_BYTES, SceneFiles, read_local_file};
 pub use limit::SizeLimit;
-pub use needlesim_trajectory::{Pose2, Trajectory, TrajectoryError};
+pub use needlesim_trajectory::{MAX_ABS_POSE, Pose2, Trajectory, TrajectoryError};
 pub use needlesim_trajectory::{Pose3, Trajectory3, Trajectory3Error};
 pub use scene3d::{
     EXAMPLES3D, Scene3d, estimated_session_bytes_3d, example_scene3d, load_scene3d, parse_scene3d, parse_scene3d_with, scene_dim,
@@ -510,7 +510,7 @@ pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLi
     if scene_dim(text)? == 3 {
         bail!("dim = 3: this is a 3D scene; load it with the 3D scene loader (needlesim_scene::load_scene3d)");
     }
-    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e)))?;
+    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e, text)))?;
     build_scene(&file, files, &limits.into())
 }
 
@@ -518,6 +518,7 @@ pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLi
 /// is built; each error names the key as written in the TOML and its allowed range.
 fn check_values(f: &SceneFile) -> Result<()> {
     use needlesim_core::sim::param_limits::{MAX_NEEDLE_NODES, MAX_NEEDLE_NODES_FLEXIBLE};
+    check_names(f.regions.iter().map(|r| r.name.as_str()), f.targets.iter().map(|t| t.name.as_str()))?;
     if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
         bail!("tick_rate_hz = {}: must be between 100 and 10000", num(f.tick_rate_hz));
     }
@@ -525,6 +526,11 @@ fn check_values(f: &SceneFile) -> Result<()> {
     if !(n.length_m.is_finite() && n.length_m > 0.0) {
         bail!("needle.length_m = {}: must be finite and > 0", num(n.length_m));
     }
+    check_length("needle.length_m", n.length_m)?;
+    if !(f.plane.thickness_m.is_finite() && f.plane.thickness_m > 0.0) {
+        bail!("plane.thickness_m = {}: must be finite and > 0", num(f.plane.thickness_m));
+    }
+    check_length("plane.thickness_m", f.plane.thickness_m)?;
     if !n.base.iter().all(|v| v.is_finite()) {
         bail!("needle.base = [{}, {}, {}]: must be finite", num(n.base[0]), num(n.base[1]), num(n.base[2]));
     }
@@ -579,6 +585,13 @@ fn check_values(f: &SceneFile) -> Result<()> {
             }
             _ => {}
         }
+        let toughness = r.fracture_toughness_j_per_m2.unwrap_or(0.0);
+        check_region_bounds(
+            k,
+            &r.name,
+            r.young_modulus_pa,
+            &[("friction_damping_n_s_per_m2", r.friction_damping_n_s_per_m2), ("fracture_toughness_j_per_m2", toughness)],
+        )?;
     }
     let max_nodes = if n.model == NeedleModelSpec::Flexible { MAX_NEEDLE_NODES_FLEXIBLE } else { MAX_NEEDLE_NODES };
     if !(1..=max_nodes).contains(&n.max_nodes) {
@@ -595,15 +608,13 @@ fn check_values(f: &SceneFile) -> Result<()> {
         )?;
     }
     for (k, t) in f.targets.iter().enumerate() {
-        if let Some(first) = f.targets[..k].iter().position(|o| o.name == t.name) {
-            bail!("targets[{k}]: the name '{}' is already used by targets[{first}]; target names must be unique", t.name);
-        }
         if !t.center_m.iter().all(|v| v.is_finite()) {
             bail!("targets[{k}] ('{}').center_m = [{}, {}]: must be finite", t.name, num(t.center_m[0]), num(t.center_m[1]));
         }
         if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
             bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, num(t.radius_m));
         }
+        check_length(&format!("targets[{k}] ('{}').radius_m", t.name), t.radius_m)?;
     }
     for (k, r) in f.regions.iter().enumerate() {
         let b = r.friction_damping_n_s_per_m2;
@@ -645,6 +656,44 @@ pub(crate) fn check_region_needle_values(k: usize, name: &str, values: [f64; 6])
     for ((key, v), (ok, rule)) in keys.into_iter().zip(values).zip(rules) {
         if !(v.is_finite() && ok(v)) {
             bail!("regions[{k}] ('{name}').{key} = {}: must be {rule}", num(v));
+        }
+        if key == "tip_peak_width_m" {
+            check_length(&format!("regions[{k}] ('{name}').{key}"), v)?;
+        }
+    }
+    check_region_bounds(k, name, 0.0, &keys.into_iter().zip(values).filter(|(key, _)| *key != "tip_peak_width_m").collect::<Vec<_>>())
+}
+
+/// The names of a scene's regions and targets and the number of targets, against core's
+/// parameter limits ([`param_limits::check_name`], [`param_limits::check_target_names`]),
+/// checked before any message quotes a name: shared by 2D and 3D scenes.
+pub(crate) fn check_names<'a>(regions: impl Iterator<Item = &'a str>, targets: impl ExactSizeIterator<Item = &'a str>) -> Result<()> {
+    for (k, name) in regions.enumerate() {
+        param_limits::check_name(&format!("regions[{k}]"), name).map_err(anyhow::Error::msg)?;
+    }
+    param_limits::check_target_names(targets).map_err(anyhow::Error::msg)
+}
+
+/// A length of the scene (`key` as written) at most [`param_limits::MAX_LENGTH_M`] (its sign and
+/// finiteness are checked beside it).
+pub(crate) fn check_length(key: &str, v: f64) -> Result<()> {
+    if v > param_limits::MAX_LENGTH_M {
+        bail!("{key} = {}: must be at most {} m", num(v), num(param_limits::MAX_LENGTH_M));
+    }
+    Ok(())
+}
+
+/// A region's Young's modulus at most [`param_limits::MAX_YOUNG_MODULUS_PA`] and its other
+/// magnitudes (`values`, keys as written) at most [`param_limits::MAX_REGION_VALUE`], naming
+/// `regions[k] ('name').key` and the bound: shared by 2D and 3D scenes (signs are checked beside).
+pub(crate) fn check_region_bounds(k: usize, name: &str, young_modulus_pa: f64, values: &[(&str, f64)]) -> Result<()> {
+    use param_limits::{MAX_REGION_VALUE, MAX_YOUNG_MODULUS_PA};
+    if young_modulus_pa > MAX_YOUNG_MODULUS_PA {
+        bail!("regions[{k}] ('{name}').young_modulus_pa = {}: must be at most {MAX_YOUNG_MODULUS_PA:e} Pa", num(young_modulus_pa));
+    }
+    for &(key, v) in values {
+        if v > MAX_REGION_VALUE {
+            bail!("regions[{k}] ('{name}').{key} = {}: must be at most {MAX_REGION_VALUE:e}", num(v));
         }
     }
     Ok(())
@@ -727,14 +776,14 @@ fn build_scene(f: &SceneFile, files: SceneFiles, scene_limits: &SceneLimits) -> 
     let plane = match f.plane.model.as_str() {
         "stress" => PlaneModel::Stress { thickness_m: f.plane.thickness_m },
         "strain" => PlaneModel::Strain { thickness_m: f.plane.thickness_m },
-        m => bail!("plane.model must be \"stress\" or \"strain\", found \"{m}\""),
+        m => bail!("plane.model must be \"stress\" or \"strain\", found \"{}\"", limit::quote(m)),
     };
     let mats = MaterialMap::per_region(&mesh, &materials, plane).context("regions")?;
     let mut fixed = f.fixed_nodes.clone();
     for set in &f.fixed {
         let nodes = mesh.boundary_set(set).with_context(|| {
             let names: Vec<&String> = mesh.boundary_sets().keys().collect();
-            format!("fixed: the mesh has no boundary set '{set}' (it has: {names:?})")
+            format!("fixed: the mesh has no boundary set '{}' (it has: {})", limit::quote(set), limit::quote(&format!("{names:?}")))
         })?;
         fixed.extend_from_slice(nodes);
     }
@@ -967,6 +1016,76 @@ mod tests {
         assert!(format!("{e:#}").contains("lenght_m"), "{e:#}");
         let e = parse_scene(&base.replace("friction_n_per_m = 10", "friction_n_per_m = -3"), Path::new("."), &lim).err().unwrap();
         assert!(format!("{e:#}").contains("regions[0] ('tissue').friction_n_per_m = -3: must be finite and ≥ 0"), "{e:#}");
+    }
+
+    /// `n` targets named by `name(k)`, as TOML.
+    fn targets_toml(n: usize, name: impl Fn(usize) -> String) -> String {
+        (0..n).map(|k| format!("[[targets]]\nname = \"{}\"\ncenter_m = [0.05, 0.05]\nradius_m = 0.002\n\n", name(k))).collect()
+    }
+
+    #[test]
+    fn issue_35_a_2d_scene_bounds_its_targets() {
+        use needlesim_core::sim::param_limits::MAX_TARGETS;
+        let old = "[[targets]]\nname = \"centre\"\ncenter_m = [0.05, 0.05]\nradius_m = 0.002\n";
+        let base = include_str!("../../scenes/paper-phantom.toml");
+        let ok = base.replace(old, &targets_toml(MAX_TARGETS, |k| format!("t{k}")));
+        let s = parse_scene(&ok, Path::new("."), &MeshLimits::default()).unwrap();
+        assert_eq!(s.params.targets.len(), MAX_TARGETS);
+        let e = scene_error(old, &targets_toml(MAX_TARGETS + 1, |k| format!("t{k}")));
+        assert_eq!(e, "targets: 17 given, at most 16");
+        let e = scene_error(old, &targets_toml(2, |k| if k == 0 { "a".into() } else { String::new() }));
+        assert_eq!(e, "targets[1]: the name is empty");
+        let e = scene_error(old, &targets_toml(1, |_| "n".repeat(100_000)));
+        assert!(e.starts_with("targets[0]: the name 'nnn") && e.ends_with("…' has 100000 characters, at most 64"), "{e}");
+        assert!(e.len() < 150, "{e}");
+        let e = scene_error("name = \"tissue\"", &format!("name = \"{}\"", "r".repeat(100_000)));
+        assert!(e.starts_with("regions[0]: the name 'rrr") && e.len() < 150, "{e}");
+        let e = scene_error(old, &targets_toml(2, |_| "same".into()));
+        assert_eq!(e, "targets[1]: the name 'same' is already used by targets[0]; target names must be unique");
+        let e = scene_error("radius_m = 0.002", "radius_m = 1e300");
+        assert_eq!(e, "targets[0] ('centre').radius_m = 1e300: must be at most 10 m");
+    }
+
+    #[test]
+    fn issue_35_a_2d_scene_refuses_physics_past_its_bounds() {
+        for (old, new, want) in [
+            ("length_m = 0.1", "length_m = 11", "needle.length_m = 11: must be at most 10 m"),
+            ("thickness_m = 0.01", "thickness_m = 1e300", "plane.thickness_m = 1e300: must be at most 10 m"),
+            ("thickness_m = 0.01", "thickness_m = -1", "plane.thickness_m = -1: must be finite and > 0"),
+            (
+                "young_modulus_pa = 30e3",
+                "young_modulus_pa = 1e13",
+                "regions[0] ('tissue').young_modulus_pa = 10000000000000: must be at most 1e12 Pa",
+            ),
+            ("friction_n_per_m = 10", "friction_n_per_m = 1e7", "regions[0] ('tissue').friction_n_per_m = 10000000: must be at most 1e6"),
+            ("puncture_force_n = 0.3", "puncture_force_n = 1e300", "regions[0] ('tissue').puncture_force_n = 1e300: must be at most 1e6"),
+            (
+                "static_friction_ratio = 1.3",
+                "static_friction_ratio = 2e6",
+                "regions[0] ('tissue').static_friction_ratio = 2000000: must be at most 1e6",
+            ),
+            ("tip_peak_width_m = 0.005", "tip_peak_width_m = 12", "regions[0] ('tissue').tip_peak_width_m = 12: must be at most 10 m"),
+            (
+                "cutting_force_n = 0.05",
+                "cutting_force_n = 0.05\nfriction_damping_n_s_per_m2 = 1e9",
+                "regions[0] ('tissue').friction_damping_n_s_per_m2 = 1000000000: must be at most 1e6",
+            ),
+            ("model = \"stress\"", &format!("model = \"{}\"", "s".repeat(100_000)), ""),
+            ("tick_rate_hz = 1000\n", &format!("dim = \"{}\"\ntick_rate_hz = 1000\n", "s".repeat(100_000)), ""),
+        ] {
+            let e = scene_error(old, new);
+            if want.is_empty() {
+                // A string of the client's is quoted clipped.
+                assert!(e.contains("\"sss") && e.contains('…') && !e.contains(&"s".repeat(65)) && e.len() < 160, "{e}");
+            } else {
+                assert_eq!(e, want);
+            }
+        }
+        // The bounds themselves are accepted.
+        let base = include_str!("../../scenes/paper-phantom.toml");
+        let edge =
+            base.replace("young_modulus_pa = 30e3", "young_modulus_pa = 1e12").replace("friction_n_per_m = 10", "friction_n_per_m = 1e6");
+        parse_scene(&edge, Path::new("."), &MeshLimits::default()).unwrap();
     }
 
     /// The scene with `old` replaced by `new` (which must occur), parsed; the error's text.

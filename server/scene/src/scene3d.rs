@@ -41,8 +41,9 @@ use serde::Deserialize;
 
 use crate::limit::{self, SizeLimit};
 use crate::{
-    GAUGES, LimitsSpec, MAX_LOCAL_FILE_BYTES, MAX_TOML_BRACKETS, SceneFiles, SceneLimits, check_limits, check_region_needle_values,
-    d_cutting, d_friction, d_peak, d_peak_w, d_puncture, d_static, default_rate, read_local_file,
+    GAUGES, LimitsSpec, MAX_LOCAL_FILE_BYTES, MAX_TOML_BRACKETS, SceneFiles, SceneLimits, check_length, check_limits, check_names,
+    check_region_bounds, check_region_needle_values, d_cutting, d_friction, d_peak, d_peak_w, d_puncture, d_static, default_rate,
+    read_local_file,
 };
 
 /// The mesh files a shipped example names: (file, text).
@@ -355,7 +356,7 @@ pub fn scene_dim(text: &str) -> Result<u8> {
         Ok(Probe { dim: None }) | Err(_) => Ok(2),
         Ok(Probe { dim: Some(toml::Value::Integer(2)) }) => Ok(2),
         Ok(Probe { dim: Some(toml::Value::Integer(3)) }) => Ok(3),
-        Ok(Probe { dim: Some(v) }) => bail!("dim = {v}: must be 2 or 3"),
+        Ok(Probe { dim: Some(v) }) => bail!("dim = {}: must be 2 or 3", limit::quote(&limit::compact_numbers(&v.to_string()))),
     }
 }
 
@@ -411,7 +412,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String>, limits: &SceneL
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
     }
-    let file: Scene3dFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e)))?;
+    let file: Scene3dFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e, text)))?;
     build(&file, read, limits)
 }
 
@@ -447,6 +448,7 @@ fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
     if !(n.length_m.is_finite() && n.length_m > 0.0) {
         bail!("needle.length_m = {}: must be finite and > 0", num(n.length_m));
     }
+    check_length("needle.length_m", n.length_m)?;
     let diameter_m = match (n.gauge, n.diameter_m) {
         (Some(_), Some(_)) => bail!("needle: give either gauge or diameter_m, not both"),
         (Some(g), None) => match GAUGES.iter().find(|(gg, _, _)| *gg == g) {
@@ -542,6 +544,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
     if f.regions.is_empty() {
         bail!("regions: at least one region is needed");
     }
+    check_names(f.regions.iter().map(|r| r.name.as_str()), f.targets.iter().map(|t| t.name.as_str()))?;
     let needle = needle(&f.needle)?;
     let quat = base_orientation(&f.needle)?;
     for (k, r) in f.regions.iter().enumerate() {
@@ -557,17 +560,16 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
         if !(b.is_finite() && b >= 0.0) {
             bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {}: must be finite and ≥ 0", r.name, num(b));
         }
+        check_region_bounds(k, &r.name, r.young_modulus_pa, &[("friction_damping_n_s_per_m2", b)])?;
     }
     for (k, t) in f.targets.iter().enumerate() {
-        if let Some(first) = f.targets[..k].iter().position(|o| o.name == t.name) {
-            bail!("targets[{k}]: the name '{}' is already used by targets[{first}]; target names must be unique", t.name);
-        }
         if !finite(&t.center_m) {
             bail!("targets[{k}] ('{}').center_m = {:?}: must be finite", t.name, t.center_m);
         }
         if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
             bail!("targets[{k}] ('{}').radius_m = {}: must be finite and ≥ 0", t.name, num(t.radius_m));
         }
+        check_length(&format!("targets[{k}] ('{}').radius_m", t.name), t.radius_m)?;
     }
     check_limits(&f.limits)?;
     let tet_limits = TetMeshLimits::from_2d(&scene_limits.mesh);
@@ -645,7 +647,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
     for (k, set) in f.fixed.iter().enumerate() {
         let nodes = mesh.boundary_set(set).with_context(|| {
             let names: Vec<&String> = mesh.boundary_sets().keys().collect();
-            format!("fixed[{k}]: the mesh has no boundary set '{set}' (it has: {names:?})")
+            format!("fixed[{k}]: the mesh has no boundary set '{}' (it has: {})", limit::quote(set), limit::quote(&format!("{names:?}")))
         })?;
         fixed.extend_from_slice(nodes);
     }
@@ -790,6 +792,48 @@ mod tests {
 
     fn error(old: &str, new: &str) -> String {
         format!("{:#}", parse(&small_cube(old, new), None).err().unwrap_or_else(|| panic!("{new}: must be rejected")))
+    }
+
+    #[test]
+    fn issue_35_a_3d_scene_bounds_its_targets_and_its_physics() {
+        use needlesim_core::sim::param_limits::MAX_TARGETS;
+        let old = "[[targets]]\nname = \"centre\"\ncenter_m = [0.05, 0.05, 0.05]\nradius_m = 0.002\n";
+        let targets = |n: usize, name: &dyn Fn(usize) -> String| -> String {
+            (0..n).map(|k| format!("[[targets]]\nname = \"{}\"\ncenter_m = [0.05, 0.05, 0.05]\nradius_m = 0.002\n\n", name(k))).collect()
+        };
+        let s = parse(&small_cube(old, &targets(MAX_TARGETS, &|k| format!("t{k}"))), None).unwrap();
+        assert_eq!(s.targets.len(), MAX_TARGETS);
+        assert_eq!(error(old, &targets(MAX_TARGETS + 1, &|k| format!("t{k}"))), "targets: 17 given, at most 16");
+        assert_eq!(error(old, &targets(1, &|_| String::new())), "targets[0]: the name is empty");
+        let e = error(old, &targets(1, &|_| "n".repeat(100_000)));
+        assert!(e.starts_with("targets[0]: the name 'nnn") && e.ends_with("…' has 100000 characters, at most 64"), "{e}");
+        assert_eq!(
+            error(old, &targets(3, &|k| ["x", "y", "x"][k].into())),
+            "targets[2]: the name 'x' is already used by targets[0]; target names must be unique"
+        );
+        let e = error("name = \"gel\"", &format!("name = \"{}\"", "g".repeat(100_000)));
+        assert!(e.starts_with("regions[0]: the name 'ggg") && e.len() < 150, "{e}");
+        for (old, new, want) in [
+            ("radius_m = 0.002", "radius_m = 1e300", "targets[0] ('centre').radius_m = 1e300: must be at most 10 m"),
+            ("length_m = 0.1", "length_m = 1e3", "needle.length_m = 1000: must be at most 10 m"),
+            ("young_modulus_pa = 30e3", "young_modulus_pa = 1e300", "regions[0] ('gel').young_modulus_pa = 1e300: must be at most 1e12 Pa"),
+            ("friction_n_per_m = 10", "friction_n_per_m = 1e7", "regions[0] ('gel').friction_n_per_m = 10000000: must be at most 1e6"),
+            ("cutting_force_n = 0.05", "cutting_force_n = 1e300", "regions[0] ('gel').cutting_force_n = 1e300: must be at most 1e6"),
+            (
+                "friction_n_per_m = 10",
+                "friction_n_per_m = 10\nfriction_damping_n_s_per_m2 = 1e7",
+                "regions[0] ('gel').friction_damping_n_s_per_m2 = 10000000: must be at most 1e6",
+            ),
+            ("dim = 3", &format!("dim = \"{}\"", "d".repeat(100_000)), ""),
+        ] {
+            let e = error(old, new);
+            if want.is_empty() {
+                // The parser's error (dim is a number) quotes a short excerpt of the line.
+                assert!(e.starts_with("TOML parse error at line") && !e.contains(&"d".repeat(65)) && e.len() < 400, "{e}");
+            } else {
+                assert_eq!(e, want);
+            }
+        }
     }
 
     #[test]

@@ -8,8 +8,9 @@ use needlesim_core::sim3::{PointState3, SimError3, StepOutput3, TargetState3};
 
 /// Needle nodes carried by one tick record (a simulation may have more; they are counted).
 pub const MAX_RECORD_NODES: usize = 128;
-/// Targets carried by one tick record.
-pub const MAX_RECORD_TARGETS: usize = 8;
+/// Targets carried by one tick record: every target of a simulation (core's bound, 2D and 3D
+/// alike), so that no live frame drops one.
+pub const MAX_RECORD_TARGETS: usize = needlesim_core::sim::param_limits::MAX_TARGETS;
 /// Capacity of the ring between the real-time thread and the fan-out, in ticks.
 pub(crate) const RECORD_RING: usize = 2048;
 /// Capacity of the column request and delivery queues.

@@ -45,7 +45,8 @@ impl pb::observe_service_server::ObserveService for Api {
         if !(r.rate_hz.is_finite() && r.rate_hz >= 0.0 && r.rate_hz <= s.tick_rate_hz) {
             return Err(Status::invalid_argument(format!(
                 "rate_hz = {}: 0 (every tick) or up to the tick rate {} Hz",
-                r.rate_hz, s.tick_rate_hz
+                needlesim_core::num::num(r.rate_hz),
+                needlesim_core::num::num(s.tick_rate_hz)
             )));
         }
         // Checked and counted in one step: concurrent streams never exceed the limits.

@@ -22,7 +22,10 @@ impl pb::session_service_server::SessionService for Api {
         };
         let rate = if r.tick_rate_hz == 0.0 { scene_rate } else { r.tick_rate_hz };
         if !(rate.is_finite() && (500.0..=1000.0).contains(&rate)) {
-            return Err(Status::invalid_argument(format!("tick_rate_hz = {rate}: a session runs at 500..1000 Hz")));
+            return Err(Status::invalid_argument(format!(
+                "tick_rate_hz = {}: a session runs at 500..1000 Hz",
+                needlesim_core::num::num(rate)
+            )));
         }
         let state = self.state.clone();
         let device = r.device_channel;

@@ -40,7 +40,11 @@ impl pb::simulation_service_server::SimulationService for Api {
                 let ticks = (span_s * rate_hz).round() as u64;
                 if ticks > limits.max_simulate_ticks {
                     return Err(ApiError::from(SizeLimit {
-                        what: format!("the trajectory ({span_s:.3} s at {rate_hz} Hz)"),
+                        what: format!(
+                            "the trajectory ({} s at {} Hz)",
+                            needlesim_core::num::num(span_s),
+                            needlesim_core::num::num(rate_hz)
+                        ),
                         amount: ticks,
                         limit: limits.max_simulate_ticks,
                         unit: "ticks",
@@ -193,7 +197,7 @@ fn run_offline3(
     let mut step_ns = hdrhistogram::Histogram::<u64>::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds");
     let progress_every = (n_ticks / 20).max(1);
     let at_tick = |k: u64, t_s: f64, e: ApiError| match e {
-        ApiError::Internal(m) => ApiError::Internal(format!("tick {k} (t = {t_s} s): {m}")),
+        ApiError::Internal(m) => ApiError::Internal(format!("tick {k} (t = {} s): {m}", needlesim_core::num::num(t_s))),
         other => other,
     };
     for k in 0..=n_ticks {
@@ -201,7 +205,8 @@ fn run_offline3(
             return Ok(());
         }
         let t_s = t0 + k as f64 / rate_hz;
-        let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| ApiError::invalid("trajectory", format!("the pose at t = {t_s} s: {e}")))?;
+        let pose = base_pose3(&traj.pose_at(t_s))
+            .map_err(|e| ApiError::invalid("trajectory", format!("the pose at t = {} s: {e}", needlesim_core::num::num(t_s))))?;
         let s = std::time::Instant::now();
         sim.step(pose).map_err(|e| at_tick(k, t_s, ApiError::from(&e)))?;
         step_ns.saturating_record((s.elapsed().as_nanos() as u64).max(1));

@@ -339,7 +339,7 @@ fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String, ExerciseError>, 
     if brackets > needlesim_scene::MAX_TOML_BRACKETS {
         return Err(ExerciseError::Toml(format!("{brackets} brackets, more than {}", needlesim_scene::MAX_TOML_BRACKETS)));
     }
-    let f: ExerciseFile = toml::from_str(text).map_err(|e| ExerciseError::Toml(needlesim_scene::limit::toml_message(&e)))?;
+    let f: ExerciseFile = toml::from_str(text).map_err(|e| ExerciseError::Toml(needlesim_scene::limit::toml_message(&e, text)))?;
     if f.name.trim().is_empty() || f.name.len() > 128 {
         return Err(invalid("name", "must be 1 to 128 characters"));
     }

@@ -171,7 +171,14 @@ pub fn parse_ticks_csv(text: &str, file: &str, spec: &TrackerSpec) -> Result<(Ve
         };
         let t_s = num(0)?;
         if t_s <= prev_t {
-            return Err(line_err(line, format!("t_s = {t_s} does not increase (the row before has {prev_t})")));
+            return Err(line_err(
+                line,
+                format!(
+                    "t_s = {} does not increase (the row before has {})",
+                    needlesim_core::num::num(t_s),
+                    needlesim_core::num::num(prev_t)
+                ),
+            ));
         }
         prev_t = t_s;
         let tip = [num(1)?, num(2)?, num(3)?];

@@ -13,6 +13,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use needlesim_core::mesh::MeshLimits;
+use needlesim_core::num::num;
 use needlesim_core::sim::TargetParams;
 use needlesim_core::sim3::{Simulation3, Target3};
 use needlesim_offline::simulate3::{base_pose3, sim3_params};
@@ -47,13 +48,14 @@ pub enum ExerciseRunError {
     #[error("no trajectory: give --trajectory (exercise '{0}' ships none)")]
     NoTrajectory(String),
     /// A placement time after the trajectory's end.
-    #[error("placed at t = {t_s} s: after the trajectory's end at t = {end_s} s")]
+    #[error("placed at t = {} s: after the trajectory's end at t = {} s", num(*t_s), num(*end_s))]
     PlacementAfterEnd { t_s: f64, end_s: f64 },
     /// The simulation failed (too long a run, a failed step: the tick is named).
     #[error("{0}")]
     Simulation(String),
-    /// The expert run the exercise names (or `--expert`) cannot be read: the file and line named.
-    #[error("{0}")]
+    /// The expert run the exercise names (or `--expert`) cannot be read: the file and line named
+    /// (its words once: a chain printed whole does not repeat them).
+    #[error(transparent)]
     Expert(#[from] ExpertError),
 }
 
@@ -308,10 +310,14 @@ pub fn run_exercise_with(
 ) -> Result<ExerciseRun, ExerciseRunError> {
     let csv = trajectory_csv.or(ex.trajectory_csv.as_deref()).ok_or_else(|| ExerciseRunError::NoTrajectory(ex.name.clone()))?;
     let placed = placed_at_s.unwrap_or(&ex.placed_at_s);
+    // A time that is not finite would never be reached: "placed" would be silently not declared.
+    if let Some(&t) = placed.iter().find(|t| !t.is_finite()) {
+        return Err(ExerciseRunError::Target { key: "placed-at".into(), message: format!("{} is not a finite time (s)", num(t)) });
+    }
     if let Some(w) = placed.windows(2).find(|w| w[1] < w[0]) {
         return Err(ExerciseRunError::Target {
             key: "placed-at".into(),
-            message: format!("times must increase ({} after {})", w[1], w[0]),
+            message: format!("times must increase ({} after {})", num(w[1]), num(w[0])),
         });
     }
     if ex.dim == 2 {
@@ -391,7 +397,7 @@ pub fn run_exercise_with(
         };
         for k in 0..=last_k {
             let t_s = t0 + k as f64 / rate;
-            let fail = |e: &dyn std::fmt::Display| ExerciseRunError::Simulation(format!("tick {k} (t = {t_s} s): {e}"));
+            let fail = |e: &dyn std::fmt::Display| ExerciseRunError::Simulation(format!("tick {k} (t = {} s): {e}", num(t_s)));
             let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| fail(&e))?;
             sim.step(pose).map_err(|e| fail(&e))?;
             // One convergence policy with `simulate` (needlesim-offline): an exercise is scored
@@ -459,6 +465,23 @@ mod tests {
         // Both moved with the tissue: the error is not the distance to the undeformed centre.
         let rigid = crate::sample::dist3(a.tip_m, [0.05830222215594891, 0.027860619515673035, 0.0]);
         assert!((a.error_m - rigid).abs() > 1e-3, "error {} vs rigid {rigid}", a.error_m);
+    }
+
+    #[test]
+    fn issue_35_a_placement_time_that_is_not_finite_is_refused() {
+        let csv = include_str!("../../scenes/exercises/biopsy-2d.csv");
+        let text = "name = \"t\"\nscene = \"fig3-target\"\n[[targets]]\nscene_target = \"biopsy\"\ntolerance_m = 0.002\n";
+        let ex = parse_exercise(text, Path::new(".")).unwrap();
+        for (placed, want) in [
+            (vec![f64::NAN], "placed-at: NaN is not a finite time (s)"),
+            (vec![1.0, f64::INFINITY], "placed-at: inf is not a finite time (s)"),
+            (vec![2.0, 1e300, 1.0], "placed-at: times must increase (1 after 1e300)"),
+        ] {
+            let e = run_exercise(&ex, Some(csv), Some(&placed), 100_000, &MeshLimits::default()).unwrap_err().to_string();
+            assert_eq!(e, want);
+        }
+        let e = run_exercise(&ex, Some(csv), Some(&[1e300]), 100_000, &MeshLimits::default()).unwrap_err().to_string();
+        assert!(e.starts_with("placed at t = 1e300 s: after the trajectory's end at t = "), "{e}");
     }
 
     #[test]

@@ -9,8 +9,8 @@
 use needlesim_core::sim::StepOutput;
 use needlesim_core::sim3::StepOutput3;
 
-/// Most targets a sample carries (the 3D simulation's limit, `sim3::targets::MAX_TARGETS`).
-pub const MAX_SAMPLE_TARGETS: usize = 16;
+/// Most targets a sample carries (core's bound on a simulation's targets, 2D and 3D).
+pub const MAX_SAMPLE_TARGETS: usize = needlesim_core::sim::param_limits::MAX_TARGETS;
 
 /// A target in a sample: its displaced centre and the tip's distance to it.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

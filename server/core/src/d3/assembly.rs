@@ -21,8 +21,9 @@ use crate::material::Material;
 /// Errors in 3D material parameters, naming the region or element.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TetMaterialError {
-    /// Young's modulus is not a finite positive number.
-    #[error("{item}: Young's modulus E = {} Pa must be finite and > 0", crate::num::num(*young_modulus_pa))]
+    /// Young's modulus is not finite, positive and at most
+    /// [`crate::sim::param_limits::MAX_YOUNG_MODULUS_PA`] (the 2D bound).
+    #[error("{item}: Young's modulus E = {} Pa must be finite, > 0 and ≤ {:e} Pa", crate::num::num(*young_modulus_pa), crate::sim::param_limits::MAX_YOUNG_MODULUS_PA)]
     YoungModulus { item: String, young_modulus_pa: f64 },
     /// Poisson's ratio is outside (−1, 0.5) (ν = 0.5, incompressible, makes λ infinite).
     #[error("{item}: Poisson ratio ν = {} must be finite and in (−1, 0.5) in 3D (ν = 0.5 makes λ infinite)", crate::num::num(*poisson_ratio))]
@@ -35,7 +36,7 @@ pub enum TetMaterialError {
 /// Checks E and ν for 3D; `item` names the region or element in the error.
 pub fn validate_material(m: &Material, item: &str) -> Result<(), TetMaterialError> {
     let (e, nu) = (m.young_modulus_pa, m.poisson_ratio);
-    if !(e.is_finite() && e > 0.0) {
+    if !(e.is_finite() && e > 0.0 && e <= crate::sim::param_limits::MAX_YOUNG_MODULUS_PA) {
         return Err(TetMaterialError::YoungModulus { item: item.to_owned(), young_modulus_pa: e });
     }
     if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {

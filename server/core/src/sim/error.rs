@@ -14,7 +14,7 @@ pub enum SimError {
     InvalidParams(String),
     /// A step was commanded a pose with a NaN or infinite component; the state is unchanged
     /// (counted in [`super::SimStats::rejected_poses`]).
-    #[error("tick {tick}: the commanded base pose ({x_m}, {y_m}, {theta_rad}) is not finite; the pose was rejected and the state kept")]
+    #[error("tick {tick}: the commanded base pose ({}, {}, {}) is not finite; the pose was rejected and the state kept", crate::num::num(*x_m), crate::num::num(*y_m), crate::num::num(*theta_rad))]
     NonFinitePose { tick: u64, x_m: f64, y_m: f64, theta_rad: f64 },
     /// The tissue model failed computing a compliance column: in a step, for a node the
     /// prefetch had not cached, or in [`super::Simulation::prefetch_columns`].

@@ -92,7 +92,9 @@ impl SimParams {
     ///
     /// Errors: [`SimError::InvalidParams`] for the first invalid value (a non-finite pose, a
     /// non-positive rate, radius or step bound, a negative lookahead, a capacity or iteration
-    /// bound outside [`param_limits`], a target with a non-finite centre or negative radius).
+    /// bound outside [`param_limits`], more than [`param_limits::MAX_TARGETS`] targets, a
+    /// target's name empty, too long or repeated, a non-finite centre or a radius outside
+    /// 0..=[`param_limits::MAX_LENGTH_M`]).
     pub fn validate(&self) -> Result<(), SimError> {
         use crate::num::num;
         use param_limits::*;
@@ -152,9 +154,15 @@ impl SimParams {
         if let Some(v) = &self.viscoelastic {
             v.validate().map_err(SimError::InvalidParams)?;
         }
+        check_target_names(self.targets.iter().map(|t| t.name.as_str())).map_err(SimError::InvalidParams)?;
         for t in &self.targets {
-            if !(t.radius_m.is_finite() && t.radius_m >= 0.0) {
-                return bad(format!("target '{}': radius_m = {} must be finite and ≥ 0", t.name, num(t.radius_m)));
+            if !(t.radius_m.is_finite() && (0.0..=MAX_LENGTH_M).contains(&t.radius_m)) {
+                return bad(format!(
+                    "target '{}': radius_m = {} must be finite, ≥ 0 and ≤ {} m",
+                    t.name,
+                    num(t.radius_m),
+                    num(MAX_LENGTH_M)
+                ));
             }
             if !(t.center_m[0].is_finite() && t.center_m[1].is_finite()) {
                 return bad(format!("target '{}': center_m {:?} is not finite", t.name, t.center_m));
@@ -207,6 +215,54 @@ impl SimParams {
 /// these capacities, allocated before the first step; what does not fit is counted in
 /// [`super::SimStats`] (see [`super::SimStats::overflows`]), never dropped silently.
 pub mod param_limits {
+    /// Most targets a simulation carries, 2D or 3D (every live frame and tick record carries
+    /// each of them: the bound sizes both).
+    pub const MAX_TARGETS: usize = 16;
+    /// Longest name of a target (characters); names are non-empty and unique in a scene.
+    pub const MAX_NAME_CHARS: usize = 64;
+    /// Largest length of the physics a client may state (m): a needle's length, a target's
+    /// radius, the plane's thickness, a friction peak's width. Far beyond any needle or
+    /// phantom; a length past it only disables the physics (a step over a 10¹⁰⁰ m needle).
+    pub const MAX_LENGTH_M: f64 = 10.0;
+    /// Largest Young's modulus of a tissue region (Pa), 2D and 3D: a thousand times steel's.
+    pub const MAX_YOUNG_MODULUS_PA: f64 = 1e12;
+    /// Largest magnitude of a region's needle parameters (friction N/m, forces N, ratios,
+    /// damping N·s/m², fracture toughness J/m²): tissues need at most tens.
+    pub const MAX_REGION_VALUE: f64 = 1e6;
+
+    /// The target names, in order: at most [`MAX_TARGETS`], each non-empty and at most
+    /// [`MAX_NAME_CHARS`] characters, no two alike. The message names the target by index and
+    /// quotes its name clipped to [`MAX_NAME_CHARS`].
+    pub fn check_target_names<'a>(names: impl ExactSizeIterator<Item = &'a str>) -> Result<(), String> {
+        let n = names.len();
+        if n > MAX_TARGETS {
+            return Err(format!("targets: {n} given, at most {MAX_TARGETS}"));
+        }
+        let mut seen: Vec<&str> = Vec::with_capacity(n);
+        for (k, name) in names.enumerate() {
+            check_name(&format!("targets[{k}]"), name)?;
+            if let Some(first) = seen.iter().position(|o| *o == name) {
+                return Err(format!("targets[{k}]: the name '{name}' is already used by targets[{first}]; target names must be unique"));
+            }
+            seen.push(name);
+        }
+        Ok(())
+    }
+
+    /// A name of a scene's item (`what`, e.g. `targets[3]`): non-empty, at most [`MAX_NAME_CHARS`]
+    /// characters (the message quotes it clipped).
+    pub fn check_name(what: &str, name: &str) -> Result<(), String> {
+        if name.is_empty() {
+            return Err(format!("{what}: the name is empty"));
+        }
+        let n = name.chars().count();
+        if n > MAX_NAME_CHARS {
+            let head: String = name.chars().take(MAX_NAME_CHARS).collect();
+            return Err(format!("{what}: the name '{head}…' has {n} characters, at most {MAX_NAME_CHARS}"));
+        }
+        Ok(())
+    }
+
     /// Largest working-set capacity (the hybrid matrix is its square: 4096² × 8 B = 134 MB).
     pub const MAX_NEEDLE_NODES: usize = 4096;
     /// Largest working-set capacity with a flexible needle (its coupling is dense too).
@@ -271,4 +327,90 @@ pub mod param_limits {
     /// ([`crate::sim::StepOutput::shape_passes_capped`], counted in
     /// [`crate::sim::SimStats::shape_capped_ticks`]).
     pub const SHAPE_PASSES: usize = 6;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::param_limits::*;
+    use super::*;
+    use crate::fixtures::{PHANTOM_MATERIAL, PHANTOM_PLANE, box_phantom3_params, phantom_params};
+    use crate::material::{Material, MaterialError, PlaneModel};
+    use crate::needle::RigidNeedle;
+    use crate::sim3::Target3;
+
+    fn params() -> SimParams {
+        phantom_params(NeedleShape::Rigid(RigidNeedle { length_m: 0.1 }))
+    }
+
+    fn target(name: &str) -> TargetParams {
+        TargetParams { name: name.to_owned(), center_m: [0.05, 0.05], radius_m: 0.002 }
+    }
+
+    fn refusal(p: &SimParams) -> String {
+        match p.validate() {
+            Err(SimError::InvalidParams(m)) => m,
+            other => panic!("accepted or another error: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn issue_35_targets_are_bounded_in_number_and_name() {
+        let names: Vec<String> = (0..=MAX_TARGETS).map(|k| format!("t{k}")).collect();
+        let mut p = params();
+        p.targets = names[..MAX_TARGETS].iter().map(|n| target(n)).collect();
+        p.validate().unwrap();
+        p.targets = names.iter().map(|n| target(n)).collect();
+        assert_eq!(refusal(&p), format!("targets: {} given, at most {MAX_TARGETS}", MAX_TARGETS + 1));
+        p.targets = vec![target("a"), target("")];
+        assert_eq!(refusal(&p), "targets[1]: the name is empty");
+        let long = "é".repeat(100_000);
+        p.targets = vec![target(&"n".repeat(MAX_NAME_CHARS)), target(&long)];
+        let m = refusal(&p);
+        assert!(m.starts_with("targets[1]: the name 'éé") && m.ends_with("…' has 100000 characters, at most 64"), "{m}");
+        assert!(m.chars().count() < 150, "{m}");
+        p.targets = vec![target("a"), target("b"), target("a")];
+        assert_eq!(refusal(&p), "targets[2]: the name 'a' is already used by targets[0]; target names must be unique");
+        p.targets = vec![TargetParams { radius_m: 11.0, ..target("far") }];
+        assert_eq!(refusal(&p), "target 'far': radius_m = 11 must be finite, ≥ 0 and ≤ 10 m");
+        // 3D: one bound.
+        assert_eq!(crate::sim3::MAX_TARGETS, MAX_TARGETS);
+        let mut p3 = box_phantom3_params([0.05, 0.05, 0.1], 0.005);
+        p3.targets = vec![Target3 { centre_m: [0.05; 3], radius_m: 1e300, name_idx: 0 }];
+        assert_eq!(p3.validate(1).unwrap_err(), "targets[0]: radius_m = 1e300 must be finite, > 0 and ≤ 10 m");
+    }
+
+    #[test]
+    fn issue_35_physical_bounds_that_disable_the_physics_are_refused() {
+        let mut p = params();
+        p.needle = NeedleShape::Rigid(RigidNeedle { length_m: 10.0 });
+        p.validate().unwrap();
+        p.needle = NeedleShape::Rigid(RigidNeedle { length_m: 1e300 });
+        assert_eq!(refusal(&p), "needle length 1e300 m must be finite, > 0 and ≤ 10 m");
+        let mut p3 = box_phantom3_params([0.05, 0.05, 0.1], 0.005);
+        p3.needle_length_m = 10.5;
+        assert_eq!(p3.validate(1).unwrap_err(), "needle_length_m = 10.5 must be ≤ 10 m");
+        // Region magnitudes, 2D (the simulation) and 3D alike.
+        let region = RegionNeedleParams { friction_n_per_m: 1e7, ..RegionNeedleParams::default() };
+        let m = region.validate("tissue").unwrap_err();
+        assert_eq!(m, "region tissue: friction_n_per_m = 10000000 must be finite and ≥ 0, at most 1e6");
+        let mut p3 = box_phantom3_params([0.05, 0.05, 0.1], 0.005);
+        p3.regions = vec![RegionNeedleParams { cutting_force_n: 2e6, ..RegionNeedleParams::default() }];
+        assert!(p3.validate(1).unwrap_err().contains("cutting_force_n = 2000000 must be finite and ≥ 0, at most 1e6"));
+        let wide = RegionNeedleParams { tip_peak_width_m: 20.0, ..RegionNeedleParams::default() };
+        assert!(wide.validate("r").unwrap_err().contains("tip_peak_width_m = 20 must be finite and > 0, at most 10 m"));
+        RegionNeedleParams { friction_n_per_m: 1e6, ..RegionNeedleParams::default() }.validate("r").unwrap();
+        // Young's modulus, 2D and 3D through one constant; the plane's thickness.
+        let steel = Material { young_modulus_pa: MAX_YOUNG_MODULUS_PA, ..PHANTOM_MATERIAL };
+        steel.validate(PHANTOM_PLANE, "r").unwrap();
+        crate::d3::assembly::validate_material(&steel, "r").unwrap();
+        let hard = Material { young_modulus_pa: 1e13, ..PHANTOM_MATERIAL };
+        let e = hard.validate(PHANTOM_PLANE, "region r").unwrap_err();
+        assert_eq!(e.to_string(), "region r: Young's modulus E = 10000000000000 Pa must be finite, > 0 and ≤ 1e12 Pa");
+        let e = crate::d3::assembly::validate_material(&hard, "region r").unwrap_err();
+        assert_eq!(e.to_string(), "region r: Young's modulus E = 10000000000000 Pa must be finite, > 0 and ≤ 1e12 Pa");
+        let thick = PlaneModel::Strain { thickness_m: 1e300 };
+        assert_eq!(thick.validate(), Err(MaterialError::Thickness { thickness_m: 1e300 }));
+        assert_eq!(thick.validate().unwrap_err().to_string(), "thickness 1e300 m must be finite, > 0 and ≤ 10 m");
+        PlaneModel::Stress { thickness_m: MAX_LENGTH_M }.validate().unwrap();
+    }
 }

@@ -143,6 +143,10 @@ impl Sim3Params {
             if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("{name} = {} must be finite and > 0", crate::num::num(v))) }
         };
         pos("needle_length_m", self.needle_length_m)?;
+        let max_len = crate::sim::param_limits::MAX_LENGTH_M;
+        if self.needle_length_m > max_len {
+            return Err(format!("needle_length_m = {} must be ≤ {} m", crate::num::num(self.needle_length_m), crate::num::num(max_len)));
+        }
         pos("spacing_m", self.spacing_m)?;
         pos("tick_rate_hz", self.tick_rate_hz)?;
         pos("max_base_step_m", self.max_base_step_m)?;
@@ -213,8 +217,13 @@ impl Sim3Params {
             if !t.centre_m.iter().all(|v| v.is_finite()) {
                 return Err(format!("targets[{k}]: centre_m = {:?} must be finite", t.centre_m));
             }
-            if !(t.radius_m.is_finite() && t.radius_m > 0.0) {
-                return Err(format!("targets[{k}]: radius_m = {} must be finite and > 0", crate::num::num(t.radius_m)));
+            let max_len = crate::sim::param_limits::MAX_LENGTH_M;
+            if !(t.radius_m.is_finite() && t.radius_m > 0.0 && t.radius_m <= max_len) {
+                return Err(format!(
+                    "targets[{k}]: radius_m = {} must be finite, > 0 and ≤ {} m",
+                    crate::num::num(t.radius_m),
+                    crate::num::num(max_len)
+                ));
             }
         }
         Ok(())

@@ -38,7 +38,7 @@ use super::{Point, SimError3, Simulation3, dist, dot, sub};
 
 /// Capacity of the target list ([`Sim3Params::targets`](super::Sim3Params::targets)) and of
 /// [`TargetsOut3`].
-pub const MAX_TARGETS: usize = 16;
+pub const MAX_TARGETS: usize = crate::sim::param_limits::MAX_TARGETS;
 
 /// A target: a sphere of the tissue, given in the reference configuration.
 #[derive(Debug, Clone, Copy, PartialEq)]
