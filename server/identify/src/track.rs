@@ -847,7 +847,11 @@ mod tests {
             })
             .collect();
         let mut calls = Vec::new();
-        let tr = track_frames(&frames, &params(), &mut |d, n| calls.push((d, n))).unwrap();
+        let tr = track_frames(&frames, &params(), &mut |d, n| {
+            calls.push((d, n));
+            std::ops::ControlFlow::Continue(())
+        })
+        .unwrap();
         assert_eq!(calls.last(), Some(&(5, 5)));
         assert_eq!(tr.n_markers, 30);
         for (f, pts) in truth.iter().enumerate() {

@@ -74,9 +74,9 @@ fn issue_35_every_scene_number_of_1e300_is_refused_in_a_short_message() {
             for (x, written) in [(1e300, "1e300"), (-1e300, "-1e300"), (1e-300, "1e-300")] {
                 let t = with_sentinel.replace("7777777.25", written);
                 let r = if name.ends_with("-3d") {
-                    parse_scene3d(&t, &dir, &limits).map(|_| ())
+                    parse_scene3d(&t, &dir, limits).map(|_| ())
                 } else {
-                    parse_scene(&t, &dir, &limits).map(|_| ())
+                    parse_scene(&t, &dir, limits).map(|_| ())
                 };
                 let Err(e) = r else { continue };
                 refused += 1;
@@ -98,9 +98,9 @@ fn issue_35_a_tick_rate_of_1e300_is_named_as_1e300() {
         assert!(text.contains(old), "{name}");
         let text = text.replace(old, "tick_rate_hz = 1e300\n");
         let e = if name.ends_with("-3d") {
-            parse_scene3d(&text, &dir, &limits).map(|_| ()).unwrap_err()
+            parse_scene3d(&text, &dir, limits).map(|_| ()).unwrap_err()
         } else {
-            parse_scene(&text, &dir, &limits).map(|_| ()).unwrap_err()
+            parse_scene(&text, &dir, limits).map(|_| ()).unwrap_err()
         };
         let m = format!("{e:#}");
         assert!(m.contains("tick_rate_hz = 1e300: must be between 100 and 10000"), "{name}: {m}");
