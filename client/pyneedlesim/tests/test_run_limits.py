@@ -93,8 +93,12 @@ def test_issue_35_a_max_ticks_no_u64_holds_raises_the_packages_error_naming_it()
             call(-1)
         with pytest.raises(needlesim.TrajectoryError, match=r"^max_ticks = 18446744073709551616 is over the limit of"):
             call(2**64)
+        # A long int is quoted clipped; one past Python's 4300-digit str() limit is described.
+        # (Made by arithmetic: int("1" * 5000) is itself refused by Python.)
         with pytest.raises(needlesim.TrajectoryError, match=r"^max_ticks = 1{64}… is over the limit of"):
-            call(int("1" * 5000))
+            call(10**1000 // 9)
+        with pytest.raises(needlesim.TrajectoryError, match=r"^max_ticks = an int of more than 4300 digits is over the limit of"):
+            call(10**5000 // 9)
         # Not an int at all: Python's TypeError naming the argument, as before.
         with pytest.raises(TypeError, match="max_ticks"):
             call("ten")
