@@ -2305,7 +2305,10 @@ export const SessionService: GenService<{
     output: typeof SessionStatsSchema;
   },
   /**
-   * Closes a session. Controller token.
+   * Closes a session. Controller token. Every stream of the session (Observe, Control, Control3,
+   * and training.proto's WatchScore, WatchUltrasound, GetReport) then ends at once with NOT_FOUND
+   * "session <id> was closed", as any later call on the session; messages still in flight come
+   * first.
    *
    * @generated from rpc needlesim.v1.SessionService.CloseSession
    */
@@ -2343,7 +2346,7 @@ export const ControlService: GenService<{
    * FAILED_PRECONDITION, unless its first message sets `take_over`: the holder is then revoked
    * and a revoked Control stream ends with ABORTED. A request waits up to 1 s for a stream that
    * is ending. (A session's haptic device over shared memory still wins over gRPC poses while
-   * its poses are fresh.)
+   * its poses are fresh.) When the session closes the stream ends with NOT_FOUND (CloseSession).
    *
    * @generated from rpc needlesim.v1.ControlService.Control
    */
@@ -2419,7 +2422,8 @@ export const ControlService: GenService<{
  */
 export const ObserveService: GenService<{
   /**
-   * Frames of a session. Observer (or controller) token.
+   * Frames of a session. Observer (or controller) token. Ends with NOT_FOUND when the session
+   * closes (CloseSession).
    *
    * @generated from rpc needlesim.v1.ObserveService.Observe
    */
