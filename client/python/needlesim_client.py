@@ -82,6 +82,15 @@ def load_stubs(stubs_dir: Optional[str] = None) -> None:
         ) from e
 
 
+class SessionFaultedError(RuntimeError):
+    """The session driven faulted (its simulation failed: SessionStats.faulted); `responses`
+    holds the ControlResponses received, the faulted tick last."""
+
+    def __init__(self, message: str, responses: list):
+        super().__init__(message)
+        self.responses = responses
+
+
 @dataclasses.dataclass
 class Session:
     """A session created by this client, with its tokens."""
@@ -353,6 +362,13 @@ class NeedlesimClient:
             for r in call:
                 seqs["used"] = max(seqs["used"], r.pose_seq)
                 out.append(r)
+                if r.faulted:
+                    # The session's last tick: its force is zero and it steps no more.
+                    raise SessionFaultedError(
+                        f"session {session_id} faulted at tick {r.tick} (t {r.time_s:.3f} s): {r.fault}; "
+                        "its force is zero and it steps no more (close it and start a new one)",
+                        out,
+                    )
         except grpc.RpcError as e:
             if e.code() != grpc.StatusCode.CANCELLED:
                 raise

@@ -962,7 +962,14 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
         tokio::select! {
             done = &mut sender => break done.map_err(|e| anyhow!("{what}: the sender task failed: {e}"))?,
             r = responses.next() => match r {
-                Some(Ok(r)) => used = used.max(on_response(r)),
+                Some(Ok(r)) => {
+                    // The faulted tick is the session's last: nothing more will move.
+                    let faulted = r.faulted;
+                    used = used.max(on_response(r));
+                    if faulted {
+                        break (0, false);
+                    }
+                }
                 Some(Err(s)) => return Err(c.status_error(&what, Role::Controller, Some(&id), &s)),
                 None => bail!("{what}: the server ended the control stream (session closed?)"),
             },
@@ -987,6 +994,14 @@ async fn drive(c: &Conn, a: &DriveArgs, traj: AnyTrajectory) -> Result<()> {
             bail!("cannot write {}: {e}", p.display());
         }
         f.flush().map_err(|e| anyhow!("cannot write {}: {e}", p.display()))?;
+    }
+    if let Some(r) = last.as_ref().filter(|r| r.faulted) {
+        bail!(
+            "{what}: the session faulted at tick {} (t {:.3} s): {}; its force is zero and it steps no more (close it and start a new one)",
+            r.tick,
+            r.time_s,
+            r.fault
+        );
     }
     latencies_ms.sort_by(f64::total_cmp);
     if interrupted {

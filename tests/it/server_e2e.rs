@@ -815,3 +815,87 @@ async fn issue_19_iteration_caps_are_counted_in_get_stats_and_metrics() {
     assert!(!faults[1].0, "{faults:?}");
     assert!(!server.stderr.lock().unwrap().contains("panicked"));
 }
+
+/// Issue 35: a session that faults while `needlesim drive` drives it ends the drive with an
+/// error naming the fault and its tick (the CLI exited 0 with "final force 0.00000 N"); the
+/// Control stream ends with the faulted tick instead of waiting for ticks a faulted session never
+/// makes; and a Control stream opened on the faulted session is FAILED_PRECONDITION naming the
+/// fault.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_session_that_faults_under_drive_fails_the_drive_and_ends_its_control_stream() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let scenes = needlesim_tests::repo_root().join("server/scenes");
+    let scene = std::fs::read_to_string(scenes.join("fig4-steering.toml")).unwrap();
+    assert!(scene.contains("friction_n_per_m = 10\n"));
+    let scene = scene.replace("friction_n_per_m = 10\n", "friction_n_per_m = 1e4\n");
+    let trajectory = scenes.join("fig4-steering.csv");
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    // Where the sticky needle stops converging depends on the path's timing: a few attempts.
+    let mut faulted = None;
+    for attempt in 0..4 {
+        let created = sessions
+            .create_session(pb::CreateSessionRequest {
+                scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(scene.clone())) }),
+                tick_rate_hz: 1000.0,
+                ..Default::default()
+            })
+            .await
+            .expect("the session is created")
+            .into_inner();
+        let sid = created.session.as_ref().unwrap().session_id.clone();
+        let (url, tok, traj) = (server.url(), created.controller_token.clone(), trajectory.clone());
+        let id = sid.clone();
+        let out = tokio::task::spawn_blocking(move || {
+            needlesim_tests::run(std::process::Command::new(needlesim_tests::bin("needlesim")).args([
+                "--server",
+                &url,
+                "--token",
+                &tok,
+                "drive",
+                &id,
+                "--trajectory",
+                traj.to_str().unwrap(),
+            ]))
+        })
+        .await
+        .unwrap();
+        let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        let st = sessions
+            .get_stats(with_token(pb::GetSessionRequest { session_id: sid.clone() }, &created.observer_token))
+            .await
+            .expect("GetStats")
+            .into_inner();
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        println!("attempt {attempt}: drive {}, faulted {}:\n{stdout}{stderr}", out.status, st.faulted);
+        if st.faulted {
+            assert!(!out.status.success(), "the session faulted ({}) and drive exited 0:\n{stdout}", st.fault);
+            assert!(stderr.contains("faulted at tick") && stderr.contains(&st.fault), "{stderr}\n(fault: {})", st.fault);
+            faulted = Some((created, st));
+            break;
+        }
+        assert!(out.status.success(), "attempt {attempt}: drive failed without a fault: {stderr}");
+        println!("attempt {attempt}: no fault; another");
+        let req = with_token(pb::CloseSessionRequest { session_id: sid }, &created.controller_token);
+        sessions.close_session(req).await.expect("close");
+    }
+    let Some((created, st)) = faulted else { panic!("no session faulted in 4 drives") };
+    let sid = created.session.as_ref().unwrap().session_id.clone();
+    // A Control stream on the faulted session: refused at once, naming the fault.
+    let mut ctl = pb::control_service_client::ControlServiceClient::new(ch.clone());
+    let first = pb::ControlRequest {
+        session_id: sid.clone(),
+        base: Some(pb::Pose2 { x_m: 0.05, y_m: 0.21, theta_rad: DOWN }),
+        seq: 1,
+        ..Default::default()
+    };
+    let opened =
+        tokio::time::timeout(Duration::from_secs(10), ctl.control(with_token(tokio_stream::iter(vec![first]), &created.controller_token)))
+            .await
+            .expect("the Control call answers");
+    let e = opened.expect_err("a Control stream on a faulted session is refused");
+    assert_eq!(e.code(), Code::FailedPrecondition, "{}", e.message());
+    assert!(e.message().contains(&st.fault), "{}", e.message());
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}

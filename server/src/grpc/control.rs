@@ -236,6 +236,10 @@ async fn control_stream<M: ControlMessage>(
         Some(p) => p,
         None => return Err(convert::checked_pose2_for(None, s.dimension()).map_err(Status::from).unwrap_err()),
     };
+    // A faulted session steps no more: a stream opened on it would wait for ticks forever.
+    if let Some(e) = faulted(&s) {
+        return Err(e);
+    }
     // One controller at a time: this stream holds the session's control lease until it ends.
     let mut lease = s.control.acquire_stream(&client, first.take_over()).await.map_err(|busy| control_refused(&s, busy))?;
     if first.take_over() {
@@ -248,16 +252,18 @@ async fn control_stream<M: ControlMessage>(
         write_pose(&s, pose, first.seq().max(1), first.client_time_ns());
     });
     let (tx, rx) = mpsc::channel(256);
-    // When the controller closes its side, the response stream ends too.
-    let client_done = Arc::new(std::sync::atomic::AtomicBool::new(false));
+    // When the controller closes its side, the response stream ends too: the task reading the
+    // poses holds `client_done`, whose drop wakes the task writing the responses (which may
+    // wait for a tick that never comes: a faulted session makes none).
+    let (client_done, mut client_gone) = tokio::sync::oneshot::channel::<()>();
     // Poses in: latest value wins; a malformed message ends the stream with its reason, and so
     // does a take-over by another client.
     let s_in = s.clone();
     let tx_err = tx.clone();
-    let done_in = client_done.clone();
+    let done_in = client_done;
     let closed_in = s.closed();
     tokio::spawn(async move {
-        let _done = SetOnDrop(done_in);
+        let _done = done_in;
         let mut seq = first.seq().max(1);
         tokio::pin!(closed_in);
         loop {
@@ -306,26 +312,39 @@ async fn control_stream<M: ControlMessage>(
     let mut ticks = s.all_ticks.subscribe();
     let names = s.target_names.clone();
     let closed_out = s.closed();
+    let s_out = s.clone();
     tokio::spawn(async move {
         tokio::pin!(closed_out);
+        // Faulted since the check above, before `ticks` subscribed: its last tick was missed.
+        if let Some(e) = faulted(&s_out) {
+            let _ = tx.send(Err(e)).await;
+            return;
+        }
         loop {
-            if client_done.load(Ordering::Relaxed) {
-                return;
-            }
             // Ends at the session's close (whose `all_ticks` sender lives as long as the session:
-            // no `Closed` comes while anything holds it) and when the response stream is dropped.
+            // no `Closed` comes while anything holds it), when the response stream is dropped,
+            // and when the controller closed its side.
             let tick = tokio::select! {
                 () = &mut closed_out => return,
                 () = tx.closed() => return,
+                _ = &mut client_gone => return,
                 t = ticks.recv() => t,
             };
             match tick {
                 Ok(rec) => {
-                    if tx.send(Ok(convert::control_response(&rec, &names))).await.is_err() {
+                    // The tick that faulted is the last response: the session steps no more.
+                    let last = rec.fault.is_some();
+                    if tx.send(Ok(convert::control_response(&rec, &names))).await.is_err() || last {
                         return;
                     }
                 }
-                Err(tokio::sync::broadcast::error::RecvError::Lagged(_)) => continue,
+                Err(tokio::sync::broadcast::error::RecvError::Lagged(_)) => {
+                    // The skipped ticks may have held the faulted one.
+                    if let Some(e) = faulted(&s_out) {
+                        let _ = tx.send(Err(e)).await;
+                        return;
+                    }
+                }
                 Err(tokio::sync::broadcast::error::RecvError::Closed) => return,
             }
         }
@@ -358,10 +377,13 @@ fn control_refused(s: &Session, busy: needlesim_session::control_lease::Busy) ->
 }
 
 /// Sets its flag when dropped (when the task holding it ends, however it ends).
-struct SetOnDrop(Arc<std::sync::atomic::AtomicBool>);
 
-impl Drop for SetOnDrop {
-    fn drop(&mut self) {
-        self.0.store(true, Ordering::Relaxed);
-    }
+/// FAILED_PRECONDITION naming the fault, if the session faulted (it steps no more).
+fn faulted(s: &Session) -> Option<Status> {
+    let fault = s.counters.fault()?;
+    Some(Status::failed_precondition(format!(
+        "session {} faulted ({}): it steps no more; close it and start a new one",
+        s.id,
+        fault.message()
+    )))
 }
