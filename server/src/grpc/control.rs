@@ -376,8 +376,6 @@ fn control_refused(s: &Session, busy: needlesim_session::control_lease::Busy) ->
     }
 }
 
-/// Sets its flag when dropped (when the task holding it ends, however it ends).
-
 /// FAILED_PRECONDITION naming the fault, if the session faulted (it steps no more).
 fn faulted(s: &Session) -> Option<Status> {
     let fault = s.counters.fault()?;
