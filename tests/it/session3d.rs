@@ -64,9 +64,10 @@ async fn cube_at_1khz_with_50_observers_and_a_logger_matches_simulate() {
             let mut stream = c.observe(req).await.expect("observe").into_inner();
             let (mut frames, mut last, mut min_uz) = (0u64, None, 0.0f64);
             // The surface field comes from a niced thread, a few a second, fewer on a loaded
-            // machine (issue 36): the observer that asks for it waits up to 20 s more for one.
+            // machine (issue 36; none in 25 s with two builds and three fuzzers beside the
+            // test): the observer that asks for it waits up to 90 s more for one (a hang guard).
             let end = Instant::now() + Duration::from_secs_f64(secs + 0.5);
-            let field_end = end + Duration::from_secs(if k == 0 { 20 } else { 0 });
+            let field_end = end + Duration::from_secs(if k == 0 { 90 } else { 0 });
             loop {
                 let until = if Instant::now() < end || min_uz < 0.0 { end } else { field_end };
                 let Ok(Some(Ok(f))) = tokio::time::timeout_at(until.into(), stream.next()).await else { break };

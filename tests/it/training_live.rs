@@ -194,9 +194,19 @@ async fn run_exercise_live(exercise: &str, dim: usize) {
                         Some(Ok(img)) => got.push(img),
                         _ => return got,
                     },
-                    _ = &mut stop_rx => return got,
+                    _ = &mut stop_rx => break,
                 }
             }
+            // The images come from a niced renderer, fewer a second with a build beside the
+            // test: at the stop, the stream goes on until it has shown 10 (a hang guard of 60 s,
+            // not a rate; the exercise has ended, the session still renders its last state).
+            let until = tokio::time::Instant::now() + Duration::from_secs(60);
+            while got.len() < 10
+                && let Ok(Some(Ok(img))) = tokio::time::timeout_at(until, stream.next()).await
+            {
+                got.push(img);
+            }
+            got
         })
     };
     // 3D: the probe moves 4 mm off the needle's plane, beyond the beam's half-thickness, so the
