@@ -283,6 +283,26 @@ impl ServerState {
         Ok(self.register(slot, s))
     }
 
+    /// Whether a recording could start now (`--max-recordings`, `--max-recordings-mb`): checked
+    /// before a create with `record` does any work, so that a full directory costs nothing and
+    /// starts no session (issue 35). RESOURCE_EXHAUSTED naming the flag, as StartRecording.
+    pub(crate) fn check_recording_room(&self) -> Result<(), Status> {
+        let dir = self.data_dir.join("recordings");
+        // Admitted and given back at once: the recording's own start admits again.
+        let probe = self.recordings_quota.admit(&dir, crate::recording::START_BYTES);
+        probe.map(drop).map_err(|e| Status::from(ApiError::from(&crate::recording::RecordingError::Quota(e))))
+    }
+
+    /// Undoes a create that failed after its session was registered (a recording that could not
+    /// start): the session leaves the registry and its exercise's (no report: the exercise never
+    /// began for the client, who got no token) and is closed. Blocking (joins its threads).
+    pub(crate) fn discard_session(&self, s: &Arc<Session>) {
+        self.sessions.write().expect("sessions lock").remove(&s.id);
+        crate::training_live::discard(&self.training, &s.id);
+        s.close();
+        tracing::info!(session = %s.id, "session discarded: its create failed");
+    }
+
     /// Registers a started session and frees its reservation.
     pub(crate) fn register(&self, mut slot: SessionSlot, s: Arc<Session>) -> Arc<Session> {
         {
@@ -356,21 +376,10 @@ pub struct Api {
     pub state: Arc<ServerState>,
 }
 
-/// Loads (parses, meshes, factorises) a scene off the async runtime; a scene over the mesh or
-/// memory limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field
+/// Loads (parses, meshes, factorises) a session's scene, 2D or 3D
+/// ([`convert::session_scene_from_pb`]), off the async runtime; a scene over the mesh, memory or
+/// TOML size limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field
 /// (`status::ApiError::from_chain`).
-pub(crate) async fn load_scene_from_pb(
-    src: Option<pb::SceneSource>,
-    limits: needlesim_scene::SceneLimits,
-) -> Result<needlesim_scene::Scene, Status> {
-    tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
-        .await
-        .map_err(|e| Status::internal(format!("scene task: {e}")))?
-        .map_err(|e| status_of("scene", &e))
-}
-
-/// Loads a session's scene, 2D or 3D ([`convert::session_scene_from_pb`]), off the async runtime,
-/// with the statuses of [`load_scene_from_pb`].
 pub(crate) async fn load_session_scene_from_pb(
     src: Option<pb::SceneSource>,
     limits: needlesim_scene::SceneLimits,
