@@ -803,6 +803,29 @@ mod tests {
         needlesim_scene::load_scene("fig3-target", &MeshLimits::default()).unwrap()
     }
 
+    /// Issue 35 (hostile pass, finding 5): a refused request's numbers are written compactly
+    /// (1e300, not 301 digits), wherever the message quotes them.
+    #[test]
+    fn issue_35_refused_plan_numbers_are_written_compactly() {
+        let scene = fig3();
+        let refused = |r: PlanRequest| format!("{:#}", validate(&scene, &r).err().expect("refused"));
+        let req = |entry_m, angles_deg, speed_m_s| PlanRequest { target: "biopsy".into(), entry_m, angles_deg, speed_m_s };
+        for (r, want) in [
+            (req(None, Some([1e300, -1e300]), None), "angles_deg: the range [1e300, -1e300] is empty"),
+            (req(None, Some([-1e300, 1e300]), None), "angles_deg: the range [-1e300, 1e300] spans more than 360°"),
+            (
+                req(Some([[1e300, 1e300], [1e300, 1e300]]), None, None),
+                "entry: the segment's two points (1e300, 1e300) and (1e300, 1e300) coincide",
+            ),
+            (req(Some([[0.0, 0.06], [1e300, 0.06]]), None, None), "of the entry segment (0, 0.06)–(1e300, 0.06) is outside the mesh"),
+            (req(None, None, Some(1e300)), "speed_mm_s = 1e303: must be > 0"),
+            (req(None, None, Some(-1e-300)), "speed_mm_s = -1e-297: must be > 0"),
+        ] {
+            let e = refused(r);
+            assert!(e.contains(want) && e.len() < 300, "{e}");
+        }
+    }
+
     #[test]
     fn the_example_parses_and_the_baseline_is_the_scenes_own_axis() {
         let scene = fig3();
