@@ -796,7 +796,7 @@ mod tests {
         let e = error(old, &format!("description = \"{}\"", "d".repeat(5000)));
         assert!(e.starts_with("description: 'ddd") && e.ends_with("has 5000 characters, at most 1024") && e.len() < 200, "{e}");
         let big = format!("{}\n# {}\n", small_cube("dim = 3", "dim = 3"), "x".repeat(crate::MAX_SCENE_TOML_BYTES));
-        let e = parse(&big, None).err().expect("over the size limit");
+        let e = parse(&big, None).expect_err("over the size limit");
         assert!(e.downcast_ref::<SizeLimit>().is_some(), "{e:#}");
         assert!(format!("{e:#}").contains("over the limit of 262144 bytes"), "{e:#}");
     }
