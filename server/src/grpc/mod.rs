@@ -389,3 +389,32 @@ pub(crate) async fn load_session_scene_from_pb(
         .map_err(|e| Status::internal(format!("scene task: {e}")))?
         .map_err(|e| status_of("scene", &e))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 35 (hostile pass, finding 1): a create that fails after its session was registered
+    /// (a recording that could not start) is undone whole: the session and its exercise leave
+    /// the registries, its `--max-sessions` place is free again, and no report is written.
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn issue_35_a_discarded_session_leaves_nothing_behind() {
+        let dir = std::env::temp_dir().join(format!("needlesim-discard-{}", std::process::id()));
+        let state = ServerState::new(ServerLimits { max_sessions: 1, ..Default::default() }, dir.clone());
+        let st = state.clone();
+        let made = tokio::task::spawn_blocking(move || crate::training_service::create_exercise_session(&st, "biopsy-2d", 0.0, false))
+            .await
+            .unwrap()
+            .unwrap();
+        assert!(state.reserve_session_slot().is_err(), "the server is full");
+        let (st, s) = (state.clone(), made.session.clone());
+        tokio::task::spawn_blocking(move || st.discard_session(&s)).await.unwrap();
+        assert!(state.sessions.read().unwrap().is_empty());
+        assert!(crate::training_live::exercise_of(&state.training, &made.session.id).is_none());
+        assert!(made.exercise.closed.load(Ordering::Acquire));
+        assert!(state.reserve_session_slot().is_ok(), "its place is free again");
+        let reports = dir.join("reports");
+        assert!(!reports.exists() || reports.read_dir().unwrap().next().is_none(), "no report for a create that failed");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
