@@ -675,6 +675,15 @@ pub fn authorize_pose<T>(registry: &Registry, req: &tonic::Request<T>, s: &Sessi
     }
 }
 
+/// A create that failed: the session's exercise leaves the registry without a report.
+pub fn discard(registry: &Registry, session_id: &str) {
+    let ex = registry.write().expect("training registry lock").remove(session_id);
+    if let Some(ex) = ex {
+        ex.closed.store(true, Ordering::Release);
+        ex.changed();
+    }
+}
+
 /// The session closes: its exercise ends (report written) and leaves the registry. Blocking.
 pub fn on_close(registry: &Registry, data_dir: &Path, reports: &Arc<crate::quota::DirQuota>, s: &Session) {
     let ex = registry.write().expect("training registry lock").remove(&s.id);

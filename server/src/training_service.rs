@@ -41,6 +41,9 @@ pub fn create_exercise_session(
         let names: Vec<&str> = EXERCISES.iter().map(|e| e.0).collect();
         return Err(Status::invalid_argument(format!("exercise: '{}' is not a shipped exercise ({})", quote(name), names.join(", "))));
     }
+    // The session limit is checked and a place reserved first, in one step (as CreateSession):
+    // a create on a full server is refused before the exercise is loaded, meshed or factorised.
+    let slot = state.reserve_session_slot()?;
     let ex = load_exercise(name).map_err(|e| Status::internal(format!("shipped exercise {name}: {e}")))?;
     let limits = state.limits.mesh;
     let check_rate = |scene_rate: f64| {
@@ -58,14 +61,12 @@ pub fn create_exercise_session(
     let (s, spec, targets, probe) = if ex.dim == 2 {
         let p = prepare_2d(&ex, &limits).map_err(prepare_err)?;
         let rate = check_rate(p.scene.params.tick_rate_hz)?;
-        let slot = state.reserve_session_slot()?;
         let s = state.create_session_in(slot, &p.scene, rate, device_channel)?;
         let bbox = p.scene.tissue.mesh().bounding_box_m();
         (s, p.spec, p.targets, ProbeSpec::Two(default_probe_2d(bbox)))
     } else {
         let p = prepare_3d(&ex, &limits).map_err(prepare_err)?;
         let rate = check_rate(p.scene.tick_rate_hz)?;
-        let slot = state.reserve_session_slot()?;
         let pose = p.scene.initial_pose;
         let [w, x, y, z] = pose.quat_wxyz;
         let axis = [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)];
@@ -134,12 +135,23 @@ impl pb::training_service_server::TrainingService for Api {
         let r = req.into_inner();
         let state = self.state.clone();
         let (name, rate, device) = (r.exercise.clone(), r.tick_rate_hz, r.device_channel);
-        let made = tokio::task::spawn_blocking(move || create_exercise_session(&state, &name, rate, device))
-            .await
-            .map_err(|e| Status::internal(format!("session task: {e}")))??;
+        // A full recordings directory starts nothing (issue 35).
         if r.record {
-            crate::grpc::start_recording(&self.state, &made.session, false)?;
+            self.state.check_recording_room()?;
         }
+        let record = r.record;
+        let made = tokio::task::spawn_blocking(move || {
+            let made = create_exercise_session(&state, &name, rate, device)?;
+            // A create succeeds whole or leaves nothing: a recording that cannot start closes
+            // the session (and its exercise), whose tokens nobody got.
+            if record && let Err(e) = crate::grpc::start_recording(&state, &made.session, false) {
+                state.discard_session(&made.session);
+                return Err(e);
+            }
+            Ok(made)
+        })
+        .await
+        .map_err(|e| Status::internal(format!("session task: {e}")))??;
         let ex = &made.exercise;
         Ok(Response::new(pb::CreateExerciseSessionResponse {
             session: Some(crate::convert::create_session_response(&made.session)),
@@ -279,7 +291,8 @@ impl pb::training_service_server::TrainingService for Api {
         let rate = if r.rate_hz == 0.0 { crate::training_ultrasound::DEFAULT_RATE_HZ } else { r.rate_hz };
         if !(rate.is_finite() && (1.0..=crate::training_ultrasound::MAX_RATE_HZ).contains(&rate)) {
             return Err(Status::invalid_argument(format!(
-                "rate_hz = {rate}: 1..{} images per second",
+                "rate_hz = {}: 1..{} images per second",
+                needlesim_core::num::num(rate),
                 crate::training_ultrasound::MAX_RATE_HZ
             )));
         }

@@ -296,3 +296,145 @@ async fn issue_35_after_action_reports_are_bounded_by_max_reports() {
     assert_eq!(server.metric("needlesim_reports_refused"), 1.0);
     assert!(!server.stderr.lock().unwrap().contains("panicked"));
 }
+
+/// The shipped paper-phantom scene's TOML.
+fn paper_phantom_toml() -> String {
+    std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/paper-phantom.toml")).expect("the shipped scene")
+}
+
+/// Issue 35 (hostile pass, finding 1): with the recordings directory full, CreateSession and
+/// CreateExerciseSession with `record` answered RESOURCE_EXHAUSTED but left their session
+/// running — a `--max-sessions` place and a real-time thread that nobody could close, no token
+/// having been returned. A create succeeds whole or leaves nothing.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_create_refused_for_its_recording_leaves_no_session() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let server = ServerProcess::start(&["--default-scene", "none", "--max-recordings", "0"]);
+    let ch = channel(&server).await;
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let req = pb::CreateSessionRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+        record: true,
+        ..Default::default()
+    };
+    let e = sessions.create_session(req).await.expect_err("no room for a recording");
+    assert_eq!(e.code(), Code::ResourceExhausted, "{}", e.message());
+    assert!(e.message().contains("--max-recordings"), "{}", e.message());
+    let mut training = pb::training_service_client::TrainingServiceClient::new(ch.clone());
+    let req = pb::CreateExerciseSessionRequest { exercise: "biopsy-2d".into(), record: true, ..Default::default() };
+    let e = training.create_exercise_session(req).await.expect_err("no room for a recording");
+    assert_eq!(e.code(), Code::ResourceExhausted, "{}", e.message());
+    assert!(e.message().contains("--max-recordings"), "{}", e.message());
+    let list = sessions.list_sessions(pb::ListSessionsRequest {}).await.expect("ListSessions").into_inner();
+    assert!(list.sessions.is_empty(), "sessions left behind: {:?}", list.sessions.iter().map(|s| &s.session_id).collect::<Vec<_>>());
+    assert!(metric_becomes(&server, "needlesim_sessions_alive", 0.0, Duration::from_secs(10)).await, "a session is still alive");
+    assert_eq!(server.metric("needlesim_sessions"), 0.0);
+    // The places are free: the same creates without a recording succeed.
+    let req = pb::CreateExerciseSessionRequest { exercise: "biopsy-2d".into(), ..Default::default() };
+    training.create_exercise_session(req).await.expect("an exercise without a recording");
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}
+
+/// Issue 35 (hostile pass, finding 2): CreateExerciseSession loaded, meshed and factorised its
+/// exercise before it checked `--max-sessions` (15 s of CPU for 40 refused calls). The limit is
+/// checked and a place reserved first, as CreateSession does: on a full server an exercise whose
+/// preparation would fail (over `--max-nodes`) is refused for the session limit, not the mesh.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_an_exercise_on_a_full_server_is_refused_before_it_is_prepared() {
+    let server = ServerProcess::start(&["--default-scene", "none", "--max-sessions", "0", "--max-nodes", "200"]);
+    let ch = channel(&server).await;
+    let mut training = pb::training_service_client::TrainingServiceClient::new(ch);
+    for exercise in ["biopsy-3d", "biopsy-2d"] {
+        let req = pb::CreateExerciseSessionRequest { exercise: exercise.into(), ..Default::default() };
+        let e = training.create_exercise_session(req).await.expect_err("the server is full");
+        assert_eq!(e.code(), Code::ResourceExhausted, "{exercise}: {}", e.message());
+        assert!(e.message().contains("limit of 0 sessions"), "{exercise}: the session limit first: {}", e.message());
+    }
+}
+
+/// Issue 35 (hostile pass, finding 3): Plan parsed the client's whole scene TOML on the async
+/// runtime (`scene_source_is_3d`) before it took an offline slot: two 59 MB TOMLs stalled every
+/// other call for 38 s. A scene TOML is bounded (256 KiB, `needlesim_scene::MAX_SCENE_TOML_BYTES`)
+/// for every call that takes one, refused naming the limit; and Plan takes its slot before it
+/// reads anything of the request (a Plan on a full server is refused even with a request it
+/// would refuse, counted in `needlesim_offline_jobs_rejected`).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_scene_toml_is_bounded_and_plan_takes_its_slot_before_reading_it() {
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    // A valid scene padded with a comment past the limit.
+    let big = format!("{}\n# {}\n", paper_phantom_toml(), "x".repeat(300 << 10));
+    let scene = || Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(big.clone())) });
+    let check = |what: &str, e: tonic::Status| {
+        assert_eq!(e.code(), Code::ResourceExhausted, "{what}: {}", e.message());
+        assert!(e.message().contains("scene TOML") && e.message().contains("over the limit of 262144 bytes"), "{what}: {}", e.message());
+        assert!(e.message().len() < 400, "{what}: {}", e.message());
+    };
+    let mut planning = pb::planning_service_client::PlanningServiceClient::new(ch.clone());
+    let req = pb::PlanRequest { scene: scene(), target: "centre".into(), ..Default::default() };
+    check("Plan", planning.plan(req).await.expect_err("oversize"));
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let req = pb::CreateSessionRequest { scene: scene(), ..Default::default() };
+    check("CreateSession", sessions.create_session(req).await.expect_err("oversize"));
+    let mut simulation = pb::simulation_service_client::SimulationServiceClient::new(ch.clone());
+    let req = pb::SimulateRequest { scene: scene(), ..Default::default() };
+    check("Simulate", simulation.simulate(req).await.expect_err("oversize"));
+    assert_eq!(server.metric("needlesim_sessions"), 0.0);
+    drop(server);
+
+    // With no plan slot, a Plan is refused before its request or scene is read: an empty target
+    // (INVALID_ARGUMENT once read) in a 3D TOML answers RESOURCE_EXHAUSTED.
+    let server = ServerProcess::start(&["--default-scene", "none", "--max-plans", "0"]);
+    let ch = channel(&server).await;
+    let mut planning = pb::planning_service_client::PlanningServiceClient::new(ch);
+    let toml = format!("dim = 3\n# {}\n", "y".repeat(200 << 10));
+    let req =
+        pb::PlanRequest { scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(toml)) }), ..Default::default() };
+    let e = planning.plan(req).await.expect_err("no plan slot");
+    assert_eq!(e.code(), Code::ResourceExhausted, "{}", e.message());
+    assert!(e.message().contains("--max-plans"), "{}", e.message());
+    assert_eq!(server.metric("needlesim_offline_jobs_rejected"), 1.0);
+}
+
+/// Issue 35 (hostile pass, finding 4): a scene's `name` had no bound: a 20 MiB name was accepted
+/// and then carried by every ListSessions answer (past default clients' message limit) and log
+/// line. The name is at most 64 characters and the description 1024, refused naming the key.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_scene_name_and_description_are_bounded() {
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch);
+    let base = paper_phantom_toml();
+    let description = "description = \"0.1 m PVC-like phantom, 19 x 19 nodes, fixed at the bottom; vertical insertion and withdrawal\"";
+    assert!(base.contains("name = \"paper-phantom\"") && base.contains(description));
+    let cases = [
+        (base.replace("name = \"paper-phantom\"", &format!("name = \"{}\"", "n".repeat(100_000))), "name: the name 'nnn", "at most 64"),
+        (base.replace(description, &format!("description = \"{}\"", "d".repeat(2000))), "description: 'ddd", "at most 1024"),
+    ];
+    for (toml, start, limit) in cases {
+        let req = pb::CreateSessionRequest {
+            scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(toml)) }),
+            ..Default::default()
+        };
+        let e = sessions.create_session(req).await.expect_err("refused");
+        assert_eq!(e.code(), Code::InvalidArgument, "{}", e.message());
+        assert!(e.message().contains(start) && e.message().contains(limit) && e.message().len() < 300, "{}", e.message());
+    }
+    let list = sessions.list_sessions(pb::ListSessionsRequest {}).await.expect("ListSessions").into_inner();
+    assert!(list.sessions.is_empty());
+}
+
+/// Issue 35 (hostile pass, finding 5): WatchUltrasound's refused `rate_hz` was written with all
+/// its digits (1e300 as 301); it is written compactly, as WatchScore's.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_refused_ultrasound_rate_is_written_compactly() {
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let mut training = pb::training_service_client::TrainingServiceClient::new(ch);
+    for (rate, written) in [(1e300, "rate_hz = 1e300:"), (-1e300, "rate_hz = -1e300:"), (1e-300, "rate_hz = 1e-300:")] {
+        let req = pb::WatchUltrasoundRequest { session_id: "any".into(), rate_hz: rate };
+        let e = training.watch_ultrasound(req).await.expect_err("refused");
+        assert_eq!(e.code(), Code::InvalidArgument, "{}", e.message());
+        assert!(e.message().starts_with(written) && e.message().len() < 100, "{}", e.message());
+    }
+}

@@ -59,6 +59,33 @@ def test_scale_errors_name_the_key_and_the_factor():
         needlesim.load_scene("cube-phantom-3d", scale={"young_modulus_pa": 1.1})
 
 
+def test_issue_35_scaled_values_are_bounded_as_a_files_are(tmp_path):
+    """Issue 35 (hostile pass, finding 6): a scaled value passes the same bounds as the value
+    written in a file (the scaled scene is re-read by the scene crate's loader): friction × 1e300
+    was accepted (1e301 N/m), E × 1e300 refused only as a singular stiffness. And the scene's
+    free text is bounded there too (name ≤ 64 characters, description ≤ 1024)."""
+    cases = [
+        ({"friction_n_per_m": 1e300}, r"scene paper-phantom scaled: regions\[0\] \('tissue'\)\.friction_n_per_m = 1e301: must be at most 1e6$"),
+        ({"young_modulus_pa": 1e300}, r"regions\[0\] \('tissue'\)\.young_modulus_pa = 3\.0000000000000003e304: must be at most 1e12 Pa$"),
+        ({"young_modulus_pa": 1e308}, r"regions\[0\] \('tissue'\)\.young_modulus_pa = inf: must be at most 1e12 Pa$"),
+        ({"puncture_force_n": 1e300}, r"regions\[0\] \('tissue'\)\.puncture_force_n = 3e299: must be at most 1e6$"),
+        ({"tip_peak_width_m": 1e300}, r"regions\[0\] \('tissue'\)\.tip_peak_width_m = 5[.0-9]*e297: must be at most 10 m$"),
+    ]
+    for scale, message in cases:
+        with pytest.raises(needlesim.SceneError, match=message) as e:
+            needlesim.load_scene("paper-phantom", scale=scale)
+        assert "singular" not in str(e.value) and len(str(e.value)) < 200, str(e.value)
+    # At the bounds: accepted (10 N/m × 1e5 = 1e6).
+    assert needlesim.load_scene("paper-phantom", scale={"friction_n_per_m": 1e5}).name == "paper-phantom"
+    text = (Path(__file__).resolve().parents[3] / "server" / "scenes" / "paper-phantom.toml").read_text()
+    long_name = tmp_path / "long-name.toml"
+    long_name.write_text(text.replace('name = "paper-phantom"', 'name = "' + "n" * 100_000 + '"'))
+    for scale in [None, {"friction_n_per_m": 2.0}]:
+        with pytest.raises(needlesim.SceneError, match=r"name: the name 'n+…' has 100000 characters, at most 64$") as e:
+            needlesim.load_scene(str(long_name), scale=scale)
+        assert len(str(e.value)) < 300, str(e.value)
+
+
 def test_plan_hits_the_nominal_tissue_and_its_closest_approach_is_the_runs(nominal):
     p = nominal
     r = p["target_radius_m"]

@@ -4,6 +4,7 @@
 //! experiments that write them are in `experiment` (feature `synthetic`).
 
 use anyhow::{Context, Result, bail};
+use needlesim_core::num::num;
 
 /// Linear interpolation of `values` sampled at increasing `times` (clamped at the ends).
 pub fn interp<const N: usize>(times: &[f64], values: &[[f64; N]], t: f64) -> [f64; N] {
@@ -45,7 +46,7 @@ pub fn parse_numeric_csv<const N: usize>(kind: &str, header: &[&str; N], text: &
         if let Some(prev) = rows.last()
             && row[0] <= prev[0]
         {
-            bail!("{kind} line {ln}: {} = {} does not come after {}", header[0], row[0], prev[0]);
+            bail!("{kind} line {ln}: {} = {} does not come after {}", header[0], num(row[0]), num(prev[0]));
         }
         rows.push(row);
     }

@@ -31,6 +31,7 @@
 use anyhow::{Context, Result, bail};
 use needlesim_core::RegionNeedleParams;
 use needlesim_core::assembly::mul_stiffness;
+use needlesim_core::num::num;
 use serde::Serialize;
 
 use crate::logs::{ForceLog, interp};
@@ -180,11 +181,11 @@ pub fn fit_needle(
     let (a, b) = (log.times_s[0], log.times_s[log.times_s.len() - 1]);
     let (c, d) = (tracks.times_s[0], tracks.times_s[nf - 1]);
     if b < c || a > d {
-        bail!("force log covers t = {a}..{b} s but frames cover {c}..{d} s: they must overlap");
+        bail!("force log covers t = {}..{} s but frames cover {}..{} s: they must overlap", num(a), num(b), num(c), num(d));
     }
     let band = opts.band_m.unwrap_or(scene.params.capture_radius_m);
     if !(band.is_finite() && band > 0.0) {
-        bail!("band_m = {band} must be finite and > 0");
+        bail!("band_m = {} must be finite and > 0", num(band));
     }
     if let Some(h) = opts.tip_peak_ratio
         && !(h.is_finite() && h >= 0.0)

@@ -36,6 +36,7 @@
 //! vertical probe is small and its slope the least certain: that share dominates ν's σ).
 
 use anyhow::{Context, Result, bail};
+use needlesim_core::num::num;
 use needlesim_core::{Material, MaterialMap, Mesh, MeshLimits, NodeCondition, PlaneModel, RectMeshParams, StaticProblem};
 use serde::Serialize;
 
@@ -368,13 +369,21 @@ pub fn fit_probe(
     let eps = 1e-9 * (1.0 + b.abs().max(d.abs()));
     if c < a - eps || c > b + eps {
         bail!(
-            "probe log covers t = {a}..{b} s but frames cover {c}..{d} s (the log must cover the reference frame 0 and at least one more)"
+            "probe log covers t = {}..{} s but frames cover {}..{} s (the log must cover the reference frame 0 and at least one more)",
+            num(a),
+            num(b),
+            num(c),
+            num(d)
         );
     }
     let frames: Vec<usize> = (1..nf).filter(|&k| tracks.times_s[k] <= b + eps).collect();
     if frames.is_empty() {
         bail!(
-            "probe log covers t = {a}..{b} s but frames cover {c}..{d} s (the log must cover the reference frame 0 and at least one more)"
+            "probe log covers t = {}..{} s but frames cover {}..{} s (the log must cover the reference frame 0 and at least one more)",
+            num(a),
+            num(b),
+            num(c),
+            num(d)
         );
     }
     let (d0, f0) = (interp(&log.times_s, &log.disp_m, c), interp(&log.times_s, &log.force_n, c));

@@ -56,6 +56,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::BasePose;
+use needlesim_core::num::num;
 use serde::{Deserialize, Serialize};
 
 use needlesim_scene::{Scene, Trajectory};
@@ -368,7 +369,13 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
     if seg_len <= 1e-9 * size {
         return Err(input(
             "entry",
-            format!("entry: the segment's two points ({}, {}) and ({}, {}) coincide", seg[0][0], seg[0][1], seg[1][0], seg[1][1]),
+            format!(
+                "entry: the segment's two points ({}, {}) and ({}, {}) coincide",
+                num(seg[0][0]),
+                num(seg[0][1]),
+                num(seg[1][0]),
+                num(seg[1][1])
+            ),
         ));
     }
     for k in 0..=20 {
@@ -378,7 +385,16 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
                 "entry",
                 format!(
                     "entry: the point ({}, {}) of the entry segment ({}, {})–({}, {}) is outside the mesh (bounding box ({}, {})–({}, {}))",
-                    p[0], p[1], seg[0][0], seg[0][1], seg[1][0], seg[1][1], lo[0], lo[1], hi[0], hi[1]
+                    num(p[0]),
+                    num(p[1]),
+                    num(seg[0][0]),
+                    num(seg[0][1]),
+                    num(seg[1][0]),
+                    num(seg[1][1]),
+                    num(lo[0]),
+                    num(lo[1]),
+                    num(hi[0]),
+                    num(hi[1])
                 ),
             ));
         }
@@ -389,16 +405,26 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
         _ => [-180.0, 180.0],
     };
     if !angles_deg.iter().all(|a| a.is_finite()) {
-        return Err(input("angles_deg", format!("angles_deg: [{}, {}] is not a pair of finite numbers", angles_deg[0], angles_deg[1])));
+        return Err(input(
+            "angles_deg",
+            format!("angles_deg: [{}, {}] is not a pair of finite numbers", num(angles_deg[0]), num(angles_deg[1])),
+        ));
     }
     if angles_deg[0] > angles_deg[1] {
         return Err(input(
             "angles_deg",
-            format!("angles_deg: the range [{}, {}] is empty (the first angle must not exceed the second)", angles_deg[0], angles_deg[1]),
+            format!(
+                "angles_deg: the range [{}, {}] is empty (the first angle must not exceed the second)",
+                num(angles_deg[0]),
+                num(angles_deg[1])
+            ),
         ));
     }
     if angles_deg[1] - angles_deg[0] > 360.0 {
-        return Err(input("angles_deg", format!("angles_deg: the range [{}, {}] spans more than 360°", angles_deg[0], angles_deg[1])));
+        return Err(input(
+            "angles_deg",
+            format!("angles_deg: the range [{}, {}] spans more than 360°", num(angles_deg[0]), num(angles_deg[1])),
+        ));
     }
     let speed = match (req.speed_m_s, &defaults) {
         (Some(v), _) => v,
@@ -411,8 +437,8 @@ fn validate(scene: &Scene, req: &PlanRequest) -> Result<Problem> {
             "speed_mm_s",
             format!(
                 "speed_mm_s = {}: must be > 0 and at most {} mm/s (limits.max_base_step_m × tick_rate_hz)",
-                speed * 1e3,
-                max_speed * 1e3
+                num(speed * 1e3),
+                num(max_speed * 1e3)
             ),
         ));
     }
@@ -677,7 +703,7 @@ fn check_ticks(scene: &Scene, p: &Problem, opts: &PlanOptions) -> Result<()> {
             unit: "ticks",
             hint: String::new(),
         };
-        return Err(anyhow::Error::new(e).context(format!("speed_mm_s = {}", p.speed * 1e3)));
+        return Err(anyhow::Error::new(e).context(format!("speed_mm_s = {}", num(p.speed * 1e3))));
     }
     Ok(())
 }
@@ -775,6 +801,29 @@ mod tests {
 
     fn fig3() -> Scene {
         needlesim_scene::load_scene("fig3-target", &MeshLimits::default()).unwrap()
+    }
+
+    /// Issue 35 (hostile pass, finding 5): a refused request's numbers are written compactly
+    /// (1e300, not 301 digits), wherever the message quotes them.
+    #[test]
+    fn issue_35_refused_plan_numbers_are_written_compactly() {
+        let scene = fig3();
+        let refused = |r: PlanRequest| format!("{:#}", validate(&scene, &r).err().expect("refused"));
+        let req = |entry_m, angles_deg, speed_m_s| PlanRequest { target: "biopsy".into(), entry_m, angles_deg, speed_m_s };
+        for (r, want) in [
+            (req(None, Some([1e300, -1e300]), None), "angles_deg: the range [1e300, -1e300] is empty"),
+            (req(None, Some([-1e300, 1e300]), None), "angles_deg: the range [-1e300, 1e300] spans more than 360°"),
+            (
+                req(Some([[1e300, 1e300], [1e300, 1e300]]), None, None),
+                "entry: the segment's two points (1e300, 1e300) and (1e300, 1e300) coincide",
+            ),
+            (req(Some([[0.0, 0.06], [1e300, 0.06]]), None, None), "of the entry segment (0, 0.06)–(1e300, 0.06) is outside the mesh"),
+            (req(None, None, Some(1e300)), "speed_mm_s = 1e303: must be > 0"),
+            (req(None, None, Some(-1e-300)), "speed_mm_s = -1e-297: must be > 0"),
+        ] {
+            let e = refused(r);
+            assert!(e.contains(want) && e.len() < 300, "{e}");
+        }
     }
 
     #[test]

@@ -67,6 +67,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::d3::TetTissueModel;
+use needlesim_core::num::num;
 use needlesim_core::sim3::{BasePose3, Simulation3, Target3};
 use needlesim_scene::{Scene3d, Trajectory3};
 use needlesim_trajectory::Pose3;
@@ -336,12 +337,19 @@ fn validate(scene: &Scene3d, req: &Plan3Request) -> Result<Problem3> {
     let Some(face) = face.filter(|_| inside) else {
         return Err(input(
             "entry",
-            format!("entry: ({}, {}, {}) is not on a face of the mesh's bounding box ({:?}–{:?})", entry[0], entry[1], entry[2], lo, hi),
+            format!(
+                "entry: ({}, {}, {}) is not on a face of the mesh's bounding box ({:?}–{:?})",
+                num(entry[0]),
+                num(entry[1]),
+                num(entry[2]),
+                lo,
+                hi
+            ),
         ));
     };
     let entry_radius = req.entry_radius_m.or(defaults.as_ref().map(|d| d.entry_radius_m)).unwrap_or(0.0);
     if !(entry_radius.is_finite() && entry_radius >= 0.0) {
-        return Err(input("entry_radius_m", format!("entry_radius_m = {entry_radius}: must be a finite number ≥ 0")));
+        return Err(input("entry_radius_m", format!("entry_radius_m = {}: must be a finite number ≥ 0", num(entry_radius))));
     }
     let avoid = req.avoid.clone().or(defaults.as_ref().map(|d| d.avoid.clone())).unwrap_or_default();
     let mut structures = Vec::new();
@@ -368,7 +376,7 @@ fn validate(scene: &Scene3d, req: &Plan3Request) -> Result<Problem3> {
     }
     let clearance = req.clearance_m.or(defaults.as_ref().map(|d| d.clearance_m)).unwrap_or(0.0);
     if !(clearance.is_finite() && clearance >= 0.0) {
-        return Err(input("clearance_m", format!("clearance_m = {clearance}: must be a finite number ≥ 0")));
+        return Err(input("clearance_m", format!("clearance_m = {}: must be a finite number ≥ 0", num(clearance))));
     }
     let speed = match (req.speed_m_s, &defaults) {
         (Some(v), _) => v,
@@ -377,7 +385,10 @@ fn validate(scene: &Scene3d, req: &Plan3Request) -> Result<Problem3> {
     };
     let max_speed = 0.002 * scene.tick_rate_hz;
     if !(speed.is_finite() && speed > 0.0 && speed <= max_speed) {
-        return Err(input("speed_mm_s", format!("speed_mm_s = {}: must be > 0 and at most {} mm/s", speed * 1e3, max_speed * 1e3)));
+        return Err(input(
+            "speed_mm_s",
+            format!("speed_mm_s = {}: must be > 0 and at most {} mm/s", num(speed * 1e3), num(max_speed * 1e3)),
+        ));
     }
     let length = scene.needle.length_m;
     let reach = norm(sub(tg.center_m, entry));

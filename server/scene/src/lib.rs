@@ -495,6 +495,50 @@ pub fn load_scene(spec: &str, limits: impl Into<SceneLimits>) -> Result<Scene> {
 /// debug build (about 0.9 kB a level).
 pub const MAX_TOML_BRACKETS: usize = 1024;
 
+/// Most bytes of a scene's TOML, 2D or 3D, wherever it comes from (a client's `scene_toml`, an
+/// upload's, a local file, an exercise): a scene is a few kB — its mesh is a grid, a box or a
+/// file of its own, never inline — so this leaves room for comments while it bounds the parse
+/// (issue 35: a 59 MB TOML of 3 M keys held a server thread for seconds).
+pub const MAX_SCENE_TOML_BYTES: usize = 256 << 10;
+
+/// Longest scene `name`, in characters (as a target's or a region's name): the name travels in
+/// every ListSessions answer and log line of its sessions.
+pub const MAX_SCENE_NAME_CHARS: usize = param_limits::MAX_NAME_CHARS;
+
+/// Longest scene `description`, in characters.
+pub const MAX_SCENE_DESCRIPTION_CHARS: usize = 1024;
+
+/// A scene TOML of at most [`MAX_SCENE_TOML_BYTES`], checked before it is parsed: a
+/// [`SizeLimit`] (RESOURCE_EXHAUSTED in the service) naming the limit otherwise.
+pub(crate) fn check_toml_size(text: &str) -> Result<()> {
+    if text.len() > MAX_SCENE_TOML_BYTES {
+        return Err(anyhow::Error::new(SizeLimit {
+            what: "the scene TOML".to_owned(),
+            amount: text.len() as u64,
+            limit: MAX_SCENE_TOML_BYTES as u64,
+            unit: "bytes",
+            hint: " (a scene is a few kB; a mesh comes as a file or an upload of its own)".to_owned(),
+        }));
+    }
+    Ok(())
+}
+
+/// A scene's free text: `name` at most [`MAX_SCENE_NAME_CHARS`] characters (and not empty when
+/// given), `description` at most [`MAX_SCENE_DESCRIPTION_CHARS`]; the error names the key and the
+/// limit and quotes the text clipped. Shared by 2D and 3D scenes.
+pub(crate) fn check_scene_text(name: Option<&str>, description: Option<&str>) -> Result<()> {
+    if let Some(n) = name {
+        param_limits::check_name("name", n).map_err(anyhow::Error::msg)?;
+    }
+    if let Some(d) = description {
+        let chars = d.chars().count();
+        if chars > MAX_SCENE_DESCRIPTION_CHARS {
+            bail!("description: '{}' has {chars} characters, at most {MAX_SCENE_DESCRIPTION_CHARS}", limit::quote(d));
+        }
+    }
+    Ok(())
+}
+
 /// Parses a local scene's TOML; `base_dir` resolves relative mesh files ([`SceneFiles::Local`]).
 pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) -> Result<Scene> {
     parse_scene_with(text, SceneFiles::Local(base_dir), limits)
@@ -503,6 +547,7 @@ pub fn parse_scene(text: &str, base_dir: &Path, limits: impl Into<SceneLimits>) 
 /// Parses scene TOML, the mesh file it names (if any) coming from `files`: [`SceneFiles::None`]
 /// for a scene from a client.
 pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLimits>) -> Result<Scene> {
+    check_toml_size(text)?;
     let brackets = text.bytes().filter(|b| matches!(b, b'[' | b'{')).count();
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
@@ -518,6 +563,7 @@ pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLi
 /// is built; each error names the key as written in the TOML and its allowed range.
 fn check_values(f: &SceneFile) -> Result<()> {
     use needlesim_core::sim::param_limits::{MAX_NEEDLE_NODES, MAX_NEEDLE_NODES_FLEXIBLE};
+    check_scene_text(f.name.as_deref(), f.description.as_deref())?;
     check_names(f.regions.iter().map(|r| r.name.as_str()), f.targets.iter().map(|t| t.name.as_str()))?;
     if !(f.tick_rate_hz.is_finite() && (100.0..=10_000.0).contains(&f.tick_rate_hz)) {
         bail!("tick_rate_hz = {}: must be between 100 and 10000", num(f.tick_rate_hz));
@@ -1086,6 +1132,33 @@ mod tests {
         let edge =
             base.replace("young_modulus_pa = 30e3", "young_modulus_pa = 1e12").replace("friction_n_per_m = 10", "friction_n_per_m = 1e6");
         parse_scene(&edge, Path::new("."), &MeshLimits::default()).unwrap();
+    }
+
+    /// Issue 35: a scene's `name` and `description` are bounded (they travel in every
+    /// ListSessions answer and log line), and so is the whole TOML, before it is parsed; the
+    /// errors name the key or the TOML and the limit, quoting little.
+    #[test]
+    fn issue_35_scene_text_and_toml_size_are_bounded() {
+        let e = scene_error("name = \"paper-phantom\"", &format!("name = \"{}\"", "n".repeat(200_000)));
+        assert!(e.starts_with("name: the name 'nnn") && e.ends_with("has 200000 characters, at most 64") && e.len() < 200, "{e}");
+        assert_eq!(scene_error("name = \"paper-phantom\"", "name = \"\""), "name: the name is empty");
+        let old = "description = \"0.1 m PVC-like phantom, 19 x 19 nodes, fixed at the bottom; vertical insertion and withdrawal\"";
+        let e = scene_error(old, &format!("description = \"{}\"", "d".repeat(1025)));
+        assert!(e.starts_with("description: 'ddd") && e.ends_with("has 1025 characters, at most 1024") && e.len() < 200, "{e}");
+        // At the limits: accepted.
+        let base = include_str!("../../scenes/paper-phantom.toml");
+        let edge = base
+            .replace("name = \"paper-phantom\"", &format!("name = \"{}\"", "é".repeat(MAX_SCENE_NAME_CHARS)))
+            .replace(old, &format!("description = \"{}\"", "d".repeat(MAX_SCENE_DESCRIPTION_CHARS)));
+        let scene = parse_scene(&edge, Path::new("."), &MeshLimits::default()).unwrap();
+        assert_eq!(scene.name.chars().count(), MAX_SCENE_NAME_CHARS);
+        // A TOML over the size limit is refused before it is parsed, as a size limit.
+        let big = format!("{base}\n# {}\n", "x".repeat(MAX_SCENE_TOML_BYTES));
+        let e = parse_scene(&big, Path::new("."), &MeshLimits::default()).err().expect("over the size limit");
+        assert!(e.downcast_ref::<SizeLimit>().is_some(), "{e:#}");
+        let e = format!("{e:#}");
+        assert!(e.starts_with("the scene TOML is ") && e.contains("over the limit of 262144 bytes") && e.len() < 200, "{e}");
+        assert_eq!(scene_dim(&big).unwrap(), 2, "the dimension probe does not parse it either");
     }
 
     /// The scene with `old` replaced by `new` (which must occur), parsed; the error's text.

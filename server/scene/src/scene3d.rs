@@ -42,8 +42,8 @@ use serde::Deserialize;
 use crate::limit::{self, SizeLimit};
 use crate::{
     GAUGES, LimitsSpec, MAX_LOCAL_FILE_BYTES, MAX_TOML_BRACKETS, SceneFiles, SceneLimits, check_length, check_limits, check_names,
-    check_region_bounds, check_region_needle_values, d_cutting, d_friction, d_peak, d_peak_w, d_puncture, d_static, default_rate,
-    read_local_file,
+    check_region_bounds, check_region_needle_values, check_scene_text, check_toml_size, d_cutting, d_friction, d_peak, d_peak_w,
+    d_puncture, d_static, default_rate, read_local_file,
 };
 
 /// The mesh files a shipped example names: (file, text).
@@ -349,7 +349,8 @@ pub fn scene_dim(text: &str) -> Result<u8> {
     struct Probe {
         dim: Option<toml::Value>,
     }
-    if text.bytes().filter(|b| matches!(b, b'[' | b'{')).count() > MAX_TOML_BRACKETS {
+    // Left to the scene parsers, which refuse such a text naming the limit.
+    if text.len() > crate::MAX_SCENE_TOML_BYTES || text.bytes().filter(|b| matches!(b, b'[' | b'{')).count() > MAX_TOML_BRACKETS {
         return Ok(2);
     }
     match toml::from_str::<Probe>(text) {
@@ -408,6 +409,7 @@ pub fn parse_scene3d_with(text: &str, files: SceneFiles, limits: impl Into<Scene
 }
 
 fn parse_with(text: &str, read: &dyn Fn(&str) -> Result<String>, limits: &SceneLimits) -> Result<Scene3d> {
+    check_toml_size(text)?;
     let brackets = text.bytes().filter(|b| matches!(b, b'[' | b'{')).count();
     if brackets > MAX_TOML_BRACKETS {
         bail!("the scene TOML holds {brackets} '[' and '{{', over the limit of {MAX_TOML_BRACKETS}");
@@ -544,6 +546,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
     if f.regions.is_empty() {
         bail!("regions: at least one region is needed");
     }
+    check_scene_text(f.name.as_deref(), f.description.as_deref())?;
     check_names(f.regions.iter().map(|r| r.name.as_str()), f.targets.iter().map(|t| t.name.as_str()))?;
     let needle = needle(&f.needle)?;
     let quat = base_orientation(&f.needle)?;
@@ -781,6 +784,21 @@ mod tests {
             std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))
         };
         parse_with(text, &read, &server())
+    }
+
+    /// Issue 35: a 3D scene's `name` and `description` are bounded as a 2D scene's, and so is
+    /// its TOML, before it is parsed.
+    #[test]
+    fn issue_35_scene3d_text_and_toml_size_are_bounded() {
+        let e = error("name = \"cube-phantom-3d\"", &format!("name = \"{}\"", "n".repeat(200_000)));
+        assert!(e.starts_with("name: the name 'nnn") && e.ends_with("has 200000 characters, at most 64") && e.len() < 200, "{e}");
+        let old = "description = \"0.1 m PVC-like cube phantom, 21^3 nodes, fixed at the bottom; vertical insertion and withdrawal\"";
+        let e = error(old, &format!("description = \"{}\"", "d".repeat(5000)));
+        assert!(e.starts_with("description: 'ddd") && e.ends_with("has 5000 characters, at most 1024") && e.len() < 200, "{e}");
+        let big = format!("{}\n# {}\n", small_cube("dim = 3", "dim = 3"), "x".repeat(crate::MAX_SCENE_TOML_BYTES));
+        let e = parse(&big, None).expect_err("over the size limit");
+        assert!(e.downcast_ref::<SizeLimit>().is_some(), "{e:#}");
+        assert!(format!("{e:#}").contains("over the limit of 262144 bytes"), "{e:#}");
     }
 
     /// The cube scene, smaller (fast in debug builds), with `old` replaced by `new`.

@@ -283,6 +283,26 @@ impl ServerState {
         Ok(self.register(slot, s))
     }
 
+    /// Whether a recording could start now (`--max-recordings`, `--max-recordings-mb`): checked
+    /// before a create with `record` does any work, so that a full directory costs nothing and
+    /// starts no session (issue 35). RESOURCE_EXHAUSTED naming the flag, as StartRecording.
+    pub(crate) fn check_recording_room(&self) -> Result<(), Status> {
+        let dir = self.data_dir.join("recordings");
+        // Admitted and given back at once: the recording's own start admits again.
+        let probe = self.recordings_quota.admit(&dir, crate::recording::START_BYTES);
+        probe.map(drop).map_err(|e| Status::from(ApiError::from(&crate::recording::RecordingError::Quota(e))))
+    }
+
+    /// Undoes a create that failed after its session was registered (a recording that could not
+    /// start): the session leaves the registry and its exercise's (no report: the exercise never
+    /// began for the client, who got no token) and is closed. Blocking (joins its threads).
+    pub(crate) fn discard_session(&self, s: &Arc<Session>) {
+        self.sessions.write().expect("sessions lock").remove(&s.id);
+        crate::training_live::discard(&self.training, &s.id);
+        s.close();
+        tracing::info!(session = %s.id, "session discarded: its create failed");
+    }
+
     /// Registers a started session and frees its reservation.
     pub(crate) fn register(&self, mut slot: SessionSlot, s: Arc<Session>) -> Arc<Session> {
         {
@@ -356,21 +376,10 @@ pub struct Api {
     pub state: Arc<ServerState>,
 }
 
-/// Loads (parses, meshes, factorises) a scene off the async runtime; a scene over the mesh or
-/// memory limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field
+/// Loads (parses, meshes, factorises) a session's scene, 2D or 3D
+/// ([`convert::session_scene_from_pb`]), off the async runtime; a scene over the mesh, memory or
+/// TOML size limits is RESOURCE_EXHAUSTED, any other problem INVALID_ARGUMENT naming the field
 /// (`status::ApiError::from_chain`).
-pub(crate) async fn load_scene_from_pb(
-    src: Option<pb::SceneSource>,
-    limits: needlesim_scene::SceneLimits,
-) -> Result<needlesim_scene::Scene, Status> {
-    tokio::task::spawn_blocking(move || convert::scene_from_pb(src.as_ref(), &limits))
-        .await
-        .map_err(|e| Status::internal(format!("scene task: {e}")))?
-        .map_err(|e| status_of("scene", &e))
-}
-
-/// Loads a session's scene, 2D or 3D ([`convert::session_scene_from_pb`]), off the async runtime,
-/// with the statuses of [`load_scene_from_pb`].
 pub(crate) async fn load_session_scene_from_pb(
     src: Option<pb::SceneSource>,
     limits: needlesim_scene::SceneLimits,
@@ -379,4 +388,33 @@ pub(crate) async fn load_session_scene_from_pb(
         .await
         .map_err(|e| Status::internal(format!("scene task: {e}")))?
         .map_err(|e| status_of("scene", &e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 35 (hostile pass, finding 1): a create that fails after its session was registered
+    /// (a recording that could not start) is undone whole: the session and its exercise leave
+    /// the registries, its `--max-sessions` place is free again, and no report is written.
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn issue_35_a_discarded_session_leaves_nothing_behind() {
+        let dir = std::env::temp_dir().join(format!("needlesim-discard-{}", std::process::id()));
+        let state = ServerState::new(ServerLimits { max_sessions: 1, ..Default::default() }, dir.clone());
+        let st = state.clone();
+        let made = tokio::task::spawn_blocking(move || crate::training_service::create_exercise_session(&st, "biopsy-2d", 0.0, false))
+            .await
+            .unwrap()
+            .unwrap();
+        assert!(state.reserve_session_slot().is_err(), "the server is full");
+        let (st, s) = (state.clone(), made.session.clone());
+        tokio::task::spawn_blocking(move || st.discard_session(&s)).await.unwrap();
+        assert!(state.sessions.read().unwrap().is_empty());
+        assert!(crate::training_live::exercise_of(&state.training, &made.session.id).is_none());
+        assert!(made.exercise.closed.load(Ordering::Acquire));
+        assert!(state.reserve_session_slot().is_ok(), "its place is free again");
+        let reports = dir.join("reports");
+        assert!(!reports.exists() || reports.read_dir().unwrap().next().is_none(), "no report for a create that failed");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -6,7 +6,8 @@
 //! Conventions follow `Simulate` (grpc/simulate.rs): no token (no session is involved), the request is
 //! validated before the stream starts so that bad input is an INVALID_ARGUMENT status naming the
 //! field, and size limits are RESOURCE_EXHAUSTED. At most `--max-plans` plans run at once, since
-//! each uses every core; each also takes one of the `--max-offline-jobs` slots (jobs.rs).
+//! each uses every core; each also takes one of the `--max-offline-jobs` slots (jobs.rs), first:
+//! nothing the client sent is read before, and all of it is read on a blocking thread.
 
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -30,13 +31,48 @@ impl pb::planning_service_server::PlanningService for Api {
 
     async fn plan(&self, req: Request<pb::PlanRequest>) -> Result<Response<Self::PlanStream>, Status> {
         let r = req.into_inner();
-        let dim3 = convert::scene_source_is_3d(r.scene.as_ref());
-        if dim3 {
-            return self.plan3(r).await;
-        }
-        let preq = convert::plan_request_from_pb(&r).map_err(Status::from)?;
+        // The slots first (issue 35): a Plan on a busy server is refused before anything of the
+        // client's is read; the scene's dimension, the request and the scene are then read on a
+        // blocking thread, never on the async runtime (the scene TOML is bounded besides:
+        // `needlesim_scene::MAX_SCENE_TOML_BYTES`).
         let slot = self.state.jobs.try_start(JobKind::Plan)?;
-        let scene = crate::grpc::load_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
+        let limits = self.state.limits.scene();
+        let loaded = tokio::task::spawn_blocking(move || -> Result<PlanInput, Status> {
+            if convert::scene_source_is_3d(r.scene.as_ref()) {
+                let preq = convert::plan3_request_from_pb(&r).map_err(Status::from)?;
+                match convert::session_scene_from_pb(r.scene.as_ref(), &limits).map_err(|e| status_of("scene", &e))? {
+                    convert::SessionScene::Three(scene) => Ok(PlanInput::Three(scene, preq)),
+                    convert::SessionScene::Two(_) => Err(Status::internal("a 3D scene source loaded as a 2D scene")),
+                }
+            } else {
+                let preq = convert::plan_request_from_pb(&r).map_err(Status::from)?;
+                let scene = convert::scene_from_pb(r.scene.as_ref(), &limits).map_err(|e| status_of("scene", &e))?;
+                Ok(PlanInput::Two(Box::new(scene), preq))
+            }
+        })
+        .await
+        .map_err(|e| Status::internal(format!("scene task: {e}")))??;
+        match loaded {
+            PlanInput::Two(scene, preq) => self.plan2(slot, *scene, preq).await,
+            PlanInput::Three(scene, preq) => self.plan3(slot, *scene, preq).await,
+        }
+    }
+}
+
+/// A Plan's request and scene, read off the async runtime.
+enum PlanInput {
+    Two(Box<needlesim_scene::Scene>, plan::PlanRequest),
+    Three(Box<needlesim_scene::Scene3d>, plan3::Plan3Request),
+}
+
+impl Api {
+    /// `Plan` for a 2D scene: `needlesim_offline::plan`.
+    async fn plan2(
+        &self,
+        slot: JobPermit,
+        scene: needlesim_scene::Scene,
+        preq: plan::PlanRequest,
+    ) -> Result<Response<ReceiverStream<Result<pb::PlanProgress, Status>>>, Status> {
         let opts = self.plan_options();
         stream_plan(slot, opts, move |opts, validated, progress| {
             plan::validate_request(&scene, &preq, opts)?;
@@ -55,18 +91,15 @@ impl pb::planning_service_server::PlanningService for Api {
         })
         .await
     }
-}
 
-impl Api {
     /// `Plan` for a 3D scene: `needlesim_offline::plan3` with the same conventions (validation
     /// before the stream, progress per iteration, the client going away cancels).
-    async fn plan3(&self, r: pb::PlanRequest) -> Result<Response<ReceiverStream<Result<pb::PlanProgress, Status>>>, Status> {
-        let preq = convert::plan3_request_from_pb(&r).map_err(Status::from)?;
-        let slot = self.state.jobs.try_start(JobKind::Plan)?;
-        let scene = match crate::grpc::load_session_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await? {
-            convert::SessionScene::Three(s) => s,
-            convert::SessionScene::Two(_) => return Err(Status::internal("a 3D scene source loaded as a 2D scene")),
-        };
+    async fn plan3(
+        &self,
+        slot: JobPermit,
+        scene: needlesim_scene::Scene3d,
+        preq: plan3::Plan3Request,
+    ) -> Result<Response<ReceiverStream<Result<pb::PlanProgress, Status>>>, Status> {
         let opts = self.plan_options();
         stream_plan(slot, opts, move |opts, validated, progress| {
             plan3::validate3_request(&scene, &preq)?;

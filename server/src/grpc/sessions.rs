@@ -1,5 +1,5 @@
-//! `SessionService`: create (a scene loaded off the runtime, within the session limit), list,
-//! get, mesh, statistics, close.
+//! `SessionService`: create (a scene loaded off the runtime, within the session limit; with its
+//! recording, or nothing), list, get, mesh, statistics, close.
 
 use needlesim_proto::v1 as pb;
 use tonic::{Request, Response, Status};
@@ -11,11 +11,15 @@ use crate::status::ApiError;
 #[tonic::async_trait]
 impl pb::session_service_server::SessionService for Api {
     async fn create_session(&self, req: Request<pb::CreateSessionRequest>) -> Result<Response<pb::CreateSessionResponse>, Status> {
-        let r = req.into_inner();
+        let mut r = req.into_inner();
         // The limit is checked and a place reserved first, in one step: a create over the limit
         // costs nothing, and concurrent creates never exceed it.
         let slot = self.state.reserve_session_slot()?;
-        let scene = load_session_scene_from_pb(r.scene.clone(), self.state.limits.scene()).await?;
+        // So is the room for its recording: a full recordings directory starts nothing.
+        if r.record {
+            self.state.check_recording_room()?;
+        }
+        let scene = load_session_scene_from_pb(r.scene.take(), self.state.limits.scene()).await?;
         let scene_rate = match &scene {
             convert::SessionScene::Two(s) => s.params.tick_rate_hz,
             convert::SessionScene::Three(s) => s.tick_rate_hz,
@@ -29,15 +33,22 @@ impl pb::session_service_server::SessionService for Api {
         }
         let state = self.state.clone();
         let device = r.device_channel;
-        let s = tokio::task::spawn_blocking(move || match scene {
-            convert::SessionScene::Two(scene) => state.create_session_in(slot, &scene, rate, device),
-            convert::SessionScene::Three(scene) => state.create_session3_in(slot, &scene, rate, device),
+        let record = r.record;
+        let s = tokio::task::spawn_blocking(move || {
+            let s = match scene {
+                convert::SessionScene::Two(scene) => state.create_session_in(slot, &scene, rate, device),
+                convert::SessionScene::Three(scene) => state.create_session3_in(slot, &scene, rate, device),
+            }?;
+            // A create succeeds whole or leaves nothing: a recording that cannot start (the
+            // directory filled meanwhile) closes the session, whose tokens nobody got.
+            if record && let Err(e) = super::recordings::start_recording(&state, &s, false) {
+                state.discard_session(&s);
+                return Err(e);
+            }
+            Ok(s)
         })
         .await
         .map_err(|e| Status::internal(format!("session task: {e}")))??;
-        if r.record {
-            super::recordings::start_recording(&self.state, &s, false)?;
-        }
         Ok(Response::new(convert::create_session_response(&s)))
     }
 
