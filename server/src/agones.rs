@@ -45,7 +45,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use bytes::Bytes;
-use http_body_util::{BodyExt, Full};
+use http_body_util::{BodyExt, Full, LengthLimitError, Limited};
 use hyper::body::Incoming;
 use hyper::{Method, Request, Response};
 use hyper_util::rt::TokioIo;
@@ -61,6 +61,10 @@ const CALL_TIMEOUT: Duration = Duration::from_secs(2);
 /// The longest line of the watch stream kept, bytes (a GameServer's JSON is a few kB): a longer
 /// one drops the connection, which is then made again after a backoff (issue 35).
 pub const MAX_WATCH_LINE_BYTES: usize = 1 << 20;
+/// The largest answer of a call read, bytes (the SDK server answers `{}` or a GameServer's JSON of
+/// a few kB): a longer one fails the call with [`AgonesError::AnswerTooLarge`] (issue 35: an
+/// endless body grew the server by 1.7 GB in the 2 s of [`CALL_TIMEOUT`]).
+pub const MAX_ANSWER_BYTES: usize = 64 << 10;
 /// The first and the longest wait before the watch stream is opened again, after it ended.
 const WATCH_BACKOFF_MIN: Duration = Duration::from_millis(500);
 const WATCH_BACKOFF_MAX: Duration = Duration::from_secs(30);
@@ -87,6 +91,9 @@ pub enum AgonesError {
     /// dropped).
     #[error("GET /watch/gameserver: a line of the Agones SDK server's stream exceeds {MAX_WATCH_LINE_BYTES} bytes without a newline")]
     WatchLineTooLong,
+    /// An answer's body is longer than [`MAX_ANSWER_BYTES`] (not read further).
+    #[error("{method} {path}: the Agones SDK server's answer exceeds {MAX_ANSWER_BYTES} bytes")]
+    AnswerTooLarge { method: Method, path: String },
     /// The SDK server answered with an error status (e.g. 404 for a Counter the GameServer's spec
     /// does not declare, 400 for a count over the capacity).
     #[error("{method} {path}: the Agones SDK server answered {status}: {body}")]
@@ -201,7 +208,12 @@ impl SdkClient {
         let resp = sender.send_request(req).await.map_err(http)?;
         let status = resp.status();
         if !status.is_success() {
-            let text = resp.into_body().collect().await.map(|b| String::from_utf8_lossy(&b.to_bytes()).into_owned()).unwrap_or_default();
+            // At most MAX_ANSWER_BYTES are read; past them the body is not quoted.
+            let text = match Limited::new(resp.into_body(), MAX_ANSWER_BYTES).collect().await {
+                Ok(b) => String::from_utf8_lossy(&b.to_bytes()).into_owned(),
+                Err(e) if e.is::<LengthLimitError>() => format!("(an answer of over {MAX_ANSWER_BYTES} bytes)"),
+                Err(_) => String::new(),
+            };
             return Err(AgonesError::Status {
                 method,
                 path: path.to_owned(),
@@ -217,11 +229,11 @@ impl SdkClient {
         let timeout = || AgonesError::Timeout { method: method.clone(), path: path.to_owned() };
         let exchange = async {
             let resp = self.send(method.clone(), path, body).await?;
-            let bytes = resp.into_body().collect().await.map_err(|source| AgonesError::Http {
-                method: method.clone(),
-                path: path.to_owned(),
-                source,
-            })?;
+            let bytes =
+                Limited::new(resp.into_body(), MAX_ANSWER_BYTES).collect().await.map_err(|e| match e.downcast::<hyper::Error>() {
+                    Ok(source) => AgonesError::Http { method: method.clone(), path: path.to_owned(), source: *source },
+                    Err(_) => AgonesError::AnswerTooLarge { method: method.clone(), path: path.to_owned() },
+                })?;
             Ok(bytes.to_bytes())
         };
         tokio::time::timeout(CALL_TIMEOUT, exchange).await.map_err(|_| timeout())?

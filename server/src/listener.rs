@@ -8,9 +8,26 @@
 //! - an HTTP/1.1 connection must bring its next request within the same time of its last
 //!   response ending (an idle keep-alive connection is closed);
 //! - an HTTP/1.1 request body that sends nothing for the same time is ended with an error (its
-//!   connection then closes). HTTP/2 request streams are never timed out: `Control` streams stay
-//!   open for hours; an idle HTTP/2 connection is pinged and closed when its peer is gone
-//!   (`serve.rs`).
+//!   connection then closes). HTTP/2 request streams are not timed out between messages: `Control`
+//!   streams stay open for hours; an idle HTTP/2 connection is pinged and closed when its peer is
+//!   gone (`serve.rs`). But a request message that has begun must go on arriving: one that sends
+//!   nothing for the same time while the service waits for it ends its call with
+//!   DEADLINE_EXCEEDED (HTTP/2 as HTTP/1.1);
+//! - one HTTP/2 connection carries at most `--max-streams-per-connection` calls at once (the
+//!   SETTINGS_MAX_CONCURRENT_STREAMS it advertises, `serve.rs`);
+//! - the bytes of request messages received but not yet complete — what the gRPC decoder holds
+//!   until a message is whole — are bounded over the whole server by `--max-pending-request-mb`
+//!   ([`PendingBody`]); a call whose next bytes would pass it fails with RESOURCE_EXHAUSTED.
+//!
+//! Why a global budget and a stall deadline, not one or the other (issue 35: 43 streams each
+//! holding 60 MiB of an unfinished message, 3 GB, with every other bound respected): the per-message
+//! bound (`--max-message-bytes`) times the streams a connection may open times the connections is
+//! no bound at all, so only a budget over the server bounds the memory, as a proxy's overload
+//! manager or a buffer limit does; the deadline frees the budget held by a client that stops
+//! mid-message, so a stalled client cannot keep it from the others for longer than the deadline.
+//! The budget counts bytes as they arrive (not the length a message declares), so holding it costs
+//! a client the bytes themselves. A request that is not gRPC (or is gRPC-web text, base64) counts
+//! its whole body until it ends.
 //!
 //! The connection ([`GuardedStream`]) carries a shared state in its `ConnectInfo`
 //! ([`GuardInfo`]), which [`ConnGuardLayer`] marks as each request reaches the service and as
@@ -43,6 +60,10 @@ pub struct ConnCounters {
     timed_out: AtomicU64,
     idle_closed: AtomicU64,
     stalled_bodies: AtomicU64,
+    /// Bytes of request messages received and not yet complete, all calls together.
+    pending_request_bytes: AtomicU64,
+    pending_refused: AtomicU64,
+    stalled_messages: AtomicU64,
 }
 
 impl ConnCounters {
@@ -70,15 +91,50 @@ impl ConnCounters {
     pub fn stalled_bodies(&self) -> u64 {
         self.stalled_bodies.load(Ordering::Relaxed)
     }
+
+    /// Bytes of request messages received and not yet complete now.
+    pub fn pending_request_bytes(&self) -> u64 {
+        self.pending_request_bytes.load(Ordering::Acquire)
+    }
+
+    /// Calls failed because their message would have passed `--max-pending-request-mb`.
+    pub fn pending_refused(&self) -> u64 {
+        self.pending_refused.load(Ordering::Relaxed)
+    }
+
+    /// Calls ended because a message they had begun sent nothing for the timeout.
+    pub fn stalled_messages(&self) -> u64 {
+        self.stalled_messages.load(Ordering::Relaxed)
+    }
 }
+
+/// The default `--max-streams-per-connection` (RFC 9113 recommends advertising no fewer than 100).
+pub const DEFAULT_MAX_STREAMS_PER_CONNECTION: u32 = 100;
+/// The default `--max-pending-request-mb`: eight messages of the default `--max-message-bytes`.
+pub const DEFAULT_MAX_PENDING_REQUEST_MIB: u64 = 512;
 
 /// The bounds of the port.
 #[derive(Debug, Clone, Copy)]
 pub struct ConnLimits {
     pub max_connections: usize,
     /// Time to the first request; for HTTP/1.1 also between requests and between the frames of a
-    /// request body.
+    /// request body; for every request, between the bytes of a message that has begun.
     pub handshake_timeout: Duration,
+    /// HTTP/2 streams open at once on one connection.
+    pub max_streams_per_connection: u32,
+    /// Bytes of request messages received and not yet complete, over the server.
+    pub max_pending_request_bytes: u64,
+}
+
+impl Default for ConnLimits {
+    fn default() -> Self {
+        Self {
+            max_connections: default_max_connections(),
+            handshake_timeout: Duration::from_secs(5),
+            max_streams_per_connection: DEFAULT_MAX_STREAMS_PER_CONNECTION,
+            max_pending_request_bytes: DEFAULT_MAX_PENDING_REQUEST_MIB << 20,
+        }
+    }
 }
 
 /// The default `--max-connections`: half the soft limit of open files (the other half for
@@ -248,11 +304,12 @@ pub fn incoming(
 pub struct ConnGuardLayer {
     counters: Arc<ConnCounters>,
     body_timeout: Duration,
+    pending_budget: u64,
 }
 
 impl ConnGuardLayer {
     pub fn new(counters: Arc<ConnCounters>, limits: ConnLimits) -> Self {
-        Self { counters, body_timeout: limits.handshake_timeout }
+        Self { counters, body_timeout: limits.handshake_timeout, pending_budget: limits.max_pending_request_bytes }
     }
 }
 
@@ -318,9 +375,16 @@ where
             req.extensions_mut().insert(info.tcp);
             InFlight::start(info.state, version)
         });
+        let (timeout, counters) = (self.layer.body_timeout, self.layer.counters.clone());
+        let framed = req.headers().get(axum::http::header::CONTENT_TYPE).and_then(|v| v.to_str().ok()).is_some_and(grpc_framed);
+        let budget = self.layer.pending_budget;
         if version < Version::HTTP_2 {
-            let (timeout, counters) = (self.layer.body_timeout, self.layer.counters.clone());
-            req = req.map(|body| tonic::body::Body::new(IdleBody::new(body, timeout, counters)));
+            let idle = counters.clone();
+            req = req.map(|body| {
+                tonic::body::Body::new(PendingBody::new(IdleBody::new(body, timeout, idle), budget, framed, timeout, counters))
+            });
+        } else {
+            req = req.map(|body| tonic::body::Body::new(PendingBody::new(body, budget, framed, timeout, counters)));
         }
         let fut = self.inner.call(req);
         Box::pin(async move {
@@ -421,5 +485,201 @@ where
 
     fn size_hint(&self) -> SizeHint {
         if self.stalled { SizeHint::with_exact(0) } else { self.inner.size_hint() }
+    }
+}
+
+/// Whether a request's body is gRPC's length-prefixed messages as sent (gRPC, gRPC-web binary;
+/// not gRPC-web text, which is base64).
+fn grpc_framed(content_type: &str) -> bool {
+    let ct = content_type.trim_start().to_ascii_lowercase();
+    ct.starts_with("application/grpc") && !ct.starts_with("application/grpc-web-text")
+}
+
+/// Where a body of gRPC messages is: within a message's 5-byte prefix or within its bytes.
+#[derive(Debug, Default)]
+struct Framing {
+    prefix: [u8; 5],
+    /// Bytes of the prefix received (5 once the message's length is known).
+    have: usize,
+    /// Bytes of the message still to come after its prefix.
+    left: u64,
+}
+
+impl Framing {
+    /// Bytes of the message in progress after `data`, `held` of it received before.
+    fn feed(&mut self, mut held: u64, mut data: &[u8]) -> u64 {
+        while !data.is_empty() {
+            if self.have < 5 {
+                let n = (5 - self.have).min(data.len());
+                self.prefix[self.have..self.have + n].copy_from_slice(&data[..n]);
+                self.have += n;
+                held += n as u64;
+                data = &data[n..];
+                if self.have == 5 {
+                    self.left = u64::from(u32::from_be_bytes([self.prefix[1], self.prefix[2], self.prefix[3], self.prefix[4]]));
+                }
+            } else {
+                let n = usize::try_from(self.left).unwrap_or(usize::MAX).min(data.len());
+                self.left -= n as u64;
+                held += n as u64;
+                data = &data[n..];
+            }
+            if self.have == 5 && self.left == 0 {
+                // The message is whole: the decoder takes it and its bytes are freed.
+                self.have = 0;
+                held = 0;
+            }
+        }
+        held
+    }
+}
+
+/// A request body whose bytes of messages in progress count against the server's budget
+/// (`--max-pending-request-mb`, see the module's documentation), and whose message in progress
+/// must not pause for longer than `stall` while the service waits for it.
+struct PendingBody<B> {
+    inner: B,
+    counters: Arc<ConnCounters>,
+    budget: u64,
+    /// The messages' framing; `None`: the whole body counts until it ends.
+    framing: Option<Framing>,
+    /// Bytes this body holds in the budget now.
+    held: u64,
+    stall: Duration,
+    /// Runs while the service waits for the rest of a message (made at the first such wait).
+    wait: Option<Pin<Box<tokio::time::Sleep>>>,
+    waiting: bool,
+    failed: bool,
+}
+
+impl<B> PendingBody<B> {
+    fn new(inner: B, budget: u64, framed: bool, stall: Duration, counters: Arc<ConnCounters>) -> Self {
+        Self { inner, counters, budget, framing: framed.then(Framing::default), held: 0, stall, wait: None, waiting: false, failed: false }
+    }
+
+    fn release(&mut self) {
+        let held = std::mem::take(&mut self.held);
+        if held > 0 {
+            self.counters.pending_request_bytes.fetch_sub(held, Ordering::AcqRel);
+        }
+    }
+
+    /// Ends the call with `status`: nothing more is read of the body.
+    fn fail(&mut self, status: tonic::Status) -> Poll<Option<Result<Frame<Bytes>, BoxError>>> {
+        self.failed = true;
+        self.release();
+        Poll::Ready(Some(Err(Box::new(status))))
+    }
+}
+
+impl<B> Drop for PendingBody<B> {
+    fn drop(&mut self) {
+        self.release();
+    }
+}
+
+impl<B> Body for PendingBody<B>
+where
+    B: Body<Data = Bytes> + Unpin,
+    B::Error: Into<BoxError>,
+{
+    type Data = Bytes;
+    type Error = BoxError;
+
+    fn poll_frame(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Result<Frame<Bytes>, BoxError>>> {
+        let this = &mut *self;
+        if this.failed {
+            return Poll::Ready(None);
+        }
+        match Pin::new(&mut this.inner).poll_frame(cx) {
+            Poll::Ready(Some(Ok(frame))) => {
+                this.waiting = false;
+                if let Some(data) = frame.data_ref() {
+                    let after = match &mut this.framing {
+                        Some(f) => f.feed(this.held, data),
+                        None => this.held.saturating_add(data.len() as u64),
+                    };
+                    if after > this.held {
+                        let (add, budget) = (after - this.held, this.budget);
+                        let admitted = this
+                            .counters
+                            .pending_request_bytes
+                            .fetch_update(Ordering::AcqRel, Ordering::Acquire, |p| p.checked_add(add).filter(|&n| n <= budget));
+                        if admitted.is_err() {
+                            this.counters.pending_refused.fetch_add(1, Ordering::Relaxed);
+                            return this.fail(tonic::Status::resource_exhausted(format!(
+                                "the request messages being received on this server hold {} MiB, its bound \
+                                 (--max-pending-request-mb): this call's message in progress ({after} bytes so far) is refused",
+                                budget >> 20
+                            )));
+                        }
+                    } else {
+                        this.counters.pending_request_bytes.fetch_sub(this.held - after, Ordering::AcqRel);
+                    }
+                    this.held = after;
+                }
+                Poll::Ready(Some(Ok(frame)))
+            }
+            Poll::Ready(Some(Err(e))) => {
+                this.release();
+                Poll::Ready(Some(Err(e.into())))
+            }
+            Poll::Ready(None) => {
+                this.release();
+                Poll::Ready(None)
+            }
+            Poll::Pending => {
+                if this.held == 0 {
+                    // Between messages: a stream may wait as long as it likes.
+                    this.waiting = false;
+                    return Poll::Pending;
+                }
+                let at = tokio::time::Instant::now() + this.stall;
+                let wait = this.wait.get_or_insert_with(|| Box::pin(tokio::time::sleep_until(at)));
+                if !this.waiting {
+                    this.waiting = true;
+                    wait.as_mut().reset(at);
+                }
+                if wait.as_mut().poll(cx).is_pending() {
+                    return Poll::Pending;
+                }
+                this.counters.stalled_messages.fetch_add(1, Ordering::Relaxed);
+                let held = this.held;
+                this.fail(tonic::Status::deadline_exceeded(format!(
+                    "the request message stopped arriving: nothing for {} ms (--handshake-timeout-ms) after {held} bytes of it",
+                    this.stall.as_millis()
+                )))
+            }
+        }
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.failed || self.inner.is_end_stream()
+    }
+
+    fn size_hint(&self) -> SizeHint {
+        if self.failed { SizeHint::with_exact(0) } else { self.inner.size_hint() }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn framing_counts_the_bytes_of_the_message_in_progress() {
+        let mut f = Framing::default();
+        // A whole message of 3 bytes, then the prefix and 2 bytes of one of 10.
+        let mut data = vec![0, 0, 0, 0, 3, 1, 2, 3];
+        data.extend([0, 0, 0, 0, 10, 1, 2]);
+        assert_eq!(f.feed(0, &data), 7);
+        assert_eq!(f.feed(7, &[0; 7]), 14);
+        // Its last byte: whole, nothing held; an empty message holds nothing either.
+        assert_eq!(f.feed(14, &[9, 0, 0, 0, 0, 0]), 0);
+        // A prefix split across frames.
+        assert_eq!(f.feed(0, &[0, 0]), 2);
+        assert_eq!(f.feed(2, &[0, 1, 0, 7]), 6);
+        assert!(grpc_framed("application/grpc") && grpc_framed("application/grpc-web+proto") && !grpc_framed("application/grpc-web-text"));
+        assert!(!grpc_framed("text/plain"));
     }
 }

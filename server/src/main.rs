@@ -71,6 +71,21 @@ struct ServeArgs {
     /// long is ended. HTTP/2 streams (Control) are never timed out.
     #[arg(long, value_name = "MS", default_value_t = 5000, value_parser = clap::value_parser!(u64).range(1..))]
     handshake_timeout_ms: u64,
+    /// At shutdown, how long connections may stay open once the sessions are closed and their
+    /// recordings finished, ms; then the server exits without them (a client that never reads a
+    /// stream or never ends a request body cannot hold it).
+    #[arg(long, value_name = "MS", default_value_t = 3000)]
+    shutdown_grace_ms: u64,
+    /// Most HTTP/2 streams (calls) open at once on one connection (SETTINGS_MAX_CONCURRENT_STREAMS);
+    /// a client opens more only as earlier ones end.
+    #[arg(long, value_name = "N", default_value_t = needlesim_server::listener::DEFAULT_MAX_STREAMS_PER_CONNECTION,
+          value_parser = clap::value_parser!(u32).range(1..))]
+    max_streams_per_connection: u32,
+    /// Most bytes of request messages received but not yet complete, over all calls of the
+    /// server, MiB (at least --max-message-bytes); a call whose message would pass it fails with
+    /// RESOURCE_EXHAUSTED. Also: a message that stops arriving for --handshake-timeout-ms is ended.
+    #[arg(long, value_name = "MIB", default_value_t = needlesim_server::listener::DEFAULT_MAX_PENDING_REQUEST_MIB)]
+    max_pending_request_mb: u64,
     /// Largest gRPC message accepted, in bytes.
     #[arg(long, default_value_t = 64 << 20)]
     max_message_bytes: usize,
@@ -782,18 +797,31 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
         connections: needlesim_server::listener::ConnLimits {
             max_connections: args.max_connections.unwrap_or_else(needlesim_server::listener::default_max_connections),
             handshake_timeout: std::time::Duration::from_millis(args.handshake_timeout_ms),
+            max_streams_per_connection: args.max_streams_per_connection,
+            max_pending_request_bytes: needlesim_server::quota::mib(args.max_pending_request_mb)
+                .max(u64::try_from(args.max_message_bytes).unwrap_or(u64::MAX).saturating_add(5)),
         },
+        shutdown_grace: std::time::Duration::from_millis(args.shutdown_grace_ms),
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
-    if let Some(cfg) = fleet {
-        return runtime.block_on(serve::serve_with(config, |state| agones::start(cfg, state)));
-    }
-    runtime.block_on(serve::serve(config, async {
-        // Ctrl-C or SIGTERM: close every session (its device channel file is removed too).
-        agones::terminate_signal().await;
-        tracing::info!("shutting down");
-    }))
+    let result = if let Some(cfg) = fleet {
+        runtime.block_on(serve::serve_with(config, |state| agones::start(cfg, state)))
+    } else {
+        runtime.block_on(serve::serve(config, async {
+            // Ctrl-C or SIGTERM: close every session (its device channel file is removed too).
+            agones::terminate_signal().await;
+            tracing::info!("shutting down");
+        }))
+    };
+    // The sessions are closed and their recordings finished; what is left (the tasks of
+    // connections past --shutdown-grace-ms, offline work blocked on a client that does not read)
+    // is not waited for: dropping the runtime would wait for its blocking tasks without bound.
+    runtime.shutdown_timeout(SHUTDOWN_LEFTOVERS);
+    result
 }
+
+/// How long the runtime's remaining tasks get once `serve` has returned.
+const SHUTDOWN_LEFTOVERS: std::time::Duration = std::time::Duration::from_millis(500);
 
 #[cfg(test)]
 mod tests {

@@ -36,8 +36,12 @@ pub struct ServeConfig {
     /// A shipped exercise to start a session of at start-up (`--exercise`, issue 20): its URLs for
     /// the trainee, the instructor and observers are printed.
     pub exercise: Option<String>,
-    /// The port's connection bounds (`--max-connections`, `--handshake-timeout-ms`; `listener.rs`).
+    /// The port's connection bounds (`--max-connections`, `--handshake-timeout-ms`,
+    /// `--max-streams-per-connection`, `--max-pending-request-mb`; `listener.rs`).
     pub connections: crate::listener::ConnLimits,
+    /// How long connections may stay open once the sessions are closed at shutdown
+    /// (`--shutdown-grace-ms`): past it the server returns without them (issue 35).
+    pub shutdown_grace: std::time::Duration,
 }
 
 /// Prometheus text exposition of every session's counters and percentiles, and the server's
@@ -182,6 +186,21 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
             conns.stalled_bodies() as f64,
         ),
         (
+            "pending_request_bytes",
+            "Bytes of request messages received and not yet complete, all calls together (bounded by --max-pending-request-mb)",
+            conns.pending_request_bytes() as f64,
+        ),
+        (
+            "pending_request_refused",
+            "Calls failed with RESOURCE_EXHAUSTED: their message would have passed --max-pending-request-mb",
+            conns.pending_refused() as f64,
+        ),
+        (
+            "stalled_request_messages",
+            "Calls ended with DEADLINE_EXCEEDED: a message they had begun sent nothing for --handshake-timeout-ms",
+            conns.stalled_messages() as f64,
+        ),
+        (
             "recordings_bytes",
             "Bytes in the recordings directory (at the last start, plus writes and reservations since)",
             state.recordings_quota.bytes_used() as f64,
@@ -248,10 +267,10 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
 /// status UNIMPLEMENTED (not an HTTP error from the static files); anything else is one of the web
 /// viewer's built files or 404 (`web_files.rs`).
 fn static_or_unimplemented(
-    web_dir: PathBuf,
+    web: crate::web_files::WebFiles,
 ) -> impl Fn(axum::extract::Request) -> std::pin::Pin<Box<dyn std::future::Future<Output = axum::response::Response> + Send>> + Clone {
     move |req: axum::extract::Request| {
-        let web_dir = web_dir.clone();
+        let web = web.clone();
         Box::pin(async move {
             let is_grpc = req
                 .headers()
@@ -259,12 +278,18 @@ fn static_or_unimplemented(
                 .and_then(|v| v.to_str().ok())
                 .is_some_and(|ct| ct.starts_with("application/grpc"));
             if is_grpc {
-                let path = req.uri().path().to_owned();
-                return tonic::Status::unimplemented(format!("no such gRPC method: {path}")).into_http();
+                return unknown_method(req.uri().path()).into_http();
             }
-            crate::web_files::respond(web_dir, req.method(), req.uri().path()).await
+            web.respond(req.method(), req.uri().path())
         })
     }
+}
+
+/// The answer to a gRPC call of a method this server does not have: UNIMPLEMENTED quoting at most
+/// [`crate::status::MAX_QUOTE_CHARS`] characters of the path (issue 35: a 12,000-character path
+/// came back whole).
+fn unknown_method(path: &str) -> tonic::Status {
+    tonic::Status::unimplemented(format!("no such gRPC method: {}", crate::status::quote(path)))
 }
 
 /// tonic answers a request message over `--max-message-bytes` with OUT_OF_RANGE; the API promises
@@ -406,6 +431,9 @@ where
         .add_service(reflection_alpha)
         .clone()
         .routes();
+    let web = crate::web_files::WebFiles::load(&config.web_dir);
+    let (n_files, web_bytes) = web.size();
+    tracing::info!(web_dir = %config.web_dir.display(), files = n_files, bytes = web_bytes, "the web viewer's files are read");
     // gRPC-web on the gRPC routes only: as a plain layer it would answer 400 to static files.
     let metrics_state = state.clone();
     let conns = Arc::new(crate::listener::ConnCounters::default());
@@ -414,11 +442,14 @@ where
         .into_axum_router()
         .route_layer(tonic_web::GrpcWebLayer::new())
         .route("/metrics", axum::routing::get(move || std::future::ready(metrics_text(&metrics_state, &metrics_conns))))
-        .fallback(static_or_unimplemented(config.web_dir.clone()))
+        .fallback(static_or_unimplemented(web))
         .layer(tower::util::MapResponseLayer::new(size_limit_status));
     // An idle HTTP/2 connection is pinged; one whose peer does not answer is closed (issue 35).
+    // At most --max-streams-per-connection calls at once on one HTTP/2 connection (issue 35: none
+    // was advertised, and one connection held 5,000 responses).
     let mut server = tonic::transport::Server::builder()
         .accept_http1(true)
+        .max_concurrent_streams(Some(config.connections.max_streams_per_connection))
         .http2_keepalive_interval(Some(HTTP2_KEEPALIVE_INTERVAL))
         .http2_keepalive_timeout(Some(HTTP2_KEEPALIVE_TIMEOUT));
     if let Some((cert, key)) = &config.tls {
@@ -468,17 +499,39 @@ where
     // At the signal the sessions close first (their device channel files are removed, and their
     // streams end with NOT_FOUND, `grpc/streams.rs`): the graceful drain below waits for every
     // open stream, which a client may hold for as long as it likes (issue 35).
+    // The graceful drain itself is bounded (issue 35): a client that never reads its Simulate
+    // stream, or never ends a request body, would hold it for ever; `shutdown_grace` after the
+    // sessions are closed (their recordings finished), the server returns without those
+    // connections (`main` then stops the runtime without waiting for their tasks).
     let closing = state.clone();
+    let sessions_closed = Arc::new(tokio::sync::Notify::new());
+    let closed_tx = sessions_closed.clone();
     let shutdown = async move {
         shutdown.await;
         tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
+        closed_tx.notify_one();
     };
     tokio::spawn(give_back_stream_memory(state.clone()));
     // Tells each connection when its requests arrive and end (the deadlines of `listener.rs`) and
     // bounds the pauses of HTTP/1.1 request bodies.
     let guard = crate::listener::ConnGuardLayer::new(conns.clone(), config.connections);
-    let incoming = crate::listener::incoming(listener, config.connections, conns);
-    let result = server.layer(guard).add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(incoming, shutdown).await;
+    let incoming = crate::listener::incoming(listener, config.connections, conns.clone());
+    let serving = server.layer(guard).add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(incoming, shutdown);
+    let grace = config.shutdown_grace;
+    let result = tokio::select! {
+        r = serving => r,
+        () = async {
+            sessions_closed.notified().await;
+            tokio::time::sleep(grace).await;
+        } => {
+            tracing::warn!(
+                grace_ms = grace.as_millis() as u64,
+                connections = conns.open(),
+                "connections still open --shutdown-grace-ms after the sessions closed: stopping without them"
+            );
+            Ok(())
+        }
+    };
     let closing = state.clone();
     tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
     result.context("server")?;

@@ -7,18 +7,29 @@
 //! path is 404: the rest of web/ (README.md, package.json, src/, test/, node_modules/), a link
 //! inside web/, and paths that try to leave it (`..`, `%2e%2e`, `//etc/passwd`), which match no
 //! name (nothing is decoded).
+//!
+//! The files are read once, when the server starts ([`WebFiles::load`]), into shared [`Bytes`]:
+//! a response holds a reference to them, not a copy (issue 35: 5,000 stalled `GET /dist/app.js` on
+//! one connection held 5,000 copies, 4 GB). A rebuilt web/ is served from the next start.
 
+use std::collections::HashMap;
 use std::ffi::CString;
 use std::io::{self, Read};
 use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
 use std::os::unix::ffi::OsStrExt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use std::sync::Arc;
 
 use axum::http::{HeaderValue, Method, StatusCode, header};
 use axum::response::Response;
+use bytes::Bytes;
 
 /// The largest file served (the viewer's bundle is under 1 MB).
 pub const MAX_ASSET_BYTES: u64 = 32 << 20;
+/// The most bytes of all the files together, and the most files of `dist/`, kept in memory; past
+/// them the rest are not served (logged at start).
+pub const MAX_WEB_BYTES: u64 = 64 << 20;
+pub const MAX_WEB_FILES: usize = 256;
 
 /// One of the viewer's files: its directory below `--web-dir` (none, or `dist`), its name and
 /// its media type.
@@ -109,40 +120,96 @@ fn plain(status: StatusCode, text: &'static str) -> Response {
     r
 }
 
-/// The answer to a request for a static file: the file (GET, HEAD), 405 (another method on one
-/// of the files), 404 (anything else), 500 (a file that cannot be read; logged, not quoted).
-pub async fn respond(web_dir: PathBuf, method: &Method, path: &str) -> Response {
-    let Some(asset) = asset(path) else {
-        return plain(StatusCode::NOT_FOUND, "not found\n");
-    };
-    if method != Method::GET && method != Method::HEAD {
-        let mut r = plain(StatusCode::METHOD_NOT_ALLOWED, "method not allowed\n");
-        r.headers_mut().insert(header::ALLOW, HeaderValue::from_static("GET, HEAD"));
-        return r;
+/// The viewer's files, read once at start; cheap to clone (one shared map).
+#[derive(Debug, Clone, Default)]
+pub struct WebFiles {
+    /// By file name below `--web-dir` (`index.html`, `dist/app.js`): contents and media type.
+    files: Arc<HashMap<String, (Bytes, &'static str)>>,
+}
+
+impl WebFiles {
+    /// Reads `index.html` and the files of `dist/` that [`asset`] names, below `web_dir`, within
+    /// [`MAX_WEB_FILES`] and [`MAX_WEB_BYTES`]. A file that cannot be read is logged and not
+    /// served; a missing `web_dir` serves nothing (404 for every path).
+    pub fn load(web_dir: &Path) -> Self {
+        let mut names = vec!["/index.html".to_owned()];
+        match std::fs::read_dir(web_dir.join("dist")) {
+            Ok(entries) => {
+                let mut dist: Vec<String> = entries
+                    .filter_map(|e| e.ok()?.file_name().into_string().ok())
+                    .map(|n| format!("/dist/{n}"))
+                    .filter(|p| asset(p).is_some())
+                    .collect();
+                dist.sort();
+                if dist.len() > MAX_WEB_FILES {
+                    tracing::warn!(web_dir = %web_dir.display(), files = dist.len(), max = MAX_WEB_FILES, "the web viewer's dist/ has too many files: the first ones by name are served");
+                    dist.truncate(MAX_WEB_FILES);
+                }
+                names.extend(dist);
+            }
+            Err(e) => {
+                tracing::warn!(web_dir = %web_dir.display(), error = %e, "the web viewer's dist/ cannot be listed: its files are not served")
+            }
+        }
+        let mut files = HashMap::new();
+        let mut total = 0u64;
+        for path in names {
+            let Some(a) = asset(&path) else { continue };
+            let key = match a.dir {
+                Some(d) => format!("{d}/{}", a.name),
+                None => a.name.clone(),
+            };
+            match read(web_dir, &a) {
+                Ok(bytes) if total + bytes.len() as u64 <= MAX_WEB_BYTES => {
+                    total += bytes.len() as u64;
+                    files.insert(key, (Bytes::from(bytes), a.content_type));
+                }
+                Ok(bytes) => {
+                    tracing::warn!(file = %key, bytes = bytes.len(), max = MAX_WEB_BYTES, "the web viewer's files pass their bound together: this one is not served");
+                }
+                Err(AssetError::NotFound) => {}
+                Err(e) => {
+                    tracing::warn!(web_dir = %web_dir.display(), file = %key, error = %e, "cannot read a file of the web viewer: it is not served")
+                }
+            }
+        }
+        Self { files: Arc::new(files) }
     }
-    let content_type = asset.content_type;
-    let read = tokio::task::spawn_blocking(move || read(&web_dir, &asset).map_err(|e| (e, web_dir, asset))).await;
-    let bytes = match read {
-        Ok(Ok(bytes)) => bytes,
-        Ok(Err((AssetError::NotFound, ..))) => return plain(StatusCode::NOT_FOUND, "not found\n"),
-        Ok(Err((e, dir, asset))) => {
-            tracing::warn!(web_dir = %dir.display(), file = ?asset, error = %e, "cannot serve a file of the web viewer");
-            return plain(StatusCode::INTERNAL_SERVER_ERROR, "cannot read the file\n");
+
+    /// Files held, and their bytes together.
+    pub fn size(&self) -> (usize, u64) {
+        (self.files.len(), self.files.values().map(|(b, _)| b.len() as u64).sum())
+    }
+
+    /// The answer to a request for a static file: the file (GET, HEAD), 405 (another method on
+    /// one of the files), 404 (anything else, or a file that was not there at start).
+    pub fn respond(&self, method: &Method, path: &str) -> Response {
+        let Some(a) = asset(path) else {
+            return plain(StatusCode::NOT_FOUND, "not found\n");
+        };
+        let key = match a.dir {
+            Some(d) => format!("{d}/{}", a.name),
+            None => a.name,
+        };
+        let Some((bytes, content_type)) = self.files.get(&key) else {
+            return plain(StatusCode::NOT_FOUND, "not found\n");
+        };
+        if method != Method::GET && method != Method::HEAD {
+            let mut r = plain(StatusCode::METHOD_NOT_ALLOWED, "method not allowed\n");
+            r.headers_mut().insert(header::ALLOW, HeaderValue::from_static("GET, HEAD"));
+            return r;
         }
-        Err(e) => {
-            tracing::warn!(error = %e, "the web viewer's file task failed");
-            return plain(StatusCode::INTERNAL_SERVER_ERROR, "cannot read the file\n");
-        }
-    };
-    let len = bytes.len();
-    let mut r = Response::new(if method == Method::HEAD { axum::body::Body::empty() } else { axum::body::Body::from(bytes) });
-    let h = r.headers_mut();
-    h.insert(header::CONTENT_TYPE, HeaderValue::from_static(content_type));
-    h.insert(header::CONTENT_LENGTH, HeaderValue::from(len));
-    // A rebuilt web/ is picked up at the next load.
-    h.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-cache"));
-    h.insert(header::X_CONTENT_TYPE_OPTIONS, HeaderValue::from_static("nosniff"));
-    r
+        let len = bytes.len();
+        // A clone of the shared bytes: a reference count, not a copy.
+        let body = if method == Method::HEAD { axum::body::Body::empty() } else { axum::body::Body::from(bytes.clone()) };
+        let mut r = Response::new(body);
+        let h = r.headers_mut();
+        h.insert(header::CONTENT_TYPE, HeaderValue::from_static(content_type));
+        h.insert(header::CONTENT_LENGTH, HeaderValue::from(len));
+        h.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-cache"));
+        h.insert(header::X_CONTENT_TYPE_OPTIONS, HeaderValue::from_static("nosniff"));
+        r
+    }
 }
 
 #[cfg(test)]

@@ -435,6 +435,34 @@ async fn issue_35_a_watch_stream_without_newlines_is_dropped_and_reopened() {
     assert!(overlong >= ended.len() as f64, "overlong lines counted: {overlong}, streams ended: {ended:?}");
 }
 
+/// Issue 35: an answer of the SDK sidecar is read up to a bound (64 kB), not for as long as the
+/// sidecar sends it: a health ping answered with an endless body fails once 64 kB have come (the
+/// connection dropped, the failure logged naming the bound) instead of growing the server by what
+/// loopback carries in the call's 2 s timeout (1.7 GB before).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_an_endless_answer_of_the_sidecar_is_read_up_to_a_bound() {
+    let sdk = Sdk::start_with(&["--endless-health"]);
+    let server = Server::start(&sdk);
+    let deadline = Instant::now() + Duration::from_secs(30);
+    let ended = loop {
+        let ended: Vec<u64> =
+            sdk.calls().iter().filter(|c| c.method == "HEALTH_END").map(|c| c.body["bytes"].as_u64().expect("bytes sent")).collect();
+        if ended.len() >= 3 {
+            break ended;
+        }
+        assert!(Instant::now() < deadline, "no three health answers were dropped ({ended:?}); stderr: {}", server.stderr.lock().unwrap());
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    // The 64 kB read, plus what the sockets' buffers took on loopback: not what 2 s carry.
+    for b in &ended {
+        assert!(*b < 16 << 20, "bytes sent per dropped answer: {ended:?}");
+    }
+    let rss = rss_bytes(server.child.id());
+    assert!(rss < 256 << 20, "the server's resident memory: {} MB", rss >> 20);
+    let log = server.stderr.lock().unwrap().clone();
+    assert!(log.contains("POST /health: the Agones SDK server's answer exceeds 65536 bytes"), "{log}");
+}
+
 /// The resident memory of process `pid`, bytes (VmRSS).
 fn rss_bytes(pid: u32) -> u64 {
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc/PID/status");

@@ -40,5 +40,6 @@ mod stream_limits;
 mod training;
 mod training_device;
 mod training_live;
+mod transport;
 mod validation;
 mod web;

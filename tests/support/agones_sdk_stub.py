@@ -20,7 +20,12 @@ With --watch-no-newline (issue 35), GET /watch/gameserver streams bytes without 
 fast as the client reads them, and logs {"method": "WATCH_END", "body": {"bytes": n}} when the
 client drops the stream.
 
+With --endless-health (issue 35), POST /health answers 200 with a body that never ends (no length,
+sent as fast as the client reads it) and logs {"method": "HEALTH_END", "body": {"bytes": n}} when
+the client drops it.
+
 Usage: agones_sdk_stub.py --log calls.jsonl --port-file port [--counter sessions=0] [--watch-no-newline]
+       [--endless-health]
 """
 
 import argparse
@@ -39,9 +44,10 @@ LABEL_VALUE = re.compile(r"^([A-Za-z0-9]([-A-Za-z0-9_.]{0,61}[A-Za-z0-9])?)?$")
 class Sdk:
     """The GameServer as the SDK server sees it, and the call log."""
 
-    def __init__(self, log_path, counters, watch_no_newline=False):
+    def __init__(self, log_path, counters, watch_no_newline=False, endless_health=False):
         self.lock = threading.Condition()
         self.watch_no_newline = watch_no_newline
+        self.endless_health = endless_health
         self.log_path = log_path
         self.state = "Scheduled"
         self.labels = {}
@@ -133,6 +139,8 @@ def make_handler(sdk):
             sdk.record(method, path, body)
             if not isinstance(body, dict):
                 return self.error(400, 3, "the body is not a JSON object")
+            if method == "POST" and path == "/health" and sdk.endless_health:
+                return self.endless()
             if method == "POST" and path in ("/ready", "/health", "/allocate", "/shutdown"):
                 if body:
                     return self.error(400, 3, f"unknown fields {sorted(body)} for Empty")
@@ -210,6 +218,21 @@ def make_handler(sdk):
             except (BrokenPipeError, ConnectionResetError):
                 sdk.record("WATCH_END", self.path, {"bytes": sent})
 
+        def endless(self):
+            self.send_response(200)
+            self.send_header("Content-Type", "application/json")
+            self.send_header("Connection", "close")
+            self.end_headers()
+            chunk = b"x" * 65536
+            sent = 0
+            try:
+                while True:
+                    self.wfile.write(chunk)
+                    sent += len(chunk)
+            except (BrokenPipeError, ConnectionResetError):
+                sdk.record("HEALTH_END", self.path, {"bytes": sent})
+            self.close_connection = True
+
         def do_GET(self):
             self.handle_any("GET")
 
@@ -233,12 +256,14 @@ def main():
                     help="a Counter the GameServer's spec declares (count 0)")
     ap.add_argument("--watch-no-newline", action="store_true",
                     help="the watch stream sends bytes without a newline, without end")
+    ap.add_argument("--endless-health", action="store_true",
+                    help="POST /health answers 200 with a body without end")
     a = ap.parse_args()
     counters = {}
     for c in a.counter:
         name, _, cap = c.partition("=")
         counters[name] = {"count": 0, "capacity": int(cap or 0)}
-    sdk = Sdk(a.log, counters, a.watch_no_newline)
+    sdk = Sdk(a.log, counters, a.watch_no_newline, a.endless_health)
     server = ThreadingHTTPServer(("127.0.0.1", 0), make_handler(sdk))
     server.daemon_threads = True
     tmp = a.port_file + ".tmp"
