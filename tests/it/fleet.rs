@@ -12,7 +12,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use needlesim_proto::v1 as pb;
-use needlesim_tests::{REALTIME, TempDir, bin, python, repo_root, with_token};
+use needlesim_tests::{REALTIME, TempDir, bin, python, repo_root, rss_bytes, with_token};
 use serde_json::Value;
 
 const HEALTH_MS: u64 = 200;
@@ -461,17 +461,6 @@ async fn issue_35_an_endless_answer_of_the_sidecar_is_read_up_to_a_bound() {
     assert!(rss < 256 << 20, "the server's resident memory: {} MB", rss >> 20);
     let log = server.stderr.lock().unwrap().clone();
     assert!(log.contains("POST /health: the Agones SDK server's answer exceeds 65536 bytes"), "{log}");
-}
-
-/// The resident memory of process `pid`, bytes (VmRSS).
-fn rss_bytes(pid: u32) -> u64 {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc/PID/status");
-    let kb: u64 = status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmRSS:"))
-        .and_then(|v| v.split_whitespace().next()?.parse().ok())
-        .expect("VmRSS in /proc/PID/status");
-    kb * 1024
 }
 
 /// CPU time used by process `pid` so far (user + system), seconds (clock ticks of 1/100 s).

@@ -7,7 +7,7 @@ use needlesim_proto::v1 as pb;
 use prost::Message as _;
 use tokio_tungstenite::tungstenite::{Message, client::IntoClientRequest};
 
-use needlesim_tests::{ServerProcess, connect, create_example_session, with_token};
+use needlesim_tests::{ServerProcess, connect, create_example_session, rss_bytes, with_token};
 
 /// The foxglove.SceneUpdate fields the test reads (protobuf field numbers from Foxglove's
 /// schemas: SceneUpdate.entities = 2; SceneEntity.id = 3, lines = 11, triangles = 12;
@@ -248,13 +248,6 @@ async fn subscribed_client(port: u16, rcvbuf: Option<u32>) -> Ws {
     let subs: Vec<_> = channels.iter().enumerate().map(|(i, c)| serde_json::json!({"id": i + 1, "channelId": c})).collect();
     ws.send(Message::Text(serde_json::json!({"op": "subscribe", "subscriptions": subs}).to_string().into())).await.unwrap();
     ws
-}
-
-/// The resident memory of process `pid`, bytes (VmRSS).
-fn rss_bytes(pid: u32) -> u64 {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc/PID/status");
-    status.lines().find_map(|l| l.strip_prefix("VmRSS:")).and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok()).expect("VmRSS")
-        * 1024
 }
 
 /// Issue 35: Foxglove clients that subscribe to a live session and never read cost the server at

@@ -167,9 +167,7 @@ async fn issue_35_every_stream_of_a_closed_2d_session_ends_with_not_found_and_fr
 
 /// The server's resident memory, kB.
 fn rss_kb(pid: u32) -> u64 {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc/PID/status");
-    let line = status.lines().find(|l| l.starts_with("VmRSS:")).expect("VmRSS");
-    line.split_whitespace().nth(1).and_then(|v| v.parse().ok()).expect("a number of kB")
+    needlesim_tests::rss_bytes(pid) / 1024
 }
 
 const DOWN: [f64; 4] = [std::f64::consts::FRAC_1_SQRT_2, 0.0, std::f64::consts::FRAC_1_SQRT_2, 0.0];

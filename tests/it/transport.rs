@@ -9,20 +9,9 @@ use std::time::{Duration, Instant};
 
 use bytes::Bytes;
 use needlesim_proto::v1 as pb;
-use needlesim_tests::{REALTIME, ServerProcess, TempDir, connect, with_token};
+use needlesim_tests::{REALTIME, ServerProcess, TempDir, connect, rss_bytes, with_token};
 use prost::Message;
 use tonic::Code;
-
-/// The resident memory of process `pid`, bytes (VmRSS).
-fn rss_bytes(pid: u32) -> u64 {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc/PID/status");
-    let kb: u64 = status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmRSS:"))
-        .and_then(|v| v.split_whitespace().next()?.parse().ok())
-        .expect("VmRSS in /proc/PID/status");
-    kb * 1024
-}
 
 /// An HTTP/2 connection to `addr` whose receive window is `window` bytes (0: the server can send
 /// headers but no data), driven in the background.

@@ -208,7 +208,9 @@ def make_handler(sdk):
             except (BrokenPipeError, ConnectionResetError):
                 return
 
-        def watch_without_newlines(self):
+        def write_forever(self, event):
+            """Writes 64 kB chunks without a newline until the client leaves; records `event`
+            with the bytes sent."""
             chunk = b"x" * 65536
             sent = 0
             try:
@@ -216,21 +218,17 @@ def make_handler(sdk):
                     self.wfile.write(chunk)
                     sent += len(chunk)
             except (BrokenPipeError, ConnectionResetError):
-                sdk.record("WATCH_END", self.path, {"bytes": sent})
+                sdk.record(event, self.path, {"bytes": sent})
+
+        def watch_without_newlines(self):
+            self.write_forever("WATCH_END")
 
         def endless(self):
             self.send_response(200)
             self.send_header("Content-Type", "application/json")
             self.send_header("Connection", "close")
             self.end_headers()
-            chunk = b"x" * 65536
-            sent = 0
-            try:
-                while True:
-                    self.wfile.write(chunk)
-                    sent += len(chunk)
-            except (BrokenPipeError, ConnectionResetError):
-                sdk.record("HEALTH_END", self.path, {"bytes": sent})
+            self.write_forever("HEALTH_END")
             self.close_connection = True
 
         def do_GET(self):

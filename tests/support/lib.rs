@@ -374,3 +374,14 @@ pub async fn latest_frame(ch: &tonic::transport::Channel, session_id: &str, obse
         .expect("the stream yields a frame")
         .expect("the frame is not an error")
 }
+
+/// The resident memory of process `pid`, bytes (VmRSS of /proc/PID/status).
+pub fn rss_bytes(pid: u32) -> u64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc/PID/status");
+    let kb: u64 = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))
+        .and_then(|v| v.split_whitespace().next()?.parse().ok())
+        .expect("VmRSS in /proc/PID/status");
+    kb * 1024
+}
