@@ -430,17 +430,47 @@ pub struct BodyStalled(Duration);
 /// connection, whose request was not read to its end).
 struct IdleBody<B> {
     inner: B,
-    timeout: Duration,
     counters: Arc<ConnCounters>,
-    /// Runs while the service waits for a frame (made at the first wait).
-    wait: Option<Pin<Box<tokio::time::Sleep>>>,
-    waiting: bool,
+    /// Runs while the service waits for a frame.
+    stall: StallTimer,
     stalled: bool,
 }
 
 impl<B> IdleBody<B> {
     fn new(inner: B, timeout: Duration, counters: Arc<ConnCounters>) -> Self {
-        Self { inner, timeout, counters, wait: None, waiting: false, stalled: false }
+        Self { inner, counters, stall: StallTimer::new(timeout), stalled: false }
+    }
+}
+
+/// The deadline of a body's wait for its next frame: it starts when the service first finds no
+/// frame, runs across the polls of that wait, and starts again after a frame arrives (the timer
+/// is made at the first wait and reset after).
+struct StallTimer {
+    timeout: Duration,
+    wait: Option<Pin<Box<tokio::time::Sleep>>>,
+    waiting: bool,
+}
+
+impl StallTimer {
+    fn new(timeout: Duration) -> Self {
+        Self { timeout, wait: None, waiting: false }
+    }
+
+    /// A frame arrived, or the wait does not count: the next wait starts a new deadline.
+    fn progressed(&mut self) {
+        self.waiting = false;
+    }
+
+    /// The body has no frame now: whether this wait has lasted `timeout` (else `cx` is woken
+    /// when it has).
+    fn expired(&mut self, cx: &mut Context<'_>) -> bool {
+        let at = tokio::time::Instant::now() + self.timeout;
+        let wait = self.wait.get_or_insert_with(|| Box::pin(tokio::time::sleep_until(at)));
+        if !self.waiting {
+            self.waiting = true;
+            wait.as_mut().reset(at);
+        }
+        wait.as_mut().poll(cx).is_ready()
     }
 }
 
@@ -459,22 +489,16 @@ where
         }
         match Pin::new(&mut this.inner).poll_frame(cx) {
             Poll::Ready(frame) => {
-                this.waiting = false;
+                this.stall.progressed();
                 Poll::Ready(frame.map(|f| f.map_err(Into::into)))
             }
             Poll::Pending => {
-                let at = tokio::time::Instant::now() + this.timeout;
-                let wait = this.wait.get_or_insert_with(|| Box::pin(tokio::time::sleep_until(at)));
-                if !this.waiting {
-                    this.waiting = true;
-                    wait.as_mut().reset(at);
-                }
-                if wait.as_mut().poll(cx).is_pending() {
+                if !this.stall.expired(cx) {
                     return Poll::Pending;
                 }
                 this.stalled = true;
                 this.counters.stalled_bodies.fetch_add(1, Ordering::Relaxed);
-                Poll::Ready(Some(Err(BodyStalled(this.timeout).into())))
+                Poll::Ready(Some(Err(BodyStalled(this.stall.timeout).into())))
             }
         }
     }
@@ -545,16 +569,14 @@ struct PendingBody<B> {
     framing: Option<Framing>,
     /// Bytes this body holds in the budget now.
     held: u64,
-    stall: Duration,
-    /// Runs while the service waits for the rest of a message (made at the first such wait).
-    wait: Option<Pin<Box<tokio::time::Sleep>>>,
-    waiting: bool,
+    /// Runs while the service waits for the rest of a message.
+    stall: StallTimer,
     failed: bool,
 }
 
 impl<B> PendingBody<B> {
     fn new(inner: B, budget: u64, framed: bool, stall: Duration, counters: Arc<ConnCounters>) -> Self {
-        Self { inner, counters, budget, framing: framed.then(Framing::default), held: 0, stall, wait: None, waiting: false, failed: false }
+        Self { inner, counters, budget, framing: framed.then(Framing::default), held: 0, stall: StallTimer::new(stall), failed: false }
     }
 
     fn release(&mut self) {
@@ -593,7 +615,7 @@ where
         }
         match Pin::new(&mut this.inner).poll_frame(cx) {
             Poll::Ready(Some(Ok(frame))) => {
-                this.waiting = false;
+                this.stall.progressed();
                 if let Some(data) = frame.data_ref() {
                     let after = match &mut this.framing {
                         Some(f) => f.feed(this.held, data),
@@ -631,23 +653,17 @@ where
             Poll::Pending => {
                 if this.held == 0 {
                     // Between messages: a stream may wait as long as it likes.
-                    this.waiting = false;
+                    this.stall.progressed();
                     return Poll::Pending;
                 }
-                let at = tokio::time::Instant::now() + this.stall;
-                let wait = this.wait.get_or_insert_with(|| Box::pin(tokio::time::sleep_until(at)));
-                if !this.waiting {
-                    this.waiting = true;
-                    wait.as_mut().reset(at);
-                }
-                if wait.as_mut().poll(cx).is_pending() {
+                if !this.stall.expired(cx) {
                     return Poll::Pending;
                 }
                 this.counters.stalled_messages.fetch_add(1, Ordering::Relaxed);
                 let held = this.held;
                 this.fail(tonic::Status::deadline_exceeded(format!(
                     "the request message stopped arriving: nothing for {} ms (--handshake-timeout-ms) after {held} bytes of it",
-                    this.stall.as_millis()
+                    this.stall.timeout.as_millis()
                 )))
             }
         }

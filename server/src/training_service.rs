@@ -142,13 +142,10 @@ impl pb::training_service_server::TrainingService for Api {
         let record = r.record;
         let made = tokio::task::spawn_blocking(move || {
             let made = create_exercise_session(&state, &name, rate, device)?;
-            // A create succeeds whole or leaves nothing: a recording that cannot start closes
-            // the session (and its exercise), whose tokens nobody got.
-            if record && let Err(e) = crate::grpc::start_recording(&state, &made.session, false) {
-                state.discard_session(&made.session);
-                return Err(e);
+            if record {
+                state.start_recording_or_discard(&made.session)?;
             }
-            Ok(made)
+            Ok::<_, Status>(made)
         })
         .await
         .map_err(|e| Status::internal(format!("session task: {e}")))??;

@@ -40,6 +40,16 @@ pub struct Asset {
     content_type: &'static str,
 }
 
+impl Asset {
+    /// Its name below `--web-dir` (`index.html`, `dist/app.js`): the key of [`WebFiles`].
+    fn key(&self) -> String {
+        match self.dir {
+            Some(d) => format!("{d}/{}", self.name),
+            None => self.name.clone(),
+        }
+    }
+}
+
 /// Why a file is not served.
 #[derive(Debug, thiserror::Error)]
 pub enum AssetError {
@@ -155,10 +165,7 @@ impl WebFiles {
         let mut total = 0u64;
         for path in names {
             let Some(a) = asset(&path) else { continue };
-            let key = match a.dir {
-                Some(d) => format!("{d}/{}", a.name),
-                None => a.name.clone(),
-            };
+            let key = a.key();
             match read(web_dir, &a) {
                 Ok(bytes) if total + bytes.len() as u64 <= MAX_WEB_BYTES => {
                     total += bytes.len() as u64;
@@ -187,11 +194,7 @@ impl WebFiles {
         let Some(a) = asset(path) else {
             return plain(StatusCode::NOT_FOUND, "not found\n");
         };
-        let key = match a.dir {
-            Some(d) => format!("{d}/{}", a.name),
-            None => a.name,
-        };
-        let Some((bytes, content_type)) = self.files.get(&key) else {
+        let Some((bytes, content_type)) = self.files.get(&a.key()) else {
             return plain(StatusCode::NOT_FOUND, "not found\n");
         };
         if method != Method::GET && method != Method::HEAD {

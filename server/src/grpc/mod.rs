@@ -303,6 +303,13 @@ impl ServerState {
         tracing::info!(session = %s.id, "session discarded: its create failed");
     }
 
+    /// The recording a create asked for, started as the create's last step: a create succeeds
+    /// whole or leaves nothing, so a recording that cannot start (the directory filled since
+    /// [`Self::check_recording_room`]) discards the session, whose tokens nobody got. Blocking.
+    pub(crate) fn start_recording_or_discard(&self, s: &Arc<Session>) -> Result<(), Status> {
+        start_recording(self, s, false).inspect_err(|_| self.discard_session(s)).map(drop)
+    }
+
     /// Registers a started session and frees its reservation.
     pub(crate) fn register(&self, mut slot: SessionSlot, s: Arc<Session>) -> Arc<Session> {
         {

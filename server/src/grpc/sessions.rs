@@ -39,13 +39,10 @@ impl pb::session_service_server::SessionService for Api {
                 convert::SessionScene::Two(scene) => state.create_session_in(slot, &scene, rate, device),
                 convert::SessionScene::Three(scene) => state.create_session3_in(slot, &scene, rate, device),
             }?;
-            // A create succeeds whole or leaves nothing: a recording that cannot start (the
-            // directory filled meanwhile) closes the session, whose tokens nobody got.
-            if record && let Err(e) = super::recordings::start_recording(&state, &s, false) {
-                state.discard_session(&s);
-                return Err(e);
+            if record {
+                state.start_recording_or_discard(&s)?;
             }
-            Ok(s)
+            Ok::<_, Status>(s)
         })
         .await
         .map_err(|e| Status::internal(format!("session task: {e}")))??;
