@@ -959,7 +959,7 @@ fn issue_13_fuzz_png_frames() {
 }
 
 /// The long run, on demand: every parser (or those named in `NEEDLESIM_FUZZ_TARGETS`, comma
-/// separated) in turn on this one thread, `NEEDLESIM_FUZZ_SECONDS` (default 1800) each, printing
+/// separated) in turn on this one thread, `NEEDLESIM_FUZZ_SECONDS` (default 1800) of its CPU time each, printing
 /// the cases per parser. Several processes with disjoint target lists use several cores.
 #[test]
 #[ignore = "long fuzzing run: NEEDLESIM_FUZZ_SECONDS=1800 cargo test -p needlesim-server --test fuzz_parsers -- --ignored --nocapture"]

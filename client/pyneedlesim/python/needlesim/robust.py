@@ -194,7 +194,11 @@ def wilson_interval(hits: int, n: int, z: float = Z95) -> tuple[float, float]:
     d = 1.0 + z * z / n
     centre = (p + z * z / (2 * n)) / d
     half = z * math.sqrt(p * (1.0 - p) / n + z * z / (4.0 * n * n)) / d
-    return (max(0.0, centre - half), min(1.0, centre + half))
+    # At hits = 0 (n) the lower (upper) bound is exactly 0 (1); rounding gave 1 - 1e-16 at 30 of
+    # 30, below the estimate, and a negative error bar in the example's figure.
+    lo = 0.0 if hits == 0 else min(p, max(0.0, centre - half))
+    hi = 1.0 if hits == n else max(p, min(1.0, centre + half))
+    return (lo, hi)
 
 
 @dataclass
