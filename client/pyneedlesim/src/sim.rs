@@ -14,7 +14,6 @@
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
 
 use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
@@ -696,7 +695,7 @@ fn run3(
 /// from the previous step first (`S::PREFETCH_NODES_PER_TICK` of them, as the run driver
 /// computes between its steps), then the step. `prefetch_due` is set after a step and cleared
 /// by the prefetch.
-fn step_after_prefetch<S: ScriptedSim>(sim: &mut S, prefetch_due: &mut bool, pose: S::Pose) -> Result<&S::Output, S::Error> {
+fn step_after_prefetch<'s, S: ScriptedSim>(sim: &'s mut S, prefetch_due: &mut bool, pose: S::Pose) -> Result<&'s S::Output, S::Error> {
     if std::mem::take(prefetch_due) {
         sim.prefetch_columns(S::PREFETCH_NODES_PER_TICK)?;
     }
@@ -979,14 +978,14 @@ pub fn tick_poses<'py>(
             // The driver's own sampling (ScriptedRun::pose_at_tick), not a copy of it.
             let run = ScriptedRun::new(s.tissue.clone(), s.params.clone(), Script::trajectory(&traj), opts).map_err(|e| run_error(&e))?;
             let n = run.ticks_total();
-            let rate = s.params.tick_rate_hz;
-            let t: Vec<f64> = (0..n).map(|k| run.t0_s() + k as f64 / rate).collect();
-            let p: Vec<f64> = (0..n)
-                .flat_map(|k| {
-                    let b = run.pose_at_tick(k);
-                    [b.x_m, b.y_m, b.theta_rad]
-                })
-                .collect();
+            let t: Vec<f64> = (0..n).map(|k| run.t_at_tick(k)).collect();
+            let mut p = Vec::with_capacity(3 * n as usize);
+            for k in 0..n {
+                // A 2D trajectory pose is always a base pose (a pose that is not finite is the
+                // step's to refuse).
+                let b = run.pose_at_tick(k).map_err(|e| sim_error(&e))?;
+                p.extend([b.x_m, b.y_m, b.theta_rad]);
+            }
             Ok((t.into_pyarray(py), array2(py, n as usize, 3, &p)))
         }
         (SceneKind::D3 { scene: s, .. }, Traj::D3(traj)) => {
