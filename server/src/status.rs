@@ -8,6 +8,7 @@
 //! an `anyhow::Error` chain (scene loading, trajectories, identify); [`ApiError::from_chain`] finds
 //! the typed cause in the chain by downcasting, never by matching text.
 
+use needlesim_core::StepError;
 use needlesim_core::d3::TetMeshError;
 use needlesim_core::mesh::MeshError;
 use needlesim_core::msh::MshError;
@@ -159,20 +160,31 @@ impl From<&SimError3> for ApiError {
     }
 }
 
+/// A scripted run's error, in either dimension (`setup`: the status of the simulation's own
+/// error when it could not be built).
+fn from_run_error<E: StepError>(e: &RunError<E>, setup: impl FnOnce(&E) -> ApiError) -> ApiError {
+    match e {
+        RunError::TooLong(_) => ApiError::ResourceExhausted(with_causes(e)),
+        RunError::BadEnd { .. } | RunError::FirstPose(_) => ApiError::invalid("trajectory", with_causes(e)),
+        RunError::Setup(s) => setup(s),
+        // A trajectory whose interpolation is not a pose (not finite; in 3D not a unit
+        // quaternion) is the caller's.
+        RunError::Step { source, .. } if source.is_bad_pose() => ApiError::invalid("trajectory", with_causes(e)),
+        RunError::Step { .. } | RunError::Prefetch { .. } => ApiError::Internal(with_causes(e)),
+        // Well-formed input whose run does not converge: kept only when the caller asks.
+        RunError::Unconverged(_) => ApiError::FailedPrecondition(with_causes(e)),
+    }
+}
+
 impl From<&RunError> for ApiError {
     fn from(e: &RunError) -> Self {
-        match e {
-            RunError::TooLong(_) => ApiError::ResourceExhausted(with_causes(e)),
-            RunError::BadEnd { .. } => ApiError::invalid("trajectory", e),
-            RunError::Setup(s) => ApiError::from(&**s),
-            // A trajectory whose interpolation is not finite is the caller's.
-            RunError::Step { source, .. } if matches!(**source, SimError::NonFinitePose { .. }) => {
-                ApiError::invalid("trajectory", with_causes(e))
-            }
-            RunError::Step { .. } | RunError::Prefetch { .. } => ApiError::Internal(with_causes(e)),
-            // Well-formed input whose run does not converge: kept only when the caller asks.
-            RunError::Unconverged(_) => ApiError::FailedPrecondition(with_causes(e)),
-        }
+        from_run_error(e, |s: &SimError| ApiError::from(s))
+    }
+}
+
+impl From<&RunError<SimError3>> for ApiError {
+    fn from(e: &RunError<SimError3>) -> Self {
+        from_run_error(e, |s: &SimError3| ApiError::from(s))
     }
 }
 

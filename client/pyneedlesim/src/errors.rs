@@ -3,6 +3,7 @@
 //! Each exception's message is the Rust error with its causes, as the CLI prints them
 //! (`outer: cause: cause`, anyhow's alternate format).
 
+use needlesim_core::StepError;
 use needlesim_core::sim::SimError;
 use needlesim_core::sim3::SimError3;
 use needlesim_offline::RunError;
@@ -107,13 +108,14 @@ pub fn sim3_error(e: &SimError3) -> PyErr {
     }
 }
 
-/// A scripted run's error: the script's length or end is a [`TrajectoryError`], a step stopped by
-/// a rejected pose a [`PoseError`], any other failure a [`SimulationError`].
-pub fn run_error(e: &RunError) -> PyErr {
+/// A scripted run's error, in either dimension: the script's length, end or first pose is a
+/// [`TrajectoryError`], a step stopped by a rejected pose a [`PoseError`], any other failure a
+/// [`SimulationError`].
+pub fn run_error<E: StepError>(e: &RunError<E>) -> PyErr {
     let msg = chain(e);
     match e {
-        RunError::TooLong(_) | RunError::BadEnd { .. } => TrajectoryError::new_err(msg),
-        RunError::Step { source, .. } if matches!(**source, SimError::NonFinitePose { .. }) => PoseError::new_err(msg),
+        RunError::TooLong(_) | RunError::BadEnd { .. } | RunError::FirstPose(_) => TrajectoryError::new_err(msg),
+        RunError::Step { source, .. } if source.is_bad_pose() => PoseError::new_err(msg),
         RunError::Setup(_) | RunError::Step { .. } | RunError::Prefetch { .. } | RunError::Unconverged(_) => SimulationError::new_err(msg),
     }
 }

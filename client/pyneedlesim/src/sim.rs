@@ -6,21 +6,21 @@
 //! against scene files need not branch, and the results have the same fields with vectors of
 //! length `dim` (a pose has 3 numbers in 2D, 7 in 3D). A step computes the compliance columns
 //! due from the previous step first, exactly as the run driver does between steps
-//! (`needlesim_offline::ScriptedRun`: up to `DEFAULT_PREFETCH_NODES_PER_TICK` nodes in 2D; in
-//! 3D every approaching node, as the 3D `simulate` does): a Python loop of `step` over a
-//! trajectory's tick poses gives the `simulate` command's numbers.
+//! (`needlesim_offline::ScriptedRun`, `ScriptedSim::PREFETCH_NODES_PER_TICK`: up to
+//! `DEFAULT_PREFETCH_NODES_PER_TICK` nodes in 2D, every approaching node in 3D), through one
+//! generic step of both dimensions ([`step_after_prefetch`]): a Python loop of `step` over a
+//! trajectory's tick poses gives the `simulate` command's numbers; `run` is that driver's run.
 
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
 
 use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
 use needlesim_core::sim::{NodeState, Simulation, StepOutput};
 use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
 use needlesim_offline::{
-    ConvergencePolicy, DEFAULT_PREFETCH_NODES_PER_TICK, MAX_TICKS_LIMIT, RunOptions, Script, ScriptedRun, preallocated_ticks, simulate,
+    ConvergencePolicy, MAX_TICKS_LIMIT, RunError, RunOptions, RunTotals, Script, ScriptedRun, ScriptedSim, preallocated_ticks, simulate,
 };
 use needlesim_scene::{MAX_ABS_POSE, Scene, Scene3d, Trajectory, Trajectory3};
 use numpy::ndarray::{Array2, Array3};
@@ -667,54 +667,41 @@ fn check_max_ticks(max_ticks: u64) -> PyResult<()> {
     Ok(())
 }
 
-/// Why a 3D run failed.
-enum Run3Failure {
-    Trajectory(String),
-    Setup(PyErr),
-    Step { k: u64, t_s: f64, source: SimError3 },
-    Unconverged(needlesim_offline::UnconvergedTick),
-}
-
-/// The 3D scripted run, as the 3D `simulate` does it: tick `k = 0..=K` steps the trajectory's
-/// pose at `t0 + k / rate` (`K = last_k = round((t1 - t0) rate)`, checked against the tick limit
-/// by the caller), starting at the first sample's pose;
-/// after each step every approaching node's columns are computed. Minimal: targets are not
-/// tracked, no CSV. To be replaced by `needlesim_offline::simulate3`'s loop once that lands.
+/// The 3D scripted run, with the run driver as the 3D `simulate` runs it: tick `k = 0..=K`
+/// steps the trajectory's pose at `t0 + k / rate` (`K = round((t1 - t0) rate)`, at most
+/// `max_ticks`), starting at the first sample's pose, every approaching node's columns computed
+/// between steps. Minimal: the rows go to `series`, no CSV; `progress` may stop it after a
+/// tick. Returns the simulation and the run's totals (`stopped_early` from the progress).
 fn run3(
     scene: &Scene3d,
     tissue: &Arc<TetTissueModel>,
     traj: &Trajectory3,
-    (last_k, convergence): (u64, ConvergencePolicy),
+    (max_ticks, convergence): (u64, ConvergencePolicy),
     series: &mut Series,
     progress: &mut Progress<'_>,
-) -> Result<(Simulation3, u64), Run3Failure> {
-    let rate = scene.tick_rate_hz;
-    let t0 = traj.span_s().0;
-    let first = traj.samples[0].1;
-    let initial = BasePose3::new(first.position_m, first.quat_wxyz)
-        .map_err(|e| Run3Failure::Trajectory(format!("the trajectory's first pose: {e}")))?;
-    let mut sim = Simulation3::new(tissue.clone(), sim3_params(scene, initial)).map_err(|e| Run3Failure::Setup(sim3_error(&e)))?;
-    let mut prefetched = 0u64;
-    for k in 0..=last_k {
-        let t_s = t0 + k as f64 / rate;
-        let p = traj.pose_at(t_s);
-        let pose = BasePose3::new(p.position_m, p.quat_wxyz).map_err(|e| Run3Failure::Step {
-            k,
-            t_s,
-            source: SimError3::Pose { tick: sim.tick(), source: e },
-        })?;
-        let started = Instant::now();
-        let stepped = sim.step(pose).map(|_| ());
-        let step_s = started.elapsed().as_secs_f64();
-        stepped.map_err(|source| Run3Failure::Step { k, t_s, source })?;
-        convergence.check(k, t_s, sim.output().unconverged()).map_err(Run3Failure::Unconverged)?;
-        series.push3(sim.output(), t_s, step_s);
-        prefetched += sim.prefetch_columns(usize::MAX).map_err(|source| Run3Failure::Step { k, t_s, source })? as u64;
-        if progress.tick(k + 1).is_break() {
-            break;
-        }
+) -> Result<(Simulation3, RunTotals), RunError<SimError3>> {
+    let initial = <Simulation3 as ScriptedSim>::first_pose(traj).map_err(|e| RunError::FirstPose(Box::new(e)))?;
+    let opts = RunOptions { max_ticks, convergence, ..RunOptions::default() };
+    let mut run = ScriptedRun::new(tissue.clone(), sim3_params(scene, initial), Script::trajectory(traj), opts)?;
+    let totals = run.run(|tick, sim| {
+        series.push3(sim.output(), tick.t_s, tick.step_s);
+        progress.tick(tick.k + 1)
+    })?;
+    let (sim, finished) = run.finish()?;
+    Ok((sim, RunTotals { stopped_early: totals.stopped_early, ..finished }))
+}
+
+/// One step of a simulation the Python `step` drives, in either dimension: the columns due
+/// from the previous step first (`S::PREFETCH_NODES_PER_TICK` of them, as the run driver
+/// computes between its steps), then the step. `prefetch_due` is set after a step and cleared
+/// by the prefetch.
+fn step_after_prefetch<'s, S: ScriptedSim>(sim: &'s mut S, prefetch_due: &mut bool, pose: S::Pose) -> Result<&'s S::Output, S::Error> {
+    if std::mem::take(prefetch_due) {
+        sim.prefetch_columns(S::PREFETCH_NODES_PER_TICK)?;
     }
-    Ok((sim, prefetched))
+    let out = sim.step(pose)?;
+    *prefetch_due = true;
+    Ok(out)
 }
 
 #[pymethods]
@@ -767,23 +754,11 @@ impl PySimulation {
         match &mut self.kind {
             SimKind::D2 { sim, prefetch_due } => {
                 let pose = pose2(&pose)?;
-                if std::mem::take(prefetch_due) {
-                    sim.prefetch_columns(DEFAULT_PREFETCH_NODES_PER_TICK).map_err(|e| sim_error(&e))?;
-                }
-                let out = sim.step(pose).map_err(|e| sim_error(&e))?;
-                let r = StepResult::from2(out);
-                *prefetch_due = true;
-                Ok(r)
+                step_after_prefetch(&mut **sim, prefetch_due, pose).map(StepResult::from2).map_err(|e| sim_error(&e))
             }
             SimKind::D3 { sim, prefetch_due } => {
                 let pose = pose3(&pose, sim.tick())?;
-                if std::mem::take(prefetch_due) {
-                    sim.prefetch_columns(usize::MAX).map_err(|e| sim3_error(&e))?;
-                }
-                let out = sim.step(pose).map_err(|e| sim3_error(&e))?;
-                let r = StepResult::from3(out);
-                *prefetch_due = true;
-                Ok(r)
+                step_after_prefetch(&mut **sim, prefetch_due, pose).map(StepResult::from3).map_err(|e| sim3_error(&e))
             }
         }
     }
@@ -870,23 +845,11 @@ impl PySimulation {
                 let total = traj.tick_count(s.tick_rate_hz, max_ticks).map_err(|e| trajectory_error(&e))? + 1;
                 let mut series = Series::with_capacity(3, s.targets.len(), preallocated_ticks(total));
                 let mut prog = Progress { callback: progress.as_ref(), every: progress_every, total, error: None };
-                let r = py.detach(|| run3(s, tissue, &traj, (total - 1, convergence), &mut series, &mut prog));
-                let (sim, prefetched) = r.map_err(|f| match f {
-                    Run3Failure::Trajectory(m) => TrajectoryError::new_err(m),
-                    Run3Failure::Setup(e) => e,
-                    Run3Failure::Unconverged(e) => SimulationError::new_err(e.to_string()),
-                    Run3Failure::Step { k, t_s, source } => {
-                        let msg = format!("the run stopped at tick {k} (t = {t_s:.4} s): {}", chain(&source));
-                        match source {
-                            SimError3::Pose { .. } => PoseError::new_err(msg),
-                            _ => SimulationError::new_err(msg),
-                        }
-                    }
-                })?;
-                let stopped_early = prog.error.is_some();
+                let r = py.detach(|| run3(s, tissue, &traj, (max_ticks, convergence), &mut series, &mut prog));
+                let (sim, totals) = r.map_err(|e| run_error(&e))?;
                 let st = sim.stats();
                 let ticks = sim.tick();
-                self.kind = SimKind::D3 { sim: Box::new(sim), prefetch_due: false };
+                self.kind = SimKind::D3 { sim: Box::new(sim), prefetch_due: totals.stopped_early };
                 if let Some(e) = prog.error {
                     return Err(e);
                 }
@@ -897,8 +860,8 @@ impl PySimulation {
                     unconverged_ticks: series.converged.iter().filter(|c| !**c).count() as u64,
                     column_misses: 0,
                     column_deferrals: st.column_deferrals,
-                    prefetched_columns: prefetched,
-                    stopped_early,
+                    prefetched_columns: totals.prefetched_columns,
+                    stopped_early: totals.stopped_early,
                     series,
                 })
             }
@@ -1015,14 +978,14 @@ pub fn tick_poses<'py>(
             // The driver's own sampling (ScriptedRun::pose_at_tick), not a copy of it.
             let run = ScriptedRun::new(s.tissue.clone(), s.params.clone(), Script::trajectory(&traj), opts).map_err(|e| run_error(&e))?;
             let n = run.ticks_total();
-            let rate = s.params.tick_rate_hz;
-            let t: Vec<f64> = (0..n).map(|k| run.t0_s() + k as f64 / rate).collect();
-            let p: Vec<f64> = (0..n)
-                .flat_map(|k| {
-                    let b = run.pose_at_tick(k);
-                    [b.x_m, b.y_m, b.theta_rad]
-                })
-                .collect();
+            let t: Vec<f64> = (0..n).map(|k| run.t_at_tick(k)).collect();
+            let mut p = Vec::with_capacity(3 * n as usize);
+            for k in 0..n {
+                // A 2D trajectory pose is always a base pose (a pose that is not finite is the
+                // step's to refuse).
+                let b = run.pose_at_tick(k).map_err(|e| sim_error(&e))?;
+                p.extend([b.x_m, b.y_m, b.theta_rad]);
+            }
             Ok((t.into_pyarray(py), array2(py, n as usize, 3, &p)))
         }
         (SceneKind::D3 { scene: s, .. }, Traj::D3(traj)) => {

@@ -7,7 +7,8 @@
 //! O(d²) updates ([`mixed`]); the compliance cache, the contact points and the mixed solver
 //! serve 2D and 3D (a const generic dimension). Gmsh meshes are read from text by [`msh`]. The needle ([`needle`])
 //! and the insertion simulation stepped once per haptic tick ([`sim`]) sit on top, with a spatial
-//! grid ([`spatial`]) for finding the nodes near the tip. Node indices, working-set slots and
+//! grid ([`spatial`]) for finding the nodes near the tip; [`stepper`] is the step interface the 2D
+//! and 3D simulations share (the scripted driver's). Node indices, working-set slots and
 //! needle-frame components have their own types ([`ids`]); the test and benchmark set-ups of
 //! every crate are in [`fixtures`].
 //!
@@ -42,6 +43,7 @@ pub mod sim;
 pub mod sim3;
 pub mod spatial;
 pub mod statics;
+pub mod stepper;
 
 pub use assembly::MaterialMap;
 pub use beam::NeedleCurve;
@@ -54,3 +56,4 @@ pub use mixed::{Condition, MixedError, MixedSolver, MixedSolver2, MixedSolver3};
 pub use needle::{BasePose, FlexibleNeedle, NeedleShape, RegionNeedleParams, RigidNeedle};
 pub use sim::{Divergence, DivergenceBounds, Inserted, NodeState, SimError, SimParams, SimStats, Simulation, StepOutput, TargetParams};
 pub use statics::{NodeCondition, StaticError, StaticProblem, StaticSolution};
+pub use stepper::{StepError, Stepper};

@@ -195,7 +195,7 @@ fn run_ours(n: usize, script: &Script) -> Result<(Row, StaticProblem)> {
         model.clone(),
         s.params.clone(),
         OfflineScript::Poses(&poses),
-        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 64, convergence: ConvergencePolicy::Keep },
+        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: Some(64), convergence: ConvergencePolicy::Keep },
     )?;
     let mut times = Vec::with_capacity(poses.len());
     let mut max_nodes = 0usize;
@@ -288,7 +288,7 @@ fn run_dense(n: usize, script: &Script) -> Result<Row> {
         model.clone(),
         s.params.clone(),
         OfflineScript::Poses(&poses),
-        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 0, convergence: ConvergencePolicy::Keep },
+        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: Some(0), convergence: ConvergencePolicy::Keep },
     )?;
     let mut times = Vec::with_capacity(poses.len());
     let mut inserted = 0usize;
@@ -349,7 +349,7 @@ fn run_naive(n: usize, script: &Script, budget_s: f64) -> Result<Row> {
     let sampled: Vec<usize> = (0..n_samples).map(|i| i * (n_ticks - 1) / (n_samples - 1).max(1)).collect();
     let problems = {
         let model = Arc::new(TissueModel::new(s.mesh.clone(), s.mats.clone(), &s.fixed)?);
-        let opts = RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 64, convergence: ConvergencePolicy::Keep };
+        let opts = RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: Some(64), convergence: ConvergencePolicy::Keep };
         let mut run = ScriptedRun::new(model, s.params.clone(), OfflineScript::Poses(&poses), opts)?;
         let mut problems = Vec::with_capacity(n_samples);
         let mut next = 0;

@@ -714,7 +714,7 @@ pub fn run_case(script: &MotionScript, model: &Arc<TissueModel>, setup_s: f64, o
         model.clone(),
         params,
         Script::Poses(&script.poses),
-        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: 0, convergence: ConvergencePolicy::Keep },
+        RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: Some(0), convergence: ConvergencePolicy::Keep },
     )?;
     let mut res = CaseResult {
         motion: script.motion,

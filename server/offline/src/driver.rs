@@ -1,12 +1,15 @@
-//! The one scripted-run driver: a script of base poses (a trajectory sampled at the tick rate, or
-//! a list of poses) through `Simulation::step`, with the compliance columns of the nodes the tip
+//! The one scripted-run driver, for both dimensions: a script of base poses (a trajectory
+//! sampled at the tick rate, or a list of poses) through the simulation's step ([`ScriptedSim`]:
+//! the 2D `Simulation` or the 3D `Simulation3`), with the compliance columns of the nodes the tip
 //! approaches computed between steps, as a session's column worker would. One tick limit, one
-//! error policy; each caller takes what it needs from each tick.
+//! tick rounding ($K = \mathrm{round}((t_{end} - t_0) f_{tick})$, tick $k$ at
+//! $t_0 + k / f_{tick}$), one error policy; each caller takes what it needs from each tick.
 //!
 //! # Error policy
 //! Any failed step stops the run with [`RunError::Step`], naming the tick and the script time:
 //! a diverged solve, a failed solve or compliance column, and also a pose that is not finite
-//! (`SimError::NonFinitePose`). The last is the strictest of the policies the five hand-written
+//! (`SimError::NonFinitePose`; in 3D also a trajectory pose that is not a unit quaternion,
+//! `SimError3::Pose`). The last is the strictest of the policies the five hand-written
 //! loops had (`simulate` skipped such a tick with a warning; the Simulate RPC, `plan`,
 //! the identify experiments and `bench` stopped): a skipped tick would shift every later row of
 //! a time series off the tick grid. A trajectory read from CSV never yields one (needlesim-trajectory
@@ -15,17 +18,17 @@
 //! here with that error. A tick that did not converge stops the run too
 //! ([`RunError::Unconverged`]), unless [`RunOptions::convergence`] keeps it.
 
+use std::fmt;
 use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
-use needlesim_core::BasePose;
-use needlesim_core::compliance::TissueModel;
-use needlesim_core::sim::{SimError, SimParams, Simulation, StepOutput};
-use needlesim_scene::Trajectory;
+use needlesim_core::StepError;
+use needlesim_core::sim::{SimError, Simulation};
 use needlesim_trajectory::TrajectoryError;
 
 use crate::convergence::{ConvergencePolicy, UnconvergedTick};
+pub use crate::scripted::{RunParams, ScriptedSim};
 
 /// The longest offline simulation, in ticks, by default: the server's Simulate limit and the
 /// `simulate` command's `--max-ticks` (10⁶ ticks: 1000 s at 1 kHz, 8 MB of step times).
@@ -45,63 +48,90 @@ pub fn preallocated_ticks(ticks: u64) -> usize {
     ticks.min(PREALLOCATED_TICKS) as usize
 }
 
-/// Compliance columns computed between two steps, by default (the budget a worker would have).
+/// Compliance columns computed between two steps of a 2D run, by default (the budget a worker
+/// would have); a 3D run computes every approaching node's ([`ScriptedSim::PREFETCH_NODES_PER_TICK`]).
 pub const DEFAULT_PREFETCH_NODES_PER_TICK: usize = 8;
 
-/// Why a scripted run did not start or stopped.
+/// Why a scripted run did not start or stopped; `E` is the simulation's error (2D by default:
+/// `SimError`; 3D: `SimError3`).
 #[derive(Debug, thiserror::Error)]
-pub enum RunError {
+pub enum RunError<E: StepError = SimError> {
     /// The script is longer than the tick limit (the error names its last sample).
     #[error(transparent)]
     TooLong(#[from] TrajectoryError),
     /// The end time given is not after the script's start.
     #[error("the run's end t = {end_s} s must come after the trajectory's start ({start_s} s)")]
     BadEnd { end_s: f64, start_s: f64 },
+    /// The trajectory's first pose is not a base pose (3D: not a unit quaternion); nothing ran.
+    #[error("the trajectory's first pose")]
+    FirstPose(#[source] Box<E>),
     /// The simulation could not be built from the scene's parameters.
     #[error("simulation")]
-    Setup(#[source] Box<SimError>),
+    Setup(#[source] Box<E>),
     /// A step failed (see the module documentation): the run stops there. A diverged step names
     /// its tick itself.
-    #[error("{}", step_context(*tick, *t_s, source))]
-    Step { tick: u64, t_s: f64, source: Box<SimError> },
+    #[error("{}", step_context(*tick, *t_s, &**source))]
+    Step { tick: u64, t_s: f64, source: Box<E> },
     /// Computing the columns of approaching nodes after a step failed.
     #[error("the run stopped at tick {tick} (t = {t_s:.4} s): compliance columns")]
-    Prefetch { tick: u64, t_s: f64, source: Box<SimError> },
+    Prefetch { tick: u64, t_s: f64, source: Box<E> },
     /// A tick did not converge and the run's [`ConvergencePolicy`] is `Fail`.
     #[error(transparent)]
     Unconverged(#[from] UnconvergedTick),
 }
 
-fn step_context(tick: u64, t_s: f64, source: &SimError) -> String {
-    match source {
-        SimError::Diverged { .. } => format!("the run stopped at t = {t_s:.4} s"),
-        _ => format!("the run stopped at tick {tick} (t = {t_s:.4} s)"),
+fn step_context<E: StepError>(tick: u64, t_s: f64, source: &E) -> String {
+    if source.names_its_tick() {
+        format!("the run stopped at t = {t_s:.4} s")
+    } else {
+        format!("the run stopped at tick {tick} (t = {t_s:.4} s)")
     }
 }
 
-impl RunError {
+impl<E: StepError> RunError<E> {
     /// The simulation error behind a failed step or column, if that is what stopped the run.
-    pub fn sim_error(&self) -> Option<&SimError> {
+    pub fn sim_error(&self) -> Option<&E> {
         match self {
-            RunError::Setup(e) | RunError::Step { source: e, .. } | RunError::Prefetch { source: e, .. } => Some(&**e),
+            RunError::Setup(e) | RunError::FirstPose(e) | RunError::Step { source: e, .. } | RunError::Prefetch { source: e, .. } => {
+                Some(&**e)
+            }
             RunError::TooLong(_) | RunError::BadEnd { .. } | RunError::Unconverged(_) => None,
         }
     }
 }
 
-/// The poses a run follows, one per tick.
-#[derive(Debug, Clone, Copy)]
-pub enum Script<'a> {
+/// The poses a run follows, one per tick, in `S`'s dimension (2D by default).
+pub enum Script<'a, S: ScriptedSim = Simulation> {
     /// A trajectory sampled at the scene's tick rate from its first sample's time to its last
     /// (or to `end_s`, when earlier); the simulation starts at the first sample's pose.
-    Trajectory { trajectory: &'a Trajectory, end_s: Option<f64> },
+    Trajectory { trajectory: &'a S::Trajectory, end_s: Option<f64> },
     /// One pose per tick, from time 0; the simulation starts at the scene's initial pose.
-    Poses(&'a [BasePose]),
+    Poses(&'a [S::Pose]),
 }
 
-impl<'a> Script<'a> {
+// By hand: a derive would ask `S` itself (the simulation) to be `Clone`, `Copy` and `Debug`.
+impl<S: ScriptedSim> Clone for Script<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S: ScriptedSim> Copy for Script<'_, S> {}
+
+impl<S: ScriptedSim> fmt::Debug for Script<'_, S> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Script::Trajectory { trajectory, end_s } => {
+                f.debug_struct("Trajectory").field("span_s", &S::span_s(trajectory)).field("end_s", end_s).finish()
+            }
+            Script::Poses(poses) => f.debug_tuple("Poses").field(&poses.len()).finish(),
+        }
+    }
+}
+
+impl<'a, S: ScriptedSim> Script<'a, S> {
     /// The whole of a trajectory.
-    pub fn trajectory(trajectory: &'a Trajectory) -> Self {
+    pub fn trajectory(trajectory: &'a S::Trajectory) -> Self {
         Script::Trajectory { trajectory, end_s: None }
     }
 }
@@ -112,9 +142,11 @@ pub struct RunOptions {
     /// The most ticks (after the first) a run may take; longer scripts are refused before
     /// anything is simulated ([`RunError::TooLong`]).
     pub max_ticks: u64,
-    /// Nodes whose compliance columns are computed after each step (0: none; the caller then
-    /// provides them, e.g. from a dense inverse, through [`ScriptedRun::sim_mut`]).
-    pub prefetch_nodes_per_tick: usize,
+    /// Nodes whose compliance columns are computed after each step (`Some(0)`: none; the caller
+    /// then provides them, e.g. from a dense inverse, through [`ScriptedRun::sim_mut`]); `None`:
+    /// the dimension's own ([`ScriptedSim::PREFETCH_NODES_PER_TICK`]: 2D
+    /// [`DEFAULT_PREFETCH_NODES_PER_TICK`], 3D every approaching node).
+    pub prefetch_nodes_per_tick: Option<usize>,
     /// What a tick that did not converge does: stops the run ([`RunError::Unconverged`], the
     /// default) or is kept ([`crate::convergence`]).
     pub convergence: ConvergencePolicy,
@@ -122,11 +154,7 @@ pub struct RunOptions {
 
 impl Default for RunOptions {
     fn default() -> Self {
-        Self {
-            max_ticks: DEFAULT_MAX_TICKS,
-            prefetch_nodes_per_tick: DEFAULT_PREFETCH_NODES_PER_TICK,
-            convergence: ConvergencePolicy::Fail,
-        }
+        Self { max_ticks: DEFAULT_MAX_TICKS, prefetch_nodes_per_tick: None, convergence: ConvergencePolicy::Fail }
     }
 }
 
@@ -138,7 +166,7 @@ pub struct Tick {
     pub k: u64,
     /// The script's time at this tick, s (a trajectory's own clock).
     pub t_s: f64,
-    /// The time `Simulation::step` took, s.
+    /// The time the step took, s.
     pub step_s: f64,
 }
 
@@ -147,16 +175,16 @@ pub struct Tick {
 pub struct RunTotals {
     /// Ticks stepped.
     pub ticks: u64,
-    /// Column pairs computed between steps.
+    /// Column pairs (3D: node column triples) computed between steps.
     pub prefetched_columns: u64,
     /// Whether the per-tick callback stopped the run early.
     pub stopped_early: bool,
 }
 
-/// A scripted run in progress: a simulation and where it is in its script.
-pub struct ScriptedRun<'a> {
-    sim: Simulation,
-    script: Script<'a>,
+/// A scripted run in progress: a simulation (2D by default) and where it is in its script.
+pub struct ScriptedRun<'a, S: ScriptedSim = Simulation> {
+    sim: S,
+    script: Script<'a, S>,
     /// The script's time at tick 0, s.
     t0_s: f64,
     rate_hz: f64,
@@ -171,25 +199,30 @@ pub struct ScriptedRun<'a> {
     convergence: ConvergencePolicy,
 }
 
-impl<'a> ScriptedRun<'a> {
-    /// A run of `script` on a new simulation of `tissue` with `params` (its `initial_pose` is
+impl<'a, S: ScriptedSim> ScriptedRun<'a, S> {
+    /// A run of `script` on a new simulation of `tissue` with `params` (its initial pose is
     /// the trajectory's first pose for a trajectory script). The length is checked here, before
-    /// anything is simulated.
-    pub fn new(tissue: Arc<TissueModel>, mut params: SimParams, script: Script<'a>, opts: RunOptions) -> Result<Self, RunError> {
-        let rate_hz = params.tick_rate_hz;
+    /// anything is simulated. The dimension is the parameters' ([`RunParams`]).
+    pub fn new<P: RunParams<Sim = S>>(
+        tissue: Arc<S::Model>,
+        params: P,
+        script: Script<'a, S>,
+        opts: RunOptions,
+    ) -> Result<Self, RunError<S::Error>> {
+        let mut params = params.into_params();
+        let rate_hz = S::tick_rate_hz(&params);
         let (t0_s, ticks_total) = match script {
-            Script::Trajectory { trajectory, end_s: None } => {
-                params.initial_pose = needlesim_scene::base_pose(trajectory.samples[0].1);
-                (trajectory.span_s().0, trajectory.tick_count(rate_hz, opts.max_ticks)?.saturating_add(1))
-            }
-            Script::Trajectory { trajectory, end_s: Some(end_s) } => {
-                params.initial_pose = needlesim_scene::base_pose(trajectory.samples[0].1);
-                let (t0, t1) = trajectory.span_s();
-                if !(end_s.is_finite() && end_s > t0) {
-                    return Err(RunError::BadEnd { end_s, start_s: t0 });
+            Script::Trajectory { trajectory, end_s } => {
+                let t0_s = S::span_s(trajectory).0;
+                if let Some(end_s) = end_s
+                    && !(end_s.is_finite() && end_s > t0_s)
+                {
+                    return Err(RunError::BadEnd { end_s, start_s: t0_s });
                 }
-                let cut = Trajectory::from_samples(vec![trajectory.samples[0], (t1.min(end_s), trajectory.samples[0].1)]);
-                (t0, cut.tick_count(rate_hz, opts.max_ticks)?.saturating_add(1))
+                let ticks = S::tick_count(trajectory, end_s, rate_hz, opts.max_ticks)?.saturating_add(1);
+                let first = S::first_pose(trajectory).map_err(|e| RunError::FirstPose(Box::new(e)))?;
+                S::set_initial_pose(&mut params, first);
+                (t0_s, ticks)
             }
             Script::Poses(poses) => {
                 let n = poses.len() as u64;
@@ -206,7 +239,7 @@ impl<'a> ScriptedRun<'a> {
                 (0.0, n)
             }
         };
-        let sim = Simulation::new(tissue, params).map_err(|e| RunError::Setup(Box::new(e)))?;
+        let sim = S::new(tissue, params).map_err(|e| RunError::Setup(Box::new(e)))?;
         Ok(Self {
             sim,
             script,
@@ -215,7 +248,7 @@ impl<'a> ScriptedRun<'a> {
             ticks_total,
             next_k: 0,
             prefetch_due: false,
-            prefetch_nodes_per_tick: opts.prefetch_nodes_per_tick,
+            prefetch_nodes_per_tick: opts.prefetch_nodes_per_tick.unwrap_or(S::PREFETCH_NODES_PER_TICK),
             prefetched_columns: 0,
             convergence: opts.convergence,
         })
@@ -241,29 +274,36 @@ impl<'a> ScriptedRun<'a> {
         self.t0_s
     }
 
-    /// The script's pose at tick `k`.
-    pub fn pose_at_tick(&self, k: u64) -> BasePose {
+    /// The script's time at tick `k`, s: $t_0 + k / f_{tick}$.
+    pub fn t_at_tick(&self, k: u64) -> f64 {
+        self.t0_s + k as f64 / self.rate_hz
+    }
+
+    /// The script's pose at tick `k` (an error only for a 3D trajectory pose that is not a base
+    /// pose: `SimError3::Pose`, naming tick `k`).
+    pub fn pose_at_tick(&self, k: u64) -> Result<S::Pose, S::Error> {
         match self.script {
-            Script::Trajectory { trajectory, .. } => needlesim_scene::base_pose(trajectory.pose_at(self.t0_s + k as f64 / self.rate_hz)),
-            Script::Poses(poses) => poses[k as usize],
+            Script::Trajectory { trajectory, .. } => S::pose_at(trajectory, self.t_at_tick(k), k),
+            Script::Poses(poses) => Ok(poses[k as usize]),
         }
     }
 
     /// Computes the columns due from the previous tick, then steps the next tick; `None` when
     /// the script is done. The step's output is [`output`](Self::output).
-    pub fn next_tick(&mut self) -> Result<Option<Tick>, RunError> {
+    pub fn next_tick(&mut self) -> Result<Option<Tick>, RunError<S::Error>> {
         self.prefetch_now()?;
         if self.next_k >= self.ticks_total {
             return Ok(None);
         }
         let k = self.next_k;
-        let t_s = self.t0_s + k as f64 / self.rate_hz;
-        let pose = self.pose_at_tick(k);
+        let t_s = self.t_at_tick(k);
+        let step_error = |source| RunError::Step { tick: k, t_s, source: Box::new(source) };
+        let pose = self.pose_at_tick(k).map_err(step_error)?;
         let started = Instant::now();
         let stepped = self.sim.step(pose).map(|_| ());
         let step_s = started.elapsed().as_secs_f64();
-        stepped.map_err(|source| RunError::Step { tick: k, t_s, source: Box::new(source) })?;
-        self.convergence.check(k, t_s, self.sim.output().unconverged())?;
+        stepped.map_err(step_error)?;
+        self.convergence.check(k, t_s, self.sim.unconverged())?;
         self.next_k = k + 1;
         self.prefetch_due = true;
         Ok(Some(Tick { k, t_s, step_s }))
@@ -271,7 +311,7 @@ impl<'a> ScriptedRun<'a> {
 
     /// Runs to the end of the script, calling `on_tick` after each step (before the columns
     /// for the next are computed); `ControlFlow::Break` ends the run there, without error.
-    pub fn run(&mut self, mut on_tick: impl FnMut(&Tick, &Simulation) -> ControlFlow<()>) -> Result<RunTotals, RunError> {
+    pub fn run(&mut self, mut on_tick: impl FnMut(&Tick, &S) -> ControlFlow<()>) -> Result<RunTotals, RunError<S::Error>> {
         let mut stopped_early = false;
         while let Some(tick) = self.next_tick()? {
             if on_tick(&tick, &self.sim).is_break() {
@@ -283,12 +323,12 @@ impl<'a> ScriptedRun<'a> {
         Ok(self.totals(stopped_early))
     }
 
-    fn prefetch_now(&mut self) -> Result<(), RunError> {
+    fn prefetch_now(&mut self) -> Result<(), RunError<S::Error>> {
         if !std::mem::take(&mut self.prefetch_due) || self.prefetch_nodes_per_tick == 0 {
             return Ok(());
         }
         let k = self.next_k - 1;
-        let t_s = self.t0_s + k as f64 / self.rate_hz;
+        let t_s = self.t_at_tick(k);
         let n = self.sim.prefetch_columns(self.prefetch_nodes_per_tick).map_err(|source| RunError::Prefetch {
             tick: k,
             t_s,
@@ -303,18 +343,18 @@ impl<'a> ScriptedRun<'a> {
     }
 
     /// The output of the last step.
-    pub fn output(&self) -> &StepOutput {
+    pub fn output(&self) -> &S::Output {
         self.sim.output()
     }
 
     /// The simulation (its state after the last step).
-    pub fn sim(&self) -> &Simulation {
+    pub fn sim(&self) -> &S {
         &self.sim
     }
 
     /// The simulation, for a caller that supplies compliance columns itself
-    /// (`RunOptions::prefetch_nodes_per_tick = 0`).
-    pub fn sim_mut(&mut self) -> &mut Simulation {
+    /// (`RunOptions::prefetch_nodes_per_tick = Some(0)`).
+    pub fn sim_mut(&mut self) -> &mut S {
         &mut self.sim
     }
 
@@ -325,7 +365,7 @@ impl<'a> ScriptedRun<'a> {
 
     /// Ends the run: the simulation in its final state. Columns still due for the last tick
     /// are computed first, as a run to the end always has.
-    pub fn finish(mut self) -> Result<(Simulation, RunTotals), RunError> {
+    pub fn finish(mut self) -> Result<(S, RunTotals), RunError<S::Error>> {
         self.prefetch_now()?;
         let totals = self.totals(false);
         Ok((self.sim, totals))
@@ -335,6 +375,8 @@ impl<'a> ScriptedRun<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use needlesim_core::BasePose;
+    use needlesim_scene::Trajectory;
 
     fn scene() -> needlesim_scene::Scene {
         needlesim_scene::load_scene("paper-phantom", &needlesim_core::MeshLimits::default()).unwrap()

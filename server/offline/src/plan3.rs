@@ -68,13 +68,15 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use needlesim_core::d3::TetTissueModel;
 use needlesim_core::num::num;
-use needlesim_core::sim3::{BasePose3, Simulation3, Target3};
+use needlesim_core::sim3::{Simulation3, Target3};
 use needlesim_scene::{Scene3d, Trajectory3};
 use needlesim_trajectory::Pose3;
 use needlesim_trajectory::pose3::quat_from_axis_roll;
 use serde::{Deserialize, Serialize};
 
+use crate::driver::{RunOptions, Script, ScriptedRun};
 use crate::plan::{PlanOptions, PlanProgress, input};
+use crate::scripted::ScriptedSim;
 use crate::simulate3::sim3_params;
 
 /// How fast the planned trajectory rolls the base about its axis, rad/s.
@@ -564,37 +566,30 @@ fn evaluate(ctx: &Ctx, cand: Candidate) -> Result<Eval> {
     let target_depth = dot(sub(p.center, cand.entry), cand.dir);
     let max_depth = (target_depth + 0.02).min(0.98 * p.length);
     let traj = trajectory(p, &cand, ctx.roll0, max_depth, ctx.opts.start_outside_m, 0.0);
-    let rate = ctx.scene.tick_rate_hz;
-    let (t0, t1) = traj.span_s();
-    let last_k = ((t1 - t0) * rate).round() as u64;
-    if last_k > ctx.opts.max_ticks_per_simulation {
-        bail!("a candidate insertion lasts {last_k} ticks, over the limit of {}", ctx.opts.max_ticks_per_simulation);
-    }
-    let first = BasePose3::new(traj.samples[0].1.position_m, traj.samples[0].1.quat_wxyz).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let first = <Simulation3 as ScriptedSim>::first_pose(&traj).map_err(|e| anyhow::anyhow!("{e}"))?;
     let mut params = sim3_params(ctx.scene, first);
     let tg = &ctx.scene.targets[p.target_idx];
     params.targets = vec![Target3 { centre_m: tg.center_m, radius_m: tg.radius_m.max(1e-6), name_idx: 0 }];
     for (k, s) in p.structures.iter().enumerate() {
         params.targets.push(Target3 { centre_m: s.center_m, radius_m: s.radius_m, name_idx: k + 1 });
     }
-    let mut sim = Simulation3::new(ctx.model.clone(), params).context("the 3D simulation")?;
+    // The run driver (every approaching node's columns between steps, the convergence policy
+    // `Fail`), as `simulate` runs the plan's trajectory.
+    let run_opts = RunOptions { max_ticks: ctx.opts.max_ticks_per_simulation, ..RunOptions::default() };
+    let mut run = ScriptedRun::new(ctx.model.clone(), params, Script::trajectory(&traj), run_opts)?;
     let mut best = (f64::INFINITY, 0.0, [0.0; 3], [0.0; 3]);
     let mut clear = vec![f64::INFINITY; p.structures.len()];
-    for k in 0..=last_k {
-        if ctx.cancel.load(Ordering::Relaxed) {
+    loop {
+        if run.next_k() < run.ticks_total() && ctx.cancel.load(Ordering::Relaxed) {
             bail!("planning cancelled");
         }
-        let t = t0 + k as f64 / rate;
-        let q = traj.pose_at(t);
-        let pose = BasePose3::new(q.position_m, q.quat_wxyz).map_err(|e| anyhow::anyhow!("tick {k}: {e}"))?;
-        sim.step(pose).with_context(|| format!("tick {k}"))?;
-        crate::ConvergencePolicy::Fail.check(k, t, sim.output().unconverged())?;
-        sim.prefetch_columns(usize::MAX).with_context(|| format!("tick {k}: columns"))?;
-        let out = sim.output();
+        let Some(tick) = run.next_tick()? else { break };
+        let out = run.output();
         let tgs = out.targets.as_slice();
         let d = tgs[0].distance_m;
         if d < best.0 {
             // The commanded tip depth (the base's travel): a flexible needle's tip lags it.
+            let q = traj.pose_at(tick.t_s);
             best = (d, dot(sub(q.position_m, cand.entry), cand.dir) + p.length, out.tip_m, tgs[0].centre_m);
         }
         for (j, s) in p.structures.iter().enumerate() {

@@ -3,7 +3,8 @@
 //! exchange format at chosen ticks with the simulation's own answer, and each target's
 //! displacement and closest approach.
 //!
-//! **The run.** Tick $k = 0, 1, \dots, K$ steps the base pose of the trajectory at
+//! **The run** is the run driver's ([`crate::driver`], the one of 2D `simulate`): tick
+//! $k = 0, 1, \dots, K$ steps the base pose of the trajectory at
 //! $t = t_0 + k / f_{tick}$, $K = \mathrm{round}((t_{end} - t_0) f_{tick})$; between steps the
 //! columns of the nodes ahead of the tip are computed ([`Simulation3::prefetch_columns`], all
 //! of them), so the step never computes a column: a new point whose columns are missing waits a
@@ -36,26 +37,22 @@ use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simula
 use needlesim_scene::exchange3d::{PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, scenario_from_snapshot};
 use needlesim_scene::{Scene3d, Trajectory3, TrajectoryError};
 
-use crate::driver::preallocated_ticks;
-
-use crate::convergence::{ConvergencePolicy, UnconvergedTick};
+use crate::convergence::ConvergencePolicy;
+use crate::driver::{RunError, RunOptions, Script, ScriptedRun, Tick, preallocated_ticks};
+use crate::scripted::ScriptedSim;
 
 /// Why a 3D run failed; each names what.
 #[derive(Debug, thiserror::Error)]
 pub enum Run3Error {
-    /// Before the run: the trajectory lasts more ticks than allowed (the error names its last
-    /// sample's line, as in 2D).
+    /// The run driver's: the trajectory lasts more ticks than allowed (the error names its
+    /// last sample's line, as in 2D), its first pose is not a base pose, the parameters are
+    /// refused, or a step, a column solve or the convergence policy stopped the run at a tick
+    /// (named with its time).
     #[error(transparent)]
-    TooLong(#[from] TrajectoryError),
-    /// Before the run: a pose of the trajectory is not a valid base pose.
-    #[error("the trajectory's first pose: {0}")]
-    Pose(String),
-    /// Before the run: the tissue does not factorise or the parameters are refused.
+    Run(#[from] RunError<SimError3>),
+    /// Before the run: the tissue does not factorise.
     #[error("the 3D simulation cannot start: {0:#}")]
     Setup(anyhow::Error),
-    /// During the run: a step or a column solve failed at a tick.
-    #[error("tick {tick} (t = {t_s} s): {source}")]
-    Step { tick: u64, t_s: f64, source: Box<SimError3> },
     /// A dump tick outside the run.
     #[error("--dump-at {tick}: the run has ticks 0..={last}")]
     DumpTick { tick: u64, last: u64 },
@@ -63,9 +60,12 @@ pub enum Run3Error {
     /// cannot cause it), or a column solve for the target failed.
     #[error("{0}")]
     Tissue(String),
-    /// During the run: a tick did not converge and the policy is `Fail` ([`crate::convergence`]).
-    #[error(transparent)]
-    Unconverged(#[from] UnconvergedTick),
+}
+
+impl From<TrajectoryError> for Run3Error {
+    fn from(e: TrajectoryError) -> Self {
+        Run3Error::Run(RunError::TooLong(e))
+    }
 }
 
 /// A target's record over a run.
@@ -168,16 +168,17 @@ pub fn run3(
     mut csv: Option<&mut String>,
 ) -> Result<Run3Output, Run3Error> {
     let rate = scene.tick_rate_hz;
-    let t0 = traj.span_s().0;
     let last_k = traj.tick_count(rate, max_ticks)?;
     if let Some(&bad) = dump_ticks.iter().find(|&&k| k > last_k) {
         return Err(Run3Error::DumpTick { tick: bad, last: last_k });
     }
-    let initial = base_pose3(&traj.samples[0].1).map_err(Run3Error::Pose)?;
+    // The first pose before the factorisation, which takes seconds on a large mesh.
+    let initial = <Simulation3 as ScriptedSim>::first_pose(traj).map_err(|e| RunError::FirstPose(Box::new(e)))?;
     let started = Instant::now();
     let model = Arc::new(scene.tissue_model().map_err(Run3Error::Setup)?);
     let factorise_s = started.elapsed().as_secs_f64();
-    let mut sim = Simulation3::new(model.clone(), sim3_params(scene, initial)).map_err(|e| Run3Error::Setup(e.into()))?;
+    let opts = RunOptions { max_ticks, prefetch_nodes_per_tick: None, convergence };
+    let mut run = ScriptedRun::new(model.clone(), sim3_params(scene, initial), Script::trajectory(traj), opts)?;
     let mut reports: Vec<TargetReport3> = scene
         .targets
         .iter()
@@ -203,21 +204,11 @@ pub fn run3(
     }
     let mut summary = RunSummary3 { step_times_s: Vec::with_capacity(preallocated_ticks(last_k)), factorise_s, ..Default::default() };
     let mut dumps = Vec::new();
-    for k in 0..=last_k {
-        let t_s = t0 + k as f64 / rate;
-        let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| Run3Error::Step {
-            tick: k,
-            t_s,
-            source: Box::new(SimError3::InvalidParams(format!("the trajectory's pose: {e}"))),
-        })?;
-        let s = Instant::now();
-        sim.step(pose).map_err(|source| Run3Error::Step { tick: k, t_s, source: Box::new(source) })?;
-        summary.step_times_s.push(s.elapsed().as_secs_f64());
-        convergence.check(k, t_s, sim.output().unconverged())?;
-        summary.unconverged_ticks += sim.output().unconverged().is_some() as u64;
-        summary.prefetched_columns +=
-            sim.prefetch_columns(usize::MAX).map_err(|source| Run3Error::Step { tick: k, t_s, source: Box::new(source) })? as u64;
+    while let Some(Tick { k, t_s, step_s }) = run.next_tick()? {
+        summary.step_times_s.push(step_s);
+        let sim = run.sim();
         let out = sim.output();
+        summary.unconverged_ticks += out.unconverged().is_some() as u64;
         summary.max_points = summary.max_points.max(out.contacts.len());
         for (r, t) in reports.iter_mut().zip(out.targets.as_slice()) {
             r.max_displacement_m = r.max_displacement_m.max(dist(t.displacement_m, [0.0; 3]));
@@ -237,11 +228,14 @@ pub fn run3(
             }
         }
         if dump_ticks.contains(&k) {
-            dumps.push((k, dump_state(scene, &sim).map_err(|e| Run3Error::Tissue(format!("tick {k}: {e:#}")))?));
+            dumps.push((k, dump_state(scene, sim).map_err(|e| Run3Error::Tissue(format!("tick {k}: {e:#}")))?));
         }
     }
+    // The columns due after the last tick, as every tick's: counted in the summary.
+    let (sim, totals) = run.finish()?;
     let st = sim.stats();
-    summary.ticks = last_k + 1;
+    summary.ticks = totals.ticks;
+    summary.prefetched_columns = totals.prefetched_columns;
     summary.clamped_ticks = st.clamped_ticks;
     summary.column_deferrals = st.column_deferrals;
     summary.numeric_factorisations = model.cholesky().n_numeric_factorisations();
@@ -535,6 +529,18 @@ radius_m = 0.001
             assert!(moved_m > 0.5e-4 || turned_rad > 0.5e-3, "tick {k}: the base did not move towards the pose");
             prev = o.pose;
         }
+    }
+
+    /// The run driver's first-pose check in 3D: a trajectory whose first quaternion is not a
+    /// unit one is refused before anything runs, naming it (the Simulate RPC, exercise runs and
+    /// the Python package get the same error).
+    #[test]
+    fn a_first_pose_that_is_not_a_unit_quaternion_is_refused_before_the_run() {
+        let pose = needlesim_scene::Pose3::new([0.0311, 0.0297, 0.165], [0.9, 0.0, 0.7071067811865475, 0.0]);
+        let traj = Trajectory3::from_samples(vec![(0.0, pose), (0.01, pose)]);
+        let e = run3(&scene(), &traj, 10_000, &[], ConvergencePolicy::Fail, None).err().unwrap();
+        assert!(matches!(e, Run3Error::Run(RunError::FirstPose(ref p)) if matches!(**p, SimError3::Pose { tick: 0, .. })), "{e:?}");
+        assert!(format!("{:#}", anyhow::Error::from(e)).starts_with("the trajectory's first pose: tick 0: "));
     }
 
     #[test]

@@ -3,6 +3,9 @@
 
 use std::ops::ControlFlow;
 
+use needlesim_core::sim::Simulation;
+use needlesim_core::sim3::Simulation3;
+use needlesim_offline::{RunError, RunTotals, ScriptedRun, ScriptedSim, Tick};
 use needlesim_proto::v1 as pb;
 use tokio::sync::mpsc;
 use tokio_stream::wrappers::ReceiverStream;
@@ -99,7 +102,7 @@ impl pb::simulation_service_server::SimulationService for Api {
                 Job::Two(scene, traj) => {
                     run_offline(scene, traj, (limits_ticks, convergence), decimate, &tx).map_err(|e| ApiError::from(&e))
                 }
-                Job::Three(scene, traj) => run_offline3(scene, traj, (decimate, convergence), &tx),
+                Job::Three(scene, traj) => run_offline3(scene, traj, (limits_ticks, convergence), decimate, &tx),
             };
             if let Err(e) = result {
                 let _ = tx.blocking_send(Err(e.into()));
@@ -118,10 +121,8 @@ enum Job {
 /// Rows of the time series per `SeriesChunk` message (about 200 bytes each without targets).
 pub const SERIES_CHUNK_ROWS: usize = 1000;
 
-/// Runs an offline simulation with the run driver, streaming progress, the time series in
-/// chunks of at most [`SERIES_CHUNK_ROWS`] rows, then the result. Memory is bounded by one chunk
-/// and the channel, whatever the length: step times go into a histogram, not a list. Ends early,
-/// without error, when the client goes away.
+/// Runs an offline 2D simulation with the run driver ([`stream_run`]); the result carries the
+/// final displacement field.
 fn run_offline(
     scene: &needlesim_scene::Scene,
     traj: &needlesim_scene::Trajectory,
@@ -129,12 +130,60 @@ fn run_offline(
     decimate: u64,
     tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
 ) -> Result<(), needlesim_offline::RunError> {
-    let send = |response: pb::SimulateResponse| tx.blocking_send(Ok(response)).is_ok();
     let started = std::time::Instant::now();
     let opts = needlesim_offline::RunOptions { max_ticks, convergence, ..Default::default() };
-    let mut run =
+    let run =
         needlesim_offline::ScriptedRun::new(scene.tissue.clone(), scene.params.clone(), needlesim_offline::Script::trajectory(traj), opts)?;
-    let (t0, n_ticks) = (run.t0_s(), run.last_tick());
+    let t0 = run.t0_s();
+    let row = |sim: &Simulation, _: &Tick| convert::series_row(sim.output(), t0, &scene.target_names);
+    stream_run(run, decimate, tx, row, |sim, _, step_us| {
+        let mut u = vec![0.0; scene.tissue.n_dofs()];
+        sim.displacement_field_into(&mut u);
+        convert::simulate_result(sim.stats().ticks, started.elapsed().as_secs_f64(), step_us, u)
+    })
+}
+
+/// The 3D counterpart of [`run_offline`]: the same driver and stream as `needlesim-server
+/// simulate` for a 3D scene (`needlesim_offline::simulate3::run3`), so both give the same rows
+/// (with `d3`); the result carries no displacement field.
+fn run_offline3(
+    scene: &needlesim_scene::Scene3d,
+    traj: &needlesim_scene::Trajectory3,
+    (max_ticks, convergence): (u64, needlesim_offline::ConvergencePolicy),
+    decimate: u64,
+    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
+) -> Result<(), ApiError> {
+    use needlesim_offline::simulate3::sim3_params;
+    let started = std::time::Instant::now();
+    let initial = <Simulation3 as needlesim_offline::ScriptedSim>::first_pose(traj)
+        .map_err(|e| ApiError::from(&needlesim_offline::RunError::FirstPose(Box::new(e))))?;
+    let model = std::sync::Arc::new(scene.tissue_model().map_err(|e| ApiError::Internal(format!("the 3D tissue: {e:#}")))?);
+    let opts = needlesim_offline::RunOptions { max_ticks, convergence, ..Default::default() };
+    let script = needlesim_offline::Script::trajectory(traj);
+    let run = needlesim_offline::ScriptedRun::new(model, sim3_params(scene, initial), script, opts).map_err(|e| ApiError::from(&e))?;
+    let names: Vec<String> = scene.targets.iter().map(|t| t.name.clone()).collect();
+    let radii_m: Vec<f64> = scene.targets.iter().map(|t| t.radius_m).collect();
+    let row = |sim: &Simulation3, tick: &Tick| convert::series_row3(sim.output(), tick.t_s, &names, &radii_m);
+    stream_run(run, decimate, tx, row, |_, totals, step_us| {
+        convert::simulate_result(totals.ticks, started.elapsed().as_secs_f64(), step_us, vec![])
+    })
+    .map_err(|e| ApiError::from(&e))
+}
+
+/// Runs a scripted run to its end, streaming progress, the time series (`row` of every
+/// `decimate`-th tick and the last) in chunks of at most [`SERIES_CHUNK_ROWS`] rows, then
+/// `result` of the final simulation. Memory is bounded by one chunk and the channel, whatever
+/// the length: step times go into a histogram, not a list. Ends early, without error, when the
+/// client goes away.
+fn stream_run<S: ScriptedSim>(
+    mut run: ScriptedRun<'_, S>,
+    decimate: u64,
+    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
+    row: impl Fn(&S, &Tick) -> pb::SeriesRow,
+    result: impl FnOnce(&S, RunTotals, [f64; 2]) -> pb::SimulateResponse,
+) -> Result<(), RunError<S::Error>> {
+    let send = |response: pb::SimulateResponse| tx.blocking_send(Ok(response)).is_ok();
+    let n_ticks = run.last_tick();
     let mut chunk = Vec::with_capacity(SERIES_CHUNK_ROWS);
     let mut step_ns = hdrhistogram::Histogram::<u64>::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds");
     let progress_every = (n_ticks / 20).max(1);
@@ -147,7 +196,7 @@ fn run_offline(
         let k = tick.k;
         step_ns.saturating_record(((tick.step_s * 1e9) as u64).max(1));
         if k % decimate == 0 || k == n_ticks {
-            chunk.push(convert::series_row(sim.output(), t0, &scene.target_names));
+            chunk.push(row(sim, tick));
             if chunk.len() == SERIES_CHUNK_ROWS && !send(convert::series_chunk(std::mem::take(&mut chunk))) {
                 client_gone = true;
                 return ControlFlow::Break(());
@@ -162,70 +211,8 @@ fn run_offline(
     if client_gone || (!chunk.is_empty() && !send(convert::series_chunk(chunk))) {
         return Ok(());
     }
-    let (sim, _) = run.finish()?;
-    let mut u = vec![0.0; scene.tissue.n_dofs()];
-    sim.displacement_field_into(&mut u);
+    let (sim, totals) = run.finish()?;
     let step_us = [step_ns.value_at_quantile(0.5) as f64 * 1e-3, step_ns.value_at_quantile(0.99) as f64 * 1e-3];
-    send(convert::simulate_result(sim.stats().ticks, started.elapsed().as_secs_f64(), step_us, u));
-    Ok(())
-}
-
-/// The 3D counterpart of [`run_offline`]: tick $k = 0, \dots, K$ steps the trajectory's pose at
-/// $t_0 + k / f_{tick}$, $K = \mathrm{round}((t_{end} - t_0) f_{tick})$, through the 3D step
-/// function with the columns ahead of the tip computed between steps — the loop of
-/// `needlesim-server simulate` for a 3D scene (`needlesim_offline::simulate3::run3`), so both give
-/// the same rows. Streams as [`run_offline`] does (rows with `d3`); the result carries no
-/// displacement field. Ends early, without error, when the client goes away.
-fn run_offline3(
-    scene: &needlesim_scene::Scene3d,
-    traj: &needlesim_scene::Trajectory3,
-    (decimate, convergence): (u64, needlesim_offline::ConvergencePolicy),
-    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
-) -> Result<(), ApiError> {
-    use needlesim_offline::simulate3::{base_pose3, sim3_params};
-    let send = |response: pb::SimulateResponse| tx.blocking_send(Ok(response)).is_ok();
-    let started = std::time::Instant::now();
-    let rate_hz = scene.tick_rate_hz;
-    let (t0, t1) = traj.span_s();
-    let n_ticks = ((t1 - t0) * rate_hz).round() as u64;
-    let initial = base_pose3(&traj.samples[0].1).map_err(|e| ApiError::invalid("trajectory", format!("trajectory[0].base3: {e}")))?;
-    let model = std::sync::Arc::new(scene.tissue_model().map_err(|e| ApiError::Internal(format!("the 3D tissue: {e:#}")))?);
-    let mut sim = needlesim_core::sim3::Simulation3::new(model, sim3_params(scene, initial)).map_err(|e| ApiError::from(&e))?;
-    let names: Vec<String> = scene.targets.iter().map(|t| t.name.clone()).collect();
-    let radii_m: Vec<f64> = scene.targets.iter().map(|t| t.radius_m).collect();
-    let mut chunk = Vec::with_capacity(SERIES_CHUNK_ROWS);
-    let mut step_ns = hdrhistogram::Histogram::<u64>::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds");
-    let progress_every = (n_ticks / 20).max(1);
-    let at_tick = |k: u64, t_s: f64, e: ApiError| match e {
-        ApiError::Internal(m) => ApiError::Internal(format!("tick {k} (t = {} s): {m}", needlesim_core::num::num(t_s))),
-        other => other,
-    };
-    for k in 0..=n_ticks {
-        if tx.is_closed() {
-            return Ok(());
-        }
-        let t_s = t0 + k as f64 / rate_hz;
-        let pose = base_pose3(&traj.pose_at(t_s))
-            .map_err(|e| ApiError::invalid("trajectory", format!("the pose at t = {} s: {e}", needlesim_core::num::num(t_s))))?;
-        let s = std::time::Instant::now();
-        sim.step(pose).map_err(|e| at_tick(k, t_s, ApiError::from(&e)))?;
-        step_ns.saturating_record((s.elapsed().as_nanos() as u64).max(1));
-        convergence.check(k, t_s, sim.output().unconverged()).map_err(|e| ApiError::from(&needlesim_offline::RunError::Unconverged(e)))?;
-        sim.prefetch_columns(usize::MAX).map_err(|e| at_tick(k, t_s, ApiError::from(&e)))?;
-        if k % decimate == 0 || k == n_ticks {
-            chunk.push(convert::series_row3(sim.output(), t_s, &names, &radii_m));
-            if chunk.len() == SERIES_CHUNK_ROWS && !send(convert::series_chunk(std::mem::take(&mut chunk))) {
-                return Ok(());
-            }
-        }
-        if k % progress_every == 0 && !send(convert::simulate_progress(k, n_ticks)) {
-            return Ok(());
-        }
-    }
-    if !chunk.is_empty() && !send(convert::series_chunk(chunk)) {
-        return Ok(());
-    }
-    let step_us = [step_ns.value_at_quantile(0.5) as f64 * 1e-3, step_ns.value_at_quantile(0.99) as f64 * 1e-3];
-    send(convert::simulate_result(n_ticks + 1, started.elapsed().as_secs_f64(), step_us, vec![]));
+    send(result(&sim, totals, step_us));
     Ok(())
 }

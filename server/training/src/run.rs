@@ -1,7 +1,7 @@
 //! Scripted exercise runs: an exercise resolved against its scene (targets looked up or added
 //! to the simulation, tolerances defaulted to radii), a base trajectory through the scene's
-//! simulation — 2D through needlesim-offline's driver (`ScriptedRun`, the run `simulate` makes),
-//! 3D through the same loop as `simulate3::run3` (step, then every column ahead of the tip) —
+//! simulation — needlesim-offline's driver (`ScriptedRun`, the run `simulate` makes) in both
+//! dimensions —
 //! each tick's output turned into a [`Sample`] for the [`MetricsTracker`] and the report's
 //! [`Trace`], and "placed" declared at the first tick at or after each given time. In 2D the
 //! tissue strain is sampled every [`STRAIN_INTERVAL_S`] of exercise time from the simulation's
@@ -15,8 +15,9 @@ use std::sync::Arc;
 use needlesim_core::mesh::MeshLimits;
 use needlesim_core::num::num;
 use needlesim_core::sim::TargetParams;
-use needlesim_core::sim3::{Simulation3, Target3};
-use needlesim_offline::simulate3::{base_pose3, sim3_params};
+use needlesim_core::sim3::{SimError3, Simulation3, Target3};
+use needlesim_offline::ScriptedSim;
+use needlesim_offline::simulate3::sim3_params;
 use needlesim_scene::{Scene, Scene3d, Trajectory, Trajectory3};
 use serde::Serialize;
 
@@ -367,24 +368,18 @@ pub fn run_exercise_with(
         let Prepared3d { scene, spec, targets: geom, added_targets } = prepare_3d(ex, limits)?;
         let ticks_csv = opts.ticks_every.map(|n| TickCsv::new(&spec, n, &ex.name));
         let traj = Trajectory3::parse_csv(csv).map_err(|e| ExerciseRunError::Trajectory(e.to_string()))?;
-        let (t0, t1) = traj.span_s();
+        let t1 = traj.span_s().1;
         if let Some(&t) = placed.iter().find(|&&t| t > t1 + 1e-9) {
             return Err(ExerciseRunError::PlacementAfterEnd { t_s: t, end_s: t1 });
         }
         let rate = scene.tick_rate_hz;
-        let last_k = ((t1 - t0) * rate).round() as u64;
-        if last_k > max_ticks {
-            return Err(ExerciseRunError::Simulation(format!(
-                "the trajectory lasts {} ticks at {rate} Hz, over the limit of {max_ticks} ticks (--max-ticks)",
-                last_k + 1
-            )));
-        }
-        let initial = base_pose3(&traj.samples[0].1).map_err(|e| ExerciseRunError::Trajectory(format!("the first pose: {e}")))?;
+        let initial = <Simulation3 as ScriptedSim>::first_pose(&traj).map_err(|e| match e {
+            SimError3::Pose { source, .. } => ExerciseRunError::Trajectory(format!("the first pose: {source}")),
+            e => ExerciseRunError::Trajectory(format!("the first pose: {e}")),
+        })?;
         let model = Arc::new(scene.tissue_model().map_err(ExerciseRunError::Scene)?);
         let mut params = sim3_params(&scene, initial);
         params.targets.extend(added_targets);
-        let mut sim =
-            Simulation3::new(model, params).map_err(|e| ExerciseRunError::Simulation(format!("the 3D simulation cannot start: {e}")))?;
         let mut f = Feeder {
             tracker: MetricsTracker::new(spec),
             trace: Trace::new(TRACE_CAPACITY),
@@ -395,19 +390,22 @@ pub fn run_exercise_with(
             ticks: 0,
             ticks_csv,
         };
-        for k in 0..=last_k {
-            let t_s = t0 + k as f64 / rate;
-            let fail = |e: &dyn std::fmt::Display| ExerciseRunError::Simulation(format!("tick {k} (t = {} s): {e}", num(t_s)));
-            let pose = base_pose3(&traj.pose_at(t_s)).map_err(|e| fail(&e))?;
-            sim.step(pose).map_err(|e| fail(&e))?;
-            // One convergence policy with `simulate` (needlesim-offline): an exercise is scored
-            // on converged ticks only.
-            needlesim_offline::ConvergencePolicy::Fail
-                .check(k, t_s, sim.output().unconverged())
-                .map_err(|e| ExerciseRunError::Simulation(e.to_string()))?;
-            sim.prefetch_columns(usize::MAX).map_err(|e| fail(&e))?;
-            f.push(&Sample::from_3d(sim.output(), t_s));
-        }
+        // The same run as the 3D `simulate` (needlesim-offline's driver: every column ahead of
+        // the tip between steps; one convergence policy, `Fail`: an exercise is scored on
+        // converged ticks only).
+        let sim_err = |e: needlesim_offline::RunError<SimError3>| match e {
+            needlesim_offline::RunError::Setup(e) => ExerciseRunError::Simulation(format!("the 3D simulation cannot start: {e}")),
+            e => ExerciseRunError::Simulation(format!("{e:#}")),
+        };
+        let opts = needlesim_offline::RunOptions { max_ticks, ..Default::default() };
+        let mut run =
+            needlesim_offline::ScriptedRun::new(model, params, needlesim_offline::Script::trajectory(&traj), opts).map_err(sim_err)?;
+        run.run(|tick, sim| {
+            f.push(&Sample::from_3d(sim.output(), tick.t_s));
+            ControlFlow::Continue(())
+        })
+        .map_err(sim_err)?;
+        run.finish().map_err(sim_err)?;
         finish(ex, scene.name.clone(), rate, geom, f)
     }
 }
