@@ -19,6 +19,7 @@ use std::hash::Hash;
 use std::ops::{Index, IndexMut};
 
 use crate::d3::mesh::{TetMeshError, TetMeshLimits, signed_volume_m3};
+use crate::material::{Material, PlaneModel};
 use crate::mesh::{MeshError, MeshFault, MeshLimits, SimplexMesh};
 
 /// A spatial dimension: its point and element types, the element's name in messages, and the
@@ -86,6 +87,37 @@ pub trait Dim: Copy + Debug + PartialEq + Eq + Send + Sync + 'static + Sized {
     fn check_conformity(mesh: &SimplexMesh<Self>) -> Result<(), Self::MeshError>;
     /// `(max_nodes, max_elements)` of `limits`.
     fn max_counts(limits: &Self::Limits) -> (usize, usize);
+
+    /// DOFs per element, $N(N + 1)$ (6, 12).
+    const ELEMENT_DOFS: usize;
+    /// Strain and stress components in Voigt order (3: $[xx, yy, xy]$; 6: $[xx, yy, zz, yz,
+    /// xz, xy]$), engineering shear.
+    const VOIGT: usize;
+    /// A vector over the element's DOFs, `[f64; ELEMENT_DOFS]`: a row of $B$ or of $K_e$.
+    type ElementVector: Copy + Debug + Default + Index<usize, Output = f64> + IndexMut<usize> + AsRef<[f64]>;
+    /// A Voigt vector, `[f64; VOIGT]`: a strain, a stress, a row of $D$.
+    type Voigt: Copy + Debug + PartialEq + Default + Index<usize, Output = f64> + IndexMut<usize> + AsRef<[f64]> + Send + Sync + 'static;
+    /// The strain–displacement matrix $B$, `VOIGT` rows of [`Dim::ElementVector`].
+    type BMatrix: Copy + Debug + Default + Index<usize, Output = Self::ElementVector> + IndexMut<usize>;
+    /// The element stiffness $K_e$, `ELEMENT_DOFS` rows of [`Dim::ElementVector`].
+    type ElementMatrix: Copy + Debug + Default + Index<usize, Output = Self::ElementVector> + IndexMut<usize>;
+    /// The material matrix $D$, `VOIGT` rows of [`Dim::Voigt`].
+    type DMatrix: Copy + Debug + Index<usize, Output = Self::Voigt>;
+    /// The element's global DOFs, `[usize; ELEMENT_DOFS]`.
+    type ElementDofs: Copy + Debug + Index<usize, Output = usize> + AsRef<[usize]>;
+    /// What $D$ and the element's weight depend on besides E and ν: 2D the plane model (strain or
+    /// stress, and the thickness that scales $K$), 3D nothing.
+    type Model: Copy + Debug + PartialEq + Send + Sync + 'static;
+
+    /// The element's DOFs, $[N a, N a + 1, \dots, N b, \dots]$.
+    fn element_dofs(e: &Self::Element) -> Self::ElementDofs;
+    /// The element's strain–displacement matrix $B$ (constant: linear shape functions) and its
+    /// unsigned measure (area in m², volume in m³).
+    fn element_b(p: &Self::ElementPoints) -> (Self::BMatrix, f64);
+    /// The material matrix $D$ in Pa.
+    fn d_matrix(m: &Material, model: &Self::Model) -> Self::DMatrix;
+    /// The factor $w$ of $K_e = w\,B^\top D B$: $t\,|A|$ in 2D, $|V|$ in 3D.
+    fn stiffness_weight(measure: f64, model: &Self::Model) -> f64;
 }
 
 /// Two dimensions: linear (constant-strain) triangles, nodes `[x, y]`.
@@ -138,6 +170,31 @@ impl Dim for Dim2 {
     fn max_counts(limits: &MeshLimits) -> (usize, usize) {
         (limits.max_nodes, limits.max_triangles)
     }
+
+    const ELEMENT_DOFS: usize = 6;
+    const VOIGT: usize = 3;
+    type ElementVector = [f64; 6];
+    type Voigt = [f64; 3];
+    type BMatrix = [[f64; 6]; 3];
+    type ElementMatrix = [[f64; 6]; 6];
+    type DMatrix = [[f64; 3]; 3];
+    type ElementDofs = [usize; 6];
+    type Model = PlaneModel;
+
+    #[inline]
+    fn element_dofs(e: &[usize; 3]) -> [usize; 6] {
+        std::array::from_fn(|k| 2 * e[k / 2] + k % 2)
+    }
+    fn element_b(p: &[[f64; 2]; 3]) -> ([[f64; 6]; 3], f64) {
+        crate::assembly::tri::triangle_b(p)
+    }
+    fn d_matrix(m: &Material, model: &PlaneModel) -> [[f64; 3]; 3] {
+        m.d_matrix(*model)
+    }
+    #[inline]
+    fn stiffness_weight(area_m2: f64, model: &PlaneModel) -> f64 {
+        model.thickness_m() * area_m2
+    }
 }
 
 impl Dim for Dim3 {
@@ -185,6 +242,31 @@ impl Dim for Dim3 {
     }
     fn max_counts(limits: &TetMeshLimits) -> (usize, usize) {
         (limits.max_nodes, limits.max_tets)
+    }
+
+    const ELEMENT_DOFS: usize = 12;
+    const VOIGT: usize = 6;
+    type ElementVector = [f64; 12];
+    type Voigt = [f64; 6];
+    type BMatrix = [[f64; 12]; 6];
+    type ElementMatrix = [[f64; 12]; 12];
+    type DMatrix = [[f64; 6]; 6];
+    type ElementDofs = [usize; 12];
+    type Model = ();
+
+    #[inline]
+    fn element_dofs(e: &[usize; 4]) -> [usize; 12] {
+        std::array::from_fn(|k| 3 * e[k / 3] + k % 3)
+    }
+    fn element_b(p: &[[f64; 3]; 4]) -> ([[f64; 12]; 6], f64) {
+        crate::d3::assembly::tetrahedron_b(p)
+    }
+    fn d_matrix(m: &Material, _model: &()) -> [[f64; 6]; 6] {
+        crate::d3::assembly::d_matrix(m)
+    }
+    #[inline]
+    fn stiffness_weight(volume_m3: f64, _model: &()) -> f64 {
+        volume_m3
     }
 }
 

@@ -49,7 +49,7 @@ pub mod spatial;
 pub mod statics;
 pub mod stepper;
 
-pub use assembly::MaterialMap;
+pub use assembly::{ElementMaterials, MaterialMap};
 pub use beam::NeedleCurve;
 pub use compliance::{ColumnScratch, ComplianceCache, ComplianceCache3, TissueError, TissueModel};
 pub use contact::{ContactId, ContactPoint};
