@@ -1,142 +1,106 @@
-//! Linear-triangle (constant-strain) element matrices and assembly of the sparse stiffness $K$.
+//! Linear-simplex (constant-strain) element matrices, assembly of the sparse stiffness $K$ and
+//! element stresses, written once for both dimensions over [`Dim`].
 //!
-//! For a triangle with vertices $(x_k, y_k)$ and signed doubled area
-//! $2A = (x_2-x_1)(y_3-y_1)-(x_3-x_1)(y_2-y_1)$, the strain–displacement matrix is
-//! $B = \frac{1}{2A}\begin{bmatrix} b_1 & 0 & b_2 & 0 & b_3 & 0\\ 0 & c_1 & 0 & c_2 & 0 & c_3\\ c_1 & b_1 & c_2 & b_2 & c_3 & b_3\end{bmatrix}$
-//! with $b = (y_2-y_3, y_3-y_1, y_1-y_2)$, $c = (x_3-x_2, x_1-x_3, x_2-x_1)$; the signed area
-//! makes clockwise triangles correct too. The element stiffness is $K_e = t\,|A|\,B^\top D B$.
-//! DOFs are interleaved: $[u_{x0}, u_{y0}, u_{x1}, \dots]$.
+//! For an element with strain–displacement matrix $B$ (Voigt rows × element DOFs; from the
+//! shape-function gradients, constant over a linear simplex), material matrix $D$ and measure
+//! $|V|$ (area or volume), the element stiffness is $K_e = w\,B^\top D B$ with the weight
+//! $w = t\,|A|$ in 2D (the plane model's thickness $t$) and $w = |V|$ in 3D, and the element's
+//! stress is $\sigma = D B u_e$. What differs per dimension is a method of [`Dim`]: $B$
+//! ([`Dim::element_b`]: the triangle's in [`tri`], the tetrahedron's in
+//! [`crate::d3::assembly`]), $D$ ([`Dim::d_matrix`]: plane strain or stress in
+//! [`crate::material`], 3D Hooke in [`crate::d3::assembly`]) and the weight. DOFs are
+//! interleaved: $[u_{x0}, u_{y0}, (u_{z0},) u_{x1}, \dots]$.
+//!
+//! The sums run in the order the former per-dimension code ran them (over the Voigt index,
+//! ascending, from the iterator's zero), so $K$ and the stresses are bit-identical to before.
 
 use faer::sparse::{SparseColMat, Triplet};
 
-use crate::material::{Material, MaterialError, PlaneModel};
-use crate::mesh::Mesh;
+use crate::dim::Dim;
+use crate::material::Material;
+use crate::mesh::SimplexMesh;
 
-/// Materials per region and the plane model: everything besides the mesh that $K$ depends on.
+pub mod tri;
+
+pub use tri::{MaterialMap, assemble_stiffness};
+
+/// A material per element (expanded from regions, or given per element) and the dimension's
+/// material model besides E and ν (2D: the plane model; 3D: none): everything besides the mesh
+/// that $K$ depends on. Built through [`MaterialMap`]'s or [`crate::d3::TetMaterials`]'s
+/// constructors, which validate it for their dimension.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MaterialMap {
-    /// One material per triangle (expanded from regions, or given per element).
-    material_of_tri: Vec<Material>,
-    plane: PlaneModel,
+pub struct ElementMaterials<D: Dim> {
+    material_of_element: Vec<Material>,
+    model: D::Model,
 }
 
-impl MaterialMap {
-    /// One material per region of `mesh`, validated.
-    pub fn per_region(mesh: &Mesh, materials: &[Material], plane: PlaneModel) -> Result<Self, MaterialError> {
-        plane.validate()?;
-        let n_regions = mesh.region_names().len();
-        if materials.len() != n_regions {
-            return Err(MaterialError::Count { n_regions, n_materials: materials.len() });
-        }
-        for (m, name) in materials.iter().zip(mesh.region_names()) {
-            m.validate(plane, &format!("region {name}"))?;
-        }
-        let material_of_tri = mesh.region_of_tri().iter().map(|&r| materials[r]).collect();
-        Ok(Self { material_of_tri, plane })
+impl<D: Dim> ElementMaterials<D> {
+    /// From already validated parts (the dimension's constructors check them first).
+    pub(crate) fn from_parts(material_of_element: Vec<Material>, model: D::Model) -> Self {
+        Self { material_of_element, model }
     }
-
-    /// One material per triangle, validated; errors name the triangle as `element N`.
-    pub fn per_element(mesh: &Mesh, material_of_tri: Vec<Material>, plane: PlaneModel) -> Result<Self, MaterialError> {
-        plane.validate()?;
-        if material_of_tri.len() != mesh.n_triangles() {
-            return Err(MaterialError::Count { n_regions: mesh.n_triangles(), n_materials: material_of_tri.len() });
-        }
-        for (i, m) in material_of_tri.iter().enumerate() {
-            m.validate(plane, &format!("element {i}"))?;
-        }
-        Ok(Self { material_of_tri, plane })
+    /// The material of each element.
+    pub fn material_of_element(&self) -> &[Material] {
+        &self.material_of_element
     }
-
-    /// The plane model.
-    pub fn plane(&self) -> PlaneModel {
-        self.plane
+    /// The dimension's material model besides E and ν.
+    pub fn model(&self) -> D::Model {
+        self.model
     }
-    /// The material of each triangle.
-    pub fn material_of_tri(&self) -> &[Material] {
-        &self.material_of_tri
+    /// The material matrix $D$ of element `elem_idx`, in Pa.
+    pub fn d_matrix(&self, elem_idx: usize) -> D::DMatrix {
+        D::d_matrix(&self.material_of_element[elem_idx], &self.model)
     }
 }
 
-/// The strain–displacement matrix $B$ (3 × 6) of a triangle and its unsigned area $|A|$.
-pub fn element_b(mesh: &Mesh, tri_idx: usize) -> ([[f64; 6]; 3], f64) {
-    let [p1, p2, p3] = mesh.triangles()[tri_idx].map(|i| mesh.nodes_m()[i]);
-    let a2 = (p2[0] - p1[0]) * (p3[1] - p1[1]) - (p3[0] - p1[0]) * (p2[1] - p1[1]);
-    let b = [(p2[1] - p3[1]) / a2, (p3[1] - p1[1]) / a2, (p1[1] - p2[1]) / a2];
-    let c = [(p3[0] - p2[0]) / a2, (p1[0] - p3[0]) / a2, (p2[0] - p1[0]) / a2];
-    let mut bm = [[0.0; 6]; 3];
-    for k in 0..3 {
-        bm[0][2 * k] = b[k];
-        bm[1][2 * k + 1] = c[k];
-        bm[2][2 * k] = c[k];
-        bm[2][2 * k + 1] = b[k];
-    }
-    (bm, 0.5 * a2.abs())
+/// The strain–displacement matrix $B$ of element `elem_idx` and its unsigned measure (area in
+/// m², volume in m³).
+pub fn element_b<D: Dim>(mesh: &SimplexMesh<D>, elem_idx: usize) -> (D::BMatrix, f64) {
+    D::element_b(&mesh.element_points_m(elem_idx))
 }
 
-/// The element stiffness $K_e = t\,|A|\,B^\top D B$ (6 × 6).
-pub fn element_stiffness(mesh: &Mesh, materials: &MaterialMap, tri_idx: usize) -> [[f64; 6]; 6] {
-    let (b, area) = element_b(mesh, tri_idx);
-    let d = materials.material_of_tri[tri_idx].d_matrix(materials.plane);
-    let t = materials.plane.thickness_m();
-    // db = D B (3 × 6)
-    let mut db = [[0.0; 6]; 3];
-    for i in 0..3 {
-        for j in 0..6 {
-            db[i][j] = (0..3).map(|k| d[i][k] * b[k][j]).sum();
+/// The element stiffness $K_e = w\,B^\top D B$ (element DOFs squared), in N/m.
+pub fn element_stiffness<D: Dim>(mesh: &SimplexMesh<D>, materials: &ElementMaterials<D>, elem_idx: usize) -> D::ElementMatrix {
+    let (b, measure) = element_b(mesh, elem_idx);
+    let d = materials.d_matrix(elem_idx);
+    let w = D::stiffness_weight(measure, &materials.model);
+    // db = D B (Voigt × element DOFs)
+    let mut db = D::BMatrix::default();
+    for i in 0..D::VOIGT {
+        for j in 0..D::ELEMENT_DOFS {
+            db[i][j] = (0..D::VOIGT).map(|k| d[i][k] * b[k][j]).sum();
         }
     }
-    let mut ke = [[0.0; 6]; 6];
-    for i in 0..6 {
-        for j in 0..6 {
-            ke[i][j] = t * area * (0..3).map(|k| b[k][i] * db[k][j]).sum::<f64>();
+    let mut ke = D::ElementMatrix::default();
+    for i in 0..D::ELEMENT_DOFS {
+        for j in 0..D::ELEMENT_DOFS {
+            ke[i][j] = w * (0..D::VOIGT).map(|k| b[k][i] * db[k][j]).sum::<f64>();
         }
     }
     ke
 }
 
-/// Assembles the full $2n \times 2n$ stiffness (both triangles stored), optionally with node
-/// DOFs in rotated local frames: where `node_angle_rad[i]` is `Some(a)`, node $i$'s DOFs are
-/// $(u_t, u_n)$ with $t = (\cos a, \sin a)$, $n = (-\sin a, \cos a)$, i.e.
-/// $K_{loc} = T^\top K T$ with $u = T u_{loc}$.
-pub fn assemble_stiffness(mesh: &Mesh, materials: &MaterialMap, node_angle_rad: Option<&[Option<f64>]>) -> SparseColMat<usize, f64> {
-    let n_dofs = 2 * mesh.n_nodes();
-    let mut triplets = Vec::with_capacity(36 * mesh.n_triangles());
-    for (tri_idx, tri) in mesh.triangles().iter().enumerate() {
-        let mut ke = element_stiffness(mesh, materials, tri_idx);
-        if let Some(angles) = node_angle_rad {
-            for (k, &node) in tri.iter().enumerate() {
-                if let Some(a) = angles[node] {
-                    rotate_element_node(&mut ke, k, a);
-                }
-            }
-        }
-        let dofs = [2 * tri[0], 2 * tri[0] + 1, 2 * tri[1], 2 * tri[1] + 1, 2 * tri[2], 2 * tri[2] + 1];
-        for i in 0..6 {
-            for j in 0..6 {
+/// Assembles the full $Nn \times Nn$ stiffness (both triangles of it stored); `adjust` may change
+/// each element matrix before it is added (2D: node DOFs in rotated frames, [`assemble_stiffness`]).
+pub fn assemble_stiffness_with<D: Dim>(
+    mesh: &SimplexMesh<D>,
+    materials: &ElementMaterials<D>,
+    mut adjust: impl FnMut(&D::Element, &mut D::ElementMatrix),
+) -> SparseColMat<usize, f64> {
+    let n_dofs = mesh.n_dofs();
+    let mut triplets = Vec::with_capacity(D::ELEMENT_DOFS * D::ELEMENT_DOFS * mesh.n_elements());
+    for (elem_idx, e) in mesh.elements().iter().enumerate() {
+        let mut ke = element_stiffness(mesh, materials, elem_idx);
+        adjust(e, &mut ke);
+        let dofs = D::element_dofs(e);
+        for i in 0..D::ELEMENT_DOFS {
+            for j in 0..D::ELEMENT_DOFS {
                 triplets.push(Triplet::new(dofs[i], dofs[j], ke[i][j]));
             }
         }
     }
     // Indices are in range by construction (the mesh is validated), so this cannot fail.
     SparseColMat::try_new_from_triplets(n_dofs, n_dofs, &triplets).expect("assembly indices are in range")
-}
-
-/// Applies $K_e \leftarrow T_k^\top K_e T_k$ for the rotation of the element's local vertex `k`.
-fn rotate_element_node(ke: &mut [[f64; 6]; 6], k: usize, angle_rad: f64) {
-    let (s, c) = angle_rad.sin_cos();
-    let (i0, i1) = (2 * k, 2 * k + 1);
-    // columns: K T  (T maps local (t, n) to world: [c -s; s c])
-    for row in ke.iter_mut() {
-        let (a, b) = (row[i0], row[i1]);
-        row[i0] = a * c + b * s;
-        row[i1] = -a * s + b * c;
-    }
-    // rows: T^T (K T)
-    for j in 0..6 {
-        let (a, b) = (ke[i0][j], ke[i1][j]);
-        ke[i0][j] = c * a + s * b;
-        ke[i1][j] = -s * a + c * b;
-    }
 }
 
 /// $y = K x$ for the full stiffness.
@@ -155,98 +119,24 @@ pub fn mul_stiffness(k: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) {
     }
 }
 
-/// Constant in-plane stress $[\sigma_{xx}, \sigma_{yy}, \sigma_{xy}] = D B u_e$ of each triangle, in Pa.
-pub fn element_stresses_pa(mesh: &Mesh, materials: &MaterialMap, displacement_m: &[f64]) -> Vec<[f64; 3]> {
-    (0..mesh.n_triangles())
-        .map(|tri_idx| {
-            let (b, _) = element_b(mesh, tri_idx);
-            let tri = mesh.triangles()[tri_idx];
-            let ue: [f64; 6] = std::array::from_fn(|k| displacement_m[2 * tri[k / 2] + k % 2]);
-            let strain: [f64; 3] = std::array::from_fn(|i| (0..6).map(|j| b[i][j] * ue[j]).sum());
-            let d = materials.material_of_tri[tri_idx].d_matrix(materials.plane);
-            std::array::from_fn(|i| (0..3).map(|k| d[i][k] * strain[k]).sum())
+/// The constant stress $\sigma = D B u_e$ of each element in the dimension's Voigt order (2D
+/// $[\sigma_{xx}, \sigma_{yy}, \sigma_{xy}]$; 3D $[\sigma_{xx}, \sigma_{yy}, \sigma_{zz},
+/// \sigma_{yz}, \sigma_{xz}, \sigma_{xy}]$), in Pa, from world displacements (length $Nn$).
+pub fn element_stresses_pa<D: Dim>(mesh: &SimplexMesh<D>, materials: &ElementMaterials<D>, displacement_m: &[f64]) -> Vec<D::Voigt> {
+    (0..mesh.n_elements())
+        .map(|elem_idx| {
+            let (b, _) = element_b(mesh, elem_idx);
+            let dofs = D::element_dofs(&mesh.elements()[elem_idx]);
+            let mut strain = D::Voigt::default();
+            for i in 0..D::VOIGT {
+                strain[i] = (0..D::ELEMENT_DOFS).map(|j| b[i][j] * displacement_m[dofs[j]]).sum();
+            }
+            let d = materials.d_matrix(elem_idx);
+            let mut stress = D::Voigt::default();
+            for i in 0..D::VOIGT {
+                stress[i] = (0..D::VOIGT).map(|k| d[i][k] * strain[k]).sum();
+            }
+            stress
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::{MeshLimits, RectMeshParams};
-
-    fn unit_square_materials(mesh: &Mesh) -> MaterialMap {
-        MaterialMap::per_region(mesh, &[Material { young_modulus_pa: 1000.0, poisson_ratio: 0.3 }], PlaneModel::Stress { thickness_m: 0.5 })
-            .unwrap()
-    }
-
-    #[test]
-    fn rigid_motions_give_no_force_and_k_is_symmetric() {
-        let mesh = RectMeshParams::new(4, 3, 2.0, 1.0).build(&MeshLimits::default()).unwrap();
-        let mats = unit_square_materials(&mesh);
-        let k = assemble_stiffness(&mesh, &mats, None);
-        let n = mesh.n_nodes();
-        let mut y = vec![0.0; 2 * n];
-        let scale = k.val().iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for mode in 0..3 {
-            let x: Vec<f64> = (0..2 * n)
-                .map(|d| {
-                    let p = mesh.nodes_m()[d / 2];
-                    match mode {
-                        0 => (d % 2 == 0) as u8 as f64,
-                        1 => (d % 2 == 1) as u8 as f64,
-                        _ => {
-                            if d % 2 == 0 {
-                                -p[1]
-                            } else {
-                                p[0]
-                            }
-                        }
-                    }
-                })
-                .collect();
-            mul_stiffness(&k, &x, &mut y);
-            assert!(y.iter().all(|v| v.abs() < 1e-12 * scale), "rigid mode {mode} gives forces");
-        }
-        let dense = k.to_dense();
-        for i in 0..2 * n {
-            for j in 0..2 * n {
-                assert!((dense[(i, j)] - dense[(j, i)]).abs() <= 1e-13 * scale);
-            }
-        }
-    }
-
-    #[test]
-    fn clockwise_element_equals_counter_clockwise() {
-        let lim = MeshLimits::default();
-        let nodes = vec![[0.0, 0.0], [1.0, 0.2], [0.3, 0.9]];
-        let ccw = Mesh::new(nodes.clone(), vec![[0, 1, 2]], &lim).unwrap();
-        let cw = Mesh::new(nodes, vec![[0, 2, 1]], &lim).unwrap();
-        let kc = assemble_stiffness(&ccw, &unit_square_materials(&ccw), None).to_dense();
-        let kw = assemble_stiffness(&cw, &unit_square_materials(&cw), None).to_dense();
-        assert!((&kc - &kw).norm_max() < 1e-12 * kc.norm_max());
-    }
-
-    #[test]
-    fn rotated_assembly_is_t_transpose_k_t() {
-        let mesh = RectMeshParams::new(3, 3, 1.0, 1.0).build(&MeshLimits::default()).unwrap();
-        let mats = unit_square_materials(&mesh);
-        let mut angles = vec![None; mesh.n_nodes()];
-        angles[4] = Some(0.7);
-        angles[8] = Some(-2.1);
-        let k = assemble_stiffness(&mesh, &mats, None).to_dense();
-        let kl = assemble_stiffness(&mesh, &mats, Some(&angles)).to_dense();
-        let nd = 2 * mesh.n_nodes();
-        let mut t = faer::Mat::<f64>::identity(nd, nd);
-        for (node, a) in angles.iter().enumerate() {
-            if let Some(a) = a {
-                let (s, c) = a.sin_cos();
-                t[(2 * node, 2 * node)] = c;
-                t[(2 * node, 2 * node + 1)] = -s;
-                t[(2 * node + 1, 2 * node)] = s;
-                t[(2 * node + 1, 2 * node + 1)] = c;
-            }
-        }
-        let expect = t.transpose() * &k * &t;
-        assert!((&expect - &kl).norm_max() < 1e-12 * k.norm_max());
-    }
 }

@@ -15,6 +15,9 @@
 //! The static 3D core (linear tetrahedra: mesh, box grids, point location, assembly, statics with
 //! material-point conditions, compliance columns) is the module [`d3`].
 //!
+//! The dimension is a type parameter where the code is one for both ([`dim`]: `Dim2`, `Dim3`): the
+//! mesh is [`mesh::SimplexMesh<D>`], with [`Mesh`] and [`d3::TetMesh`] its aliases.
+//!
 //! The crate does no I/O and knows no async runtime or protocol: state in, state out, typed errors.
 
 // Index loops mirror the formulas (i, j over matrix entries); `!(x > 0.0)` is deliberate: it is
@@ -29,6 +32,7 @@ pub mod beam;
 pub mod compliance;
 pub mod contact;
 pub mod d3;
+pub mod dim;
 pub mod factor;
 pub mod fixtures;
 pub mod ids;
@@ -45,13 +49,14 @@ pub mod spatial;
 pub mod statics;
 pub mod stepper;
 
-pub use assembly::MaterialMap;
+pub use assembly::{ElementMaterials, MaterialMap};
 pub use beam::NeedleCurve;
 pub use compliance::{ColumnScratch, ComplianceCache, ComplianceCache3, TissueError, TissueModel};
 pub use contact::{ContactId, ContactPoint};
+pub use dim::{Dim, Dim2, Dim3};
 pub use ids::{Axis, NodeIdx, Slot};
 pub use material::{Material, MaterialError, PlaneModel};
-pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams};
+pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams, SimplexMesh};
 pub use mixed::{Condition, MixedError, MixedSolver, MixedSolver2, MixedSolver3};
 pub use needle::{BasePose, FlexibleNeedle, NeedleShape, RegionNeedleParams, RigidNeedle};
 pub use sim::{Divergence, DivergenceBounds, Inserted, NodeState, SimError, SimParams, SimStats, Simulation, StepOutput, TargetParams};

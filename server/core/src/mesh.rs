@@ -1,92 +1,36 @@
-//! Triangle meshes: explicit meshes, the structured rectangle generator, and their validation.
+//! Simplex meshes in either dimension: [`SimplexMesh<D>`] (storage, accessors, regions, boundary
+//! sets, validation), with [`Mesh`] the 2D triangle mesh and [`crate::d3::TetMesh`] the 3D
+//! tetrahedral one.
 //!
-//! A [`Mesh`] holds node coordinates (metres), linear triangles as given (clockwise or
-//! counter-clockwise), a region index per triangle, and named boundary node sets (for
-//! example the fixed edge). Validation rejects anything that would give a wrong or singular
-//! stiffness: out-of-range or repeated node ids, zero-area triangles, non-finite coordinates,
-//! nodes used by no triangle, meshes over a size limit, and what a conforming mesh cannot have:
-//! duplicate nodes (within $10^{-9}$ of the bounding-box diagonal), duplicate triangles,
-//! triangles whose interiors overlap, and two regions of the same name.
+//! A mesh holds node coordinates (metres), linear simplices ($N + 1$ nodes each), a region index
+//! per element, region names, and named boundary node sets (for example the fixed edge or face).
+//! Validation rejects anything that would give a wrong or singular stiffness, naming the item:
+//! meshes over a size limit, non-finite coordinates, out-of-range or repeated node ids,
+//! degenerate elements, nodes used by no element, region and boundary-set inconsistencies, and
+//! what a conforming mesh cannot have: duplicate nodes (within $10^{-9}$ of the bounding-box
+//! diagonal), duplicate elements and two regions of the same name. These checks are written once
+//! here; what depends on the element (its measure and degeneracy test, the stored orientation,
+//! the 2D overlap and 3D face checks) is a method of [`Dim`]. The 2D pieces (limits, errors,
+//! overlaps, the rectangle generator) are in [`tri`]; the 3D ones in [`crate::d3::mesh`] and
+//! [`crate::d3::conform`].
 //!
-//! The conformity checks cost $O(n \log n)$ (duplicate nodes and triangles: sorting) and $O(n)$
-//! expected (overlaps: a uniform bucket grid of triangle bounding boxes, then a separating-axis
-//! test per candidate pair): 117 ms on a 400 × 400 grid (160 000 nodes, 318 402 triangles; 98 ms
-//! of it the overlaps), against 1.6 s for its tissue model.
+//! The errors stay one enum per dimension ([`MeshError`], [`crate::d3::TetMeshError`]): their
+//! messages name the element ("triangle 3", "tetrahedron 3") and are quoted by tests and the
+//! CLI. The shared checks report a [`MeshFault`], which each dimension converts into its error.
+//!
+//! Costs: the duplicate checks are $O(n \log n)$ (sorting); the 2D overlaps and the 3D face and
+//! probe checks are described with them.
 
 use std::collections::BTreeMap;
 
-/// The limits a mesh is checked against, so that a user's mesh cannot exhaust memory.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MeshLimits {
-    /// At most this many nodes.
-    pub max_nodes: usize,
-    /// At most this many triangles.
-    pub max_triangles: usize,
-}
+pub use crate::dim::{Dim, Dim2, Dim3};
 
-impl Default for MeshLimits {
-    /// One million nodes and two million triangles: a 1000 × 1000 grid.
-    fn default() -> Self {
-        Self { max_nodes: 1_000_000, max_triangles: 2_000_000 }
-    }
-}
+pub mod tri;
 
-/// Errors found while checking a mesh, each naming the offending item.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum MeshError {
-    /// The mesh has no triangles (or no nodes).
-    #[error("the mesh is empty: it needs at least one triangle")]
-    Empty,
-    /// More nodes than [`MeshLimits::max_nodes`].
-    #[error("the mesh has {n_nodes} nodes, over the limit of {max_nodes}")]
-    TooManyNodes { n_nodes: usize, max_nodes: usize },
-    /// More triangles than [`MeshLimits::max_triangles`].
-    #[error("the mesh has {n_triangles} triangles, over the limit of {max_triangles}")]
-    TooManyTriangles { n_triangles: usize, max_triangles: usize },
-    /// A node coordinate is NaN or infinite.
-    #[error("node {node_idx} has a non-finite coordinate ({x}, {y})")]
-    NonFiniteNode { node_idx: usize, x: f64, y: f64 },
-    /// A triangle refers to a node id that does not exist.
-    #[error("triangle {tri_idx} refers to node {node_idx}, but the mesh has only {n_nodes} nodes (ids are 0-based)")]
-    NodeOutOfRange { tri_idx: usize, node_idx: usize, n_nodes: usize },
-    /// A triangle uses the same node twice.
-    #[error("triangle {tri_idx} uses node {node_idx} twice")]
-    RepeatedNode { tri_idx: usize, node_idx: usize },
-    /// A triangle's area is zero (collinear or coincident vertices) relative to its size.
-    #[error("triangle {tri_idx} (nodes {nodes:?}) is degenerate: its area {area_m2:e} m² is zero relative to its size")]
-    Degenerate { tri_idx: usize, nodes: [usize; 3], area_m2: f64 },
-    /// A node is not used by any triangle: its stiffness would be zero.
-    #[error("node {node_idx} is used by no triangle ({n_unused} unused node(s) in all)")]
-    UnusedNode { node_idx: usize, n_unused: usize },
-    /// The region list does not have one entry per triangle.
-    #[error("the mesh has {n_triangles} triangles but {n_regions} region entries")]
-    RegionCount { n_triangles: usize, n_regions: usize },
-    /// A boundary set names a node that does not exist.
-    #[error("boundary set '{set}' names node {node_idx}, but the mesh has only {n_nodes} nodes")]
-    BoundaryNodeOutOfRange { set: String, node_idx: usize, n_nodes: usize },
-    /// Rectangle generator parameters are out of range.
-    #[error("invalid rectangle mesh: {0}")]
-    InvalidRectangle(String),
-    /// Two nodes lie within [`DUPLICATE_NODE_TOL`] × the bounding-box diagonal of each other: a
-    /// mesh that repeats a node instead of sharing it is cut apart there.
-    #[error(
-        "nodes {first_idx} and {second_idx} coincide at ({}, {}) (within {tol_m:e} m): a node must appear once and be shared by its triangles",
-        crate::num::num(*x),
-        crate::num::num(*y)
-    )]
-    DuplicateNode { first_idx: usize, second_idx: usize, x: f64, y: f64, tol_m: f64 },
-    /// Two triangles have the same three nodes (in any order).
-    #[error("triangles {first_idx} and {second_idx} have the same nodes {nodes:?}")]
-    DuplicateTriangle { first_idx: usize, second_idx: usize, nodes: [usize; 3] },
-    /// The interiors of two triangles intersect (more than round-off): the tissue there would
-    /// be counted twice. Triangles that share an edge or a vertex from opposite sides are fine.
-    #[error("triangles {first_idx} (nodes {first_nodes:?}) and {second_idx} (nodes {second_nodes:?}) overlap")]
-    OverlappingTriangles { first_idx: usize, first_nodes: [usize; 3], second_idx: usize, second_nodes: [usize; 3] },
-    /// Two regions have the same name, so a material or needle parameter given by name would be
-    /// ambiguous.
-    #[error("regions {first_idx} and {second_idx} are both named '{name}': region names must be unique")]
-    DuplicateRegionName { name: String, first_idx: usize, second_idx: usize },
-}
+pub use tri::{DiagonalPattern, MeshError, MeshLimits, RectMeshParams};
+
+/// The 2D linear-triangle mesh.
+pub type Mesh = SimplexMesh<Dim2>;
 
 /// Two nodes closer than this fraction of the mesh's bounding-box diagonal are the same node.
 /// Far above round-off (coordinates carry 1e-16 relative precision, a mesh file's text at least
@@ -95,255 +39,180 @@ pub enum MeshError {
 /// round-off).
 pub const DUPLICATE_NODE_TOL: f64 = 1e-9;
 
-/// Projected intervals of two triangles overlapping by less than this fraction of their larger
-/// longest edge count as touching, not overlapping (round-off where they share a vertex or edge).
-const OVERLAP_TOL: f64 = 1e-9;
-
-/// A 2D linear-triangle mesh. Built through [`Mesh::new`] or [`RectMeshParams::build`], both of
-/// which validate it.
+/// A fault found by the checks shared by both dimensions; each dimension's error type is built
+/// from it (`D::MeshError: From<MeshFault<D>>`), naming the element its own way.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Mesh {
-    nodes_m: Vec<[f64; 2]>,
-    triangles: Vec<[usize; 3]>,
-    region_of_tri: Vec<usize>,
+pub enum MeshFault<D: Dim> {
+    /// No elements (or no nodes).
+    Empty,
+    /// More nodes than the limit.
+    TooManyNodes { n_nodes: usize, max_nodes: usize },
+    /// More elements than the limit.
+    TooManyElements { n_elements: usize, max_elements: usize },
+    /// A node coordinate is NaN or infinite.
+    NonFiniteNode { node_idx: usize, x_m: D::Point },
+    /// An element refers to a node id that does not exist.
+    NodeOutOfRange { elem_idx: usize, node_idx: usize, n_nodes: usize },
+    /// An element uses the same node twice.
+    RepeatedNode { elem_idx: usize, node_idx: usize },
+    /// A node is used by no element.
+    UnusedNode { node_idx: usize, n_unused: usize },
+    /// The region list does not have one entry per element.
+    RegionCount { n_elements: usize, n_regions: usize },
+    /// A boundary set names a node that does not exist.
+    BoundaryNodeOutOfRange { set: String, node_idx: usize, n_nodes: usize },
+    /// Two nodes within [`DUPLICATE_NODE_TOL`] × the bounding-box diagonal of each other.
+    DuplicateNode { first_idx: usize, second_idx: usize, x_m: D::Point, tol_m: f64 },
+    /// Two elements with the same nodes (in any order); `nodes` sorted.
+    DuplicateElement { first_idx: usize, second_idx: usize, nodes: D::Element },
+    /// Two regions with the same name.
+    DuplicateRegionName { name: String, first_idx: usize, second_idx: usize },
+}
+
+/// A linear-simplex mesh in dimension `D`, built through [`SimplexMesh::new`],
+/// [`SimplexMesh::with_regions`] or a structured generator, all of which validate it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimplexMesh<D: Dim> {
+    nodes_m: Vec<D::Point>,
+    elements: Vec<D::Element>,
+    region_of_element: Vec<usize>,
     region_names: Vec<String>,
     boundary_sets: BTreeMap<String, Vec<usize>>,
 }
 
-impl Mesh {
+impl<D: Dim> SimplexMesh<D> {
     /// Builds and validates an explicit mesh with one region (index 0, named "tissue").
-    pub fn new(nodes_m: Vec<[f64; 2]>, triangles: Vec<[usize; 3]>, limits: &MeshLimits) -> Result<Self, MeshError> {
-        let n_tri = triangles.len();
-        Self::with_regions(nodes_m, triangles, vec![0; n_tri], vec!["tissue".to_owned()], BTreeMap::new(), limits)
+    pub fn new(nodes_m: Vec<D::Point>, elements: Vec<D::Element>, limits: &D::Limits) -> Result<Self, D::MeshError> {
+        let n = elements.len();
+        Self::with_regions(nodes_m, elements, vec![0; n], vec!["tissue".to_owned()], BTreeMap::new(), limits)
     }
 
-    /// Builds and validates a mesh with a region index per triangle (indices into `region_names`,
-    /// which is extended with generated names if too short) and named boundary node sets.
+    /// Builds and validates a mesh with a region index per element (indices into
+    /// `region_names`, extended with generated names `region<k>` if too short) and named boundary
+    /// node sets (sorted and deduplicated here). Elements are stored in [`Dim::orient`]'s
+    /// orientation.
     pub fn with_regions(
-        nodes_m: Vec<[f64; 2]>,
-        triangles: Vec<[usize; 3]>,
-        region_of_tri: Vec<usize>,
+        nodes_m: Vec<D::Point>,
+        elements: Vec<D::Element>,
+        region_of_element: Vec<usize>,
         mut region_names: Vec<String>,
-        boundary_sets: BTreeMap<String, Vec<usize>>,
-        limits: &MeshLimits,
-    ) -> Result<Self, MeshError> {
-        if region_of_tri.len() != triangles.len() {
-            return Err(MeshError::RegionCount { n_triangles: triangles.len(), n_regions: region_of_tri.len() });
+        mut boundary_sets: BTreeMap<String, Vec<usize>>,
+        limits: &D::Limits,
+    ) -> Result<Self, D::MeshError> {
+        if region_of_element.len() != elements.len() {
+            return Err(MeshFault::RegionCount { n_elements: elements.len(), n_regions: region_of_element.len() }.into());
         }
-        let n_regions = region_of_tri.iter().copied().max().map_or(0, |m| m + 1);
+        let n_regions = region_of_element.iter().copied().max().map_or(0, |m| m + 1);
         while region_names.len() < n_regions {
             region_names.push(format!("region{}", region_names.len()));
         }
-        let mesh = Self { nodes_m, triangles, region_of_tri, region_names, boundary_sets };
+        for v in boundary_sets.values_mut() {
+            v.sort_unstable();
+            v.dedup();
+        }
+        let mut mesh = Self { nodes_m, elements, region_of_element, region_names, boundary_sets };
         mesh.validate(limits)?;
+        for e in &mut mesh.elements {
+            let p = D::element_points(&mesh.nodes_m, e);
+            D::orient(e, &p);
+        }
         Ok(mesh)
     }
 
-    fn validate(&self, limits: &MeshLimits) -> Result<(), MeshError> {
+    fn validate(&self, limits: &D::Limits) -> Result<(), D::MeshError> {
         let n_nodes = self.nodes_m.len();
-        if self.triangles.is_empty() || n_nodes == 0 {
-            return Err(MeshError::Empty);
+        let (max_nodes, max_elements) = D::max_counts(limits);
+        if self.elements.is_empty() || n_nodes == 0 {
+            return Err(MeshFault::Empty.into());
         }
-        if n_nodes > limits.max_nodes {
-            return Err(MeshError::TooManyNodes { n_nodes, max_nodes: limits.max_nodes });
+        if n_nodes > max_nodes {
+            return Err(MeshFault::TooManyNodes { n_nodes, max_nodes }.into());
         }
-        if self.triangles.len() > limits.max_triangles {
-            return Err(MeshError::TooManyTriangles { n_triangles: self.triangles.len(), max_triangles: limits.max_triangles });
+        if self.elements.len() > max_elements {
+            return Err(MeshFault::TooManyElements { n_elements: self.elements.len(), max_elements }.into());
         }
-        for (node_idx, &[x, y]) in self.nodes_m.iter().enumerate() {
-            if !x.is_finite() || !y.is_finite() {
-                return Err(MeshError::NonFiniteNode { node_idx, x, y });
+        for (node_idx, &x_m) in self.nodes_m.iter().enumerate() {
+            if !x_m.as_ref().iter().all(|v| v.is_finite()) {
+                return Err(MeshFault::NonFiniteNode { node_idx, x_m }.into());
             }
         }
         let mut used = vec![false; n_nodes];
-        for (tri_idx, tri) in self.triangles.iter().enumerate() {
-            for (k, &node_idx) in tri.iter().enumerate() {
+        for (elem_idx, e) in self.elements.iter().enumerate() {
+            let ids = e.as_ref();
+            for (k, &node_idx) in ids.iter().enumerate() {
                 if node_idx >= n_nodes {
-                    return Err(MeshError::NodeOutOfRange { tri_idx, node_idx, n_nodes });
+                    return Err(MeshFault::NodeOutOfRange { elem_idx, node_idx, n_nodes }.into());
                 }
-                if tri[..k].contains(&node_idx) {
-                    return Err(MeshError::RepeatedNode { tri_idx, node_idx });
+                if ids[..k].contains(&node_idx) {
+                    return Err(MeshFault::RepeatedNode { elem_idx, node_idx }.into());
                 }
                 used[node_idx] = true;
             }
-            let area_m2 = self.signed_area_m2(tri_idx).abs();
-            let [a, b, c] = tri.map(|i| self.nodes_m[i]);
-            let longest_sq = [dist_sq(a, b), dist_sq(b, c), dist_sq(c, a)].into_iter().fold(0.0, f64::max);
-            // A triangle whose area is below 1e-12 of the square of its longest edge is flat to
-            // round-off: its element stiffness would be meaningless.
-            if !(area_m2 > 1e-12 * longest_sq) {
-                return Err(MeshError::Degenerate { tri_idx, nodes: *tri, area_m2 });
-            }
+            D::check_shape(elem_idx, e, &D::element_points(&self.nodes_m, e))?;
         }
         let n_unused = used.iter().filter(|u| !**u).count();
         if let Some(node_idx) = used.iter().position(|u| !*u) {
-            return Err(MeshError::UnusedNode { node_idx, n_unused });
+            return Err(MeshFault::UnusedNode { node_idx, n_unused }.into());
         }
         for (set, nodes) in &self.boundary_sets {
             if let Some(&node_idx) = nodes.iter().find(|&&i| i >= n_nodes) {
-                return Err(MeshError::BoundaryNodeOutOfRange { set: set.clone(), node_idx, n_nodes });
+                return Err(MeshFault::BoundaryNodeOutOfRange { set: set.clone(), node_idx, n_nodes }.into());
             }
         }
-        self.check_region_names()?;
-        self.check_duplicate_nodes()?;
-        self.check_duplicate_triangles()?;
-        self.check_overlaps()
-    }
-
-    fn check_region_names(&self) -> Result<(), MeshError> {
         let mut names: Vec<(&str, usize)> = self.region_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
         names.sort_unstable();
-        match names.windows(2).find(|w| w[0].0 == w[1].0) {
-            Some(w) => Err(MeshError::DuplicateRegionName { name: w[0].0.to_owned(), first_idx: w[0].1, second_idx: w[1].1 }),
-            None => Ok(()),
+        if let Some(w) = names.windows(2).find(|w| w[0].0 == w[1].0) {
+            return Err(MeshFault::DuplicateRegionName { name: w[0].0.to_owned(), first_idx: w[0].1, second_idx: w[1].1 }.into());
         }
+        D::check_conformity(self)
     }
 
     /// Nodes within `DUPLICATE_NODE_TOL × diagonal` of each other: nodes are binned into square
-    /// cells of that size (sorted by cell, $O(n \log n)$), and each is compared with the nodes
-    /// of its own and the neighbouring cells.
-    fn check_duplicate_nodes(&self) -> Result<(), MeshError> {
+    /// (cubic) cells of that size (sorted by cell, $O(n \log n)$), and each is compared with the
+    /// nodes of its own cell and of the neighbouring cells that come after it in the sort order.
+    /// A 2D cell is a 3D one with $z$ index 0, so the pairs compared, and the first duplicate
+    /// found, are those of the former 2D search.
+    pub(crate) fn check_duplicate_nodes(&self) -> Result<(), D::MeshError> {
+        let nodes = &self.nodes_m;
         let (lo, hi) = self.bounding_box_m();
-        let tol_m = DUPLICATE_NODE_TOL * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+        let tol_m = DUPLICATE_NODE_TOL * D::norm(D::point_from_fn(|k| hi[k] - lo[k]));
         if !(tol_m > 0.0) {
-            return Ok(()); // a single point: degenerate triangles were rejected before
+            return Ok(()); // a single point: degenerate elements were rejected before
         }
         // Cell indices stay far inside i64: the mesh spans at most 1e9 cells per axis.
-        let cell = |p: [f64; 2]| (((p[0] - lo[0]) / tol_m).floor() as i64, ((p[1] - lo[1]) / tol_m).floor() as i64);
-        let mut keyed: Vec<((i64, i64), usize)> = self.nodes_m.iter().enumerate().map(|(i, &p)| (cell(p), i)).collect();
+        let cell = |p: D::Point| {
+            let mut c = [0i64; 3];
+            for k in 0..D::N {
+                c[k] = ((p[k] - lo[k]) / tol_m).floor() as i64;
+            }
+            c
+        };
+        let mut keyed: Vec<([i64; 3], usize)> = nodes.iter().enumerate().map(|(i, &p)| (cell(p), i)).collect();
         keyed.sort_unstable();
-        let close = |a: usize, b: usize| dist_sq(self.nodes_m[a], self.nodes_m[b]) <= tol_m * tol_m;
+        let close = |a: usize, b: usize| dist_sq::<D>(nodes[a], nodes[b]) <= tol_m * tol_m;
         let found = |a: usize, b: usize| {
             let (first_idx, second_idx) = (a.min(b), a.max(b));
-            let [x, y] = self.nodes_m[first_idx];
-            MeshError::DuplicateNode { first_idx, second_idx, x, y, tol_m }
+            MeshFault::<D>::DuplicateNode { first_idx, second_idx, x_m: nodes[first_idx], tol_m }.into()
         };
-        for (k, &((cx, cy), a)) in keyed.iter().enumerate() {
-            // Same column: the following entries with row cy or cy + 1.
-            for &((cx2, cy2), b) in &keyed[k + 1..] {
-                if cx2 != cx || cy2 > cy + 1 {
+        for (k, &([cx, cy, cz], a)) in keyed.iter().enumerate() {
+            // Same column (cx, cy): the following entries with z cell cz or cz + 1.
+            for &([cx2, cy2, cz2], b) in &keyed[k + 1..] {
+                if cx2 != cx || cy2 != cy || cz2 > cz + 1 {
                     break;
                 }
                 if close(a, b) {
                     return Err(found(a, b));
                 }
             }
-            // Next column: rows cy - 1 ..= cy + 1.
-            let start = keyed.partition_point(|e| e.0 < (cx + 1, cy - 1));
-            for &((cx2, cy2), b) in &keyed[start..] {
-                if cx2 != cx + 1 || cy2 > cy + 1 {
-                    break;
-                }
-                if close(a, b) {
-                    return Err(found(a, b));
-                }
-            }
-        }
-        Ok(())
-    }
-
-    fn check_duplicate_triangles(&self) -> Result<(), MeshError> {
-        let mut sorted: Vec<([usize; 3], usize)> = self
-            .triangles
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let mut s = *t;
-                s.sort_unstable();
-                (s, i)
-            })
-            .collect();
-        sorted.sort_unstable();
-        match sorted.windows(2).find(|w| w[0].0 == w[1].0) {
-            Some(w) => Err(MeshError::DuplicateTriangle { first_idx: w[0].1, second_idx: w[1].1, nodes: w[0].0 }),
-            None => Ok(()),
-        }
-    }
-
-    /// Triangles whose interiors intersect. Candidate pairs come from a uniform grid of buckets
-    /// (about one triangle per cell, each triangle entered in the cells its bounding box covers,
-    /// stored in compressed rows); a pair is tested once, in the cell holding the lower-left
-    /// corner of the intersection of their boxes, by [`triangles_overlap`].
-    fn check_overlaps(&self) -> Result<(), MeshError> {
-        let n_tri = self.triangles.len();
-        if n_tri < 2 {
-            return Ok(());
-        }
-        let (lo, hi) = self.bounding_box_m();
-        let boxes: Vec<([f64; 2], [f64; 2])> = self
-            .triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| self.nodes_m[i]);
-                ([a[0].min(b[0]).min(c[0]), a[1].min(b[1]).min(c[1])], [a[0].max(b[0]).max(c[0]), a[1].max(b[1]).max(c[1])])
-            })
-            .collect();
-        // Cell size: the mean box extent, but no more cells than about 2 per triangle.
-        let mean_extent = boxes.iter().map(|(l, h)| (h[0] - l[0]).max(h[1] - l[1])).sum::<f64>() / n_tri as f64;
-        let (w, h) = (hi[0] - lo[0], hi[1] - lo[1]);
-        let cell_m = mean_extent.max((w * h / (2.0 * n_tri as f64)).sqrt()).max(f64::MIN_POSITIVE);
-        let n_cells_axis = |len: f64| ((len / cell_m).floor() as usize).saturating_add(1).min(1 << 20);
-        let (ncx, ncy) = (n_cells_axis(w), n_cells_axis(h));
-        let cell_of = |v: f64, origin: f64, n: usize| (((v - origin) / cell_m).floor().max(0.0) as usize).min(n - 1);
-        let range = |b: &([f64; 2], [f64; 2])| {
-            (cell_of(b.0[0], lo[0], ncx), cell_of(b.1[0], lo[0], ncx), cell_of(b.0[1], lo[1], ncy), cell_of(b.1[1], lo[1], ncy))
-        };
-        // Compressed rows: counts, offsets, then the triangles of each cell.
-        let mut start = vec![0usize; ncx * ncy + 1];
-        for b in &boxes {
-            let (i0, i1, j0, j1) = range(b);
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    start[j * ncx + i + 1] += 1;
-                }
-            }
-        }
-        for k in 1..start.len() {
-            start[k] += start[k - 1];
-        }
-        let mut fill = start.clone();
-        let mut members = vec![0u32; start[ncx * ncy]];
-        for (ti, b) in boxes.iter().enumerate() {
-            let (i0, i1, j0, j1) = range(b);
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    members[fill[j * ncx + i]] = ti as u32;
-                    fill[j * ncx + i] += 1;
-                }
-            }
-        }
-        for j in 0..ncy {
-            for i in 0..ncx {
-                let cell = &members[start[j * ncx + i]..start[j * ncx + i + 1]];
-                for (k, &a) in cell.iter().enumerate() {
-                    for &b in &cell[k + 1..] {
-                        let (ba, bb) = (&boxes[a as usize], &boxes[b as usize]);
-                        let (ix, iy) = (ba.0[0].max(bb.0[0]), ba.0[1].max(bb.0[1]));
-                        if ix > ba.1[0].min(bb.1[0]) || iy > ba.1[1].min(bb.1[1]) {
-                            continue; // the boxes do not meet
-                        }
-                        if cell_of(ix, lo[0], ncx) != i || cell_of(iy, lo[1], ncy) != j {
-                            continue; // tested in another cell
-                        }
-                        let (ta, tb) = (self.triangles[a as usize], self.triangles[b as usize]);
-                        let overlap = match shared_edge(ta, tb) {
-                            // Neighbours across an edge overlap exactly when their third vertices
-                            // lie on the same side of it (both triangles have non-zero area).
-                            Some((p, q, ra, rb)) => {
-                                let side = |r: usize| orient(self.nodes_m[p], self.nodes_m[q], self.nodes_m[r]);
-                                side(ra) * side(rb) > 0.0
-                            }
-                            None => triangles_overlap(ta.map(|n| self.nodes_m[n]), tb.map(|n| self.nodes_m[n])),
-                        };
-                        if overlap {
-                            let (first_idx, second_idx) = ((a as usize).min(b as usize), (a as usize).max(b as usize));
-                            return Err(MeshError::OverlappingTriangles {
-                                first_idx,
-                                first_nodes: self.triangles[first_idx],
-                                second_idx,
-                                second_nodes: self.triangles[second_idx],
-                            });
-                        }
+            // The columns after it: (cx, cy + 1) and (cx + 1, cy - 1 ..= cy + 1), z cells cz ± 1.
+            for (x, y) in [(cx, cy + 1), (cx + 1, cy - 1), (cx + 1, cy), (cx + 1, cy + 1)] {
+                let start = keyed.partition_point(|e| e.0 < [x, y, cz - 1]);
+                for &([x2, y2, z2], b) in &keyed[start..] {
+                    if x2 != x || y2 != y || z2 > cz + 1 {
+                        break;
+                    }
+                    if close(a, b) {
+                        return Err(found(a, b));
                     }
                 }
             }
@@ -351,25 +220,48 @@ impl Mesh {
         Ok(())
     }
 
+    /// Two elements with the same node set: sorted node lists, sorted, $O(n \log n)$.
+    pub(crate) fn check_duplicate_elements(&self) -> Result<(), D::MeshError> {
+        let mut sorted: Vec<(D::Element, usize)> = self
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(i, e)| {
+                let mut s = *e;
+                s.as_mut().sort_unstable();
+                (s, i)
+            })
+            .collect();
+        sorted.sort_unstable();
+        match sorted.windows(2).find(|w| w[0].0 == w[1].0) {
+            Some(w) => Err(MeshFault::DuplicateElement { first_idx: w[0].1, second_idx: w[1].1, nodes: w[0].0 }.into()),
+            None => Ok(()),
+        }
+    }
+
     /// Number of nodes.
     pub fn n_nodes(&self) -> usize {
         self.nodes_m.len()
     }
-    /// Number of triangles.
-    pub fn n_triangles(&self) -> usize {
-        self.triangles.len()
+    /// Number of elements.
+    pub fn n_elements(&self) -> usize {
+        self.elements.len()
+    }
+    /// Number of DOFs, $N n$.
+    pub fn n_dofs(&self) -> usize {
+        D::N * self.nodes_m.len()
     }
     /// Node coordinates in metres.
-    pub fn nodes_m(&self) -> &[[f64; 2]] {
+    pub fn nodes_m(&self) -> &[D::Point] {
         &self.nodes_m
     }
-    /// Triangles as node index triples, in the orientation given.
-    pub fn triangles(&self) -> &[[usize; 3]] {
-        &self.triangles
+    /// Elements as node index tuples, in [`Dim::orient`]'s orientation.
+    pub fn elements(&self) -> &[D::Element] {
+        &self.elements
     }
-    /// The region index of each triangle.
-    pub fn region_of_tri(&self) -> &[usize] {
-        &self.region_of_tri
+    /// The region index of each element.
+    pub fn region_of_element(&self) -> &[usize] {
+        &self.region_of_element
     }
     /// Region names, indexed by region index.
     pub fn region_names(&self) -> &[String] {
@@ -384,306 +276,49 @@ impl Mesh {
         self.boundary_sets.get(name).map(Vec::as_slice)
     }
     /// Adds or replaces a named node set (sorted and deduplicated).
-    pub fn set_boundary_set(&mut self, name: &str, mut nodes: Vec<usize>) -> Result<(), MeshError> {
+    pub fn set_boundary_set(&mut self, name: &str, mut nodes: Vec<usize>) -> Result<(), D::MeshError> {
         nodes.sort_unstable();
         nodes.dedup();
         if let Some(&node_idx) = nodes.iter().find(|&&i| i >= self.n_nodes()) {
-            return Err(MeshError::BoundaryNodeOutOfRange { set: name.to_owned(), node_idx, n_nodes: self.n_nodes() });
+            return Err(MeshFault::BoundaryNodeOutOfRange { set: name.to_owned(), node_idx, n_nodes: self.n_nodes() }.into());
         }
         self.boundary_sets.insert(name.to_owned(), nodes);
         Ok(())
     }
-
-    /// Twice-signed area convention: positive for counter-clockwise triangles. Returns the signed
-    /// area $A = \tfrac12[(x_2-x_1)(y_3-y_1) - (x_3-x_1)(y_2-y_1)]$ in m².
-    pub fn signed_area_m2(&self, tri_idx: usize) -> f64 {
-        let [a, b, c] = self.triangles[tri_idx].map(|i| self.nodes_m[i]);
-        0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
+    /// The corner coordinates of element `elem_idx`.
+    pub fn element_points_m(&self, elem_idx: usize) -> D::ElementPoints {
+        D::element_points(&self.nodes_m, &self.elements[elem_idx])
     }
-
-    /// The axis-aligned bounding box `([xmin, ymin], [xmax, ymax])`.
-    pub fn bounding_box_m(&self) -> ([f64; 2], [f64; 2]) {
-        let mut lo = [f64::INFINITY; 2];
-        let mut hi = [f64::NEG_INFINITY; 2];
+    /// The signed measure of element `elem_idx` ([`Dim::signed_measure`]: m² or m³).
+    pub fn signed_measure(&self, elem_idx: usize) -> f64 {
+        D::signed_measure(&self.element_points_m(elem_idx))
+    }
+    /// The axis-aligned bounding box `(min, max)` in m.
+    pub fn bounding_box_m(&self) -> (D::Point, D::Point) {
+        let mut lo = D::point_from_fn(|_| f64::INFINITY);
+        let mut hi = D::point_from_fn(|_| f64::NEG_INFINITY);
         for p in &self.nodes_m {
-            for k in 0..2 {
+            for k in 0..D::N {
                 lo[k] = lo[k].min(p[k]);
                 hi[k] = hi[k].max(p[k]);
             }
         }
         (lo, hi)
     }
-
-    /// Nodes whose coordinate `axis` (0 = x, 1 = y) lies within `tol_m` of `value_m`, in index order.
+    /// Nodes whose coordinate `axis` (0 = x, 1 = y, 2 = z) lies within `tol_m` of `value_m`, in
+    /// index order.
     pub fn nodes_where(&self, axis: usize, value_m: f64, tol_m: f64) -> Vec<usize> {
         (0..self.n_nodes()).filter(|&i| (self.nodes_m[i][axis] - value_m).abs() <= tol_m).collect()
     }
 }
 
-fn dist_sq(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)
-}
-
-/// Twice the signed area of $(p, q, r)$: positive when $r$ lies left of $p \to q$.
-fn orient(p: [f64; 2], q: [f64; 2], r: [f64; 2]) -> f64 {
-    (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
-}
-
-/// If triangles `a` and `b` share exactly two nodes: those two and the third node of each.
-fn shared_edge(a: [usize; 3], b: [usize; 3]) -> Option<(usize, usize, usize, usize)> {
-    let in_b = a.map(|n| b.contains(&n));
-    let k = in_b.iter().position(|s| !*s)?;
-    if in_b.iter().filter(|s| **s).count() != 2 {
-        return None;
+/// The squared distance $|a - b|^2$, summed over the axes in order.
+#[inline]
+pub(crate) fn dist_sq<D: Dim>(a: D::Point, b: D::Point) -> f64 {
+    let mut s = 0.0;
+    for k in 0..D::N {
+        let d = a[k] - b[k];
+        s += d * d;
     }
-    let (p, q) = (a[(k + 1) % 3], a[(k + 2) % 3]);
-    let rb = *b.iter().find(|n| **n != p && **n != q)?;
-    Some((p, q, a[k], rb))
-}
-
-/// Whether the interiors of two (non-degenerate) triangles intersect, by the separating-axis
-/// theorem: two convex polygons are disjoint, or only touch, exactly when their projections onto
-/// the normal of one of their edges overlap by at most zero (for polygons that touch, the
-/// separating line through the contact contains an edge of one of them). Overlaps up to
-/// [`OVERLAP_TOL`] × the longer of their longest edges count as touching, so triangles sharing
-/// an edge or a vertex from opposite sides never count.
-fn triangles_overlap(a: [[f64; 2]; 3], b: [[f64; 2]; 3]) -> bool {
-    let longest = |t: &[[f64; 2]; 3]| (0..3).map(|k| dist_sq(t[k], t[(k + 1) % 3])).fold(0.0, f64::max).sqrt();
-    let tol_m = OVERLAP_TOL * longest(&a).max(longest(&b));
-    for (t, k) in (0..6).map(|e| (if e < 3 { &a } else { &b }, e % 3)) {
-        let (p, q) = (t[k], t[(k + 1) % 3]);
-        let axis = [p[1] - q[1], q[0] - p[0]];
-        let len = axis[0].hypot(axis[1]);
-        let span = |tri: &[[f64; 2]; 3]| {
-            let v = tri.map(|x| axis[0] * x[0] + axis[1] * x[1]);
-            (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]))
-        };
-        let ((a0, a1), (b0, b1)) = (span(&a), span(&b));
-        if a1.min(b1) - a0.max(b0) <= tol_m * len {
-            return false;
-        }
-    }
-    true
-}
-
-/// How the structured generator splits each grid cell into two triangles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum DiagonalPattern {
-    /// Every diagonal runs bottom-left to top-right.
-    Right,
-    /// The diagonal direction alternates in a checkerboard ("union jack"); the default, since it
-    /// is free of the directional bias of [`DiagonalPattern::Right`].
-    #[default]
-    Alternate,
-}
-
-/// A structured rectangle of `nx × ny` nodes; node id $j\,n_x + i$ ($i$ along x, $j$ along y),
-/// counter-clockwise triangles. Boundary sets `bottom`, `top`, `left`, `right` are named.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RectMeshParams {
-    pub nx: usize,
-    pub ny: usize,
-    pub width_m: f64,
-    pub height_m: f64,
-    pub origin_m: [f64; 2],
-    pub pattern: DiagonalPattern,
-}
-
-impl RectMeshParams {
-    /// A `nx × ny` grid over `[0, width] × [0, height]` with the alternating pattern.
-    pub fn new(nx: usize, ny: usize, width_m: f64, height_m: f64) -> Self {
-        Self { nx, ny, width_m, height_m, origin_m: [0.0, 0.0], pattern: DiagonalPattern::Alternate }
-    }
-
-    /// Generates and validates the mesh.
-    pub fn build(&self, limits: &MeshLimits) -> Result<Mesh, MeshError> {
-        let Self { nx, ny, width_m, height_m, origin_m, pattern } = *self;
-        if nx < 2 || ny < 2 {
-            return Err(MeshError::InvalidRectangle(format!("nx and ny must be at least 2, got {nx} × {ny}")));
-        }
-        if !(width_m.is_finite() && width_m > 0.0 && height_m.is_finite() && height_m > 0.0) {
-            return Err(MeshError::InvalidRectangle(format!(
-                "width and height must be finite and positive, got {} × {}",
-                crate::num::num(width_m),
-                crate::num::num(height_m)
-            )));
-        }
-        if !(origin_m[0].is_finite() && origin_m[1].is_finite()) {
-            return Err(MeshError::InvalidRectangle(format!("origin must be finite, got {origin_m:?}")));
-        }
-        let n_nodes = nx.saturating_mul(ny);
-        if n_nodes > limits.max_nodes {
-            return Err(MeshError::TooManyNodes { n_nodes, max_nodes: limits.max_nodes });
-        }
-        // Coordinates as numpy's linspace computes them, so generated meshes match references bit for bit.
-        let lin = |n: usize, len: f64, k: usize| if k + 1 == n { len } else { k as f64 * (len / (n - 1) as f64) };
-        let mut nodes = Vec::with_capacity(n_nodes);
-        for j in 0..ny {
-            for i in 0..nx {
-                nodes.push([origin_m[0] + lin(nx, width_m, i), origin_m[1] + lin(ny, height_m, j)]);
-            }
-        }
-        let mut tris = Vec::with_capacity(2 * (nx - 1) * (ny - 1));
-        for j in 0..ny - 1 {
-            for i in 0..nx - 1 {
-                let a = j * nx + i;
-                let (b, c, d) = (a + 1, a + nx + 1, a + nx);
-                if pattern == DiagonalPattern::Right || (i + j) % 2 == 0 {
-                    tris.push([a, b, c]);
-                    tris.push([a, c, d]);
-                } else {
-                    tris.push([a, b, d]);
-                    tris.push([b, c, d]);
-                }
-            }
-        }
-        let mut sets = BTreeMap::new();
-        sets.insert("bottom".to_owned(), (0..nx).collect());
-        sets.insert("top".to_owned(), ((ny - 1) * nx..ny * nx).collect());
-        sets.insert("left".to_owned(), (0..ny).map(|j| j * nx).collect());
-        sets.insert("right".to_owned(), (0..ny).map(|j| j * nx + nx - 1).collect());
-        let n_tri = tris.len();
-        Mesh::with_regions(nodes, tris, vec![0; n_tri], vec!["tissue".to_owned()], sets, limits)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn lim() -> MeshLimits {
-        MeshLimits::default()
-    }
-
-    #[test]
-    fn rectangle_counts_and_orientation() {
-        for pattern in [DiagonalPattern::Right, DiagonalPattern::Alternate] {
-            let m = RectMeshParams { pattern, ..RectMeshParams::new(5, 4, 2.0, 1.0) }.build(&lim()).unwrap();
-            assert_eq!(m.n_nodes(), 20);
-            assert_eq!(m.n_triangles(), 24);
-            let total: f64 = (0..m.n_triangles()).map(|t| m.signed_area_m2(t)).sum();
-            assert!((total - 2.0).abs() < 1e-12, "areas sum to the rectangle: {total}");
-            assert!((0..m.n_triangles()).all(|t| m.signed_area_m2(t) > 0.0));
-            assert_eq!(m.boundary_set("left").unwrap(), &[0, 5, 10, 15]);
-            assert_eq!(m.boundary_set("top").unwrap(), &[15, 16, 17, 18, 19]);
-        }
-    }
-
-    #[test]
-    fn patterns_differ_where_expected() {
-        let r = RectMeshParams { pattern: DiagonalPattern::Right, ..RectMeshParams::new(3, 3, 1.0, 1.0) }.build(&lim()).unwrap();
-        let a = RectMeshParams::new(3, 3, 1.0, 1.0).build(&lim()).unwrap();
-        assert_eq!(r.triangles()[0], a.triangles()[0]);
-        assert_eq!(r.triangles()[2], [1, 2, 5]);
-        assert_eq!(a.triangles()[2], [1, 2, 4]);
-    }
-
-    #[test]
-    fn errors_name_the_item() {
-        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]];
-        let e = Mesh::new(nodes.clone(), vec![[0, 1, 7]], &lim()).unwrap_err();
-        assert!(e.to_string().contains("triangle 0 refers to node 7"), "{e}");
-        let e = Mesh::new(nodes.clone(), vec![[0, 1, 2], [1, 1, 3]], &lim()).unwrap_err();
-        assert!(e.to_string().contains("triangle 1 uses node 1 twice"), "{e}");
-        let e = Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], vec![[0, 1, 2]], &lim()).unwrap_err();
-        assert!(e.to_string().contains("triangle 0") && e.to_string().contains("degenerate"), "{e}");
-        let e = Mesh::new(nodes.clone(), vec![[0, 1, 2]], &lim()).unwrap_err();
-        assert!(e.to_string().contains("node 3 is used by no triangle"), "{e}");
-        let mut bad = nodes.clone();
-        bad[2] = [f64::NAN, 1.0];
-        let e = Mesh::new(bad, vec![[0, 1, 2], [1, 3, 2]], &lim()).unwrap_err();
-        assert!(e.to_string().contains("node 2 has a non-finite coordinate"), "{e}");
-        let small = MeshLimits { max_nodes: 100, max_triangles: 1000 };
-        let e = RectMeshParams::new(11, 10, 1.0, 1.0).build(&small).unwrap_err();
-        assert!(e.to_string().contains("110 nodes, over the limit of 100"), "{e}");
-        let e = Mesh::new(nodes, vec![[0, 1, 2], [1, 3, 2]], &small)
-            .map(|_| ())
-            .and_then(|_| RectMeshParams::new(1, 3, 1.0, 1.0).build(&small).map(|_| ()));
-        assert!(e.unwrap_err().to_string().contains("at least 2"));
-    }
-
-    /// Two unit squares side by side, each split into two triangles, nodes 0..6.
-    fn two_squares() -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
-        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0]];
-        (nodes, vec![[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]])
-    }
-
-    #[test]
-    fn issue_13_duplicate_nodes_are_rejected() {
-        let (mut nodes, mut tris) = two_squares();
-        assert!(Mesh::new(nodes.clone(), tris.clone(), &lim()).is_ok());
-        // The right square gets its own copies of the shared edge's nodes: the mesh is cut there.
-        nodes.push([1.0, 0.0]);
-        nodes.push([1.0 + 1e-12, 1.0]);
-        tris[2] = [6, 2, 5];
-        tris[3] = [6, 5, 7];
-        let e = Mesh::new(nodes.clone(), tris.clone(), &lim()).unwrap_err();
-        assert!(matches!(e, MeshError::DuplicateNode { first_idx: 1, second_idx: 6, .. }), "{e:?}");
-        assert!(e.to_string().contains("nodes 1 and 6 coincide at (1, 0)"), "{e}");
-        // Only the near-duplicate left: found within the tolerance, in a neighbouring cell too.
-        nodes[6] = [1.0, 0.0];
-        tris[2] = [1, 2, 5];
-        tris[3] = [1, 5, 7];
-        nodes.pop();
-        nodes.pop();
-        nodes.push([1.0 + 1e-12, 1.0 - 1e-12]);
-        let e = Mesh::new(nodes.clone(), vec![[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 6]], &lim()).unwrap_err();
-        assert!(e.to_string().contains("nodes 4 and 6 coincide"), "{e}");
-        // Nodes 1e-6 of the mesh apart are distinct nodes (here a thin sliver triangle fills the gap).
-        let mut far = nodes.clone();
-        far[6] = [1.0 + 3e-6, 1.0];
-        Mesh::new(far, vec![[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 6], [1, 6, 4]], &lim()).unwrap();
-    }
-
-    #[test]
-    fn issue_13_duplicate_triangles_are_rejected() {
-        let (nodes, mut tris) = two_squares();
-        tris.push([4, 1, 5]); // triangle 3 again, in another order
-        let e = Mesh::new(nodes, tris, &lim()).unwrap_err();
-        assert_eq!(e, MeshError::DuplicateTriangle { first_idx: 3, second_idx: 4, nodes: [1, 4, 5] });
-        assert!(e.to_string().contains("triangles 3 and 4 have the same nodes [1, 4, 5]"), "{e}");
-    }
-
-    #[test]
-    fn issue_13_overlapping_triangles_are_rejected() {
-        let (nodes, _) = two_squares();
-        // Triangle 1 lies on the same side of its edge 0–4 as triangle 0, inside it.
-        let folded = vec![[0, 2, 4], [0, 1, 4], [1, 2, 5], [1, 5, 4], [0, 4, 3]];
-        let e = Mesh::new(nodes, folded, &lim()).unwrap_err();
-        assert!(matches!(e, MeshError::OverlappingTriangles { .. }), "{e:?}");
-        assert!(e.to_string().contains("overlap") && e.to_string().contains("triangles 0 (nodes [0, 2, 4])"), "{e}");
-        // Two triangles crossing without sharing a node.
-        let star_nodes = vec![[0.0, 0.0], [2.0, 0.0], [1.0, 2.0], [0.0, 1.5], [2.0, 1.5], [1.0, -0.5]];
-        let e = Mesh::new(star_nodes, vec![[0, 1, 2], [3, 5, 4]], &lim()).unwrap_err();
-        assert!(e.to_string().contains("triangles 0 (nodes [0, 1, 2]) and 1 (nodes [3, 5, 4]) overlap"), "{e}");
-        // A small triangle inside a large one, with unrelated nodes.
-        let inner = vec![[0.0, 0.0], [4.0, 0.0], [0.0, 4.0], [1.0, 1.0], [1.1, 1.0], [1.0, 1.1]];
-        assert!(matches!(Mesh::new(inner, vec![[0, 1, 2], [3, 4, 5]], &lim()), Err(MeshError::OverlappingTriangles { .. })));
-        // Touching only at a vertex (a bow tie), and along an edge from opposite sides: fine.
-        let bowtie = vec![[0.0, 0.0], [1.0, 1.0], [0.0, 2.0], [2.0, 0.0], [2.0, 2.0]];
-        Mesh::new(bowtie, vec![[0, 1, 2], [1, 3, 4]], &lim()).unwrap();
-        // A fine grid, both patterns, and clockwise copies of its triangles: no overlaps.
-        for pattern in [DiagonalPattern::Right, DiagonalPattern::Alternate] {
-            let m = RectMeshParams { pattern, ..RectMeshParams::new(30, 20, 0.1, 0.07) }.build(&lim()).unwrap();
-            let cw = m.triangles().iter().map(|t| [t[0], t[2], t[1]]).collect();
-            Mesh::new(m.nodes_m().to_vec(), cw, &lim()).unwrap();
-        }
-    }
-
-    #[test]
-    fn issue_13_duplicate_region_names_are_rejected() {
-        let (nodes, tris) = two_squares();
-        let names = vec!["skin".to_owned(), "fat".to_owned(), "skin".to_owned()];
-        let e = Mesh::with_regions(nodes.clone(), tris.clone(), vec![0, 0, 1, 2], names, BTreeMap::new(), &lim()).unwrap_err();
-        assert!(e.to_string().contains("regions 0 and 2 are both named 'skin'"), "{e}");
-        let names = vec!["skin".to_owned(), "fat".to_owned()];
-        Mesh::with_regions(nodes, tris, vec![0, 0, 1, 1], names, BTreeMap::new(), &lim()).unwrap();
-    }
-
-    #[test]
-    fn clockwise_triangles_are_accepted() {
-        let nodes = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let m = Mesh::new(nodes, vec![[0, 2, 1]], &lim()).unwrap();
-        assert!(m.signed_area_m2(0) < 0.0);
-    }
+    s
 }

@@ -1,5 +1,7 @@
-//! Linear 4-node tetrahedra (constant strain): isotropic 3D Hooke's law, element matrices, the
-//! sparse stiffness $K$ ($3n \times 3n$) and element stresses.
+//! The 3D pieces of assembly: isotropic 3D Hooke's law, the linear 4-node tetrahedron's
+//! shape-function gradients and $B$, and [`TetMaterials`] (validated for 3D). $K_e$, the sparse
+//! stiffness $K$ ($3n \times 3n$) and element stresses are the generic ones of
+//! [`crate::assembly`] (re-exported here under their former paths).
 //!
 //! Voigt order $[\sigma_{xx}, \sigma_{yy}, \sigma_{zz}, \sigma_{yz}, \sigma_{xz}, \sigma_{xy}] = D\,
 //! [\varepsilon_{xx}, \varepsilon_{yy}, \varepsilon_{zz}, \gamma_{yz}, \gamma_{xz}, \gamma_{xy}]$ with
@@ -13,9 +15,12 @@
 //! $B$ (6 × 3) is $\begin{bmatrix} g_x&0&0\\0&g_y&0\\0&0&g_z\\0&g_z&g_y\\g_z&0&g_x\\g_y&g_x&0\end{bmatrix}$ and
 //! $K_e = V B^\top D B$ (12 × 12). DOFs $[u_{x0}, u_{y0}, u_{z0}, u_{x1}, \dots]$.
 
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::SparseColMat;
 
 use super::mesh::TetMesh;
+use crate::assembly::{ElementMaterials, assemble_stiffness_with};
+pub use crate::assembly::{element_b, element_stiffness, element_stresses_pa};
+use crate::dim::{Dim, Dim3};
 use crate::material::Material;
 
 /// Errors in 3D material parameters, naming the region or element.
@@ -66,10 +71,7 @@ pub fn d_matrix(m: &Material) -> [[f64; 6]; 6] {
 }
 
 /// A material per tetrahedron (expanded from regions, or given per element), validated for 3D.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TetMaterials {
-    material_of_tet: Vec<Material>,
-}
+pub type TetMaterials = ElementMaterials<Dim3>;
 
 impl TetMaterials {
     /// One material per region of `mesh`; errors name the region as `region <name>`.
@@ -81,7 +83,7 @@ impl TetMaterials {
         for (m, name) in materials.iter().zip(mesh.region_names()) {
             validate_material(m, &format!("region {name}"))?;
         }
-        Ok(Self { material_of_tet: mesh.region_of_tet().iter().map(|&r| materials[r]).collect() })
+        Ok(Self::from_parts(mesh.region_of_tet().iter().map(|&r| materials[r]).collect(), ()))
     }
 
     /// One material per tetrahedron; errors name it as `element <index>`.
@@ -92,12 +94,12 @@ impl TetMaterials {
         for (i, m) in material_of_tet.iter().enumerate() {
             validate_material(m, &format!("element {i}"))?;
         }
-        Ok(Self { material_of_tet })
+        Ok(Self::from_parts(material_of_tet, ()))
     }
 
     /// The material of each tetrahedron.
     pub fn material_of_tet(&self) -> &[Material] {
-        &self.material_of_tet
+        self.material_of_element()
     }
 }
 
@@ -132,9 +134,10 @@ pub fn shape_gradients(p: [[f64; 3]; 4]) -> ([[f64; 3]; 4], f64) {
     (g, det.abs() / 6.0)
 }
 
-/// The strain–displacement matrix $B$ (6 × 12) of tetrahedron `tet_idx` and its volume in m³.
-pub fn element_b(mesh: &TetMesh, tet_idx: usize) -> ([[f64; 12]; 6], f64) {
-    let (g, vol) = shape_gradients(mesh.tet_points_m(tet_idx));
+/// The strain–displacement matrix $B$ (6 × 12) of the tetrahedron with corners `p` (module
+/// docs) and its volume in m³.
+pub fn tetrahedron_b(p: &[[f64; 3]; 4]) -> ([[f64; 12]; 6], f64) {
+    let (g, vol) = shape_gradients(*p);
     let mut b = [[0.0; 12]; 6];
     for (i, gi) in g.iter().enumerate() {
         let [gx, gy, gz] = *gi;
@@ -152,62 +155,14 @@ pub fn element_b(mesh: &TetMesh, tet_idx: usize) -> ([[f64; 12]; 6], f64) {
     (b, vol)
 }
 
-/// The element stiffness $K_e = V B^\top D B$ (12 × 12), in N/m.
-pub fn element_stiffness(mesh: &TetMesh, materials: &TetMaterials, tet_idx: usize) -> [[f64; 12]; 12] {
-    let (b, vol) = element_b(mesh, tet_idx);
-    let d = d_matrix(&materials.material_of_tet[tet_idx]);
-    let mut db = [[0.0; 12]; 6];
-    for i in 0..6 {
-        for j in 0..12 {
-            db[i][j] = (0..6).map(|k| d[i][k] * b[k][j]).sum();
-        }
-    }
-    let mut ke = [[0.0; 12]; 12];
-    for i in 0..12 {
-        for j in 0..12 {
-            ke[i][j] = vol * (0..6).map(|k| b[k][i] * db[k][j]).sum::<f64>();
-        }
-    }
-    ke
-}
-
 /// The DOFs of a tetrahedron's nodes, $[3a, 3a+1, 3a+2, 3b, \dots]$.
 pub fn tet_dofs(tet: &[usize; 4]) -> [usize; 12] {
-    std::array::from_fn(|k| 3 * tet[k / 3] + k % 3)
+    Dim3::element_dofs(tet)
 }
 
 /// Assembles the full $3n \times 3n$ stiffness (both triangles stored).
 pub fn assemble_stiffness(mesh: &TetMesh, materials: &TetMaterials) -> SparseColMat<usize, f64> {
-    let n_dofs = mesh.n_dofs();
-    let mut triplets = Vec::with_capacity(144 * mesh.n_tets());
-    for (tet_idx, tet) in mesh.tets().iter().enumerate() {
-        let ke = element_stiffness(mesh, materials, tet_idx);
-        let dofs = tet_dofs(tet);
-        for i in 0..12 {
-            for j in 0..12 {
-                triplets.push(Triplet::new(dofs[i], dofs[j], ke[i][j]));
-            }
-        }
-    }
-    // Indices are in range by construction (the mesh is validated), so this cannot fail.
-    SparseColMat::try_new_from_triplets(n_dofs, n_dofs, &triplets).expect("assembly indices are in range")
-}
-
-/// Constant stress $D B u_e$ of each tetrahedron in Voigt order $[\sigma_{xx}, \sigma_{yy},
-/// \sigma_{zz}, \sigma_{yz}, \sigma_{xz}, \sigma_{xy}]$, in Pa, from world displacements (length $3n$).
-pub fn element_stresses_pa(mesh: &TetMesh, materials: &TetMaterials, displacement_m: &[f64]) -> Vec<[f64; 6]> {
-    (0..mesh.n_tets())
-        .map(|t| {
-            let (b, _) = element_b(mesh, t);
-            let dofs = tet_dofs(&mesh.tets()[t]);
-            let mut eps = [0.0; 6];
-            for i in 0..6 {
-                eps[i] = (0..12).map(|j| b[i][j] * displacement_m[dofs[j]]).sum();
-            }
-            let d = d_matrix(&materials.material_of_tet[t]);
-            std::array::from_fn(|i| (0..6).map(|k| d[i][k] * eps[k]).sum())
-        })
-        .collect()
+    assemble_stiffness_with(mesh, materials, |_, _| {})
 }
 
 #[cfg(test)]

@@ -2,8 +2,9 @@
 //! itself has and a conforming one cannot.
 //!
 //! - **Cracks**: two nodes within [`DUPLICATE_NODE_TOL`] × the bounding-box diagonal of each
-//!   other ([`check_duplicate_nodes`]). A mesh that repeats a node instead of sharing it has an
-//!   internal boundary there: the tissue is cut apart, and its surface has faces inside it.
+//!   other (a check shared with 2D, in [`crate::mesh::SimplexMesh`]). A mesh that repeats a node
+//!   instead of sharing it has an internal boundary there: the tissue is cut apart, and its
+//!   surface has faces inside it.
 //! - **Overlaps across a face**: a triangular face is shared by at most two tetrahedra, and two
 //!   that share it lie on opposite sides of it ([`check_faces`]). A positive tetrahedron added on
 //!   top of a boundary face, or folded back over a neighbour, fails here.
@@ -40,55 +41,6 @@ pub const PROBE_OFFSET: f64 = 1e-7;
 /// A probe point lies inside a tetrahedron when its smallest barycentric weight there exceeds
 /// this (a point on a face or an edge does not count).
 pub const PROBE_INSIDE_TOL: f64 = 1e-9;
-
-/// Nodes within `DUPLICATE_NODE_TOL × diagonal` of each other: nodes are binned into cubic cells
-/// of that size (sorted by cell, $O(n \log n)$), and each is compared with the nodes of its own
-/// cell and of the neighbouring cells that come after it in the sort order.
-pub fn check_duplicate_nodes(mesh: &TetMesh) -> Result<(), TetMeshError> {
-    let nodes = mesh.nodes_m();
-    let (lo, hi) = mesh.bounding_box_m();
-    let d = sub(hi, lo);
-    let tol_m = DUPLICATE_NODE_TOL * dot(d, d).sqrt();
-    if !(tol_m > 0.0) {
-        return Ok(()); // a single point: degenerate tetrahedra were rejected before
-    }
-    // Cell indices stay far inside i64: the mesh spans at most 1e9 cells per axis.
-    let cell = |p: [f64; 3]| [0, 1, 2].map(|k| ((p[k] - lo[k]) / tol_m).floor() as i64);
-    let mut keyed: Vec<([i64; 3], usize)> = nodes.iter().enumerate().map(|(i, &p)| (cell(p), i)).collect();
-    keyed.sort_unstable();
-    let close = |a: usize, b: usize| {
-        let e = sub(nodes[a], nodes[b]);
-        dot(e, e) <= tol_m * tol_m
-    };
-    let found = |a: usize, b: usize| {
-        let (first_idx, second_idx) = (a.min(b), a.max(b));
-        TetMeshError::DuplicateNode { first_idx, second_idx, x_m: nodes[first_idx], tol_m }
-    };
-    for (k, &([cx, cy, cz], a)) in keyed.iter().enumerate() {
-        // Same column (cx, cy): the following entries with z cell cz or cz + 1.
-        for &([cx2, cy2, cz2], b) in &keyed[k + 1..] {
-            if cx2 != cx || cy2 != cy || cz2 > cz + 1 {
-                break;
-            }
-            if close(a, b) {
-                return Err(found(a, b));
-            }
-        }
-        // The columns after it: (cx, cy + 1) and (cx + 1, cy - 1 ..= cy + 1), z cells cz ± 1.
-        for (x, y) in [(cx, cy + 1), (cx + 1, cy - 1), (cx + 1, cy), (cx + 1, cy + 1)] {
-            let start = keyed.partition_point(|e| e.0 < [x, y, cz - 1]);
-            for &([x2, y2, z2], b) in &keyed[start..] {
-                if x2 != x || y2 != y || z2 > cz + 1 {
-                    break;
-                }
-                if close(a, b) {
-                    return Err(found(a, b));
-                }
-            }
-        }
-    }
-    Ok(())
-}
 
 /// The face of `tet` opposite its corner `skip`, sorted, and that corner.
 fn face(tet: [usize; 4], skip: usize) -> ([usize; 3], usize) {

@@ -1,5 +1,7 @@
-//! Tetrahedral meshes: explicit meshes (any orientation, stored positively oriented), the
-//! structured box grid, and their validation.
+//! The 3D pieces of the tetrahedral mesh [`TetMesh`] (= [`SimplexMesh<Dim3>`]): its limits and
+//! errors (messages naming the tetrahedron), the degeneracy test, the 3D accessor names, the
+//! structured box grid, and their validation. Storage and the checks shared with 2D are in
+//! [`crate::mesh`]; the conformity checks in [`super::conform`].
 //!
 //! A [`TetMesh`] holds node coordinates $x_i \in \mathbb R^3$ (metres), linear 4-node tetrahedra,
 //! a region index per tetrahedron, region names, and named boundary node sets. Every stored
@@ -21,8 +23,7 @@
 
 use std::collections::BTreeMap;
 
-use super::conform;
-use crate::mesh::MeshLimits;
+use crate::mesh::{Dim3, MeshFault, MeshLimits, SimplexMesh};
 
 /// The limits a tetrahedral mesh is checked against, so that a user's mesh cannot exhaust memory.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,13 +116,36 @@ pub const DEGENERATE_VOLUME_TOL: f64 = 1e-12;
 /// A 3D linear-tetrahedron mesh, built through [`TetMesh::new`], [`TetMesh::with_regions`] or
 /// [`BoxGridParams::build`], all of which validate it. DOF layout of everything built on it:
 /// $[u_{x0}, u_{y0}, u_{z0}, u_{x1}, \dots]$, DOF $= 3\cdot\mathrm{node} + \mathrm{axis}$.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TetMesh {
-    nodes_m: Vec<[f64; 3]>,
-    tets: Vec<[usize; 4]>,
-    region_of_tet: Vec<usize>,
-    region_names: Vec<String>,
-    boundary_sets: BTreeMap<String, Vec<usize>>,
+pub type TetMesh = SimplexMesh<Dim3>;
+
+impl From<MeshFault<Dim3>> for TetMeshError {
+    fn from(f: MeshFault<Dim3>) -> Self {
+        match f {
+            MeshFault::Empty => Self::Empty,
+            MeshFault::TooManyNodes { n_nodes, max_nodes } => Self::TooManyNodes { n_nodes, max_nodes },
+            MeshFault::TooManyElements { n_elements, max_elements } => Self::TooManyTets { n_tets: n_elements, max_tets: max_elements },
+            MeshFault::NonFiniteNode { node_idx, x_m } => Self::NonFiniteNode { node_idx, x_m },
+            MeshFault::NodeOutOfRange { elem_idx, node_idx, n_nodes } => Self::NodeOutOfRange { tet_idx: elem_idx, node_idx, n_nodes },
+            MeshFault::RepeatedNode { elem_idx, node_idx } => Self::RepeatedNode { tet_idx: elem_idx, node_idx },
+            MeshFault::UnusedNode { node_idx, n_unused } => Self::UnusedNode { node_idx, n_unused },
+            MeshFault::RegionCount { n_elements, n_regions } => Self::RegionCount { n_tets: n_elements, n_regions },
+            MeshFault::BoundaryNodeOutOfRange { set, node_idx, n_nodes } => Self::BoundaryNodeOutOfRange { set, node_idx, n_nodes },
+            MeshFault::DuplicateNode { first_idx, second_idx, x_m, tol_m } => Self::DuplicateNode { first_idx, second_idx, x_m, tol_m },
+            MeshFault::DuplicateElement { first_idx, second_idx, nodes } => Self::DuplicateTet { first_idx, second_idx, nodes },
+            MeshFault::DuplicateRegionName { name, first_idx, second_idx } => Self::DuplicateRegionName { name, first_idx, second_idx },
+        }
+    }
+}
+
+/// A tetrahedron is degenerate when $|V| \le$ [`DEGENERATE_VOLUME_TOL`] $\times\, h^3$ ($h$: its
+/// longest edge): flat to round-off, its element stiffness would be meaningless.
+pub(crate) fn check_shape(tet_idx: usize, tet: &[usize; 4], p: &[[f64; 3]; 4]) -> Result<(), TetMeshError> {
+    let volume_m3 = signed_volume_m3(p[0], p[1], p[2], p[3]);
+    let longest_edge_m = longest_edge_m(*p);
+    if !(volume_m3.abs() > DEGENERATE_VOLUME_TOL * longest_edge_m.powi(3)) {
+        return Err(TetMeshError::Degenerate { tet_idx, nodes: *tet, volume_m3, longest_edge_m });
+    }
+    Ok(())
 }
 
 /// The signed volume $\tfrac16 \det[b - a, c - a, d - a]$ in m³.
@@ -154,175 +178,27 @@ pub fn longest_edge_m(p: [[f64; 3]; 4]) -> f64 {
     h2.sqrt()
 }
 
+/// The 3D names of the mesh's accessors.
 impl TetMesh {
-    /// Builds and validates an explicit mesh with one region (index 0, named "tissue"); negative
-    /// tetrahedra are reoriented (see the module docs).
-    pub fn new(nodes_m: Vec<[f64; 3]>, tets: Vec<[usize; 4]>, limits: &TetMeshLimits) -> Result<Self, TetMeshError> {
-        let n = tets.len();
-        Self::with_regions(nodes_m, tets, vec![0; n], vec!["tissue".to_owned()], BTreeMap::new(), limits)
-    }
-
-    /// Builds and validates a mesh with a region index per tetrahedron (indices into
-    /// `region_names`, extended with generated names `region<k>` if too short) and named boundary
-    /// node sets (sorted and deduplicated here). Negative tetrahedra are reoriented.
-    pub fn with_regions(
-        nodes_m: Vec<[f64; 3]>,
-        tets: Vec<[usize; 4]>,
-        region_of_tet: Vec<usize>,
-        mut region_names: Vec<String>,
-        mut boundary_sets: BTreeMap<String, Vec<usize>>,
-        limits: &TetMeshLimits,
-    ) -> Result<Self, TetMeshError> {
-        if region_of_tet.len() != tets.len() {
-            return Err(TetMeshError::RegionCount { n_tets: tets.len(), n_regions: region_of_tet.len() });
-        }
-        let n_regions = region_of_tet.iter().copied().max().map_or(0, |m| m + 1);
-        while region_names.len() < n_regions {
-            region_names.push(format!("region{}", region_names.len()));
-        }
-        for v in boundary_sets.values_mut() {
-            v.sort_unstable();
-            v.dedup();
-        }
-        let mut mesh = Self { nodes_m, tets, region_of_tet, region_names, boundary_sets };
-        mesh.validate(limits)?;
-        for t in &mut mesh.tets {
-            let [a, b, c, d] = t.map(|i| mesh.nodes_m[i]);
-            if signed_volume_m3(a, b, c, d) < 0.0 {
-                t.swap(2, 3);
-            }
-        }
-        Ok(mesh)
-    }
-
-    fn validate(&self, limits: &TetMeshLimits) -> Result<(), TetMeshError> {
-        let n_nodes = self.nodes_m.len();
-        if self.tets.is_empty() || n_nodes == 0 {
-            return Err(TetMeshError::Empty);
-        }
-        if n_nodes > limits.max_nodes {
-            return Err(TetMeshError::TooManyNodes { n_nodes, max_nodes: limits.max_nodes });
-        }
-        if self.tets.len() > limits.max_tets {
-            return Err(TetMeshError::TooManyTets { n_tets: self.tets.len(), max_tets: limits.max_tets });
-        }
-        for (node_idx, &x_m) in self.nodes_m.iter().enumerate() {
-            if !x_m.iter().all(|v| v.is_finite()) {
-                return Err(TetMeshError::NonFiniteNode { node_idx, x_m });
-            }
-        }
-        let mut used = vec![false; n_nodes];
-        for (tet_idx, tet) in self.tets.iter().enumerate() {
-            for (k, &node_idx) in tet.iter().enumerate() {
-                if node_idx >= n_nodes {
-                    return Err(TetMeshError::NodeOutOfRange { tet_idx, node_idx, n_nodes });
-                }
-                if tet[..k].contains(&node_idx) {
-                    return Err(TetMeshError::RepeatedNode { tet_idx, node_idx });
-                }
-                used[node_idx] = true;
-            }
-            let p = tet.map(|i| self.nodes_m[i]);
-            let volume_m3 = signed_volume_m3(p[0], p[1], p[2], p[3]);
-            let longest_edge_m = longest_edge_m(p);
-            if !(volume_m3.abs() > DEGENERATE_VOLUME_TOL * longest_edge_m.powi(3)) {
-                return Err(TetMeshError::Degenerate { tet_idx, nodes: *tet, volume_m3, longest_edge_m });
-            }
-        }
-        let n_unused = used.iter().filter(|u| !**u).count();
-        if let Some(node_idx) = used.iter().position(|u| !*u) {
-            return Err(TetMeshError::UnusedNode { node_idx, n_unused });
-        }
-        for (set, nodes) in &self.boundary_sets {
-            if let Some(&node_idx) = nodes.iter().find(|&&i| i >= n_nodes) {
-                return Err(TetMeshError::BoundaryNodeOutOfRange { set: set.clone(), node_idx, n_nodes });
-            }
-        }
-        let mut names: Vec<(&str, usize)> = self.region_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
-        names.sort_unstable();
-        if let Some(w) = names.windows(2).find(|w| w[0].0 == w[1].0) {
-            return Err(TetMeshError::DuplicateRegionName { name: w[0].0.to_owned(), first_idx: w[0].1, second_idx: w[1].1 });
-        }
-        let mut sorted: Vec<([usize; 4], usize)> = self
-            .tets
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let mut s = *t;
-                s.sort_unstable();
-                (s, i)
-            })
-            .collect();
-        sorted.sort_unstable();
-        if let Some(w) = sorted.windows(2).find(|w| w[0].0 == w[1].0) {
-            return Err(TetMeshError::DuplicateTet { first_idx: w[0].1, second_idx: w[1].1, nodes: w[0].0 });
-        }
-        drop(sorted);
-        conform::check_duplicate_nodes(self)?;
-        let boundary = conform::check_faces(self)?;
-        conform::check_boundary_probes(self, &boundary)
-    }
-
-    /// Number of nodes.
-    pub fn n_nodes(&self) -> usize {
-        self.nodes_m.len()
-    }
     /// Number of tetrahedra.
     pub fn n_tets(&self) -> usize {
-        self.tets.len()
-    }
-    /// Number of DOFs, $3n$.
-    pub fn n_dofs(&self) -> usize {
-        3 * self.nodes_m.len()
-    }
-    /// Node coordinates in metres.
-    pub fn nodes_m(&self) -> &[[f64; 3]] {
-        &self.nodes_m
+        self.n_elements()
     }
     /// Tetrahedra as node index quadruples, positively oriented.
     pub fn tets(&self) -> &[[usize; 4]] {
-        &self.tets
+        self.elements()
     }
     /// The region index of each tetrahedron.
     pub fn region_of_tet(&self) -> &[usize] {
-        &self.region_of_tet
-    }
-    /// Region names, indexed by region index.
-    pub fn region_names(&self) -> &[String] {
-        &self.region_names
-    }
-    /// Named boundary node sets (sorted, without repeats).
-    pub fn boundary_sets(&self) -> &BTreeMap<String, Vec<usize>> {
-        &self.boundary_sets
-    }
-    /// The node set with this name, if any.
-    pub fn boundary_set(&self, name: &str) -> Option<&[usize]> {
-        self.boundary_sets.get(name).map(Vec::as_slice)
+        self.region_of_element()
     }
     /// The corner coordinates of tetrahedron `tet_idx`.
     pub fn tet_points_m(&self, tet_idx: usize) -> [[f64; 3]; 4] {
-        self.tets[tet_idx].map(|i| self.nodes_m[i])
+        self.element_points_m(tet_idx)
     }
     /// The volume of tetrahedron `tet_idx` (positive), in m³.
     pub fn volume_m3(&self, tet_idx: usize) -> f64 {
-        let [a, b, c, d] = self.tet_points_m(tet_idx);
-        signed_volume_m3(a, b, c, d)
-    }
-    /// The axis-aligned bounding box `(min, max)` in m.
-    pub fn bounding_box_m(&self) -> ([f64; 3], [f64; 3]) {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for p in &self.nodes_m {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        (lo, hi)
-    }
-    /// Nodes whose coordinate `axis` (0 = x, 1 = y, 2 = z) lies within `tol_m` of `value_m`.
-    pub fn nodes_where(&self, axis: usize, value_m: f64, tol_m: f64) -> Vec<usize> {
-        (0..self.n_nodes()).filter(|&i| (self.nodes_m[i][axis] - value_m).abs() <= tol_m).collect()
+        self.signed_measure(tet_idx)
     }
 }
 
