@@ -80,7 +80,7 @@ pub struct SceneArgs {
     /// cube-phantom-3d, brachy-3d, fig3-target-3d.
     #[arg(long, value_name = "NAME")]
     pub example: Option<String>,
-    /// A scene file in the TOML format of the README (2D, or 3D with `dim = 3`); it cannot
+    /// A scene file in the TOML format of docs/guide/scenes.md (2D, or 3D with `dim = 3`); it cannot
     /// reference files other than a 3D scene's Gmsh mesh given with --mesh.
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,

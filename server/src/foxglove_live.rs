@@ -6,7 +6,7 @@
 //! so no session-creation path needs to know about Foxglove.
 //!
 //! No tokens: Foxglove's protocol has none, so the endpoint exposes every live session to whoever
-//! reaches its port. It binds where the operator says (loopback in the README's examples).
+//! reaches its port. It binds where the operator says (loopback in the guide's examples, docs/guide/viewer.md).
 use std::collections::HashSet;
 use std::net::SocketAddr;
 use std::sync::atomic::Ordering;

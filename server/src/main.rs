@@ -90,7 +90,7 @@ struct ServeArgs {
     #[arg(long, default_value_t = 64 << 20)]
     max_message_bytes: usize,
     /// Largest estimated memory of one session's scene, MiB (mesh, factor and the compliance
-    /// columns of a full needle; README "Limits and security"). Also bounds the scenes of
+    /// columns of a full needle; docs/guide/security.md). Also bounds the scenes of
     /// Simulate, Plan and Identify calls.
     #[arg(long, default_value_t = grpc::ServerLimits::default().max_session_bytes >> 20)]
     max_session_memory_mb: u64,
@@ -148,7 +148,7 @@ struct ServeArgs {
     /// per session every tick: 150 µs at 1 kHz is 15 % of a core per session.
     #[arg(long, value_name = "US", default_value_t = needlesim_session::DEFAULT_SPIN_MARGIN.as_micros() as u64)]
     spin_margin_us: u64,
-    /// The Agones game-server integration (`--agones` and its options; README "Running a fleet").
+    /// The Agones game-server integration (`--agones` and its options; docs/guide/fleet.md).
     #[command(flatten)]
     fleet: agones::AgonesArgs,
     /// Serve live sessions to the Foxglove app over its WebSocket protocol on this address

@@ -397,7 +397,7 @@ fn a_plain_http_allocator_and_labels_only_selection() {
 
 /// The Agones Helm values a client's allocation needs (deploy/k8s/helm/agones-values.yaml): the
 /// allocator installed with its REST API behind mTLS, a client certificate generated for the
-/// fleet's namespace, Counters enabled; and the README's allocation commands use flags the CLI has.
+/// fleet's namespace, Counters enabled; and the guide's allocation commands (docs/guide/fleet.md) use flags the CLI has.
 #[test]
 fn helm_values_and_readme_set_up_allocation_for_clients() {
     let values = repo_root().join("deploy/k8s/helm/agones-values.yaml");
@@ -416,10 +416,8 @@ fn helm_values_and_readme_set_up_allocation_for_clients() {
     let ns: Vec<&str> = v["gameservers"]["namespaces"].as_array().unwrap().iter().map(|x| x.as_str().unwrap()).collect();
     assert!(ns.contains(&"default"), "the fleet's namespace (the manifests carry none: default) gets a client certificate: {ns:?}");
 
-    // README "Running a fleet": each `needlesim …` line's flags are the CLI's.
-    let readme = std::fs::read_to_string(repo_root().join("README.md")).unwrap();
-    let section = readme.split("\n## Running a fleet").nth(1).expect("README has \"Running a fleet\"");
-    let section = section.split("\n## ").next().unwrap();
+    // The guide's "Running a fleet" (docs/guide/fleet.md): each `needlesim …` line's flags are the CLI's.
+    let section = std::fs::read_to_string(repo_root().join("docs/guide/fleet.md")).unwrap();
     let mut checked = 0;
     for line in section.lines().map(str::trim).filter(|l| l.starts_with("needlesim ")) {
         let words: Vec<&str> = line.split('#').next().unwrap().split_whitespace().collect();
@@ -429,9 +427,9 @@ fn helm_values_and_readme_set_up_allocation_for_clients() {
         let help = ok(&help_args);
         for flag in words.iter().filter(|w| w.starts_with("--")) {
             let flag = flag.split('=').next().unwrap();
-            assert!(help.contains(flag), "README: `{line}`: needlesim {} has no {flag}", sub.join(" "));
+            assert!(help.contains(flag), "docs/guide/fleet.md: `{line}`: needlesim {} has no {flag}", sub.join(" "));
         }
         checked += 1;
     }
-    assert!(checked >= 2, "README's fleet section shows `needlesim allocate` and `sessions create --allocate` ({checked} lines)");
+    assert!(checked >= 2, "docs/guide/fleet.md shows `needlesim allocate` and `sessions create --allocate` ({checked} lines)");
 }

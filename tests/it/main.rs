@@ -13,6 +13,7 @@ mod bridge_e2e;
 mod cli;
 mod cli3d;
 mod cli_errors;
+mod docs;
 mod contact_points;
 mod convergence;
 mod file_refs;

@@ -41,12 +41,12 @@ fn toughness_cutting_force_is_g_c_w_on_two_meshes() {
     assert!(refine::rel_change(means[0], means[1]) < 0.05, "mean cutting force {means:?}");
 }
 
-/// Issue 19, the whole study (README "Mesh refinement"): the three figure scenes on four grids
+/// Issue 19, the whole study (docs/guide/physics.md, "Mesh refinement"): the three figure scenes on four grids
 /// each ($h \dots h/8$) with energy-based cutting and each contact spread over the needle's
 /// width ([`Model::Width`]); between the two finest meshes the phantom's peak puncture force and
 /// mean cutting force and the Fig. 3 and Fig. 4 closest approaches change by less than 5 %
 /// (measured 0.0 %, 0.6 %, 2.0 %, 4.5 %). With point contacts (`Model::Toughness`) the Fig. 4
-/// figure changed 5.3 % and then 23 % on the next grid (README).
+/// figure changed 5.3 % and then 23 % on the next grid (docs/guide/physics.md).
 #[test]
 fn issue_19_refinement_study_converges_with_contacts_spread_over_the_width() {
     let mut failures = Vec::new();
