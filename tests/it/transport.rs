@@ -3,7 +3,9 @@
 //! of one connection are bounded and a stalled response of a static file holds no copy of it; the
 //! bytes of unfinished request messages are bounded over the server and a message that stops
 //! arriving is ended; SIGTERM ends the process within its grace whatever the clients hold, the
-//! recordings finished; an unknown method's answer quotes a bounded part of its path.
+//! recordings finished; an unknown method's answer quotes a bounded part of its path. Round 3: a
+//! message's decoded size is bounded before it is decoded; complete answers held for clients that
+//! do not read are bounded and dropped at a deadline; a Control stream without a first message ends.
 
 use std::time::{Duration, Instant};
 
