@@ -185,7 +185,9 @@ impl AnswerBody {
                         let dropped = reaped.lock().expect("answer lock").take();
                         if dropped.is_some_and(|h| h.frames.iter().any(|f| f.is_data())) {
                             budget.timed_out.fetch_add(1, Ordering::Relaxed);
-                            tracing::info!(deadline_ms = budget.deadline.as_millis() as u64, "an answer not taken by its client within --answer-deadline-ms was dropped");
+                            // Counted in /metrics (`needlesim_held_answers_timed_out`); a log line each would let a
+                            // client fill the log.
+                            tracing::debug!(deadline_ms = budget.deadline.as_millis() as u64, "an answer not taken by its client within --answer-deadline-ms was dropped");
                         }
                     }
                     _ = gone => {}

@@ -367,13 +367,15 @@ const HTTP2_KEEPALIVE_TIMEOUT: std::time::Duration = std::time::Duration::from_s
 /// Gives the memory of closed streams and closed sessions back to the system (issue 35): glibc
 /// keeps freed blocks in its per-thread arenas, so a burst of large messages (a status with 1,000
 /// markers is 219 kB) would stay with the process after its streams closed, and so would part of
-/// a closed session's matrices. Every 2 s, if streams closed or sessions were freed since, the
+/// a closed session's matrices. Every 2 s, if streams closed, sessions were freed, counted answers
+/// were dropped or Control streams timed out waiting for their first message since, the
 /// free pages are returned (`malloc_trim`, off the async runtime; the real-time threads do not
 /// allocate, so they never wait on it).
 async fn give_back_stream_memory(state: SharedState, answers: Arc<crate::answers::AnswerBudget>) {
     let mut every = tokio::time::interval(std::time::Duration::from_secs(2));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
     let mut alive = needlesim_session::sessions_alive();
+    let mut control_timeouts = crate::grpc::control::first_message_timeouts();
     loop {
         every.tick().await;
         if Arc::strong_count(&state) == 1 {
@@ -383,7 +385,9 @@ async fn give_back_stream_memory(state: SharedState, answers: Arc<crate::answers
         alive = now;
         // (Both counters are taken: neither is left to trigger a later, needless trim.)
         let (streams_closed, answers_released) = (state.streams.take_closed(), answers.take_released());
-        if streams_closed == 0 && answers_released == 0 && now >= was {
+        let (timeouts_were, timeouts) = (control_timeouts, crate::grpc::control::first_message_timeouts());
+        control_timeouts = timeouts;
+        if streams_closed == 0 && answers_released == 0 && timeouts == timeouts_were && now >= was {
             continue;
         }
         #[cfg(all(target_os = "linux", target_env = "gnu"))]
