@@ -147,7 +147,12 @@ pub async fn bound_held_answers(budget: Arc<AnswerBudget>, req: axum::extract::R
             budget.held_bytes(),
             budget.max_bytes
         ));
-        return status.into_http::<Body>();
+        // Trailers-only, in the call's own content type (gRPC-web clients read it from the headers too).
+        let mut refused = status.into_http::<Body>();
+        if let Some(ct) = parts.headers.get(axum::http::header::CONTENT_TYPE) {
+            refused.headers_mut().insert(axum::http::header::CONTENT_TYPE, ct.clone());
+        }
+        return refused;
     };
     let held = Held { frames, permit: Some(permit) };
     Response::from_parts(parts, Body::new(AnswerBody::new(held, None, None, Some(budget))))

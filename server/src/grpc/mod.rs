@@ -405,6 +405,14 @@ pub(crate) async fn load_session_scene_from_pb(
 mod tests {
     use super::*;
 
+    /// The codec's bound on decoded sizes (needlesim-proto's `codec.rs`, issue 35) lets a Simulate
+    /// trajectory at the server's sample limit through: the two limits stay in step.
+    #[test]
+    fn a_trajectory_at_the_sample_limit_fits_the_decoded_size_bound() {
+        let samples = ServerLimits::default().max_trajectory_samples as u64;
+        assert!(samples <= needlesim_proto::codec::MAX_REPEATED_MESSAGES, "{samples}");
+    }
+
     /// Issue 35 (hostile pass, finding 1): a create that fails after its session was registered
     /// (a recording that could not start) is undone whole: the session and its exercise leave
     /// the registries, its `--max-sessions` place is free again, and no report is written.
