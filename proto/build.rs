@@ -1,6 +1,7 @@
 //! Compiles every `proto/needlesim/v1/*.proto` without a system protoc: protox parses them into
 //! one file descriptor set (also written to OUT_DIR for gRPC reflection), tonic-prost-build
-//! generates the messages and service stubs of the `needlesim.v1` package.
+//! generates the messages and service stubs of the `needlesim.v1` package, whose services decode
+//! through `codec.rs` (`BoundedCodec`).
 
 use std::path::PathBuf;
 
@@ -23,6 +24,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let fds = protox::compile(&protos, ["."])?;
     let out = PathBuf::from(std::env::var("OUT_DIR")?);
     std::fs::write(out.join("needlesim_v1_descriptor.bin"), fds.encode_to_vec())?;
-    tonic_prost_build::configure().build_client(true).build_server(true).compile_fds(fds)?;
+    // Every service decodes through `codec.rs`: the decoded size is bounded before prost allocates.
+    tonic_prost_build::configure().build_client(true).build_server(true).codec_path("crate::codec::BoundedCodec").compile_fds(fds)?;
     Ok(())
 }

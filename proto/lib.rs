@@ -1,6 +1,8 @@
 //! The versioned gRPC API of needlesim (`needlesim.v1`), generated from
 //! proto/needlesim/v1/needlesim.proto at build time (no system protoc needed).
 
+pub mod codec;
+
 /// Messages and service stubs of `needlesim.v1`.
 pub mod v1 {
     #![allow(clippy::all, missing_docs)]

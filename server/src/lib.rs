@@ -8,6 +8,7 @@
 
 pub mod access;
 pub mod agones;
+pub mod answers;
 pub mod convert;
 pub mod foxglove_live;
 pub mod grpc;

@@ -86,6 +86,14 @@ struct ServeArgs {
     /// RESOURCE_EXHAUSTED. Also: a message that stops arriving for --handshake-timeout-ms is ended.
     #[arg(long, value_name = "MIB", default_value_t = needlesim_server::listener::DEFAULT_MAX_PENDING_REQUEST_MIB)]
     max_pending_request_mb: u64,
+    /// Most MiB of complete gRPC answers (each over 64 kB) held for clients that have not read
+    /// them, over the whole server; one more is answered RESOURCE_EXHAUSTED.
+    #[arg(long, value_name = "MIB", default_value_t = 256)]
+    max_held_answers_mb: u64,
+    /// How long a client has to take such an answer whole, ms; then it is dropped (the call's
+    /// stream is reset).
+    #[arg(long, value_name = "MS", default_value_t = 30_000, value_parser = clap::value_parser!(u64).range(1..))]
+    answer_deadline_ms: u64,
     /// Largest gRPC message accepted, in bytes.
     #[arg(long, default_value_t = 64 << 20)]
     max_message_bytes: usize,
@@ -122,6 +130,11 @@ struct ServeArgs {
     /// Most MiB in `<data-dir>/reports/` (as --max-reports).
     #[arg(long, value_name = "MIB", default_value_t = grpc::ServerLimits::default().max_reports_bytes >> 20)]
     max_reports_mb: u64,
+    /// How long a Control or Control3 stream may wait for its first message, ms; then it ends
+    /// with DEADLINE_EXCEEDED.
+    #[arg(long, value_name = "MS", default_value_t = grpc::ServerLimits::default().control_first_message_ms,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    control_first_message_ms: u64,
     /// The example scene of the default session ("none" for no default session).
     #[arg(long, default_value = "paper-phantom")]
     default_scene: String,
@@ -785,6 +798,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
             max_recordings_bytes: needlesim_server::quota::mib(args.max_recordings_mb),
             max_reports: args.max_reports,
             max_reports_bytes: needlesim_server::quota::mib(args.max_reports_mb),
+            control_first_message_ms: args.control_first_message_ms,
             ..Default::default()
         },
         max_message_bytes: args.max_message_bytes,
@@ -802,6 +816,8 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
                 .max(u64::try_from(args.max_message_bytes).unwrap_or(u64::MAX).saturating_add(5)),
         },
         shutdown_grace: std::time::Duration::from_millis(args.shutdown_grace_ms),
+        max_held_answer_bytes: needlesim_server::quota::mib(args.max_held_answers_mb),
+        answer_deadline: std::time::Duration::from_millis(args.answer_deadline_ms),
     };
     let runtime = tokio::runtime::Builder::new_multi_thread().enable_all().build().context("tokio runtime")?;
     let result = if let Some(cfg) = fleet {

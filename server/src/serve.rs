@@ -42,11 +42,16 @@ pub struct ServeConfig {
     /// How long connections may stay open once the sessions are closed at shutdown
     /// (`--shutdown-grace-ms`): past it the server returns without them (issue 35).
     pub shutdown_grace: std::time::Duration,
+    /// Most bytes of complete gRPC answers held for clients that have not read them
+    /// (`--max-held-answers-mb`; `answers.rs`).
+    pub max_held_answer_bytes: u64,
+    /// How long a client has to take a counted answer whole (`--answer-deadline-ms`).
+    pub answer_deadline: std::time::Duration,
 }
 
 /// Prometheus text exposition of every session's counters and percentiles, and the server's
 /// streams and connections.
-fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> String {
+fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters, answers: &crate::answers::AnswerBudget) -> String {
     use prometheus_client::encoding::EncodeLabelSet;
     use prometheus_client::metrics::family::Family;
     use prometheus_client::metrics::gauge::Gauge;
@@ -167,6 +172,16 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
             "Server-streaming calls open (Observe, WatchScore, WatchUltrasound, GetReport, DownloadRecording)",
             state.streams.open() as f64,
         ),
+        (
+            "control_streams_awaiting_first_message",
+            "Control and Control3 streams open that have not sent their first message (ended after --control-first-message-ms)",
+            crate::grpc::control::awaiting_first_message() as f64,
+        ),
+        (
+            "control_streams_first_message_timeouts",
+            "Control and Control3 streams ended with DEADLINE_EXCEEDED: no first message within --control-first-message-ms",
+            crate::grpc::control::first_message_timeouts() as f64,
+        ),
         ("streams_refused", "Streams refused: a session's --max-observers or the server's --max-streams", state.streams.refused() as f64),
         ("connections_open", "Connections open on the gRPC port", conns.open() as f64),
         ("connections_refused", "Connections closed at once: --max-connections were open", conns.refused() as f64),
@@ -199,6 +214,21 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters) -> S
             "stalled_request_messages",
             "Calls ended with DEADLINE_EXCEEDED: a message they had begun sent nothing for --handshake-timeout-ms",
             conns.stalled_messages() as f64,
+        ),
+        (
+            "held_answer_bytes",
+            "Bytes of complete gRPC answers over 64 kB not yet taken by their clients (bounded by --max-held-answers-mb)",
+            answers.held_bytes() as f64,
+        ),
+        (
+            "held_answers_refused",
+            "Calls answered RESOURCE_EXHAUSTED: their answer would have passed --max-held-answers-mb",
+            answers.refused() as f64,
+        ),
+        (
+            "held_answers_timed_out",
+            "Answers dropped (their stream reset): not taken by the client within --answer-deadline-ms",
+            answers.timed_out() as f64,
         ),
         (
             "recordings_bytes",
@@ -337,13 +367,15 @@ const HTTP2_KEEPALIVE_TIMEOUT: std::time::Duration = std::time::Duration::from_s
 /// Gives the memory of closed streams and closed sessions back to the system (issue 35): glibc
 /// keeps freed blocks in its per-thread arenas, so a burst of large messages (a status with 1,000
 /// markers is 219 kB) would stay with the process after its streams closed, and so would part of
-/// a closed session's matrices. Every 2 s, if streams closed or sessions were freed since, the
+/// a closed session's matrices. Every 2 s, if streams closed, sessions were freed, counted answers
+/// were dropped or Control streams timed out waiting for their first message since, the
 /// free pages are returned (`malloc_trim`, off the async runtime; the real-time threads do not
 /// allocate, so they never wait on it).
-async fn give_back_stream_memory(state: SharedState) {
+async fn give_back_stream_memory(state: SharedState, answers: Arc<crate::answers::AnswerBudget>) {
     let mut every = tokio::time::interval(std::time::Duration::from_secs(2));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
     let mut alive = needlesim_session::sessions_alive();
+    let mut control_timeouts = crate::grpc::control::first_message_timeouts();
     loop {
         every.tick().await;
         if Arc::strong_count(&state) == 1 {
@@ -351,7 +383,11 @@ async fn give_back_stream_memory(state: SharedState) {
         }
         let (was, now) = (alive, needlesim_session::sessions_alive());
         alive = now;
-        if state.streams.take_closed() == 0 && now >= was {
+        // (Both counters are taken: neither is left to trigger a later, needless trim.)
+        let (streams_closed, answers_released) = (state.streams.take_closed(), answers.take_released());
+        let (timeouts_were, timeouts) = (control_timeouts, crate::grpc::control::first_message_timeouts());
+        control_timeouts = timeouts;
+        if streams_closed == 0 && answers_released == 0 && timeouts == timeouts_were && now >= was {
             continue;
         }
         #[cfg(all(target_os = "linux", target_env = "gnu"))]
@@ -438,11 +474,16 @@ where
     let metrics_state = state.clone();
     let conns = Arc::new(crate::listener::ConnCounters::default());
     let metrics_conns = conns.clone();
+    // Complete answers held for clients that do not read them are bounded (issue 35, `answers.rs`).
+    let answers = Arc::new(crate::answers::AnswerBudget::new(config.max_held_answer_bytes, config.answer_deadline));
+    let metrics_answers = answers.clone();
+    let answers_layer = answers.clone();
     let app = routes
         .into_axum_router()
         .route_layer(tonic_web::GrpcWebLayer::new())
-        .route("/metrics", axum::routing::get(move || std::future::ready(metrics_text(&metrics_state, &metrics_conns))))
+        .route("/metrics", axum::routing::get(move || std::future::ready(metrics_text(&metrics_state, &metrics_conns, &metrics_answers))))
         .fallback(static_or_unimplemented(web))
+        .layer(axum::middleware::from_fn(move |req, next| crate::answers::bound_held_answers(answers_layer.clone(), req, next)))
         .layer(tower::util::MapResponseLayer::new(size_limit_status));
     // An idle HTTP/2 connection is pinged; one whose peer does not answer is closed (issue 35).
     // At most --max-streams-per-connection calls at once on one HTTP/2 connection (issue 35: none
@@ -511,7 +552,7 @@ where
         tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
         closed_tx.notify_one();
     };
-    tokio::spawn(give_back_stream_memory(state.clone()));
+    tokio::spawn(give_back_stream_memory(state.clone(), answers));
     // Tells each connection when its requests arrive and end (the deadlines of `listener.rs`) and
     // bounds the pauses of HTTP/1.1 request bodies.
     let guard = crate::listener::ConnGuardLayer::new(conns.clone(), config.connections);

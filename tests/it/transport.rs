@@ -3,7 +3,9 @@
 //! of one connection are bounded and a stalled response of a static file holds no copy of it; the
 //! bytes of unfinished request messages are bounded over the server and a message that stops
 //! arriving is ended; SIGTERM ends the process within its grace whatever the clients hold, the
-//! recordings finished; an unknown method's answer quotes a bounded part of its path.
+//! recordings finished; an unknown method's answer quotes a bounded part of its path. Round 3: a
+//! message's decoded size is bounded before it is decoded; complete answers held for clients that
+//! do not read are bounded and dropped at a deadline; a Control stream without a first message ends.
 
 use std::time::{Duration, Instant};
 
@@ -259,4 +261,214 @@ async fn issue_35_an_unknown_method_s_long_path_is_quoted_clipped() {
     assert!(e.message().starts_with("no such gRPC method: /needlesim.v1.Nope/AAA"), "{}", e.message());
     assert!(e.message().chars().count() <= 1024, "{} characters", e.message().chars().count());
     assert!(e.message().matches('A').count() <= 64, "{} characters: {}", e.message().len(), &e.message()[..100]);
+}
+
+/// A gRPC message of `body` framed (uncompressed).
+fn framed(body: &[u8]) -> Bytes {
+    let mut out = Vec::with_capacity(body.len() + 5);
+    out.push(0u8);
+    out.extend_from_slice(&(body.len() as u32).to_be_bytes());
+    out.extend_from_slice(body);
+    Bytes::from(out)
+}
+
+/// `grpc-message` as sent (percent-encoded), decoded.
+fn percent_decoded(m: &str) -> String {
+    let b = m.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%'
+            && let Some(v) = m.get(i + 1..i + 3).and_then(|h| u8::from_str_radix(h, 16).ok())
+        {
+            out.push(v);
+            i += 3;
+            continue;
+        }
+        out.push(b[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// A protobuf varint.
+fn varint(mut v: u64) -> Vec<u8> {
+    let mut out = Vec::new();
+    loop {
+        let b = (v & 0x7f) as u8;
+        v >>= 7;
+        if v == 0 {
+            out.push(b);
+            return out;
+        }
+        out.push(b | 0x80);
+    }
+}
+
+/// Issue 35, finding 1: a 60 MiB SimulateRequest of 31,457,280 empty trajectory samples (2 bytes
+/// each on the wire) took the server from 28 to 3,490 MB before it said the trajectory was over its
+/// limit; so did Track's frames, CreateSession's uploaded regions and Plan's `avoid`. The codec now
+/// estimates the decoded size from the wire format before prost allocates: such a message is
+/// RESOURCE_EXHAUSTED naming the field's number path, its count of elements and the limit, and the
+/// server barely grows.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_decoded_size_is_bounded_before_decoding() {
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let pid = server.child.id();
+    let before = rss_bytes(pid);
+    // 8,000,000 empty samples: 16 MiB on the wire, 870 MB once decoded by prost.
+    let n = 8_000_000usize;
+    let simulate = b"\x12\x00".repeat(n);
+    // CreateSessionRequest{scene(1): SceneSource{uploaded(3): UploadedScene{regions(3): [Region{}; m]}}}
+    let m = 2_000_000usize;
+    let regions = b"\x1a\x00".repeat(m);
+    let mut uploaded = vec![0x1a];
+    uploaded.extend(varint(regions.len() as u64));
+    uploaded.extend_from_slice(&regions);
+    let mut create = vec![0x0a];
+    create.extend(varint(uploaded.len() as u64));
+    create.extend_from_slice(&uploaded);
+    let cases: [(&str, Vec<u8>, &str, usize); 4] = [
+        ("/needlesim.v1.SimulationService/Simulate", simulate, "field 2 has", n),
+        ("/needlesim.v1.SessionService/CreateSession", create, "field 1.3.3 has", m),
+        ("/needlesim.v1.IdentifyService/Track", b"\x0a\x00".repeat(m), "field 1 has", m),
+        ("/needlesim.v1.PlanningService/Plan", b"\x52\x00".repeat(m), "field 10 has", m),
+    ];
+    for (path, msg, field, count) in cases {
+        let mut send = h2_connect(&server.addr, 65_535).await;
+        let (resp, mut body) = send.send_request(grpc_request(&server.addr, path), false).unwrap();
+        body.send_data(framed(&msg), true).expect("data queued");
+        let call = tokio::spawn(grpc_status(resp));
+        let t0 = Instant::now();
+        let mut peak = 0u64;
+        while !call.is_finished() {
+            peak = peak.max(rss_bytes(pid).saturating_sub(before));
+            assert!(t0.elapsed() < Duration::from_secs(120), "{path}: no answer; stderr: {}", server.stderr.lock().unwrap());
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        }
+        let (code, message) = call.await.unwrap().expect("a gRPC status");
+        let message = percent_decoded(&message);
+        assert_eq!(code, Code::ResourceExhausted as i32, "{path}: {message}");
+        assert!(message.contains(&format!("{field} {count} elements")), "{path}: {message}");
+        assert!(message.contains("over the limit of"), "{path}: {message}");
+        // The message's own bytes (16 MiB, held while it arrives and walked), not its decoded form.
+        assert!(peak < 200 << 20, "{path}: the server grew by {} MB", peak >> 20);
+    }
+    // A request within the limits is decoded and answered as before (here: its scene is unknown).
+    let ch = connect(&server).await;
+    let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch);
+    let req = pb::SimulateRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("no-such-scene".into())) }),
+        trajectory: vec![pb::TrajectorySample::default(); 1000],
+        ..Default::default()
+    };
+    let e = sim.simulate(req).await.err().expect("an unknown scene");
+    assert_ne!(e.code(), Code::ResourceExhausted, "{e:?}");
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}
+
+/// Issue 35, finding 2: 500 GetMesh answers of 3.1 MB to connections with a zero receive window
+/// were held whole (1.7 GB), counted by nothing. A complete answer over 64 kB now takes its bytes
+/// from `--max-held-answers-mb` (RESOURCE_EXHAUSTED past it, naming the flag) until it is dropped;
+/// an answer its client has not taken within `--answer-deadline-ms` is dropped and its bytes given
+/// back (`/metrics`: needlesim_held_answer_bytes, needlesim_held_answers_timed_out).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_unread_unary_answers_are_bounded_and_dropped_at_their_deadline() {
+    let server = ServerProcess::start(&["--default-scene", "none", "--max-held-answers-mb", "1", "--answer-deadline-ms", "3000"]);
+    let ch = connect(&server).await;
+    // A 61 × 61-node grid: a GetMesh answer of about 110 kB.
+    let phantom = std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/paper-phantom.toml")).unwrap();
+    let s = needlesim_tests::create_toml_session(&ch, phantom.replace("nx = 19", "nx = 61").replace("ny = 19", "ny = 61")).await;
+    let session_id = s.session.clone().expect("a session").session_id;
+    let get = pb::GetSessionRequest { session_id: session_id.clone() };
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let mesh = sessions.get_mesh(with_token(get.clone(), &s.observer_token)).await.expect("GetMesh").into_inner();
+    let answer_bytes = mesh.encoded_len() as u64 + 5;
+    assert!(answer_bytes > 64 << 10, "{answer_bytes}");
+    let fit = ((1u64 << 20) / answer_bytes) as usize;
+
+    // A client that never reads: `fit` answers are held, the next two refused.
+    let mut send = h2_connect(&server.addr, 0).await;
+    let mut held = Vec::new();
+    let mut refused = Vec::new();
+    for k in 0..fit + 2 {
+        send = send.ready().await.expect("a stream");
+        let mut req = grpc_request(&server.addr, "/needlesim.v1.SessionService/GetMesh");
+        req.headers_mut().insert("authorization", format!("Bearer {}", s.observer_token).parse().unwrap());
+        let (resp, mut body) = send.send_request(req, false).unwrap();
+        body.send_data(framed(&get.encode_to_vec()), true).unwrap();
+        let resp = tokio::time::timeout(Duration::from_secs(30), resp).await.expect("headers in time").expect("an answer");
+        match resp.headers().get("grpc-status") {
+            // Trailers-only: refused.
+            Some(code) => {
+                refused.push((k, code.to_str().unwrap().to_owned(), percent_decoded(resp.headers()["grpc-message"].to_str().unwrap())))
+            }
+            None => held.push(resp),
+        }
+    }
+    assert_eq!(held.len(), fit, "refused: {refused:?}");
+    assert_eq!(refused.len(), 2, "{refused:?}");
+    for (_, code, message) in &refused {
+        assert_eq!(code, &(Code::ResourceExhausted as i32).to_string(), "{message}");
+        assert!(message.contains("--max-held-answers-mb") && message.contains("limit of 1048576 bytes"), "{message}");
+    }
+    let held_bytes = server.metric("needlesim_held_answer_bytes");
+    assert!(held_bytes >= (fit as u64 * (answer_bytes - 5)) as f64, "{held_bytes}");
+    assert_eq!(server.metric("needlesim_held_answers_refused"), 2.0);
+
+    // Past the deadline the held answers are dropped and their bytes given back.
+    let t0 = Instant::now();
+    while server.metric("needlesim_held_answer_bytes") != 0.0 {
+        assert!(
+            t0.elapsed() < Duration::from_secs(15),
+            "the held answers were not dropped: {}",
+            server.metric("needlesim_held_answer_bytes")
+        );
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+    assert!(t0.elapsed() >= Duration::from_secs(1), "dropped before the deadline");
+    assert_eq!(server.metric("needlesim_held_answers_timed_out"), fit as f64);
+    // Another client is answered again.
+    let again = sessions.get_mesh(with_token(get, &s.observer_token)).await.expect("GetMesh after the deadline").into_inner();
+    assert_eq!(again.node_xy_m.len(), mesh.node_xy_m.len());
+    assert_eq!(server.metric("needlesim_held_answer_bytes"), 0.0);
+    drop(held);
+}
+
+/// Issue 35, finding 3: 15,000 Control streams that never sent a first message were held (10 kB
+/// each), counted by nothing, still open after 90 s. Such a stream now ends with DEADLINE_EXCEEDED
+/// after `--control-first-message-ms` (5 s by default), and the ones waiting are in `/metrics`.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_control_streams_without_a_first_message_end_at_their_deadline() {
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let mut send = h2_connect(&server.addr, 65_535).await;
+    let mut calls = Vec::new();
+    let mut bodies = Vec::new();
+    let t0 = Instant::now();
+    for k in 0..40 {
+        send = send.ready().await.expect("a stream");
+        let path = if k % 2 == 0 { "/needlesim.v1.ControlService/Control" } else { "/needlesim.v1.ControlService/Control3" };
+        let (resp, body) = send.send_request(grpc_request(&server.addr, path), false).unwrap();
+        calls.push(tokio::spawn(grpc_status(resp)));
+        bodies.push(body);
+    }
+    let waiting = loop {
+        let n = server.metric("needlesim_control_streams_awaiting_first_message");
+        if n == 40.0 || t0.elapsed() > Duration::from_secs(4) {
+            break n;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    };
+    assert_eq!(waiting, 40.0, "the streams waiting for their first message are counted");
+    for c in calls {
+        let (code, message) =
+            tokio::time::timeout(Duration::from_secs(20), c).await.expect("the stream ended in time").unwrap().expect("a gRPC status");
+        let message = percent_decoded(&message);
+        assert_eq!(code, Code::DeadlineExceeded as i32, "{message}");
+        assert!(message.contains("no first message within 5000 ms") && message.contains("--control-first-message-ms"), "{message}");
+    }
+    assert!(t0.elapsed() >= Duration::from_millis(4500), "ended after {:?}", t0.elapsed());
+    assert_eq!(server.metric("needlesim_control_streams_awaiting_first_message"), 0.0);
+    assert_eq!(server.metric("needlesim_control_streams_first_message_timeouts"), 40.0);
+    drop(bodies);
 }

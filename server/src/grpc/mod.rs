@@ -4,7 +4,7 @@
 //! (`status.rs`): INVALID_ARGUMENT naming the field, NOT_FOUND, PERMISSION_DENIED,
 //! RESOURCE_EXHAUSTED, FAILED_PRECONDITION. Messages are built and read in `convert.rs`.
 
-mod control;
+pub(crate) mod control;
 mod observe;
 pub mod plan;
 mod recordings;
@@ -65,6 +65,9 @@ pub struct ServerLimits {
     pub max_reports: usize,
     /// Most bytes in `<data dir>/reports/` (`--max-reports-mb`).
     pub max_reports_bytes: u64,
+    /// How long a Control or Control3 stream may wait for its first message, ms
+    /// (`--control-first-message-ms`; issue 35): then it ends with DEADLINE_EXCEEDED.
+    pub control_first_message_ms: u64,
 }
 
 impl ServerLimits {
@@ -91,6 +94,7 @@ impl Default for ServerLimits {
             max_recordings_bytes: crate::quota::mib(10240),
             max_reports: 1000,
             max_reports_bytes: crate::quota::mib(1024),
+            control_first_message_ms: 5000,
         }
     }
 }
@@ -400,6 +404,14 @@ pub(crate) async fn load_session_scene_from_pb(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The codec's bound on decoded sizes (needlesim-proto's `codec.rs`, issue 35) lets a Simulate
+    /// trajectory at the server's sample limit through: the two limits stay in step.
+    #[test]
+    fn a_trajectory_at_the_sample_limit_fits_the_decoded_size_bound() {
+        let samples = ServerLimits::default().max_trajectory_samples as u64;
+        assert!(samples <= needlesim_proto::codec::MAX_REPEATED_MESSAGES, "{samples}");
+    }
 
     /// Issue 35 (hostile pass, finding 1): a create that fails after its session was registered
     /// (a recording that could not start) is undone whole: the session and its exercise leave

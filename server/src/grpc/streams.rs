@@ -3,7 +3,8 @@
 //! against its session's `--max-observers` (when it watches a session) and the server's
 //! `--max-streams`; a call past either is RESOURCE_EXHAUSTED naming the limit. The permit lives in
 //! the response stream itself, so a cancelled stream gives its place back as soon as tonic drops
-//! the stream. (Control streams are not counted: the control lease admits one per session.
+//! the stream. (Control streams are not counted: the control lease admits one per session, and one that
+//! sends no first message within `--control-first-message-ms` ends, `control.rs`.
 //! Simulate, Plan and Identify are bounded by the offline-job permits, `jobs.rs`.)
 //!
 //! Every stream of a session ends when the session closes (issue 35, H1): [`of_session`] wraps
