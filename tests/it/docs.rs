@@ -1,5 +1,5 @@
-//! The documents a newcomer reads (issue 33): README.md short with the two commands on its first
-//! screen, and every relative link in README.md, ARCHITECTURE.md, BENCHMARKS.md and docs/ resolving
+//! The documents a newcomer reads (issue 33): README.md and ARCHITECTURE.md short (the two
+//! commands on README's first screen), and every relative link in README.md, ARCHITECTURE.md, BENCHMARKS.md and docs/ resolving
 //! to a file and, where it names one, to a heading of that file.
 
 use std::collections::BTreeSet;
@@ -133,6 +133,18 @@ fn issue_33_readme_is_short_with_both_commands_on_its_first_screen() {
             assert!(readme.contains(&format!("(docs/guide/{name})")), "README links the guide's page {name}");
         }
     }
+}
+
+/// Issue 33: ARCHITECTURE.md is the short map (at most 300 lines, its boundaries stated as
+/// "Architecture invariant:" lines); the long one is docs/internals.md, linked from it.
+#[test]
+fn issue_33_architecture_is_short_and_states_its_invariants() {
+    let text = std::fs::read_to_string(repo_root().join("ARCHITECTURE.md")).unwrap();
+    let lines = text.lines().count();
+    assert!(lines <= 300, "ARCHITECTURE.md has {lines} lines");
+    let invariants = text.matches("Architecture invariant:").count();
+    assert!(invariants >= 10, "ARCHITECTURE.md states {invariants} invariants");
+    assert!(text.contains("(docs/internals.md)"), "ARCHITECTURE.md links the long map");
 }
 
 #[test]
