@@ -697,7 +697,7 @@ fn check_ticks(scene: &Scene, p: &Problem, opts: &PlanOptions) -> Result<()> {
     let path_m = opts.start_outside_m + p.length;
     let rate_hz = scene.params.tick_rate_hz;
     let ticks = (path_m / p.speed * rate_hz).ceil();
-    if !(ticks <= opts.max_ticks_per_simulation as f64) {
+    if ticks.is_nan() || ticks > opts.max_ticks_per_simulation as f64 {
         let e = needlesim_scene::limit::SizeLimit {
             what: format!(
                 "a simulated insertion at this speed ({} m from outside to the needle's full length in {} s at {} Hz)",
