@@ -44,16 +44,72 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import errno
 import importlib
 import json
 import math
 import os
+import stat
 import sys
 import threading
 import time
 from typing import Callable, Iterable, Iterator, Optional, Sequence
 
 import grpc
+
+# The server's rule for local files (crate needlesim-localfile), and its bounds by file kind.
+MAX_LOCAL_FILE_BYTES = 256 << 20  # a scene, a mesh, a trajectory
+MAX_CERTIFICATE_BYTES = 1 << 20  # a PEM certificate (chain)
+
+
+def _file_kind(mode: int) -> str:
+    for test, kind in ((stat.S_ISFIFO, "a FIFO"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket"), (stat.S_ISDIR, "a directory")):
+        if test(mode):
+            return kind
+    return "not a file"
+
+
+def read_local_file(path, max_bytes: int = MAX_LOCAL_FILE_BYTES) -> bytes:
+    """Reads a local file the way the server and the needlesim CLI do: refused (ValueError naming
+    the path and the problem) when it is a symbolic link, not a regular file (a directory, a
+    device such as /dev/zero, a FIFO, a socket) or larger than max_bytes. It is opened without
+    following a link and without blocking (a FIFO swapped in after the check cannot block the
+    open), checked again on the open descriptor, then made blocking again, and at most
+    max_bytes + 1 bytes are read (a file that grows). Errors never quote the file's contents;
+    a missing or unreadable file raises OSError naming the path."""
+    st = os.lstat(path)
+    if stat.S_ISLNK(st.st_mode):
+        raise ValueError(f"{path}: is a symbolic link; name the file it points to")
+    if not stat.S_ISREG(st.st_mode):
+        raise ValueError(f"{path}: not a regular file ({_file_kind(st.st_mode)})")
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC)
+    except OSError as e:
+        if e.errno == errno.ELOOP:
+            raise ValueError(f"{path}: is a symbolic link; name the file it points to") from None
+        raise
+    with os.fdopen(fd, "rb") as f:
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            raise ValueError(f"{path}: not a regular file ({_file_kind(st.st_mode)})")
+        if st.st_size > max_bytes:
+            raise ValueError(f"{path}: {st.st_size} bytes, over the limit of {max_bytes} bytes")
+        os.set_blocking(fd, True)
+        data = f.read(max_bytes + 1)
+    if len(data) > max_bytes:
+        raise ValueError(f"{path}: {len(data)} bytes, over the limit of {max_bytes} bytes")
+    return data
+
+
+def read_local_text(path, max_bytes: int = MAX_LOCAL_FILE_BYTES) -> str:
+    """read_local_file, as UTF-8 text (refused naming the offset of the first invalid byte)."""
+    data = read_local_file(path, max_bytes)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{path}: not UTF-8 text (invalid byte at offset {e.start})") from None
+
 
 pb = None  # needlesim.v1.needlesim_pb2, loaded by load_stubs()
 pb_grpc = None  # needlesim.v1.needlesim_pb2_grpc
@@ -118,8 +174,7 @@ class NeedlesimClient:
         ]
         if root_cert is not None:
             if isinstance(root_cert, str):
-                with open(root_cert, "rb") as f:
-                    root_cert = f.read()
+                root_cert = read_local_file(root_cert, MAX_CERTIFICATE_BYTES)
             self.channel = grpc.secure_channel(address, grpc.ssl_channel_credentials(root_certificates=root_cert), options)
         else:
             self.channel = grpc.insecure_channel(address, options)
@@ -237,13 +292,11 @@ class NeedlesimClient:
         """Creates a session from a scene TOML (the text, or the path of a .toml file): 2D, or 3D
         with `dim = 3`. mesh_path: the Gmsh .msh file a 3D TOML names in `[mesh] file`, uploaded
         with it (its file name must be the one the TOML names)."""
-        if os.path.isfile(scene_toml):
-            with open(scene_toml, encoding="utf-8") as f:
-                scene_toml = f.read()
+        if os.path.lexists(scene_toml) and not os.path.isdir(scene_toml):
+            scene_toml = read_local_text(scene_toml)
         if mesh_path is None:
             return self.create_session(pb.SceneSource(scene_toml=scene_toml), tick_rate_hz=tick_rate_hz, record=record, timeout=timeout)
-        with open(mesh_path, encoding="utf-8") as f:
-            mesh_text = f.read()
+        mesh_text = read_local_text(mesh_path)
         scene = pb.UploadedScene3d(scene_toml=scene_toml, mesh_file_name=os.path.basename(mesh_path), mesh_text=mesh_text)
         return self.create_session(pb.SceneSource(uploaded3d=scene), tick_rate_hz=tick_rate_hz, record=record, timeout=timeout)
 
@@ -614,26 +667,26 @@ def read_trajectory_csv(path) -> Trajectory:
     """Reads a trajectory CSV: the header (t_s,x_m,y_m,theta_rad or t_s,x_m,y_m,z_m,qw,qx,qy,qz)
     decides the dimension; `#` lines and blank lines are skipped; errors name the file and line."""
     rows, lines, header = [], [], None
-    with open(path, encoding="utf-8") as f:
-        for n, line in enumerate(f, start=1):
-            text = line.strip()
-            if not text or text.startswith("#"):
-                continue
-            cells = [c.strip() for c in text.split(",")]
-            if header is None:
-                header = ",".join(cells)
-                if header not in (HEADERS[2], HEADERS[3]):
-                    raise ValueError(f"{path}: line {n}: the header must be {HEADERS[2]} (2D) or {HEADERS[3]} (3D), found {header[:64]}")
-                width = len(cells)
-                continue
-            if len(cells) != width:
-                raise ValueError(f"{path}: line {n}: {len(cells)} fields, expected {width} ({header})")
-            try:
-                rows.append([float(c) for c in cells])
-            except ValueError:
-                bad = next(c for c in cells if not _is_float(c))
-                raise ValueError(f"{path}: line {n}: `{bad[:32]}` is not a number") from None
-            lines.append(n)
+    # Read whole, by the rule for local files (bounded; no FIFO, device or link).
+    for n, line in enumerate(read_local_text(path).split("\n"), start=1):
+        text = line.strip()
+        if not text or text.startswith("#"):
+            continue
+        cells = [c.strip() for c in text.split(",")]
+        if header is None:
+            header = ",".join(cells)
+            if header not in (HEADERS[2], HEADERS[3]):
+                raise ValueError(f"{path}: line {n}: the header must be {HEADERS[2]} (2D) or {HEADERS[3]} (3D), found {header[:64]}")
+            width = len(cells)
+            continue
+        if len(cells) != width:
+            raise ValueError(f"{path}: line {n}: {len(cells)} fields, expected {width} ({header})")
+        try:
+            rows.append([float(c) for c in cells])
+        except ValueError:
+            bad = next(c for c in cells if not _is_float(c))
+            raise ValueError(f"{path}: line {n}: `{bad[:32]}` is not a number") from None
+        lines.append(n)
     if header is None:
         raise ValueError(f"{path}: empty: no header")
     try:

@@ -346,9 +346,18 @@ fn request_body(namespace: &str, selectors: &[BTreeMap<String, String>], counter
     })
 }
 
+/// A PEM file by the one rule for local files (a regular file, not a link, at most 1 MiB); the
+/// error says why, without the path (the caller names it).
+fn read_pem(path: &Path) -> Result<Vec<u8>, String> {
+    needlesim_localfile::read_local_bytes(path, needlesim_localfile::MAX_CERTIFICATE_BYTES).map_err(|e| match e {
+        needlesim_localfile::LocalFileError::Io { source, .. } => format!("cannot read it: {source}"),
+        e => e.reason(),
+    })
+}
+
 fn read_certs(flag: &'static str, path: &Path) -> Result<Vec<CertificateDer<'static>>, AllocateError> {
     let bad = |why: String| AllocateError::BadPem { flag, path: path.to_owned(), why };
-    let bytes = std::fs::read(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
+    let bytes = read_pem(path).map_err(bad)?;
     let certs: Vec<CertificateDer<'static>> =
         CertificateDer::pem_slice_iter(&bytes).collect::<Result<_, _>>().map_err(|e| bad(format!("not PEM: {e}")))?;
     if certs.is_empty() {
@@ -359,7 +368,7 @@ fn read_certs(flag: &'static str, path: &Path) -> Result<Vec<CertificateDer<'sta
 
 fn read_key(path: &Path) -> Result<PrivateKeyDer<'static>, AllocateError> {
     let bad = |why: String| AllocateError::BadPem { flag: "client-key", path: path.to_owned(), why };
-    let bytes = std::fs::read(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
+    let bytes = read_pem(path).map_err(bad)?;
     PrivateKeyDer::from_pem_slice(&bytes).map_err(|e| match e {
         rustls_pki_types::pem::Error::NoItemsFound => bad("no PRIVATE KEY in it (PKCS#8, PKCS#1 or SEC1 PEM)".to_owned()),
         e => bad(format!("not PEM: {e}")),

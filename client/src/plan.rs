@@ -12,11 +12,13 @@ use tokio_stream::StreamExt;
 use crate::PlanArgs;
 use crate::rpc::{Conn, Role};
 
-/// The scene source: an existing file is uploaded as TOML, anything else names a shipped example.
+/// The scene source: an existing file (not a directory) is uploaded as TOML, read by the one rule
+/// for local files (a link, a FIFO or a device is refused, naming it), anything else names a
+/// shipped example.
 fn scene_source(spec: &str) -> Result<pb::SceneSource> {
     let path = std::path::Path::new(spec);
-    if path.is_file() {
-        let text = std::fs::read_to_string(path).with_context(|| format!("cannot read the scene {}", path.display()))?;
+    if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_dir()) {
+        let text = crate::commands::read_local(path, "scene")?;
         return Ok(pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(text)) });
     }
     Ok(pb::SceneSource { source: Some(pb::scene_source::Source::Example(spec.to_owned())) })

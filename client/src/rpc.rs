@@ -2,7 +2,7 @@
 
 use std::time::Duration;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, anyhow, bail};
 use tonic::metadata::MetadataValue;
 use tonic::transport::{Certificate, Channel, ClientTlsConfig, Endpoint};
 use tonic::{Code, Request, Status};
@@ -60,7 +60,8 @@ impl Conn {
         let https = url.starts_with("https://");
         match (tls_ca, https) {
             (Some(ca), true) => {
-                let pem = std::fs::read(ca).with_context(|| format!("cannot read the CA certificate {}", ca.display()))?;
+                let pem = needlesim_localfile::read_local_bytes(ca, needlesim_localfile::MAX_CERTIFICATE_BYTES)
+                    .map_err(|e| anyhow!("--tls-ca: {}", e.named("CA certificate")))?;
                 let tls = ClientTlsConfig::new().ca_certificate(Certificate::from_pem(pem));
                 ep = ep.tls_config(tls).map_err(|e| anyhow!("--tls-ca {}: {}", ca.display(), chain(&e)))?;
             }

@@ -73,7 +73,8 @@ impl AnyTrajectory {
     /// `#` comment) decides the dimension: `t_s,x_m,y_m,z_m,qw,qx,qy,qz` is 3D, anything else
     /// is read as 2D (`t_s,x_m,y_m,theta_rad`). Errors name the file and the line.
     pub fn read(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| anyhow!("cannot read the trajectory {}: {e}", path.display()))?;
+        let text = needlesim_localfile::read_local_file(path, needlesim_localfile::MAX_LOCAL_FILE_BYTES)
+            .map_err(|e| anyhow!("{}", e.named("trajectory")))?;
         let header = text.lines().find(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#')).unwrap_or_default();
         if header.split(',').map(str::trim).eq(HEADER3) {
             let t = needlesim_trajectory::Trajectory3::parse_csv(&text).map_err(|e| anyhow!("{}: {e}", path.display()))?;

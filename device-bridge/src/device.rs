@@ -63,10 +63,13 @@ enum Inner {
 }
 
 impl Trajectory {
-    /// Reads a CSV file; errors name the file and the line.
+    /// Reads a CSV file by the one rule for local files (a regular file, not a link, at most
+    /// [`needlesim_localfile::MAX_LOCAL_FILE_BYTES`], opened without blocking: a FIFO or a device
+    /// is refused, not waited on); errors name the file and the line.
     pub fn load(path: impl AsRef<Path>, looped: bool) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).with_context(|| format!("trajectory {}: cannot read", path.display()))?;
+        let text = needlesim_localfile::read_local_file(path, needlesim_localfile::MAX_LOCAL_FILE_BYTES)
+            .map_err(|e| anyhow::anyhow!("{}", e.named("trajectory")))?;
         Self::parse(&text, &path.display().to_string(), looped)
     }
 

@@ -819,12 +819,21 @@ fn lost_link_error(link: &Link, silent_ms: Option<u64>) -> anyhow::Error {
                     anyhow!("the server (pid {pid}) died without closing the session; the force was ramped to zero and {file}")
                 }
                 Some(why) => anyhow!("device channel {path} is broken: {why}"),
-                None if channel.is_current() && silent_ms.is_some() => anyhow!(
-                    "the server (pid {}) stopped answering: no force on device channel {path} for {} ms (--server-timeout-ms); \
-                     the force was ramped to zero; the channel is left to its server",
-                    channel.creator_pid(),
-                    silent_ms.unwrap_or_default()
-                ),
+                None if channel.is_current() && silent_ms.is_some() => {
+                    // A server that is gone (killed before this bridge attached, so never seen
+                    // dying) leaves its file: removed only when provably stale (no live end holds it).
+                    let file = match channel.remove_if_abandoned() {
+                        Ok(true) => "no server holds the channel any more, so its file was removed".to_owned(),
+                        Ok(false) => "the channel is left to its server".to_owned(),
+                        Err(e) => format!("the channel's file could not be examined or removed: {e}"),
+                    };
+                    anyhow!(
+                        "the server (pid {}) stopped answering: no force on device channel {path} for {} ms (--server-timeout-ms); \
+                         the force was ramped to zero; {file}",
+                        channel.creator_pid(),
+                        silent_ms.unwrap_or_default()
+                    )
+                }
                 _ => anyhow!("device channel {path}: closed or re-created by the server"),
             }
         }

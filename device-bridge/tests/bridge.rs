@@ -552,6 +552,56 @@ fn issue_35_a_silent_server_ends_the_bridge_after_the_server_timeout() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Not a test: a server end in another process for
+/// [`issue35_a_bridge_on_a_dead_servers_channel_removes_the_file`] (runs only with
+/// `NEEDLESIM_CHANNEL_CREATOR=PATH`: creates the channel, then waits to be killed).
+#[test]
+#[ignore = "helper process of issue35_a_bridge_on_a_dead_servers_channel_removes_the_file, not a test"]
+fn channel_creator_process() {
+    let Some(path) = std::env::var_os("NEEDLESIM_CHANNEL_CREATOR") else { return };
+    let _server = DeviceChannel::create(Path::new(&path)).unwrap();
+    std::thread::sleep(Duration::from_secs(120));
+}
+
+/// Issue 35 (finding 6c): a bridge started on the channel of a server killed before it attached
+/// (never seen dying) ran into `--server-timeout-ms`, exited 1 and left the file in /dev/shm,
+/// though the README says it removes it. No live end holds the file's lock: the bridge removes it
+/// and says so (a live but silent server's file is left: the test above).
+#[test]
+fn issue35_a_bridge_on_a_dead_servers_channel_removes_the_file() {
+    let dir = temp_dir("dead-before-attach");
+    let chan = dir.join("session.shm");
+    let traj = write_trajectory(&dir);
+    let mut server = Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", "channel_creator_process", "--ignored", "--nocapture", "--test-threads", "1"])
+        .env("NEEDLESIM_CHANNEL_CREATOR", &chan)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    while DeviceChannel::attach(&chan).is_err() {
+        assert!(t0.elapsed() < Duration::from_secs(20), "the channel was not created");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let server_pid = server.id();
+    server.kill().unwrap(); // SIGKILL: no closing state, the channel file stays
+    server.wait().unwrap();
+    assert!(chan.exists());
+    let out = Command::new(BIN)
+        .args(["--channel", chan.to_str().unwrap(), "--device", "scripted", "--trajectory", traj.to_str().unwrap()])
+        .args(["--seconds", "30", "--server-timeout-ms", "300"])
+        .output()
+        .unwrap();
+    let removed = !chan.exists();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(&format!("the server (pid {server_pid}) stopped answering")), "{stderr}");
+    assert!(stderr.contains("no server holds the channel any more, so its file was removed"), "{stderr}");
+    assert!(removed, "the bridge left the dead server's channel file {}", chan.display());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn exit_leaves_a_zero_force_on_the_device_even_under_full_force() {
     // The server feeds until after the bridge exits: the last rendered wrench is not zero.

@@ -711,7 +711,7 @@ fn uploaded_scene3d(u: &pb::UploadedScene3d, limits: &SceneLimits) -> Result<Sce
     if u.mesh_text.len() > max {
         return Err(anyhow::Error::new(needlesim_scene::SizeLimit {
             what: "scene.uploaded3d.mesh_text".into(),
-            amount: u.mesh_text.len() as u64 >> 20,
+            amount: (u.mesh_text.len() as u64 >> 20) as f64,
             limit: max as u64 >> 20,
             unit: "MiB",
             hint: " (the server's node limit bounds the mesh text)".into(),

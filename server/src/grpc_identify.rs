@@ -126,7 +126,7 @@ impl pb::identify_service_server::IdentifyService for Api {
             if pixels > max_pixels {
                 return Err(ApiError::from(SizeLimit {
                     what: format!("frames[{k}].png ({w} × {h} pixels)"),
-                    amount: pixels,
+                    amount: pixels as f64,
                     limit: max_pixels,
                     unit: "pixels",
                     hint: " (server flag --max-image-pixels)".to_owned(),

@@ -761,9 +761,12 @@ fn read_local(path: &std::path::Path) -> Result<String> {
     Ok(scene::read_local_file(path, scene::MAX_LOCAL_FILE_BYTES)?)
 }
 
-/// The admin token in `path`: its first line, trimmed, of at least 16 characters.
+/// The admin token in `path`: its first line, trimmed, of at least 16 characters. The file is read
+/// by the one rule for local files (a regular file, not a link, at most
+/// [`needlesim_localfile::MAX_TOKEN_FILE_BYTES`]; never quoted in an error).
 fn read_admin_token(path: &std::path::Path) -> Result<String> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("--admin-token-file: cannot read {}", path.display()))?;
+    let text = needlesim_localfile::read_local_file(path, needlesim_localfile::MAX_TOKEN_FILE_BYTES)
+        .map_err(|e| anyhow::anyhow!("--admin-token-file: {}", e.named("token file")))?;
     let token = text.lines().next().unwrap_or("").trim().to_owned();
     if token.len() < 16 {
         anyhow::bail!(

@@ -494,8 +494,13 @@ where
         .http2_keepalive_interval(Some(HTTP2_KEEPALIVE_INTERVAL))
         .http2_keepalive_timeout(Some(HTTP2_KEEPALIVE_TIMEOUT));
     if let Some((cert, key)) = &config.tls {
-        let cert = std::fs::read(cert).with_context(|| format!("cannot read the TLS certificate {}", cert.display()))?;
-        let key = std::fs::read(key).with_context(|| format!("cannot read the TLS key {}", key.display()))?;
+        // By the one rule for local files: a regular file, not a link, at most 1 MiB.
+        let read = |path: &std::path::Path, kind: &str| {
+            needlesim_localfile::read_local_bytes(path, needlesim_localfile::MAX_CERTIFICATE_BYTES)
+                .map_err(|e| anyhow::anyhow!("{}", e.named(kind)))
+        };
+        let cert = read(cert, "TLS certificate")?;
+        let key = read(key, "TLS key")?;
         let tls = tonic::transport::ServerTlsConfig::new()
             .identity(tonic::transport::Identity::from_pem(cert, key))
             .timeout(config.connections.handshake_timeout);

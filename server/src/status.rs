@@ -307,7 +307,7 @@ mod tests {
         // The words of a size error in a message are not a size error.
         let text = anyhow::anyhow!("name 'over the limit' is not a region");
         assert_eq!(Status::from(ApiError::from_chain("scene", &text)).code(), tonic::Code::InvalidArgument);
-        let lim = SizeLimit { what: "x".into(), amount: 2, limit: 1, unit: "MiB", hint: String::new() };
+        let lim = SizeLimit { what: "x".into(), amount: 2.0, limit: 1, unit: "MiB", hint: String::new() };
         let wrapped = anyhow::Error::new(lim).context("scene.scene_toml");
         assert_eq!(Status::from(ApiError::from_chain("scene", &wrapped)).code(), tonic::Code::ResourceExhausted);
         let sim = anyhow::Error::new(SessionError::Sim(SimError::InvalidParams("max_base_step_m = -1".into())));

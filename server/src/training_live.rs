@@ -54,7 +54,7 @@ use std::sync::{Arc, Mutex, RwLock};
 use needlesim_session::control_lease::StreamLease;
 use needlesim_session::{RecordSink, Session, TickRecord};
 use needlesim_training::metrics::{Placement, Trace};
-use needlesim_training::run::{STRAIN_INTERVAL_S, TRACE_CAPACITY, TargetGeometry};
+use needlesim_training::run::{RefusedPlacements, STRAIN_INTERVAL_S, TRACE_CAPACITY, TargetGeometry};
 use needlesim_training::strain::StrainField;
 use needlesim_training::{Exercise, ExerciseRun, MetricsTracker, Sample, TimelineMarker, TrackerSpec};
 use tonic::Status;
@@ -94,7 +94,8 @@ struct ExState {
     tracker: MetricsTracker,
     trace: Trace,
     placements: Vec<(usize, Placement)>,
-    refused: Vec<(f64, String)>,
+    /// The first [`needlesim_training::run::MAX_REFUSED_KEPT`] refused declarations, all counted.
+    refused: RefusedPlacements,
     markers: Vec<TimelineMarker>,
     instructor_control: bool,
     paused: bool,
@@ -207,7 +208,7 @@ impl LiveExercise {
                 tracker: MetricsTracker::new(spec.clone()),
                 trace: Trace::new(TRACE_CAPACITY),
                 placements: Vec::new(),
-                refused: Vec::new(),
+                refused: RefusedPlacements::default(),
                 markers: Vec::new(),
                 instructor_control: false,
                 paused: false,
@@ -483,7 +484,7 @@ impl LiveExercise {
             }
             Err(e) => {
                 let msg = e.to_string();
-                st.refused.push((t, msg.clone()));
+                st.refused.push(t, || msg.clone());
                 drop(st);
                 self.changed();
                 Err(Status::failed_precondition(format!("session {}: {msg}", self.session_id)))

@@ -438,3 +438,26 @@ async fn issue_35_a_refused_ultrasound_rate_is_written_compactly() {
         assert!(e.message().starts_with(written) && e.message().len() < 100, "{}", e.message());
     }
 }
+
+/// Issue 35 (finding 6b): a Simulate over the tick limit said "18446744073709551615 ticks" (a
+/// saturated count) and named no sample; it names the sample that ends the trajectory, its time,
+/// the count as it is and the limit.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue35_a_simulate_over_the_tick_limit_names_the_sample_unsaturated() {
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = channel(&server).await;
+    let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch);
+    let sample =
+        |t_s: f64| pb::TrajectorySample { t_s, base: Some(pb::Pose2 { x_m: 0.05, y_m: 0.21, theta_rad: -1.57 }), ..Default::default() };
+    let req = pb::SimulateRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+        trajectory: vec![sample(0.0), sample(1e-300), sample(1e300)],
+        ..Default::default()
+    };
+    let e = sim.simulate(req).await.expect_err("over the tick limit");
+    assert_eq!(e.code(), Code::ResourceExhausted, "{}", e.message());
+    assert_eq!(
+        e.message(),
+        "trajectory[2]: t_s = 1e300 ends 1e300 s after the first sample: 1e303 ticks at 1000 Hz, over the limit of 1000000 ticks (server flag --max-simulate-ticks)"
+    );
+}

@@ -193,3 +193,186 @@ fn issue_35_local_scenes_refuse_devices_fifos_and_links_and_read_their_own_files
     let rows = std::fs::read_to_string(dir.join("out.csv")).unwrap().lines().filter(|l| !l.starts_with('#')).count();
     assert_eq!(rows, 1 + 11, "a header and ticks 0..=10");
 }
+
+/// `bin args…` under a 2 GB address-space limit (a binary that read /dev/zero would otherwise
+/// take the machine's memory) with a deadline (a FIFO would block it): its exit status, stdout and
+/// stderr.
+fn run_limited(bin: &std::path::Path, args: &[&std::ffi::OsStr]) -> (Option<i32>, String, String) {
+    let mut cmd = std::process::Command::new("sh");
+    cmd.args(["-c", "ulimit -v 2000000 && exec \"$0\" \"$@\""]).arg(bin).args(args).stdin(std::process::Stdio::null());
+    let t = std::time::Instant::now();
+    let out = needlesim_tests::run_within(&mut cmd, Duration::from_secs(20));
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(t.elapsed() < Duration::from_secs(5), "{} {args:?}: refused at once, not after {:?}: {stderr}", bin.display(), t.elapsed());
+    (out.status.code(), String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
+}
+
+/// Issue 35 (finding 5): the CLI (`--scene`, `--mesh`, `--trajectory`, `replay FILE`, `--tls-ca`),
+/// the bridge (`--trajectory`), the server (`--admin-token-file`, `--tls-cert`, `--tls-key`) and
+/// the pure-Python client read local files outside the one rule: /dev/zero was read to 2 GB, a
+/// FIFO blocked in open() for good, a link to another file was followed. Each now goes through
+/// `needlesim-localfile` (Python: its copy of the rule) and is refused at once, naming the path
+/// and the problem, with a bound fitting the kind of file.
+#[test]
+fn issue35_clients_the_bridge_and_the_server_read_local_files_by_the_one_rule() {
+    use std::ffi::OsStr;
+    let dir = TempDir::new("file-refs-tools");
+    let fifo = dir.join("pipe");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().expect("mkfifo runs").success());
+    let secret = dir.join("secret");
+    std::fs::write(&secret, format!("{SECRET}\nroot:x:0:0:root:/root:/bin/bash\n")).unwrap();
+    let link = dir.join("link");
+    std::os::unix::fs::symlink(&secret, &link).unwrap();
+    let big_pem = dir.join("big.pem");
+    std::fs::write(&big_pem, "#".repeat((1 << 20) + 1)).unwrap();
+    let big_token = dir.join("big-token");
+    std::fs::write(&big_token, "t".repeat(5000)).unwrap();
+    let brachy = dir.join("brachy-3d.toml");
+    std::fs::write(&brachy, BRACHY).unwrap();
+    let zero = std::path::Path::new("/dev/zero");
+    let (p, s) = (|p: &std::path::Path| p.as_os_str().to_owned(), OsStr::new);
+    let (cli, server, bridge) = (bin("needlesim"), bin("needlesim-server"), bin("needlesim-bridge"));
+    let a_fifo = "not a regular file (a FIFO)";
+    let a_device = "not a regular file (a character device)";
+    let a_link = "is a symbolic link; name the file it points to";
+    let offline = s("http://127.0.0.1:1");
+    let channel = dir.join("channel.shm");
+    let _session = needlesim_channel::shm::DeviceChannel::create(&channel).expect("a device channel");
+    let serve = |extra: &[std::ffi::OsString]| {
+        let mut v: Vec<std::ffi::OsString> =
+            ["serve", "--listen", "127.0.0.1:0", "--default-scene", "none", "--data-dir"].iter().map(|a| a.into()).collect();
+        v.push(p(&dir.join("data")));
+        v.extend(extra.iter().cloned());
+        v
+    };
+    let cases: Vec<(&std::path::Path, Vec<std::ffi::OsString>, String)> = vec![
+        (
+            cli.as_path(),
+            vec![s("--server").into(), offline.into(), s("sessions").into(), s("create").into(), s("--scene").into(), p(zero)],
+            format!("cannot read the scene /dev/zero: {a_device}"),
+        ),
+        (
+            cli.as_path(),
+            vec![s("--server").into(), offline.into(), s("sessions").into(), s("create").into(), s("--scene").into(), p(&fifo)],
+            format!("cannot read the scene {}: {a_fifo}", fifo.display()),
+        ),
+        (
+            cli.as_path(),
+            vec![
+                s("--server").into(),
+                offline.into(),
+                s("sessions").into(),
+                s("create").into(),
+                s("--scene").into(),
+                p(&brachy),
+                s("--mesh").into(),
+                p(&link),
+            ],
+            format!("cannot read the mesh {}: {a_link}", link.display()),
+        ),
+        (
+            cli.as_path(),
+            vec![
+                s("--server").into(),
+                offline.into(),
+                s("--token").into(),
+                s("x").into(),
+                s("drive").into(),
+                s("deadbeef").into(),
+                s("--trajectory").into(),
+                p(&fifo),
+            ],
+            format!("cannot read the trajectory {}: {a_fifo}", fifo.display()),
+        ),
+        (cli.as_path(), vec![s("replay").into(), p(zero)], format!("cannot read the recording /dev/zero: {a_device}")),
+        (cli.as_path(), vec![s("replay").into(), p(&fifo)], format!("cannot read the recording {}: {a_fifo}", fifo.display())),
+        (
+            cli.as_path(),
+            vec![
+                s("--tls-ca").into(),
+                p(&fifo),
+                s("--server").into(),
+                s("https://127.0.0.1:1").into(),
+                s("sessions").into(),
+                s("list").into(),
+            ],
+            format!("cannot read the CA certificate {}: {a_fifo}", fifo.display()),
+        ),
+        (
+            cli.as_path(),
+            vec![
+                s("--tls-ca").into(),
+                p(&big_pem),
+                s("--server").into(),
+                s("https://127.0.0.1:1").into(),
+                s("sessions").into(),
+                s("list").into(),
+            ],
+            format!("{}: 1048577 bytes, over the limit of 1048576 bytes", big_pem.display()),
+        ),
+        (
+            bridge.as_path(),
+            vec![
+                s("--channel").into(),
+                p(&channel),
+                s("--device").into(),
+                s("scripted").into(),
+                s("--trajectory").into(),
+                p(&fifo),
+                s("--seconds").into(),
+                s("1").into(),
+            ],
+            format!("cannot read the trajectory {}: {a_fifo}", fifo.display()),
+        ),
+        (
+            server.as_path(),
+            serve(&[s("--admin-token-file").into(), p(&link)]),
+            format!("--admin-token-file: cannot read the token file {}: {a_link}", link.display()),
+        ),
+        (
+            server.as_path(),
+            serve(&[s("--admin-token-file").into(), p(&big_token)]),
+            format!("cannot read the token file {}: 5000 bytes, over the limit of 4096 bytes", big_token.display()),
+        ),
+        (
+            server.as_path(),
+            serve(&[s("--tls-cert").into(), p(&fifo), s("--tls-key").into(), p(&secret)]),
+            format!("cannot read the TLS certificate {}: {a_fifo}", fifo.display()),
+        ),
+        (
+            server.as_path(),
+            serve(&[s("--tls-cert").into(), p(&secret), s("--tls-key").into(), p(&link)]),
+            format!("cannot read the TLS key {}: {a_link}", link.display()),
+        ),
+    ];
+    for (bin, args, want) in &cases {
+        let args: Vec<&OsStr> = args.iter().map(|a| a.as_os_str()).collect();
+        let (code, _, stderr) = run_limited(bin, &args);
+        println!("{} {args:?}: {}", bin.display(), stderr.trim());
+        assert_eq!(code, Some(1), "{} {args:?}: {stderr}", bin.display());
+        assert!(stderr.contains(want.as_str()), "{} {args:?}: the error says {want:?}: {stderr}", bin.display());
+        assert!(!stderr.contains(SECRET) && !stderr.contains("root:"), "{} {args:?}: a file is quoted: {stderr}", bin.display());
+    }
+    // The pure-Python client: its copy of the rule.
+    let client = needlesim_tests::repo_root().join("client/python");
+    let script = format!(
+        "import sys\nsys.path.insert(0, {client:?})\nimport needlesim_client as nc\n\
+         for f in ['/dev/zero', {fifo:?}, {link:?}]:\n    try:\n        nc.read_trajectory_csv(f)\n        print('read', f)\n    except ValueError as e:\n        print('refused:', e)\n\
+         try:\n    nc.read_local_file({big_pem:?}, nc.MAX_CERTIFICATE_BYTES)\nexcept ValueError as e:\n    print('refused:', e)\n",
+        client = client.display().to_string(),
+        fifo = fifo.display().to_string(),
+        link = link.display().to_string(),
+        big_pem = big_pem.display().to_string(),
+    );
+    let python = needlesim_tests::python();
+    let (code, stdout, stderr) = run_limited(&python, &[s("-c"), s(&script)]);
+    assert_eq!(code, Some(0), "{stderr}");
+    for want in [
+        format!("refused: /dev/zero: {a_device}"),
+        format!("refused: {}: {a_fifo}", fifo.display()),
+        format!("refused: {}: {a_link}", link.display()),
+        format!("refused: {}: 1048577 bytes, over the limit of 1048576 bytes", big_pem.display()),
+    ] {
+        assert!(stdout.contains(&want), "the Python client says {want:?}:\n{stdout}");
+    }
+}

@@ -380,6 +380,11 @@ async fn issue_18_set_spin_rolls_the_needle_by_the_duty_cycled_law() {
         assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
         assert!(e.message().starts_with(field), "{}", e.message());
     }
+    // Issue 35: a refused value is echoed short (1e300 was 301 digits).
+    let e = ctl.set_spin(with_token(spin(1e300, 0.0), &tok)).await.unwrap_err();
+    assert!(e.message().starts_with("duty_cycle = 1e300: must be in [0, 1]"), "{}", e.message());
+    let e = ctl.set_spin(with_token(spin(0.5, 1e300), &tok)).await.unwrap_err();
+    assert!(e.message().starts_with("period_m = 1e300: must be in ["), "{}", e.message());
     let e = ctl.set_spin(with_token(spin(0.5, 0.0), &created.observer_token)).await.unwrap_err();
     assert_eq!(e.code(), Code::PermissionDenied);
 

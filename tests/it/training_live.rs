@@ -566,3 +566,38 @@ fn the_viewer_shows_the_score_the_controller_and_the_slice_in_headless_chromium(
     }
     assert_ne!(before, after, "the slice did not change as the needle advanced");
 }
+
+/// Issue 35 (finding 4): a trainee repeating a refused "placed" declaration grew the server and
+/// the report without bound (101,873 refused calls in 60 s: +42 MB, a 5.9 MB report). The
+/// exercise keeps the first 1000 in full and counts the rest; the report says how many were left out.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue35_refused_placements_are_kept_up_to_a_bound_and_counted() {
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = connect(&server).await;
+    let mut tr = pb::training_service_client::TrainingServiceClient::new(ch.clone());
+    let created = tr
+        .create_exercise_session(pb::CreateExerciseSessionRequest { exercise: "biopsy-2d".into(), ..Default::default() })
+        .await
+        .unwrap()
+        .into_inner();
+    let handle = created.session.unwrap();
+    let sid = handle.session.unwrap().session_id;
+    let (trainee, instructor) = (handle.controller_token, created.instructor_token);
+    let calls = 1300;
+    let mut refused = 0u64;
+    for _ in 0..calls {
+        if let Err(e) = tr.place(with_token(pb::ExerciseRequest { session_id: sid.clone() }, &trainee)).await {
+            assert_eq!(e.code(), Code::FailedPrecondition, "{e:?}");
+            refused += 1;
+        }
+    }
+    assert!(refused >= calls - 1, "at most the first declaration places the one target: {refused} refused");
+    let fin = tr.end_exercise(with_token(pb::ExerciseRequest { session_id: sid.clone() }, &instructor)).await.unwrap().into_inner();
+    let html = std::fs::read_to_string(server.data_dir.path().join("reports").join(&fin.report_name)).unwrap();
+    let section = html.split("<h2>Refused declarations</h2>").nth(1).expect("the refused declarations are in the report");
+    let listed = section.split("</ul>").next().unwrap().matches("<li>").count();
+    assert_eq!(listed, 1000, "the first 1000 refused declarations are listed");
+    let note = format!("{refused} declarations refused in all: the first 1000 are listed, {} more are left out.", refused - 1000);
+    assert!(section.contains(&note), "the report says how many were left out ({note})");
+    assert!(html.len() < 1 << 20, "the report stays small: {} bytes", html.len());
+}

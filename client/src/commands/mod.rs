@@ -6,6 +6,7 @@ mod flip_bevel;
 mod record;
 mod replay;
 mod scene;
+pub(crate) use scene::read_local;
 mod sessions;
 mod simulate;
 mod watch;

@@ -12,12 +12,17 @@ use crate::view::plain_line;
 
 const FRAME_SCHEMA: &str = "needlesim.v1.Frame";
 
+/// Largest recording `replay` reads (it reads the file whole): 2 GiB, two million frames at
+/// 1 kHz (over half an hour of a session).
+pub(crate) const MAX_REPLAY_BYTES: u64 = 2 << 30;
+
 pub(super) fn replay(a: &ReplayArgs) -> Result<()> {
     if !(a.speed.is_finite() && a.speed >= 0.0) {
         bail!("--speed {}: must be 0 (as fast as possible) or a positive factor", a.speed);
     }
     let path = a.file.display();
-    let data = std::fs::read(&a.file).map_err(|e| anyhow!("cannot read {path}: {e}"))?;
+    // By the one rule for local files: a regular file, not a link, opened without blocking.
+    let data = needlesim_localfile::read_local_bytes(&a.file, MAX_REPLAY_BYTES).map_err(|e| anyhow!("{}", e.named("recording")))?;
     if !data.starts_with(mcap::MAGIC) {
         bail!("{path} is not an MCAP file (it does not start with the MCAP magic bytes)");
     }

@@ -20,14 +20,14 @@ pub(super) fn scene_source(s: &SceneArgs, mesh: Option<&std::path::Path>) -> Res
         return Ok((pb::SceneSource { source: Some(pb::scene_source::Source::Example(name.clone())) }, format!("example '{name}'")));
     }
     let Some(path) = &s.scene else { bail!("give --example NAME or --scene FILE.toml") };
-    let text = std::fs::read_to_string(path).map_err(|e| anyhow!("cannot read the scene {}: {e}", path.display()))?;
+    let text = read_local(path, "scene")?;
     let Some(mesh) = mesh else {
         return Ok((pb::SceneSource { source: Some(pb::scene_source::Source::SceneToml(text)) }, format!("scene {}", path.display())));
     };
     if !toml_is_3d(&text) {
         bail!("--mesh {} is for a 3D scene, but {} has no `dim = 3`", mesh.display(), path.display());
     }
-    let mesh_text = std::fs::read_to_string(mesh).map_err(|e| anyhow!("cannot read the mesh {}: {e}", mesh.display()))?;
+    let mesh_text = read_local(mesh, "mesh")?;
     let name = mesh
         .file_name()
         .and_then(|n| n.to_str())
@@ -37,6 +37,13 @@ pub(super) fn scene_source(s: &SceneArgs, mesh: Option<&std::path::Path>) -> Res
         pb::SceneSource { source: Some(pb::scene_source::Source::Uploaded3d(upload)) },
         format!("scene {} with mesh {}", path.display(), mesh.display()),
     ))
+}
+
+/// A scene or mesh file named on the command line, by the one rule for local files (a regular
+/// file, not a link, at most [`needlesim_localfile::MAX_LOCAL_FILE_BYTES`], opened without
+/// blocking); `kind` names it in the error.
+pub(crate) fn read_local(path: &std::path::Path, kind: &str) -> Result<String> {
+    needlesim_localfile::read_local_file(path, needlesim_localfile::MAX_LOCAL_FILE_BYTES).map_err(|e| anyhow!("{}", e.named(kind)))
 }
 
 /// Whether a scene TOML declares `dim = 3` (a top-level key line; the server decides for real).
@@ -61,7 +68,7 @@ pub(super) fn scene_dimension(s: &SceneArgs, with_mesh: bool) -> Result<Option<u
     }
     match &s.scene {
         Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| anyhow!("cannot read the scene {}: {e}", p.display()))?;
+            let text = read_local(p, "scene")?;
             Ok(Some(if with_mesh || toml_is_3d(&text) { 3 } else { 2 }))
         }
         None => Ok(None),

@@ -513,7 +513,7 @@ impl Tracker {
         if pixels > self.p.max_image_pixels {
             return Err(anyhow::Error::new(SizeLimit {
                 what: format!("frame {k} ({w} × {h} pixels)"),
-                amount: pixels,
+                amount: pixels as f64,
                 limit: self.p.max_image_pixels,
                 unit: "pixels",
                 hint: " (server flag --max-image-pixels)".to_owned(),
@@ -767,7 +767,7 @@ mod tests {
         png[29..33].copy_from_slice(&crc.to_be_bytes());
         let e = Tracker::new(params()).unwrap().push_png(0.0, &png).unwrap_err();
         let size = e.downcast_ref::<SizeLimit>().unwrap_or_else(|| panic!("not a size limit: {e:#}"));
-        assert_eq!((size.amount, size.limit), (65_535_000, DEFAULT_MAX_IMAGE_PIXELS), "{e:#}");
+        assert_eq!((size.amount, size.limit), (65_535_000.0, DEFAULT_MAX_IMAGE_PIXELS), "{e:#}");
         assert!(e.to_string().starts_with("frame 0 (65535 × 1000 pixels)"), "{e:#}");
     }
 
@@ -798,7 +798,7 @@ mod tests {
         let p = TrackParams { max_image_pixels: 7999, ..params() };
         let e = track_png_bytes(&[(0.0, &png)], &p, &mut crate::no_progress).unwrap_err();
         let size = e.downcast_ref::<SizeLimit>().unwrap_or_else(|| panic!("not a size limit: {e:#}"));
-        assert_eq!((size.amount, size.limit), (8000, 7999));
+        assert_eq!((size.amount, size.limit), (8000.0, 7999));
         assert!(e.to_string().contains("frame 0 (100 × 80 pixels)"), "{e}");
     }
 

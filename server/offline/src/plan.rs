@@ -694,11 +694,18 @@ pub fn validate_request(scene: &Scene, req: &PlanRequest, opts: &PlanOptions) ->
 
 /// The longest simulated insertion (from outside to the needle's full length) within the limit.
 fn check_ticks(scene: &Scene, p: &Problem, opts: &PlanOptions) -> Result<()> {
-    let ticks = ((opts.start_outside_m + p.length) / p.speed * scene.params.tick_rate_hz).ceil();
-    if ticks > opts.max_ticks_per_simulation as f64 {
+    let path_m = opts.start_outside_m + p.length;
+    let rate_hz = scene.params.tick_rate_hz;
+    let ticks = (path_m / p.speed * rate_hz).ceil();
+    if ticks.is_nan() || ticks > opts.max_ticks_per_simulation as f64 {
         let e = needlesim_scene::limit::SizeLimit {
-            what: "a simulated insertion at this speed".to_owned(),
-            amount: ticks as u64,
+            what: format!(
+                "a simulated insertion at this speed ({} m from outside to the needle's full length in {} s at {} Hz)",
+                num((path_m * 1e6).round() / 1e6),
+                num(path_m / p.speed),
+                num(rate_hz)
+            ),
+            amount: ticks,
             limit: opts.max_ticks_per_simulation,
             unit: "ticks",
             hint: String::new(),
@@ -824,6 +831,20 @@ mod tests {
             let e = refused(r);
             assert!(e.contains(want) && e.len() < 300, "{e}");
         }
+    }
+
+    /// Issue 35 (finding 6b): `speed_mm_s = 1e-300` was "18446744073709551615 ticks" (a
+    /// saturated count): the message says the path, its time and the count as they are.
+    #[test]
+    fn issue35_a_speed_too_slow_names_the_time_and_the_count_unsaturated() {
+        let scene = fig3();
+        let req = PlanRequest { target: "biopsy".into(), speed_m_s: Some(1e-300 * 1e-3), ..Default::default() };
+        let e = validate_request(&scene, &req, &PlanOptions::default()).unwrap_err();
+        assert!(e.chain().any(|c| c.downcast_ref::<needlesim_scene::limit::SizeLimit>().is_some()), "still a size limit: {e:#}");
+        let e = format!("{e:#}");
+        assert!(e.starts_with("speed_mm_s = 1e-300: a simulated insertion at this speed ("), "{e}");
+        assert!(e.contains(" s at 1000 Hz) is ") && e.contains("e30") && e.contains("ticks, over the limit of 1000000 ticks"), "{e}");
+        assert!(!e.contains("18446744073709551615") && e.len() < 300, "{e}");
     }
 
     #[test]

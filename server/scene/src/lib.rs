@@ -455,7 +455,7 @@ pub fn check_session_memory(n_nodes: usize, max_needle_nodes: usize, limits: &Sc
     const MIB: u64 = 1 << 20;
     Err(SizeLimit {
         what: format!("the estimated memory of a session of this scene ({n_nodes} mesh nodes, up to {max_needle_nodes} needle nodes)"),
-        amount: estimate.div_ceil(MIB),
+        amount: estimate.div_ceil(MIB) as f64,
         limit: limits.max_session_bytes / MIB,
         unit: "MiB",
         hint: " (server flag --max-session-memory-mb)".to_owned(),
@@ -514,7 +514,7 @@ pub(crate) fn check_toml_size(text: &str) -> Result<()> {
     if text.len() > MAX_SCENE_TOML_BYTES {
         return Err(anyhow::Error::new(SizeLimit {
             what: "the scene TOML".to_owned(),
-            amount: text.len() as u64,
+            amount: text.len() as f64,
             limit: MAX_SCENE_TOML_BYTES as u64,
             unit: "bytes",
             hint: " (a scene is a few kB; a mesh comes as a file or an upload of its own)".to_owned(),
@@ -1035,7 +1035,7 @@ mod tests {
         let huge = base.replace("nx = 19", "nx = 31").replace("ny = 19", "ny = 31000");
         let e = parse_scene(&huge, Path::new("."), server).err().unwrap();
         let size = e.chain().find_map(|c| c.downcast_ref::<SizeLimit>()).unwrap_or_else(|| panic!("not a size limit: {e:#}"));
-        assert_eq!((size.amount, size.limit), (estimated_session_bytes(961_000, 128).div_ceil(1 << 20), 1280));
+        assert_eq!((size.amount, size.limit), (estimated_session_bytes(961_000, 128).div_ceil(1 << 20) as f64, 1280));
         // The benchmark's largest grid, with its bounded column cache (issue 15), needs a server
         // started with 4.5 GiB per session; the offline commands have no memory bound.
         let big = base.replace("nx = 19", "nx = 400").replace("ny = 19", "ny = 400");

@@ -91,11 +91,14 @@ pub fn compact_numbers(s: &str) -> String {
 /// A request over a size limit: the typed cause of RESOURCE_EXHAUSTED in the service layer, also
 /// inside `anyhow` chains (scene loading).
 #[derive(Debug, Clone, thiserror::Error)]
-#[error("{what} is {amount} {unit}, over the limit of {limit} {unit}{hint}")]
+#[error("{what} is {} {unit}, over the limit of {limit} {unit}{hint}", needlesim_core::num::num(*amount))]
 pub struct SizeLimit {
     /// What is too large, e.g. "the scene's estimated memory".
     pub what: String,
-    pub amount: u64,
+    /// How much was asked for, in `unit`: a float, so that an amount computed from a client's
+    /// numbers (a span over a speed of 1e-300) is printed as it is (`1e305`, [`needlesim_core::num`]),
+    /// never as a saturated integer.
+    pub amount: f64,
     pub limit: u64,
     /// The unit of `amount` and `limit`, e.g. "MiB", "ticks", "pixels".
     pub unit: &'static str,

@@ -335,7 +335,7 @@ pub fn check_session_memory_3d(n_nodes: usize, max_points: usize, limits: &Scene
     const MIB: u64 = 1 << 20;
     Err(SizeLimit {
         what: format!("the estimated memory of a session of this 3D scene ({n_nodes} mesh nodes, up to {max_points} needle points)"),
-        amount: estimate.div_ceil(MIB),
+        amount: estimate.div_ceil(MIB) as f64,
         limit: limits.max_session_bytes / MIB,
         unit: "MiB",
         hint: " (server flag --max-session-memory-mb)".to_owned(),
@@ -1144,7 +1144,7 @@ mod tests {
         assert!(estimated_session_bytes_3d(21 * 21 * 21, 64) < 1280 << 20);
         let e = parse(&CUBE.replace("nx = 21\nny = 21\nnz = 21", "nx = 81\nny = 81\nnz = 81"), None).err().unwrap();
         let size = e.chain().find_map(|c| c.downcast_ref::<SizeLimit>()).unwrap_or_else(|| panic!("not a size limit: {e:#}"));
-        assert_eq!((size.amount, size.limit), (estimated_session_bytes_3d(81 * 81 * 81, 64).div_ceil(1 << 20), 1280));
+        assert_eq!((size.amount, size.limit), (estimated_session_bytes_3d(81 * 81 * 81, 64).div_ceil(1 << 20) as f64, 1280));
         assert!(format!("{e:#}").starts_with("mesh: the estimated memory of a session of this 3D scene (531441 mesh nodes"), "{e:#}");
         // More needle points, more cached columns.
         assert!(estimated_session_bytes_3d(9261, 128) > estimated_session_bytes_3d(9261, 64));

@@ -18,6 +18,7 @@
 //! allocation.
 
 use nalgebra::{UnitQuaternion, Vector3};
+use needlesim_core::num::num;
 use needlesim_core::sim3::BasePose3;
 
 /// Shortest spin period, m.
@@ -39,10 +40,10 @@ pub struct SpinCommand {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SpinError {
     /// When the duty cycle is not a number in [0, 1].
-    #[error("duty_cycle = {0}: must be in [0, 1] (0 stops the spin, 1 spins continuously)")]
+    #[error("duty_cycle = {}: must be in [0, 1] (0 stops the spin, 1 spins continuously)", num(*.0))]
     DutyCycle(f64),
     /// When the period is not finite or outside [`MIN_SPIN_PERIOD_M`, `MAX_SPIN_PERIOD_M`].
-    #[error("period_m = {0}: must be in [{MIN_SPIN_PERIOD_M}, {MAX_SPIN_PERIOD_M}] m (0: the default {DEFAULT_SPIN_PERIOD_M} m)")]
+    #[error("period_m = {}: must be in [{MIN_SPIN_PERIOD_M}, {MAX_SPIN_PERIOD_M}] m (0: the default {DEFAULT_SPIN_PERIOD_M} m)", num(*.0))]
     Period(f64),
 }
 
@@ -156,6 +157,16 @@ mod tests {
 
     fn wrap(a: f64) -> f64 {
         (a + PI).rem_euclid(TAU) - PI
+    }
+
+    /// Issue 35 (finding 6a): a client's 1e300 was echoed as 301 digits.
+    #[test]
+    fn issue35_refused_values_are_printed_short() {
+        let e = SpinCommand::new(1e300, 0.0).unwrap_err().to_string();
+        assert!(e.starts_with("duty_cycle = 1e300: must be in [0, 1]"), "{e}");
+        let e = SpinCommand::new(0.5, -1e-300).unwrap_err().to_string();
+        assert!(e.starts_with("period_m = -1e-300: must be in ["), "{e}");
+        assert!(SpinCommand::new(0.5, 1e300).unwrap_err().to_string().len() < 120);
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 use std::ops::ControlFlow;
 
+use needlesim_core::num::num;
 use needlesim_core::sim::Simulation;
 use needlesim_core::sim3::Simulation3;
 use needlesim_offline::{RunError, RunTotals, ScriptedRun, ScriptedSim, Tick};
@@ -25,7 +26,7 @@ impl pb::simulation_service_server::SimulationService for Api {
         if r.trajectory.len() > self.state.limits.max_trajectory_samples {
             return Err(ApiError::from(SizeLimit {
                 what: "trajectory".to_owned(),
-                amount: r.trajectory.len() as u64,
+                amount: r.trajectory.len() as f64,
                 limit: self.state.limits.max_trajectory_samples as u64,
                 unit: "samples",
                 hint: String::new(),
@@ -39,23 +40,23 @@ impl pb::simulation_service_server::SimulationService for Api {
         // Parse and validate before answering, so that errors are statuses, not stream items.
         let job = tokio::task::spawn_blocking(move || -> Result<_, Status> {
             let scene = convert::session_scene_from_pb(r.scene.as_ref(), &limits.scene()).map_err(|e| status_of("scene", &e))?;
-            let too_long = |span_s: f64, rate_hz: f64| -> Result<(), Status> {
-                let ticks = (span_s * rate_hz).round() as u64;
-                if ticks > limits.max_simulate_ticks {
-                    return Err(ApiError::from(SizeLimit {
-                        what: format!(
-                            "the trajectory ({} s at {} Hz)",
-                            needlesim_core::num::num(span_s),
-                            needlesim_core::num::num(rate_hz)
-                        ),
-                        amount: ticks,
-                        limit: limits.max_simulate_ticks,
-                        unit: "ticks",
-                        hint: " (server flag --max-simulate-ticks)".to_owned(),
-                    })
-                    .into());
+            // The trajectory's own count (compared in floating point: no saturated number), the
+            // message naming its last sample, the span and the limit.
+            let too_long = |counted: Result<u64, needlesim_trajectory::TrajectoryError>| -> Result<(), Status> {
+                match counted {
+                    Err(needlesim_trajectory::TrajectoryError::TooLong { at, end_s, span_s, ticks, rate_hz, max_ticks }) => {
+                        Err(ApiError::ResourceExhausted(format!(
+                            "{at}: t_s = {} ends {} s after the first sample: {} ticks at {} Hz, over the limit of {max_ticks} ticks (server flag --max-simulate-ticks)",
+                            num(end_s),
+                            num(span_s),
+                            num(ticks),
+                            num(rate_hz)
+                        ))
+                        .into())
+                    }
+                    Err(e) => Err(status_of("trajectory", &anyhow::Error::new(e))),
+                    Ok(_) => Ok(()),
                 }
-                Ok(())
             };
             let scene = match scene {
                 convert::SessionScene::Two(scene) => scene,
@@ -67,7 +68,7 @@ impl pb::simulation_service_server::SimulationService for Api {
                     } else {
                         convert::trajectory3_from_pb(&r.trajectory).map_err(|e| status_of("trajectory", &e))?
                     };
-                    too_long(traj.duration_s(), scene.tick_rate_hz)?;
+                    too_long(traj.tick_count(scene.tick_rate_hz, limits.max_simulate_ticks))?;
                     return Ok(Job::Three(scene, traj));
                 }
             };
@@ -86,8 +87,7 @@ impl pb::simulation_service_server::SimulationService for Api {
             } else {
                 convert::trajectory_from_pb(&r.trajectory).map_err(|e| status_of("trajectory", &e))?
             };
-            let (t0, t1) = traj.span_s();
-            too_long(t1 - t0, scene.params.tick_rate_hz)?;
+            too_long(traj.tick_count(scene.params.tick_rate_hz, limits.max_simulate_ticks))?;
             Ok(Job::Two(scene, traj))
         })
         .await

@@ -304,10 +304,19 @@ pub fn report_html(run: &ExerciseRun) -> Result<String, String> {
     }
     if !run.refused_placements.is_empty() {
         h.push_str("<h2>Refused declarations</h2>\n<ul>\n");
-        for (t, why) in &run.refused_placements {
+        for (t, why) in &run.refused_placements.first {
             let _ = writeln!(h, "<li>t = {t:.3} s: {}</li>", esc(why));
         }
         h.push_str("</ul>\n");
+        let left_out = run.refused_placements.left_out();
+        if left_out > 0 {
+            let _ = writeln!(
+                h,
+                "<p id=\"refused-left-out\">{} declarations refused in all: the first {} are listed, {left_out} more are left out.</p>",
+                run.refused_placements.total,
+                run.refused_placements.first.len()
+            );
+        }
     }
     let ft: Vec<(f64, f64)> = run.trace.iter().map(|p| (p.t_s, p.axial_force_n)).collect();
     let fd: Vec<(f64, f64)> = run.trace.iter().map(|p| (p.depth_m * 1e3, p.axial_force_n)).collect();

@@ -70,6 +70,45 @@ pub struct TargetGeometry {
     pub tolerance_m: f64,
 }
 
+/// Most refused "placed" declarations an exercise keeps in full (the first ones, with their time
+/// and reason; as many as a live exercise's markers): past them they are only counted, so a client
+/// repeating a refused call grows neither the server nor the report.
+pub const MAX_REFUSED_KEPT: usize = 1000;
+
+/// Declarations of "placed" that were refused: the first [`MAX_REFUSED_KEPT`] as (time in s,
+/// reason), and the count of all of them (the report says how many were left out).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct RefusedPlacements {
+    /// The first refused declarations, in order: (exercise time, s; why).
+    pub first: Vec<(f64, String)>,
+    /// Every refused declaration, those kept included.
+    pub total: u64,
+}
+
+impl RefusedPlacements {
+    /// Counts a refused declaration and keeps it if fewer than [`MAX_REFUSED_KEPT`] are kept;
+    /// `why` is called only then.
+    pub fn push(&mut self, t_s: f64, why: impl FnOnce() -> String) {
+        self.total = self.total.saturating_add(1);
+        if self.first.len() < MAX_REFUSED_KEPT {
+            self.first.push((t_s, why()));
+        }
+    }
+
+    /// How many were counted but not kept.
+    pub fn left_out(&self) -> u64 {
+        self.total.saturating_sub(self.first.len() as u64)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.total == 0
+    }
+
+    pub fn clear(&mut self) {
+        *self = Self::default();
+    }
+}
+
 /// A finished scripted run.
 #[derive(Debug, Clone, Serialize)]
 pub struct ExerciseRun {
@@ -89,8 +128,9 @@ pub struct ExerciseRun {
     pub trace: Vec<TracePoint>,
     /// The placements in the order declared: (target index, placement).
     pub placements: Vec<(usize, Placement)>,
-    /// Declarations refused (every target placed already), with the time.
-    pub refused_placements: Vec<(f64, String)>,
+    /// Declarations refused (every target placed already), with the time: the first
+    /// [`MAX_REFUSED_KEPT`] in full, all counted.
+    pub refused_placements: RefusedPlacements,
     /// Markers an instructor placed on the timeline (a live exercise; none in a scripted run).
     pub markers: Vec<TimelineMarker>,
     /// The expert's run overlaid in the report, when the exercise names one ([`crate::expert`]).
@@ -199,7 +239,7 @@ struct Feeder<'a> {
     placed_at_s: &'a [f64],
     next: usize,
     placements: Vec<(usize, Placement)>,
-    refused: Vec<(f64, String)>,
+    refused: RefusedPlacements,
     ticks: u64,
     ticks_csv: Option<TickCsv>,
 }
@@ -214,7 +254,7 @@ impl Feeder<'_> {
         while self.next < self.placed_at_s.len() && self.placed_at_s[self.next] <= s.t_s + 1e-9 {
             match self.tracker.place() {
                 Ok(p) => self.placements.push(p),
-                Err(e) => self.refused.push((s.t_s, e.to_string())),
+                Err(e) => self.refused.push(s.t_s, || e.to_string()),
             }
             self.next += 1;
             placed += 1;
@@ -335,7 +375,7 @@ pub fn run_exercise_with(
             placed_at_s: placed,
             next: 0,
             placements: vec![],
-            refused: vec![],
+            refused: RefusedPlacements::default(),
             ticks: 0,
             ticks_csv,
         };
@@ -386,7 +426,7 @@ pub fn run_exercise_with(
             placed_at_s: placed,
             next: 0,
             placements: vec![],
-            refused: vec![],
+            refused: RefusedPlacements::default(),
             ticks: 0,
             ticks_csv,
         };

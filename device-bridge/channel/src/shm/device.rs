@@ -223,6 +223,29 @@ impl DeviceEnd {
         }
     }
 
+    /// Removes the channel's file when its server is gone although the bridge did not see it die
+    /// (issue 35: a server killed before the bridge attached is never identified, so no
+    /// [`Broken::ServerDied`]; the file stayed in /dev/shm). Removed only if it is provably stale:
+    /// the path still names the mapped file, the channel is still the generation attached to and
+    /// names the same creator, and nobody holds the file's lock, which every live server end holds
+    /// (shared) for its life whatever pid namespace it runs in (the sweep's rule,
+    /// [`super::remove_stale_channels`]; a file of an earlier build, without that lock, is mapped
+    /// by this bridge and so never taken for stale here). `Ok(true)` if the file was removed.
+    pub fn remove_if_abandoned(&self) -> io::Result<bool> {
+        if self.m.faulted() || !self.m.header_valid() {
+            return Ok(false);
+        }
+        if self.m.layout().header.generation.load(Ordering::Acquire) != self.m.generation {
+            return Ok(false);
+        }
+        let sh = &self.m.shared;
+        match super::sweep::remove_if_stale(&sh.path, Some(self.creator_pid()), Some(sh.file_id)) {
+            Ok(removed) => Ok(removed == Some(true)),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(false),
+            Err(e) => Err(e),
+        }
+    }
+
     pub fn generation(&self) -> u64 {
         self.m.generation
     }

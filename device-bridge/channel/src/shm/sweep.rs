@@ -51,7 +51,7 @@ pub fn remove_stale_channels(dir: &Path, creator: Option<u32>) -> io::Result<Swe
         if !entry.file_name().to_str().is_some_and(is_channel_file_name) {
             continue;
         }
-        match remove_if_stale(&path, creator) {
+        match remove_if_stale(&path, creator, None) {
             Ok(Some(true)) => sweep.removed.push(path),
             Ok(Some(false)) => sweep.live += 1,
             Ok(None) => {}
@@ -63,8 +63,8 @@ pub fn remove_stale_channels(dir: &Path, creator: Option<u32>) -> io::Result<Swe
 }
 
 /// One file of [`remove_stale_channels`]: `Some(true)` removed, `Some(false)` live, `None` not a
-/// channel of this user (or of `creator`).
-fn remove_if_stale(path: &Path, creator: Option<u32>) -> io::Result<Option<bool>> {
+/// channel of this user (or of `creator`, or not the file `(dev, ino)` when `file_id` is given).
+pub(super) fn remove_if_stale(path: &Path, creator: Option<u32>, file_id: Option<(u64, u64)>) -> io::Result<Option<bool>> {
     use std::os::fd::AsRawFd;
     let meta = std::fs::symlink_metadata(path)?;
     // SAFETY: geteuid has no preconditions.
@@ -73,6 +73,9 @@ fn remove_if_stale(path: &Path, creator: Option<u32>) -> io::Result<Option<bool>
     }
     let file = OpenOptions::new().read(true).custom_flags(libc::O_NOFOLLOW | libc::O_CLOEXEC | libc::O_NONBLOCK).open(path)?;
     let held = file.metadata()?;
+    if file_id.is_some_and(|id| id != (held.dev(), held.ino())) {
+        return Ok(None);
+    }
     let mut head = [0u8; 40];
     if held.len() < head.len() as u64 || file.read_exact_at(&mut head, 0).is_err() || head[..8] != MAGIC {
         return Ok(None);
