@@ -9,7 +9,7 @@
 //! `read_force_from_device` → render (local model, coupling, watchdog, limits: `render.rs`) →
 //! `write_force` on the device. On every exit path (end of `--seconds`, Ctrl-C/SIGTERM, a device
 //! or channel error) a zero wrench is written to the device before it is closed. A channel whose
-//! file was truncated, resized, overwritten, deleted or replaced (`shm.rs`: the access never
+//! file was truncated, resized, overwritten, deleted or replaced (the channel crate's `shm/`: the access never
 //! faults; a watcher thread checks the file every 100 ms) is lost like a closed one: the watchdog
 //! ramps the force out, the zero wrench is written, and the bridge exits with status 1 and a
 //! message naming the cause. So is a server that died without closing its channel (`kill -9`, a
