@@ -103,6 +103,36 @@ pub fn assemble_stiffness_with<D: Dim>(
     SparseColMat::try_new_from_triplets(n_dofs, n_dofs, &triplets).expect("assembly indices are in range")
 }
 
+/// $K_e \leftarrow T_k^\top K_e T_k$ for element node `k` whose DOFs are taken in the frame with
+/// rows `frame` ($u_{loc} = F u$, $T_k = F^\top$ on the node's block): columns first ($K_e T$), then
+/// rows. Each new entry is summed in the order of the frame's columns (in 2D the operations of the
+/// former rotation by an angle, so the same bits).
+pub fn rotate_element_node<D: Dim>(ke: &mut D::ElementMatrix, k: usize, frame: &D::FrameRows) {
+    let n = D::N;
+    let i0 = n * k;
+    for r in 0..D::ELEMENT_DOFS {
+        let row = &mut ke[r];
+        let old: [f64; 3] = std::array::from_fn(|a| if a < n { row[i0 + a] } else { 0.0 });
+        for c in 0..n {
+            let mut s = old[0] * frame[c][0];
+            for a in 1..n {
+                s += old[a] * frame[c][a];
+            }
+            row[i0 + c] = s;
+        }
+    }
+    for j in 0..D::ELEMENT_DOFS {
+        let old: [f64; 3] = std::array::from_fn(|a| if a < n { ke[i0 + a][j] } else { 0.0 });
+        for c in 0..n {
+            let mut s = frame[c][0] * old[0];
+            for a in 1..n {
+                s += frame[c][a] * old[a];
+            }
+            ke[i0 + c][j] = s;
+        }
+    }
+}
+
 /// $y = K x$ for the full stiffness.
 pub fn mul_stiffness(k: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64]) {
     y.fill(0.0);

@@ -11,6 +11,10 @@
 //! cannot write `[usize; N + 1]` for a generic `N` (that needs `generic_const_exprs`), and
 //! monomorphised code over fixed arrays compiles to what the per-dimension code did.
 //!
+//! The static solve ([`crate::statics`]) takes from here what its conditions need per dimension:
+//! the frame's representation (2D an angle, 3D rows) and check, point location (3D only), and
+//! the wording of the errors that differ.
+//!
 //! DOF layout everywhere: $[u_{x0}, u_{y0}, (u_{z0},) u_{x1}, \dots]$, DOF $= N\cdot\mathrm{node}
 //! + \mathrm{axis}$ ([`Dim::dof`]).
 
@@ -18,6 +22,7 @@ use std::fmt::Debug;
 use std::hash::Hash;
 use std::ops::{Index, IndexMut};
 
+use crate::d3::locate::{LocateError, PointLocation, TetLocator};
 use crate::d3::mesh::{TetMeshError, TetMeshLimits, signed_volume_m3};
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{MeshError, MeshFault, MeshLimits, SimplexMesh};
@@ -118,6 +123,62 @@ pub trait Dim: Copy + Debug + PartialEq + Eq + Send + Sync + 'static + Sized {
     fn d_matrix(m: &Material, model: &Self::Model) -> Self::DMatrix;
     /// The factor $w$ of $K_e = w\,B^\top D B$: $t\,|A|$ in 2D, $|V|$ in 3D.
     fn stiffness_weight(measure: f64, model: &Self::Model) -> f64;
+
+    /// A frame at a node or a material point ([`crate::statics`]): 2D its angle in rad
+    /// ($t = (\cos a, \sin a)$, $n = (-\sin a, \cos a)$; the results give it back as given), 3D
+    /// its orthonormal rows $t, n, b$.
+    type Frame: Copy + Debug + PartialEq + Send + Sync + 'static;
+    /// A frame as its rows $t, n(, b)$, `[Point; N]`: the components in it are $u_c = F_c \cdot u$.
+    type FrameRows: Copy + Debug + Index<usize, Output = Self::Point>;
+    /// Components that may be prescribed, `[Option<f64>; N]` (`None`: free).
+    type Components: Copy
+        + Debug
+        + PartialEq
+        + Default
+        + Index<usize, Output = Option<f64>>
+        + IndexMut<usize>
+        + AsRef<[Option<f64>]>
+        + Send
+        + Sync
+        + 'static;
+    /// Where a material point lies: its element, that element's nodes and their weights $N_i(x)$
+    /// (3D [`crate::d3::PointLocation`]; 2D none, see [`crate::statics::tri`]).
+    type PointLocation: Copy + Debug + PartialEq + Send + Sync + 'static;
+    /// What finds material points in a mesh (3D [`crate::d3::TetLocator`]).
+    type Locator;
+    /// Why a material point was not located (its message follows `point i: `).
+    type LocateError: std::error::Error + Clone + PartialEq + Send + Sync + 'static;
+    /// What an unknown node of a local-frame condition is called in the error ("a condition" in
+    /// 3D, "a local-frame condition" in 2D: each dimension's messages are quoted as they are).
+    const LOCAL_CONDITION: &'static str;
+
+    /// Components from their values.
+    fn components_from_fn(f: impl FnMut(usize) -> Option<f64>) -> Self::Components;
+    /// The rows of `frame`.
+    fn frame_rows(frame: &Self::Frame) -> Self::FrameRows;
+    /// Checks a frame given for `what` ("point 3", or [`Dim::condition_label`]'s
+    /// [`ConditionLabel::LocalFrame`]): finite, and in 3D orthonormal.
+    fn check_frame(frame: &Self::Frame, what: &str) -> Result<(), crate::statics::StaticError<Self>>;
+    /// What a node's condition is called in a `NonFinite` error (the wording of each
+    /// dimension's messages, quoted by tests and users).
+    fn condition_label(label: ConditionLabel, node: usize) -> String;
+    /// A point locator of `mesh`.
+    fn locator(mesh: &SimplexMesh<Self>) -> Self::Locator;
+    /// The element holding `x_m` and the weights of its nodes.
+    fn locate(locator: &Self::Locator, mesh: &SimplexMesh<Self>, x_m: Self::Point) -> Result<Self::PointLocation, Self::LocateError>;
+    /// A location's element, nodes and weights.
+    fn location_terms(loc: &Self::PointLocation) -> (usize, &[usize], &[f64]);
+}
+
+/// Which part of a node's condition an error names ([`Dim::condition_label`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConditionLabel {
+    /// A world component of a `World` condition.
+    World,
+    /// The frame of a `Local` condition.
+    LocalFrame,
+    /// A component of a `Local` condition.
+    LocalValue,
 }
 
 /// Two dimensions: linear (constant-strain) triangles, nodes `[x, y]`.
@@ -195,6 +256,36 @@ impl Dim for Dim2 {
     fn stiffness_weight(area_m2: f64, model: &PlaneModel) -> f64 {
         model.thickness_m() * area_m2
     }
+    type Frame = f64;
+    type FrameRows = [[f64; 2]; 2];
+    type Components = [Option<f64>; 2];
+    type PointLocation = crate::statics::tri::NoPointLocation;
+    type Locator = ();
+    type LocateError = crate::statics::tri::NoPointLocationError;
+    const LOCAL_CONDITION: &'static str = "a local-frame condition";
+
+    #[inline]
+    fn components_from_fn(f: impl FnMut(usize) -> Option<f64>) -> [Option<f64>; 2] {
+        std::array::from_fn(f)
+    }
+    /// $[[\cos a, \sin a], [-\sin a, \cos a]]$.
+    #[inline]
+    fn frame_rows(angle_rad: &f64) -> [[f64; 2]; 2] {
+        crate::statics::tri::frame_rows(*angle_rad)
+    }
+    fn check_frame(angle_rad: &f64, what: &str) -> Result<(), crate::statics::StaticError<Self>> {
+        crate::statics::tri::check_angle(*angle_rad, what)
+    }
+    fn condition_label(label: ConditionLabel, node: usize) -> String {
+        crate::statics::tri::condition_label(label, node)
+    }
+    fn locator(_mesh: &SimplexMesh<Self>) {}
+    fn locate(_locator: &(), _mesh: &SimplexMesh<Self>, _x_m: [f64; 2]) -> Result<Self::PointLocation, Self::LocateError> {
+        Err(crate::statics::tri::NoPointLocationError)
+    }
+    fn location_terms(loc: &Self::PointLocation) -> (usize, &[usize], &[f64]) {
+        match *loc {}
+    }
 }
 
 impl Dim for Dim3 {
@@ -267,6 +358,37 @@ impl Dim for Dim3 {
     #[inline]
     fn stiffness_weight(volume_m3: f64, _model: &()) -> f64 {
         volume_m3
+    }
+    type Frame = [[f64; 3]; 3];
+    type FrameRows = [[f64; 3]; 3];
+    type Components = [Option<f64>; 3];
+    type PointLocation = PointLocation;
+    type Locator = TetLocator;
+    type LocateError = LocateError;
+    const LOCAL_CONDITION: &'static str = "a condition";
+
+    #[inline]
+    fn components_from_fn(f: impl FnMut(usize) -> Option<f64>) -> [Option<f64>; 3] {
+        std::array::from_fn(f)
+    }
+    #[inline]
+    fn frame_rows(frame: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+        *frame
+    }
+    fn check_frame(frame: &[[f64; 3]; 3], what: &str) -> Result<(), crate::statics::StaticError<Self>> {
+        crate::d3::statics::check_frame(frame, what)
+    }
+    fn condition_label(label: ConditionLabel, node: usize) -> String {
+        crate::d3::statics::condition_label(label, node)
+    }
+    fn locator(mesh: &SimplexMesh<Self>) -> TetLocator {
+        TetLocator::new(mesh)
+    }
+    fn locate(locator: &TetLocator, mesh: &SimplexMesh<Self>, x_m: [f64; 3]) -> Result<PointLocation, LocateError> {
+        locator.locate(mesh, x_m)
+    }
+    fn location_terms(loc: &PointLocation) -> (usize, &[usize], &[f64]) {
+        (loc.tet_idx, &loc.nodes, &loc.weights)
     }
 }
 

@@ -16,7 +16,9 @@
 //! material-point conditions, compliance columns) is the module [`d3`].
 //!
 //! The dimension is a type parameter where the code is one for both ([`dim`]: `Dim2`, `Dim3`): the
-//! mesh is [`mesh::SimplexMesh<D>`], with [`Mesh`] and [`d3::TetMesh`] its aliases.
+//! mesh is [`mesh::SimplexMesh<D>`], with [`Mesh`] and [`d3::TetMesh`] its aliases; the element
+//! assembly ([`assembly`]) and the static solve ([`statics`]: [`StaticProblem`] is the 2D one,
+//! [`d3::TetStaticProblem`] the 3D one) are written once.
 //!
 //! The crate does no I/O and knows no async runtime or protocol: state in, state out, typed errors.
 
@@ -53,7 +55,7 @@ pub use assembly::{ElementMaterials, MaterialMap};
 pub use beam::NeedleCurve;
 pub use compliance::{ColumnScratch, ComplianceCache, ComplianceCache3, TissueError, TissueModel};
 pub use contact::{ContactId, ContactPoint};
-pub use dim::{Dim, Dim2, Dim3};
+pub use dim::{ConditionLabel, Dim, Dim2, Dim3};
 pub use ids::{Axis, NodeIdx, Slot};
 pub use material::{Material, MaterialError, PlaneModel};
 pub use mesh::{DiagonalPattern, Mesh, MeshError, MeshLimits, RectMeshParams, SimplexMesh};

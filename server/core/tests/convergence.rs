@@ -52,7 +52,7 @@ fn cantilever(k: usize) -> (f64, usize) {
     for &n in mesh.boundary_set("left").expect("the generator names the left edge") {
         assert!(xy[n][0] == 0.0);
         let [ux, uy] = exact(xy[n][0], xy[n][1]);
-        problem.conditions.push((n, NodeCondition::World { ux_m: Some(ux), uy_m: Some(uy) }));
+        problem.conditions.push((n, NodeCondition::World { u_m: [Some(ux), Some(uy)] }));
     }
     // The right edge in increasing y; consistent loads segment by segment (Simpson, exact here).
     let right = mesh.boundary_set("right").expect("the generator names the right edge");

@@ -197,9 +197,10 @@ fn rotating_oblique_needle_state_equals_fresh_static_solve() {
     let mut problem = StaticProblem {
         conditions: model.mesh().boundary_set("bottom").unwrap().iter().map(|&n| (n, NodeCondition::Fixed)).collect(),
         loads_n: snap.node_loads_n(),
+        points: vec![],
     };
     for c in &snap.conditions {
-        problem.conditions.push((c.node_idx, NodeCondition::Local { angle_rad: c.angle_rad, ut_m: c.ut_m, un_m: c.un_m }));
+        problem.conditions.push((c.node_idx, NodeCondition::Local { frame: c.angle_rad, u_m: [c.ut_m, c.un_m] }));
     }
     let fresh = problem.solve(model.mesh(), model.materials()).unwrap();
     let mut u = vec![0.0; model.n_dofs()];

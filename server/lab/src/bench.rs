@@ -141,9 +141,9 @@ fn snapshot_problem(sim: &Simulation, fixed: &[usize]) -> StaticProblem {
     let snap = sim.snapshot();
     let mut conditions: Vec<(usize, NodeCondition)> = fixed.iter().map(|&n| (n, NodeCondition::Fixed)).collect();
     for c in &snap.conditions {
-        conditions.push((c.node_idx, NodeCondition::Local { angle_rad: c.angle_rad, ut_m: c.ut_m, un_m: c.un_m }));
+        conditions.push((c.node_idx, NodeCondition::Local { frame: c.angle_rad, u_m: [c.ut_m, c.un_m] }));
     }
-    StaticProblem { conditions, loads_n: snap.node_loads_n() }
+    StaticProblem { conditions, loads_n: snap.node_loads_n(), points: vec![] }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -341,7 +341,7 @@ fn run_naive(n: usize, script: &Script, budget_s: f64) -> Result<Row> {
     let n_ticks = poses.len();
     let first = {
         let t = Instant::now();
-        let p = StaticProblem { conditions: s.fixed.iter().map(|&n| (n, NodeCondition::Fixed)).collect(), loads_n: vec![] };
+        let p = StaticProblem { conditions: s.fixed.iter().map(|&n| (n, NodeCondition::Fixed)).collect(), loads_n: vec![], points: vec![] };
         p.solve(&s.mesh, &s.mats)?;
         t.elapsed().as_secs_f64()
     };
@@ -414,7 +414,7 @@ const PHANTOM_THICKNESS_M: f64 = match fixtures::PHANTOM_PLANE {
 fn scenario_of(s: &Setup, p: &StaticProblem, n: usize) -> Scenario {
     let mut prescribed_local = Vec::new();
     for &(node, c) in &p.conditions {
-        if let NodeCondition::Local { angle_rad, ut_m, un_m } = c {
+        if let NodeCondition::Local { frame: angle_rad, u_m: [ut_m, un_m] } = c {
             prescribed_local.push(PrescribedLocal { node: node as i64, angle_rad, ut: ut_m, un: un_m });
         }
     }

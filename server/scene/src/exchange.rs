@@ -271,17 +271,17 @@ impl Scenario {
             }
         }
         for (n, (ux_m, uy_m)) in world {
-            conditions.push((n, NodeCondition::World { ux_m, uy_m }));
+            conditions.push((n, NodeCondition::World { u_m: [ux_m, uy_m] }));
         }
         for p in &self.prescribed_local {
             let n = node_id(p.node, n_nodes, "prescribed_local")?;
-            conditions.push((n, NodeCondition::Local { angle_rad: p.angle_rad, ut_m: p.ut, un_m: p.un }));
+            conditions.push((n, NodeCondition::Local { frame: p.angle_rad, u_m: [p.ut, p.un] }));
         }
         let mut loads_n = Vec::new();
         for l in &self.loads {
             loads_n.push((node_id(l.node, n_nodes, "loads")?, [l.fx, l.fy]));
         }
-        Ok(StaticProblem { conditions, loads_n })
+        Ok(StaticProblem { conditions, loads_n, points: vec![] })
     }
 }
 

@@ -280,7 +280,7 @@ pub fn solve_scenario3(sc: &Scenario3, limits: &TetMeshLimits) -> Result<Scenari
     let sol = problem.solve(&mesh, &materials).context("static solve failed")?;
     let displacements: Vec<[f64; 3]> = sol.displacement_m.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
     let reactions = sol.reactions_n.iter().map(|&(node, [rx, ry, rz])| Reaction3 { node, rx, ry, rz }).collect();
-    let reactions_local = sol.reactions_local_n.iter().map(|&(node, [rt, rn, rb])| ReactionLocal3 { node, rt, rn, rb }).collect();
+    let reactions_local = sol.reactions_local_n.iter().map(|&(node, _, [rt, rn, rb])| ReactionLocal3 { node, rt, rn, rb }).collect();
     let point_reactions = sol
         .point_reactions
         .iter()

@@ -10,7 +10,7 @@
 
 use faer::sparse::SparseColMat;
 
-use super::{ElementMaterials, assemble_stiffness_with};
+use super::{ElementMaterials, assemble_stiffness_with, rotate_element_node};
 use crate::material::{Material, MaterialError, PlaneModel};
 use crate::mesh::{Dim2, Mesh};
 
@@ -81,29 +81,11 @@ pub fn assemble_stiffness(mesh: &Mesh, materials: &MaterialMap, node_angle_rad: 
         if let Some(angles) = node_angle_rad {
             for (k, &node) in tri.iter().enumerate() {
                 if let Some(a) = angles[node] {
-                    rotate_element_node(ke, k, a);
+                    rotate_element_node::<Dim2>(ke, k, &crate::statics::tri::frame_rows(a));
                 }
             }
         }
     })
-}
-
-/// Applies $K_e \leftarrow T_k^\top K_e T_k$ for the rotation of the element's local vertex `k`.
-fn rotate_element_node(ke: &mut [[f64; 6]; 6], k: usize, angle_rad: f64) {
-    let (s, c) = angle_rad.sin_cos();
-    let (i0, i1) = (2 * k, 2 * k + 1);
-    // columns: K T  (T maps local (t, n) to world: [c -s; s c])
-    for row in ke.iter_mut() {
-        let (a, b) = (row[i0], row[i1]);
-        row[i0] = a * c + b * s;
-        row[i1] = -a * s + b * c;
-    }
-    // rows: T^T (K T)
-    for j in 0..6 {
-        let (a, b) = (ke[i0][j], ke[i1][j]);
-        ke[i0][j] = c * a + s * b;
-        ke[i1][j] = -s * a + c * b;
-    }
 }
 
 #[cfg(test)]

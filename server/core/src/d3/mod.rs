@@ -3,8 +3,8 @@
 //! [`mesh`] (the tetrahedral mesh, its validation, structured box grids), [`conform`] (its
 //! conformity checks: no cracks, no overlaps), [`locate`] (which
 //! tetrahedron holds a point, and its barycentric weights), [`assembly`] (3D Hooke, element
-//! matrices, sparse $K$, stresses), [`statics`] (static solves with world, local-frame and
-//! material-point conditions, reactions), [`tissue`] (one factorisation of $K_{ff}$, compliance
+//! matrices, sparse $K$, stresses), [`statics`] (the 3D pieces and names of the
+//! static solve of [`crate::statics`]: frames as orthonormal rows, material points), [`tissue`] (one factorisation of $K_{ff}$, compliance
 //! columns of a node, the point compliance on demand, and every node's displacement under point
 //! loads by one solve) and [`sparse_compliance`] (node and point
 //! compliance blocks from sparse forward solves along elimination-tree paths, without full columns). Gmsh files with tetrahedra are read by

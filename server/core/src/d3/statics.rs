@@ -1,163 +1,32 @@
-//! Static solves on a tetrahedral mesh: fixed nodes, prescribed world components, components
-//! prescribed in a node's local frame, conditions at material points, nodal and point loads;
-//! results with reactions (world and frame), point reactions, strain energy.
+//! The 3D pieces of the static solve ([`crate::statics`], written once over the dimension): a
+//! frame is three orthonormal rows $t, n, b$ ([`check_frame`], to [`FRAME_TOL`]), material points
+//! are located by [`super::TetLocator`], the 3D wording of the errors, and the 3D names of the
+//! generic types: [`TetStaticProblem`] $=$ `StaticProblem<Dim3>` and its companions.
 //!
-//! **Conditions.** World-prescribed DOFs $D$ (fixed nodes, `World` components) are eliminated. Every
-//! other condition is a constraint row: a `Local` node with frame rows $t, n, b$ prescribes
-//! $F_c \cdot u_k = g$ for its listed components $c$; a material point at $x$ in tetrahedron
-//! $(k_1..k_4)$ with weights $N_i(x)$ prescribes $F_c \cdot \sum_i N_i(x) u_{k_i} = g$. Together
-//! $G u = g$ ($q$ rows, $G$ is $q \times 3n$). A point force $f_p$ at $x$ adds $N_i(x) f_p$ to each of its
-//! element's nodes.
-//!
-//! **Solve.** With $I$ the remaining DOFs, $K_{II}$ is factorised once (sparse Cholesky) and the
-//! constraints are condensed onto a dense $q \times q$ Schur complement:
-//! $$u^0_I = K_{II}^{-1}(f_I - K_{ID} u_D),\quad Y = K_{II}^{-1} G_I^\top,\quad S = G_I Y,$$
-//! $$S\,\lambda = G_I u^0_I + G_D u_D - g,\qquad u_I = u^0_I - Y\lambda .$$
-//! This is the KKT system $K u + G^\top\lambda = f$, $G u = g$; the force the constraints exert on
-//! the tissue is $\mu = -\lambda$. The cost is one factorisation, $q + 1$ solves and an
-//! $O(q^3)$ dense factorisation, so it scales to meshes of $10^5$ nodes with tens of points.
-//!
-//! **Independence.** $S$ is factorised row by row (Cholesky, in the order the conditions are
-//! given: local nodes, then points in order, components $t, n, b$). A row whose pivot falls to
-//! $\le 10^{-10}$ of its diagonal ([`DEPENDENT_PIVOT`]) is (numerically) a combination of the rows
-//! before it — e.g. a third point of one straight needle in one linear tetrahedron, or a point
-//! whose element nodes are all fixed — and the solve stops with
-//! [`TetStaticError::DependentConstraint`] naming it and the points sharing its element, instead of
-//! returning a meaningless answer.
-//!
-//! **Outputs.** Reactions $r = K u - f - G^\top\mu$ at the world-prescribed DOFs (the point and
-//! local constraints' share removed); a local node's reaction is the world force
-//! $\sum_c \mu_c F_c$ of its constraint and its frame components $\mu_c$; likewise for points, with
-//! the displacement $u(x)$. Strain energy $\tfrac12 u^\top K u$.
+//! Node conditions are eliminated (frame nodes in their frames, $T^\top K T$); material points are
+//! constraint rows $G u = g$ condensed on a dense Schur complement $S = G K_{II}^{-1} G^\top$
+//! after one sparse Cholesky of $K_{II}$; dependent rows (a third point of a straight needle in
+//! one tetrahedron, a point on a fixed face) are a typed error naming the points. See
+//! [`crate::statics`] for the mathematics.
 
-use faer::Mat;
-
-use super::assembly::{TetMaterials, assemble_stiffness, element_stresses_pa};
-use super::locate::{LocateError, PointLocation, TetLocator};
-use super::mesh::TetMesh;
-use crate::assembly::mul_stiffness;
-use crate::factor::{DofMap, FactorError, SparseCholesky};
-
-/// A constraint row whose Cholesky pivot in the Schur complement is at most this fraction of its
-/// diagonal depends on the rows before it.
-pub const DEPENDENT_PIVOT: f64 = 1e-10;
-
-/// A constraint row whose weights on free DOFs are at most this fraction of its weights (2-norm)
-/// involves no free DOF: its point lies on an entirely fixed face, edge or node (to the
-/// round-off of the barycentric weights).
-pub const FIXED_ROW_WEIGHT: f64 = 1e-10;
+use crate::dim::{ConditionLabel, Dim3};
+pub use crate::statics::{DEPENDENT_PIVOT, FIXED_ROW_WEIGHT, FRAME_COMPONENTS};
 
 /// Largest deviation $\max|F F^\top - I|$ accepted for a frame.
 pub const FRAME_TOL: f64 = 1e-9;
 
-/// Frame components, in the order of a frame's rows: along the needle, and two across it.
-pub const FRAME_COMPONENTS: [&str; 3] = ["t", "n", "b"];
-
-/// A condition on one node. Components set to `None` are free.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum TetNodeCondition {
-    /// All three components zero.
-    Fixed,
-    /// Prescribed world components $[u_x, u_y, u_z]$ in m.
-    World { u_m: [Option<f64>; 3] },
-    /// Prescribed components $[u_t, u_n, u_b]$ in m in the frame whose orthonormal rows are
-    /// $t, n, b$: $u_c = F_c \cdot u$.
-    Local { frame: [[f64; 3]; 3], u_m: [Option<f64>; 3] },
-}
-
-/// Conditions at a material point: the point at reference position `x_m`, displacement
-/// $u(x) = \sum_i N_i(x) u_i$; its frame components `u_m` ($[u_t, u_n, u_b]$, `None` = free) are
-/// prescribed, and the world force `force_n` is applied at it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointCondition {
-    pub x_m: [f64; 3],
-    pub frame: [[f64; 3]; 3],
-    pub u_m: [Option<f64>; 3],
-    pub force_n: [f64; 3],
-}
-
+/// A condition on one node: `Fixed`, `World { u_m: [ux, uy, uz] }` or `Local { frame, u_m: [ut, un, ub] }`.
+pub type TetNodeCondition = crate::statics::NodeCondition<Dim3>;
+/// Conditions at a material point (position, frame, prescribed frame components, force).
+pub type PointCondition = crate::statics::PointCondition<Dim3>;
 /// A static problem on a tetrahedral mesh.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct TetStaticProblem {
-    /// Conditions by node; a node takes one kind (world entries for one node merge).
-    pub conditions: Vec<(usize, TetNodeCondition)>,
-    /// Nodal forces `(node, [fx, fy, fz])` in N; repeated entries add.
-    pub loads_n: Vec<(usize, [f64; 3])>,
-    /// Material-point conditions.
-    pub points: Vec<PointCondition>,
-}
-
-/// Errors of a 3D static problem, each naming the offending node, point or condition.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum TetStaticError {
-    /// A condition or load names a node that does not exist.
-    #[error("{what} names node {node_idx}, but the mesh has only {n_nodes} nodes")]
-    UnknownNode { what: &'static str, node_idx: usize, n_nodes: usize },
-    /// A prescribed value, load, frame or position is NaN or infinite.
-    #[error("{what} is not finite")]
-    NonFinite { what: String },
-    /// A node has more than one kind of condition (fixed, world, local frame), or two local frames.
-    #[error("node {node_idx} has more than one kind of condition (fixed, prescribed, prescribed_local); a node takes at most one")]
-    Conflict { node_idx: usize },
-    /// A frame is not three orthonormal rows (within [`FRAME_TOL`]).
-    #[error("{what}: the frame must be three orthonormal rows [t, n, b] (max |F Fᵀ − I| = {deviation:e})")]
-    Frame { what: String, deviation: f64 },
-    /// A material point lies outside the mesh.
-    #[error("point {point_idx}: {source}")]
-    PointOutside { point_idx: usize, source: LocateError },
-    /// A constraint row is a combination of the rows before it (see the module docs).
-    #[error(
-        "the condition {what} depends on the conditions before it ({detail}): the constraints must be independent — no more than two points of one straight needle in one tetrahedron, and no point whose tetrahedron is entirely fixed"
-    )]
-    DependentConstraint { what: String, detail: String, points: Vec<usize> },
-    /// The factorisation failed (for example: rigid-body motion).
-    #[error(transparent)]
-    Factor(#[from] FactorError),
-}
-
+pub type TetStaticProblem = crate::statics::StaticProblem<Dim3>;
+/// Errors of a 3D static problem.
+pub type TetStaticError = crate::statics::StaticError<Dim3>;
 /// The result at one material point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointReaction {
-    /// The force the point's constraint exerts on the tissue, world components, N.
-    pub force_n: [f64; 3],
-    /// Its frame components $[r_t, r_n, r_b]$, `None` where free.
-    pub local_n: [Option<f64>; 3],
-    /// The displacement $u(x)$ at the point, m.
-    pub u_m: [f64; 3],
-    /// Where the point lies.
-    pub location: PointLocation,
-}
-
+pub type PointReaction = crate::statics::PointReaction<Dim3>;
 /// The solution of a 3D static problem.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TetStaticSolution {
-    /// World displacements `[ux0, uy0, uz0, …]` in m.
-    pub displacement_m: Vec<f64>,
-    /// For every node with a world-prescribed component: `(node, [rx, ry, rz])`, `None` where
-    /// free; for a local-frame node the world force of its constraint (all three given). Sorted by node.
-    pub reactions_n: Vec<(usize, [Option<f64>; 3])>,
-    /// For local-frame nodes, in the order given: `(node, [rt, rn, rb])`, `None` for a free component.
-    pub reactions_local_n: Vec<(usize, [Option<f64>; 3])>,
-    /// One per material point, in the order given.
-    pub point_reactions: Vec<PointReaction>,
-    /// $\tfrac12 u^\top K u$ in J.
-    pub strain_energy_j: f64,
-}
-
-/// Where a constraint row comes from.
-#[derive(Debug, Clone, Copy)]
-enum Owner {
-    Node(usize),
-    Point(usize),
-}
-
-/// One constraint row: $\sum$ coef·u[dof] = value.
-struct Row {
-    owner: Owner,
-    comp: usize,
-    entries: Vec<(usize, f64)>,
-    value: f64,
-}
+pub type TetStaticSolution = crate::statics::StaticSolution<Dim3>;
 
 /// Checks a frame's orthonormality and finiteness.
 pub fn check_frame(frame: &[[f64; 3]; 3], what: &str) -> Result<(), TetStaticError> {
@@ -177,305 +46,13 @@ pub fn check_frame(frame: &[[f64; 3]; 3], what: &str) -> Result<(), TetStaticErr
     Ok(())
 }
 
-fn check_finite(what: impl Fn() -> String, values: &[Option<f64>]) -> Result<(), TetStaticError> {
-    if values.iter().flatten().any(|v| !v.is_finite()) {
-        return Err(TetStaticError::NonFinite { what: what() });
-    }
-    Ok(())
-}
-
-impl TetStaticProblem {
-    /// Solves the problem with a fresh factorisation (see the module docs). Errors: unknown or
-    /// doubly conditioned nodes, non-finite values, frames that are not orthonormal, points
-    /// outside the mesh, dependent constraints, and a singular stiffness (rigid-body motion).
-    pub fn solve(&self, mesh: &TetMesh, materials: &TetMaterials) -> Result<TetStaticSolution, TetStaticError> {
-        let locator = TetLocator::new(mesh);
-        self.solve_with_locator(mesh, materials, &locator)
-    }
-
-    /// As [`TetStaticProblem::solve`], with a prebuilt point locator of `mesh`.
-    pub fn solve_with_locator(
-        &self,
-        mesh: &TetMesh,
-        materials: &TetMaterials,
-        locator: &TetLocator,
-    ) -> Result<TetStaticSolution, TetStaticError> {
-        let n_nodes = mesh.n_nodes();
-        let n_dofs = 3 * n_nodes;
-        let check_node = |what, node_idx| {
-            if node_idx >= n_nodes { Err(TetStaticError::UnknownNode { what, node_idx, n_nodes }) } else { Ok(()) }
-        };
-        // Kinds: 1 fixed, 2 world, 4 local.
-        let mut kind = vec![0u8; n_nodes];
-        let mut constrained = vec![false; n_dofs];
-        let mut value = vec![0.0; n_dofs];
-        let mut rows: Vec<Row> = Vec::new();
-        let mut local_nodes: Vec<(usize, [[f64; 3]; 3], [bool; 3])> = Vec::new();
-        for &(node, c) in &self.conditions {
-            check_node("a condition", node)?;
-            let bit = match c {
-                TetNodeCondition::Fixed => 1,
-                TetNodeCondition::World { .. } => 2,
-                TetNodeCondition::Local { .. } => 4,
-            };
-            if kind[node] & !bit != 0 || (bit == 4 && kind[node] != 0) {
-                return Err(TetStaticError::Conflict { node_idx: node });
-            }
-            kind[node] |= bit;
-            match c {
-                TetNodeCondition::Fixed => {
-                    for a in 0..3 {
-                        constrained[3 * node + a] = true;
-                        value[3 * node + a] = 0.0;
-                    }
-                }
-                TetNodeCondition::World { u_m } => {
-                    check_finite(|| format!("a prescribed displacement of node {node}"), &u_m)?;
-                    for a in 0..3 {
-                        if let Some(v) = u_m[a] {
-                            constrained[3 * node + a] = true;
-                            value[3 * node + a] = v;
-                        }
-                    }
-                }
-                TetNodeCondition::Local { frame, u_m } => {
-                    check_frame(&frame, &format!("prescribed_local node {node}"))?;
-                    check_finite(|| format!("a prescribed_local displacement of node {node}"), &u_m)?;
-                    for comp in 0..3 {
-                        if let Some(v) = u_m[comp] {
-                            let entries = (0..3).map(|a| (3 * node + a, frame[comp][a])).collect();
-                            rows.push(Row { owner: Owner::Node(node), comp, entries, value: v });
-                        }
-                    }
-                    local_nodes.push((node, frame, u_m.map(|v| v.is_some())));
-                }
-            }
-        }
-        let mut f = vec![0.0; n_dofs];
-        for &(node, force) in &self.loads_n {
-            check_node("a load", node)?;
-            check_finite(|| format!("a load on node {node}"), &force.map(Some))?;
-            for a in 0..3 {
-                f[3 * node + a] += force[a];
-            }
-        }
-        let mut locations = Vec::with_capacity(self.points.len());
-        for (i, p) in self.points.iter().enumerate() {
-            check_frame(&p.frame, &format!("point {i}"))?;
-            check_finite(|| format!("a prescribed displacement of point {i}"), &p.u_m)?;
-            check_finite(|| format!("the force of point {i}"), &p.force_n.map(Some))?;
-            let loc = locator.locate(mesh, p.x_m).map_err(|source| TetStaticError::PointOutside { point_idx: i, source })?;
-            for (k, &node) in loc.nodes.iter().enumerate() {
-                for a in 0..3 {
-                    f[3 * node + a] += loc.weights[k] * p.force_n[a];
-                }
-            }
-            for comp in 0..3 {
-                if let Some(v) = p.u_m[comp] {
-                    let mut entries = Vec::with_capacity(12);
-                    for (k, &node) in loc.nodes.iter().enumerate() {
-                        for a in 0..3 {
-                            entries.push((3 * node + a, loc.weights[k] * p.frame[comp][a]));
-                        }
-                    }
-                    rows.push(Row { owner: Owner::Point(i), comp, entries, value: v });
-                }
-            }
-            locations.push(loc);
-        }
-
-        let k = assemble_stiffness(mesh, materials);
-        // u holds u_D at the prescribed DOFs and zero elsewhere; rhs = f_I - K_ID u_D.
-        let mut u: Vec<f64> = (0..n_dofs).map(|d| if constrained[d] { value[d] } else { 0.0 }).collect();
-        let mut ku = vec![0.0; n_dofs];
-        mul_stiffness(&k, &u, &mut ku);
-        let dofs = DofMap::with_dofs_per_node(&constrained, 3);
-        let q = rows.len();
-        let mut lambda = vec![0.0; q];
-        if dofs.n_free() > 0 {
-            let chol = SparseCholesky::new(&k, dofs)?;
-            let dofs = chol.dofs();
-            let n_free = dofs.n_free();
-            // Column 0: u0; columns 1..=q: Y = K_II^-1 G_I^T.
-            let mut x = Mat::<f64>::zeros(n_free, q + 1);
-            for (i, &d) in dofs.free_dofs().iter().enumerate() {
-                x[(i, 0)] = f[d] - ku[d];
-            }
-            for (r, row) in rows.iter().enumerate() {
-                for &(d, c) in &row.entries {
-                    if let Some(i) = dofs.free_index(d) {
-                        x[(i, r + 1)] += c;
-                    }
-                }
-            }
-            let mut scratch = chol.scratch(q + 1);
-            chol.solve_in_place(x.as_mut(), &mut scratch);
-            if q > 0 {
-                // S = G_I Y, h = G_I u0 + G_D u_D - g.
-                let mut s = vec![0.0; q * q];
-                let mut h = vec![0.0; q];
-                for (r, row) in rows.iter().enumerate() {
-                    h[r] = -row.value;
-                    for &(d, c) in &row.entries {
-                        match dofs.free_index(d) {
-                            Some(i) => {
-                                h[r] += c * x[(i, 0)];
-                                for l in 0..q {
-                                    s[r * q + l] += c * x[(i, l + 1)];
-                                }
-                            }
-                            None => h[r] += c * u[d],
-                        }
-                    }
-                }
-                for r in 0..q {
-                    for l in 0..r {
-                        let m = 0.5 * (s[r * q + l] + s[l * q + r]);
-                        s[r * q + l] = m;
-                        s[l * q + r] = m;
-                    }
-                }
-                // A row with (relatively) no weight on free DOFs cannot be satisfied by moving them.
-                for (r, row) in rows.iter().enumerate() {
-                    let total: f64 = row.entries.iter().map(|e| e.1 * e.1).sum();
-                    let free: f64 = row.entries.iter().filter(|e| dofs.free_index(e.0).is_some()).map(|e| e.1 * e.1).sum();
-                    if !(free > FIXED_ROW_WEIGHT * FIXED_ROW_WEIGHT * total) {
-                        return Err(dependent(&rows, r, &locations, true));
-                    }
-                }
-                lambda = solve_schur(&mut s, h, q).map_err(|r| dependent(&rows, r, &locations, false))?;
-            }
-            for (i, &d) in dofs.free_dofs().iter().enumerate() {
-                u[d] = x[(i, 0)] - (0..q).map(|l| x[(i, l + 1)] * lambda[l]).sum::<f64>();
-            }
-        } else if q > 0 {
-            return Err(dependent(&rows, 0, &locations, true));
-        }
-        let mu: Vec<f64> = lambda.iter().map(|l| -l).collect();
-
-        // r = K u - f - G^T mu.
-        mul_stiffness(&k, &u, &mut ku);
-        let strain_energy_j = 0.5 * u.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
-        let mut r: Vec<f64> = ku.iter().zip(&f).map(|(a, b)| a - b).collect();
-        for (row, m) in rows.iter().zip(&mu) {
-            for &(d, c) in &row.entries {
-                r[d] -= c * m;
-            }
-        }
-        // Frame components of the constraint forces, per owner.
-        let mut node_mu: Vec<(usize, [Option<f64>; 3])> = Vec::new();
-        let mut point_mu: Vec<[Option<f64>; 3]> = vec![[None; 3]; self.points.len()];
-        for (row, &m) in rows.iter().zip(&mu) {
-            match row.owner {
-                Owner::Node(n) => match node_mu.last_mut() {
-                    Some((last, comps)) if *last == n => comps[row.comp] = Some(m),
-                    _ => {
-                        let mut comps = [None; 3];
-                        comps[row.comp] = Some(m);
-                        node_mu.push((n, comps));
-                    }
-                },
-                Owner::Point(i) => point_mu[i][row.comp] = Some(m),
-            }
-        }
-        let world_of = |frame: &[[f64; 3]; 3], comps: &[Option<f64>; 3]| -> [f64; 3] {
-            std::array::from_fn(|a| (0..3).map(|c| comps[c].unwrap_or(0.0) * frame[c][a]).sum())
-        };
-        let mut reactions_n = Vec::new();
-        let mut reactions_local_n = Vec::new();
-        let mut local_of_node = std::collections::BTreeMap::new();
-        for &(node, frame, given) in &local_nodes {
-            let comps = node_mu.iter().find(|e| e.0 == node).map_or([None; 3], |e| e.1);
-            let comps: [Option<f64>; 3] = std::array::from_fn(|c| if given[c] { comps[c] } else { None });
-            reactions_local_n.push((node, comps));
-            local_of_node.insert(node, world_of(&frame, &comps).map(Some));
-        }
-        for node in 0..n_nodes {
-            if let Some(w) = local_of_node.get(&node) {
-                reactions_n.push((node, *w));
-            } else if (0..3).any(|a| constrained[3 * node + a]) {
-                reactions_n.push((node, std::array::from_fn(|a| constrained[3 * node + a].then_some(r[3 * node + a]))));
-            }
-        }
-        let point_reactions = self
-            .points
-            .iter()
-            .zip(&locations)
-            .zip(&point_mu)
-            .map(|((p, loc), comps)| {
-                let u_m = std::array::from_fn(|a| (0..4).map(|k| loc.weights[k] * u[3 * loc.nodes[k] + a]).sum());
-                PointReaction { force_n: world_of(&p.frame, comps), local_n: *comps, u_m, location: *loc }
-            })
-            .collect();
-        Ok(TetStaticSolution { displacement_m: u, reactions_n, reactions_local_n, point_reactions, strain_energy_j })
-    }
-}
-
-/// Solves $S\lambda = h$ by Cholesky in row order; `Err(r)` names the first row whose pivot is
-/// at most [`DEPENDENT_PIVOT`] of its diagonal. `s` is overwritten by the factor.
-fn solve_schur(s: &mut [f64], mut h: Vec<f64>, q: usize) -> Result<Vec<f64>, usize> {
-    for j in 0..q {
-        let diag = s[j * q + j];
-        let mut pivot = diag;
-        for k in 0..j {
-            pivot -= s[j * q + k] * s[j * q + k];
-        }
-        if !(pivot > DEPENDENT_PIVOT * diag) || !(diag > 0.0) {
-            return Err(j);
-        }
-        let l = pivot.sqrt();
-        s[j * q + j] = l;
-        for i in j + 1..q {
-            let mut v = s[i * q + j];
-            for k in 0..j {
-                v -= s[i * q + k] * s[j * q + k];
-            }
-            s[i * q + j] = v / l;
-        }
-    }
-    // L y = h, then L^T x = y.
-    for i in 0..q {
-        for k in 0..i {
-            h[i] -= s[i * q + k] * h[k];
-        }
-        h[i] /= s[i * q + i];
-    }
-    for i in (0..q).rev() {
-        for k in i + 1..q {
-            h[i] -= s[k * q + i] * h[k];
-        }
-        h[i] /= s[i * q + i];
-    }
-    Ok(h)
-}
-
-fn dependent(rows: &[Row], r: usize, locations: &[PointLocation], no_free_dof: bool) -> TetStaticError {
-    let row = &rows[r];
-    let comp = FRAME_COMPONENTS[row.comp];
-    let fixed = "every DOF it involves is prescribed";
-    match row.owner {
-        Owner::Node(n) => TetStaticError::DependentConstraint {
-            what: format!("u{comp} of prescribed_local node {n}"),
-            detail: fixed.to_owned(),
-            points: Vec::new(),
-        },
-        Owner::Point(i) => {
-            let tet = locations[i].tet_idx;
-            let points: Vec<usize> = (0..locations.len()).filter(|&p| locations[p].tet_idx == tet).collect();
-            let detail = if no_free_dof {
-                format!("{fixed}: the nodes {:?} of its tetrahedron {tet} that carry it are all fixed", locations[i].nodes)
-            } else {
-                format!("points {points:?} lie in tetrahedron {tet}")
-            };
-            TetStaticError::DependentConstraint { what: format!("u{comp} of point {i}"), detail, points }
-        }
-    }
-}
-
-impl TetStaticSolution {
-    /// Element stresses for this solution, Voigt order, Pa.
-    pub fn element_stresses_pa(&self, mesh: &TetMesh, materials: &TetMaterials) -> Vec<[f64; 6]> {
-        element_stresses_pa(mesh, materials, &self.displacement_m)
+/// The 3D wording: "a prescribed displacement of node 3", "prescribed_local node 3" (its frame),
+/// "a prescribed_local displacement of node 3".
+pub fn condition_label(label: ConditionLabel, node: usize) -> String {
+    match label {
+        ConditionLabel::World => format!("a prescribed displacement of node {node}"),
+        ConditionLabel::LocalFrame => format!("prescribed_local node {node}"),
+        ConditionLabel::LocalValue => format!("a prescribed_local displacement of node {node}"),
     }
 }
 
@@ -483,6 +60,9 @@ impl TetStaticSolution {
 mod tests {
     use super::*;
     use crate::Material;
+    use crate::d3::assembly::TetMaterials;
+    use crate::d3::locate::TetLocator;
+    use crate::d3::mesh::TetMesh;
     use crate::d3::mesh::{BoxGridParams, TetMeshLimits};
 
     fn setup(n: usize) -> (TetMesh, TetMaterials) {

@@ -136,6 +136,7 @@ fn condensed_solve_equals_full_static_solve() {
     let mut problem = StaticProblem {
         conditions: m.mesh().boundary_set("bottom").unwrap().iter().map(|&n| (n, NodeCondition::Fixed)).collect(),
         loads_n: vec![],
+        points: vec![],
     };
     for (i, &n) in nodes.iter().enumerate() {
         cache.ensure(&m, n, &mut scratch).unwrap();
@@ -146,11 +147,11 @@ fn condensed_solve_equals_full_static_solve() {
         if i % 2 == 0 {
             let ut = -2e-4 * (i + 1) as f64;
             s.set_condition(slot, Axis::Axial, Condition::Displacement, ut).unwrap();
-            problem.conditions.push((n, NodeCondition::Local { angle_rad: angle, ut_m: Some(ut), un_m: Some(un) }));
+            problem.conditions.push((n, NodeCondition::Local { frame: angle, u_m: [Some(ut), Some(un)] }));
         } else {
             let ft = -3e-3;
             s.set_condition(slot, Axis::Axial, Condition::Force, ft).unwrap();
-            problem.conditions.push((n, NodeCondition::Local { angle_rad: angle, ut_m: None, un_m: Some(un) }));
+            problem.conditions.push((n, NodeCondition::Local { frame: angle, u_m: [None, Some(un)] }));
             problem.loads_n.push((n, local_to_world([ft, 0.0], angle)));
         }
     }
