@@ -105,10 +105,8 @@ fn issue_33_every_relative_link_in_the_documents_resolves() {
                 let shown = format!("{}:{line_no}: ({target})", doc.strip_prefix(repo_root()).unwrap().display());
                 if !path.exists() {
                     broken.push(format!("{shown}: no file {}", path.display()));
-                } else if !fragment.is_empty() {
-                    if path.extension().is_some_and(|e| e == "md") && !anchors(&path).contains(fragment) {
-                        broken.push(format!("{shown}: no heading #{fragment} in {}", path.display()));
-                    }
+                } else if !fragment.is_empty() && path.extension().is_some_and(|e| e == "md") && !anchors(&path).contains(fragment) {
+                    broken.push(format!("{shown}: no heading #{fragment} in {}", path.display()));
                 }
             }
         }

@@ -362,7 +362,7 @@ async fn issue_35_decoded_size_is_bounded_before_decoding() {
         trajectory: vec![pb::TrajectorySample::default(); 1000],
         ..Default::default()
     };
-    let e = sim.simulate(req).await.err().expect("an unknown scene");
+    let e = sim.simulate(req).await.expect_err("an unknown scene");
     assert_ne!(e.code(), Code::ResourceExhausted, "{e:?}");
     assert!(!server.stderr.lock().unwrap().contains("panicked"));
 }
