@@ -38,6 +38,7 @@ mod sim3;
 mod simulate;
 mod simulate3;
 mod stream_limits;
+mod tour;
 mod training;
 mod training_device;
 mod training_live;
