@@ -2,7 +2,7 @@
 // ratio from a probing experiment, and the needle force distribution (friction per length, tip
 // peak) from an insertion experiment — the same pipeline as `needlesim-server identify …`.
 //
-// Inputs are file contents (PNG bytes with their times, CSV text in the formats of the README,
+// Inputs are file contents (PNG bytes with their times, CSV text in the formats of docs/guide/identification.md,
 // scene TOML text or a shipped example's name). Every call streams IdentifyProgress messages
 // and ends with one carrying `result`. Like Simulate, these calls need no token (they touch no
 // session). Errors: INVALID_ARGUMENT naming the field (a CSV that does not parse, marker counts

@@ -172,7 +172,7 @@ export const Pose3Schema: GenMessage<Pose3> = /*@__PURE__*/
   messageDesc(file_needlesim_v1_needlesim, 4);
 
 /**
- * A 3D scene whose Gmsh tetrahedral mesh is uploaded with it: the scene TOML of the README's 3D
+ * A 3D scene whose Gmsh tetrahedral mesh is uploaded with it: the scene TOML of docs/guide/scenes.md's 3D
  * format (`dim = 3`) whose `[mesh]` names the file `mesh_file_name` (type = "msh"), and that
  * file's text (MSH 2.2 or 4.1 ASCII, tetrahedra, physical groups for regions and fixed sets).
  * The TOML names no other file (no `trajectory` file: INVALID_ARGUMENT); the server opens none.
@@ -455,7 +455,7 @@ export type SceneSource = Message<"needlesim.v1.SceneSource"> & {
     case: "example";
   } | {
     /**
-     * A scene in the TOML format of the README (mesh and trajectory files cannot be referenced:
+     * A scene in the TOML format of docs/guide/scenes.md (mesh and trajectory files cannot be referenced:
      * INVALID_ARGUMENT naming the key; the server opens no file a client names); a 3D scene
      * (`dim = 3`, box meshes) makes a 3D session.
      *

@@ -11,7 +11,7 @@
 // trainee's poses (SetPose, SetPose3, a new Control stream, FlipBevel) are refused with
 // FAILED_PRECONDITION naming who holds control, and a Control stream the trainee had open ends
 // with ABORTED (taken over). A device bridge on the session's shared-memory channel is not
-// stopped by TakeControl (device poses win over gRPC poses in the session; see the README).
+// stopped by TakeControl (device poses win over gRPC poses in the session; see docs/guide/training.md).
 //
 // Time. The exercise clock is the session's tick clock minus the time spent paused: metrics,
 // placements and markers are stamped with it (ExerciseStatus.time_s).
