@@ -48,6 +48,20 @@ pub fn barycentric(p: [[f64; 3]; 4], x_m: [f64; 3]) -> [f64; 4] {
     ]
 }
 
+/// The bounding box of tetrahedron `t`.
+fn tet_box(mesh: &TetMesh, t: usize) -> ([f64; 3], [f64; 3]) {
+    let p = mesh.tet_points_m(t);
+    let mut l = p[0];
+    let mut h = p[0];
+    for q in &p[1..] {
+        for k in 0..3 {
+            l[k] = l[k].min(q[k]);
+            h[k] = h[k].max(q[k]);
+        }
+    }
+    (l, h)
+}
+
 /// A uniform grid of buckets over the tetrahedra's bounding boxes, for [`TetLocator::locate`].
 #[derive(Debug, Clone)]
 pub struct TetLocator {
@@ -64,33 +78,13 @@ impl TetLocator {
     pub fn new(mesh: &TetMesh) -> Self {
         let (lo, hi) = mesh.bounding_box_m();
         let n_tets = mesh.n_tets();
-        let boxes: Vec<([f64; 3], [f64; 3])> = (0..n_tets)
-            .map(|t| {
-                let p = mesh.tet_points_m(t);
-                let mut l = p[0];
-                let mut h = p[0];
-                for q in &p[1..] {
-                    for k in 0..3 {
-                        l[k] = l[k].min(q[k]);
-                        h[k] = h[k].max(q[k]);
-                    }
-                }
-                (l, h)
-            })
-            .collect();
+        let boxes: Vec<([f64; 3], [f64; 3])> = (0..n_tets).map(|t| tet_box(mesh, t)).collect();
         let mean_extent = boxes.iter().map(|(l, h)| (0..3).map(|k| h[k] - l[k]).fold(0.0, f64::max)).sum::<f64>() / n_tets as f64;
         let volume = (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
         let cell_m = mean_extent.max((volume / (2.0 * n_tets as f64)).cbrt()).max(f64::MIN_POSITIVE);
         let n_cells = [0, 1, 2].map(|k| (((hi[k] - lo[k]) / cell_m).floor() as usize).saturating_add(1).min(1 << 12));
         let mut this = Self { origin_m: lo, cell_m, n_cells, cell_start: Vec::new(), tets: Vec::new() };
-        // Each box is widened by the location tolerance's worth of its extent, so that a point on
-        // a cell border finds every tetrahedron that may hold it.
-        let range = |this: &Self, b: &([f64; 3], [f64; 3])| {
-            let pad = 1e-9 * (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max);
-            let l = this.cell_of(b.0.map(|v| v - pad));
-            let h = this.cell_of(b.1.map(|v| v + pad));
-            (l, h)
-        };
+        let range = |this: &Self, b: &([f64; 3], [f64; 3])| this.cells_of_box(b);
         let total = n_cells[0] * n_cells[1] * n_cells[2];
         let mut start = vec![0usize; total + 1];
         let index = |c: [usize; 3]| c[0] + n_cells[0] * (c[1] + n_cells[1] * c[2]);
@@ -128,6 +122,36 @@ impl TetLocator {
 
     fn cell_of(&self, x_m: [f64; 3]) -> [usize; 3] {
         [0, 1, 2].map(|k| (((x_m[k] - self.origin_m[k]) / self.cell_m).floor().max(0.0) as usize).min(self.n_cells[k] - 1))
+    }
+
+    /// Calls `visit` once for every tetrahedron whose bucket cells meet the cells of the box
+    /// `[lo_m, hi_m]`: every tetrahedron that meets the box, and some near it. A tetrahedron in
+    /// several cells is visited from the first of its cells inside the box only, so nothing is
+    /// visited twice and nothing is allocated.
+    pub fn for_each_tet_near_box(&self, mesh: &TetMesh, lo_m: [f64; 3], hi_m: [f64; 3], mut visit: impl FnMut(usize)) {
+        let l = self.cell_of(lo_m);
+        let h = self.cell_of(hi_m);
+        for k in l[2]..=h[2] {
+            for j in l[1]..=h[1] {
+                for i in l[0]..=h[0] {
+                    let cell = i + self.n_cells[0] * (j + self.n_cells[1] * k);
+                    for &t in &self.tets[self.cell_start[cell]..self.cell_start[cell + 1]] {
+                        let (tl, _) = self.cells_of_box(&tet_box(mesh, t as usize));
+                        if [tl[0].max(l[0]), tl[1].max(l[1]), tl[2].max(l[2])] == [i, j, k] {
+                            visit(t as usize);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The first and last cells of a tetrahedron's bounding box, widened by the location
+    /// tolerance's worth of its extent (so a point on a cell border finds every tetrahedron that
+    /// may hold it).
+    fn cells_of_box(&self, b: &([f64; 3], [f64; 3])) -> ([usize; 3], [usize; 3]) {
+        let pad = 1e-9 * (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max);
+        (self.cell_of(b.0.map(|v| v - pad)), self.cell_of(b.1.map(|v| v + pad)))
     }
 
     /// The tetrahedron holding `x_m` and the barycentric weights of its nodes. Errors when the

@@ -14,6 +14,7 @@
 
 pub mod assembly;
 pub mod conform;
+pub mod disc;
 pub mod locate;
 pub mod mesh;
 pub mod sparse_compliance;
