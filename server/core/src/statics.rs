@@ -28,6 +28,12 @@
 //! all fixed — and the solve stops with [`StaticError::DependentConstraint`] naming it and the
 //! points sharing its element, instead of returning a meaningless answer.
 //!
+//! **Patches are constraint rows too.** A contact spread over the tissue (the needle's
+//! cross-section: [`crate::d3::disc`]) conditions a weighted node sum $u_p = \sum_k w_k u_k$
+//! instead of one element's interpolation: its rows are $F_c \cdot \sum_k w_k u_k = g$ and its
+//! force $f_p$ adds $w_k f_p$ to node $k$. Points come first, then patches, in every ordering
+//! (rows, pivots, reactions), as in the reference (../shared/validation, `patches`).
+//!
 //! **Outputs.** The residual $r = K u - f - G^\top\mu$ (in the node frames) gives the reactions at
 //! the prescribed DOFs: in world components ($F^\top r_{loc}$, every component, at a frame node)
 //! and, at frame nodes, in the frame. A point's reaction is the world force $\sum_c \mu_c F_c$ of
@@ -83,6 +89,19 @@ pub struct PointCondition<D: Dim = Dim2> {
     pub force_n: D::Point,
 }
 
+/// Conditions on a patch: the weighted node sum $u_p = \sum_k w_k u_k$ (`nodes` and `weights`
+/// of one length, e.g. the shape functions averaged over the needle's cross-section); its frame
+/// components `u_m` (`None` = free) are prescribed and the world force `force_n` acts as the
+/// nodal loads $w_k f$.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchCondition<D: Dim = Dim2> {
+    pub nodes: Vec<usize>,
+    pub weights: Vec<f64>,
+    pub frame: D::Frame,
+    pub u_m: D::Components,
+    pub force_n: D::Point,
+}
+
 /// A static problem on a mesh.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct StaticProblem<D: Dim = Dim2> {
@@ -92,6 +111,8 @@ pub struct StaticProblem<D: Dim = Dim2> {
     pub loads_n: Vec<(usize, D::Point)>,
     /// Material-point conditions (3D; a 2D problem takes none, see [`tri`]).
     pub points: Vec<PointCondition<D>>,
+    /// Patch conditions (both dimensions), after the points.
+    pub patches: Vec<PatchCondition<D>>,
 }
 
 /// Errors of a static problem, each naming the offending node, point or condition.
@@ -109,6 +130,10 @@ pub enum StaticError<D: Dim = Dim2> {
     /// A 3D frame is not three orthonormal rows (within [`crate::d3::statics::FRAME_TOL`]).
     #[error("{what}: the frame must be three orthonormal rows [t, n, b] (max |F Fᵀ − I| = {deviation:e})")]
     Frame { what: String, deviation: f64 },
+    /// A patch's nodes and weights do not make a weighted sum (empty, of two lengths, a node
+    /// twice, a weight not finite, or weights summing to zero).
+    #[error("patch {patch_idx}: {reason}")]
+    Patch { patch_idx: usize, reason: String },
     /// A material point was not located (outside the mesh; in 2D, any point).
     #[error("point {point_idx}: {source}")]
     PointOutside { point_idx: usize, source: D::LocateError },
@@ -136,6 +161,17 @@ pub struct PointReaction<D: Dim = Dim2> {
     pub location: D::PointLocation,
 }
 
+/// The result at one patch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchReaction<D: Dim = Dim2> {
+    /// The force the patch's constraint exerts on the tissue, world components, N.
+    pub force_n: D::Point,
+    /// Its frame components, `None` where free.
+    pub local_n: D::Components,
+    /// The weighted node sum $\sum_k w_k u_k$, m.
+    pub u_m: D::Point,
+}
+
 /// The solution of a static problem.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StaticSolution<D: Dim = Dim2> {
@@ -150,12 +186,15 @@ pub struct StaticSolution<D: Dim = Dim2> {
     pub reactions_local_n: Vec<(usize, D::Frame, D::Components)>,
     /// One per material point, in the order given.
     pub point_reactions: Vec<PointReaction<D>>,
+    /// One per patch, in the order given.
+    pub patch_reactions: Vec<PatchReaction<D>>,
     /// $\tfrac12 u^\top K u$ in J.
     pub strain_energy_j: f64,
 }
 
 /// One constraint row of point `point`: $\sum$ coef·u[dof] = value.
 struct Row {
+    /// The point's index, or the number of points plus the patch's.
     point: usize,
     comp: usize,
     entries: Vec<(usize, f64)>,
@@ -275,24 +314,40 @@ impl<D: Dim> StaticProblem<D> {
             }
             let loc = D::locate(locator, mesh, p.x_m).map_err(|source| StaticError::PointOutside { point_idx: i, source })?;
             let (_, nodes, weights) = D::location_terms(&loc);
-            for (k, &node) in nodes.iter().enumerate() {
-                for a in 0..n {
-                    f[n * node + a] += weights[k] * p.force_n[a];
-                }
-            }
-            let frame = D::frame_rows(&p.frame);
-            for comp in 0..n {
-                if let Some(v) = p.u_m[comp] {
-                    let mut entries = Vec::with_capacity(n * nodes.len());
-                    for (k, &node) in nodes.iter().enumerate() {
-                        for a in 0..n {
-                            entries.push((n * node + a, weights[k] * frame[comp][a]));
-                        }
-                    }
-                    rows.push(Row { point: i, comp, entries, value: v });
-                }
-            }
+            add_support_rows::<D>(&mut rows, &mut f, i, nodes, weights, &p.frame, &p.u_m, &p.force_n);
             locations.push(loc);
+        }
+        for (j, p) in self.patches.iter().enumerate() {
+            let bad = |reason: String| StaticError::Patch { patch_idx: j, reason };
+            if p.nodes.is_empty() || p.nodes.len() != p.weights.len() {
+                return Err(bad(format!(
+                    "needs nodes and weights of one length, not empty (got {} and {})",
+                    p.nodes.len(),
+                    p.weights.len()
+                )));
+            }
+            for (k, &node) in p.nodes.iter().enumerate() {
+                if node >= n_nodes {
+                    return Err(bad(format!("names node {node}, but the mesh has only {n_nodes} nodes")));
+                }
+                if p.nodes[..k].contains(&node) {
+                    return Err(bad(format!("names node {node} twice")));
+                }
+            }
+            if let Some(w) = p.weights.iter().find(|w| !w.is_finite()) {
+                return Err(bad(format!("a weight is not finite ({w})")));
+            }
+            let total: f64 = p.weights.iter().sum();
+            let scale: f64 = p.weights.iter().map(|w| w.abs()).sum();
+            if !(total.abs() > 1e-12 * scale) {
+                return Err(bad(format!("its weights sum to {total:e}, not a weighted mean")));
+            }
+            D::check_frame(&p.frame, &format!("patch {j}"))?;
+            check_finite(|| format!("a prescribed displacement of patch {j}"), p.u_m.as_ref())?;
+            if p.force_n.as_ref().iter().any(|v| !v.is_finite()) {
+                return Err(StaticError::NonFinite { what: format!("the force of patch {j}") });
+            }
+            add_support_rows::<D>(&mut rows, &mut f, self.points.len() + j, &p.nodes, &p.weights, &p.frame, &p.u_m, &p.force_n);
         }
 
         // Frame nodes: K and f in their frames, and the points' rows on their DOFs.
@@ -384,16 +439,16 @@ impl<D: Dim> StaticProblem<D> {
                     let total: f64 = row.entries.iter().map(|e| e.1 * e.1).sum();
                     let free: f64 = row.entries.iter().filter(|e| dofs.free_index(e.0).is_some()).map(|e| e.1 * e.1).sum();
                     if !(free > FIXED_ROW_WEIGHT * FIXED_ROW_WEIGHT * total) {
-                        return Err(dependent(&rows, r, &locations, true));
+                        return Err(dependent(&rows, r, &locations, &self.patches, true));
                     }
                 }
-                lambda = solve_schur(&mut s, h, q).map_err(|r| dependent(&rows, r, &locations, false))?;
+                lambda = solve_schur(&mut s, h, q).map_err(|r| dependent(&rows, r, &locations, &self.patches, false))?;
             }
             for (i, &d) in dofs.free_dofs().iter().enumerate() {
                 u[d] = if q == 0 { x[(i, 0)] } else { x[(i, 0)] - (0..q).map(|l| x[(i, l + 1)] * lambda[l]).sum::<f64>() };
             }
         } else if q > 0 {
-            return Err(dependent(&rows, 0, &locations, true));
+            return Err(dependent(&rows, 0, &locations, &self.patches, true));
         }
         let mu: Vec<f64> = lambda.iter().map(|l| -l).collect();
 
@@ -431,24 +486,37 @@ impl<D: Dim> StaticProblem<D> {
             }
         }
         // Frame components of the points' constraint forces.
-        let mut point_mu: Vec<D::Components> = vec![D::Components::default(); self.points.len()];
+        let mut point_mu: Vec<D::Components> = vec![D::Components::default(); self.points.len() + self.patches.len()];
         for (row, &m) in rows.iter().zip(&mu) {
             point_mu[row.point][row.comp] = Some(m);
         }
+        let world_force = |frame: &D::Frame, comps: &D::Components| {
+            let frame = D::frame_rows(frame);
+            D::point_from_fn(|a| (0..n).map(|c| comps[c].unwrap_or(0.0) * frame[c][a]).sum())
+        };
+        let weighted_u =
+            |nodes: &[usize], weights: &[f64]| D::point_from_fn(|a| (0..nodes.len()).map(|k| weights[k] * u_world[n * nodes[k] + a]).sum());
+        let patch_reactions = self
+            .patches
+            .iter()
+            .zip(&point_mu[self.points.len()..])
+            .map(|(p, comps)| PatchReaction {
+                force_n: world_force(&p.frame, comps),
+                local_n: *comps,
+                u_m: weighted_u(&p.nodes, &p.weights),
+            })
+            .collect();
         let point_reactions = self
             .points
             .iter()
             .zip(&locations)
             .zip(&point_mu)
             .map(|((p, loc), comps)| {
-                let frame = D::frame_rows(&p.frame);
-                let force_n = D::point_from_fn(|a| (0..n).map(|c| comps[c].unwrap_or(0.0) * frame[c][a]).sum());
                 let (_, nodes, weights) = D::location_terms(loc);
-                let u_m = D::point_from_fn(|a| (0..nodes.len()).map(|k| weights[k] * u_world[n * nodes[k] + a]).sum());
-                PointReaction { force_n, local_n: *comps, u_m, location: *loc }
+                PointReaction { force_n: world_force(&p.frame, comps), local_n: *comps, u_m: weighted_u(nodes, weights), location: *loc }
             })
             .collect();
-        Ok(StaticSolution { displacement_m: u_world, reactions_n, reactions_local_n, point_reactions, strain_energy_j })
+        Ok(StaticSolution { displacement_m: u_world, reactions_n, reactions_local_n, point_reactions, patch_reactions, strain_energy_j })
     }
 }
 
@@ -490,11 +558,61 @@ fn solve_schur(s: &mut [f64], mut h: Vec<f64>, q: usize) -> Result<Vec<f64>, usi
     Ok(h)
 }
 
-/// The error for constraint row `r`, naming its point and the points sharing its element.
-fn dependent<D: Dim>(rows: &[Row], r: usize, locations: &[D::PointLocation], no_free_dof: bool) -> StaticError<D> {
+/// The rows of one point or patch (`support`: its index among points then patches) with nodes
+/// and weights: one per prescribed frame component; its force shared among the nodes.
+#[allow(clippy::too_many_arguments)]
+fn add_support_rows<D: Dim>(
+    rows: &mut Vec<Row>,
+    f: &mut [f64],
+    support: usize,
+    nodes: &[usize],
+    weights: &[f64],
+    frame: &D::Frame,
+    u_m: &D::Components,
+    force_n: &D::Point,
+) {
+    let n = D::N;
+    for (k, &node) in nodes.iter().enumerate() {
+        for a in 0..n {
+            f[n * node + a] += weights[k] * force_n[a];
+        }
+    }
+    let frame = D::frame_rows(frame);
+    for comp in 0..n {
+        if let Some(v) = u_m[comp] {
+            let mut entries = Vec::with_capacity(n * nodes.len());
+            for (k, &node) in nodes.iter().enumerate() {
+                for a in 0..n {
+                    entries.push((n * node + a, weights[k] * frame[comp][a]));
+                }
+            }
+            rows.push(Row { point: support, comp, entries, value: v });
+        }
+    }
+}
+
+/// The error for constraint row `r`, naming its point and the points sharing its element (or its
+/// patch and the patches sharing a node with it).
+fn dependent<D: Dim>(
+    rows: &[Row],
+    r: usize,
+    locations: &[D::PointLocation],
+    patches: &[PatchCondition<D>],
+    no_free_dof: bool,
+) -> StaticError<D> {
     let row = &rows[r];
     let comp = FRAME_COMPONENTS[row.comp];
     let i = row.point;
+    if let Some(j) = i.checked_sub(locations.len()) {
+        let nodes = &patches[j].nodes;
+        let sharing: Vec<usize> = (0..patches.len()).filter(|&o| patches[o].nodes.iter().any(|v| nodes.contains(v))).collect();
+        let detail = if no_free_dof {
+            format!("every DOF of its nodes {nodes:?} is prescribed")
+        } else {
+            format!("patches {sharing:?} share its nodes")
+        };
+        return StaticError::DependentConstraint { what: format!("u{comp} of patch {j}"), detail, points: vec![] };
+    }
     let (elem, nodes, _) = D::location_terms(&locations[i]);
     let points: Vec<usize> = (0..locations.len()).filter(|&p| D::location_terms(&locations[p]).0 == elem).collect();
     let detail = if no_free_dof {
@@ -554,11 +672,11 @@ mod tests {
         let mats = MaterialMap::per_region(&mesh, &[Material { young_modulus_pa: 10.0, poisson_ratio: 0.4 }], plane).unwrap();
         let fixed: Vec<_> = mesh.boundary_set("bottom").unwrap().iter().map(|&n| (n, NodeCondition::Fixed)).collect();
         let target = [0.01, -0.02];
-        let mut world = StaticProblem { conditions: fixed.clone(), loads_n: vec![(20, [0.3, 0.1])], points: vec![] };
+        let mut world = StaticProblem { conditions: fixed.clone(), loads_n: vec![(20, [0.3, 0.1])], points: vec![], patches: vec![] };
         world.conditions.push((33, NodeCondition::World { u_m: [Some(target[0]), Some(target[1])] }));
         let a: f64 = 0.83;
         let (s, c) = a.sin_cos();
-        let mut local = StaticProblem { conditions: fixed, loads_n: vec![(20, [0.3, 0.1])], points: vec![] };
+        let mut local = StaticProblem { conditions: fixed, loads_n: vec![(20, [0.3, 0.1])], points: vec![], patches: vec![] };
         local.conditions.push((
             33,
             NodeCondition::Local { frame: a, u_m: [Some(c * target[0] + s * target[1]), Some(-s * target[0] + c * target[1])] },
@@ -582,24 +700,85 @@ mod tests {
         )
         .unwrap();
         let fixed = vec![(0, NodeCondition::Fixed), (1, NodeCondition::Fixed)];
-        let p = StaticProblem { conditions: fixed.clone(), loads_n: vec![(9, [1.0, 0.0])], points: vec![] };
+        let p = StaticProblem { conditions: fixed.clone(), loads_n: vec![(9, [1.0, 0.0])], points: vec![], patches: vec![] };
         let e = p.solve(&mesh, &mats).unwrap_err();
         assert!(e.to_string().contains("a load names node 9"), "{e}");
-        let p = StaticProblem { conditions: fixed.clone(), loads_n: vec![(4, [f64::NAN, 0.0])], points: vec![] };
+        let p = StaticProblem { conditions: fixed.clone(), loads_n: vec![(4, [f64::NAN, 0.0])], points: vec![], patches: vec![] };
         assert!(p.solve(&mesh, &mats).unwrap_err().to_string().contains("a load on node 4 is not finite"));
         let mut c = fixed.clone();
         c.push((0, NodeCondition::Local { frame: 0.1, u_m: [None, Some(0.0)] }));
-        let e = StaticProblem { conditions: c, loads_n: vec![], points: vec![] }.solve(&mesh, &mats).unwrap_err();
+        let e = StaticProblem { conditions: c, loads_n: vec![], points: vec![], patches: vec![] }.solve(&mesh, &mats).unwrap_err();
         assert_eq!(e, StaticError::Conflict { node_idx: 0 });
-        let e = StaticProblem { conditions: vec![], loads_n: vec![(4, [1.0, 0.0])], points: vec![] }.solve(&mesh, &mats).unwrap_err();
+        let e = StaticProblem { conditions: vec![], loads_n: vec![(4, [1.0, 0.0])], points: vec![], patches: vec![] }
+            .solve(&mesh, &mats)
+            .unwrap_err();
         assert!(e.to_string().contains("rigid body"), "{e}");
         let mut c = fixed.clone();
         c.push((1, NodeCondition::World { u_m: [Some(0.1), None] }));
-        let e = StaticProblem { conditions: c, loads_n: vec![], points: vec![] }.solve(&mesh, &mats).unwrap_err();
+        let e = StaticProblem { conditions: c, loads_n: vec![], points: vec![], patches: vec![] }.solve(&mesh, &mats).unwrap_err();
         assert!(e.to_string().contains("node 1 has more than one kind of condition"), "{e}");
     }
 
     /// A 2D problem takes no material points: a typed error, not a silent drop.
+    #[test]
+    fn a_one_node_patch_in_2d_is_that_nodes_frame_condition_and_bad_patches_are_named() {
+        // A patch of weight 1 on one node prescribes that node's frame components: the same
+        // answer (to round-off) as the node condition, which is eliminated instead.
+        let mesh = RectMeshParams::new(6, 6, 1.0, 1.0).build(&MeshLimits::default()).unwrap();
+        let mats = MaterialMap::per_region(
+            &mesh,
+            &[Material { young_modulus_pa: 10.0, poisson_ratio: 0.3 }],
+            PlaneModel::Strain { thickness_m: 1.0 },
+        )
+        .unwrap();
+        let fixed: Vec<(usize, NodeCondition)> = (0..6).map(|i| (i, NodeCondition::Fixed)).collect();
+        let (node, angle, u_m) = (27, 0.4, [Some(0.01), Some(-0.02)]);
+        let mut by_node = fixed.clone();
+        by_node.push((node, NodeCondition::Local { frame: angle, u_m }));
+        let a = StaticProblem { conditions: by_node, loads_n: vec![(33, [0.1, 0.2])], points: vec![], patches: vec![] }
+            .solve(&mesh, &mats)
+            .unwrap();
+        let patch = PatchCondition { nodes: vec![node], weights: vec![1.0], frame: angle, u_m, force_n: [0.0; 2] };
+        let b = StaticProblem { conditions: fixed.clone(), loads_n: vec![(33, [0.1, 0.2])], points: vec![], patches: vec![patch.clone()] }
+            .solve(&mesh, &mats)
+            .unwrap();
+        let scale = a.displacement_m.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let diff = a.displacement_m.iter().zip(&b.displacement_m).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(diff < 1e-12 * scale, "patch vs node condition: {diff:e} of {scale:e}");
+        let (_, _, local) = a.reactions_local_n.iter().find(|r| r.0 == node).copied().unwrap();
+        let r = b.patch_reactions[0];
+        for c in 0..2 {
+            assert!(
+                (local[c].unwrap() - r.local_n[c].unwrap()).abs() < 1e-10 * local[c].unwrap().abs().max(1e-12),
+                "{local:?} vs {:?}",
+                r.local_n
+            );
+        }
+        assert!((r.u_m[0] - b.displacement_m[2 * node]).abs() < 1e-15);
+        // Bad patches, each named.
+        let bad = |p: PatchCondition| {
+            StaticProblem { conditions: fixed.clone(), loads_n: vec![], points: vec![], patches: vec![patch.clone(), p] }
+                .solve(&mesh, &mats)
+                .unwrap_err()
+        };
+        for (p, words) in [
+            (PatchCondition { nodes: vec![], weights: vec![], ..patch.clone() }, "not empty"),
+            (PatchCondition { nodes: vec![3, 4], weights: vec![1.0], ..patch.clone() }, "of one length"),
+            (PatchCondition { nodes: vec![3, 99], weights: vec![0.5, 0.5], ..patch.clone() }, "names node 99"),
+            (PatchCondition { nodes: vec![8, 8], weights: vec![0.5, 0.5], ..patch.clone() }, "node 8 twice"),
+            (PatchCondition { nodes: vec![8, 9], weights: vec![0.5, f64::NAN], ..patch.clone() }, "not finite"),
+            (PatchCondition { nodes: vec![8, 9], weights: vec![0.5, -0.5], ..patch.clone() }, "sum to"),
+        ] {
+            let e = bad(p);
+            assert!(matches!(e, StaticError::Patch { patch_idx: 1, .. }) && e.to_string().contains(words), "{e}");
+        }
+        // The same node condition twice, as two patches: the second depends on the first.
+        let e = StaticProblem { conditions: fixed, loads_n: vec![], points: vec![], patches: vec![patch.clone(), patch] }
+            .solve(&mesh, &mats)
+            .unwrap_err();
+        assert!(e.to_string().contains("of patch 1 depends on the conditions before it"), "{e}");
+    }
+
     #[test]
     fn points_in_2d_are_an_error() {
         let mesh = RectMeshParams::new(3, 3, 1.0, 1.0).build(&MeshLimits::default()).unwrap();
@@ -610,8 +789,12 @@ mod tests {
         )
         .unwrap();
         let point = PointCondition { x_m: [0.5, 0.5], frame: 0.0, u_m: [None, Some(0.0)], force_n: [0.0; 2] };
-        let p =
-            StaticProblem { conditions: vec![(0, NodeCondition::Fixed), (1, NodeCondition::Fixed)], loads_n: vec![], points: vec![point] };
+        let p = StaticProblem {
+            conditions: vec![(0, NodeCondition::Fixed), (1, NodeCondition::Fixed)],
+            loads_n: vec![],
+            points: vec![point],
+            patches: vec![],
+        };
         let e = p.solve(&mesh, &mats).unwrap_err();
         assert!(matches!(e, StaticError::PointOutside { point_idx: 0, .. }), "{e}");
         assert!(e.to_string().starts_with("point 0: a 2D static problem takes conditions at nodes only"), "{e}");
@@ -628,7 +811,7 @@ mod tests {
         )
         .unwrap();
         let conditions = (0..9).map(|n| (n, NodeCondition::World { u_m: [Some(0.01 * n as f64), Some(0.0)] })).collect();
-        let s = StaticProblem { conditions, loads_n: vec![], points: vec![] }.solve(&mesh, &mats).unwrap();
+        let s = StaticProblem { conditions, loads_n: vec![], points: vec![], patches: vec![] }.solve(&mesh, &mats).unwrap();
         assert_eq!(s.displacement_m[2 * 8], 0.08);
         let sum: f64 = s.reactions_n.iter().map(|r| r.1[0].unwrap()).sum();
         assert!(sum.abs() < 1e-12, "reactions balance: {sum}");

@@ -198,6 +198,7 @@ fn rotating_oblique_needle_state_equals_fresh_static_solve() {
         conditions: model.mesh().boundary_set("bottom").unwrap().iter().map(|&n| (n, NodeCondition::Fixed)).collect(),
         loads_n: snap.node_loads_n(),
         points: vec![],
+        patches: vec![],
     };
     for c in &snap.conditions {
         problem.conditions.push((c.node_idx, NodeCondition::Local { frame: c.angle_rad, u_m: [c.ut_m, c.un_m] }));

@@ -332,6 +332,7 @@ fn the_displaced_centre_equals_an_exact_static_solve_of_the_snapshot() {
                 .iter()
                 .map(|p| PointCondition { x_m: p.x_m, frame: p.frame, u_m: [p.ut, p.un, p.ub], force_n: p.f_n.unwrap_or([0.0; 3]) })
                 .collect(),
+            patches: vec![],
         };
         let sol = problem.solve(mesh, model.materials()).unwrap();
         let u_ref: [f64; 3] =

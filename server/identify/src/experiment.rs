@@ -204,7 +204,8 @@ pub fn synth_probe(p: &ProbeSynthParams) -> Result<ProbeExperiment> {
     for d in [[1.0, 0.0], [0.0, 1.0]] {
         let mut conditions: Vec<(usize, NodeCondition)> = (0..p.nx).map(|i| (i, NodeCondition::Fixed)).collect();
         conditions.push((probe_node, NodeCondition::World { u_m: [Some(d[0]), Some(d[1])] }));
-        let sol = StaticProblem { conditions, loads_n: vec![], points: vec![] }.solve(&mesh, &mats).context("probe solve")?;
+        let sol =
+            StaticProblem { conditions, loads_n: vec![], points: vec![], patches: vec![] }.solve(&mesh, &mats).context("probe solve")?;
         let r = sol.reactions_n.iter().find(|r| r.0 == probe_node).map(|r| [r.1[0].unwrap_or(0.0), r.1[1].unwrap_or(0.0)]);
         unit.push((sol.displacement_m, r.unwrap_or([0.0; 2])));
     }

@@ -203,7 +203,7 @@ fn unit_solutions(model: &ProbeModel, probe_node: usize, nu: f64) -> Result<Unit
         model.fixed_nodes.iter().filter(|&&n| n != probe_node).map(|&n| (n, NodeCondition::Fixed)).collect();
     let mut v: [Vec<f64>; 2] = Default::default();
     for (c, f) in [[1.0, 0.0], [0.0, 1.0]].into_iter().enumerate() {
-        let problem = StaticProblem { conditions: conditions.clone(), loads_n: vec![(probe_node, f)], points: vec![] };
+        let problem = StaticProblem { conditions: conditions.clone(), loads_n: vec![(probe_node, f)], points: vec![], patches: vec![] };
         v[c] = problem.solve(&model.mesh, &mats).context("probe model solve")?.displacement_m;
     }
     Ok(Unit { v })

@@ -143,7 +143,7 @@ fn snapshot_problem(sim: &Simulation, fixed: &[usize]) -> StaticProblem {
     for c in &snap.conditions {
         conditions.push((c.node_idx, NodeCondition::Local { frame: c.angle_rad, u_m: [c.ut_m, c.un_m] }));
     }
-    StaticProblem { conditions, loads_n: snap.node_loads_n(), points: vec![] }
+    StaticProblem { conditions, loads_n: snap.node_loads_n(), points: vec![], patches: vec![] }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -341,7 +341,12 @@ fn run_naive(n: usize, script: &Script, budget_s: f64) -> Result<Row> {
     let n_ticks = poses.len();
     let first = {
         let t = Instant::now();
-        let p = StaticProblem { conditions: s.fixed.iter().map(|&n| (n, NodeCondition::Fixed)).collect(), loads_n: vec![], points: vec![] };
+        let p = StaticProblem {
+            conditions: s.fixed.iter().map(|&n| (n, NodeCondition::Fixed)).collect(),
+            loads_n: vec![],
+            points: vec![],
+            patches: vec![],
+        };
         p.solve(&s.mesh, &s.mats)?;
         t.elapsed().as_secs_f64()
     };

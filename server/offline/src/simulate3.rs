@@ -377,7 +377,18 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
             let f = p.f_n.unwrap_or([0.0; 3]);
             let r = [p.force_n[0] - f[0], p.force_n[1] - f[1], p.force_n[2] - f[2]];
             let local = |a: usize, given: Option<f64>| given.map(|_| p.frame[a][0] * r[0] + p.frame[a][1] * r[1] + p.frame[a][2] * r[2]);
-            PointReaction3 { point: i, rx: r[0], ry: r[1], rz: r[2], rt: local(0, p.ut), rn: local(1, p.un), rb: local(2, p.ub), u: p.u_m }
+            PointReaction3 {
+                point: i,
+                kind: "point".to_owned(),
+                index: i,
+                rx: r[0],
+                ry: r[1],
+                rz: r[2],
+                rt: local(0, p.ut),
+                rn: local(1, p.un),
+                rb: local(2, p.ub),
+                u: p.u_m,
+            }
         })
         .collect();
     // W = P C Pᵀ from the same columns.
@@ -419,6 +430,7 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
         reactions,
         reactions_local: vec![],
         point_reactions,
+        disc_weights: vec![],
         strain_energy: energy,
         compliance: None,
         point_compliance: (np > 0).then(|| PointCompliance3 {

@@ -281,7 +281,7 @@ impl Scenario {
         for l in &self.loads {
             loads_n.push((node_id(l.node, n_nodes, "loads")?, [l.fx, l.fy]));
         }
-        Ok(StaticProblem { conditions, loads_n, points: vec![] })
+        Ok(StaticProblem { conditions, loads_n, points: vec![], patches: vec![] })
     }
 }
 

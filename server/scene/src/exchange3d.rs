@@ -4,9 +4,14 @@
 use std::collections::BTreeMap;
 
 use anyhow::{Context, Result, bail};
+use needlesim_core::Dim3;
 use needlesim_core::Material;
-use needlesim_core::d3::{PointCondition, TetMaterials, TetMesh, TetMeshLimits, TetNodeCondition, TetStaticProblem, TetTissueModel};
+use needlesim_core::d3::disc::{Disc, DiscWeights, disc_weights_into};
+use needlesim_core::d3::{
+    PointCondition, TetLocator, TetMaterials, TetMesh, TetMeshLimits, TetNodeCondition, TetStaticProblem, TetTissueModel,
+};
 use needlesim_core::sim3::{PointState3, Snapshot3};
+use needlesim_core::statics::PatchCondition;
 use serde::{Deserialize, Serialize};
 
 /// A 3D static problem. Node ids are 0-based; tetrahedra may have either orientation.
@@ -38,6 +43,12 @@ pub struct Scenario3 {
     pub loads: Vec<Load3>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub points: Vec<Point3>,
+    /// Contacts spread over the tissue with explicit weights (after the points).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub patches: Vec<Patch3>,
+    /// Contacts spread over discs across the needle (after the patches): weights computed here.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub discs: Vec<Disc3>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub working_nodes: Option<Vec<i64>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -124,6 +135,52 @@ pub struct Point3 {
     pub f: Option<[f64; 3]>,
 }
 
+/// A contact spread over the tissue: frame components of the weighted node sum
+/// $u_p = \sum_k w_k u_k$ prescribed where given, and a world force `f` (N) acting as the nodal
+/// loads $w_k f$.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Patch3 {
+    pub nodes: Vec<i64>,
+    pub weights: Vec<f64>,
+    pub frame: [[f64; 3]; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ut: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub un: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ub: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub f: Option<[f64; 3]>,
+}
+
+/// A patch over the disc of `radius` (m) centred at `x` across `axis`: its weights are the shape
+/// functions averaged over the disc (`needlesim_core::d3::disc`, exact).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Disc3 {
+    pub x: [f64; 3],
+    pub axis: [f64; 3],
+    pub radius: f64,
+    pub frame: [[f64; 3]; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ut: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub un: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ub: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub f: Option<[f64; 3]>,
+}
+
+/// The weights a disc was given.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct DiscWeights3 {
+    pub disc: usize,
+    pub nodes: Vec<usize>,
+    pub weights: Vec<f64>,
+}
+
 /// The 3D result format.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ScenarioResult3 {
@@ -137,6 +194,8 @@ pub struct ScenarioResult3 {
     pub reactions_local: Vec<ReactionLocal3>,
     #[serde(skip_serializing_if = "Vec::is_empty", default)]
     pub point_reactions: Vec<PointReaction3>,
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub disc_weights: Vec<DiscWeights3>,
     pub strain_energy: f64,
     pub max_abs_displacement: f64,
     #[serde(skip_serializing_if = "Option::is_none", default)]
@@ -165,7 +224,14 @@ pub struct ReactionLocal3 {
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PointReaction3 {
+    /// The index among points, then patches, then discs.
     pub point: usize,
+    /// `point`, `patch` or `disc`.
+    #[serde(default = "point_kind")]
+    pub kind: String,
+    /// The index in its own list.
+    #[serde(default)]
+    pub index: usize,
     pub rx: f64,
     pub ry: f64,
     pub rz: f64,
@@ -187,6 +253,10 @@ pub struct PointCompliance3 {
     pub working_points: Vec<[f64; 3]>,
     pub dof_order: String,
     pub matrix: Vec<Vec<f64>>,
+}
+
+fn point_kind() -> String {
+    "point".to_owned()
 }
 
 /// A node id from JSON: non-negative and below `n_nodes`; `what` names the key and index.
@@ -269,31 +339,78 @@ impl Scenario3 {
             .iter()
             .map(|p| PointCondition { x_m: p.x, frame: p.frame, u_m: [p.ut, p.un, p.ub], force_n: p.f.unwrap_or([0.0; 3]) })
             .collect();
-        Ok(TetStaticProblem { conditions, loads_n, points })
+        let patches = self
+            .patches
+            .iter()
+            .enumerate()
+            .map(|(j, p)| {
+                let nodes = p
+                    .nodes
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &v)| node_id(v, n_nodes, &format!("patches[{j}].nodes[{k}]")))
+                    .collect::<Result<Vec<_>>>()?;
+                Ok(PatchCondition {
+                    nodes,
+                    weights: p.weights.clone(),
+                    frame: p.frame,
+                    u_m: [p.ut, p.un, p.ub],
+                    force_n: p.f.unwrap_or([0.0; 3]),
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(TetStaticProblem { conditions, loads_n, points, patches })
+    }
+
+    /// The `discs` as patches on `mesh`, with the weights they were given. Errors name the disc.
+    pub fn disc_patches(&self, mesh: &TetMesh) -> Result<(Vec<PatchCondition<Dim3>>, Vec<DiscWeights3>)> {
+        if self.discs.is_empty() {
+            return Ok((Vec::new(), Vec::new()));
+        }
+        let locator = TetLocator::new(mesh);
+        let mut w = DiscWeights::with_capacity(mesh.n_nodes());
+        let mut patches = Vec::with_capacity(self.discs.len());
+        let mut weights = Vec::with_capacity(self.discs.len());
+        for (j, d) in self.discs.iter().enumerate() {
+            disc_weights_into(mesh, &locator, &Disc { centre_m: d.x, axis: d.axis, radius_m: d.radius }, &mut w)
+                .with_context(|| format!("discs[{j}]"))?;
+            patches.push(PatchCondition {
+                nodes: w.nodes().to_vec(),
+                weights: w.weights().to_vec(),
+                frame: d.frame,
+                u_m: [d.ut, d.un, d.ub],
+                force_n: d.f.unwrap_or([0.0; 3]),
+            });
+            weights.push(DiscWeights3 { disc: j, nodes: w.nodes().to_vec(), weights: w.weights().to_vec() });
+        }
+        Ok((patches, weights))
     }
 }
 
 /// Solves a 3D scenario as the `solve` command does.
 pub fn solve_scenario3(sc: &Scenario3, limits: &TetMeshLimits) -> Result<ScenarioResult3> {
     let (mesh, materials) = sc.mesh_and_materials(limits)?;
-    let problem = sc.static_problem(mesh.n_nodes())?;
+    let mut problem = sc.static_problem(mesh.n_nodes())?;
+    let (disc_patches, disc_weights) = sc.disc_patches(&mesh)?;
+    problem.patches.extend(disc_patches);
     let sol = problem.solve(&mesh, &materials).context("static solve failed")?;
     let displacements: Vec<[f64; 3]> = sol.displacement_m.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
     let reactions = sol.reactions_n.iter().map(|&(node, [rx, ry, rz])| Reaction3 { node, rx, ry, rz }).collect();
     let reactions_local = sol.reactions_local_n.iter().map(|&(node, _, [rt, rn, rb])| ReactionLocal3 { node, rt, rn, rb }).collect();
+    let n_patches = sc.patches.len();
     let point_reactions = sol
         .point_reactions
         .iter()
+        .map(|r| (r.force_n, r.local_n, r.u_m))
+        .chain(sol.patch_reactions.iter().map(|r| (r.force_n, r.local_n, r.u_m)))
         .enumerate()
-        .map(|(point, r)| PointReaction3 {
-            point,
-            rx: r.force_n[0],
-            ry: r.force_n[1],
-            rz: r.force_n[2],
-            rt: r.local_n[0],
-            rn: r.local_n[1],
-            rb: r.local_n[2],
-            u: r.u_m,
+        .map(|(point, (f, l, u))| {
+            let (kind, index) = match point.checked_sub(sc.points.len()) {
+                None => ("point", point),
+                Some(j) if j < n_patches => ("patch", j),
+                Some(j) => ("disc", j - n_patches),
+            };
+            PointReaction3 { point, kind: kind.to_owned(), index, rx: f[0], ry: f[1], rz: f[2], rt: l[0], rn: l[1], rb: l[2], u }
         })
         .collect();
     let element_stresses_voigt = sc.output_stresses.then(|| sol.element_stresses_pa(&mesh, &materials));
@@ -340,6 +457,7 @@ pub fn solve_scenario3(sc: &Scenario3, limits: &TetMeshLimits) -> Result<Scenari
         reactions,
         reactions_local,
         point_reactions,
+        disc_weights,
         strain_energy: sol.strain_energy_j,
         element_stresses_voigt,
         compliance,

@@ -94,14 +94,15 @@ mod tests {
         let frame = rotation(0.7, -0.4);
         let local: [Option<f64>; 3] = std::array::from_fn(|c| Some((0..3).map(|a| frame[c][a] * target[a]).sum()));
         let loads = vec![(30, [0.01, 0.02, -0.03])];
-        let mut world = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: loads.clone(), points: vec![] };
+        let mut world = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: loads.clone(), points: vec![], patches: vec![] };
         world.conditions.push((node, TetNodeCondition::World { u_m: target.map(Some) }));
-        let mut held = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: loads.clone(), points: vec![] };
+        let mut held = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: loads.clone(), points: vec![], patches: vec![] };
         held.conditions.push((node, TetNodeCondition::Local { frame, u_m: local }));
         let point = TetStaticProblem {
             conditions: bottom_fixed(&mesh),
             loads_n: loads,
             points: vec![PointCondition { x_m: mesh.nodes_m()[node], frame, u_m: local, force_n: [0.0; 3] }],
+            patches: vec![],
         };
         let sw = world.solve(&mesh, &mats).unwrap();
         let sl = held.solve(&mesh, &mats).unwrap();
@@ -154,9 +155,9 @@ mod tests {
         for p in &pts {
             assert_eq!(loc.locate(&mesh, p.x_m).unwrap().tet_idx, t0);
         }
-        let two = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: vec![], points: pts[..2].to_vec() };
+        let two = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: vec![], points: pts[..2].to_vec(), patches: vec![] };
         assert!(two.solve(&mesh, &mats).is_ok());
-        let three = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: vec![], points: pts };
+        let three = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: vec![], points: pts, patches: vec![] };
         let e = three.solve(&mesh, &mats).unwrap_err();
         match &e {
             TetStaticError::DependentConstraint { points, what, .. } => {
@@ -171,6 +172,7 @@ mod tests {
             conditions: bottom_fixed(&mesh),
             loads_n: vec![],
             points: vec![PointCondition { x_m: [0.03, 0.02, 0.0], frame, u_m: [Some(1e-3), None, None], force_n: [0.0; 3] }],
+            patches: vec![],
         };
         let e = on_floor.solve(&mesh, &mats).unwrap_err();
         assert!(matches!(e, TetStaticError::DependentConstraint { .. }), "{e}");
@@ -181,8 +183,8 @@ mod tests {
     fn bad_input_is_named() {
         let (mesh, mats) = setup(3);
         let frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        let p = |c: Vec<(usize, TetNodeCondition)>| TetStaticProblem { conditions: c, loads_n: vec![], points: vec![] };
-        let e = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: vec![(27, [1.0, 0.0, 0.0])], points: vec![] }
+        let p = |c: Vec<(usize, TetNodeCondition)>| TetStaticProblem { conditions: c, loads_n: vec![], points: vec![], patches: vec![] };
+        let e = TetStaticProblem { conditions: bottom_fixed(&mesh), loads_n: vec![(27, [1.0, 0.0, 0.0])], points: vec![], patches: vec![] }
             .solve(&mesh, &mats)
             .unwrap_err();
         assert!(e.to_string().contains("a load names node 27"), "{e}");
@@ -198,6 +200,7 @@ mod tests {
             conditions: bottom_fixed(&mesh),
             loads_n: vec![],
             points: vec![PointCondition { x_m: [0.2, 0.0, 0.0], frame, u_m: [None; 3], force_n: [0.0; 3] }],
+            patches: vec![],
         }
         .solve(&mesh, &mats)
         .unwrap_err();

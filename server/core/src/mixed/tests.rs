@@ -137,6 +137,7 @@ fn condensed_solve_equals_full_static_solve() {
         conditions: m.mesh().boundary_set("bottom").unwrap().iter().map(|&n| (n, NodeCondition::Fixed)).collect(),
         loads_n: vec![],
         points: vec![],
+        patches: vec![],
     };
     for (i, &n) in nodes.iter().enumerate() {
         cache.ensure(&m, n, &mut scratch).unwrap();
