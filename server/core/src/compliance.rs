@@ -1,126 +1,40 @@
 //! The tissue model and its compliance on demand: columns of $C = K_{ff}^{-1}$ for the nodes the
-//! needle touches, from a sparse factorisation instead of a dense inverse.
+//! needle touches, from a sparse factorisation instead of a dense inverse — written once for both
+//! dimensions.
 //!
-//! [`TissueModel`] (2D) assembles $K$, removes the fixed nodes and factorises $K_{ff}$ once. The
-//! two columns of node $w$ are two sparse solves, $K_{ff}\,[c_{x}, c_{y}] = [e_{2w}, e_{2w+1}]$,
-//! cost $O(\mathrm{nnz}(L))$. [`ComplianceCache`] keeps them (full DOF length, zero at fixed DOFs)
-//! so the working set $\mathcal W$ grows node by node without refactorisation, gives the blocks of
+//! [`TissueModel`] ([`tissue`], generic over [`crate::Dim`]) assembles $K$, removes the fixed nodes
+//! and factorises $K_{ff}$ once. The $D$ columns of node $w$ are $D$ sparse solves,
+//! $K_{ff}\,[c_{x}, c_{y}(, c_z)] = [e_{Dw}, e_{Dw+1}(, e_{Dw+2})]$, cost $O(\mathrm{nnz}(L))$.
+//! [`ComplianceCache`] keeps them (full DOF length, zero at fixed DOFs) so the working set
+//! $\mathcal W$ grows node by node without refactorisation, gives the blocks of
 //! $C_{\mathcal{WW}}$, and the displacement of every node caused by forces on $\mathcal W$:
 //! $u = \sum_{w \in \mathcal W} C_{:,w} f_w$, cost $O(n\,|\mathcal W|)$.
 //!
-//! The cache serves 2D and 3D: `ComplianceCache<D>` holds, per node, the $D$ columns of length
-//! $Dn$ (world DOF $Di + c$ of node $i$, component $c$), and its blocks are $D \times D$ arrays.
-//! The dimension is a const generic (default 2, so `ComplianceCache` in a type is the 2D cache of
-//! the sim) for the reason given in [`crate::mixed`]: the blocks are fixed-size arrays the
-//! compiler unrolls. 3D columns come from the 3D tissue model through
-//! [`ComplianceCache::insert`] or [`ComplianceCache::ensure_with`].
+//! For large meshes the compliance is kept as node blocks instead of columns: [`sparse`] computes
+//! a node's rows $Y_v$ of $C = Y^\top Y$ by sparse forward solves and the $D \times D$ blocks
+//! $C_{vw} = Y_v^\top Y_w$; [`worker`] computes them off the real-time thread; [`store`] holds
+//! the blocks among a bounded set of nodes ([`store::NodeBlockStore`]) or the columns, behind one
+//! enum ([`store::ComplianceStore`]).
+//!
+//! The cache and the stores serve 2D and 3D: `ComplianceCache<D>` holds, per node, the $D$ columns
+//! of length $Dn$ (world DOF $Di + c$ of node $i$, component $c$), and its blocks are $D \times D$
+//! arrays. The storage's dimension is a const generic (default 2, so `ComplianceCache` in a type
+//! is the 2D cache of the sim) for the reason given in [`crate::mixed`]: the blocks are
+//! fixed-size arrays the compiler unrolls. The model's dimension is a [`crate::Dim`] (its mesh and
+//! elements are); where the two meet (the block worker) both are named and checked equal at
+//! compile time. 3D columns come from the 3D tissue model through [`ComplianceCache::insert`] or
+//! [`ComplianceCache::ensure_with`].
 
 use std::sync::Arc;
 
-use faer::Mat;
-use faer::sparse::SparseColMat;
-
-use crate::assembly::{MaterialMap, assemble_stiffness};
 use crate::contact::ContactPoint;
-use crate::factor::{CholeskyScratch, DofMap, FactorError, SparseCholesky};
-use crate::mesh::Mesh;
 
-/// Errors of the tissue model and its compliance.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum TissueError {
-    /// A fixed node id does not exist.
-    #[error("fixed node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
-    UnknownFixedNode { node_idx: usize, n_nodes: usize },
-    /// A node id does not exist.
-    #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
-    UnknownNode { node_idx: usize, n_nodes: usize },
-    /// No node is fixed: the tissue would float.
-    #[error("no node is fixed: the tissue needs a fixed boundary")]
-    NoFixedNodes,
-    /// The factorisation failed (rigid-body motion, for example).
-    #[error(transparent)]
-    Factor(#[from] FactorError),
-}
+pub mod sparse;
+pub mod store;
+mod tissue;
+pub mod worker;
 
-/// The tissue: mesh, materials, fixed nodes and the factorised free stiffness. Immutable once
-/// built, so it can be shared (`Arc`) between the real-time thread and column workers.
-#[derive(Debug)]
-pub struct TissueModel {
-    mesh: Mesh,
-    materials: MaterialMap,
-    fixed: Vec<bool>,
-    stiffness: SparseColMat<usize, f64>,
-    chol: SparseCholesky,
-}
-
-/// Scratch for [`TissueModel::compliance_columns_into`]; allocate once per thread.
-pub struct ColumnScratch {
-    rhs: Mat<f64>,
-    chol: CholeskyScratch,
-}
-
-impl TissueModel {
-    /// Assembles and factorises. Errors when a fixed node does not exist, when no node is fixed,
-    /// and when the model is singular (see [`FactorError`]).
-    pub fn new(mesh: Mesh, materials: MaterialMap, fixed_nodes: &[usize]) -> Result<Self, TissueError> {
-        let n_nodes = mesh.n_nodes();
-        if fixed_nodes.is_empty() {
-            return Err(TissueError::NoFixedNodes);
-        }
-        let mut fixed = vec![false; n_nodes];
-        for &node_idx in fixed_nodes {
-            if node_idx >= n_nodes {
-                return Err(TissueError::UnknownFixedNode { node_idx, n_nodes });
-            }
-            fixed[node_idx] = true;
-        }
-        let stiffness = assemble_stiffness(&mesh, &materials, None);
-        let constrained: Vec<bool> = (0..2 * n_nodes).map(|d| fixed[d / 2]).collect();
-        let chol = SparseCholesky::new(&stiffness, DofMap::new(&constrained))?;
-        Ok(Self { mesh, materials, fixed, stiffness, chol })
-    }
-
-    /// The mesh.
-    pub fn mesh(&self) -> &Mesh {
-        &self.mesh
-    }
-    /// The materials.
-    pub fn materials(&self) -> &MaterialMap {
-        &self.materials
-    }
-    /// The full stiffness $K$ (all DOFs, both triangles).
-    pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
-        &self.stiffness
-    }
-    /// The factorisation of $K_{ff}$.
-    pub fn cholesky(&self) -> &SparseCholesky {
-        &self.chol
-    }
-    /// Whether node `node_idx` is fixed.
-    pub fn is_fixed(&self, node_idx: usize) -> bool {
-        self.fixed[node_idx]
-    }
-    /// Number of DOFs, $2n$.
-    pub fn n_dofs(&self) -> usize {
-        2 * self.mesh.n_nodes()
-    }
-    /// Scratch for column computations.
-    pub fn column_scratch(&self) -> ColumnScratch {
-        ColumnScratch { rhs: Mat::zeros(self.chol.n_free(), 2), chol: self.chol.scratch(2) }
-    }
-
-    /// Writes the two compliance columns of node `node_idx` into `out` (length $2 \cdot 2n$: the
-    /// column for a unit $f_x$, then the one for a unit $f_y$, each over all DOFs, zero at fixed
-    /// DOFs). A fixed node has zero columns. Allocates nothing.
-    pub fn compliance_columns_into(&self, node_idx: usize, out: &mut [f64], scratch: &mut ColumnScratch) -> Result<(), TissueError> {
-        let n_nodes = self.mesh.n_nodes();
-        if node_idx >= n_nodes {
-            return Err(TissueError::UnknownNode { node_idx, n_nodes });
-        }
-        self.chol.node_columns_into(node_idx, out, &mut scratch.rhs, &mut scratch.chol);
-        Ok(())
-    }
-}
+pub use tissue::{ColumnScratch, TissueError, TissueModel};
 
 /// Cached compliance columns by node, one boxed set of `D` columns per node (so memory follows
 /// the nodes cached, and growth never copies other nodes' columns). Storage grows only in
@@ -387,7 +301,7 @@ impl<const D: usize> ComplianceCache<D> {
 /// $W_{ab} = P_a C P_b^\top$ ($D \times D$, displacement of `a` per unit force on `b`), `None`
 /// when the store lacks what it needs. Implemented by the column cache
 /// ([`ComplianceCache::contact_block`]) and by the 3D node-block store
-/// ([`crate::sim3::NodeBlockStore`]); [`crate::mixed::MixedSolver`]'s methods are generic over it
+/// ([`store::NodeBlockStore`]); [`crate::mixed::MixedSolver`]'s methods are generic over it
 /// (monomorphised, no dynamic dispatch on the hot path).
 pub trait ContactBlocks<const D: usize> {
     /// The block $W_{ab}$, or `None` when a node's data is missing.
@@ -407,6 +321,7 @@ pub type SharedTissue = Arc<TissueModel>;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::assembly::MaterialMap;
     use crate::material::{Material, PlaneModel};
     use crate::mesh::{MeshLimits, RectMeshParams};
 

@@ -244,7 +244,7 @@ impl SparseCholesky {
     }
     /// faer's symbolic factorisation: the fill-reducing permutation ([`SymbolicCholesky::perm`])
     /// and the simplicial or supernodal structure of $L$. Read by
-    /// [`crate::d3::sparse_compliance`], which walks $L$ itself.
+    /// [`crate::compliance::sparse`], which walks $L$ itself.
     pub fn symbolic(&self) -> &SymbolicCholesky<usize> {
         &self.symbolic
     }

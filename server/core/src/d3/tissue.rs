@@ -1,287 +1,34 @@
-//! The 3D tissue model and its compliance on demand: columns of $C = K_{ff}^{-1}$ for the nodes a
-//! needle touches, from one sparse factorisation, and the point compliance $W = P C P^\top$.
-//!
-//! [`TetTissueModel`] assembles $K$ ($3n \times 3n$), removes the fixed nodes and factorises
-//! $K_{ff}$ once. The three columns of node $w$ are three sparse solves,
-//! $K_{ff}\,[c_x, c_y, c_z] = [e_{3w}, e_{3w+1}, e_{3w+2}]$, cost $O(\mathrm{nnz}(L))$, written over all
-//! $3n$ DOFs with zeros at fixed DOFs ([`TetTissueModel::compliance_columns_into`], no allocation
-//! once its [`TetColumnScratch`] exists). A material point $x$ in a tetrahedron with nodes $k_i$ and
-//! weights $N_i(x)$ ([`TetTissueModel::locate`]) has the block
-//! $W_{ab} = \sum_{i,j} N_{a,i} N_{b,j}\, C_{k_{a,i} k_{b,j}}$ (3 × 3 blocks of $C$).
-//!
-//! The displacement of every node under point loads $f_i$ at material points $X_i$ (the needle's
-//! contacts of one tick) is one solve with the same factor
-//! ([`TetTissueModel::displacement_for_point_loads_into`]):
-//! $$u = C\,F = K_{ff}^{-1} F, \qquad F = P^\top f = \sum_i \sum_{a} N_a(X_i)\, e_{k_a(X_i)} \otimes f_i,$$
-//! i.e. $u = \sum_i \sum_a N_a(X_i)\, C_{\cdot, k_a} f_i$ without forming a column — cost
-//! $O(\mathrm{nnz}(L))$ however many points, and by linearity $P u = W f$ at the points themselves.
+//! The 3D names of the tissue model ([`crate::compliance::TissueModel`], written once over the
+//! dimension): [`TetTissueModel`] $=$ `TissueModel<Dim3>` — one factorisation of $K_{ff}$
+//! ($3n \times 3n$, nested dissection from 2000 nodes), the three compliance columns of a node, the
+//! point compliance $W = P C P^\top$ of material points located in the tetrahedra, and every
+//! node's displacement under point loads by one solve — with its error and scratch types; and
+//! its 3D tests; and the 3D names of the sparse compliance ([`crate::compliance::sparse`]).
 
-use faer::Mat;
-use faer::sparse::SparseColMat;
-
-use super::assembly::{TetMaterials, assemble_stiffness};
-use super::locate::{LocateError, PointLocation, TetLocator};
-use super::mesh::TetMesh;
-use crate::factor::{CholeskyScratch, DofMap, FactorError, SparseCholesky};
-
-/// Errors of the 3D tissue model.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum TetTissueError {
-    /// A fixed node id does not exist (at construction).
-    #[error("fixed node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
-    UnknownFixedNode { node_idx: usize, n_nodes: usize },
-    /// A node id asked for does not exist (column computation).
-    #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
-    UnknownNode { node_idx: usize, n_nodes: usize },
-    /// No node is fixed (at construction): the tissue would float.
-    #[error("no node is fixed: the tissue needs a fixed boundary")]
-    NoFixedNodes,
-    /// A point lies outside the mesh (point compliance).
-    #[error("working point {point_idx}: {source}")]
-    Locate { point_idx: usize, source: LocateError },
-    /// Point loads: the number of forces is not the number of points.
-    #[error("{n_forces} forces for {n_points} load points: one force per point")]
-    LoadCount { n_points: usize, n_forces: usize },
-    /// Point loads: a force has a NaN or infinite component.
-    #[error("the force {force_n:?} N at load point {point_idx} is not finite")]
-    NonFiniteForce { point_idx: usize, force_n: [f64; 3] },
-    /// Point loads: the output slice does not hold one value per DOF.
-    #[error("the displacement output holds {len} values; the model has {n_dofs} DOFs")]
-    OutputLength { len: usize, n_dofs: usize },
-    /// The factorisation failed (at construction; rigid-body motion, for example).
-    #[error(transparent)]
-    Factor(#[from] FactorError),
-}
+use crate::dim::Dim3;
 
 /// The 3D tissue: mesh, materials, fixed nodes, $K$, the factorised $K_{ff}$ and a point locator.
-/// Immutable once built, so it can be shared (`Arc`) between threads.
-#[derive(Debug)]
-pub struct TetTissueModel {
-    mesh: TetMesh,
-    materials: TetMaterials,
-    fixed: Vec<bool>,
-    stiffness: SparseColMat<usize, f64>,
-    chol: SparseCholesky,
-    locator: TetLocator,
-}
-
+pub type TetTissueModel = crate::compliance::TissueModel<Dim3>;
+/// Errors of the 3D tissue model.
+pub type TetTissueError = crate::compliance::TissueError<Dim3>;
 /// Scratch for [`TetTissueModel::compliance_columns_into`] and
-/// [`TetTissueModel::displacement_for_point_loads_into`]; allocate once per thread.
-pub struct TetColumnScratch {
-    rhs: Mat<f64>,
-    chol: CholeskyScratch,
-}
+/// [`TetTissueModel::displacement_for_point_loads_into`] (the same type in both dimensions).
+pub type TetColumnScratch = crate::compliance::ColumnScratch;
 
-/// Nodes per leaf of the nested dissection (a leaf's nodes are ordered as they come; below a few
-/// dozen the separators cost more than they save).
-const ND_LEAF_NODES: usize = 64;
-/// Meshes with fewer nodes are ordered by faer's AMD, which fills less on small meshes.
-const ND_MIN_NODES: usize = 2000;
-
-impl TetTissueModel {
-    /// Assembles and factorises. Errors when a fixed node does not exist, when no node is fixed,
-    /// and when the model is singular (see [`FactorError`]).
-    pub fn new(mesh: TetMesh, materials: TetMaterials, fixed_nodes: &[usize]) -> Result<Self, TetTissueError> {
-        let n_nodes = mesh.n_nodes();
-        if fixed_nodes.is_empty() {
-            return Err(TetTissueError::NoFixedNodes);
-        }
-        let mut fixed = vec![false; n_nodes];
-        for &node_idx in fixed_nodes {
-            if node_idx >= n_nodes {
-                return Err(TetTissueError::UnknownFixedNode { node_idx, n_nodes });
-            }
-            fixed[node_idx] = true;
-        }
-        let stiffness = assemble_stiffness(&mesh, &materials);
-        let constrained: Vec<bool> = (0..3 * n_nodes).map(|d| fixed[d / 3]).collect();
-        // A nested-dissection ordering: on box grids 25–45 % less fill than faer's AMD, factorised
-        // 2.6–5.5 times faster, and shorter elimination-tree reaches for the sparse compliance rows
-        // (BENCHMARKS.md, d3::sparse_compliance's timing).
-        // Below ND_MIN_NODES AMD fills less (a 6³ box: 76 k against 49 k non-zeros).
-        let dofs = DofMap::with_dofs_per_node(&constrained, 3);
-        let chol = if n_nodes < ND_MIN_NODES {
-            SparseCholesky::new(&stiffness, dofs)?
-        } else {
-            let fwd = super::sparse_compliance::nested_dissection_order(&mesh, &dofs, ND_LEAF_NODES);
-            let mut inv = vec![0usize; fwd.len()];
-            for (k, &f) in fwd.iter().enumerate() {
-                inv[f] = k;
-            }
-            let perm = faer::perm::PermRef::new_checked(&fwd, &inv, fwd.len());
-            SparseCholesky::with_ordering(
-                &stiffness,
-                dofs,
-                faer::sparse::linalg::cholesky::SymmetricOrdering::Custom(perm),
-                Default::default(),
-            )?
-        };
-        let locator = TetLocator::new(&mesh);
-        Ok(Self { mesh, materials, fixed, stiffness, chol, locator })
-    }
-
-    /// The mesh.
-    pub fn mesh(&self) -> &TetMesh {
-        &self.mesh
-    }
-    /// The materials.
-    pub fn materials(&self) -> &TetMaterials {
-        &self.materials
-    }
-    /// The full stiffness $K$ (all DOFs, both triangles).
-    pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
-        &self.stiffness
-    }
-    /// The factorisation of $K_{ff}$.
-    pub fn cholesky(&self) -> &SparseCholesky {
-        &self.chol
-    }
-    /// Whether node `node_idx` is fixed.
-    pub fn is_fixed(&self, node_idx: usize) -> bool {
-        self.fixed[node_idx]
-    }
-    /// Number of DOFs, $3n$.
-    pub fn n_dofs(&self) -> usize {
-        3 * self.mesh.n_nodes()
-    }
-    /// The tetrahedron holding `x_m` (reference position) and its barycentric weights.
-    pub fn locate(&self, x_m: [f64; 3]) -> Result<PointLocation, LocateError> {
-        self.locator.locate(&self.mesh, x_m)
-    }
-    /// Scratch for column computations.
-    pub fn column_scratch(&self) -> TetColumnScratch {
-        TetColumnScratch { rhs: Mat::zeros(self.chol.n_free(), 3), chol: self.chol.scratch(3) }
-    }
-
-    /// Writes the three compliance columns of node `node_idx` into `out` (length $3 \cdot 3n$: the
-    /// column for a unit $f_x$, then $f_y$, then $f_z$, each over all DOFs, zero at fixed DOFs). A
-    /// fixed node has zero columns. Errors only for an unknown node. Allocates nothing.
-    pub fn compliance_columns_into(&self, node_idx: usize, out: &mut [f64], scratch: &mut TetColumnScratch) -> Result<(), TetTissueError> {
-        let n_nodes = self.mesh.n_nodes();
-        if node_idx >= n_nodes {
-            return Err(TetTissueError::UnknownNode { node_idx, n_nodes });
-        }
-        self.chol.node_columns_into(node_idx, out, &mut scratch.rhs, &mut scratch.chol);
-        Ok(())
-    }
-
-    /// Writes into `out_m` (length $3n$, DOF $3\cdot\mathrm{node} + \mathrm{axis}$, m) the
-    /// displacement of every node under the point loads `forces_n[i]` (N, world) at the located
-    /// material points `points[i]`: $u = K_{ff}^{-1} P^\top f$ (module docs), zero at fixed DOFs.
-    /// One sparse solve of one right-hand side, cost $O(\mathrm{nnz}(L))$ whatever the number of
-    /// points; allocates nothing. Loads on a fixed node's DOFs go to the support (they move
-    /// nothing). No points: $u = 0$.
-    ///
-    /// Errors (nothing is written): [`TetTissueError::LoadCount`] when `forces_n` and `points`
-    /// differ in length, [`TetTissueError::OutputLength`] when `out_m` is not $3n$ long,
-    /// [`TetTissueError::UnknownNode`] when a point names a node the mesh does not have, and
-    /// [`TetTissueError::NonFiniteForce`] when a force component is NaN or infinite.
-    pub fn displacement_for_point_loads_into(
-        &self,
-        points: &[PointLocation],
-        forces_n: &[[f64; 3]],
-        out_m: &mut [f64],
-        scratch: &mut TetColumnScratch,
-    ) -> Result<(), TetTissueError> {
-        let (n_nodes, n_dofs) = (self.mesh.n_nodes(), self.n_dofs());
-        if points.len() != forces_n.len() {
-            return Err(TetTissueError::LoadCount { n_points: points.len(), n_forces: forces_n.len() });
-        }
-        if out_m.len() != n_dofs {
-            return Err(TetTissueError::OutputLength { len: out_m.len(), n_dofs });
-        }
-        for (point_idx, (p, f)) in points.iter().zip(forces_n).enumerate() {
-            if let Some(&node_idx) = p.nodes.iter().find(|&&v| v >= n_nodes) {
-                return Err(TetTissueError::UnknownNode { node_idx, n_nodes });
-            }
-            if !f.iter().all(|x| x.is_finite()) {
-                return Err(TetTissueError::NonFiniteForce { point_idx, force_n: *f });
-            }
-        }
-        let dofs = self.chol.dofs();
-        let mut rhs = scratch.rhs.as_mut().subcols_mut(0, 1);
-        rhs.fill(0.0);
-        for (p, f) in points.iter().zip(forces_n) {
-            for (&node, &weight) in p.nodes.iter().zip(&p.weights) {
-                for (axis, &f_axis) in f.iter().enumerate() {
-                    if let Some(free) = dofs.free_index(3 * node + axis) {
-                        rhs[(free, 0)] += weight * f_axis;
-                    }
-                }
-            }
-        }
-        self.chol.solve_in_place(rhs.as_mut(), &mut scratch.chol);
-        out_m.fill(0.0);
-        for (free, &dof) in dofs.free_dofs().iter().enumerate() {
-            out_m[dof] = rhs[(free, 0)];
-        }
-        Ok(())
-    }
-
-    /// The compliance $C_{ww}$ of the given nodes' DOFs, row-major $3m \times 3m$, order
-    /// $[u_x(w_0), u_y(w_0), u_z(w_0), u_x(w_1), \dots]$ (allocates; not for the real-time thread).
-    pub fn node_compliance(&self, nodes: &[usize]) -> Result<Vec<f64>, TetTissueError> {
-        let unit = |n: usize| PointLocation { tet_idx: usize::MAX, nodes: [n; 4], weights: [1.0, 0.0, 0.0, 0.0] };
-        self.point_compliance(&nodes.iter().map(|&n| unit(n)).collect::<Vec<_>>())
-    }
-
-    /// The point compliance $W = P K_{ff}^{-1} P^\top$ of located points, row-major
-    /// $3m \times 3m$, order $[u_x(p_0), u_y(p_0), u_z(p_0), u_x(p_1), \dots]$, from the columns
-    /// of the points' element nodes (allocates; not for the real-time thread). Errors only for an
-    /// unknown node.
-    pub fn point_compliance(&self, points: &[PointLocation]) -> Result<Vec<f64>, TetTissueError> {
-        let n_dofs = self.n_dofs();
-        let m = points.len();
-        let d = 3 * m;
-        let mut w = vec![0.0; d * d];
-        let mut scratch = self.column_scratch();
-        let mut cols = vec![0.0; 3 * n_dofs];
-        // Column of W for force axis `axis` at point b: sum_j N_bj C[:, 3 k_bj + axis], restricted
-        // by P on the rows.
-        for (b, pb) in points.iter().enumerate() {
-            for j in 0..4 {
-                if pb.weights[j] == 0.0 {
-                    continue;
-                }
-                self.compliance_columns_into(pb.nodes[j], &mut cols, &mut scratch)?;
-                for axis in 0..3 {
-                    let col = &cols[axis * n_dofs..(axis + 1) * n_dofs];
-                    for (a, pa) in points.iter().enumerate() {
-                        for r in 0..3 {
-                            let v: f64 = (0..4).map(|i| pa.weights[i] * col[3 * pa.nodes[i] + r]).sum();
-                            w[(3 * a + r) * d + 3 * b + axis] += pb.weights[j] * v;
-                        }
-                    }
-                }
-            }
-        }
-        // Symmetrise (the two triangles differ by solve round-off).
-        for i in 0..d {
-            for j in 0..i {
-                let v = 0.5 * (w[i * d + j] + w[j * d + i]);
-                w[i * d + j] = v;
-                w[j * d + i] = v;
-            }
-        }
-        Ok(w)
-    }
-
-    /// [`TetTissueModel::point_compliance`] at reference positions; errors name the point that
-    /// lies outside the mesh.
-    pub fn point_compliance_at(&self, x_m: &[[f64; 3]]) -> Result<Vec<f64>, TetTissueError> {
-        let locs = x_m
-            .iter()
-            .enumerate()
-            .map(|(point_idx, &x)| self.locate(x).map_err(|source| TetTissueError::Locate { point_idx, source }))
-            .collect::<Result<Vec<_>, _>>()?;
-        self.point_compliance(&locs)
-    }
-}
+pub use crate::compliance::sparse::{FactorPattern, SparseComplianceError, SparseRowsScratch};
+/// A node's compliance rows $Y_v$, three force axes ([`crate::compliance::sparse`]).
+pub type NodeRows = crate::compliance::sparse::NodeRows<3>;
+/// The walkable view of a 3D factor ([`crate::compliance::sparse`]).
+pub type SparseFactorView<'f> = crate::compliance::sparse::SparseFactorView<'f, 3>;
+/// The sparse compliance of a 3D factor: $3 \times 3$ node and point blocks ([`crate::compliance::sparse`]).
+pub type SparseCompliance<'f> = crate::compliance::sparse::SparseCompliance<'f, 3>;
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::Material;
+    use crate::d3::assembly::TetMaterials;
+    use crate::d3::locate::PointLocation;
     use crate::d3::mesh::{BoxGridParams, TetMeshLimits};
     use nalgebra::DMatrix;
 

@@ -76,30 +76,30 @@ mod flex;
 mod params;
 mod pose;
 pub mod stiffness;
-mod store;
 pub mod targets;
 mod tear;
-mod worker;
 
 use std::sync::Arc;
 
+use crate::compliance::sparse::SparseComplianceError;
 use crate::compliance::{ComplianceCache3, ContactBlocks};
 use crate::contact::ContactPoint;
 use crate::d3::locate::{BARYCENTRIC_TOL, barycentric};
-use crate::d3::sparse_compliance::SparseComplianceError;
 use crate::d3::{TetColumnScratch, TetTissueError, TetTissueModel};
 use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedError, MixedSolver3};
 use crate::needle::RegionNeedleParams;
 
+pub use crate::compliance::store::{
+    Block3, BlockPayload3 as BlockPayload, BlockRequest, BlockStoreError, ComplianceStore3, NodeBlockStore3 as NodeBlockStore,
+};
+pub use crate::compliance::worker::{ROWS_BATCH, Sim3BlockWorker, WorkerStats};
 pub use flex::{FRAME_TOL as FLEX_FRAME_TOL, SHAPE_GAP_TOL_M, SHAPE_PASSES};
 pub use params::{AUTO_BLOCKS_MIN_NODES, NeedleShape3, Sim3Params, StoreKind3};
 pub use pose::{BasePose3, PoseError, UNIT_QUATERNION_TOL, unit_axis};
 pub use stiffness::WrenchStiffness3;
-pub use store::{Block3, BlockPayload, BlockRequest, BlockStoreError, ComplianceStore3, NodeBlockStore};
 pub use targets::{MAX_TARGETS, Target3, TargetOut3, TargetState3, TargetsOut3};
 pub use tear::DEFAULT_TEAR_FORCE_FACTOR;
-pub use worker::{ROWS_BATCH, Sim3BlockWorker, WorkerStats};
 
 /// Fixed-point iterations locating the material point at a deformed position.
 const LOCATE_ITERATIONS: usize = 8;

@@ -30,7 +30,7 @@
 //! stays until [`Simulation3::reset_targets`] or a new simulation; the displaced centre and the
 //! distance keep being updated.
 
-use super::store::ComplianceStore3;
+use crate::compliance::store::ComplianceStore3;
 use crate::contact::ContactPoint;
 use crate::d3::TetTissueModel;
 

@@ -1,22 +1,27 @@
-//! The worker side of the node-block store ([`super::NodeBlockStore`]): sparse compliance rows
-//! of the requested nodes and their blocks against the worker's mirror of the slots
-//! ([`Sim3BlockWorker`]). `Send`: it can run on its own thread; the offline runs call it between
-//! steps ([`super::Simulation3::prefetch_blocks`]).
+//! The worker side of the node-block store ([`super::store::NodeBlockStore`]), written once for
+//! both dimensions: sparse compliance rows of the requested nodes and their blocks against the
+//! worker's mirror of the slots ([`BlockWorker`]; the 3D simulation's is [`Sim3BlockWorker`]).
+//! `Send`: it can run on its own thread; the offline runs call it between steps
+//! ([`crate::sim3::Simulation3::prefetch_blocks`]).
 //!
 //! For a batch of requests it computes the rows $Y_v$ of up to [`ROWS_BATCH`] nodes at once
-//! ([`SparseFactorView::rows_batch_into`]: one forward solve with $3k$ right-hand sides, each
+//! ([`SparseFactorView::rows_batch_into`]: one forward solve with $Nk$ right-hand sides, each
 //! block of $L$ read once per batch), then, request by request in order, moves the rows into the
 //! requested slot of its mirror and computes $C_{vw} = Y_v^\top Y_w$ against every filled slot
 //! ([`SparseFactorView::block`]). Memory: the rows of at most $M$ nodes (about 240 KB each at
 //! 257k tetrahedra) plus the payloads' $M$ blocks each.
+//!
+//! The model's dimension is a [`Dim`] and the blocks' a const generic `N` (as the stores'); the
+//! worker names both, `BlockWorker<D, N>`, and they are checked equal when it is compiled.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::d3::TetTissueModel;
-use crate::d3::sparse_compliance::{FactorPattern, NodeRows, SparseComplianceError, SparseFactorView, SparseRowsScratch};
+use crate::compliance::TissueModel;
+use crate::compliance::sparse::{FactorPattern, NodeRows, SparseComplianceError, SparseFactorView, SparseRowsScratch};
+use crate::dim::{Dim, Dim3};
 
-use super::store::{Block3, BlockPayload, BlockRequest};
+use super::store::{Block, BlockPayload, BlockRequest};
 
 /// Nodes per batched forward solve (BENCHMARKS.md: 32 amortises the reads of $L$).
 pub const ROWS_BATCH: usize = 32;
@@ -34,31 +39,36 @@ pub struct WorkerStats {
     pub blocks_time: Duration,
 }
 
-/// The worker of a node-block store (module docs).
-pub struct Sim3BlockWorker {
-    model: Arc<TetTissueModel>,
+/// The worker of a node-block store (module docs): a model of dimension `D` and blocks of
+/// `N` $= D::N$ rows.
+pub struct BlockWorker<D: Dim, const N: usize> {
+    model: Arc<TissueModel<D>>,
     pattern: FactorPattern,
     scratch: SparseRowsScratch,
     /// The node in each slot of the mirror (`usize::MAX`: never filled).
     slot_node: Vec<usize>,
     /// The rows of each slot's node (storage reused).
-    rows: Vec<NodeRows>,
+    rows: Vec<NodeRows<N>>,
     /// Rows of the current batch.
-    batch_rows: Vec<NodeRows>,
+    batch_rows: Vec<NodeRows<N>>,
     batch_nodes: Vec<usize>,
     /// Payload storage, reused across calls.
-    payloads: Vec<BlockPayload>,
+    payloads: Vec<BlockPayload<N>>,
     stats: WorkerStats,
 }
 
-impl Sim3BlockWorker {
+/// The 3D simulation's worker.
+pub type Sim3BlockWorker = BlockWorker<Dim3, 3>;
+
+impl<D: Dim, const N: usize> BlockWorker<D, N> {
     /// A worker for `model` and a store of `cap` slots.
     ///
-    /// Errors: [`SparseComplianceError::NotThreeDofsPerNode`] cannot happen for a
-    /// [`TetTissueModel`] but is passed on.
-    pub fn new(model: Arc<TetTissueModel>, cap: usize) -> Result<Self, SparseComplianceError> {
+    /// Errors: [`SparseComplianceError::WrongDofsPerNode`] cannot happen for a
+    /// [`TissueModel`] but is passed on.
+    pub fn new(model: Arc<TissueModel<D>>, cap: usize) -> Result<Self, SparseComplianceError> {
+        const { assert!(D::N == N, "the blocks have the model's dimension") };
         let (pattern, scratch) = {
-            let view = SparseFactorView::new(model.cholesky())?;
+            let view = SparseFactorView::<N>::new(model.cholesky())?;
             (view.pattern(), view.scratch())
         };
         Ok(Self {
@@ -97,15 +107,15 @@ impl Sim3BlockWorker {
     /// the mirror (reported as that node); the requests before the failing batch are answered
     /// in the mirror but their payloads are lost, so the caller must start over (a programming
     /// error: the simulation only requests nodes of its mesh in its slots).
-    pub fn compute(&mut self, requests: &[BlockRequest]) -> Result<&[BlockPayload], SparseComplianceError> {
+    pub fn compute(&mut self, requests: &[BlockRequest]) -> Result<&[BlockPayload<N>], SparseComplianceError> {
         let cap = self.cap();
         let n_nodes = self.model.mesh().n_nodes();
         if let Some(r) = requests.iter().find(|r| r.node_idx >= n_nodes || r.slot >= cap) {
             return Err(SparseComplianceError::UnknownNode { node_idx: r.node_idx, n_nodes });
         }
-        let view = SparseFactorView::with_pattern(self.model.cholesky(), &self.pattern)?;
+        let view = SparseFactorView::<N>::with_pattern(self.model.cholesky(), &self.pattern)?;
         while self.payloads.len() < requests.len() {
-            self.payloads.push(BlockPayload { node_idx: 0, slot: 0, blocks: vec![[[0.0; 3]; 3]; cap] });
+            self.payloads.push(BlockPayload { node_idx: 0, slot: 0, blocks: vec![[[0.0; N]; N]; cap] });
         }
         for (chunk_idx, chunk) in requests.chunks(ROWS_BATCH).enumerate() {
             self.batch_nodes.clear();
@@ -124,7 +134,7 @@ impl Sim3BlockWorker {
                 let yv = &self.rows[r.slot];
                 for (j, b) in p.blocks.iter_mut().enumerate() {
                     *b = if self.slot_node[j] == usize::MAX {
-                        [[0.0; 3]; 3]
+                        [[0.0; N]; N]
                     } else {
                         self.stats.blocks += 1;
                         block_of(yv, &self.rows[j])
@@ -137,6 +147,6 @@ impl Sim3BlockWorker {
     }
 }
 
-fn block_of(a: &NodeRows, b: &NodeRows) -> Block3 {
+fn block_of<const N: usize>(a: &NodeRows<N>, b: &NodeRows<N>) -> Block<N> {
     SparseFactorView::block(a, b)
 }

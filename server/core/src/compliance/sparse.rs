@@ -1,5 +1,7 @@
 //! Compliance entries of $C = K_{ff}^{-1}$ from sparse forward solves (selected inversion along
-//! elimination-tree paths), without ever forming a column of length $3n$.
+//! elimination-tree paths), without ever forming a column of length $Nn$ — written once for
+//! both dimensions, $N$ DOFs per node (the const generic `N`, 2 or 3: blocks are $N \times N$
+//! arrays the compiler unrolls).
 //!
 //! # Mathematics
 //!
@@ -14,27 +16,27 @@
 //! "reach"). faer's supernodal factor groups columns into supernodes $\sigma$ with a dense
 //! trapezoidal block $L_{[\sigma] \cup R_\sigma,\,\sigma}$ ($R_\sigma$ the row pattern below the
 //! diagonal block, all in ancestors of $\sigma$); a simplicial factor is read as one-column
-//! supernodes. The reach of a node (its 3 DOFs) is the union of the supernode-tree paths from its
+//! supernodes. The reach of a node (its $N$ DOFs) is the union of the supernode-tree paths from its
 //! DOFs' supernodes; the forward solve visits it in ascending order:
 //! $$x_\sigma \leftarrow L_{\sigma\sigma}^{-1} x_\sigma, \qquad x_{R_\sigma} \leftarrow x_{R_\sigma} - L_{R_\sigma \sigma}\, x_\sigma ,$$
 //! with cost $\sum_{\sigma \in \mathrm{reach}} |\sigma| (|\sigma| + |R_\sigma|)$ per right-hand
 //! side, independent of $n$ for a fixed path length. A node's [`NodeRows`] hold
-//! $Y_v = [y_{3v}, y_{3v+1}, y_{3v+2}]$ on its reach only (a fixed node: empty, $C = 0$).
+//! $Y_v = [y_{Nv}, \dots, y_{Nv+N-1}]$ on its reach only (a fixed node: empty, $C = 0$).
 //!
 //! A node block is a sparse dot product over the common part of the two reaches (an upward-closed
 //! set: from the lowest common ancestors to the root):
-//! $$C_{vw} = Y_v^\top Y_w \in \mathbb{R}^{3\times 3}, \qquad (C_{vw})_{rs} = \sum_{\sigma \in \mathrm{reach}(v) \cap \mathrm{reach}(w)} y_{3v+r,\sigma}^\top\, y_{3w+s,\sigma} .$$
-//! A material point $a$ inside a tetrahedron with nodes $v_{a,k}$ and barycentric weights $N_{a,k}$
-//! ($\sum_k N_{a,k} = 1$) has $u(a) = \sum_k N_{a,k} u(v_{a,k})$, i.e. $P_a = [N_{a,k} I_3]_k$, so
+//! $$C_{vw} = Y_v^\top Y_w \in \mathbb{R}^{N\times N}, \qquad (C_{vw})_{rs} = \sum_{\sigma \in \mathrm{reach}(v) \cap \mathrm{reach}(w)} y_{Nv+r,\sigma}^\top\, y_{Nw+s,\sigma} .$$
+//! A material point $a$ inside an element with nodes $v_{a,k}$ and barycentric weights $N_{a,k}$
+//! ($\sum_k N_{a,k} = 1$) has $u(a) = \sum_k N_{a,k} u(v_{a,k})$, i.e. $P_a = [N_{a,k} I_N]_k$, so
 //! the point block of $W = P C P^\top$ is
-//! $$W_{ab} = \sum_{k=0}^{3} \sum_{l=0}^{3} N_{a,k} N_{b,l}\, C_{v_{a,k} v_{b,l}} .$$
+//! $$W_{ab} = \sum_{k} \sum_{l} N_{a,k} N_{b,l}\, C_{v_{a,k} v_{b,l}} .$$
 //!
 //! # Use
 //! [`SparseFactorView`] is the immutable walkable view of a factor (shareable between threads);
 //! [`SparseFactorView::rows_into`] computes a node's rows allocation-free into caller storage with
 //! a [`SparseRowsScratch`] sized once (a dense work vector whose touched entries — the reach — are
 //! reset after each solve, so no $O(n)$ work per node); [`SparseFactorView::rows_batch_into`] solves
-//! for $k$ nodes at once ($3k$ right-hand sides on the union of their reaches, dense kernels per
+//! for $k$ nodes at once ($Nk$ right-hand sides on the union of their reaches, dense kernels per
 //! supernode), which reads each block of $L$ once per batch — the solve is bound by reading $L$ on
 //! the reach, so batching is what makes rows cheap. [`SparseCompliance`] adds a per-node cache
 //! ([`SparseCompliance::prefetch`] in batches), the node and point blocks, and point rows
@@ -42,21 +44,25 @@
 //! one sparse dot product. The reach length, hence the cost and the memory per node, depends on
 //! the ordering: [`nested_dissection_order`] gives shorter reaches and less fill than faer's AMD
 //! on box grids. No I/O.
+//!
+//! Both dimensions run the same code: the 3D simulation keeps its compliance this way on large
+//! meshes; the 2D tests check the node blocks against the dense columns.
 
 use std::borrow::Cow;
 
-use crate::d3::locate::PointLocation;
-use crate::d3::tissue::TetTissueModel;
+use crate::compliance::TissueModel;
+use crate::dim::Dim;
 use crate::factor::SparseCholesky;
+use crate::mesh::SimplexMesh;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 
 /// Errors of the sparse compliance.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SparseComplianceError {
-    /// The factor is not of a 3D model (at construction): its DOF map has `dofs_per_node` DOFs per
-    /// node, not 3.
-    #[error("the factor has {dofs_per_node} DOFs per node; the 3D sparse compliance needs 3")]
-    NotThreeDofsPerNode { dofs_per_node: usize },
+    /// The factor is not of a model of this dimension (at construction): its DOF map has
+    /// `dofs_per_node` DOFs per node, not `expected`.
+    #[error("the factor has {dofs_per_node} DOFs per node; the {expected}D sparse compliance needs {expected}")]
+    WrongDofsPerNode { dofs_per_node: usize, expected: usize },
     /// A node asked for (rows, node block, or a point's element node) does not exist.
     #[error("node {node_idx} does not exist: the mesh has {n_nodes} nodes")]
     UnknownNode { node_idx: usize, n_nodes: usize },
@@ -66,10 +72,10 @@ pub enum SparseComplianceError {
 }
 
 /// The compliance rows $Y_v$ of one node on its reach (see the module documentation): the
-/// supernodes of the reach in ascending order, and per supernode its columns' values for the three
+/// supernodes of the reach in ascending order, and per supernode its columns' values for the $N$
 /// force axes. Units: m/N after the dot product ($C$ in m/N, each $y$ in $\sqrt{\mathrm{m/N}}$).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct NodeRows {
+pub struct NodeRows<const N: usize> {
     /// Supernodes of the reach, ascending.
     supernodes: Vec<usize>,
     /// `starts[k]` is the offset of supernode `supernodes[k]`'s first column in each axis' values;
@@ -79,7 +85,7 @@ pub struct NodeRows {
     values: Vec<f64>,
 }
 
-impl NodeRows {
+impl<const N: usize> NodeRows<N> {
     /// Number of stored entries per axis (the reach length in factor columns; 0 for a fixed node).
     pub fn len(&self) -> usize {
         self.starts.last().copied().unwrap_or(0)
@@ -109,11 +115,11 @@ impl NodeRows {
     }
 }
 
-/// Scratch for [`SparseFactorView::rows_into`], sized once for a factor ($3n_\mathrm{free}$
+/// Scratch for [`SparseFactorView::rows_into`], sized once for a factor ($Nn_\mathrm{free}$
 /// doubles, one flag per supernode); allocate once per thread.
 #[derive(Debug, Clone)]
 pub struct SparseRowsScratch {
-    /// Dense work vector, interleaved `x[3 * column + axis]`; zero between solves.
+    /// Dense work vector, interleaved `x[N * column + axis]`; zero between solves.
     x: Vec<f64>,
     /// Whether a supernode is on the current reach; false between solves.
     on_reach: Vec<bool>,
@@ -125,7 +131,7 @@ pub struct SparseRowsScratch {
     stamp: Vec<u64>,
     /// Batched solves: the stamp generation.
     generation: u64,
-    /// Batched solves: the right-hand sides on the union reach, row-major (reach × 3 batch).
+    /// Batched solves: the right-hand sides on the union reach, row-major (reach × N batch).
     xb: Vec<f64>,
     /// Batched solves: the product $L_{R_\sigma\sigma} X_\sigma$, row-major.
     tmp: Vec<f64>,
@@ -148,11 +154,11 @@ pub struct FactorPattern {
     supernodal: bool,
 }
 
-/// An immutable, walkable view of a [`SparseCholesky`] factor of a 3D model: per supernode its
+/// An immutable, walkable view of a [`SparseCholesky`] factor with `N` DOFs per node: per supernode its
 /// first column, value offset, row pattern below the diagonal block and parent in the supernode
 /// elimination tree. `Sync`: one view can serve several threads, each with its own scratch.
 #[derive(Debug)]
-pub struct SparseFactorView<'f> {
+pub struct SparseFactorView<'f, const N: usize> {
     l_values: &'f [f64],
     /// Jacobi scale per free DOF.
     scale: &'f [f64],
@@ -176,13 +182,13 @@ pub struct SparseFactorView<'f> {
     supernodal: bool,
 }
 
-impl<'f> SparseFactorView<'f> {
-    /// The view of `chol`, whose DOF map must have 3 DOFs per node
-    /// ([`SparseComplianceError::NotThreeDofsPerNode`] otherwise). $O(n + \mathrm{nnz\ pattern})$.
+impl<'f, const N: usize> SparseFactorView<'f, N> {
+    /// The view of `chol`, whose DOF map must have `N` DOFs per node
+    /// ([`SparseComplianceError::WrongDofsPerNode`] otherwise). $O(n + \mathrm{nnz\ pattern})$.
     pub fn new(chol: &'f SparseCholesky) -> Result<Self, SparseComplianceError> {
         let dofs = chol.dofs();
-        if dofs.dofs_per_node() != 3 {
-            return Err(SparseComplianceError::NotThreeDofsPerNode { dofs_per_node: dofs.dofs_per_node() });
+        if dofs.dofs_per_node() != N {
+            return Err(SparseComplianceError::WrongDofsPerNode { dofs_per_node: dofs.dofs_per_node(), expected: N });
         }
         let n = dofs.n_free();
         let n_dofs = dofs.n_dofs();
@@ -240,7 +246,7 @@ impl<'f> SparseFactorView<'f> {
             sn_pat: Cow::Owned(sn_pat),
             pattern: Cow::Owned(pattern),
             sn_parent: Cow::Owned(sn_parent),
-            n_nodes: n_dofs / 3,
+            n_nodes: n_dofs / N,
             supernodal,
         })
     }
@@ -270,7 +276,7 @@ impl<'f> SparseFactorView<'f> {
     /// (another factor: different numbers of DOFs, free DOFs or factor values).
     pub fn with_pattern(chol: &'f SparseCholesky, pattern: &'f FactorPattern) -> Result<Self, SparseComplianceError> {
         let dofs = chol.dofs();
-        let fits = dofs.dofs_per_node() == 3
+        let fits = dofs.dofs_per_node() == N
             && pattern.free_of_dof.len() == dofs.n_dofs()
             && pattern.col_of_free.len() == dofs.n_free()
             && pattern.sn_val.last().copied() == Some(chol.l_values().len());
@@ -314,7 +320,7 @@ impl<'f> SparseFactorView<'f> {
     pub fn scratch(&self) -> SparseRowsScratch {
         let (n, n_sn) = (self.col_of_free.len(), self.n_supernodes());
         SparseRowsScratch {
-            x: vec![0.0; 3 * n],
+            x: vec![0.0; N * n],
             on_reach: vec![false; n_sn],
             reach: Vec::with_capacity(n_sn),
             pos: vec![usize::MAX; n],
@@ -328,23 +334,23 @@ impl<'f> SparseFactorView<'f> {
     /// Computes node `node_idx`'s rows $Y_v$ into `out` (its storage reused; allocation-free
     /// once `out` has held a reach at least as long). A fixed node gets empty rows. Errors only
     /// for an unknown node ([`SparseComplianceError::UnknownNode`]).
-    pub fn rows_into(&self, node_idx: usize, scratch: &mut SparseRowsScratch, out: &mut NodeRows) -> Result<(), SparseComplianceError> {
+    pub fn rows_into(&self, node_idx: usize, scratch: &mut SparseRowsScratch, out: &mut NodeRows<N>) -> Result<(), SparseComplianceError> {
         if node_idx >= self.n_nodes {
             return Err(SparseComplianceError::UnknownNode { node_idx, n_nodes: self.n_nodes });
         }
         out.clear();
         out.starts.push(0);
         let SparseRowsScratch { x, on_reach, reach, .. } = scratch;
-        debug_assert_eq!(x.len(), 3 * self.col_of_free.len(), "scratch of another factor");
+        debug_assert_eq!(x.len(), N * self.col_of_free.len(), "scratch of another factor");
         // Right-hand sides s_i e_inv(i) and the reach: the union of the supernode-tree paths.
         reach.clear();
-        for axis in 0..3 {
-            let f = self.free_of_dof[3 * node_idx + axis];
+        for axis in 0..N {
+            let f = self.free_of_dof[N * node_idx + axis];
             if f == usize::MAX {
                 continue;
             }
             let col = self.col_of_free[f];
-            x[3 * col + axis] = self.scale[f];
+            x[N * col + axis] = self.scale[f];
             let mut s = self.sn_of_col[col];
             while s != usize::MAX && !on_reach[s] {
                 on_reach[s] = true;
@@ -362,39 +368,37 @@ impl<'f> SparseFactorView<'f> {
             let block = &self.l_values[self.sn_val[s]..self.sn_val[s + 1]];
             for c in 0..w {
                 let lc = &block[c * nrows..(c + 1) * nrows];
-                let j = 3 * (b + c);
+                let j = N * (b + c);
                 let inv = 1.0 / lc[c];
-                let (x0, x1, x2) = (x[j] * inv, x[j + 1] * inv, x[j + 2] * inv);
-                x[j] = x0;
-                x[j + 1] = x1;
-                x[j + 2] = x2;
-                if x0 == 0.0 && x1 == 0.0 && x2 == 0.0 {
+                let xc: [f64; N] = std::array::from_fn(|a| x[j + a] * inv);
+                x[j..j + N].copy_from_slice(&xc);
+                if xc.iter().all(|&v| v == 0.0) {
                     continue;
                 }
                 for (r, &l) in lc.iter().enumerate().take(w).skip(c + 1) {
-                    let k = 3 * (b + r);
-                    x[k] -= l * x0;
-                    x[k + 1] -= l * x1;
-                    x[k + 2] -= l * x2;
+                    let k = N * (b + r);
+                    for a in 0..N {
+                        x[k + a] -= l * xc[a];
+                    }
                 }
                 for (&row, &l) in pat.iter().zip(&lc[w..]) {
-                    let k = 3 * row;
-                    x[k] -= l * x0;
-                    x[k + 1] -= l * x1;
-                    x[k + 2] -= l * x2;
+                    let k = N * row;
+                    for a in 0..N {
+                        x[k + a] -= l * xc[a];
+                    }
                 }
             }
         }
         // Gather axis-major, reset the touched entries.
         let len: usize = reach.iter().map(|&s| self.sn_begin[s + 1] - self.sn_begin[s]).sum();
-        out.values.resize(3 * len, 0.0);
+        out.values.resize(N * len, 0.0);
         let mut off = 0;
         for &s in reach.iter() {
             out.supernodes.push(s);
             for col in self.sn_begin[s]..self.sn_begin[s + 1] {
-                for axis in 0..3 {
-                    out.values[axis * len + off] = x[3 * col + axis];
-                    x[3 * col + axis] = 0.0;
+                for axis in 0..N {
+                    out.values[axis * len + off] = x[N * col + axis];
+                    x[N * col + axis] = 0.0;
                 }
                 off += 1;
             }
@@ -405,16 +409,16 @@ impl<'f> SparseFactorView<'f> {
     }
 
     /// As [`SparseFactorView::rows_into`] for several nodes at once (`outs[t]` gets `nodes[t]`'s
-    /// rows): one forward solve with $3k$ right-hand sides over the union of their reaches, with
+    /// rows): one forward solve with $Nk$ right-hand sides over the union of their reaches, with
     /// dense kernels per supernode (a triangular solve with $L_{\sigma\sigma}$ and a product with
     /// $L_{R_\sigma\sigma}$), so each block of $L$ is read once for the batch rather than once per
     /// node. Nodes near each other share most of their reach. The scratch grows to the largest
-    /// union reach × $3k$ and is kept. Errors only for an unknown node (nothing computed then).
+    /// union reach × $Nk$ and is kept. Errors only for an unknown node (nothing computed then).
     pub fn rows_batch_into(
         &self,
         nodes: &[usize],
         scratch: &mut SparseRowsScratch,
-        outs: &mut [NodeRows],
+        outs: &mut [NodeRows<N>],
     ) -> Result<(), SparseComplianceError> {
         use faer::linalg::matmul::matmul;
         use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
@@ -423,15 +427,15 @@ impl<'f> SparseFactorView<'f> {
         if let Some(&node_idx) = nodes.iter().find(|&&v| v >= self.n_nodes) {
             return Err(SparseComplianceError::UnknownNode { node_idx, n_nodes: self.n_nodes });
         }
-        let m = 3 * nodes.len();
+        let m = N * nodes.len();
         let SparseRowsScratch { on_reach, reach, pos, stamp, generation, xb, tmp, .. } = scratch;
         // Each node's own reach, and their union.
         reach.clear();
         for (&v, out) in nodes.iter().zip(outs.iter_mut()) {
             *generation += 1;
             out.clear();
-            for axis in 0..3 {
-                let f = self.free_of_dof[3 * v + axis];
+            for axis in 0..N {
+                let f = self.free_of_dof[N * v + axis];
                 if f == usize::MAX {
                     continue;
                 }
@@ -459,10 +463,10 @@ impl<'f> SparseFactorView<'f> {
         xb.clear();
         xb.resize(len * m, 0.0);
         for (t, &v) in nodes.iter().enumerate() {
-            for axis in 0..3 {
-                let f = self.free_of_dof[3 * v + axis];
+            for axis in 0..N {
+                let f = self.free_of_dof[N * v + axis];
                 if f != usize::MAX {
-                    xb[pos[self.col_of_free[f]] * m + 3 * t + axis] = self.scale[f];
+                    xb[pos[self.col_of_free[f]] * m + N * t + axis] = self.scale[f];
                 }
             }
         }
@@ -499,13 +503,13 @@ impl<'f> SparseFactorView<'f> {
         }
         for (t, out) in outs.iter_mut().enumerate() {
             let lt: usize = out.supernodes.iter().map(|&s| self.sn_begin[s + 1] - self.sn_begin[s]).sum();
-            out.values.resize(3 * lt, 0.0);
+            out.values.resize(N * lt, 0.0);
             out.starts.push(0);
             let mut off = 0;
             for &s in &out.supernodes {
                 for &p in &pos[self.sn_begin[s]..self.sn_begin[s + 1]] {
-                    for axis in 0..3 {
-                        out.values[axis * lt + off] = xb[p * m + 3 * t + axis];
+                    for axis in 0..N {
+                        out.values[axis * lt + off] = xb[p * m + N * t + axis];
                     }
                     off += 1;
                 }
@@ -521,8 +525,8 @@ impl<'f> SparseFactorView<'f> {
 
     /// The node block $C_{vw} = Y_v^\top Y_w$ (m/N; `[r][s]` = displacement axis r of v under a
     /// unit force along axis s at w) from two nodes' rows.
-    pub fn block(a: &NodeRows, b: &NodeRows) -> [[f64; 3]; 3] {
-        let mut c = [[0.0; 3]; 3];
+    pub fn block(a: &NodeRows<N>, b: &NodeRows<N>) -> [[f64; N]; N] {
+        let mut c = [[0.0; N]; N];
         let (la, lb) = (a.len(), b.len());
         let (mut i, mut j) = (0, 0);
         let (na, nb) = (a.supernodes.len(), b.supernodes.len());
@@ -538,11 +542,11 @@ impl<'f> SparseFactorView<'f> {
                         j += 1;
                     }
                     let (ra, rb) = (a.starts[i0]..a.starts[i], b.starts[j0]..b.starts[j]);
-                    let ya = [0, 1, 2].map(|r| &a.values[r * la..][ra.clone()]);
-                    let yb = [0, 1, 2].map(|s| &b.values[s * lb..][rb.clone()]);
-                    let d = dot3x3(ya, yb);
-                    for r in 0..3 {
-                        for s in 0..3 {
+                    let ya: [&[f64]; N] = std::array::from_fn(|r| &a.values[r * la..][ra.clone()]);
+                    let yb: [&[f64]; N] = std::array::from_fn(|s| &b.values[s * lb..][rb.clone()]);
+                    let d = dot_nxn(ya, yb);
+                    for r in 0..N {
+                        for s in 0..N {
                             c[r][s] += d[r][s];
                         }
                     }
@@ -553,20 +557,20 @@ impl<'f> SparseFactorView<'f> {
     }
 }
 
-/// The nine dot products $a_r^\top b_s$ of three pairs of equal-length vectors in one pass (each
+/// The $N^2$ dot products $a_r^\top b_s$ of $N$ pairs of equal-length vectors in one pass (each
 /// vector read once; four lanes per product, vectorisable).
-fn dot3x3(a: [&[f64]; 3], b: [&[f64]; 3]) -> [[f64; 3]; 3] {
+fn dot_nxn<const N: usize>(a: [&[f64]; N], b: [&[f64]; N]) -> [[f64; N]; N] {
     const W: usize = 4;
     let n = a[0].len();
     debug_assert!(a.iter().chain(&b).all(|v| v.len() == n));
-    let mut acc = [[[0.0; W]; 3]; 3];
+    let mut acc = [[[0.0; W]; N]; N];
     let full = n / W * W;
     let mut k = 0;
     while k < full {
-        let xa = [0, 1, 2].map(|r| <[f64; W]>::try_from(&a[r][k..k + W]).expect("W lanes"));
-        let xb = [0, 1, 2].map(|s| <[f64; W]>::try_from(&b[s][k..k + W]).expect("W lanes"));
-        for r in 0..3 {
-            for s in 0..3 {
+        let xa: [[f64; W]; N] = std::array::from_fn(|r| <[f64; W]>::try_from(&a[r][k..k + W]).expect("W lanes"));
+        let xb: [[f64; W]; N] = std::array::from_fn(|s| <[f64; W]>::try_from(&b[s][k..k + W]).expect("W lanes"));
+        for r in 0..N {
+            for s in 0..N {
                 for l in 0..W {
                     acc[r][s][l] += xa[r][l] * xb[s][l];
                 }
@@ -574,9 +578,9 @@ fn dot3x3(a: [&[f64]; 3], b: [&[f64]; 3]) -> [[f64; 3]; 3] {
         }
         k += W;
     }
-    let mut out = [[0.0; 3]; 3];
-    for r in 0..3 {
-        for s in 0..3 {
+    let mut out = [[0.0; N]; N];
+    for r in 0..N {
+        for s in 0..N {
             let tail: f64 = (full..n).map(|k| a[r][k] * b[s][k]).sum();
             out[r][s] = (acc[r][s][0] + acc[r][s][1]) + (acc[r][s][2] + acc[r][s][3]) + tail;
         }
@@ -584,26 +588,27 @@ fn dot3x3(a: [&[f64]; 3], b: [&[f64]; 3]) -> [[f64; 3]; 3] {
     out
 }
 
-/// A nested-dissection ordering of the free DOFs of a 3D model from its node coordinates, for
+/// A nested-dissection ordering of the free DOFs of a model from its node coordinates, for
 /// [`SparseCholesky::with_ordering`] (as `SymmetricOrdering::Custom`): returns `fwd`, the free
 /// DOF placed at each factor column (`fwd[k]` = free index; a permutation of `0..n_free`).
 ///
-/// Recursive coordinate bisection of the node graph (tetrahedron edges): a set of more than
+/// Recursive coordinate bisection of the node graph (element edges): a set of more than
 /// `leaf_nodes` nodes is split at the median coordinate along its longest extent into a left part
 /// $A$ and a right part $B$; the separator $S$ is the nodes of $A$ with a neighbour in $B$, so no
 /// edge joins $A \setminus S$ and $B$. Order: $A \setminus S$ (recursively), $B$ (recursively),
 /// then $S$; a node's free DOFs are consecutive. In the elimination tree the separators are the
 /// ancestors, so a DOF's reach is its leaf's path through one separator per level (on a box grid,
-/// planes of $O(n^{2/3})$ nodes at the top). `dofs` must have 3 DOFs per node and the mesh's node
-/// count (a programming error otherwise: panics).
-pub fn nested_dissection_order(mesh: &crate::d3::TetMesh, dofs: &crate::factor::DofMap, leaf_nodes: usize) -> Vec<usize> {
+/// planes of $O(n^{2/3})$ nodes at the top). `dofs` must have `D::N` DOFs per node and the mesh's
+/// node count (a programming error otherwise: panics).
+pub fn nested_dissection_order<D: Dim>(mesh: &SimplexMesh<D>, dofs: &crate::factor::DofMap, leaf_nodes: usize) -> Vec<usize> {
     let n_nodes = mesh.n_nodes();
-    assert_eq!(dofs.n_dofs(), 3 * n_nodes, "a DOF map of this mesh with 3 DOFs per node");
-    // Node adjacency (CSR) from the tetrahedra's edges.
-    let mut pairs: Vec<(usize, usize)> = Vec::with_capacity(12 * mesh.n_tets());
-    for t in mesh.tets() {
-        for i in 0..4 {
-            for j in 0..4 {
+    assert_eq!(dofs.n_dofs(), D::N * n_nodes, "a DOF map of this mesh with N DOFs per node");
+    // Node adjacency (CSR) from the elements' edges.
+    let k = D::NODES_PER_ELEMENT;
+    let mut pairs: Vec<(usize, usize)> = Vec::with_capacity(k * (k - 1) * mesh.n_elements());
+    for t in mesh.elements() {
+        for i in 0..k {
+            for j in 0..k {
                 if i != j {
                     pairs.push((t[i], t[j]));
                 }
@@ -643,12 +648,12 @@ pub fn nested_dissection_order(mesh: &crate::d3::TetMesh, dofs: &crate::factor::
         }
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for &v in &set {
-            for a in 0..3 {
+            for a in 0..D::N {
                 lo[a] = lo[a].min(x[v][a]);
                 hi[a] = hi[a].max(x[v][a]);
             }
         }
-        let axis = (0..3).max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b]))).expect("3 axes");
+        let axis = (0..D::N).max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b]))).expect("N axes");
         set.sort_unstable_by(|&a, &b| x[a][axis].total_cmp(&x[b][axis]));
         let cut = x[set[set.len() / 2]][axis];
         let mut mid = set.partition_point(|&v| x[v][axis] < cut);
@@ -676,8 +681,8 @@ pub fn nested_dissection_order(mesh: &crate::d3::TetMesh, dofs: &crate::factor::
     }
     let mut fwd = Vec::with_capacity(dofs.n_free());
     for v in node_order {
-        for axis in 0..3 {
-            if let Some(f) = dofs.free_index(3 * v + axis) {
+        for axis in 0..D::N {
+            if let Some(f) = dofs.free_index(D::dof(v, axis)) {
                 fwd.push(f);
             }
         }
@@ -685,25 +690,39 @@ pub fn nested_dissection_order(mesh: &crate::d3::TetMesh, dofs: &crate::factor::
     fwd
 }
 
+/// A material point as its element's nodes and their weights $N_{a,k}$ (for
+/// [`SparseCompliance::point_rows`] and [`SparseCompliance::point_block`]).
+pub trait PointTerms {
+    /// The nodes and their weights, equally long.
+    fn terms(&self) -> (&[usize], &[f64]);
+}
+
+impl PointTerms for crate::d3::PointLocation {
+    fn terms(&self) -> (&[usize], &[f64]) {
+        (&self.nodes, &self.weights)
+    }
+}
+
 /// The sparse compliance of a factor with a per-node cache of rows: node blocks $C_{vw}$ and point
 /// blocks $W_{ab}$ (see the module documentation). Computing a node's rows allocates its cache
 /// entry (exact size); blocks of cached nodes allocate nothing.
 #[derive(Debug)]
-pub struct SparseCompliance<'f> {
-    view: SparseFactorView<'f>,
+pub struct SparseCompliance<'f, const N: usize> {
+    view: SparseFactorView<'f, N>,
     scratch: SparseRowsScratch,
-    rows: Vec<Option<NodeRows>>,
+    rows: Vec<Option<NodeRows<N>>>,
     cached_bytes: usize,
     n_cached: usize,
 }
 
-impl<'f> SparseCompliance<'f> {
-    /// The sparse compliance of a 3D tissue model's factor.
-    pub fn new(model: &'f TetTissueModel) -> Self {
-        Self::from_factor(model.cholesky()).expect("a TetTissueModel's factor has 3 DOFs per node")
+impl<'f, const N: usize> SparseCompliance<'f, N> {
+    /// The sparse compliance of a tissue model's factor (`D::N` must be `N`: checked when compiled).
+    pub fn new<D: Dim>(model: &'f TissueModel<D>) -> Self {
+        const { assert!(D::N == N, "a model of N dimensions") };
+        Self::from_factor(model.cholesky()).expect("a TissueModel<D>'s factor has D::N DOFs per node")
     }
-    /// The sparse compliance of a factor with 3 DOFs per node
-    /// ([`SparseComplianceError::NotThreeDofsPerNode`] otherwise).
+    /// The sparse compliance of a factor with `N` DOFs per node
+    /// ([`SparseComplianceError::WrongDofsPerNode`] otherwise).
     pub fn from_factor(chol: &'f SparseCholesky) -> Result<Self, SparseComplianceError> {
         let view = SparseFactorView::new(chol)?;
         let scratch = view.scratch();
@@ -711,7 +730,7 @@ impl<'f> SparseCompliance<'f> {
         Ok(Self { view, scratch, rows, cached_bytes: 0, n_cached: 0 })
     }
     /// The walkable factor view.
-    pub fn view(&self) -> &SparseFactorView<'f> {
+    pub fn view(&self) -> &SparseFactorView<'f, N> {
         &self.view
     }
     /// Nodes whose rows are cached.
@@ -772,21 +791,21 @@ impl<'f> SparseCompliance<'f> {
     /// reaches (nodes' rows computed and cached as needed), so that a point block is one sparse
     /// dot product: $W_{ab} = Y_a^\top Y_b$ = [`SparseFactorView::block`]`(&ya, &yb)`. Errors only
     /// for an unknown node.
-    pub fn point_rows(&mut self, a: &PointLocation) -> Result<NodeRows, SparseComplianceError> {
-        for k in 0..4 {
-            if a.weights[k] != 0.0 {
-                self.ensure(a.nodes[k])?;
+    pub fn point_rows(&mut self, a: &impl PointTerms) -> Result<NodeRows<N>, SparseComplianceError> {
+        let (nodes, weights) = a.terms();
+        for (&v, &nk) in nodes.iter().zip(weights) {
+            if nk != 0.0 {
+                self.ensure(v)?;
             }
         }
         let view = &self.view;
         let SparseRowsScratch { x, on_reach, reach, .. } = &mut self.scratch;
         reach.clear();
-        for k in 0..4 {
-            let nk = a.weights[k];
+        for (&v, &nk) in nodes.iter().zip(weights) {
             if nk == 0.0 {
                 continue;
             }
-            let r = self.rows[a.nodes[k]].as_ref().expect("ensured");
+            let r = self.rows[v].as_ref().expect("ensured");
             let lr = r.len();
             for (i, &s) in r.supernodes.iter().enumerate() {
                 if !on_reach[s] {
@@ -794,22 +813,22 @@ impl<'f> SparseCompliance<'f> {
                     reach.push(s);
                 }
                 for (off, col) in (r.starts[i]..r.starts[i + 1]).zip(view.sn_begin[s]..) {
-                    for axis in 0..3 {
-                        x[3 * col + axis] += nk * r.values[axis * lr + off];
+                    for axis in 0..N {
+                        x[N * col + axis] += nk * r.values[axis * lr + off];
                     }
                 }
             }
         }
         reach.sort_unstable();
         let len: usize = reach.iter().map(|&s| view.sn_begin[s + 1] - view.sn_begin[s]).sum();
-        let mut out = NodeRows { supernodes: reach.clone(), starts: Vec::with_capacity(reach.len() + 1), values: vec![0.0; 3 * len] };
+        let mut out = NodeRows { supernodes: reach.clone(), starts: Vec::with_capacity(reach.len() + 1), values: vec![0.0; N * len] };
         out.starts.push(0);
         let mut off = 0;
         for &s in reach.iter() {
             for col in view.sn_begin[s]..view.sn_begin[s + 1] {
-                for axis in 0..3 {
-                    out.values[axis * len + off] = x[3 * col + axis];
-                    x[3 * col + axis] = 0.0;
+                for axis in 0..N {
+                    out.values[axis * len + off] = x[N * col + axis];
+                    x[N * col + axis] = 0.0;
                 }
                 off += 1;
             }
@@ -821,14 +840,14 @@ impl<'f> SparseCompliance<'f> {
 
     /// The rows $Y_v$ of node `node_idx`, computed on first use and cached. Errors only for an
     /// unknown node.
-    pub fn sparse_rows(&mut self, node_idx: usize) -> Result<&NodeRows, SparseComplianceError> {
+    pub fn sparse_rows(&mut self, node_idx: usize) -> Result<&NodeRows<N>, SparseComplianceError> {
         self.ensure(node_idx)?;
         Ok(self.rows[node_idx].as_ref().expect("ensured"))
     }
 
     /// The node block $C_{ij}$ (m/N), rows of uncached nodes computed. Errors only for an unknown
     /// node.
-    pub fn block(&mut self, i: usize, j: usize) -> Result<[[f64; 3]; 3], SparseComplianceError> {
+    pub fn block(&mut self, i: usize, j: usize) -> Result<[[f64; N]; N], SparseComplianceError> {
         self.ensure(i)?;
         self.ensure(j)?;
         let (a, b) = (self.rows[i].as_ref().expect("ensured"), self.rows[j].as_ref().expect("ensured"));
@@ -837,20 +856,21 @@ impl<'f> SparseCompliance<'f> {
 
     /// The point block $W_{ab} = \sum_{k,l} N_{a,k} N_{b,l} C_{v_{a,k} v_{b,l}}$ (m/N) of two
     /// material points; nodes with zero weight are skipped. Errors only for an unknown node.
-    pub fn point_block(&mut self, a: &PointLocation, b: &PointLocation) -> Result<[[f64; 3]; 3], SparseComplianceError> {
-        let mut w = [[0.0; 3]; 3];
-        for k in 0..4 {
-            if a.weights[k] == 0.0 {
+    pub fn point_block(&mut self, a: &impl PointTerms, b: &impl PointTerms) -> Result<[[f64; N]; N], SparseComplianceError> {
+        let mut w = [[0.0; N]; N];
+        let ((nodes_a, weights_a), (nodes_b, weights_b)) = (a.terms(), b.terms());
+        for (&va, &na) in nodes_a.iter().zip(weights_a) {
+            if na == 0.0 {
                 continue;
             }
-            for l in 0..4 {
-                if b.weights[l] == 0.0 {
+            for (&vb, &nb) in nodes_b.iter().zip(weights_b) {
+                if nb == 0.0 {
                     continue;
                 }
-                let c = self.block(a.nodes[k], b.nodes[l])?;
-                let nn = a.weights[k] * b.weights[l];
-                for r in 0..3 {
-                    for s in 0..3 {
+                let c = self.block(va, vb)?;
+                let nn = na * nb;
+                for r in 0..N {
+                    for s in 0..N {
                         w[r][s] += nn * c[r][s];
                     }
                 }
@@ -865,7 +885,9 @@ mod tests {
     use super::*;
     use crate::Material;
     use crate::d3::TetMaterials;
+    use crate::d3::locate::PointLocation;
     use crate::d3::mesh::{BoxGridParams, TetMeshLimits};
+    use crate::d3::{NodeRows, SparseCompliance, SparseFactorView, TetTissueModel};
     use crate::factor::DofMap;
     use faer::sparse::linalg::SupernodalThreshold;
     use faer::sparse::linalg::cholesky::CholeskySymbolicParams;
@@ -1128,7 +1150,89 @@ mod tests {
         // The same matrix labelled as 2 DOFs per node.
         let constrained: Vec<bool> = (0..m.n_dofs()).map(|d| m.is_fixed(d / 3)).collect();
         let chol2 = SparseCholesky::new(m.stiffness(), DofMap::with_dofs_per_node(&constrained, 2)).unwrap();
-        assert_eq!(SparseCompliance::from_factor(&chol2).unwrap_err(), SparseComplianceError::NotThreeDofsPerNode { dofs_per_node: 2 });
+        assert_eq!(
+            SparseCompliance::from_factor(&chol2).unwrap_err(),
+            SparseComplianceError::WrongDofsPerNode { dofs_per_node: 2, expected: 3 }
+        );
+    }
+
+    /// 2D runs the same code: on a plane-strain square (bottom fixed) the $2 \times 2$ node blocks
+    /// of the sparse path, $C_{vw} = Y_v^\top Y_w$, equal the entries of the dense path's
+    /// compliance columns ([`crate::compliance::TissueModel::compliance_columns_into`]) for every
+    /// pair of nodes, with a simplicial and a supernodal factor, a fixed node has no rows, point
+    /// blocks are the weighted sums of node blocks, and the block worker and store hand the same
+    /// blocks to a 2D contact read ([`crate::compliance::ContactBlocks`]) as the column cache.
+    /// Tolerance: $\varepsilon\,\kappa$-sized, $10^3\, n_\mathrm{dof}\, \varepsilon \max|C|$.
+    #[test]
+    fn two_d_node_blocks_equal_the_dense_columns() {
+        use crate::compliance::store::{ComplianceStore, NodeBlockStore};
+        use crate::compliance::worker::BlockWorker;
+        use crate::compliance::{ComplianceCache, ContactBlocks};
+        use crate::contact::ContactPoint;
+        use crate::dim::Dim2;
+        let m = crate::fixtures::strain_square(10);
+        let (n_nodes, n_dofs) = (m.mesh().n_nodes(), m.n_dofs());
+        let mut cache = ComplianceCache::<2>::new(n_nodes);
+        let mut col_scratch = m.column_scratch();
+        for v in 0..n_nodes {
+            cache.ensure(&m, v, &mut col_scratch).unwrap();
+        }
+        let mut scale = 0.0_f64;
+        for v in 0..n_nodes {
+            for c in 0..2 {
+                scale = cache.column(v, c).unwrap().iter().fold(scale, |a, x| a.max(x.abs()));
+            }
+        }
+        assert!(scale > 1e-6, "the square is soft: {scale} m/N");
+        let tol = 1e3 * n_dofs as f64 * f64::EPSILON * scale;
+        for threshold in [SupernodalThreshold::FORCE_SIMPLICIAL, SupernodalThreshold::FORCE_SUPERNODAL] {
+            let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() };
+            let chol = SparseCholesky::with_params(m.stiffness(), m.cholesky().dofs().clone(), params).unwrap();
+            let mut sc = super::SparseCompliance::<2>::from_factor(&chol).unwrap();
+            assert_eq!(sc.view().is_supernodal(), threshold == SupernodalThreshold::FORCE_SUPERNODAL);
+            let mut worst = 0.0_f64;
+            for a in 0..n_nodes {
+                for b in 0..n_nodes {
+                    let c = sc.block(a, b).unwrap();
+                    let want = cache.block(a, b).unwrap();
+                    for r in 0..2 {
+                        for s in 0..2 {
+                            worst = worst.max((c[r][s] - want[r][s]).abs());
+                            assert!(
+                                (c[r][s] - want[r][s]).abs() <= tol,
+                                "{threshold:?} C[{a},{b}][{r}][{s}] = {} vs {}",
+                                c[r][s],
+                                want[r][s]
+                            );
+                        }
+                    }
+                }
+                assert_eq!(sc.sparse_rows(a).unwrap().is_empty(), m.is_fixed(a), "node {a}: rows iff free");
+            }
+            assert!(worst <= tol, "{threshold:?}: {worst:e} > {tol:e}");
+        }
+        // The square's own factor (AMD, as the model chose), through the worker and the store.
+        let mut sc = super::SparseCompliance::<2>::new(&m);
+        let mut worker = BlockWorker::<Dim2, 2>::new(std::sync::Arc::new(crate::fixtures::strain_square(10)), 6).unwrap();
+        let mut store = NodeBlockStore::<2>::new(n_nodes, 6);
+        let (tri, pts) = ([57usize, 58, 68], [[0.2, 0.5, 0.3], [0.6, 0.1, 0.3]]);
+        let mut requests = Vec::new();
+        for (slot, &v) in [57usize, 58, 68, 79, 80].iter().enumerate() {
+            requests.push(store.reserve(v, slot).unwrap().0);
+        }
+        for p in worker.compute(&requests).unwrap() {
+            store.insert(p).unwrap();
+        }
+        let store = ComplianceStore::Blocks(store);
+        let (pa, pb) = (ContactPoint::in_triangle(0, tri, pts[0]), ContactPoint::in_triangle(0, tri, pts[1]));
+        let (got, want) = (store.contact_block(&pa, &pb).unwrap(), ContactBlocks::<2>::contact_block(&cache, &pa, &pb).unwrap());
+        for r in 0..2 {
+            for s in 0..2 {
+                assert!((got[r][s] - want[r][s]).abs() <= tol, "W[{r}][{s}] {} vs {}", got[r][s], want[r][s]);
+            }
+        }
+        assert_eq!(store.block(79, 57).unwrap(), sc.block(79, 57).unwrap(), "the worker's blocks are the sparse compliance's");
+        assert!(store.block(79, 3).is_none(), "node 3 not in the store");
     }
 
     /// A view rebuilt from its pattern ([`SparseFactorView::with_pattern`]) computes the same rows
@@ -1257,7 +1361,7 @@ mod tests {
     /// Timing against the full-column path on a box grid of `NEEDLESIM_GRID`³ nodes (default 21:
     /// 48 000 tetrahedra; 36: 257 250), bottom fixed, with faer's AMD ordering and with
     /// [`nested_dissection_order`]; run in release:
-    /// `NEEDLESIM_GRID=21 cargo test --release -p needlesim-core --lib d3::sparse_compliance::tests::timing_box -- --ignored --nocapture`.
+    /// `NEEDLESIM_GRID=21 cargo test --release -p needlesim-core --lib compliance::sparse::tests::timing_box -- --ignored --nocapture`.
     #[test]
     #[ignore = "timing; run in release"]
     fn timing_box() {

@@ -1,17 +1,19 @@
-//! The compliance stores of the 3D simulation: full node columns ([`ComplianceCache3`], small
-//! meshes) or node blocks among a bounded set of nodes ([`NodeBlockStore`], large meshes), behind
-//! one enum ([`ComplianceStore3`]) that the mixed solver reads through
-//! [`ContactBlocks`](crate::compliance::ContactBlocks).
+//! The compliance stores, written once for both dimensions ($N$ = 2 or 3, a const generic as in
+//! [`ComplianceCache`]): full node columns ([`ComplianceCache`], small meshes) or node blocks
+//! among a bounded set of nodes ([`NodeBlockStore`], large meshes), behind one enum
+//! ([`ComplianceStore`]) that the mixed solver reads through
+//! [`ContactBlocks`](crate::compliance::ContactBlocks). The 3D simulation ([`crate::sim3`]) uses
+//! them as [`ComplianceStore3`], [`NodeBlockStore3`] and [`BlockPayload3`].
 //!
 //! # Node blocks
 //!
 //! For up to $M$ cached nodes (slots $0..M$) the store holds the dense symmetric matrix of
-//! $3 \times 3$ blocks $C_{vw}$ between the cached nodes, $9 M^2$ doubles ($M = 384$: 10.6 MB),
+//! $N \times N$ blocks $C_{vw}$ between the cached nodes, $N^2 M^2$ doubles (3D, $M = 384$: 10.6 MB),
 //! and nothing else: a point block is
-//! $W_{ab} = \sum_{k,l} N_{a,k} N_{b,l}\, C_{v_{a,k} v_{b,l}}$ (sixteen reads), a displacement
+//! $W_{ab} = \sum_{k,l} N_{a,k} N_{b,l}\, C_{v_{a,k} v_{b,l}}$ (sixteen reads in 3D), a displacement
 //! $u_a = \sum_b W_{ab} f_b$. The blocks are computed off the real-time thread by a
-//! [`Sim3BlockWorker`](super::Sim3BlockWorker) from sparse compliance rows,
-//! $C_{vw} = Y_v^\top Y_w$ ([`crate::d3::sparse_compliance`]); inserting a node here copies its
+//! [`BlockWorker`](super::worker::BlockWorker) from sparse compliance rows,
+//! $C_{vw} = Y_v^\top Y_w$ ([`crate::compliance::sparse`]); inserting a node here copies its
 //! row of blocks ($O(M)$, no solve).
 //!
 //! **Protocol.** The real-time side decides the slots. A [`BlockRequest`] `(node, slot)` reserves
@@ -30,16 +32,24 @@
 //! used by the last step).
 //!
 //! **Reads beyond the working points** (a target's displacement
-//! $u_T = \sum_k N_{T,k} \sum_i C_{v_{T,k}\, \cdot} P_i^\top f_i$): [`ComplianceStore3::block`]
+//! $u_T = \sum_k N_{T,k} \sum_i C_{v_{T,k}\, \cdot} P_i^\top f_i$): [`ComplianceStore::block`]
 //! serves $C_{ab}$ from either store; with node blocks both nodes must be cached, so the reader
-//! pins the nodes it needs ([`super::Simulation3::pin_node`]): a pinned node is requested before
+//! pins the nodes it needs ([`crate::sim3::Simulation3::pin_node`]): a pinned node is requested before
 //! the approaching ones and never gives its slot up.
 
-use crate::compliance::{ComplianceCache3, ContactBlocks};
-use crate::contact::ContactPoint;
+use crate::compliance::{ComplianceCache, ContactBlocks};
+use crate::contact::{ContactPoint, MAX_TERMS};
 
-/// A $3 \times 3$ block of $C$ (m/N), `[r][s]`: displacement along axis r per unit force along s.
-pub type Block3 = [[f64; 3]; 3];
+/// An $N \times N$ block of $C$ (m/N), `[r][s]`: displacement along axis r per unit force along s.
+pub type Block<const N: usize> = [[f64; N]; N];
+/// A $3 \times 3$ block.
+pub type Block3 = Block<3>;
+/// The 3D node-block store.
+pub type NodeBlockStore3 = NodeBlockStore<3>;
+/// A 3D worker's answer.
+pub type BlockPayload3 = BlockPayload<3>;
+/// The compliance store of the 3D simulation.
+pub type ComplianceStore3 = ComplianceStore<3>;
 
 const NO_SLOT: u32 = u32::MAX;
 
@@ -69,10 +79,10 @@ pub struct BlockRequest {
 /// A worker's answer to a [`BlockRequest`]: `blocks[j]` $= C_{v, w_j}$ for the node $w_j$ in
 /// slot `j` of the worker's mirror (zero for a slot never filled), `blocks[slot]` $= C_{vv}$.
 #[derive(Debug, Clone, PartialEq)]
-pub struct BlockPayload {
+pub struct BlockPayload<const N: usize> {
     pub node_idx: usize,
     pub slot: usize,
-    pub blocks: Vec<Block3>,
+    pub blocks: Vec<Block<N>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -85,26 +95,27 @@ enum SlotState {
 /// The node blocks among at most `cap` cached nodes (module docs). Sized once; nothing in it
 /// allocates afterwards.
 #[derive(Debug, Clone)]
-pub struct NodeBlockStore {
+pub struct NodeBlockStore<const N: usize> {
     cap: usize,
     slot_of_node: Vec<u32>,
     node_of_slot: Vec<usize>,
     state: Vec<SlotState>,
     /// `cap × cap` blocks, row-major by slot.
-    blocks: Vec<Block3>,
+    blocks: Vec<Block<N>>,
     n_ready: usize,
     n_inserted: u64,
 }
 
-impl NodeBlockStore {
-    /// An empty store for a mesh of `n_nodes` nodes with `cap` slots ($72\,\mathrm{cap}^2$ bytes).
+impl<const N: usize> NodeBlockStore<N> {
+    /// An empty store for a mesh of `n_nodes` nodes with `cap` slots ($8 N^2\,\mathrm{cap}^2$
+    /// bytes: 72 cap² in 3D).
     pub fn new(n_nodes: usize, cap: usize) -> Self {
         Self {
             cap,
             slot_of_node: vec![NO_SLOT; n_nodes],
             node_of_slot: vec![usize::MAX; cap],
             state: vec![SlotState::Empty; cap],
-            blocks: vec![[[0.0; 3]; 3]; cap * cap],
+            blocks: vec![[[0.0; N]; N]; cap * cap],
             n_ready: 0,
             n_inserted: 0,
         }
@@ -128,7 +139,7 @@ impl NodeBlockStore {
     }
     /// Bytes of the block matrix and the slot tables.
     pub fn bytes(&self) -> usize {
-        self.blocks.len() * std::mem::size_of::<Block3>()
+        self.blocks.len() * std::mem::size_of::<Block<N>>()
             + self.slot_of_node.len() * 4
             + self.cap * (std::mem::size_of::<usize>() + std::mem::size_of::<SlotState>())
     }
@@ -166,7 +177,7 @@ impl NodeBlockStore {
 
     /// The node block $C_{ab}$; `None` unless both nodes are ready.
     #[inline]
-    pub fn block(&self, a: usize, b: usize) -> Option<Block3> {
+    pub fn block(&self, a: usize, b: usize) -> Option<Block<N>> {
         let (sa, sb) = (self.ready_slot(a)?, self.ready_slot(b)?);
         Some(self.blocks[sa * self.cap + sb])
     }
@@ -204,7 +215,7 @@ impl NodeBlockStore {
     ///
     /// Errors: [`BlockStoreError::NotPending`] when the slot is not pending for the payload's
     /// node, [`BlockStoreError::WrongLength`] for a payload of another length; nothing changes.
-    pub fn insert(&mut self, p: &BlockPayload) -> Result<(), BlockStoreError> {
+    pub fn insert(&mut self, p: &BlockPayload<N>) -> Result<(), BlockStoreError> {
         let (node_idx, slot) = (p.node_idx, p.slot);
         if p.blocks.len() != self.cap {
             return Err(BlockStoreError::WrongLength { node_idx, got: p.blocks.len(), cap: self.cap });
@@ -215,7 +226,7 @@ impl NodeBlockStore {
         let m = self.cap;
         for (j, b) in p.blocks.iter().enumerate() {
             self.blocks[slot * m + j] = *b;
-            self.blocks[j * m + slot] = [[b[0][0], b[1][0], b[2][0]], [b[0][1], b[1][1], b[2][1]], [b[0][2], b[1][2], b[2][2]]];
+            self.blocks[j * m + slot] = std::array::from_fn(|r| std::array::from_fn(|c| b[c][r]));
         }
         self.blocks[slot * m + slot] = p.blocks[slot];
         self.state[slot] = SlotState::Ready;
@@ -260,14 +271,14 @@ impl NodeBlockStore {
     }
 }
 
-impl ContactBlocks<3> for NodeBlockStore {
-    /// $W_{ab} = \sum_{k,l} N_{a,k} N_{b,l} C_{v_{a,k} v_{b,l}}$: sixteen block reads; `None`
-    /// unless every node of both contacts is ready.
+impl<const N: usize> ContactBlocks<N> for NodeBlockStore<N> {
+    /// $W_{ab} = \sum_{k,l} N_{a,k} N_{b,l} C_{v_{a,k} v_{b,l}}$: sixteen block reads for two
+    /// material points in tetrahedra; `None` unless every node of both contacts is ready.
     #[inline]
-    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<Block3> {
-        let mut out = [[0.0; 3]; 3];
+    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<Block<N>> {
+        let mut out = [[0.0; N]; N];
         let m = self.cap;
-        let (mut sa, mut na) = ([(0usize, 0.0f64); 4], 0);
+        let (mut sa, mut na) = ([(0usize, 0.0f64); MAX_TERMS], 0);
         for (i, wi) in a.terms() {
             sa[na] = (self.ready_slot(i.index())?, wi);
             na += 1;
@@ -277,8 +288,8 @@ impl ContactBlocks<3> for NodeBlockStore {
             for &(si, wi) in &sa[..na] {
                 let w = wi * wj;
                 let blk = &self.blocks[si * m + sj];
-                for r in 0..3 {
-                    for c in 0..3 {
+                for r in 0..N {
+                    for c in 0..N {
                         out[r][c] += w * blk[r][c];
                     }
                 }
@@ -288,17 +299,17 @@ impl ContactBlocks<3> for NodeBlockStore {
     }
 }
 
-/// The compliance store of a [`super::Simulation3`]: full columns or node blocks
-/// ([`super::Sim3Params::store`]). Reads mirror [`ComplianceCache3`]'s.
+/// A compliance store: full columns or node blocks (in 3D, a [`crate::sim3::Simulation3`]'s,
+/// chosen by [`crate::sim3::Sim3Params::store`]). Reads mirror [`ComplianceCache`]'s.
 #[derive(Debug, Clone)]
-pub enum ComplianceStore3 {
-    /// Three full columns per cached node ([`ComplianceCache3`]).
-    Columns(ComplianceCache3),
+pub enum ComplianceStore<const N: usize> {
+    /// $N$ full columns per cached node ([`ComplianceCache`]).
+    Columns(ComplianceCache<N>),
     /// Node blocks among a bounded set of nodes ([`NodeBlockStore`]).
-    Blocks(NodeBlockStore),
+    Blocks(NodeBlockStore<N>),
 }
 
-impl ComplianceStore3 {
+impl<const N: usize> ComplianceStore<N> {
     /// Whether `node_idx`'s data is cached (ready).
     #[inline]
     pub fn contains(&self, node_idx: usize) -> bool {
@@ -341,23 +352,23 @@ impl ComplianceStore3 {
         }
     }
     /// The node block $C_{ab}$ (m/N). With columns it needs `b`'s columns; with blocks both
-    /// nodes ready (pin a node that must stay: [`super::Simulation3::pin_node`]).
+    /// nodes ready (pin a node that must stay: [`crate::sim3::Simulation3::pin_node`]).
     #[inline]
-    pub fn block(&self, a: usize, b: usize) -> Option<Block3> {
+    pub fn block(&self, a: usize, b: usize) -> Option<Block<N>> {
         match self {
             Self::Columns(c) => c.block(a, b),
             Self::Blocks(s) => s.block(a, b),
         }
     }
     /// The column cache, when the store is one.
-    pub fn columns(&self) -> Option<&ComplianceCache3> {
+    pub fn columns(&self) -> Option<&ComplianceCache<N>> {
         match self {
             Self::Columns(c) => Some(c),
             Self::Blocks(_) => None,
         }
     }
     /// The node-block store, when the store is one.
-    pub fn blocks(&self) -> Option<&NodeBlockStore> {
+    pub fn blocks(&self) -> Option<&NodeBlockStore<N>> {
         match self {
             Self::Columns(_) => None,
             Self::Blocks(b) => Some(b),
@@ -365,9 +376,9 @@ impl ComplianceStore3 {
     }
 }
 
-impl ContactBlocks<3> for ComplianceStore3 {
+impl<const N: usize> ContactBlocks<N> for ComplianceStore<N> {
     #[inline]
-    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<Block3> {
+    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<Block<N>> {
         match self {
             Self::Columns(c) => c.contact_block(a, b),
             Self::Blocks(s) => s.contact_block(a, b),
@@ -378,8 +389,10 @@ impl ContactBlocks<3> for ComplianceStore3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::compliance::worker::Sim3BlockWorker;
     use crate::d3::SparseCompliance;
-    use crate::sim3::Sim3BlockWorker;
+    type NodeBlockStore = NodeBlockStore3;
+    type BlockPayload = BlockPayload3;
     use rand::rngs::SmallRng;
     use rand::{Rng, SeedableRng};
 
