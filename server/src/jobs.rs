@@ -203,7 +203,8 @@ impl<T> JobSender<T> {
             Err(mpsc::error::TrySendError::Full(item)) => item,
         };
         let deadline = self.limiter.deadline;
-        match self.runtime.block_on(tokio::time::timeout(deadline, self.tx.send(item))) {
+        // The timer is made inside the runtime (this thread may be outside it: a planner's worker).
+        match self.runtime.block_on(async { tokio::time::timeout(deadline, self.tx.send(item)).await }) {
             Ok(Ok(())) => Ok(()),
             Ok(Err(_)) => Err(StreamEnded),
             Err(_) => {
