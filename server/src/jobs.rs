@@ -251,10 +251,7 @@ impl<T> tokio_stream::Stream for JobStream<T> {
             return Poll::Ready(None);
         }
         self.shared.waker.register(cx.waker());
-        let polled = match self.shared.rx.lock().expect("job stream lock").as_mut() {
-            Some(rx) => Some(rx.poll_recv(cx)),
-            None => None,
-        };
+        let polled = self.shared.rx.lock().expect("job stream lock").as_mut().map(|rx| rx.poll_recv(cx));
         match polled {
             Some(Poll::Ready(None)) => {
                 self.done = true;

@@ -91,7 +91,8 @@ pub async fn serve<S>(
         .keep_alive_timeout(http2.keepalive_timeout)
         .max_send_buf_size(MAX_SEND_BUF_BYTES);
     let graceful = hyper_util::server::graceful::GracefulShutdown::new();
-    let mut incoming = std::pin::pin!(incoming);
+    // Boxed, so that dropping it closes the listener.
+    let mut incoming = Box::pin(incoming);
     let mut shutdown = std::pin::pin!(shutdown);
     loop {
         let io = tokio::select! {
