@@ -2,15 +2,28 @@
 //! 500 GetMesh answers of 3.1 MB to connections with a zero receive window held 1.7 GB, counted
 //! by nothing).
 //!
-//! A gRPC answer that is whole as soon as its handler returns (every unary answer) and larger than
-//! [`COUNTED_ANSWER_BYTES`] encoded takes its bytes from the server's [`AnswerBudget`]
+//! A gRPC answer that is whole as soon as its handler returns (every unary answer, whatever its
+//! size: issue 35, pass 4 — 6,000 unread answers of 64,373 bytes, just under the 64 kB that were
+//! counted then, held 475 MB) takes its bytes from the server's [`AnswerBudget`]
 //! (`--max-held-answers-mb`); an answer that would pass it is refused with RESOURCE_EXHAUSTED
-//! naming the limit. The bytes are given back when the answer is dropped: sent, its stream reset,
-//! its connection closed — or not taken whole within `--answer-deadline-ms`, when a timer drops
-//! what is left (the client's stream is then reset). The answer is handed to the HTTP/2 layer in
-//! copies of at most [`CHUNK_BYTES`], so a client that never reads holds at most one chunk there
-//! once the timer has dropped the rest. Streams (an answer not whole at once) are bounded
-//! elsewhere (`grpc/streams.rs`, `jobs.rs`) and pass through untouched.
+//! naming the limit. The bytes are given back when the answer is dropped: handed over whole, its
+//! stream reset, its connection closed — or not taken whole within `--answer-deadline-ms`, when a
+//! timer drops what is left (the client's stream is then reset). The answer is handed to HTTP/2
+//! in copies of at most [`CHUNK_BYTES`], and HTTP/2 takes the next copy only once its stream's
+//! send buffer (`transport::MAX_SEND_BUF_BYTES`, one chunk) has room (hyper holds one copy
+//! waiting for it, h2 buffers up to two): what the client has not read stays here, counted (issue 35, pass 4: with hyper's default buffer of
+//! 400 KiB a stream, clients that opened their windows and never read their sockets held 2 GB
+//! that the budget had given back). Streams (an answer not whole at once) are bounded elsewhere
+//! (`grpc/streams.rs`, `jobs.rs`) and pass through untouched, each holding at most the same
+//! per-stream send buffer in HTTP/2.
+//!
+//! The bound: the bytes of answers held for clients that do not read are at most
+//!
+//! $$ B_\text{held} \le \text{--max-held-answers-mb} + (\text{MAX\_SEND\_BUF\_BYTES} + 2\,\text{CHUNK\_BYTES}) \cdot S \cdot C $$
+//!
+//! with $S$ = `--max-streams-per-connection` (100) and $C$ = `--max-connections` (at most 4096):
+//! 48 KiB a stream, 4.7 MiB a connection (the budget, 256 MiB by default, is what a few
+//! connections can take; the per-stream term is what every connection can hold besides).
 
 use std::collections::VecDeque;
 use std::pin::Pin;
@@ -24,8 +37,6 @@ use axum::response::Response;
 use bytes::Bytes;
 use http_body::{Body as _, Frame};
 
-/// Answers up to this size (encoded, with the gRPC framing) are not counted.
-pub const COUNTED_ANSWER_BYTES: u64 = 64 << 10;
 /// The most bytes of an answer handed to the HTTP/2 layer at once.
 pub const CHUNK_BYTES: usize = 16 << 10;
 /// How many frames of an answer are read at once to find whether it is whole (a unary answer is
@@ -40,8 +51,9 @@ pub struct AnswerBudget {
     held_bytes: AtomicU64,
     refused: AtomicU64,
     timed_out: AtomicU64,
-    /// Answers dropped since the allocator last gave memory back ([`AnswerBudget::take_released`]).
-    released: AtomicU64,
+    /// Bytes of answers dropped since the allocator last gave memory back
+    /// ([`AnswerBudget::take_released`]).
+    released_bytes: AtomicU64,
 }
 
 impl AnswerBudget {
@@ -52,7 +64,7 @@ impl AnswerBudget {
             held_bytes: AtomicU64::new(0),
             refused: AtomicU64::new(0),
             timed_out: AtomicU64::new(0),
-            released: AtomicU64::new(0),
+            released_bytes: AtomicU64::new(0),
         }
     }
 
@@ -71,9 +83,10 @@ impl AnswerBudget {
         self.timed_out.load(Ordering::Relaxed)
     }
 
-    /// Counted answers dropped since the last call.
-    pub fn take_released(&self) -> u64 {
-        self.released.swap(0, Ordering::Relaxed)
+    /// Whether at least `min_bytes` of answers were dropped since it last said so (the count
+    /// then starts again).
+    pub fn take_released(&self, min_bytes: u64) -> bool {
+        self.released_bytes.fetch_update(Ordering::AcqRel, Ordering::Acquire, |b| (b >= min_bytes).then_some(0)).is_ok()
     }
 
     /// Takes `bytes` from the budget, or `None` when they do not fit.
@@ -100,7 +113,7 @@ struct AnswerPermit {
 impl Drop for AnswerPermit {
     fn drop(&mut self) {
         self.budget.held_bytes.fetch_sub(self.bytes, Ordering::AcqRel);
-        self.budget.released.fetch_add(1, Ordering::Relaxed);
+        self.budget.released_bytes.fetch_add(self.bytes, Ordering::Relaxed);
     }
 }
 
@@ -136,8 +149,8 @@ pub async fn bound_held_answers(budget: Arc<AnswerBudget>, req: axum::extract::R
         }
     }
     let data_bytes: u64 = frames.iter().filter_map(|f| f.data_ref()).map(|d| d.len() as u64).sum();
-    if !whole || failed.is_some() || data_bytes <= COUNTED_ANSWER_BYTES {
-        // A stream (or a small answer): passed on as it comes.
+    if !whole || failed.is_some() || data_bytes == 0 {
+        // A stream (or a status alone): passed on as it comes.
         let held = Held { frames, permit: None };
         return Response::from_parts(parts, Body::new(AnswerBody::new(held, Some(body), failed, None)));
     }
@@ -188,7 +201,9 @@ impl AnswerBody {
                 tokio::select! {
                     () = tokio::time::sleep(budget.deadline) => {
                         let dropped = reaped.lock().expect("answer lock").take();
-                        if dropped.is_some_and(|h| h.frames.iter().any(|f| f.is_data())) {
+                        // Anything left (a small answer's data may wait in HTTP/2, its trailers here)
+                        // is an answer not taken whole.
+                        if dropped.is_some_and(|h| !h.frames.is_empty()) {
                             budget.timed_out.fetch_add(1, Ordering::Relaxed);
                             // Counted in /metrics (`needlesim_held_answers_timed_out`); a log line each would let a
                             // client fill the log.

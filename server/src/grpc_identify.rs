@@ -19,8 +19,6 @@ use needlesim_identify::needle_fit::{NeedleFitOptions, fit_needle, write_fitted_
 use needlesim_identify::probe::{ProbeFitOptions, ProbeModel, fit_probe, grid_model, register_markers};
 use needlesim_identify::tracks::MarkerTracks;
 use needlesim_proto::v1 as pb;
-use tokio::sync::mpsc;
-use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
 use crate::grpc::Api;
@@ -61,14 +59,14 @@ fn spawn_work<F>(stage: &'static str, permit: JobPermit, work: F) -> Response<Pr
 where
     F: FnOnce(needlesim_identify::Progress<'_>) -> anyhow::Result<pb::identify_progress::Result> + Send + 'static,
 {
-    let (tx, rx) = mpsc::channel(16);
+    let (tx, stream) = permit.stream(16);
     tokio::task::spawn_blocking(move || {
         let _permit = permit;
         let mut report = |done: usize, total: usize| {
             if tx.is_closed() {
                 return ControlFlow::Break(());
             }
-            let _ = tx.try_send(Ok(progress(done, total, stage)));
+            tx.offer(Ok(progress(done, total, stage)));
             ControlFlow::Continue(())
         };
         let item = match work(&mut report) {
@@ -79,9 +77,9 @@ where
             }
             Err(e) => Err(status_of("", &e)),
         };
-        let _ = tx.blocking_send(item);
+        let _ = tx.send_blocking(item);
     });
-    Response::new(Box::pin(ReceiverStream::new(rx)))
+    Response::new(Box::pin(stream))
 }
 
 /// The scene of a request and, when it has one, its TOML text (for the fitted scene).

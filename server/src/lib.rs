@@ -23,4 +23,5 @@ pub mod training_convert;
 pub mod training_live;
 pub mod training_service;
 pub mod training_ultrasound;
+pub mod transport;
 pub mod web_files;

@@ -56,6 +56,8 @@ use tonic::transport::server::TcpConnectInfo;
 #[derive(Debug, Default)]
 pub struct ConnCounters {
     open: AtomicUsize,
+    /// Connections closed since the allocator last gave memory back ([`ConnCounters::take_closed`]).
+    closed: AtomicU64,
     refused: AtomicU64,
     timed_out: AtomicU64,
     idle_closed: AtomicU64,
@@ -70,6 +72,11 @@ impl ConnCounters {
     /// Connections open now.
     pub fn open(&self) -> usize {
         self.open.load(Ordering::Acquire)
+    }
+
+    /// Connections closed since the last call.
+    pub fn take_closed(&self) -> u64 {
+        self.closed.swap(0, Ordering::Relaxed)
     }
 
     /// Connections closed at once because `--max-connections` were open.
@@ -184,6 +191,7 @@ pub struct GuardedStream {
 impl Drop for GuardedStream {
     fn drop(&mut self) {
         self.counters.open.fetch_sub(1, Ordering::AcqRel);
+        self.counters.closed.fetch_add(1, Ordering::Relaxed);
     }
 }
 

@@ -86,12 +86,14 @@ struct ServeArgs {
     /// RESOURCE_EXHAUSTED. Also: a message that stops arriving for --handshake-timeout-ms is ended.
     #[arg(long, value_name = "MIB", default_value_t = needlesim_server::listener::DEFAULT_MAX_PENDING_REQUEST_MIB)]
     max_pending_request_mb: u64,
-    /// Most MiB of complete gRPC answers (each over 64 kB) held for clients that have not read
+    /// Most MiB of complete gRPC answers (every unary answer) held for clients that have not read
     /// them, over the whole server; one more is answered RESOURCE_EXHAUSTED.
     #[arg(long, value_name = "MIB", default_value_t = 256)]
     max_held_answers_mb: u64,
     /// How long a client has to take such an answer whole, ms; then it is dropped (the call's
-    /// stream is reset).
+    /// stream is reset). Also how long an offline job (Simulate, Plan, Identify) waits for its
+    /// client to take its next message; then it stops, frees its slot and its stream ends with
+    /// DEADLINE_EXCEEDED.
     #[arg(long, value_name = "MS", default_value_t = 30_000, value_parser = clap::value_parser!(u64).range(1..))]
     answer_deadline_ms: u64,
     /// Largest gRPC message accepted, in bytes.
@@ -802,6 +804,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
             max_reports: args.max_reports,
             max_reports_bytes: needlesim_server::quota::mib(args.max_reports_mb),
             control_first_message_ms: args.control_first_message_ms,
+            answer_deadline_ms: args.answer_deadline_ms,
             ..Default::default()
         },
         max_message_bytes: args.max_message_bytes,

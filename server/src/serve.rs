@@ -168,6 +168,11 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters, answ
             state.jobs.rejected() as f64,
         ),
         (
+            "offline_jobs_timed_out",
+            "Offline calls stopped (DEADLINE_EXCEEDED): their client did not take their next message within --answer-deadline-ms",
+            state.jobs.timed_out() as f64,
+        ),
+        (
             "streams_open",
             "Server-streaming calls open (Observe, WatchScore, WatchUltrasound, GetReport, DownloadRecording)",
             state.streams.open() as f64,
@@ -217,7 +222,7 @@ fn metrics_text(state: &ServerState, conns: &crate::listener::ConnCounters, answ
         ),
         (
             "held_answer_bytes",
-            "Bytes of complete gRPC answers over 64 kB not yet taken by their clients (bounded by --max-held-answers-mb)",
+            "Bytes of complete gRPC answers (every unary answer) not yet handed to their connections (bounded by --max-held-answers-mb)",
             answers.held_bytes() as f64,
         ),
         (
@@ -364,14 +369,24 @@ async fn play_demo(session: Arc<needlesim_session::Session>, traj: needlesim_sce
 const HTTP2_KEEPALIVE_INTERVAL: std::time::Duration = std::time::Duration::from_secs(30);
 const HTTP2_KEEPALIVE_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(20);
 
+/// Bytes of answers dropped (sent or not) that make the allocator give memory back: a few large
+/// answers, or many small ones, not every small answer.
+const TRIM_AFTER_ANSWER_BYTES: u64 = 1 << 20;
+
 /// Gives the memory of closed streams and closed sessions back to the system (issue 35): glibc
 /// keeps freed blocks in its per-thread arenas, so a burst of large messages (a status with 1,000
 /// markers is 219 kB) would stay with the process after its streams closed, and so would part of
-/// a closed session's matrices. Every 2 s, if streams closed, sessions were freed, counted answers
-/// were dropped or Control streams timed out waiting for their first message since, the
+/// a closed session's matrices. Every 2 s, if streams closed, sessions were freed, connections
+/// closed (their HTTP/2 buffers), at least [`TRIM_AFTER_ANSWER_BYTES`] of answers were dropped
+/// (issue 35, pass 4: answers under the counted size were not, and 530 MB stayed after every
+/// connection had closed) or Control streams timed out waiting for their first message since, the
 /// free pages are returned (`malloc_trim`, off the async runtime; the real-time threads do not
 /// allocate, so they never wait on it).
-async fn give_back_stream_memory(state: SharedState, answers: Arc<crate::answers::AnswerBudget>) {
+async fn give_back_stream_memory(
+    state: SharedState,
+    answers: Arc<crate::answers::AnswerBudget>,
+    conns: Arc<crate::listener::ConnCounters>,
+) {
     let mut every = tokio::time::interval(std::time::Duration::from_secs(2));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
     let mut alive = needlesim_session::sessions_alive();
@@ -384,10 +399,11 @@ async fn give_back_stream_memory(state: SharedState, answers: Arc<crate::answers
         let (was, now) = (alive, needlesim_session::sessions_alive());
         alive = now;
         // (Both counters are taken: neither is left to trigger a later, needless trim.)
-        let (streams_closed, answers_released) = (state.streams.take_closed(), answers.take_released());
+        let (streams_closed, answers_released) = (state.streams.take_closed(), answers.take_released(TRIM_AFTER_ANSWER_BYTES));
+        let conns_closed = conns.take_closed();
         let (timeouts_were, timeouts) = (control_timeouts, crate::grpc::control::first_message_timeouts());
         control_timeouts = timeouts;
-        if streams_closed == 0 && answers_released == 0 && timeouts == timeouts_were && now >= was {
+        if streams_closed == 0 && !answers_released && conns_closed == 0 && timeouts == timeouts_were && now >= was {
             continue;
         }
         #[cfg(all(target_os = "linux", target_env = "gnu"))]
@@ -487,12 +503,14 @@ where
         .layer(tower::util::MapResponseLayer::new(size_limit_status));
     // An idle HTTP/2 connection is pinged; one whose peer does not answer is closed (issue 35).
     // At most --max-streams-per-connection calls at once on one HTTP/2 connection (issue 35: none
-    // was advertised, and one connection held 5,000 responses).
-    let mut server = tonic::transport::Server::builder()
-        .accept_http1(true)
-        .max_concurrent_streams(Some(config.connections.max_streams_per_connection))
-        .http2_keepalive_interval(Some(HTTP2_KEEPALIVE_INTERVAL))
-        .http2_keepalive_timeout(Some(HTTP2_KEEPALIVE_TIMEOUT));
+    // was advertised, and one connection held 5,000 responses). Each stream's HTTP/2 send buffer
+    // is one answer chunk (`transport.rs`).
+    let http2 = crate::transport::Http2Settings {
+        max_concurrent_streams: config.connections.max_streams_per_connection,
+        keepalive_interval: HTTP2_KEEPALIVE_INTERVAL,
+        keepalive_timeout: HTTP2_KEEPALIVE_TIMEOUT,
+    };
+    let mut tls = None;
     if let Some((cert, key)) = &config.tls {
         // By the one rule for local files: a regular file, not a link, at most 1 MiB.
         let read = |path: &std::path::Path, kind: &str| {
@@ -501,10 +519,7 @@ where
         };
         let cert = read(cert, "TLS certificate")?;
         let key = read(key, "TLS key")?;
-        let tls = tonic::transport::ServerTlsConfig::new()
-            .identity(tonic::transport::Identity::from_pem(cert, key))
-            .timeout(config.connections.handshake_timeout);
-        server = server.tls_config(tls).context("TLS configuration")?;
+        tls = Some(crate::transport::Tls::from_pem(&cert, &key, config.connections.handshake_timeout).context("TLS configuration")?);
     }
     let listener = tokio::net::TcpListener::bind(config.listen).await.with_context(|| format!("cannot listen on {}", config.listen))?;
     let addr = listener.local_addr()?;
@@ -557,15 +572,16 @@ where
         tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
         closed_tx.notify_one();
     };
-    tokio::spawn(give_back_stream_memory(state.clone(), answers));
+    tokio::spawn(give_back_stream_memory(state.clone(), answers, conns.clone()));
     // Tells each connection when its requests arrive and end (the deadlines of `listener.rs`) and
     // bounds the pauses of HTTP/1.1 request bodies.
     let guard = crate::listener::ConnGuardLayer::new(conns.clone(), config.connections);
     let incoming = crate::listener::incoming(listener, config.connections, conns.clone());
-    let serving = server.layer(guard).add_routes(tonic::service::Routes::from(app)).serve_with_incoming_shutdown(incoming, shutdown);
+    let service = tower::Layer::layer(&guard, tonic::service::Routes::from(app).prepare());
+    let serving = crate::transport::serve(incoming, service, tls, http2, shutdown);
     let grace = config.shutdown_grace;
     let result = tokio::select! {
-        r = serving => r,
+        () = serving => Ok::<(), anyhow::Error>(()),
         () = async {
             sessions_closed.notified().await;
             tokio::time::sleep(grace).await;
@@ -580,8 +596,7 @@ where
     };
     let closing = state.clone();
     tokio::task::spawn_blocking(move || closing.close_all()).await.ok();
-    result.context("server")?;
-    Ok(())
+    result
 }
 
 /// Removes the device channel files in `dir` left by servers that died without closing their

@@ -472,3 +472,225 @@ async fn issue_35_control_streams_without_a_first_message_end_at_their_deadline(
     assert_eq!(server.metric("needlesim_control_streams_first_message_timeouts"), 40.0);
     drop(bodies);
 }
+
+/// Issue 35, pass 4 (1): an unknown-field group (field 1000, wire types 3 and 4) after a
+/// SimulateRequest's empty samples made the codec's walk give up, and the decoder then skipped the
+/// decoded-size bound: prost skipped the group and decoded 60 MiB of samples into 3.5 GB. A group
+/// in the request message is now refused with INVALID_ARGUMENT naming its field, before anything
+/// is decoded; a group inside a field (UploadedScene) is walked past, its regions still counted.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_group_in_a_request_is_refused_and_does_not_turn_off_the_size_bound() {
+    const GROUP_1000: &[u8] = b"\xc3\x3e\xc4\x3e";
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let pid = server.child.id();
+    let before = rss_bytes(pid);
+    // 6,000,000 empty samples (12 MiB on the wire, 650 MB decoded), then the group.
+    let n = 6_000_000usize;
+    let mut simulate = b"\x12\x00".repeat(n);
+    simulate.extend_from_slice(GROUP_1000);
+    // The group inside UploadedScene, after 1,300,000 empty regions (over the decoded bound).
+    let m = 1_300_000usize;
+    let mut regions = b"\x1a\x00".repeat(m);
+    regions.extend_from_slice(GROUP_1000);
+    let mut uploaded = vec![0x1a];
+    uploaded.extend(varint(regions.len() as u64));
+    uploaded.extend_from_slice(&regions);
+    let mut create = vec![0x0a];
+    create.extend(varint(uploaded.len() as u64));
+    create.extend_from_slice(&uploaded);
+    let cases: [(&str, Vec<u8>, Code, &str); 3] = [
+        ("/needlesim.v1.SimulationService/Simulate", simulate, Code::InvalidArgument, "has a group at field 1000"),
+        // A group alone, first: the same.
+        ("/needlesim.v1.SimulationService/Simulate", GROUP_1000.to_vec(), Code::InvalidArgument, "has a group at field 1000"),
+        ("/needlesim.v1.SessionService/CreateSession", create, Code::ResourceExhausted, &format!("field 1.3.3 has {m} elements")),
+    ];
+    for (path, msg, want, says) in cases {
+        let mut send = h2_connect(&server.addr, 65_535).await;
+        let (resp, mut body) = send.send_request(grpc_request(&server.addr, path), false).unwrap();
+        body.send_data(framed(&msg), true).expect("data queued");
+        let call = tokio::spawn(grpc_status(resp));
+        let t0 = Instant::now();
+        let mut peak = 0u64;
+        while !call.is_finished() {
+            peak = peak.max(rss_bytes(pid).saturating_sub(before));
+            assert!(t0.elapsed() < Duration::from_secs(120), "{path}: no answer; stderr: {}", server.stderr.lock().unwrap());
+            tokio::time::sleep(Duration::from_millis(20)).await;
+        }
+        let (code, message) = call.await.unwrap().expect("a gRPC status");
+        let message = percent_decoded(&message);
+        assert_eq!(code, want as i32, "{path}: {message}");
+        assert!(message.contains(says), "{path}: {message}");
+        // The message's own bytes (12 MiB, held while it arrives and walked), not its decoded form.
+        assert!(peak < 200 << 20, "{path}: the server grew by {} MB", peak >> 20);
+    }
+    assert!(!server.stderr.lock().unwrap().contains("panicked"));
+}
+
+/// An HTTP/2 connection to `addr` written by hand that never reads its socket (whose receive
+/// buffer is small), having opened its receive windows to 2^31 − 1: every byte the server sends
+/// stays in the server's buffers. Sends a unary call of `path` with `message` on each of `n` streams.
+async fn h2_never_reading(addr: &str, path: &str, token: &str, message: &[u8], n: u32) -> tokio::net::TcpStream {
+    use tokio::io::AsyncWriteExt;
+    let socket = tokio::net::TcpSocket::new_v4().unwrap();
+    socket.set_recv_buffer_size(4096).unwrap();
+    let mut tcp = socket.connect(addr.parse().unwrap()).await.expect("connect");
+    let frame = |kind: u8, flags: u8, stream: u32, payload: &[u8]| {
+        let mut f = (payload.len() as u32).to_be_bytes()[1..].to_vec();
+        f.extend([kind, flags]);
+        f.extend(stream.to_be_bytes());
+        f.extend_from_slice(payload);
+        f
+    };
+    let mut out = b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n".to_vec();
+    // SETTINGS: ENABLE_PUSH 0, INITIAL_WINDOW_SIZE 2^31 - 1; then the connection's window.
+    out.extend(frame(0x4, 0, 0, &[0, 2, 0, 0, 0, 0, 0, 4, 0x7f, 0xff, 0xff, 0xff]));
+    out.extend(frame(0x8, 0, 0, &(0x7fff_ffffu32 - 65_535).to_be_bytes()));
+    // HPACK: each header a literal without indexing, its name new, no Huffman.
+    let mut block = Vec::new();
+    let authorization = format!("Bearer {token}");
+    for (name, value) in [
+        (":method", "POST"),
+        (":scheme", "http"),
+        (":path", path),
+        (":authority", addr),
+        ("content-type", "application/grpc"),
+        ("te", "trailers"),
+        ("authorization", authorization.as_str()),
+    ] {
+        assert!(name.len() < 127 && value.len() < 127);
+        block.push(0);
+        block.push(name.len() as u8);
+        block.extend_from_slice(name.as_bytes());
+        block.push(value.len() as u8);
+        block.extend_from_slice(value.as_bytes());
+    }
+    for k in 0..n {
+        let stream = 2 * k + 1;
+        out.extend(frame(0x1, 0x4, stream, &block));
+        out.extend(frame(0x0, 0x1, stream, &framed(message)));
+    }
+    tcp.write_all(&out).await.expect("the requests are written");
+    tcp
+}
+
+/// Issue 35, pass 4 (2): the answer budget was given back once an answer's last slice was handed
+/// to HTTP/2, but HTTP/2 (hyper's default) took up to 400 KiB of each stream for a client that had
+/// opened its windows and never read its socket: 30 connections of 100 unread GetMesh calls of
+/// 380 kB held 2 GB with `needlesim_held_answer_bytes` at 0. Each stream's send buffer is now one
+/// chunk (16 KiB), so what the client has not read stays with the answer, counted.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_answers_a_client_does_not_read_stay_counted_whatever_its_windows() {
+    let server = ServerProcess::start(&["--default-scene", "none", "--answer-deadline-ms", "60000"]);
+    let ch = connect(&server).await;
+    // A 61 × 61-node grid: a GetMesh answer of about 110 kB (under hyper's 400 KiB a stream).
+    let phantom = std::fs::read_to_string(needlesim_tests::repo_root().join("server/scenes/paper-phantom.toml")).unwrap();
+    let s = needlesim_tests::create_toml_session(&ch, phantom.replace("nx = 19", "nx = 61").replace("ny = 19", "ny = 61")).await;
+    let get = pb::GetSessionRequest { session_id: s.session.clone().expect("a session").session_id };
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let mesh = sessions.get_mesh(with_token(get.clone(), &s.observer_token)).await.expect("GetMesh").into_inner();
+    let answer_bytes = mesh.encoded_len() as u64 + 5;
+    assert!(answer_bytes > 100_000, "{answer_bytes}");
+    let (conns, streams) = (2u32, 60u32);
+    let mut held = Vec::new();
+    for _ in 0..conns {
+        held.push(
+            h2_never_reading(&server.addr, "/needlesim.v1.SessionService/GetMesh", &s.observer_token, &get.encode_to_vec(), streams).await,
+        );
+    }
+    // Every call answered: the answers wait, counted, but for what the sockets took (a few
+    // hundred kB) and a chunk or two a stream in HTTP/2.
+    let total = u64::from(conns * streams) * answer_bytes;
+    let t0 = Instant::now();
+    let mut counted = 0.0;
+    while t0.elapsed() < Duration::from_secs(20) {
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        counted = server.metric("needlesim_held_answer_bytes");
+        if counted >= 0.7 * total as f64 {
+            break;
+        }
+    }
+    assert!(counted >= 0.7 * total as f64, "{counted} of {total} bytes of unread answers counted");
+    drop(held);
+    // The connections closed, the answers are dropped and their bytes given back.
+    let t0 = Instant::now();
+    while server.metric("needlesim_held_answer_bytes") != 0.0 {
+        assert!(t0.elapsed() < Duration::from_secs(10), "{}", server.metric("needlesim_held_answer_bytes"));
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+}
+
+/// Issue 35, pass 4 (3): answers up to 64 kB were not counted: 6,000 unread GetMesh answers of
+/// 64,373 bytes held 475 MB and none timed out. Every unary answer is now counted, and dropped
+/// at `--answer-deadline-ms`.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_small_unread_answers_are_counted_and_dropped_at_their_deadline() {
+    let server = ServerProcess::start(&["--default-scene", "none", "--answer-deadline-ms", "2000"]);
+    let ch = connect(&server).await;
+    let s = needlesim_tests::create_example_session(&ch, "paper-phantom").await;
+    let get = pb::GetSessionRequest { session_id: s.session.clone().expect("a session").session_id };
+    let mut sessions = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let mesh = sessions.get_mesh(with_token(get.clone(), &s.observer_token)).await.expect("GetMesh").into_inner();
+    let answer_bytes = mesh.encoded_len() as u64;
+    assert!(answer_bytes < 64 << 10, "{answer_bytes}");
+    let mut send = h2_connect(&server.addr, 0).await;
+    let mut held = Vec::new();
+    let n = 50;
+    for _ in 0..n {
+        send = send.ready().await.expect("a stream");
+        let mut req = grpc_request(&server.addr, "/needlesim.v1.SessionService/GetMesh");
+        req.headers_mut().insert("authorization", format!("Bearer {}", s.observer_token).parse().unwrap());
+        let (resp, mut body) = send.send_request(req, false).unwrap();
+        body.send_data(framed(&get.encode_to_vec()), true).unwrap();
+        held.push(tokio::time::timeout(Duration::from_secs(30), resp).await.expect("headers in time").expect("an answer"));
+    }
+    let counted = server.metric("needlesim_held_answer_bytes");
+    assert!(counted >= (n * answer_bytes) as f64, "{counted} bytes counted of {n} answers of {answer_bytes}");
+    let t0 = Instant::now();
+    while server.metric("needlesim_held_answers_timed_out") < n as f64 {
+        assert!(t0.elapsed() < Duration::from_secs(15), "{}", server.metric("needlesim_held_answers_timed_out"));
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+    assert_eq!(server.metric("needlesim_held_answer_bytes"), 0.0);
+    drop(held);
+}
+
+/// Issue 35, pass 4 (4): a Simulate whose client kept its connection open and never read held its
+/// offline job slot for as long as it liked (the job blocked sending), so four such calls refused
+/// everyone else's. A job whose client does not take its next message within
+/// `--answer-deadline-ms` now stops, frees its slot and ends its stream with DEADLINE_EXCEEDED.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_an_unread_simulate_frees_its_offline_slot_at_the_deadline() {
+    let server = ServerProcess::start(&["--default-scene", "none", "--max-offline-jobs", "1", "--answer-deadline-ms", "2000"]);
+    let req = pb::SimulateRequest {
+        scene: Some(pb::SceneSource { source: Some(pb::scene_source::Source::Example("paper-phantom".into())) }),
+        ..Default::default()
+    };
+    let mut send = h2_connect(&server.addr, 0).await;
+    let (resp, mut body) = send.send_request(grpc_request(&server.addr, "/needlesim.v1.SimulationService/Simulate"), false).unwrap();
+    body.send_data(framed(&req.encode_to_vec()), true).unwrap();
+    let unread = tokio::time::timeout(Duration::from_secs(30), resp).await.expect("headers in time").expect("an answer");
+    let t0 = Instant::now();
+    while server.metric("needlesim_offline_jobs_timed_out") < 1.0 {
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "the unread Simulate still holds its slot: {} running",
+            server.metric("needlesim_offline_jobs_running")
+        );
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+    assert_eq!(server.metric("needlesim_offline_jobs_running"), 0.0);
+    // Another client runs its Simulate while the unread call's connection stays open.
+    let ch = connect(&server).await;
+    let mut sim = pb::simulation_service_client::SimulationServiceClient::new(ch);
+    let mut stream = sim.simulate(pb::SimulateRequest { decimate: 1000, ..req }).await.expect("a slot").into_inner();
+    let mut messages = 0;
+    while let Some(m) = stream.message().await.expect("the simulation runs") {
+        messages += 1;
+        drop(m);
+    }
+    assert!(messages > 0);
+    assert_eq!(server.metric("needlesim_offline_jobs_rejected"), 0.0);
+    // (The unread stream's status, DEADLINE_EXCEEDED naming the flag, waits for its window:
+    // `jobs.rs`'s unit test reads it.)
+    drop(unread);
+}

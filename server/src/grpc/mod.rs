@@ -68,6 +68,9 @@ pub struct ServerLimits {
     /// How long a Control or Control3 stream may wait for its first message, ms
     /// (`--control-first-message-ms`; issue 35): then it ends with DEADLINE_EXCEEDED.
     pub control_first_message_ms: u64,
+    /// How long a client has to take a counted answer whole, and to make room for an offline
+    /// job's next message, ms (`--answer-deadline-ms`; issue 35): `answers.rs`, `jobs.rs`.
+    pub answer_deadline_ms: u64,
 }
 
 impl ServerLimits {
@@ -95,6 +98,7 @@ impl Default for ServerLimits {
             max_reports: 1000,
             max_reports_bytes: crate::quota::mib(1024),
             control_first_message_ms: 5000,
+            answer_deadline_ms: 30_000,
         }
     }
 }
@@ -145,7 +149,7 @@ impl ServerState {
 
     /// A state whose `admin_token` (if any) opens every recording; only its digest is kept.
     pub fn with_admin_token(limits: ServerLimits, data_dir: PathBuf, admin_token: Option<&str>) -> Arc<Self> {
-        let jobs = JobLimiter::new(limits.max_offline_jobs, limits.max_plans);
+        let jobs = JobLimiter::new(limits.max_offline_jobs, limits.max_plans, std::time::Duration::from_millis(limits.answer_deadline_ms));
         let streams = StreamLimiter::new(limits.max_streams);
         let recordings_quota = crate::quota::DirQuota::new(
             "recordings",

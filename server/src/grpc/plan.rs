@@ -14,8 +14,6 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use needlesim_proto::v1 as pb;
-use tokio::sync::mpsc;
-use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
 use crate::convert;
@@ -27,7 +25,7 @@ use needlesim_offline::plan3;
 
 #[tonic::async_trait]
 impl pb::planning_service_server::PlanningService for Api {
-    type PlanStream = ReceiverStream<Result<pb::PlanProgress, Status>>;
+    type PlanStream = crate::jobs::JobStream<pb::PlanProgress>;
 
     async fn plan(&self, req: Request<pb::PlanRequest>) -> Result<Response<Self::PlanStream>, Status> {
         let r = req.into_inner();
@@ -72,7 +70,7 @@ impl Api {
         slot: JobPermit,
         scene: needlesim_scene::Scene,
         preq: plan::PlanRequest,
-    ) -> Result<Response<ReceiverStream<Result<pb::PlanProgress, Status>>>, Status> {
+    ) -> Result<Response<crate::jobs::JobStream<pb::PlanProgress>>, Status> {
         let opts = self.plan_options();
         stream_plan(slot, opts, move |opts, validated, progress| {
             plan::validate_request(&scene, &preq, opts)?;
@@ -99,7 +97,7 @@ impl Api {
         slot: JobPermit,
         scene: needlesim_scene::Scene3d,
         preq: plan3::Plan3Request,
-    ) -> Result<Response<ReceiverStream<Result<pb::PlanProgress, Status>>>, Status> {
+    ) -> Result<Response<crate::jobs::JobStream<pb::PlanProgress>>, Status> {
         let opts = self.plan_options();
         stream_plan(slot, opts, move |opts, validated, progress| {
             plan3::validate3_request(&scene, &preq)?;
@@ -137,22 +135,22 @@ async fn stream_plan<R>(
     slot: JobPermit,
     mut opts: PlanOptions,
     run: R,
-) -> Result<Response<ReceiverStream<Result<pb::PlanProgress, Status>>>, Status>
+) -> Result<Response<crate::jobs::JobStream<pb::PlanProgress>>, Status>
 where
     R: FnOnce(&PlanOptions, &mut dyn FnMut(), &mut dyn FnMut(pb::PlanProgress) -> ControlFlow<()>) -> anyhow::Result<pb::PlanProgress>
         + Send
         + 'static,
 {
-    let (tx, rx) = mpsc::channel(8);
+    let (tx, stream) = slot.stream(8);
     let (first_tx, first_rx) = tokio::sync::oneshot::channel::<Result<(), Status>>();
     let cancel = Arc::new(AtomicBool::new(false));
     // The client going away (the receiver dropped) cancels the planning. The watcher's sender
     // is dropped when the planning ends (`done`), or the stream would never end.
-    let (watch_tx, cancel_watch) = (tx.clone(), cancel.clone());
+    let (closed, cancel_watch) = (tx.closed(), cancel.clone());
     let (done, done_rx) = tokio::sync::oneshot::channel::<()>();
     tokio::spawn(async move {
         tokio::select! {
-            _ = watch_tx.closed() => cancel_watch.store(true, Ordering::Relaxed),
+            () = closed => cancel_watch.store(true, Ordering::Relaxed),
             _ = done_rx => {}
         }
     });
@@ -166,9 +164,8 @@ where
                 let _ = f.send(Ok(()));
             }
         };
-        let progress_tx = tx.clone();
         let mut progress = |msg: pb::PlanProgress| {
-            if progress_tx.blocking_send(Ok(msg)).is_err() { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+            if tx.send_blocking(Ok(msg)).is_err() { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
         };
         let result = run(&opts, &mut validated, &mut progress);
         match (result, first_tx.take()) {
@@ -177,14 +174,14 @@ where
                 let _ = f.send(Err(status_of("", &e)));
             }
             (Ok(last), _) => {
-                let _ = tx.blocking_send(Ok(last));
+                let _ = tx.send_blocking(Ok(last));
             }
             (Err(_), None) if cancel.load(Ordering::Relaxed) => tracing::info!("planning cancelled: the client went away"),
             (Err(e), None) => {
-                let _ = tx.blocking_send(Err(ApiError::after_validation(&e).into()));
+                let _ = tx.send_blocking(Err(ApiError::after_validation(&e).into()));
             }
         }
     });
     first_rx.await.map_err(|_| Status::internal("the planning task ended before validating the request"))??;
-    Ok(Response::new(ReceiverStream::new(rx)))
+    Ok(Response::new(stream))
 }

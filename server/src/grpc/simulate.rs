@@ -8,13 +8,11 @@ use needlesim_core::sim::Simulation;
 use needlesim_core::sim3::Simulation3;
 use needlesim_offline::{RunError, RunTotals, ScriptedRun, ScriptedSim, Tick};
 use needlesim_proto::v1 as pb;
-use tokio::sync::mpsc;
-use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
 use super::{Api, BoxStream};
 use crate::convert;
-use crate::jobs::JobKind;
+use crate::jobs::{JobKind, JobSender};
 use crate::status::{ApiError, SizeLimit, status_of};
 
 #[tonic::async_trait]
@@ -36,7 +34,7 @@ impl pb::simulation_service_server::SimulationService for Api {
         // Held by the worker until it ends; refused at once when the server is busy.
         let permit = self.state.jobs.try_start(JobKind::Simulate)?;
         let limits = self.state.limits.clone();
-        let (tx, rx) = mpsc::channel(16);
+        let (tx, stream) = self.state.jobs.stream(16);
         // Parse and validate before answering, so that errors are statuses, not stream items.
         let job = tokio::task::spawn_blocking(move || -> Result<_, Status> {
             let scene = convert::session_scene_from_pb(r.scene.as_ref(), &limits.scene()).map_err(|e| status_of("scene", &e))?;
@@ -105,10 +103,10 @@ impl pb::simulation_service_server::SimulationService for Api {
                 Job::Three(scene, traj) => run_offline3(scene, traj, (limits_ticks, convergence), decimate, &tx),
             };
             if let Err(e) = result {
-                let _ = tx.blocking_send(Err(e.into()));
+                let _ = tx.send_blocking(Err(e.into()));
             }
         });
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(Response::new(Box::pin(stream)))
     }
 }
 
@@ -128,7 +126,7 @@ fn run_offline(
     traj: &needlesim_scene::Trajectory,
     (max_ticks, convergence): (u64, needlesim_offline::ConvergencePolicy),
     decimate: u64,
-    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
+    tx: &JobSender<pb::SimulateResponse>,
 ) -> Result<(), needlesim_offline::RunError> {
     let started = std::time::Instant::now();
     let opts = needlesim_offline::RunOptions { max_ticks, convergence, ..Default::default() };
@@ -151,7 +149,7 @@ fn run_offline3(
     traj: &needlesim_scene::Trajectory3,
     (max_ticks, convergence): (u64, needlesim_offline::ConvergencePolicy),
     decimate: u64,
-    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
+    tx: &JobSender<pb::SimulateResponse>,
 ) -> Result<(), ApiError> {
     use needlesim_offline::simulate3::sim3_params;
     let started = std::time::Instant::now();
@@ -178,11 +176,11 @@ fn run_offline3(
 fn stream_run<S: ScriptedSim>(
     mut run: ScriptedRun<'_, S>,
     decimate: u64,
-    tx: &mpsc::Sender<Result<pb::SimulateResponse, Status>>,
+    tx: &JobSender<pb::SimulateResponse>,
     row: impl Fn(&S, &Tick) -> pb::SeriesRow,
     result: impl FnOnce(&S, RunTotals, [f64; 2]) -> pb::SimulateResponse,
 ) -> Result<(), RunError<S::Error>> {
-    let send = |response: pb::SimulateResponse| tx.blocking_send(Ok(response)).is_ok();
+    let send = |response: pb::SimulateResponse| tx.send_blocking(Ok(response)).is_ok();
     let n_ticks = run.last_tick();
     let mut chunk = Vec::with_capacity(SERIES_CHUNK_ROWS);
     let mut step_ns = hdrhistogram::Histogram::<u64>::new_with_bounds(1, 60_000_000_000, 3).expect("valid bounds");
