@@ -70,13 +70,46 @@ def _file_kind(mode: int) -> str:
     return "not a file"
 
 
+# The kernel's pseudo file systems by statfs magic (linux/magic.h), as in needlesim-localfile:
+# their files are made up as they are read (/proc/self/environ), none is a scene or certificate.
+_PSEUDO_FILE_SYSTEMS = {
+    0x00009FA0: "proc",
+    0x62656572: "sysfs",
+    0x64626720: "debugfs",
+    0x74726163: "tracefs",
+    0x73636673: "securityfs",
+    0x0027E0EB: "cgroup",
+    0x63677270: "cgroup2",
+    0x62656570: "configfs",
+    0xDE5E81E4: "efivarfs",
+    0xCAFE4A11: "bpf",
+    0x6165676C: "pstore",
+}
+
+
+def _pseudo_file_system(fd: int) -> Optional[str]:
+    """The name of the kernel pseudo file system the open descriptor fd is on (fstatfs), or None
+    (also off Linux). struct statfs begins with f_type, a C long, on every Linux target."""
+    if not sys.platform.startswith("linux"):
+        return None
+    import ctypes
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    buf = ctypes.create_string_buffer(512)  # sizeof(struct statfs) is 120 on 64-bit Linux
+    if libc.fstatfs(fd, buf) != 0:
+        e = ctypes.get_errno()
+        raise OSError(e, os.strerror(e))
+    return _PSEUDO_FILE_SYSTEMS.get(ctypes.c_long.from_buffer(buf).value & 0xFFFFFFFF)
+
+
 def read_local_file(path, max_bytes: int = MAX_LOCAL_FILE_BYTES) -> bytes:
     """Reads a local file the way the server and the needlesim CLI do: refused (ValueError naming
     the path and the problem) when it is a symbolic link, not a regular file (a directory, a
     device such as /dev/zero, a FIFO, a socket) or larger than max_bytes. It is opened without
     following a link and without blocking (a FIFO swapped in after the check cannot block the
     open), checked again on the open descriptor, then made blocking again, and at most
-    max_bytes + 1 bytes are read (a file that grows). Errors never quote the file's contents;
+    max_bytes + 1 bytes are read (a file that grows). A file on the kernel's pseudo file systems
+    (/proc, /sys, …: fstatfs on the descriptor) is refused too. Errors never quote the file's contents;
     a missing or unreadable file raises OSError naming the path."""
     st = os.lstat(path)
     if stat.S_ISLNK(st.st_mode):
@@ -93,6 +126,12 @@ def read_local_file(path, max_bytes: int = MAX_LOCAL_FILE_BYTES) -> bytes:
         st = os.fstat(fd)
         if not stat.S_ISREG(st.st_mode):
             raise ValueError(f"{path}: not a regular file ({_file_kind(st.st_mode)})")
+        fs = _pseudo_file_system(fd)
+        if fs is not None:
+            raise ValueError(
+                f"{path}: on the kernel's {fs} file system, whose files are made up as they are read; "
+                "local files on /proc, /sys and their kin are refused (copy it to a regular file)"
+            )
         if st.st_size > max_bytes:
             raise ValueError(f"{path}: {st.st_size} bytes, over the limit of {max_bytes} bytes")
         os.set_blocking(fd, True)
@@ -676,7 +715,7 @@ def read_trajectory_csv(path) -> Trajectory:
         if header is None:
             header = ",".join(cells)
             if header not in (HEADERS[2], HEADERS[3]):
-                raise ValueError(f"{path}: line {n}: the header must be {HEADERS[2]} (2D) or {HEADERS[3]} (3D), found {header[:64]}")
+                raise ValueError(f"{path}: line {n}: the header must be {HEADERS[2]} (2D) or {HEADERS[3]} (3D), found another header of {len(cells)} columns")
             width = len(cells)
             continue
         if len(cells) != width:

@@ -596,7 +596,10 @@ mod tests {
     #[test]
     fn trajectory_errors_name_file_and_line() {
         let e = |text: &str| Trajectory::parse(text, "traj.csv", false).unwrap_err().to_string();
-        assert_eq!(e("t,x,y,th\n0,0,0,0\n"), "traj.csv: trajectory line 1: the header must be t_s,x_m,y_m,theta_rad, found t,x,y,th");
+        assert_eq!(
+            e("t,x,y,th\n0,0,0,0\n"),
+            "traj.csv: trajectory line 1: the header must be t_s,x_m,y_m,theta_rad, found a header whose column 1 is not t_s"
+        );
         assert!(e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n1,abc,0,0\n").starts_with("traj.csv: trajectory line 3: column x_m"));
         assert_eq!(e("t_s,x_m,y_m,theta_rad\n0,0,0,0\n0,1,0,0\n"), "traj.csv: trajectory line 3: t_s = 0 does not increase (previous 0)");
         assert!(

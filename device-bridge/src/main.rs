@@ -16,7 +16,8 @@
 //! crash: the watcher thread checks the creator process, `needlesim_channel::liveness`), whose
 //! orphaned channel file the bridge then removes, and one from which no force came for
 //! `--server-timeout-ms` (hung, stopped, or dead out of sight in another pid namespace; its file
-//! is left to it).
+//! is left to it). The remote link (`--server`) is held to the same silence limit (plus
+//! `--inject-rtt-ms`): a stopped server whose stream stays open ends the bridge alike.
 //!
 //! # 2D and 3D sessions
 //!
@@ -156,10 +157,11 @@ struct Cli {
     /// 1..=10000, and at most 1 s at --rate-hz (the time the device keeps pushing the last force).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000))]
     watchdog_periods: Option<u64>,
-    /// With --channel: the server is taken for gone when no force came for this long (ms), even
-    /// if its channel looks intact (a hung or stopped server, or one in another pid namespace whose
-    /// death the bridge cannot see): the force is ramped to zero and the bridge exits with status 1.
-    /// A server that dies (`kill -9`, a crash) is noticed within about 100 ms whatever this is.
+    /// The server is taken for gone when no force came for this long (ms), even if its channel
+    /// looks intact or its stream stays open (a hung or stopped server, or one in another pid
+    /// namespace whose death the bridge cannot see): the force is ramped to zero and the bridge
+    /// exits with status 1. With --server the limit is this plus --inject-rtt-ms. With --channel
+    /// a server that dies (`kill -9`, a crash) is noticed within about 100 ms whatever this is.
     /// 0: never. 0..=600000.
     #[arg(long, value_name = "MS", default_value_t = 2000, value_parser = clap::value_parser!(u64).range(0..=600_000))]
     server_timeout_ms: u64,
@@ -523,7 +525,7 @@ struct LoopState {
     flip_refused_said: bool,
     /// The period in which the link was first found lost.
     lost_since: Option<u64>,
-    /// `CLOCK_MONOTONIC` ns of the last fresh force from the channel (at first: the loop's start),
+    /// `CLOCK_MONOTONIC` ns of the last fresh force from the link (at first: the loop's start),
     /// the server's heartbeat (`--server-timeout-ms`).
     last_fresh_ns: u64,
 }
@@ -779,6 +781,7 @@ fn exchange_remote(
     let fresh = remote.latest();
     let t_seen = monotonic_ns();
     if let Some(r) = &fresh {
+        st.last_fresh_ns = t_seen;
         st.remote_last = *r;
         report.force_age_ns.push(t_seen.saturating_sub(r.t_published_ns));
         // The server echoes the newest pose its tick used: a true round trip.
@@ -837,7 +840,12 @@ fn lost_link_error(link: &Link, silent_ms: Option<u64>) -> anyhow::Error {
                 _ => anyhow!("device channel {path}: closed or re-created by the server"),
             }
         }
-        Link::Remote(r) => anyhow!("remote link: {}", r.failure().unwrap_or_default()),
+        Link::Remote(r) => match (r.failure(), silent_ms) {
+            (None, Some(ms)) => anyhow!(
+                "remote link: the server stopped answering: no force for {ms} ms (--server-timeout-ms); the force was ramped to zero"
+            ),
+            (failure, _) => anyhow!("remote link: {}", failure.unwrap_or_default()),
+        },
     }
 }
 
@@ -855,7 +863,12 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
     report.force_age_ns.reserve(cap);
     // The periods the link may stay lost before the bridge gives up: the watchdog's and the ramp's.
     let ramp_out_periods = watchdog_periods + (params.ramp_s / period_s).ceil() as u64 + 1;
-    let server_timeout_ns = cli.server_timeout_ms.saturating_mul(1_000_000);
+    // The remote link's responses come after --inject-rtt-ms's delay line too.
+    let server_timeout_ns = match link {
+        _ if cli.server_timeout_ms == 0 => 0,
+        Link::Shm(_) => cli.server_timeout_ms.saturating_mul(1_000_000),
+        Link::Remote(_) => cli.server_timeout_ms.saturating_mul(1_000_000).saturating_add((cli.inject_rtt_ms * 1e6) as u64),
+    };
 
     match needlesim_channel::rt::request_realtime_priority(cli.rt_priority) {
         Ok(()) => tracing::debug!(priority = cli.rt_priority, "the device loop runs with SCHED_FIFO"),
@@ -916,9 +929,9 @@ fn run(cli: &Cli, link: &mut Link, device: &mut dyn Device, report: &mut Report)
         if let Some(w) = trace.as_mut() {
             write_trace_row(w, planar, t_s, report.last_counter, &state, &ex, &out)?;
         }
-        // The server's heartbeat: a channel on which no force came for --server-timeout-ms.
+        // The server's heartbeat: a link on which no force came for --server-timeout-ms.
         let silent_ns = t_pose.saturating_sub(st.last_fresh_ns);
-        let silent = matches!(link, Link::Shm(_)) && server_timeout_ns > 0 && silent_ns > server_timeout_ns;
+        let silent = server_timeout_ns > 0 && silent_ns > server_timeout_ns;
         // A re-created, closed or broken channel, a dead or silent server, a failed remote link:
         // let the watchdog ramp the force out, then stop.
         if ex.lost || silent {

@@ -770,3 +770,74 @@ async fn issue_35_a_dropped_test_server_leaves_no_channel_file() {
     drop(other);
     assert!(!kept.channel_path.exists(), "the other server's channel file {} is left", kept.channel_path.display());
 }
+
+/// Sends `signal` (`STOP`, `CONT`) to `pid` with kill(1).
+fn signal(pid: u32, signal: &str) {
+    let ok = std::process::Command::new("kill").arg(format!("-{signal}")).arg(pid.to_string()).status().expect("kill runs").success();
+    assert!(ok, "kill -{signal} {pid}");
+}
+
+/// Continues a stopped process when dropped (a failed assertion never leaves the server stopped).
+struct ContinueOnDrop(u32);
+impl Drop for ContinueOnDrop {
+    fn drop(&mut self) {
+        let _ = std::process::Command::new("kill").arg("-CONT").arg(self.0.to_string()).status();
+    }
+}
+
+/// Issue 35 (pass 4, item 8): the remote bridge (`--server`) ignored `--server-timeout-ms`: with
+/// its server SIGSTOPped (the TCP connection and the stream stay open, no response comes) it
+/// ramped its force to zero but ran on without a word (15 s in the attack, to the end of
+/// `--seconds`). Held to the same silence limit as the channel, it now ramps out and exits with
+/// status 1 naming the flag, long before its `--seconds`.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_a_stopped_server_ends_the_remote_bridge_at_zero_force_naming_the_timeout() {
+    let _turn = ONE_AT_A_TIME.lock().await;
+    let dir = TempDir::new("bridge-e2e-remote-stop");
+    let server = ServerProcess::start(&["--default-scene", "none"]);
+    let ch = connect(&server).await;
+    let s = create_device_session(&ch).await;
+    let traj = trajectory(&dir, "insert.csv", &[(0.0, 0.205), (6.0, 0.175), (1000.0, 0.175)]);
+    let trace = dir.join("trace.csv");
+    let (timeout_ms, watchdog, ramp_ms) = (1000u64, 50u64, 50.0);
+    let bridge = tokio::process::Command::new(bin("needlesim-bridge"))
+        .args(["--server", &server.url(), "--session", &s.id, "--token", &s.controller_token])
+        .args(["--device", "virtual", "--trajectory", traj.to_str().unwrap(), "--rate-hz", "1000", "--json", "--rt-priority", "0"])
+        .args(["--seconds", "60", "--server-timeout-ms", &timeout_ms.to_string(), "--watchdog-periods", &watchdog.to_string()])
+        .args(["--ramp-ms", &ramp_ms.to_string(), "--trace", trace.to_str().unwrap()])
+        .env("RUST_LOG", "warn")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .kill_on_drop(true)
+        .spawn()
+        .expect("needlesim-bridge starts");
+    wait_until_inserted(&ch, &s, 0.005).await;
+    let pid = server.child.id();
+    signal(pid, "STOP");
+    let _cont = ContinueOnDrop(pid);
+    let stopped = Instant::now();
+    let out = tokio::time::timeout(Duration::from_secs(20), bridge.wait_with_output()).await;
+    let waited = stopped.elapsed();
+    signal(pid, "CONT");
+    let out = out.expect("the remote bridge exits within 20 s of its server stopping (it ran on to --seconds 60)").expect("waiting");
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    println!("remote bridge {waited:?} after the stop: exit {:?}, {}", out.status.code(), stderr.trim());
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("remote link: the server stopped answering: no force for")
+            && stderr.contains("(--server-timeout-ms); the force was ramped to zero"),
+        "{stderr}"
+    );
+    // After the silence limit, the watchdog and the ramp (generous for a loaded machine's scheduling).
+    assert!(waited >= Duration::from_millis(timeout_ms) && waited < Duration::from_secs(10), "exited {waited:?} after the stop");
+    let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap_or_else(|e| panic!("no JSON report ({e}): {stdout}"));
+    assert!(report["exit"].as_str().is_some_and(|e| e.contains("--server-timeout-ms")), "{report}");
+    let rows = read_trace(&trace);
+    let last_fresh = rows.iter().rev().find(|r| r.fresh).expect("fresh forces before the stop").t_s;
+    let pushing =
+        rows.iter().filter(|r| r.t_s > last_fresh - 0.1 && r.t_s <= last_fresh).map(|r| r.wrench[0].hypot(r.wrench[1])).fold(0.0, f64::max);
+    assert!(pushing > 0.0, "no force was rendered before the stop: the zero below proves nothing");
+    let last = rows.last().unwrap();
+    assert_eq!((last.wrench, last.gain), ([0.0; 3], 0.0), "the bridge exited before its force was ramped out");
+    assert!(last.t_s - last_fresh >= timeout_ms as f64 * 1e-3, "it gave up {} s after the last force", last.t_s - last_fresh);
+}

@@ -376,3 +376,129 @@ fn issue35_clients_the_bridge_and_the_server_read_local_files_by_the_one_rule() 
         assert!(stdout.contains(&want), "the Python client says {want:?}:\n{stdout}");
     }
 }
+
+/// Issue 35 (pass 4, item 6): `needlesim-lab identify` read its files with std::fs, outside the
+/// one rule: `render --tracks /dev/zero` read until out of memory, `probe --tracks FIFO` hung, a
+/// frames.csv link was followed and its first line quoted (pointed at /proc/self/environ, the
+/// environment). Each file it reads now goes through needlesim-localfile: refused at once, naming
+/// the path and the problem, and no line of a file is quoted (frames.csv's header neither).
+#[test]
+fn issue_35_the_lab_reads_local_files_by_the_one_rule_and_quotes_no_line() {
+    use std::ffi::OsStr;
+    let dir = TempDir::new("file-refs-lab");
+    let lab = bin("needlesim-lab");
+    let fifo = dir.join("pipe.csv");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().expect("mkfifo runs").success());
+    let secret = dir.join("secret.csv");
+    std::fs::write(&secret, format!("frame,t_s,file_{SECRET}\n0,0,a.png\n")).unwrap();
+    // frames.csv: a link to the secret, a link to the environment, the secret itself.
+    let (linked, environ, plain) = (dir.join("linked"), dir.join("environ"), dir.join("plain"));
+    for d in [&linked, &environ, &plain] {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    std::os::unix::fs::symlink(&secret, linked.join("frames.csv")).unwrap();
+    std::os::unix::fs::symlink("/proc/self/environ", environ.join("frames.csv")).unwrap();
+    std::fs::copy(&secret, plain.join("frames.csv")).unwrap();
+    let (p, s) = (|p: &std::path::Path| p.as_os_str().to_owned(), OsStr::new);
+    let track = |images: &std::path::Path| -> Vec<std::ffi::OsString> {
+        ["identify", "track", "--m-per-px", "0.001", "--dark", "--output"]
+            .iter()
+            .map(|a| a.into())
+            .chain([p(&dir.join("out.csv")), s("--images").into(), p(images)])
+            .collect()
+    };
+    let probe = |tracks: &std::path::Path, log: &std::path::Path| -> Vec<std::ffi::OsString> {
+        vec![
+            s("identify").into(),
+            s("probe").into(),
+            s("--tracks").into(),
+            p(tracks),
+            s("--probe-log").into(),
+            p(log),
+            s("--grid").into(),
+            s("3,3,0.01,0.01").into(),
+        ]
+    };
+    let a_link = "is a symbolic link; name the file it points to";
+    let cases: Vec<(Vec<std::ffi::OsString>, String)> = vec![
+        (
+            vec![
+                s("identify").into(),
+                s("render").into(),
+                s("--tracks").into(),
+                s("/dev/zero").into(),
+                s("--out-dir").into(),
+                p(&dir.join("r")),
+            ],
+            "/dev/zero: not a regular file (a character device)".into(),
+        ),
+        (probe(&fifo, &fifo), format!("{}: not a regular file (a FIFO)", fifo.display())),
+        (probe(&secret, &fifo), "found a header whose column 3 is not marker".into()),
+        (probe(std::path::Path::new("/proc/self/environ"), &fifo), "/proc/self/environ: on the kernel's proc file system".into()),
+        (track(&linked), format!("{}: {a_link}", linked.join("frames.csv").display())),
+        (track(&environ), format!("{}: {a_link}", environ.join("frames.csv").display())),
+        (
+            track(&plain),
+            format!(
+                "{} line 1: expected the header 'frame,t_s,file', found a header whose column 3 is not file",
+                plain.join("frames.csv").display()
+            ),
+        ),
+    ];
+    for (args, want) in &cases {
+        let args: Vec<&OsStr> = args.iter().map(|a| a.as_os_str()).collect();
+        let (code, _, stderr) = run_limited(&lab, &args);
+        println!("needlesim-lab {args:?}: {}", stderr.trim());
+        assert_eq!(code, Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains(want.as_str()), "{args:?}: the error says {want:?}: {stderr}");
+        assert!(!stderr.contains(SECRET) && !stderr.contains("PATH=") && !stderr.contains("HOME="), "{args:?}: a file is quoted: {stderr}");
+    }
+}
+
+/// Issue 35 (pass 4, item 7): a scene's parse error quoted the line it failed on (the TOML
+/// parser's snippet): `simulate --scene /proc/self/environ` printed the environment, a scene with
+/// a secret on its first line printed the secret, and a session created from it by the CLI echoed
+/// it back from the server. A TOML error now names the file, line and column and the parser's
+/// words only, and files on /proc and /sys are refused unread (/proc/self/pagemap was read up to
+/// the 256 MiB bound).
+#[test]
+fn issue_35_scene_parse_errors_name_line_and_column_and_proc_files_are_refused() {
+    use std::ffi::OsStr;
+    let dir = TempDir::new("file-refs-parse");
+    let secret = dir.join("secret.toml");
+    std::fs::write(&secret, format!("name = \"x\"\n{SECRET} = = broken\n")).unwrap();
+    let server = bin("needlesim-server");
+    let (code, _, stderr) = run_limited(&server, &[OsStr::new("simulate"), OsStr::new("--scene"), secret.as_os_str()]);
+    println!("simulate --scene secret.toml: {}", stderr.trim());
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains(&format!("scene {}: TOML parse error at line 2, column ", secret.display())), "{stderr}");
+    assert!(!stderr.contains(SECRET) && !stderr.contains("broken") && !stderr.contains(" | "), "the line is quoted: {stderr}");
+    for proc_file in ["/proc/self/environ", "/proc/self/pagemap", "/proc/self/cmdline", "/sys/kernel/mm/transparent_hugepage/enabled"] {
+        if std::fs::symlink_metadata(proc_file).is_err() {
+            continue;
+        }
+        let (code, _, stderr) = run_limited(&server, &[OsStr::new("simulate"), OsStr::new("--scene"), OsStr::new(proc_file)]);
+        println!("simulate --scene {proc_file}: {}", stderr.trim());
+        assert_eq!(code, Some(1), "{stderr}");
+        assert!(stderr.contains(&format!("{proc_file}: on the kernel's ")) && stderr.contains("/proc, /sys"), "{stderr}");
+        assert!(!stderr.contains("PATH=") && !stderr.contains("simulate"), "{proc_file} is quoted: {stderr}");
+    }
+    // The CLI sends the scene to a server, whose refusal it prints: the secret line is not in it.
+    let live = ServerProcess::start(&["--default-scene", "none"]);
+    let url = live.url();
+    let (code, _, stderr) = run_limited(
+        &bin("needlesim"),
+        &[
+            OsStr::new("--server"),
+            OsStr::new(&url),
+            OsStr::new("sessions"),
+            OsStr::new("create"),
+            OsStr::new("--scene"),
+            secret.as_os_str(),
+        ],
+    );
+    println!("needlesim sessions create --scene secret.toml: {}", stderr.trim());
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("TOML parse error at line 2, column "), "{stderr}");
+    assert!(!stderr.contains(SECRET) && !stderr.contains("broken"), "the line is quoted: {stderr}");
+}

@@ -93,7 +93,8 @@ fn load_scaled(spec: &str, scale: &[(String, f64)], limits: &MeshLimits) -> anyh
             (text, path.parent().unwrap_or(Path::new(".")).to_path_buf(), None)
         }
     };
-    let mut table: toml::Table = text.parse().with_context(|| format!("scene {spec}"))?;
+    let mut table: toml::Table =
+        text.parse().map_err(|e: toml::de::Error| anyhow::anyhow!("scene {spec}: {}", needlesim_scene::limit::toml_message(&e, &text)))?;
     let Some(regions) = table.get_mut("regions").and_then(|r| r.as_array_mut()) else {
         anyhow::bail!("scale: scene {spec} has no [[regions]] to scale");
     };

@@ -13,6 +13,8 @@ import os
 import pydoc
 import re
 import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -330,3 +332,30 @@ def test_help_shows_the_documentation():
     assert "exchange format" in needlesim.solve.__doc__
     assert "stuck" in needlesim.StepResult.contact_states.__doc__
     assert needlesim.CONTACT_STATES == ["stuck", "slipping", "tip"]
+
+
+def test_issue_35_scene_errors_quote_no_line_and_proc_files_are_refused(tmp_path):
+    # A scene's parse error quoted the line it failed on (the TOML parser's snippet), and
+    # /proc/self/environ, a regular file of size 0, was parsed: its error printed the environment.
+    # The error now names the file, line and column only; /proc and /sys files are refused unread,
+    # as scene, as scaled scene and in the pure-Python client's copy of the rule.
+    secret = "SECRET_sk_live_0123456789abcdef"
+    bad = tmp_path / "secret.toml"
+    bad.write_text(f'name = "x"\n{secret} = = broken\n')
+    for kwargs in [{}, {"scale": {"young_modulus_pa": 2.0}}]:
+        with pytest.raises(needlesim.SceneError) as e:
+            needlesim.load_scene(bad, **kwargs)
+        assert "TOML parse error at line 2, column " in str(e.value), str(e.value)
+        assert secret not in str(e.value) and "broken" not in str(e.value), str(e.value)
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
+    import needlesim_client as nc
+
+    for path in ["/proc/self/environ", "/proc/self/pagemap", "/sys/kernel/mm/transparent_hugepage/enabled"]:
+        if not os.path.lexists(path):
+            continue
+        for kwargs in [{}, {"scale": {"young_modulus_pa": 2.0}}]:
+            with pytest.raises(needlesim.SceneError, match=re.escape(f"{path}: on the kernel's ")) as e:
+                needlesim.load_scene(path, **kwargs)
+            assert "PATH=" not in str(e.value) and "HOME=" not in str(e.value), str(e.value)
+        with pytest.raises(ValueError, match=re.escape(f"{path}: on the kernel's ")):
+            nc.read_local_file(path)

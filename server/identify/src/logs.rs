@@ -5,6 +5,7 @@
 
 use anyhow::{Context, Result, bail};
 use needlesim_core::num::num;
+use needlesim_scene::limit::{clip, header_mismatch};
 
 /// Linear interpolation of `values` sampled at increasing `times` (clamped at the ends).
 pub fn interp<const N: usize>(times: &[f64], values: &[[f64; N]], t: f64) -> [f64; N] {
@@ -26,7 +27,8 @@ pub fn parse_numeric_csv<const N: usize>(kind: &str, header: &[&str; N], text: &
     let found = lines.next().map(|(_, l)| l.trim()).unwrap_or("");
     let want = header.join(",");
     if found != want {
-        bail!("{kind}: the header must be '{want}', found '{found}'");
+        // Not quoted: a file's lines never appear in errors (a value is, clipped).
+        bail!("{kind}: the header must be '{want}', found {}", header_mismatch(found.split(',').map(str::trim), header));
     }
     let mut rows: Vec<[f64; N]> = Vec::new();
     for (i, line) in lines {
@@ -37,7 +39,8 @@ pub fn parse_numeric_csv<const N: usize>(kind: &str, header: &[&str; N], text: &
         }
         let mut row = [0.0; N];
         for k in 0..N {
-            let v: f64 = cols[k].parse().with_context(|| format!("{kind} line {ln}: {} '{}' is not a number", header[k], cols[k]))?;
+            let v: f64 =
+                cols[k].parse().with_context(|| format!("{kind} line {ln}: {} `{}` is not a number", header[k], clip(cols[k], 32)))?;
             if !v.is_finite() {
                 bail!("{kind} line {ln}: {} is not finite", header[k]);
             }

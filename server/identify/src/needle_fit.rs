@@ -390,8 +390,9 @@ fn affine_reference(nodes: &[[f64; 2]], marker_node: &[usize], p0: &[[f64; 2]]) 
 ///
 /// Errors: TOML that does not parse, no `[[regions]]` entry named `region`.
 pub fn write_fitted_scene(base_toml: &str, region: &str, fit: &NeedleFit) -> Result<String> {
-    let mut doc: toml::Table =
-        base_toml.parse().map_err(|e: toml::de::Error| anyhow::anyhow!("base scene: {}", e.to_string().trim_end()))?;
+    let mut doc: toml::Table = base_toml
+        .parse()
+        .map_err(|e: toml::de::Error| anyhow::anyhow!("base scene: {}", needlesim_scene::limit::toml_message(&e, base_toml)))?;
     let regions = doc.get_mut("regions").and_then(|r| r.as_array_mut()).context("base scene: no [[regions]]")?;
     let r = regions
         .iter_mut()

@@ -10,6 +10,7 @@
 //! frame); fits may use or skip such rows. Metres are in the tissue's (mesh) frame.
 
 use anyhow::{Context, Result, bail};
+use needlesim_scene::limit::{clip, header_mismatch};
 
 /// The tracked markers of an experiment: `n_frames × n_markers` positions.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -59,7 +60,11 @@ impl MarkerTracks {
         let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty());
         let header = lines.next().map(|(_, l)| l.trim()).unwrap_or("");
         if header != "frame,t_s,marker,x_px,y_px,x_m,y_m,detected" {
-            bail!("marker tracks: line 1 must be the header 'frame,t_s,marker,x_px,y_px,x_m,y_m,detected', found '{header}'");
+            // Not quoted: a file's lines never appear in errors (a value is, clipped).
+            bail!(
+                "marker tracks: line 1 must be the header 'frame,t_s,marker,x_px,y_px,x_m,y_m,detected', found {}",
+                header_mismatch(header.split(',').map(str::trim), &["frame", "t_s", "marker", "x_px", "y_px", "x_m", "y_m", "detected"])
+            );
         }
         let mut out = MarkerTracks::default();
         let mut markers_in_frame = 0usize;
@@ -70,15 +75,17 @@ impl MarkerTracks {
                 bail!("marker tracks line {ln}: expected 8 columns, found {}", cols.len());
             }
             let num = |k: usize, name: &str| -> Result<f64> {
-                let v: f64 = cols[k].parse().with_context(|| format!("marker tracks line {ln}: {name} '{}' is not a number", cols[k]))?;
+                let v: f64 =
+                    cols[k].parse().with_context(|| format!("marker tracks line {ln}: {name} `{}` is not a number", clip(cols[k], 32)))?;
                 if !v.is_finite() {
                     bail!("marker tracks line {ln}: {name} is not finite");
                 }
                 Ok(v)
             };
-            let frame: usize = cols[0].parse().with_context(|| format!("marker tracks line {ln}: frame '{}' is not an index", cols[0]))?;
+            let frame: usize =
+                cols[0].parse().with_context(|| format!("marker tracks line {ln}: frame `{}` is not an index", clip(cols[0], 32)))?;
             let marker: usize =
-                cols[2].parse().with_context(|| format!("marker tracks line {ln}: marker '{}' is not an index", cols[2]))?;
+                cols[2].parse().with_context(|| format!("marker tracks line {ln}: marker `{}` is not an index", clip(cols[2], 32)))?;
             let t = num(1, "t_s")?;
             if frame == out.times_s.len() {
                 if frame > 0 && markers_in_frame != out.n_markers {
@@ -113,7 +120,7 @@ impl MarkerTracks {
             out.detected.push(match cols[7] {
                 "1" => true,
                 "0" => false,
-                other => bail!("marker tracks line {ln}: detected must be 0 or 1, found '{other}'"),
+                other => bail!("marker tracks line {ln}: detected must be 0 or 1, found `{}`", clip(other, 32)),
             });
         }
         if out.times_s.is_empty() {

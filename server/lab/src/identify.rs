@@ -165,14 +165,20 @@ fn list_frames(dir: &std::path::Path, fps: Option<f64>) -> anyhow::Result<Vec<(f
         return Ok(files.into_iter().enumerate().map(|(i, p)| (i as f64 / fps, p)).collect());
     }
     let index = dir.join("frames.csv");
-    if !index.is_file() {
+    // Anything named frames.csv (a link, a FIFO) is read by the rule, which refuses it by name.
+    if std::fs::symlink_metadata(&index).is_err() {
         bail!("{} has no frames.csv (frame,t_s,file): give --fps to take its *.png files in name order", dir.display());
     }
-    let text = std::fs::read_to_string(&index).with_context(|| format!("cannot read {}", index.display()))?;
+    let text = read_text(&index)?;
     let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty());
     match lines.next() {
         Some((_, h)) if h.trim() == "frame,t_s,file" => {}
-        other => bail!("{} line 1: expected the header 'frame,t_s,file', found '{}'", index.display(), other.map_or("", |(_, l)| l.trim())),
+        // The line is not quoted: a file's lines never appear in errors.
+        Some((i, h)) => {
+            let found = needlesim_scene::limit::header_mismatch(h.split(',').map(str::trim), &["frame", "t_s", "file"]);
+            bail!("{} line {}: expected the header 'frame,t_s,file', found {found}", index.display(), i + 1)
+        }
+        None => bail!("{} is empty: expected the header 'frame,t_s,file'", index.display()),
     }
     let mut out = Vec::new();
     for (i, line) in lines {
@@ -181,13 +187,17 @@ fn list_frames(dir: &std::path::Path, fps: Option<f64>) -> anyhow::Result<Vec<(f
             bail!("{} line {}: expected 3 columns (frame,t_s,file), found {}", index.display(), i + 1, cols.len())
         };
         if frame.parse::<usize>().ok() != Some(out.len()) {
-            bail!("{} line {}: frame '{frame}' out of order (expected {})", index.display(), i + 1, out.len());
+            bail!(
+                "{} line {}: frame `{}` out of order (expected {})",
+                index.display(),
+                i + 1,
+                needlesim_scene::limit::clip(frame, 32),
+                out.len()
+            );
         }
-        let t: f64 = t
-            .parse()
-            .ok()
-            .filter(|t: &f64| t.is_finite())
-            .with_context(|| format!("{} line {}: t_s '{t}' is not a number", index.display(), i + 1))?;
+        let t: f64 = t.parse().ok().filter(|t: &f64| t.is_finite()).with_context(|| {
+            format!("{} line {}: t_s `{}` is not a number", index.display(), i + 1, needlesim_scene::limit::clip(t, 32))
+        })?;
         out.push((t, dir.join(file)));
     }
     if out.is_empty() {
@@ -218,7 +228,7 @@ fn run_track(a: TrackArgs) -> anyhow::Result<()> {
     let frames = list_frames(&a.images, a.fps)?;
     let mut tracker = Tracker::new(p)?;
     for (t, path) in &frames {
-        let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+        let bytes = needlesim_localfile::read_local_bytes(path, needlesim_localfile::MAX_LOCAL_FILE_BYTES)?;
         tracker.push_png(*t, &bytes).with_context(|| path.display().to_string())?;
     }
     let tracks = tracker.finish()?;
@@ -235,11 +245,9 @@ fn run_track(a: TrackArgs) -> anyhow::Result<()> {
 
 /// Runs `identify render`.
 fn run_render(a: RenderArgs) -> anyhow::Result<()> {
-    use anyhow::Context;
     use needlesim_identify::render::{RenderParams, render_sequence};
     use needlesim_identify::track::Polarity;
-    let text = std::fs::read_to_string(&a.tracks).with_context(|| format!("cannot read {}", a.tracks.display()))?;
-    let tracks = needlesim_identify::tracks::MarkerTracks::from_csv(&text).with_context(|| a.tracks.display().to_string())?;
+    let tracks = read_tracks(&a.tracks)?;
     let polarity = if a.bright { Polarity::Bright } else { Polarity::Dark };
     let p = RenderParams {
         width_px: a.width,
@@ -259,9 +267,11 @@ fn run_render(a: RenderArgs) -> anyhow::Result<()> {
 
 // ---- identify probe / needle / synth (fits and synthetic experiments) ----
 
+/// A local text file the user names (tracks, logs, a trajectory, frames.csv, a scene), read by
+/// the one rule (crate needlesim-localfile): a regular file, not a link, not on /proc or /sys,
+/// of at most 256 MiB, opened without blocking; errors name the path, never the contents.
 fn read_text(path: &std::path::Path) -> anyhow::Result<String> {
-    use anyhow::Context;
-    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+    Ok(needlesim_localfile::read_local_file(path, needlesim_localfile::MAX_LOCAL_FILE_BYTES)?)
 }
 
 fn read_tracks(path: &std::path::Path) -> anyhow::Result<needlesim_identify::tracks::MarkerTracks> {

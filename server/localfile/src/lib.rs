@@ -2,8 +2,20 @@
 //! recording, a certificate, a token file): [`read_local_file`] and [`read_local_bytes`] accept a
 //! regular file, not a symbolic link, of bounded size (a bound for each kind of file, below),
 //! opened so that a FIFO or a device can neither block nor stream without end; errors name the
-//! path and the problem and never hold the file's contents. The scene crate, the server, the CLI
-//! and the device bridge all read through it.
+//! path and the problem and never hold the file's contents. The scene crate, the server, the CLI,
+//! the device bridge, the lab tools and the Python package all read through it.
+//!
+//! Files on the kernel's pseudo file systems are refused too (Linux: the file system type of the
+//! opened handle, `fstatfs`, is proc, sysfs, debugfs, tracefs, securityfs, cgroup, cgroup2,
+//! configfs, efivarfs, bpf or pstore): their files are regular files of size 0 whose reads make
+//! up their contents (`/proc/self/environ` is the process's environment, `/proc/self/pagemap`
+//! reads to any bound), none is a scene, a mesh or a certificate, and checking the handle catches
+//! every name for them (`/proc`, a bind mount, `../../proc`). `/dev` holds devices, refused as
+//! not regular files; tmpfs (`/tmp`, `/dev/shm`) is an ordinary file system and allowed.
+//!
+//! What the callers parse is reported likewise without the file's lines: a TOML error as line,
+//! column and the parser's words (`needlesim_scene::limit::toml_message`), a CSV error as line,
+//! column name and the problem, a value quoted at most clipped.
 
 use std::fs::File;
 use std::io::Read;
@@ -110,6 +122,13 @@ pub fn open_local_file(path: &Path, max_bytes: u64) -> Result<(File, u64), Local
     if !meta.is_file() {
         return Err(refused(format!("not a regular file ({})", kind_of(meta.file_type()))));
     }
+    #[cfg(target_os = "linux")]
+    if let Some(fs) = pseudo_file_system(&file).map_err(io)? {
+        return Err(refused(format!(
+            "on the kernel's {fs} file system, whose files are made up as they are read; \
+             local files on /proc, /sys and their kin are refused (copy it to a regular file)"
+        )));
+    }
     if meta.len() > max_bytes {
         return Err(refused(over(meta.len(), max_bytes)));
     }
@@ -124,6 +143,39 @@ pub fn open_local_file(path: &Path, max_bytes: u64) -> Result<(File, u64), Local
         }
     }
     Ok((file, meta.len()))
+}
+
+/// The kernel's pseudo file systems, by `statfs` magic (linux/magic.h), whose files are refused.
+#[cfg(target_os = "linux")]
+const PSEUDO_FILE_SYSTEMS: [(u32, &str); 11] = [
+    (0x0000_9fa0, "proc"),
+    (0x6265_6572, "sysfs"),
+    (0x6462_6720, "debugfs"),
+    (0x7472_6163, "tracefs"),
+    (0x7363_6673, "securityfs"),
+    (0x0027_e0eb, "cgroup"),
+    (0x6367_7270, "cgroup2"),
+    (0x6265_6570, "configfs"),
+    (0xde5e_81e4, "efivarfs"),
+    (0xcafe_4a11, "bpf"),
+    (0x6165_676c, "pstore"),
+];
+
+/// The name of the pseudo file system `file` is on ([`PSEUDO_FILE_SYSTEMS`]), by `fstatfs` on
+/// the open handle; `None` on any other.
+#[cfg(target_os = "linux")]
+fn pseudo_file_system(file: &File) -> std::io::Result<Option<&'static str>> {
+    use std::os::fd::AsRawFd;
+    let mut st = std::mem::MaybeUninit::<libc::statfs>::uninit();
+    // SAFETY: fstatfs writes a statfs into the buffer it is given, on a descriptor we own.
+    if unsafe { libc::fstatfs(file.as_raw_fd(), st.as_mut_ptr()) } < 0 {
+        return Err(std::io::Error::last_os_error());
+    }
+    // SAFETY: fstatfs succeeded, so it filled the struct.
+    let st = unsafe { st.assume_init() };
+    // f_type is a signed word on some targets: compare its low 32 bits, the magic's width.
+    let magic = st.f_type as u64 as u32;
+    Ok(PSEUDO_FILE_SYSTEMS.iter().find(|(m, _)| *m == magic).map(|(_, name)| *name))
 }
 
 fn over(n: u64, max_bytes: u64) -> String {
@@ -211,6 +263,34 @@ mod tests {
         assert!(refused(&dir.join("missing.msh"), 100).contains("missing.msh"));
         // A regular file is read.
         assert_eq!(read_local_file(&secret, 100).unwrap(), "root:x:0:0:root:/root:/bin/bash\n");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn issue_35_files_on_proc_and_sys_are_refused_without_reading_them() {
+        // /proc/self/environ would put the environment in a parse error; /proc/self/pagemap reads
+        // to any bound; a /sys file is no scene either: refused by the handle's file system.
+        for (path, fs) in [
+            ("/proc/self/environ", "proc"),
+            ("/proc/self/pagemap", "proc"),
+            ("/proc/self/cmdline", "proc"),
+            ("/proc/self/root/proc/self/environ", "proc"),
+            ("/sys/kernel/mm/transparent_hugepage/enabled", "sysfs"),
+        ] {
+            if std::fs::symlink_metadata(path).is_err() {
+                continue;
+            }
+            let e = read_local_bytes(Path::new(path), MAX_LOCAL_FILE_BYTES).unwrap_err();
+            let m = e.to_string();
+            assert!(matches!(e, LocalFileError::Refused { .. }), "{m}");
+            assert!(m.starts_with(&format!("{path}: on the kernel's {fs} file system")) && m.contains("/proc, /sys"), "{m}");
+            assert!(!m.contains("PATH=") && !m.contains("HOME="), "{m}");
+        }
+        // A regular file elsewhere (the temporary directory, tmpfs or not) is still read.
+        let dir = temp_dir("proc");
+        std::fs::write(dir.join("a.toml"), "a = 1\n").unwrap();
+        assert_eq!(read_local_file(&dir.join("a.toml"), 100).unwrap(), "a = 1\n");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

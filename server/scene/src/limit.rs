@@ -12,35 +12,30 @@ pub fn quote(s: &str) -> String {
 /// At most `n` characters of `s`, with "…" appended when cut (the trajectory parser's, shared).
 pub use needlesim_trajectory::clip;
 
-/// A TOML parser's error on `text` for a message, laid out as the parser's own (line and
-/// column, the line with a caret, the parser's words) but quoting at most [`MAX_QUOTE_CHARS`]
-/// characters of the input around the error (a 100 kB line is not echoed), each value the words
-/// quote clipped alike ([`clip_quotes`]), the numbers they quote in full (serde writes a float of
-/// the wrong type as all its digits, 1e300 as 301) written as [`needlesim_core::num::num`] writes
-/// them; at most 512 characters in all.
+/// How a CSV header differs from the one wanted, without quoting it (the trajectory parser's,
+/// shared by every CSV reader: marker tracks, logs, frames.csv).
+pub use needlesim_trajectory::header_mismatch;
+
+/// A TOML parser's error on `text` for a message: "TOML parse error at line L, column C: " and
+/// the parser's words ([`toml::de::Error::message`], its line and column from
+/// [`toml::de::Error::span`], counted in characters from 1), never the line itself: a scene read
+/// from a local file never has its contents in an error (a line of `/proc/self/environ` or of a
+/// secret), and a client has its own text. Each value the words quote is clipped to
+/// [`MAX_QUOTE_CHARS`] characters ([`clip_quotes`]), the numbers they quote in full (serde writes
+/// a float of the wrong type as all its digits, 1e300 as 301) written as
+/// [`needlesim_core::num::num`] writes them; at most 512 characters in all. The one form of a TOML
+/// error for every reader of scenes and exercises (server, CLI through the server, lab, Python).
 pub fn toml_message(e: &toml::de::Error, text: &str) -> String {
     let words = clip_quotes(&compact_numbers(e.message().trim_end()));
-    let Some(span) = e.span() else { return clip(&words, 512) };
+    let Some(span) = e.span() else { return clip(&format!("TOML parse error: {words}"), 512) };
     let mut start = span.start.min(text.len());
     while !text.is_char_boundary(start) {
         start -= 1;
     }
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
-    let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
-    let line = text[line_start..line_end].trim_end_matches('\r');
     let line_no = text[..line_start].bytes().filter(|&b| b == b'\n').count() + 1;
     let col = text[line_start..start].chars().count() + 1;
-    // Up to 16 characters before the error, then the rest of MAX_QUOTE_CHARS.
-    let skip = (col - 1).saturating_sub(16);
-    let mut excerpt: String = if skip > 0 { "…".to_owned() } else { String::new() };
-    let mut taken = line.chars().skip(skip);
-    excerpt.extend(taken.by_ref().take(MAX_QUOTE_CHARS));
-    if taken.next().is_some() {
-        excerpt.push('…');
-    }
-    let caret = " ".repeat(col - 1 - skip + usize::from(skip > 0));
-    let gutter = " ".repeat(line_no.to_string().len());
-    clip(&format!("TOML parse error at line {line_no}, column {col}\n{gutter} |\n{line_no} | {excerpt}\n{gutter} | {caret}^\n{words}"), 512)
+    clip(&format!("TOML parse error at line {line_no}, column {col}: {words}"), 512)
 }
 
 /// `s` with every value it quotes between backticks or double quotes clipped to
@@ -111,7 +106,30 @@ mod tests {
     use super::*;
 
     #[test]
-    fn issue_35_a_toml_error_quotes_a_short_excerpt_of_a_long_line() {
+    fn issue_35_a_toml_error_names_line_and_column_and_never_quotes_the_line() {
+        #[derive(Debug, serde::Deserialize)]
+        #[allow(dead_code)]
+        struct S {
+            a: f64,
+        }
+        // A line of the environment (what /proc/self/environ reads as): its text is not quoted.
+        let text = "a = 1.0\nSHELL=/bin/bash\u{0}SECRET_TOKEN=sk_live_0123456789abcdef\u{0}HOME=/root";
+        let m = toml_message(&toml::from_str::<S>(text).unwrap_err(), text);
+        assert!(m.starts_with("TOML parse error at line 2, column "), "{m}");
+        for part in ["SHELL", "bash", "SECRET", "sk_live", "HOME", "root", "\n"] {
+            assert!(!m.contains(part), "{part} quoted: {m}");
+        }
+        // The column is counted in characters, the parser's words follow.
+        let text = "a = 1.0\né = = broken";
+        let m = toml_message(&toml::from_str::<S>(text).unwrap_err(), text);
+        assert!(!m.contains("broken"), "{m}");
+        let col: usize = m.split("column ").nth(1).and_then(|r| r.split(':').next()).unwrap().parse().unwrap();
+        let span = toml::from_str::<S>(text).unwrap_err().span().unwrap();
+        assert_eq!(col, text[..span.start].rsplit('\n').next().unwrap().chars().count() + 1, "{m}");
+    }
+
+    #[test]
+    fn issue_35_a_toml_error_on_a_long_line_quotes_at_most_a_clipped_value() {
         #[derive(Debug, serde::Deserialize)]
         #[allow(dead_code)]
         struct S {
@@ -127,10 +145,10 @@ mod tests {
             assert!(m.chars().count() <= 300, "{} characters: {m}", m.chars().count());
             assert!(m.starts_with("TOML parse error at line "), "{m}");
         }
-        // A short line is quoted whole, the caret under the error.
+        // A short line is not quoted either: line and column only.
         let text = "a = 1.0\nb = [1,";
         let m = toml_message(&toml::from_str::<S>(text).unwrap_err(), text);
-        assert!(m.contains("\n2 | b = [1,\n"), "{m}");
+        assert!(m.starts_with("TOML parse error at line 2, column ") && !m.contains("b = [1,") && !m.contains('\n'), "{m}");
         // A unique multi-byte line is clipped on a character boundary.
         let text = format!("a = \"{}\"", "é".repeat(200));
         let m = toml_message(&toml::from_str::<S>(&text).unwrap_err(), &text);

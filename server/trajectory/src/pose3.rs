@@ -215,7 +215,7 @@ impl Trajectory3 {
             .map_err(|e| Trajectory3Error::Header { found: format!("an unreadable line ({})", csv_kind_in(&e, &HEADER3)) })?
             .clone();
         if headers.iter().ne(HEADER3) {
-            return Err(Trajectory3Error::Header { found: clip(&headers.iter().collect::<Vec<_>>().join(","), 64) });
+            return Err(Trajectory3Error::Header { found: crate::header_mismatch(headers.iter(), &HEADER3) });
         }
         let mut lines = LineCounter::new(text);
         let mut samples: Vec<(f64, Pose3)> = Vec::new();
@@ -391,7 +391,7 @@ mod tests {
         assert!(err(&format!("{H}0,0,0,0,1,0,0,0\n1e-300,0,0,0,1,0,0,0\n")).starts_with("trajectory line 3: t_s = 1e-300"));
         assert_eq!(
             err("t_s,x_m,y_m,theta_rad\n0,0,0,0\n"),
-            "trajectory line 1: the header must be t_s,x_m,y_m,z_m,qw,qx,qy,qz, found t_s,x_m,y_m,theta_rad"
+            "trajectory line 1: the header must be t_s,x_m,y_m,z_m,qw,qx,qy,qz, found a header whose column 4 is not z_m"
         );
         assert_eq!(err(H), "trajectory: no samples");
         // Seven digits pass and are normalised.
