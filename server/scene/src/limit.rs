@@ -35,7 +35,23 @@ pub fn toml_message(e: &toml::de::Error, text: &str) -> String {
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_no = text[..line_start].bytes().filter(|&b| b == b'\n').count() + 1;
     let col = text[line_start..start].chars().count() + 1;
-    clip(&format!("TOML parse error at line {line_no}, column {col}: {words}"), 512)
+    // A value of the wrong kind in valid TOML (the text parses as a table): name its key, a key
+    // of the schema; a syntax error names none (its line may be anything, e.g. the environment).
+    let key = if toml::from_str::<toml::Table>(text).is_ok() { value_key(&text[line_start..start]) } else { None };
+    match key {
+        Some(key) => clip(&format!("TOML parse error at line {line_no}, column {col} (the value of `{key}`): {words}"), 512),
+        None => clip(&format!("TOML parse error at line {line_no}, column {col}: {words}"), 512),
+    }
+}
+
+/// The key whose value starts where the error points: the bare key (letters, digits, `_`, `-`,
+/// at most [`MAX_QUOTE_CHARS`]) just before `=` at the end of the line's text before the span;
+/// `None` when the span is not at a value (a key, not a line, is what is named).
+fn value_key(before: &str) -> Option<&str> {
+    let head = before.trim_end().strip_suffix('=')?.trim_end();
+    let start = head.rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '-')).map_or(0, |i| i + 1);
+    let key = &head[start..];
+    (!key.is_empty() && key.chars().count() <= MAX_QUOTE_CHARS).then_some(key)
 }
 
 /// `s` with every value it quotes between backticks or double quotes clipped to
@@ -126,6 +142,19 @@ mod tests {
         let col: usize = m.split("column ").nth(1).and_then(|r| r.split(':').next()).unwrap().parse().unwrap();
         let span = toml::from_str::<S>(text).unwrap_err().span().unwrap();
         assert_eq!(col, text[..span.start].rsplit('\n').next().unwrap().chars().count() + 1, "{m}");
+    }
+
+    #[test]
+    fn a_value_of_the_wrong_kind_names_its_key() {
+        #[derive(Debug, serde::Deserialize)]
+        #[allow(dead_code)]
+        struct S {
+            base_m: [f64; 3],
+        }
+        let text = "# a scene\nbase_m = [0.05, 0.05]";
+        let m = toml_message(&toml::from_str::<S>(text).unwrap_err(), text);
+        assert!(m.starts_with("TOML parse error at line 2, column 10 (the value of `base_m`): "), "{m}");
+        assert!(!m.contains("0.05"), "{m}");
     }
 
     #[test]
