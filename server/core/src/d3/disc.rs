@@ -24,7 +24,7 @@
 //! (../shared/validation, fem_ref3d.py `discs`) integrates the same mean by a polar quadrature.
 
 use super::locate::{TetLocator, barycentric};
-use super::mesh::TetMesh;
+use super::mesh::{TetMesh, cross, dot, sub};
 
 /// A disc across the needle's shaft: its centre, the shaft's axis (need not be unit), its radius.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -247,17 +247,8 @@ fn clipped_moments(poly: &[[f64; 2]], r: f64) -> (f64, f64, f64) {
     }
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
 fn add(a: [f64; 3], b: [f64; 3], s: f64) -> [f64; 3] {
     [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 fn normalised(a: [f64; 3]) -> [f64; 3] {
     let n = dot(a, a).sqrt();
