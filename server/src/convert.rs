@@ -7,7 +7,6 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
-use needlesim_core::compliance::TissueModel;
 use needlesim_core::num::num;
 use needlesim_core::sim::{ContactModel, SimParams, StepOutput, TargetParams};
 use needlesim_core::{BasePose, Material, MaterialMap, Mesh, NeedleShape, PlaneModel, RegionNeedleParams, RigidNeedle};
@@ -777,7 +776,7 @@ fn uploaded_scene(u: &pb::UploadedScene, scene_limits: &SceneLimits) -> Result<S
     }
     let mean_edge = needlesim_scene::mean_edge_m(&m);
     needlesim_scene::check_session_memory(m.n_nodes(), UPLOADED_MAX_NEEDLE_NODES, scene_limits).context("scene.uploaded.mesh")?;
-    let tissue = Arc::new(TissueModel::new(m, mats, &fixed).context("scene.uploaded (tissue model)")?);
+    let tissue = Arc::new(needlesim_scene::tissue_model(m, mats, &fixed).context("scene.uploaded (tissue model)")?);
     let d = RegionNeedleParams::default();
     let or = |v: f64, dflt: f64| if v == 0.0 { dflt } else { v };
     let base = u.needle_base.as_ref().context("scene.uploaded.needle_base is missing")?;

@@ -842,7 +842,7 @@ fn build_scene(f: &SceneFile, files: SceneFiles, scene_limits: &SceneLimits) -> 
     check_session_memory(mesh.n_nodes(), f.needle.max_nodes, scene_limits).context("mesh")?;
     // Keep the boundary sets on the mesh (the fixed set gets a name for later reference).
     mesh.set_boundary_set("fixed", fixed.clone()).context("fixed")?;
-    let tissue = Arc::new(TissueModel::new(mesh, mats, &fixed).with_context(|| format!("tissue ({n_fixed} fixed nodes)"))?);
+    let tissue = Arc::new(tissue_model(mesh, mats, &fixed).with_context(|| format!("tissue ({n_fixed} fixed nodes)"))?);
     let mean_edge = mean_edge_m(tissue.mesh());
     let n = &f.needle;
     if n.model == NeedleModelSpec::Flexible
@@ -895,6 +895,17 @@ fn build_scene(f: &SceneFile, files: SceneFiles, scene_limits: &SceneLimits) -> 
 
 /// The mean edge length of a mesh's triangles (each shared edge counted twice), the scale of
 /// the default capture radius.
+/// The factorised 2D tissue of `mesh` held at `fixed` ([`TissueModel::new`]). Not generic and
+/// never inlined: needlesim-core's generic code is compiled in the crate that instantiates it, at
+/// that crate's opt-level (Cargo.toml), and this crate is optimised in dev builds where the
+/// server crate is not; the server builds uploaded meshes' tissues through here.
+///
+/// Errors: [`TissueModel::new`]'s.
+#[inline(never)]
+pub fn tissue_model(mesh: Mesh, materials: MaterialMap, fixed: &[usize]) -> Result<TissueModel, needlesim_core::compliance::TissueError> {
+    TissueModel::new(mesh, materials, fixed)
+}
+
 pub fn mean_edge_m(mesh: &Mesh) -> f64 {
     let mut sum = 0.0;
     for t in mesh.triangles() {

@@ -424,6 +424,14 @@ impl DeformedTissue3 {
                 Err(_) => self.n_outside += 1,
             }
         }
+        self.solve_located(model)
+    }
+
+    /// The solve of [`Self::solve`] for the located contacts. Not generic and never inlined, so
+    /// that the tissue's solve is compiled here, optimised, whichever crate calls `solve`
+    /// (Cargo.toml: needlesim-core's generic code is compiled where it is instantiated).
+    #[inline(never)]
+    fn solve_located(&mut self, model: &TetTissueModel) -> Result<&[[f64; 3]], TetTissueError> {
         if self.locations.is_empty() {
             self.u_m.fill([0.0; 3]);
             return Ok(&self.u_m);
