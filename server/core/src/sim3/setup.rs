@@ -72,7 +72,7 @@ impl Simulation3 {
             last_tip_region: None,
             tick: 0,
             stats: Sim3Stats::default(),
-            scratch: Scratch3 { order: Vec::with_capacity(cap), changes: Vec::with_capacity(cap), column_buf, column_scratch: None },
+            scratch: Scratch3 { order: Vec::with_capacity(cap), changes: Vec::with_capacity(cap), column_buf, column_scratch: None, block_worker: None, block_requests: Vec::new() },
             out,
             stiffness: stiffness::StiffnessScratch::with_capacity(cap, flex.is_some()),
             targets,
