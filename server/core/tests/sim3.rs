@@ -536,7 +536,7 @@ fn prefetch_fills_either_store_with_the_simulations_own_worker() {
         columns_ref.step(pose).unwrap();
         assert_eq!(columns.prefetch(8).unwrap(), columns_ref.prefetch_columns(8).unwrap(), "tick {k}");
     }
-    assert!(own.stats().captures >= 5 && own.stats().columns_evicted > 0, "{:?}", own.stats());
+    assert!(own.stats().captures >= 3 && own.stats().columns_evicted > 0, "{:?}", own.stats());
     assert_eq!(own.stats().columns_evicted, outside.stats().columns_evicted);
     assert!(filled > 40);
     let e = outside.prefetch(1).unwrap_err();
