@@ -550,7 +550,8 @@ radius_m = 0.001
         assert!(totals_b.prefetched_columns > 0, "the node-block run prefetched nothing");
         assert_eq!((totals_c.ticks, totals_b.ticks), (4301, 4301));
         assert_eq!(sim_b.stats().column_deferrals, sim_c.stats().column_deferrals);
-        let parse = |csv: &str| -> Vec<Vec<f64>> { csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect() };
+        let parse =
+            |csv: &str| -> Vec<Vec<f64>> { csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect() };
         let (c, b) = (parse(&columns), parse(&blocks));
         assert_eq!(c.len(), b.len());
         let header: Vec<&str> = columns.lines().next().unwrap().split(',').collect();
