@@ -3,7 +3,8 @@
 //! needs, whatever the dimension — the scripted driver of needlesim-offline and the Python
 //! package's `Simulation.step` are written once against it instead of once per dimension
 //! (issue 32, item 3). Each method is the simulation's own, unchanged: the trait adds no work
-//! to a step.
+//! to a step. The prefetch between steps is the one each dimension runs without a worker
+//! thread (3D: either store, [`Simulation3::prefetch`]).
 
 use std::sync::Arc;
 
@@ -48,9 +49,11 @@ pub trait Stepper: Sized {
     /// policy and a live session's fault read this one verdict in both dimensions).
     fn unconverged(&self) -> Option<Unconverged>;
 
-    /// Computes the compliance columns of up to `max_nodes` nodes the last step reported as
-    /// approaching (outside any step: it allocates); returns how many.
-    fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, Self::Error>;
+    /// Fills the compliance store, on this thread, for up to `max_nodes` nodes the last step
+    /// reported as approaching (outside any step: it allocates); returns how many. 2D: their
+    /// columns ([`Simulation::prefetch_columns`]); 3D: their columns or node blocks, whichever
+    /// store the simulation uses ([`Simulation3::prefetch`]).
+    fn prefetch(&mut self, max_nodes: usize) -> Result<usize, Self::Error>;
 }
 
 /// What a caller adding context to a simulation's error (the tick and time a scripted run
@@ -118,7 +121,7 @@ impl Stepper for Simulation {
         Simulation::output(self).unconverged()
     }
 
-    fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, SimError> {
+    fn prefetch(&mut self, max_nodes: usize) -> Result<usize, SimError> {
         Simulation::prefetch_columns(self, max_nodes)
     }
 }
@@ -156,7 +159,7 @@ impl Stepper for Simulation3 {
         Simulation3::output(self).unconverged()
     }
 
-    fn prefetch_columns(&mut self, max_nodes: usize) -> Result<usize, SimError3> {
-        Simulation3::prefetch_columns(self, max_nodes)
+    fn prefetch(&mut self, max_nodes: usize) -> Result<usize, SimError3> {
+        Simulation3::prefetch(self, max_nodes)
     }
 }

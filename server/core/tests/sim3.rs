@@ -508,6 +508,43 @@ fn node_blocks_give_the_column_run() {
     assert_eq!(blocks.cache().n_computed(), 0);
 }
 
+/// [`Simulation3::prefetch`] fills either store on the calling thread: with node blocks by the
+/// simulation's own worker, made at the first call and kept (in lockstep with a simulation fed
+/// through [`Simulation3::prefetch_blocks`] by an outside worker it inserts the same nodes and
+/// gives bit-identical steps, with its 40 slots evicting); with columns as
+/// [`Simulation3::prefetch_columns`]. A store already fed by an outside worker is refused, and
+/// so is an outside worker once the simulation has its own.
+#[test]
+fn prefetch_fills_either_store_with_the_simulations_own_worker() {
+    let model = box_phantom3(11);
+    let mut params = box_phantom3_params(ENTRY, 0.005);
+    params.store = StoreKind3::NodeBlocks;
+    params.max_block_nodes = 40;
+    let mut own = Simulation3::new(model.clone(), params.clone()).unwrap();
+    let mut outside = Simulation3::new(model.clone(), params).unwrap();
+    let mut worker = outside.block_worker().unwrap();
+    let mut columns = Simulation3::new(model.clone(), box_phantom3_params(ENTRY, 0.005)).unwrap();
+    let mut columns_ref = Simulation3::new(model, box_phantom3_params(ENTRY, 0.005)).unwrap();
+    let mut filled = 0;
+    for (k, (_, pose)) in poses(own.pose()).into_iter().enumerate().take(3000) {
+        let (a, b) = (own.step(pose).unwrap(), outside.step(pose).unwrap());
+        assert_eq!(a, b, "tick {k}");
+        let n = own.prefetch(usize::MAX).unwrap();
+        assert_eq!(n, outside.prefetch_blocks(&mut worker, usize::MAX).unwrap(), "tick {k}");
+        filled += n;
+        columns.step(pose).unwrap();
+        columns_ref.step(pose).unwrap();
+        assert_eq!(columns.prefetch(8).unwrap(), columns_ref.prefetch_columns(8).unwrap(), "tick {k}");
+    }
+    assert!(own.stats().captures >= 3 && own.stats().columns_evicted > 0, "{:?}", own.stats());
+    assert_eq!(own.stats().columns_evicted, outside.stats().columns_evicted);
+    assert!(filled > 40);
+    let e = outside.prefetch(1).unwrap_err();
+    assert!(matches!(e, SimError3::WorkerInUse { call: "prefetch", .. }), "{e}");
+    let e = own.block_worker().err().unwrap();
+    assert!(matches!(e, SimError3::WorkerInUse { call: "block_worker", .. }), "{e}");
+}
+
 /// A node-block store of 40 slots on the 11³ cube: the run evicts, the four pinned nodes (a
 /// tetrahedron beside the path, as a target's) are requested first and never evicted, and their
 /// blocks against the working points' nodes are there at every tick; the run captures, punctures

@@ -1,7 +1,8 @@
 //! The one scripted-run driver, for both dimensions: a script of base poses (a trajectory
 //! sampled at the tick rate, or a list of poses) through the simulation's step ([`ScriptedSim`]:
-//! the 2D `Simulation` or the 3D `Simulation3`), with the compliance columns of the nodes the tip
-//! approaches computed between steps, as a session's column worker would. One tick limit, one
+//! the 2D `Simulation` or the 3D `Simulation3`), with the compliance of the nodes the tip
+//! approaches computed between steps, as a session's worker would (`Stepper::prefetch`: their
+//! columns, or on a large 3D mesh their node blocks by the simulation's own worker). One tick limit, one
 //! tick rounding ($K = \mathrm{round}((t_{end} - t_0) f_{tick})$, tick $k$ at
 //! $t_0 + k / f_{tick}$), one error policy; each caller takes what it needs from each tick.
 //!
@@ -72,8 +73,9 @@ pub enum RunError<E: StepError = SimError> {
     /// its tick itself.
     #[error("{}", step_context(*tick, *t_s, &**source))]
     Step { tick: u64, t_s: f64, source: Box<E> },
-    /// Computing the columns of approaching nodes after a step failed.
-    #[error("the run stopped at tick {tick} (t = {t_s:.4} s): compliance columns")]
+    /// Computing the compliance (columns or node blocks) of approaching nodes after a step
+    /// failed.
+    #[error("the run stopped at tick {tick} (t = {t_s:.4} s): compliance prefetch")]
     Prefetch { tick: u64, t_s: f64, source: Box<E> },
     /// A tick did not converge and the run's [`ConvergencePolicy`] is `Fail`.
     #[error(transparent)]
@@ -175,7 +177,8 @@ pub struct Tick {
 pub struct RunTotals {
     /// Ticks stepped.
     pub ticks: u64,
-    /// Column pairs (3D: node column triples) computed between steps.
+    /// Column pairs (3D: node column triples, or nodes' blocks with the node-block store)
+    /// computed between steps.
     pub prefetched_columns: u64,
     /// Whether the per-tick callback stopped the run early.
     pub stopped_early: bool,
@@ -329,7 +332,7 @@ impl<'a, S: ScriptedSim> ScriptedRun<'a, S> {
         }
         let k = self.next_k - 1;
         let t_s = self.t_at_tick(k);
-        let n = self.sim.prefetch_columns(self.prefetch_nodes_per_tick).map_err(|source| RunError::Prefetch {
+        let n = self.sim.prefetch(self.prefetch_nodes_per_tick).map_err(|source| RunError::Prefetch {
             tick: k,
             t_s,
             source: Box::new(source),

@@ -6,9 +6,11 @@
 //! **The run** is the run driver's ([`crate::driver`], the one of 2D `simulate`): tick
 //! $k = 0, 1, \dots, K$ steps the base pose of the trajectory at
 //! $t = t_0 + k / f_{tick}$, $K = \mathrm{round}((t_{end} - t_0) f_{tick})$; between steps the
-//! columns of the nodes ahead of the tip are computed ([`Simulation3::prefetch_columns`], all
-//! of them), so the step never computes a column: a new point whose columns are missing waits a
-//! tick and is counted in [`RunSummary3::column_deferrals`].
+//! compliance of the nodes ahead of the tip is computed ([`Simulation3::prefetch`], all of
+//! them: their columns, or their node blocks from
+//! [`AUTO_BLOCKS_MIN_NODES`](needlesim_core::sim3::AUTO_BLOCKS_MIN_NODES) mesh nodes up), so
+//! the step never computes one: a new point whose compliance is missing waits a tick and is
+//! counted in [`RunSummary3::column_deferrals`].
 //!
 //! **Dumped states** ([`dump_state`]): the static problem the tick solved
 //! ([`scenario_from_snapshot`]) with `working_points` at the needle's points and
@@ -514,6 +516,61 @@ radius_m = 0.001
             assert!((got - u_exact[c]).abs() <= 1e-9 * scale + 1e-15, "component {c}: {got} vs {}", u_exact[c]);
         }
         assert!(summary.targets[0].closest_distance_m.is_finite());
+    }
+
+    /// Issue 37 item 6: the run driver fills the node-block store with the simulation's own
+    /// worker (it stopped at tick 0: `prefetch_columns` needs the columns store), and the run
+    /// gives the columns store's CSV to round-off: the same rows, every number within 1e-9 of
+    /// its column's largest magnitude, the counts and states equal. The trajectory inserts
+    /// 35 mm past the target, moves the base 1 mm sideways and holds.
+    #[test]
+    fn issue_37_offline_3d_runs_with_the_node_block_store_as_with_columns() {
+        use needlesim_core::sim3::StoreKind3;
+        let sc = scene();
+        let traj = Trajectory3::parse_csv(&format!(
+            "{TRAJ}4.0,0.0321,0.0297,0.13,0.7071067811865475,0,0.7071067811865475,0\n4.3,0.0321,0.0297,0.13,0.7071067811865475,0,0.7071067811865475,0\n"
+        ))
+        .unwrap();
+        let model = Arc::new(sc.tissue_model().unwrap());
+        let names: Vec<String> = sc.targets.iter().map(|t| t.name.clone()).collect();
+        let run_with = |store: StoreKind3| {
+            let mut params = sim3_params(&sc, base_pose3(&sc.initial_pose).unwrap());
+            params.store = store;
+            let mut run = ScriptedRun::new(model.clone(), params, Script::trajectory(&traj), RunOptions::default()).unwrap();
+            let mut csv = csv_header3(&names) + "\n";
+            while let Some(Tick { k, t_s, .. }) = run.next_tick().unwrap() {
+                write_csv_row3(&mut csv, k, t_s, run.output());
+            }
+            let (sim, totals) = run.finish().unwrap();
+            (csv, sim, totals)
+        };
+        let (columns, sim_c, totals_c) = run_with(StoreKind3::Columns);
+        let (blocks, sim_b, totals_b) = run_with(StoreKind3::NodeBlocks);
+        assert!(sim_c.cache().columns().is_some() && sim_b.cache().blocks().is_some(), "each run used the store it was given");
+        assert!(totals_b.prefetched_columns > 0, "the node-block run prefetched nothing");
+        assert_eq!((totals_c.ticks, totals_b.ticks), (4301, 4301));
+        assert_eq!(sim_b.stats().column_deferrals, sim_c.stats().column_deferrals);
+        let parse =
+            |csv: &str| -> Vec<Vec<f64>> { csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect() };
+        let (c, b) = (parse(&columns), parse(&blocks));
+        assert_eq!(c.len(), b.len());
+        let header: Vec<&str> = columns.lines().next().unwrap().split(',').collect();
+        let max_points = c.iter().map(|r| r[header.iter().position(|h| *h == "n_points").unwrap()]).fold(0.0, f64::max);
+        assert!(max_points >= 3.0, "the needle held points: {max_points}");
+        let mut worst = 0.0f64;
+        for (j, name) in header.iter().enumerate() {
+            let scale = c.iter().chain(&b).fold(0.0f64, |m, r| m.max(r[j].abs()));
+            for (k, (rc, rb)) in c.iter().zip(&b).enumerate() {
+                worst = worst.max((rc[j] - rb[j]).abs() / scale.max(f64::MIN_POSITIVE));
+                assert!(
+                    (rc[j] - rb[j]).abs() <= 1e-9 * scale,
+                    "tick {k}, {name}: columns {} vs node blocks {} (column scale {scale:e})",
+                    rc[j],
+                    rb[j]
+                );
+            }
+        }
+        println!("largest difference: {worst:.2e} of its column's scale; {max_points} points at most");
     }
 
     /// Issue 35: a 3D scene's `[limits] max_base_step_m` and `max_base_step_rad` reach the

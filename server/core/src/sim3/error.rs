@@ -30,6 +30,11 @@ pub enum SimError3 {
     /// A call that needs the other compliance store ([`StoreKind3`]): `call` names it.
     #[error("Simulation3::{call} needs the {needs} store; this simulation uses {has}")]
     WrongStore { call: &'static str, needs: &'static str, has: &'static str },
+    /// At [`Simulation3::prefetch`] or [`Simulation3::block_worker`]: the node-block store is
+    /// fed by another worker (one from [`Simulation3::block_worker`] and the simulation's own
+    /// cannot share a store: each mirrors its slots).
+    #[error("Simulation3::{call}: the node-block store is already fed by {by}")]
+    WorkerInUse { call: &'static str, by: &'static str },
     /// At [`Simulation3::insert_payload`]: a payload that does not answer the oldest pending
     /// request (see [`NodeBlockStore`]'s protocol).
     #[error(transparent)]

@@ -1,8 +1,9 @@
 //! The compliance store's plumbing, between steps: columns computed here
 //! ([`Simulation3::prefetch_columns`]) or by a worker ([`Simulation3::insert_columns`]), node
 //! blocks requested and inserted ([`Simulation3::requests_into`],
-//! [`Simulation3::insert_payload`], [`Simulation3::prefetch_blocks`]), pinned nodes, and the
-//! least-recently-used eviction that makes room.
+//! [`Simulation3::insert_payload`], [`Simulation3::prefetch_blocks`]), either store filled on
+//! this thread by the simulation itself ([`Simulation3::prefetch`], what the offline runs call),
+//! pinned nodes, and the least-recently-used eviction that makes room.
 
 use std::sync::Arc;
 
@@ -205,29 +206,77 @@ impl Simulation3 {
 
     /// A worker for this simulation's node-block store (same model, same number of slots).
     ///
-    /// Errors: [`SimError3::WrongStore`] with columns; [`SimError3::Sparse`] passed on from
-    /// [`Sim3BlockWorker::new`].
+    /// Errors: [`SimError3::WrongStore`] with columns; [`SimError3::WorkerInUse`] once
+    /// [`Simulation3::prefetch`] has made the simulation's own; [`SimError3::Sparse`] passed on
+    /// from [`Sim3BlockWorker::new`].
     pub fn block_worker(&self) -> Result<Sim3BlockWorker, SimError3> {
         let ComplianceStore3::Blocks(store) = &self.cache else {
             return Err(SimError3::WrongStore { call: "block_worker", needs: "node-block", has: "columns" });
         };
+        if self.scratch.block_worker.is_some() {
+            return Err(SimError3::WorkerInUse { call: "block_worker", by: "the simulation's own worker (prefetch)" });
+        }
         Ok(Sim3BlockWorker::new(Arc::clone(&self.model), store.cap())?)
     }
 
     /// With node blocks, on this thread between steps: [`Simulation3::requests_into`] (up to
     /// `max_nodes`), [`Sim3BlockWorker::compute`], [`Simulation3::insert_payload`]. Returns how
-    /// many nodes it inserted. Allocates (the request list).
+    /// many nodes it inserted. Allocates (the request list; [`Simulation3::prefetch_blocks_into`]
+    /// reuses one).
     ///
     /// Errors: those of the three.
     pub fn prefetch_blocks(&mut self, worker: &mut Sim3BlockWorker, max_nodes: usize) -> Result<usize, SimError3> {
-        let mut reqs = Vec::new();
-        self.requests_into(max_nodes, &mut reqs)?;
-        if reqs.is_empty() {
+        self.prefetch_blocks_into(worker, max_nodes, &mut Vec::new())
+    }
+
+    /// [`Simulation3::prefetch_blocks`] with the request list in `requests` (cleared first; it
+    /// allocates only to grow).
+    ///
+    /// Errors: those of [`Simulation3::prefetch_blocks`].
+    pub fn prefetch_blocks_into(
+        &mut self,
+        worker: &mut Sim3BlockWorker,
+        max_nodes: usize,
+        requests: &mut Vec<BlockRequest>,
+    ) -> Result<usize, SimError3> {
+        self.requests_into(max_nodes, requests)?;
+        if requests.is_empty() {
             return Ok(0);
         }
-        for p in worker.compute(&reqs)? {
+        for p in worker.compute(requests)? {
             self.insert_payload(p)?;
         }
-        Ok(reqs.len())
+        Ok(requests.len())
+    }
+
+    /// Fills the compliance store on this thread, between steps, whichever store it is: the
+    /// columns of up to `max_nodes` nodes ([`Simulation3::prefetch_columns`]), or with node blocks
+    /// their blocks ([`Simulation3::prefetch_blocks_into`]) computed by the simulation's own
+    /// worker, made here at the first call ([`Simulation3::block_worker`]) and kept, with its
+    /// request list, for the simulation's life. What a run without a worker thread calls (the
+    /// offline driver, the Python package's `step`). Returns how many nodes it filled.
+    /// Allocates (a column solve; the worker's rows).
+    ///
+    /// Errors: those of the store's prefetch; [`SimError3::WorkerInUse`] with node blocks when
+    /// the store already holds or awaits nodes that another worker computes (its mirror and
+    /// this one's would differ).
+    pub fn prefetch(&mut self, max_nodes: usize) -> Result<usize, SimError3> {
+        let ComplianceStore3::Blocks(store) = &self.cache else {
+            return self.prefetch_columns(max_nodes);
+        };
+        let mut worker = match self.scratch.block_worker.take() {
+            Some(w) => w,
+            None => {
+                if store.n_inserted() > 0 || (0..store.cap()).any(|s| store.node_in_slot(s).is_some()) {
+                    return Err(SimError3::WorkerInUse { call: "prefetch", by: "a worker from block_worker" });
+                }
+                Box::new(self.block_worker()?)
+            }
+        };
+        let mut requests = std::mem::take(&mut self.scratch.block_requests);
+        let n = self.prefetch_blocks_into(&mut worker, max_nodes, &mut requests);
+        self.scratch.block_requests = requests;
+        self.scratch.block_worker = Some(worker);
+        n
     }
 }
