@@ -290,6 +290,9 @@ pub fn incoming(
                 drop(tcp);
                 continue;
             }
+            // State streams are many small messages: no Nagle delay behind an unacknowledged
+            // one (tonic's own listener sets this; a failure only costs latency).
+            let _ = tcp.set_nodelay(true);
             let conn = GuardedStream {
                 inner: tcp,
                 counters: counters.clone(),
