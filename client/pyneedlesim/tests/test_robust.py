@@ -208,3 +208,15 @@ def test_issue_21_an_unaligned_trajectory_array_runs_like_an_aligned_one(nominal
     assert not unaligned.flags.aligned
     unc = Uncertainty(0.2, 0.2)
     assert np.array_equal(closest_approaches(SCENE, TARGET, [unaligned], unc.scale(5, 1)), closest_approaches(SCENE, TARGET, [base], unc.scale(5, 1)))
+
+
+def test_robust_plan_and_evaluate_refuse_zero_samples_naming_the_argument(nominal):
+    """Noticed in stop 40: ``robust_plan(n_train=0)`` ended in numpy's "need at least one array
+    to stack"; both now refuse before any simulation, naming the argument."""
+    from needlesim.robust import robust_plan
+
+    u = Uncertainty(0.2, 0.2)
+    with pytest.raises(ValueError, match=r"^n_train = 0: must be an integer of at least 1"):
+        robust_plan(SCENE, TARGET, u, seed=1, n_train=0, nominal=nominal)
+    with pytest.raises(ValueError, match=r"^n = 0: must be an integer of at least 1"):
+        evaluate(SCENE, TARGET, [np.asarray(nominal["trajectory"])], u, seed=1, n=0)

@@ -287,6 +287,8 @@ def robust_plan(
     then by the smallest mean closest approach. The choice is an estimate on the training
     samples: evaluate it on fresh ones (:func:`evaluate`).
     """
+    if isinstance(n_train, bool) or not isinstance(n_train, (int, np.integer)) or n_train < 1:
+        raise ValueError(f"n_train = {n_train!r}: must be an integer of at least 1 (the plan is chosen on the training samples)")
     if nominal is None:
         nominal = plan(load_scene(scene), target)
     entry = nominal["plan"]["entry_m"]
@@ -339,6 +341,8 @@ def evaluate(
 ) -> list[PlanEvaluation]:
     """Each trajectory's closest approaches and hit rate over samples ``0..n-1`` of ``seed``
     (the same samples for every trajectory, so their comparison is paired)."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ValueError(f"n = {n!r}: must be an integer of at least 1 (a hit rate needs a sample)")
     d = sweep(scene, target, trajectories, uncertainty, seed=seed, n=n, client=client)
     radius = next(t.radius_m for t in load_scene(scene).targets if t.name == target)  # sweep checked the name
     return [PlanEvaluation(d[:, j].copy(), radius) for j in range(d.shape[1])]
