@@ -90,6 +90,9 @@ impl ApiError {
             if let Some(r) = cause.downcast_ref::<RunError>() {
                 return Self::from(r);
             }
+            if let Some(r) = cause.downcast_ref::<RunError<SimError3>>() {
+                return Self::from(r);
+            }
             if let Some(s) = cause.downcast_ref::<SessionError>() {
                 return match Self::from(s) {
                     Self::InvalidArgument { .. } => Self::invalid_with_prefix(field, msg),
@@ -312,6 +315,20 @@ mod tests {
         assert_eq!(Status::from(ApiError::from_chain("scene", &wrapped)).code(), tonic::Code::ResourceExhausted);
         let sim = anyhow::Error::new(SessionError::Sim(SimError::InvalidParams("max_base_step_m = -1".into())));
         assert_eq!(Status::from(ApiError::from_chain("scene", &sim)).code(), tonic::Code::InvalidArgument);
+    }
+
+    /// Noticed in stop 41: a 3D plan whose candidate run did not converge ended INTERNAL (the
+    /// chain's 3D run error was not read), where 2D's is FAILED_PRECONDITION.
+    #[test]
+    fn an_unconverged_run_after_validation_is_failed_precondition_in_both_dimensions() {
+        let tick = needlesim_offline::UnconvergedTick { tick: 7, t_s: 0.007, why: needlesim_core::sim::Unconverged::ActiveSetCap };
+        let two = anyhow::Error::new(RunError::<SimError>::Unconverged(tick)).context("candidate 3");
+        let three = anyhow::Error::new(RunError::<SimError3>::Unconverged(tick)).context("candidate 3");
+        for e in [two, three] {
+            let st = Status::from(ApiError::after_validation(&e));
+            assert_eq!(st.code(), tonic::Code::FailedPrecondition, "{}", st.message());
+            assert!(st.message().contains("stopped at tick 7"), "{}", st.message());
+        }
     }
 
     #[test]
