@@ -1,7 +1,9 @@
 //! The 3D step's scratch: buffers a stage fills and reads within one tick (the friction order,
-//! the active set's changes) and the column solve's work space between steps, sized up front.
+//! the active set's changes, a capture's disc weights) and the column solve's work space between
+//! steps, sized up front.
 
 use crate::d3::TetColumnScratch;
+use crate::d3::disc::DiscWeights;
 use crate::ids::Slot;
 
 use super::active_set::Change;
@@ -16,4 +18,12 @@ pub(super) struct Scratch3 {
     pub column_buf: Vec<f64>,
     /// The column solve's work space, made on first use (between steps).
     pub column_scratch: Option<TetColumnScratch>,
+    /// A capture's disc weights ([`super::Sim3Params::disc_radius_m`]), room for
+    /// [`DISC_SCRATCH_NODES`] nodes.
+    pub disc: DiscWeights,
 }
+
+/// Nodes a capture's disc may touch before [`crate::d3::disc::disc_weights_into`] gives up (more
+/// than [`crate::contact::MAX_TERMS`], so that a disc with a few nodes of weight zero is still
+/// seen whole; any disc over `MAX_TERMS` weighted nodes stays a point).
+pub const DISC_SCRATCH_NODES: usize = 4 * crate::contact::MAX_TERMS;
