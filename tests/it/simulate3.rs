@@ -3,7 +3,9 @@
 //! (`--dump-at`, ticks chosen from a first run's CSV) are re-solved by the independent reference
 //! fem_ref3d.py, and the simulation's own answer in each dump (`simulation_result`) matches it
 //! by compare.py: displacements, reactions, energy, stresses and the point compliance ≤ 1e-9,
-//! point reactions ≤ 1e-8. The 3D Fig. 3 example misses its target; bad input is named.
+//! point reactions ≤ 1e-8; so do the dumps of a run whose contacts are discs across the shaft
+//! (`spread_contact`, written as `patches`), whose weights also match the reference's own disc
+//! quadrature. The 3D Fig. 3 example misses its target; bad input is named.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -554,6 +554,18 @@ radius_m = 0.001
         }
     }
 
+    /// Issue 37: `[needle] spread_contact = true` makes every contact a disc of the needle's
+    /// radius (half its diameter: the default 18 G here); without the key the contacts are points.
+    #[test]
+    fn issue_37_spread_contact_gives_discs_of_the_needles_radius() {
+        let plain = sim3_params(&scene(), base_pose3(&scene().initial_pose).unwrap());
+        assert_eq!(plain.disc_radius_m, 0.0);
+        let text = SCENE.replace("[needle]\n", "[needle]\nspread_contact = true\ndiameter_m = 0.0008\n");
+        let sc = needlesim_scene::parse_scene3d(&text, std::path::Path::new("."), &needlesim_core::MeshLimits::default()).unwrap();
+        assert!(sc.needle.spread_contact);
+        assert_eq!(sim3_params(&sc, base_pose3(&sc.initial_pose).unwrap()).disc_radius_m, 0.0004);
+    }
+
     /// The run driver's first-pose check in 3D: a trajectory whose first quaternion is not a
     /// unit one is refused before anything runs, naming it (the Simulate RPC, exercise runs and
     /// the Python package get the same error).
