@@ -22,6 +22,10 @@
 //! its displacement is the segment's mean displacement and its force is spread evenly along it.
 //! A point load's compliance grows like $\ln(1/h)$ under refinement in 2D; a segment's is finite,
 //! so the contact's stiffness, and everything it sets, converges. Up to [`MAX_TERMS`] nodes.
+//!
+//! A **disc** (3D, issue 37) is the same over the needle's cross-section: a disc across the
+//! shaft, its weights the shape functions averaged over it ([`crate::d3::disc`], exact), built by
+//! [`ContactPoint::disc`] from any list of terms.
 
 use crate::ids::NodeIdx;
 
@@ -35,12 +39,13 @@ enum Kind {
     Triangle,
     Tetrahedron,
     Patch,
+    Disc,
 }
 
 /// A contact's place in the mesh: one node (weight 1), or a material point inside triangle
 /// `tri_idx` (2D) with the triangle's three nodes, or inside tetrahedron `tet_idx` (3D) with its
-/// four nodes, and the point's barycentric weights; or a 2D patch (module docs) with up to
-/// [`MAX_TERMS`] nodes and its centre's triangle.
+/// four nodes, and the point's barycentric weights; or a 2D patch or a 3D disc (module docs) with
+/// up to [`MAX_TERMS`] nodes and its centre's triangle or tetrahedron.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
     nodes: [NodeIdx; MAX_TERMS],
@@ -48,11 +53,11 @@ pub struct ContactPoint {
     /// Number of terms.
     len: u8,
     kind: Kind,
-    /// The element a material point lies in (a patch's: the one its centre lies in).
+    /// The element a material point lies in (a patch's or a disc's: the one its centre lies in).
     elem_idx: Option<u32>,
 }
 
-/// Why [`ContactPoint::patch`] refused a patch.
+/// Why [`ContactPoint::patch`] or [`ContactPoint::disc`] refused a patch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 pub enum PatchError {
     /// The segment touches more than [`MAX_TERMS`] nodes (a needle far wider than the elements).
@@ -135,10 +140,53 @@ impl ContactPoint {
         Ok(out)
     }
 
-    /// Whether this contact is a patch.
+    /// A 3D disc (module docs) whose centre lies in tetrahedron `centre_tet_idx`, from its terms
+    /// $(k, w_k)$ as given (the weights of [`crate::d3::disc::disc_weights_into`], summing to 1):
+    /// terms of the same node are merged, terms with a zero weight dropped; the weights are kept
+    /// as given (not normalised).
+    ///
+    /// Errors: [`PatchError::TooManyNodes`] when more than [`MAX_TERMS`] nodes carry a weight,
+    /// [`PatchError::Empty`] when the weights do not sum to a positive number.
+    pub fn disc(centre_tet_idx: usize, terms: impl IntoIterator<Item = (usize, f64)>) -> Result<Self, PatchError> {
+        let mut out = Self {
+            nodes: [NodeIdx(0); MAX_TERMS],
+            weights: [0.0; MAX_TERMS],
+            len: 0,
+            kind: Kind::Disc,
+            elem_idx: Some(centre_tet_idx as u32),
+        };
+        let mut total = 0.0;
+        for (j, w) in terms {
+            if w == 0.0 {
+                continue;
+            }
+            total += w;
+            match out.nodes[..out.len as usize].iter().position(|n| n.0 == j) {
+                Some(k) => out.weights[k] += w,
+                None if (out.len as usize) < MAX_TERMS => {
+                    out.nodes[out.len as usize] = NodeIdx(j);
+                    out.weights[out.len as usize] = w;
+                    out.len += 1;
+                }
+                None => return Err(PatchError::TooManyNodes),
+            }
+        }
+        if !(total > 0.0) {
+            return Err(PatchError::Empty);
+        }
+        Ok(out)
+    }
+
+    /// Whether this contact is spread over the tissue: a 2D patch or a 3D disc.
     #[inline]
     pub fn is_patch(&self) -> bool {
-        self.kind == Kind::Patch
+        matches!(self.kind, Kind::Patch | Kind::Disc)
+    }
+
+    /// Whether this contact is a 3D disc ([`ContactPoint::disc`]).
+    #[inline]
+    pub fn is_disc(&self) -> bool {
+        self.kind == Kind::Disc
     }
 
     /// At most three terms standing for this contact where a record keeps three (a node's or a
@@ -212,11 +260,11 @@ impl ContactPoint {
         if matches!(self.kind, Kind::Triangle | Kind::Patch) { self.elem_idx.map(|t| t as usize) } else { None }
     }
 
-    /// The tetrahedron a 3D material point lies in (`None` for a node contact or a triangle's
-    /// point).
+    /// The tetrahedron a 3D material point lies in, or a disc's centre (`None` for a node
+    /// contact or a triangle's point).
     #[inline]
     pub fn tet_idx(&self) -> Option<usize> {
-        if self.kind == Kind::Tetrahedron { self.elem_idx.map(|t| t as usize) } else { None }
+        if matches!(self.kind, Kind::Tetrahedron | Kind::Disc) { self.elem_idx.map(|t| t as usize) } else { None }
     }
 
     /// The node with the largest weight (the node itself for a node contact): what a client that
@@ -272,6 +320,7 @@ impl std::fmt::Display for ContactId {
             Kind::Tetrahedron => write!(f, "the material point in tetrahedron {t} (nodes {}, {}, {}, {})", n[0], n[1], n[2], n[3]),
             Kind::Triangle => write!(f, "the material point in triangle {t} (nodes {}, {}, {})", n[0], n[1], n[2]),
             Kind::Patch => write!(f, "the contact patch centred in triangle {t} ({} nodes)", self.len),
+            Kind::Disc => write!(f, "the contact disc centred in tetrahedron {t} ({} nodes)", self.len),
             Kind::Node => write!(f, "node {}", n[0]),
         }
     }
@@ -341,5 +390,22 @@ mod tests {
         let many = (0..5).map(|k| ([3 * k, 3 * k + 1, 3 * k + 2], [0.3, 0.3, 0.4], 1.0));
         assert_eq!(ContactPoint::patch(0, many), Err(PatchError::TooManyNodes));
         assert_eq!(ContactPoint::patch(0, std::iter::empty()), Err(PatchError::Empty));
+    }
+
+    #[test]
+    fn a_disc_keeps_its_weights_merging_repeats_and_dropping_zeros() {
+        let d = ContactPoint::disc(9, [(4, 0.25), (7, 0.0), (5, 0.5), (4, 0.125), (6, 0.125)]).unwrap();
+        assert!(d.is_patch() && d.is_disc() && d.as_node().is_none());
+        assert_eq!((d.tet_idx(), d.tri_idx()), (Some(9), None));
+        assert_eq!(d.nodes(), &[NodeIdx(4), NodeIdx(5), NodeIdx(6)]);
+        assert_eq!(d.terms().map(|(_, w)| w).collect::<Vec<_>>(), vec![0.375, 0.5, 0.125]);
+        assert_eq!(d.to_string(), "the contact disc centred in tetrahedron 9 (3 nodes)");
+        assert!(!ContactPoint::in_tetrahedron(1, [1, 2, 3, 4], [0.25; 4]).is_disc());
+        let many = (0..=MAX_TERMS).map(|k| (k, 1.0 / (MAX_TERMS + 1) as f64));
+        assert_eq!(ContactPoint::disc(0, many), Err(PatchError::TooManyNodes));
+        // A zero weight does not count against the limit.
+        let zeros = (0..MAX_TERMS).map(|k| (k, 1.0 / MAX_TERMS as f64)).chain([(99, 0.0)]);
+        assert_eq!(ContactPoint::disc(0, zeros).unwrap().nodes().len(), MAX_TERMS);
+        assert_eq!(ContactPoint::disc(0, [(1, 0.0)]), Err(PatchError::Empty));
     }
 }

@@ -13,14 +13,17 @@
 //! counted in [`RunSummary3::column_deferrals`].
 //!
 //! **Dumped states** ([`dump_state`]): the static problem the tick solved
-//! ([`scenario_from_snapshot`]) with `working_points` at the needle's points and
-//! `output_stresses`, so that fem_ref3d.py answers displacements, reactions, energy, stresses,
-//! point reactions and the point compliance; and in `simulation_result` the simulation's own
-//! answer in the 3D result format: the field its point forces $f_i$ (total: constraint plus
-//! friction) cause, $u = C P^\top f$, from the columns $C$ of the points' nodes (those the
-//! simulation cached, computed only if evicted), the support reactions
-//! $r = (K u - P^\top f)_{fixed}$, the energy $\tfrac12 u^\top K u$ and the stresses from $u$,
-//! the point reactions $f_i - f^{fr}_i$ and displacements, and $W = P C P^\top$.
+//! ([`scenario_from_snapshot`]: material points as `points`, contacts spread over discs as
+//! `patches` with the simulation's own nodes and weights) with `working_points` at every
+//! contact's reference position (a disc's centre) and `output_stresses`, so that fem_ref3d.py
+//! answers displacements, reactions, energy, stresses, point (and patch) reactions and the point
+//! compliance; and in `simulation_result` the simulation's own answer in the 3D result format:
+//! the field its contact forces $f_i$ (total: constraint plus friction) cause,
+//! $u = C P^\top f$ ($P$ each contact's terms: a point's barycentric weights, a disc's averaged
+//! shape functions), from the columns $C$ of the contacts' nodes (those the simulation cached,
+//! computed only if evicted), the support reactions $r = (K u - P^\top f)_{fixed}$, the energy
+//! $\tfrac12 u^\top K u$ and the stresses from $u$, the contact reactions $f_i - f^{fr}_i$ and
+//! displacements, and the point compliance $W$ at the working points.
 //!
 //! **Targets.** A target sphere moves with the tissue: the simulation tracks each one
 //! ([`Sim3Params::targets`], `needlesim_core::sim3::targets`: the centre's displacement from the
@@ -35,8 +38,10 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use needlesim_core::d3::assembly::{element_stiffness, element_stresses_pa, tet_dofs};
-use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simulation3, Target3, TargetState3};
-use needlesim_scene::exchange3d::{PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, scenario_from_snapshot};
+use needlesim_core::sim3::{BasePose3, PointState3, Sim3Params, SimError3, Simulation3, SnapshotPoint3, Target3, TargetState3};
+use needlesim_scene::exchange3d::{
+    PointCompliance3, PointReaction3, Reaction3, Scenario3, ScenarioResult3, dump_order, scenario_from_snapshot,
+};
 use needlesim_scene::{Scene3d, Trajectory3, TrajectoryError};
 
 use crate::convergence::ConvergencePolicy;
@@ -112,13 +117,17 @@ pub struct RunSummary3 {
     pub factorise_s: f64,
 }
 
-/// The 3D simulation parameters of a scene: its needle, regions, tick rate and `[limits]`
+/// The 3D simulation parameters of a scene: its needle (and its contact discs' radius, half its
+/// diameter, with `spread_contact`), regions, tick rate and `[limits]`
 /// (`max_base_step_m`, `max_base_step_rad`, `max_active_set_iterations`; every 3D driver, live or
 /// scripted, builds its parameters here; `lookahead_m` stays the 3D default, 20 mm); the base
 /// starts at `initial`.
 pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
     let mut p = Sim3Params::new(scene.needle.length_m, initial);
     p.spacing_m = scene.needle.contact_spacing_m;
+    if scene.needle.spread_contact {
+        p.disc_radius_m = 0.5 * scene.needle.diameter_m;
+    }
     p.max_base_step_m = scene.limits.max_base_step_m;
     p.max_base_step_rad = scene.limits.max_base_step_rad;
     p.max_active_set_iterations = scene.limits.max_active_set_iterations;
@@ -293,7 +302,7 @@ pub fn dump_state(scene: &Scene3d, sim: &Simulation3) -> anyhow::Result<Scenario
     sc.description = Some(format!("needlesim-server simulate --dump-state: {} at tick {}", scene.name, snap.tick));
     sc.output_stresses = true;
     if !snap.points.is_empty() {
-        sc.working_points = Some(snap.points.iter().map(|p| p.x_m).collect());
+        sc.working_points = Some(dump_order(&snap).into_iter().map(|k| snap.points[k].x_m).collect());
     }
     sc.simulation_result = Some(Box::new(simulation_result(sim, &sc)?));
     Ok(sc)
@@ -307,23 +316,24 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
     let mats = model.materials();
     let n_dofs = model.n_dofs();
     let snap = sim.snapshot();
-    let locs = snap
-        .points
+    // The contacts in the dump's order: points, then patches (discs).
+    let pts: Vec<&SnapshotPoint3> = dump_order(&snap).into_iter().map(|k| &snap.points[k]).collect();
+    // The working points (every contact's reference position) located as points, for W.
+    let locs = pts
         .iter()
         .map(|p| model.locate(p.x_m).map_err(|e| anyhow::anyhow!("needle point at {:?}: {e}", p.x_m)))
         .collect::<Result<Vec<_>, _>>()?;
-    // The columns of every point node: the simulation's cached ones (with a column store),
-    // computed if evicted or with node blocks.
+    // The columns of every node a contact or a working point holds: the simulation's cached
+    // ones (with a column store), computed if evicted or with node blocks.
     let cached = |n: usize, c: usize| sim.cache().columns().and_then(|cc| cc.column(n, c));
     let mut computed: HashMap<usize, Vec<f64>> = HashMap::new();
     let mut scratch = model.column_scratch();
-    for l in &locs {
-        for &n in &l.nodes {
-            if !(0..3).all(|c| cached(n, c).is_some()) && !computed.contains_key(&n) {
-                let mut buf = vec![0.0; 3 * n_dofs];
-                model.compliance_columns_into(n, &mut buf, &mut scratch)?;
-                computed.insert(n, buf);
-            }
+    let term_nodes = pts.iter().flat_map(|p| p.contact.nodes().iter().map(|n| n.index()));
+    for n in term_nodes.chain(locs.iter().flat_map(|l| l.nodes)) {
+        if !(0..3).all(|c| cached(n, c).is_some()) && !computed.contains_key(&n) {
+            let mut buf = vec![0.0; 3 * n_dofs];
+            model.compliance_columns_into(n, &mut buf, &mut scratch)?;
+            computed.insert(n, buf);
         }
     }
     let column = |n: usize, c: usize| -> &[f64] {
@@ -332,20 +342,20 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
             _ => &computed[&n][c * n_dofs..(c + 1) * n_dofs],
         }
     };
-    // u = C Pᵀ f and Pᵀ f.
+    // u = C Pᵀ f and Pᵀ f, through each contact's own terms (a point's tetrahedron, a disc's
+    // nodes).
     let mut u = vec![0.0; n_dofs];
     let mut pf = vec![0.0; n_dofs];
-    for (l, p) in locs.iter().zip(&snap.points) {
-        for m in 0..4 {
-            let w = l.weights[m];
+    for p in &pts {
+        for (node, w) in p.contact.terms() {
             if w == 0.0 {
                 continue;
             }
             for c in 0..3 {
                 let fc = w * p.force_n[c];
-                pf[3 * l.nodes[m] + c] += fc;
+                pf[3 * node.index() + c] += fc;
                 if fc != 0.0 {
-                    for (o, x) in u.iter_mut().zip(column(l.nodes[m], c)) {
+                    for (o, x) in u.iter_mut().zip(column(node.index(), c)) {
                         *o += x * fc;
                     }
                 }
@@ -371,18 +381,19 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
             Reaction3 { node: n, rx: r(0), ry: r(1), rz: r(2) }
         })
         .collect();
-    let point_reactions = snap
-        .points
+    let n_points = pts.iter().filter(|p| !p.contact.is_disc()).count();
+    let point_reactions = pts
         .iter()
         .enumerate()
         .map(|(i, p)| {
             let f = p.f_n.unwrap_or([0.0; 3]);
             let r = [p.force_n[0] - f[0], p.force_n[1] - f[1], p.force_n[2] - f[2]];
             let local = |a: usize, given: Option<f64>| given.map(|_| p.frame[a][0] * r[0] + p.frame[a][1] * r[1] + p.frame[a][2] * r[2]);
+            let (kind, index) = if i < n_points { ("point", i) } else { ("patch", i - n_points) };
             PointReaction3 {
                 point: i,
-                kind: "point".to_owned(),
-                index: i,
+                kind: kind.to_owned(),
+                index,
                 rx: r[0],
                 ry: r[1],
                 rz: r[2],
@@ -436,7 +447,7 @@ fn simulation_result(sim: &Simulation3, sc: &Scenario3) -> anyhow::Result<Scenar
         strain_energy: energy,
         compliance: None,
         point_compliance: (np > 0).then(|| PointCompliance3 {
-            working_points: snap.points.iter().map(|p| p.x_m).collect(),
+            working_points: pts.iter().map(|p| p.x_m).collect(),
             dof_order: "[ux(p0), uy(p0), uz(p0), ux(p1), ...]".to_owned(),
             matrix: w,
         }),
@@ -598,6 +609,18 @@ radius_m = 0.001
             assert!(moved_m > 0.5e-4 || turned_rad > 0.5e-3, "tick {k}: the base did not move towards the pose");
             prev = o.pose;
         }
+    }
+
+    /// Issue 37: `[needle] spread_contact = true` makes every contact a disc of the needle's
+    /// radius (half its diameter: the default 18 G here); without the key the contacts are points.
+    #[test]
+    fn issue_37_spread_contact_gives_discs_of_the_needles_radius() {
+        let plain = sim3_params(&scene(), base_pose3(&scene().initial_pose).unwrap());
+        assert_eq!(plain.disc_radius_m, 0.0);
+        let text = SCENE.replace("[needle]\n", "[needle]\nspread_contact = true\ndiameter_m = 0.0008\n");
+        let sc = needlesim_scene::parse_scene3d(&text, std::path::Path::new("."), &needlesim_core::MeshLimits::default()).unwrap();
+        assert!(sc.needle.spread_contact);
+        assert_eq!(sim3_params(&sc, base_pose3(&sc.initial_pose).unwrap()).disc_radius_m, 0.0004);
     }
 
     /// The run driver's first-pose check in 3D: a trajectory whose first quaternion is not a

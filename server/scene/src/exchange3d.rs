@@ -65,7 +65,7 @@ pub struct Scenario3 {
     pub simulation_result: Option<Box<ScenarioResult3>>,
 }
 
-/// One needle point of a dumped simulation state, in the order of `points`.
+/// One needle contact of a dumped simulation state, in the order of `points`, then `patches`.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct NeedlePoint3 {
@@ -76,6 +76,20 @@ pub struct NeedlePoint3 {
     pub force: [f64; 3],
     /// The simulation's displacement there, world, m.
     pub u: [f64; 3],
+    /// A patch's disc (a contact spread over the needle's cross-section): the same contact as a
+    /// `discs` entry would give it, to check its weights against another quadrature.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub disc: Option<NeedleDisc3>,
+}
+
+/// The disc of a dumped patch: centre `x` (m, reference), unit `axis` (the needle's tangent when
+/// the contact was taken), `radius` (m), as in `discs`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeedleDisc3 {
+    pub x: [f64; 3],
+    pub axis: [f64; 3],
+    pub radius: f64,
 }
 
 /// Prescribed world components; a missing or null component is free.
@@ -481,16 +495,29 @@ pub fn point_state_name(s: PointState3) -> &'static str {
     }
 }
 
+/// The order in which a snapshot's contacts are written ([`scenario_from_snapshot`]): the
+/// material points, then the discs (`patches`), each in the snapshot's order; the reference's
+/// `point_reactions` come in this order.
+pub fn dump_order(snap: &Snapshot3) -> Vec<usize> {
+    let is_disc = |k: &usize| snap.points[*k].contact.is_disc();
+    let n = snap.points.len();
+    (0..n).filter(|k| !is_disc(k)).chain((0..n).filter(is_disc)).collect()
+}
+
 /// The static problem a 3D simulation tick solved ([`Snapshot3`], from
 /// `Simulation3::snapshot`) as a scenario on the simulation's tissue `model`: its nodes and
 /// tetrahedra, materials (`E`, `nu`, and `E_elem`, `nu_elem` when the tetrahedra differ), its
-/// fixed nodes, and one `points` entry per needle point: reference position `x`, frame rows
-/// `[t, n, b]`, the prescribed components (`ut` for a stuck point or the tip's, `un`, `ub`
+/// fixed nodes, and one entry per needle contact: a material point as a `points` entry
+/// (reference position `x`), a contact spread over a disc (`[needle] spread_contact`) as a
+/// `patches` entry (its nodes and weights as the simulation holds them), each with its frame
+/// rows `[t, n, b]`, the prescribed components (`ut` for a stuck point or the tip's, `un`, `ub`
 /// always) and the friction `f` (world, N) of a slipping one. The simulation's state and
-/// answer at each point go to `needle_points` (in the order of `points`) when `states` is
-/// given (one per point, in the snapshot's order). `working_points`, `output_stresses` and
-/// `simulation_result` are left for the caller.
+/// answer at each contact go to `needle_points` (in the order of `points`, then `patches`:
+/// [`dump_order`]; a patch's with its disc) when `states` is given (one per contact, in the
+/// snapshot's order). `working_points`, `output_stresses` and `simulation_result` are left for
+/// the caller.
 pub fn scenario_from_snapshot(model: &TetTissueModel, snap: &Snapshot3, states: Option<&[PointState3]>, name: &str) -> Scenario3 {
+    let order = dump_order(snap);
     let mesh = model.mesh();
     let mats = model.materials().material_of_tet();
     let uniform = mats.windows(2).all(|w| w[0] == w[1]);
@@ -506,12 +533,41 @@ pub fn scenario_from_snapshot(model: &TetTissueModel, snap: &Snapshot3, states: 
         young_modulus_elem_pa: (!uniform).then(|| mats.iter().map(|m| m.young_modulus_pa).collect()),
         nu_elem: (!uniform).then(|| mats.iter().map(|m| m.poisson_ratio).collect()),
         fixed_nodes: (0..mesh.n_nodes()).filter(|&n| model.is_fixed(n)).map(|n| n as i64).collect(),
-        points: snap.points.iter().map(|p| Point3 { x: p.x_m, frame: p.frame, ut: p.ut, un: p.un, ub: p.ub, f: p.f_n }).collect(),
+        points: snap
+            .points
+            .iter()
+            .filter(|p| !p.contact.is_disc())
+            .map(|p| Point3 { x: p.x_m, frame: p.frame, ut: p.ut, un: p.un, ub: p.ub, f: p.f_n })
+            .collect(),
+        patches: snap
+            .points
+            .iter()
+            .filter(|p| p.contact.is_disc())
+            .map(|p| Patch3 {
+                nodes: p.contact.nodes().iter().map(|n| n.index() as i64).collect(),
+                weights: p.contact.terms().map(|(_, w)| w).collect(),
+                frame: p.frame,
+                ut: p.ut,
+                un: p.un,
+                ub: p.ub,
+                f: p.f_n,
+            })
+            .collect(),
         needle_points: states.map(|st| {
-            snap.points
+            order
                 .iter()
-                .zip(st)
-                .map(|(p, &s)| NeedlePoint3 { state: point_state_name(s).to_owned(), force: p.force_n, u: p.u_m })
+                .map(|&k| {
+                    let p = &snap.points[k];
+                    NeedlePoint3 {
+                        state: point_state_name(st[k]).to_owned(),
+                        force: p.force_n,
+                        u: p.u_m,
+                        disc: p.disc.map(|d| {
+                            let n = d.axis.iter().map(|v| v * v).sum::<f64>().sqrt();
+                            NeedleDisc3 { x: d.centre_m, axis: d.axis.map(|v| v / n), radius: d.radius_m }
+                        }),
+                    }
+                })
                 .collect()
         }),
         ..Scenario3::default()

@@ -156,6 +156,10 @@ impl<D: Dim> TissueModel<D> {
     pub fn locate(&self, x_m: D::Point) -> Result<D::PointLocation, D::LocateError> {
         D::locate(&self.locator, &self.mesh, x_m)
     }
+    /// The point locator ([`Dim::locator`]; 3D: a [`crate::d3::TetLocator`]).
+    pub fn locator(&self) -> &D::Locator {
+        &self.locator
+    }
     /// Scratch for column computations.
     pub fn column_scratch(&self) -> ColumnScratch {
         ColumnScratch { rhs: Mat::zeros(self.chol.n_free(), D::N), chol: self.chol.scratch(D::N) }

@@ -1,9 +1,11 @@
 //! Stage 4 of the 3D step (module docs): the material point at a deformed position (a fixed
-//! point through the compliance), the tip's capture with its distance rule, and the points the
-//! tip passed while their columns were missing, captured late.
+//! point through the compliance), the tip's capture with its distance rule, each captured point
+//! spread over a disc across the shaft when the needle's contact is ([`Sim3Params::disc_radius_m`]),
+//! and the points the tip passed while their columns were missing, captured late.
 
 use crate::compliance::ContactBlocks;
 use crate::contact::ContactPoint;
+use crate::d3::disc::{Disc, disc_weights_into};
 use crate::d3::locate::{BARYCENTRIC_TOL, barycentric};
 use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedError};
@@ -13,6 +15,11 @@ use super::state::Point;
 use super::{
     BasePose3, LATE_CAPTURES_PER_TICK, LOCATE_ITERATIONS, MAX_PENDING_CAPTURES, PointState3, SimError3, Simulation3, add, dist, dot, sub,
 };
+#[cfg(doc)]
+use super::{Sim3Params, Sim3Stats};
+
+/// A disc counts as wholly inside the tissue when its covered share is within this of 1.
+const DISC_COVER_TOL: f64 = 1e-9;
 
 impl Simulation3 {
     /// Stage 3: the points the tip withdrew past (their deformed position beyond the tip)
@@ -115,6 +122,13 @@ impl Simulation3 {
         if candidate.is_some_and(|(c, x)| self.too_close(&c, x)) {
             candidate = None;
         }
+        // Spread over the needle's cross-section: the disc's nodes are the ones to cache.
+        let mut spread = None;
+        if let Some((c, x)) = candidate {
+            let (contact, disc, fell_back) = self.spread(c, x, t);
+            candidate = Some((contact, x));
+            spread = Some((disc, fell_back));
+        }
         self.update_approaching([pending_missing, candidate.map(|c| c.0).or(missing)], u_d, axis_pose, frame);
         if missing.is_some() {
             // Node blocks: the fixed point needed a tetrahedron whose nodes are not cached.
@@ -142,6 +156,8 @@ impl Simulation3 {
         }
         self.last_tip_region = Some(region);
         self.deferred_since_m = None;
+        let (disc, fell_back) = spread.unwrap_or((None, false));
+        self.stats.patch_fallbacks += u64::from(fell_back);
         self.pts.push(Point {
             contact,
             x_ref_m: x,
@@ -158,9 +174,34 @@ impl Simulation3 {
             u_world: sub(prev_tip, x),
             lat_ref_m: [-dot(frame[1], d), -dot(frame[2], d)],
             f_ref_local_n: [0.0; 3],
+            disc,
         });
         self.stats.captures += 1;
         Ok(())
+    }
+
+    /// The contact a captured material point `point` at reference position `x_m` becomes: with
+    /// [`Sim3Params::disc_radius_m`] > 0 the disc of that radius centred at `x_m` across `axis`
+    /// ([`ContactPoint::disc`], its weights by [`disc_weights_into`] into the scratch sized in
+    /// [`Simulation3::new`]: nothing allocated); else the point itself. A disc with more than
+    /// [`crate::contact::MAX_TERMS`] weighted nodes, not wholly inside the tissue, or otherwise
+    /// refused stays the point, flagged (the caller counts it in [`Sim3Stats::patch_fallbacks`]
+    /// once the contact is taken). Returns the contact, its disc, and whether it fell back.
+    fn spread(&mut self, point: ContactPoint, x_m: [f64; 3], axis: [f64; 3]) -> (ContactPoint, Option<Disc>, bool) {
+        let radius_m = self.params.disc_radius_m;
+        if radius_m <= 0.0 {
+            return (point, None, false);
+        }
+        let Some(tet) = point.tet_idx() else { return (point, None, true) };
+        let disc = Disc { centre_m: x_m, axis, radius_m };
+        let w = &mut self.scratch.disc;
+        if disc_weights_into(self.model.mesh(), self.model.locator(), &disc, w).is_err() || w.covered_fraction() < 1.0 - DISC_COVER_TOL {
+            return (point, None, true);
+        }
+        match ContactPoint::disc(tet, w.nodes().iter().copied().zip(w.weights().iter().copied())) {
+            Ok(c) => (c, Some(disc), false),
+            Err(_) => (point, None, true),
+        }
     }
 
     /// The distance rule of a capture: whether the material point `contact` at reference
@@ -279,16 +320,25 @@ impl Simulation3 {
                 k += 1;
                 continue;
             }
-            self.pending.remove(k);
             if self.too_close(&contact, x) || self.pts.len() == self.params.max_contacts {
+                self.pending.remove(k);
                 self.stats.pending_dropped += 1;
                 continue;
             }
+            let (contact, disc, fell_back) = self.spread(contact, x, t);
+            if !self.cache.contains_contact(&contact) {
+                // The disc reaches nodes beyond the point's: they are the ones to fetch.
+                first_missing.get_or_insert(contact);
+                k += 1;
+                continue;
+            }
+            self.pending.remove(k);
             let d = sub(x, base);
             let region = self.region_of(&contact);
             if !self.add_held_point(contact, frame, d, s)? {
                 continue;
             }
+            self.stats.patch_fallbacks += u64::from(fell_back);
             self.pts.push(Point {
                 contact,
                 x_ref_m: x,
@@ -305,11 +355,66 @@ impl Simulation3 {
                 u_world: sub(q, x),
                 lat_ref_m: [-dot(frame[1], d), -dot(frame[2], d)],
                 f_ref_local_n: [0.0; 3],
+                disc,
             });
             self.stats.captures += 1;
             self.stats.late_captures += 1;
             admitted += 1;
         }
         Ok(first_missing)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::d3::disc::{DiscWeights, disc_weights_into};
+    use crate::fixtures::{box_phantom3, box_phantom3_params};
+    use crate::sim3::{BasePose3, Simulation3};
+
+    /// Issue 37: with `disc_radius_m` > 0 a captured contact is the disc across the shaft at its
+    /// material point: its terms are [`disc_weights_into`]'s for that disc (same nodes, same
+    /// weights), and they interpolate a linear field to its value at the disc's centre (the
+    /// mean of a linear field over a disc). A distorted field checks the weights, not only
+    /// their sum.
+    #[test]
+    fn issue_37_a_disc_contact_has_the_discs_weights_and_interpolates_a_linear_field_to_its_centre() {
+        let model = box_phantom3(13);
+        let mut params = box_phantom3_params([0.0513, 0.0487, 0.1], 0.005);
+        params.disc_radius_m = 0.635e-3;
+        let mut sim = Simulation3::new(model.clone(), params).unwrap();
+        let start = sim.pose();
+        for k in 1..=3250 {
+            let p = start.position_m;
+            sim.step(BasePose3::from_rotation([p[0], p[1], p[2] - 2e-5 * k as f64], start.orientation)).unwrap();
+            sim.prefetch_columns(usize::MAX).unwrap();
+        }
+        let mesh = model.mesh();
+        let mut w = DiscWeights::with_capacity(64);
+        let field = |x: [f64; 3]| [0.3 + 2.0 * x[0] - 5.0 * x[1] + 7.0 * x[2], -1.0 + 11.0 * x[0] + 0.5 * x[2], 4.0 * x[1] - 3.0 * x[2]];
+        let mut discs = 0;
+        let mut several_tets = 0;
+        for p in &sim.pts {
+            let Some(disc) = p.disc else { continue };
+            discs += 1;
+            assert!(p.contact.is_disc(), "a point with a disc is a disc contact");
+            assert_eq!(disc.centre_m, p.x_ref_m, "the disc is centred at the material point");
+            assert!((disc.radius_m - 0.635e-3).abs() < 1e-18);
+            disc_weights_into(mesh, model.locator(), &disc, &mut w).unwrap();
+            let ours: Vec<(usize, f64)> = p.contact.terms().map(|(n, v)| (n.index(), v)).collect();
+            let want: Vec<(usize, f64)> = w.nodes().iter().copied().zip(w.weights().iter().copied()).filter(|t| t.1 != 0.0).collect();
+            assert_eq!(ours, want, "the contact's terms are the disc's weights");
+            several_tets += usize::from(ours.len() > 4);
+            let got = p.contact.interpolate(|n| field(mesh.nodes_m()[n.index()]));
+            let at_centre = field(disc.centre_m);
+            for c in 0..3 {
+                assert!((got[c] - at_centre[c]).abs() < 1e-13, "component {c}: {} against {} at the centre", got[c], at_centre[c]);
+            }
+        }
+        eprintln!("{discs} discs of {} contacts, {several_tets} across faces; {:?}", sim.pts.len(), sim.stats());
+        assert!(discs >= 4, "the needle holds discs: {discs} of {}", sim.pts.len());
+        assert!(several_tets >= 1, "some disc crosses a face: {several_tets}");
+        // A held point without a disc fell back, and was counted.
+        let points = sim.pts.len() - discs;
+        assert!(points as u64 <= sim.stats().patch_fallbacks, "{points} points, {:?}", sim.stats());
     }
 }

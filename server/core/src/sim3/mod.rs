@@ -32,7 +32,14 @@
 //!    keeps trying where it is; once it has gone a spacing beyond where the capture first
 //!    waited, that position waits in a list and the tissue point there joins as a stuck shaft
 //!    point when its columns arrive ([`Sim3Stats::late_captures`]), so a worker behind the tip
-//!    delays the points it passes rather than losing them.
+//!    delays the points it passes rather than losing them. With
+//!    [`Sim3Params::disc_radius_m`] > 0 (`[needle] spread_contact = true`) each captured point is
+//!    spread over the disc of that radius across the shaft there (centre $X$, axis the tangent
+//!    $t$): its weights are the shape functions averaged over the disc, $w_k = \frac{1}{\pi r^2}
+//!    \int_{\mathcal D} N_k\,\mathrm dA$ ([`crate::d3::disc`], exact), so its conditions are on the
+//!    tissue's mean displacement over the needle's cross-section; a disc with more than
+//!    [`crate::contact::MAX_TERMS`] nodes or not wholly inside the tissue stays a point
+//!    ([`Sim3Stats::patch_fallbacks`]).
 //! 5. **Friction**: each shaft point gets the integral of the friction distribution of the
 //!    paper's Fig. 2b over its tributary segment ([`RegionNeedleParams::friction_integral_n`]),
 //!    plus the rate-dependent part $b_v |v| \lambda$ of [`crate::needle`] ($v$ the base's speed

@@ -2,6 +2,8 @@
 //! ([`StepOutput3`], rewritten in place), the life-long counters ([`Sim3Stats`]), and the static
 //! problem the last step solved ([`Snapshot3`]).
 
+use crate::contact::ContactPoint;
+use crate::d3::disc::Disc;
 use crate::ids::{Axis, Slot};
 use crate::mixed::Condition;
 
@@ -36,6 +38,10 @@ pub struct Sim3Stats {
     /// Held points torn free: their force across the shaft exceeded what their region's tissue
     /// holds (`needlesim_core::sim3::tear`; also counted in `releases`).
     pub tears: u64,
+    /// Contacts taken as points although [`Sim3Params::disc_radius_m`] spreads them over a
+    /// disc: the disc touched more than [`crate::contact::MAX_TERMS`] nodes or was not wholly
+    /// inside the tissue (as 2D's `patch_fallbacks`).
+    pub patch_fallbacks: u64,
     /// Approaching nodes not reported (list full).
     pub approaching_overflow: u64,
     /// Cached nodes evicted to make room.
@@ -106,12 +112,18 @@ pub struct StepOutput3 {
     pub targets: TargetsOut3,
 }
 
-/// One point of [`Snapshot3`], in the exchange format's terms (`points`: `x`, `frame`, `ut`,
-/// `un`, `ub`, `f`), with the simulation's answer.
+/// One contact of [`Snapshot3`], in the exchange format's terms (`points`: `x`, `frame`, `ut`,
+/// `un`, `ub`, `f`; a disc as `patches`: its nodes and weights instead of `x`), with the
+/// simulation's answer.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SnapshotPoint3 {
-    /// Reference position, m.
+    /// Reference position, m (a disc's centre).
     pub x_m: [f64; 3],
+    /// Where the contact sits in the mesh: a material point's tetrahedron and barycentric
+    /// weights, or a disc's nodes and weights ([`ContactPoint::terms`]).
+    pub contact: ContactPoint,
+    /// The disc the contact spreads over (its axis as captured), `None` for a material point.
+    pub disc: Option<Disc>,
     /// Frame rows $[t, n, b]$ as the solver holds them.
     pub frame: [[f64; 3]; 3],
     /// Prescribed displacement components (m), `None` where free.
@@ -136,8 +148,8 @@ pub struct Snapshot3 {
 }
 
 impl Simulation3 {
-    /// The static problem the last step solved: per working point its reference position,
-    /// frame, prescribed displacement components, prescribed (friction) force in world
+    /// The static problem the last step solved: per working point its reference position (and
+    /// its terms: a point's tetrahedron or a disc's nodes and weights), frame, prescribed displacement components, prescribed (friction) force in world
     /// components, and the simulation's force and displacement there. Allocates (not for the
     /// real-time thread).
     pub fn snapshot(&self) -> Snapshot3 {
@@ -160,6 +172,8 @@ impl Simulation3 {
                 }
                 SnapshotPoint3 {
                     x_m: p.x_ref_m,
+                    contact: p.contact,
+                    disc: p.disc,
                     frame,
                     ut: disp(Axis::Axial),
                     un: disp(Axis::Lateral),

@@ -17,6 +17,14 @@ pub struct Sim3Params {
     /// both points' tetrahedron diameters (independent conditions), so on a coarse mesh the
     /// points are that far apart.
     pub spacing_m: f64,
+    /// Radius of each contact's disc, m: 0 (the default) for a material point; else each
+    /// captured contact is spread over the disc of this radius across the shaft at the point
+    /// (centre the material point, axis the needle's tangent there), its weights the shape
+    /// functions averaged over the disc ([`crate::d3::disc`], [`crate::ContactPoint::disc`]). A
+    /// disc with more than [`crate::contact::MAX_TERMS`] nodes or not wholly inside the tissue
+    /// stays a point (counted in [`super::Sim3Stats::patch_fallbacks`]). The needle's radius for
+    /// `[needle] spread_contact = true` (issue 37).
+    pub disc_radius_m: f64,
     /// Needle–tissue parameters per region of the mesh (one per region, in the mesh's order).
     pub regions: Vec<RegionNeedleParams>,
     /// Ticks per second: a step's output time is $t = k / f_{tick}$.
@@ -111,7 +119,8 @@ impl StoreKind3 {
 }
 
 impl Sim3Params {
-    /// The defaults for a needle of `needle_length_m` in a one-region tissue: 2 mm spacing,
+    /// The defaults for a needle of `needle_length_m` in a one-region tissue: 2 mm spacing, point
+    /// contacts,
     /// the phantom's [`RegionNeedleParams::default`], 1 kHz, 256 contacts, 20 mm lookahead,
     /// 2 mm and 0.05 rad per tick at most, 20 active-set iterations, 4096 cached nodes with columns, 384 with node blocks,
     /// the store chosen by mesh size ([`StoreKind3::Auto`]), no targets.
@@ -120,6 +129,7 @@ impl Sim3Params {
             needle_length_m,
             initial_pose,
             spacing_m: 0.002,
+            disc_radius_m: 0.0,
             regions: vec![RegionNeedleParams::default()],
             tick_rate_hz: 1000.0,
             max_contacts: 256,
@@ -152,6 +162,13 @@ impl Sim3Params {
         pos("max_base_step_m", self.max_base_step_m)?;
         pos("max_base_step_rad", self.max_base_step_rad)?;
         pos("tear_force_factor", self.tear_force_factor)?;
+        if !(self.disc_radius_m.is_finite() && self.disc_radius_m >= 0.0 && self.disc_radius_m <= max_len) {
+            return Err(format!(
+                "disc_radius_m = {} must be finite, ≥ 0 and ≤ {} m",
+                crate::num::num(self.disc_radius_m),
+                crate::num::num(max_len)
+            ));
+        }
         if !(self.lookahead_m.is_finite() && self.lookahead_m >= 0.0) {
             return Err(format!("lookahead_m = {} must be finite and ≥ 0", crate::num::num(self.lookahead_m)));
         }

@@ -1,8 +1,10 @@
 //! The 3D step's scratch: buffers a stage fills and reads within one tick (the friction order,
-//! the active set's changes) and the work space of the prefetch between steps (a column solve's,
-//! or the node-block store's own worker), sized up front or made on first use.
+//! the active set's changes, a capture's disc weights) and the work space of the prefetch between
+//! steps (a column solve's, or the node-block store's own worker), sized up front or made on
+//! first use.
 
 use crate::d3::TetColumnScratch;
+use crate::d3::disc::DiscWeights;
 use crate::ids::Slot;
 
 use super::active_set::Change;
@@ -23,4 +25,12 @@ pub(super) struct Scratch3 {
     pub block_worker: Option<Box<Sim3BlockWorker>>,
     /// The requests of one [`super::Simulation3::prefetch`] (storage reused).
     pub block_requests: Vec<BlockRequest>,
+    /// A capture's disc weights ([`super::Sim3Params::disc_radius_m`]), room for
+    /// [`DISC_SCRATCH_NODES`] nodes.
+    pub disc: DiscWeights,
 }
+
+/// Nodes a capture's disc may touch before [`crate::d3::disc::disc_weights_into`] gives up (more
+/// than [`crate::contact::MAX_TERMS`], so that a disc with a few nodes of weight zero is still
+/// seen whole; any disc over `MAX_TERMS` weighted nodes stays a point).
+pub const DISC_SCRATCH_NODES: usize = 4 * crate::contact::MAX_TERMS;

@@ -8,7 +8,9 @@ use crate::compliance::ComplianceCache3;
 use crate::d3::TetTissueModel;
 use crate::mixed::MixedSolver3;
 
-use super::scratch::Scratch3;
+use crate::d3::disc::DiscWeights;
+
+use super::scratch::{DISC_SCRATCH_NODES, Scratch3};
 use super::{
     BasePose3, ComplianceStore3, MAX_APPROACHING, MAX_PENDING_CAPTURES, NodeBlockStore, Sim3Params, Sim3Stats, SimError3, Simulation3,
     StepOutput3, StoreKind3, TargetsOut3, flex, stiffness, targets,
@@ -79,6 +81,7 @@ impl Simulation3 {
                 column_scratch: None,
                 block_worker: None,
                 block_requests: Vec::new(),
+                disc: DiscWeights::with_capacity(DISC_SCRATCH_NODES),
             },
             out,
             stiffness: stiffness::StiffnessScratch::with_capacity(cap, flex.is_some()),

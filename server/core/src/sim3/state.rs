@@ -2,6 +2,7 @@
 //! bookkeeping ([`Point`], by slot as the solver's), and their removal from the working set.
 
 use crate::contact::ContactPoint;
+use crate::d3::disc::Disc;
 use crate::ids::Slot;
 use crate::mixed::MixedError;
 
@@ -42,6 +43,9 @@ pub(super) struct Point {
     /// the force (its frame) the reference shape is in equilibrium with ([`flex`]).
     pub lat_ref_m: [f64; 2],
     pub f_ref_local_n: [f64; 3],
+    /// The disc `contact` spreads over (centre `x_ref_m`, the tangent at capture), `None` for a
+    /// material point ([`super::Sim3Params::disc_radius_m`]).
+    pub disc: Option<Disc>,
 }
 
 impl Simulation3 {
