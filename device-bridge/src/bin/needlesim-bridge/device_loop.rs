@@ -2,20 +2,20 @@
 //! force in, rendered and written to the device; what it carries from period to period.
 
 use std::io::Write;
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::Duration;
 
-use anyhow::{Context, Result, anyhow, bail};
-use clap::{CommandFactory, Parser, ValueEnum};
-use needlesim_bridge::device::{
-    Device, DeviceState, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm,
-};
-use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
-use needlesim_bridge::render::{Pose6, RenderOutput, RenderParams, Renderer, ServerSample};
+use anyhow::{Result, bail};
+use needlesim_bridge::device::{Device, force_norm};
+use needlesim_bridge::remote::RemoteSample;
+use needlesim_bridge::render::{RenderParams, Renderer, ServerSample};
 use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{Broken, DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
-use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
+use needlesim_channel::shm::monotonic_ns;
+
+use crate::link::{Link, align_with_session, exchange_remote, exchange_shm, lost_link_error, session_dimension};
+use crate::report::Report;
+use crate::trace::{open_trace, write_trace_row};
+use crate::{Cli, RenderMode, STOP};
 
 /// The write times of the last [`RING`] poses are kept, by counter, to time the force that answers each.
 pub(crate) const RING: u64 = 1024;
@@ -51,7 +51,7 @@ impl LoopState {
 }
 
 /// The renderer's parameters from the command line and the device.
-pub(crate) fn render_params(cli: &Cli, device: &dyn Device) -> Result<RenderParams> {
+fn render_params(cli: &Cli, device: &dyn Device) -> Result<RenderParams> {
     if !(cli.rate_hz.is_finite() && cli.rate_hz > 0.0) {
         bail!("--rate-hz must be positive, got {}", cli.rate_hz);
     }
@@ -71,7 +71,7 @@ pub(crate) fn render_params(cli: &Cli, device: &dyn Device) -> Result<RenderPara
 /// The drift-free schedule of the device loop (period k at t0 + k·Δt: needlesim_channel::schedule),
 /// t0 just before one of the session's ticks when phase-aligned (`report.aligned`), ending after
 /// `--seconds` (executed plus missed periods = S·rate).
-pub(crate) fn start_schedule(cli: &Cli, link: &Link, period: Duration, periods_total: Option<u64>, report: &mut Report) -> Schedule {
+fn start_schedule(cli: &Cli, link: &Link, period: Duration, periods_total: Option<u64>, report: &mut Report) -> Schedule {
     let clock = MonotonicClock::new();
     let mut schedule = match align_with_session(cli, link, period) {
         Some(phase) => {

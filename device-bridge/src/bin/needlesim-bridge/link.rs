@@ -2,21 +2,19 @@
 //! period's exchange over either, the alignment with the session's tick phase, and the error a
 //! lost link ends the bridge with.
 
-use std::io::Write;
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::Duration;
 
-use anyhow::{Context, Result, anyhow, bail};
-use clap::{CommandFactory, Parser, ValueEnum};
-use needlesim_bridge::device::{
-    Device, DeviceState, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm,
-};
-use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
-use needlesim_bridge::render::{Pose6, RenderOutput, RenderParams, Renderer, ServerSample};
-use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{Broken, DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
-use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
+use anyhow::{Result, anyhow, bail};
+use needlesim_bridge::device::DeviceState;
+use needlesim_bridge::remote::RemoteLink;
+use needlesim_bridge::render::ServerSample;
+use needlesim_channel::shm::{Broken, DeviceEnd, DevicePose, ReadStatus, ServerForce, monotonic_ns};
+use needlesim_channel::spatial::restrict_planar_stiffness;
+
+use crate::device_loop::{LoopState, RING};
+use crate::report::Report;
+use crate::{Cli, STOP};
 
 /// The link to the session: the shared-memory channel or the gRPC remote link.
 pub(crate) enum Link {
@@ -40,7 +38,7 @@ pub(crate) struct Exchange {
 
 /// How long the bridge waits at start for a session that has not published its tick phase yet
 /// (its real-time thread publishes it before its first tick, just after creating the channel).
-pub(crate) const PHASE_WAIT: Duration = Duration::from_millis(500);
+const PHASE_WAIT: Duration = Duration::from_millis(500);
 
 /// Where the device loop's period 0 should fall to run `--phase-lead-us` before the session's
 /// ticks (on `CLOCK_MONOTONIC`), or `None` to run on its own phase: no lead, the remote link, a
@@ -157,7 +155,7 @@ pub(crate) fn exchange_shm(
 }
 
 /// Logs the first non-zero stiffness at the needle base (once per run).
-pub(crate) fn log_first_stiffness(planar: bool, k: &[[f64; 6]; 6]) {
+fn log_first_stiffness(planar: bool, k: &[[f64; 6]; 6]) {
     if planar {
         let j = restrict_planar_stiffness(k);
         tracing::info!(

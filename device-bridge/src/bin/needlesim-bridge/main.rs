@@ -52,21 +52,19 @@
 //!   it is a true round trip too (the server echoes the pose's client time);
 //! - `force_age_us`: (time the bridge first saw a force) − its `t_ns` (the server → bridge part).
 
-use std::io::Write;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Context, Result, bail};
 use clap::{CommandFactory, Parser, ValueEnum};
-use needlesim_bridge::device::{
-    Device, DeviceState, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm,
-};
-use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
-use needlesim_bridge::render::{Pose6, RenderOutput, RenderParams, Renderer, ServerSample};
-use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{Broken, DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
-use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
+use needlesim_bridge::device::{Device, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator};
+use needlesim_bridge::remote::{RemoteConfig, RemoteLink};
+use needlesim_channel::shm::{DeviceChannel, WATCH_PERIOD};
+
+use crate::device_loop::run;
+use crate::link::Link;
+use crate::report::Report;
 
 mod device_loop;
 mod link;

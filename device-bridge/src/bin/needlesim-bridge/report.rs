@@ -1,21 +1,8 @@
 //! The bridge's report at exit: counts, latency percentiles and the final pose and stiffness,
 //! as text or JSON.
 
-use std::io::Write;
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
-
-use anyhow::{Context, Result, anyhow, bail};
-use clap::{CommandFactory, Parser, ValueEnum};
-use needlesim_bridge::device::{
-    Device, DeviceState, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm,
-};
-use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
-use needlesim_bridge::render::{Pose6, RenderOutput, RenderParams, Renderer, ServerSample};
-use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{Broken, DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
-use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
+use needlesim_bridge::render::Pose6;
+use needlesim_channel::spatial::restrict_planar_stiffness;
 
 #[derive(Debug, Default)]
 pub(crate) struct Report {
@@ -50,7 +37,7 @@ pub(crate) struct Report {
     pub(crate) last_stiffness: Option<[[f64; 6]; 6]>,
 }
 
-pub(crate) fn percentile_us(v: &mut [u64], p: f64) -> Option<f64> {
+fn percentile_us(v: &mut [u64], p: f64) -> Option<f64> {
     if v.is_empty() {
         return None;
     }
@@ -59,14 +46,14 @@ pub(crate) fn percentile_us(v: &mut [u64], p: f64) -> Option<f64> {
     Some(v[i] as f64 / 1e3)
 }
 
-pub(crate) fn json_num(x: Option<f64>) -> String {
+fn json_num(x: Option<f64>) -> String {
     match x {
         Some(v) if v.is_finite() => format!("{v}"),
         _ => "null".into(),
     }
 }
 
-pub(crate) fn json_str(s: &str) -> String {
+fn json_str(s: &str) -> String {
     let mut o = String::from("\"");
     for c in s.chars() {
         match c {
@@ -81,7 +68,7 @@ pub(crate) fn json_str(s: &str) -> String {
 }
 
 impl Report {
-    fn print(&mut self, json: bool) {
+    pub(crate) fn print(&mut self, json: bool) {
         let p2f = [
             percentile_us(&mut self.pose_to_force_ns, 0.5),
             percentile_us(&mut self.pose_to_force_ns, 0.99),

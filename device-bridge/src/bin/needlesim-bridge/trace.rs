@@ -1,20 +1,14 @@
 //! The bridge's per-period trace (`--trace CSV`): 2D or 6-DOF columns by the session's dimension.
 
 use std::io::Write;
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
 
-use anyhow::{Context, Result, anyhow, bail};
-use clap::{CommandFactory, Parser, ValueEnum};
-use needlesim_bridge::device::{
-    Device, DeviceState, OperatorParams, PluginDevice, ScriptedDevice, Trajectory, VirtualOperator, force_norm,
-};
-use needlesim_bridge::remote::{RemoteConfig, RemoteLink, RemoteSample};
-use needlesim_bridge::render::{Pose6, RenderOutput, RenderParams, Renderer, ServerSample};
-use needlesim_channel::schedule::{MonotonicClock, Schedule};
-use needlesim_channel::shm::{Broken, DeviceChannel, DeviceEnd, DevicePose, ReadStatus, ServerForce, WATCH_PERIOD, monotonic_ns};
-use needlesim_channel::spatial::{restrict_planar_stiffness, wrench_to_planar};
+use anyhow::{Context, Result};
+use needlesim_bridge::device::DeviceState;
+use needlesim_bridge::render::RenderOutput;
+use needlesim_channel::spatial::wrench_to_planar;
+
+use crate::Cli;
+use crate::link::Exchange;
 
 pub(crate) type Trace = std::io::BufWriter<std::fs::File>;
 
