@@ -1,27 +1,23 @@
 //! What Python hands a simulation: poses checked and converted, the simulations built from a
 //! scene, trajectories read from a file or an array, and `needlesim.tick_poses`.
 
-use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
-use needlesim_core::sim::{NodeState, Simulation, StepOutput};
-use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
-use needlesim_offline::{
-    ConvergencePolicy, MAX_TICKS_LIMIT, RunError, RunOptions, RunTotals, Script, ScriptedRun, ScriptedSim, preallocated_ticks, simulate,
-};
+use needlesim_core::sim::Simulation;
+use needlesim_core::sim3::{BasePose3, SimError3, Simulation3};
+use needlesim_offline::{RunOptions, Script, ScriptedRun, simulate};
 use needlesim_scene::{MAX_ABS_POSE, Scene, Scene3d, Trajectory, Trajectory3};
-use numpy::ndarray::{Array2, Array3};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::errors::{
-    NeedlesimError, PoseError, SimulationError, TrajectoryError, chain, run_error, sim_error, sim3_error, trajectory_error,
-};
+use crate::errors::{NeedlesimError, PoseError, TrajectoryError, chain, run_error, sim_error, sim3_error, trajectory_error};
 use crate::scene::{PyScene, SceneKind, sim3_params};
+
+use super::results::array2;
+use super::run::{MaxTicks, check_max_ticks};
 
 pub(super) fn pose2(v: &[f64]) -> PyResult<BasePose> {
     match v {
@@ -36,7 +32,7 @@ pub(super) fn pose2(v: &[f64]) -> PyResult<BasePose> {
 /// A stepped pose's positions and angles within ±[`MAX_ABS_POSE`], the bound a trajectory's are
 /// held to (`run` refused what `step` took): PoseError naming the component, the state unchanged.
 /// A NaN or infinite component is the step's to refuse (the simulation's non-finite pose error).
-pub(super) fn check_range(values: &[(&str, f64)]) -> PyResult<()> {
+fn check_range(values: &[(&str, f64)]) -> PyResult<()> {
     for &(name, v) in values {
         if v.is_finite() && v.abs() > MAX_ABS_POSE {
             return Err(PoseError::new_err(format!(
@@ -86,7 +82,7 @@ pub(super) enum Traj {
 
 /// A trajectory as CSV text from a (rows, columns) array, for the trajectory crate's parser
 /// (which checks it as it checks a file): `{}` writes each f64 so that it reads back exactly.
-pub(super) fn csv_from_array(header: &str, arr: &PyReadonlyArray2<'_, f64>) -> String {
+fn csv_from_array(header: &str, arr: &PyReadonlyArray2<'_, f64>) -> String {
     let a = arr.as_array();
     let mut s = String::with_capacity(header.len() + 1 + a.len() * 24);
     s.push_str(header);
@@ -146,7 +142,7 @@ pub(super) fn read_trajectory(py: Python<'_>, scene: &SceneKind, obj: Option<&Bo
 }
 
 /// `tick_poses`' result: the tick times and the poses.
-pub(super) type TickPoses<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
+type TickPoses<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
 
 /// The base pose of each tick of a scripted run, as :meth:`Simulation.run` and
 /// ``needlesim-server simulate`` command them: the trajectory sampled at the scene's tick rate

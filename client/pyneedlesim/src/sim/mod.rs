@@ -11,27 +11,21 @@
 //! generic step of both dimensions ([`step_after_prefetch`]): a Python loop of `step` over a
 //! trajectory's tick poses gives the `simulate` command's numbers; `run` is that driver's run.
 
-use std::ops::ControlFlow;
-use std::path::PathBuf;
 use std::sync::Arc;
 
-use needlesim_core::BasePose;
-use needlesim_core::d3::TetTissueModel;
-use needlesim_core::sim::{NodeState, Simulation, StepOutput};
-use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
-use needlesim_offline::{
-    ConvergencePolicy, MAX_TICKS_LIMIT, RunError, RunOptions, RunTotals, Script, ScriptedRun, ScriptedSim, preallocated_ticks, simulate,
-};
-use needlesim_scene::{MAX_ABS_POSE, Scene, Scene3d, Trajectory, Trajectory3};
-use numpy::ndarray::{Array2, Array3};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
+use needlesim_core::sim::Simulation;
+use needlesim_core::sim3::{BasePose3, SimError3, Simulation3};
+use needlesim_offline::{ConvergencePolicy, preallocated_ticks, simulate};
+use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{
-    NeedlesimError, PoseError, SimulationError, TrajectoryError, chain, run_error, sim_error, sim3_error, trajectory_error,
-};
-use crate::scene::{PyScene, SceneKind, sim3_params};
+use crate::errors::{NeedlesimError, SimulationError, run_error, sim_error, sim3_error, trajectory_error};
+use crate::scene::{PyScene, SceneKind};
+
+use self::inputs::{Traj, new_sim2, new_sim3, pose2, pose3, read_trajectory};
+use self::results::{Series, array2, array3, code2};
+use self::run::{MaxTicks, Progress, check_max_ticks, run3, step_after_prefetch};
 
 mod inputs;
 mod results;

@@ -1,27 +1,11 @@
 //! What a step and a run give Python: [`StepResult`] (one tick) and [`RunResult`] (a whole
 //! run's series), as NumPy arrays, with the contact-state codes.
 
-use std::ops::ControlFlow;
-use std::path::PathBuf;
-use std::sync::Arc;
-
-use needlesim_core::BasePose;
-use needlesim_core::d3::TetTissueModel;
-use needlesim_core::sim::{NodeState, Simulation, StepOutput};
-use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
-use needlesim_offline::{
-    ConvergencePolicy, MAX_TICKS_LIMIT, RunError, RunOptions, RunTotals, Script, ScriptedRun, ScriptedSim, preallocated_ticks, simulate,
-};
-use needlesim_scene::{MAX_ABS_POSE, Scene, Scene3d, Trajectory, Trajectory3};
+use needlesim_core::sim::{NodeState, StepOutput};
+use needlesim_core::sim3::{BasePose3, PointState3, StepOutput3, TargetState3};
 use numpy::ndarray::{Array2, Array3};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
-
-use crate::errors::{
-    NeedlesimError, PoseError, SimulationError, TrajectoryError, chain, run_error, sim_error, sim3_error, trajectory_error,
-};
-use crate::scene::{PyScene, SceneKind, sim3_params};
 
 pub(super) fn code2(s: NodeState) -> i8 {
     match s {
@@ -31,7 +15,7 @@ pub(super) fn code2(s: NodeState) -> i8 {
     }
 }
 
-pub(super) fn code3(s: PointState3) -> i8 {
+fn code3(s: PointState3) -> i8 {
     match s {
         PointState3::Stuck => 0,
         PointState3::Slipping => 1,
@@ -39,7 +23,7 @@ pub(super) fn code3(s: PointState3) -> i8 {
     }
 }
 
-pub(super) fn pose3_values(p: &BasePose3) -> [f64; 7] {
+fn pose3_values(p: &BasePose3) -> [f64; 7] {
     let q = p.orientation.into_inner();
     [p.position_m[0], p.position_m[1], p.position_m[2], q.w, q.i, q.j, q.k]
 }
@@ -103,7 +87,7 @@ pub struct StepResult {
 }
 
 impl StepResult {
-    fn from2(out: &StepOutput) -> Self {
+    pub(super) fn from2(out: &StepOutput) -> Self {
         let b = out.base;
         let nn = &out.needle_nodes;
         Self {
@@ -132,7 +116,7 @@ impl StepResult {
         }
     }
 
-    fn from3(out: &StepOutput3) -> Self {
+    pub(super) fn from3(out: &StepOutput3) -> Self {
         let c = &out.contacts;
         let count = |s: PointState3| c.iter().filter(|p| p.state == s).count();
         Self {
@@ -244,29 +228,29 @@ impl StepResult {
 pub struct RunResult {
     /// 2 or 3.
     #[pyo3(get)]
-    dim: usize,
+    pub(super) dim: usize,
     /// Ticks stepped.
     #[pyo3(get)]
-    ticks: u64,
+    pub(super) ticks: u64,
     /// Ticks whose commanded pose was clamped.
     #[pyo3(get)]
-    clamped_ticks: u64,
+    pub(super) clamped_ticks: u64,
     /// Ticks whose active set did not settle within the iteration bound.
     #[pyo3(get)]
-    unconverged_ticks: u64,
+    pub(super) unconverged_ticks: u64,
     /// Columns a step had to compute itself (2D; 0 in 3D, whose step never computes one).
     #[pyo3(get)]
-    column_misses: u64,
+    pub(super) column_misses: u64,
     /// Ticks at which a new contact waited a tick for its columns.
     #[pyo3(get)]
-    column_deferrals: u64,
+    pub(super) column_deferrals: u64,
     /// Nodes whose compliance columns were computed between steps.
     #[pyo3(get)]
-    prefetched_columns: u64,
+    pub(super) prefetched_columns: u64,
     /// Whether the progress callback ended the run early (by raising).
     #[pyo3(get)]
-    stopped_early: bool,
-    series: Series,
+    pub(super) stopped_early: bool,
+    pub(super) series: Series,
 }
 
 /// The columns of a run, flat, row-major.
@@ -290,7 +274,7 @@ pub(super) struct Series {
 }
 
 impl Series {
-    fn with_capacity(dim: usize, n_targets: usize, ticks: usize) -> Self {
+    pub(super) fn with_capacity(dim: usize, n_targets: usize, ticks: usize) -> Self {
         let r = dim * (dim - 1) / 2;
         let pw = if dim == 2 { 3 } else { 7 };
         Self {
@@ -312,7 +296,7 @@ impl Series {
         }
     }
 
-    fn push2(&mut self, out: &StepOutput, t_s: f64, step_s: f64) {
+    pub(super) fn push2(&mut self, out: &StepOutput, t_s: f64, step_s: f64) {
         let b = out.base;
         self.converged.push(out.unconverged().is_none());
         self.t_s.push(t_s);
@@ -332,7 +316,7 @@ impl Series {
         self.step_times_s.push(step_s);
     }
 
-    fn push3(&mut self, out: &StepOutput3, t_s: f64, step_s: f64) {
+    pub(super) fn push3(&mut self, out: &StepOutput3, t_s: f64, step_s: f64) {
         let count = |s: PointState3| out.contacts.iter().filter(|p| p.state == s).count() as i64;
         self.converged.push(out.unconverged().is_none());
         self.t_s.push(t_s);

@@ -2,26 +2,18 @@
 //! driver, and the one generic step of both dimensions ([`step_after_prefetch`]).
 
 use std::ops::ControlFlow;
-use std::path::PathBuf;
 use std::sync::Arc;
 
-use needlesim_core::BasePose;
 use needlesim_core::d3::TetTissueModel;
-use needlesim_core::sim::{NodeState, Simulation, StepOutput};
-use needlesim_core::sim3::{BasePose3, PointState3, SimError3, Simulation3, StepOutput3, TargetState3};
-use needlesim_offline::{
-    ConvergencePolicy, MAX_TICKS_LIMIT, RunError, RunOptions, RunTotals, Script, ScriptedRun, ScriptedSim, preallocated_ticks, simulate,
-};
-use needlesim_scene::{MAX_ABS_POSE, Scene, Scene3d, Trajectory, Trajectory3};
-use numpy::ndarray::{Array2, Array3};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
+use needlesim_core::sim3::{SimError3, Simulation3};
+use needlesim_offline::{ConvergencePolicy, MAX_TICKS_LIMIT, RunError, RunOptions, RunTotals, Script, ScriptedRun, ScriptedSim};
+use needlesim_scene::{Scene3d, Trajectory3};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::errors::{
-    NeedlesimError, PoseError, SimulationError, TrajectoryError, chain, run_error, sim_error, sim3_error, trajectory_error,
-};
-use crate::scene::{PyScene, SceneKind, sim3_params};
+use crate::errors::TrajectoryError;
+use crate::scene::sim3_params;
+
+use super::results::Series;
 
 /// Reports progress every `every` ticks (and checks for Ctrl-C); an exception stops the run.
 pub(super) struct Progress<'a> {
@@ -32,7 +24,7 @@ pub(super) struct Progress<'a> {
 }
 
 impl Progress<'_> {
-    fn tick(&mut self, done: u64) -> ControlFlow<()> {
+    pub(super) fn tick(&mut self, done: u64) -> ControlFlow<()> {
         if self.every == 0 || (!done.is_multiple_of(self.every) && done != self.total) {
             return ControlFlow::Continue(());
         }
