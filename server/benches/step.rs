@@ -7,9 +7,10 @@
 use std::time::Instant;
 
 use needlesim_core::fixtures::phantom_bench;
-use needlesim_core::sim::Simulation;
 use needlesim_core::{BasePose, FlexibleNeedle, NeedleShape};
 use needlesim_lab::bench::{machine, pct};
+use needlesim_offline::ConvergencePolicy;
+use needlesim_offline::driver::{RunOptions, Script, ScriptedRun};
 
 fn main() {
     let sizes: Vec<usize> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
@@ -59,17 +60,18 @@ fn main() {
             if needle != "rigid" {
                 params.needle = NeedleShape::Flexible(f);
             }
-            let mut sim = Simulation::new(model.clone(), params).unwrap();
+            // The offline driver times each step alone and computes up to 64 columns between
+            // steps (untimed), as this bench always has.
+            let opts = RunOptions { max_ticks: u64::MAX, prefetch_nodes_per_tick: Some(64), convergence: ConvergencePolicy::Keep };
+            let mut run = ScriptedRun::new(model.clone(), params, Script::Poses(&poses), opts).unwrap();
             let mut times = Vec::with_capacity(poses.len());
             let mut max_nodes = 0;
-            let mut prefetched = 0;
-            for p in &poses {
-                let t = Instant::now();
-                let o = sim.step(*p).unwrap();
-                times.push(t.elapsed().as_secs_f64() * 1e6);
-                max_nodes = max_nodes.max(o.needle_nodes.len());
-                prefetched += sim.prefetch_columns(64).unwrap();
+            while let Some(tick) = run.next_tick().unwrap() {
+                times.push(tick.step_s * 1e6);
+                max_nodes = max_nodes.max(run.output().needle_nodes.len());
             }
+            let prefetched = run.prefetched_columns();
+            let sim = run.sim();
             let mean = times.iter().sum::<f64>() / times.len() as f64;
             times.sort_by(f64::total_cmp);
             println!(
