@@ -347,8 +347,8 @@ fn patch_weights(state: &serde_json::Value) -> Vec<std::collections::BTreeMap<u6
 /// after a roll about the axis, after a turn and while withdrawing, and the simulation's own
 /// answer matches it to the validation README's same-mesh tolerance (1e-9; point reactions
 /// 1e-8). The same contacts written as `discs` (centre, axis as captured, radius: `needle_points`)
-/// get the reference's own weights by its polar quadrature (good to about 1e-4): the simulation's
-/// exact weights agree within 1e-3. The cube phantom on a 13³ grid (every other key as shipped,
+/// get the reference's own weights by its polar quadrature (good to about 1e-4; one reference
+/// run for the discs of every dump): the simulation's exact weights agree within 1e-3. The cube phantom on a 13³ grid (every other key as shipped,
 /// as in the test above: the reference's LU on 21³ costs a minute per dump).
 #[test]
 fn issue_37_dumped_3d_states_with_patches_resolve_with_the_reference() {
@@ -378,6 +378,7 @@ fn issue_37_dumped_3d_states_with_patches_resolve_with_the_reference() {
     simulate_ok(&args2);
     let mut failures = Vec::new();
     let (mut n_patches, mut crossing, mut worst_w) = (0, 0, 0.0f64);
+    let (mut all_discs, mut all_patches, mut template) = (Vec::new(), Vec::new(), None);
     for &(what, k) in &ticks {
         let path = dir.join(format!("state-{k}.json"));
         let state = read_json(&path);
@@ -403,50 +404,53 @@ fn issue_37_dumped_3d_states_with_patches_resolve_with_the_reference() {
             Ok(m) => println!("  {}", m.iter().map(|(n, v)| format!("{n} {v:.1e}")).collect::<Vec<_>>().join(", ")),
             Err(e) => failures.push(format!("{what} (tick {k}): {e}")),
         }
-        // The same contacts as discs: the reference's quadrature weights.
-        let mut discs_sc = state.clone();
-        let obj = discs_sc.as_object_mut().unwrap();
-        let mut discs = Vec::new();
-        for (j, p) in state["patches"].as_array().unwrap().iter().enumerate() {
+        // The same contacts as discs, gathered over every dump for one reference run (the
+        // weights depend on the mesh and the disc only): unloaded (`f` = 0), so that discs of
+        // different dumps never conflict.
+        for (j, _) in state["patches"].as_array().unwrap().iter().enumerate() {
             let d = &needle[n_points + j]["disc"];
             assert!(d.is_object(), "{what}: patch {j} names its disc");
-            let mut e = p.as_object().unwrap().clone();
-            e.remove("nodes");
-            e.remove("weights");
+            let mut e = serde_json::Map::new();
             for key in ["x", "axis", "radius"] {
                 e.insert(key.into(), d[key].clone());
             }
-            discs.push(serde_json::Value::Object(e));
+            e.insert("frame".into(), state["patches"][j]["frame"].clone());
+            e.insert("f".into(), serde_json::json!([0.0, 0.0, 0.0]));
+            all_discs.push(serde_json::Value::Object(e));
         }
-        for key in ["patches", "simulation_result", "needle_points", "working_points", "output_stresses"] {
-            obj.remove(key);
-        }
-        obj.insert("discs".into(), serde_json::Value::Array(discs));
-        let discs_path = dir.join(format!("discs-{k}.json"));
-        write_json(&discs_path, &discs_sc);
-        let reference = dir.join(format!("discs-{k}.ref.json"));
-        let o = run(Command::new(python()).arg(validation_dir().join("fem_ref3d.py")).arg(&discs_path).arg(&reference));
-        assert!(o.status.success(), "fem_ref3d.py {} failed: {}", discs_path.display(), text(&o).1);
-        let r = read_json(&reference);
-        let theirs: Vec<std::collections::BTreeMap<u64, f64>> = r["disc_weights"]
-            .as_array()
-            .expect("disc_weights")
-            .iter()
-            .map(|d| {
-                let nodes = d["nodes"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap());
-                let mut m = std::collections::BTreeMap::new();
-                for (n, w) in nodes.zip(d["weights"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap())) {
-                    *m.entry(n).or_insert(0.0) += w;
-                }
-                m
-            })
-            .collect();
-        assert_eq!(theirs.len(), patches.len(), "{what}: one weight set per disc");
-        for (ours, theirs) in patches.iter().zip(&theirs) {
-            for n in ours.keys().chain(theirs.keys()) {
-                let d = (ours.get(n).copied().unwrap_or(0.0) - theirs.get(n).copied().unwrap_or(0.0)).abs();
-                worst_w = worst_w.max(d);
+        all_patches.extend(patches);
+        template = Some(state);
+    }
+    let mut discs_sc = template.expect("a dump");
+    let obj = discs_sc.as_object_mut().unwrap();
+    for key in ["points", "patches", "simulation_result", "needle_points", "working_points", "output_stresses"] {
+        obj.remove(key);
+    }
+    obj.insert("discs".into(), serde_json::Value::Array(all_discs));
+    let discs_path = dir.join("discs.json");
+    write_json(&discs_path, &discs_sc);
+    let reference = dir.join("discs.ref.json");
+    let o = run(Command::new(python()).arg(validation_dir().join("fem_ref3d.py")).arg(&discs_path).arg(&reference));
+    assert!(o.status.success(), "fem_ref3d.py {} failed: {}", discs_path.display(), text(&o).1);
+    let r = read_json(&reference);
+    let theirs: Vec<std::collections::BTreeMap<u64, f64>> = r["disc_weights"]
+        .as_array()
+        .expect("disc_weights")
+        .iter()
+        .map(|d| {
+            let nodes = d["nodes"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap());
+            let mut m = std::collections::BTreeMap::new();
+            for (n, w) in nodes.zip(d["weights"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap())) {
+                *m.entry(n).or_insert(0.0) += w;
             }
+            m
+        })
+        .collect();
+    assert_eq!(theirs.len(), all_patches.len(), "one weight set per disc");
+    for (ours, theirs) in all_patches.iter().zip(&theirs) {
+        for n in ours.keys().chain(theirs.keys()) {
+            let d = (ours.get(n).copied().unwrap_or(0.0) - theirs.get(n).copied().unwrap_or(0.0)).abs();
+            worst_w = worst_w.max(d);
         }
     }
     println!(

@@ -121,7 +121,7 @@ pub(super) fn step_after_prefetch<'s, S: ScriptedSim>(
     pose: S::Pose,
 ) -> Result<&'s S::Output, S::Error> {
     if std::mem::take(prefetch_due) {
-        sim.prefetch_columns(S::PREFETCH_NODES_PER_TICK)?;
+        sim.prefetch(S::PREFETCH_NODES_PER_TICK)?;
     }
     let out = sim.step(pose)?;
     *prefetch_due = true;
