@@ -119,16 +119,7 @@ impl ContactPoint {
         for (nodes, bary, len_m) in pieces {
             total += len_m;
             for (j, b) in nodes.into_iter().zip(bary) {
-                let w = b * len_m;
-                match out.nodes[..out.len as usize].iter().position(|n| n.0 == j) {
-                    Some(k) => out.weights[k] += w,
-                    None if (out.len as usize) < MAX_TERMS => {
-                        out.nodes[out.len as usize] = NodeIdx(j);
-                        out.weights[out.len as usize] = w;
-                        out.len += 1;
-                    }
-                    None => return Err(PatchError::TooManyNodes),
-                }
+                out.add_term(j, b * len_m)?;
             }
         }
         if !(total > 0.0) {
@@ -161,20 +152,30 @@ impl ContactPoint {
                 continue;
             }
             total += w;
-            match out.nodes[..out.len as usize].iter().position(|n| n.0 == j) {
-                Some(k) => out.weights[k] += w,
-                None if (out.len as usize) < MAX_TERMS => {
-                    out.nodes[out.len as usize] = NodeIdx(j);
-                    out.weights[out.len as usize] = w;
-                    out.len += 1;
-                }
-                None => return Err(PatchError::TooManyNodes),
-            }
+            out.add_term(j, w)?;
         }
         if !(total > 0.0) {
             return Err(PatchError::Empty);
         }
         Ok(out)
+    }
+
+    /// Adds weight `w` to node `j`'s term (merged with an existing one), for [`Self::patch`] and
+    /// [`Self::disc`].
+    ///
+    /// Errors: [`PatchError::TooManyNodes`] when `j` would be term [`MAX_TERMS`] + 1.
+    fn add_term(&mut self, j: usize, w: f64) -> Result<(), PatchError> {
+        let len = self.len as usize;
+        match self.nodes[..len].iter().position(|n| n.0 == j) {
+            Some(k) => self.weights[k] += w,
+            None if len < MAX_TERMS => {
+                self.nodes[len] = NodeIdx(j);
+                self.weights[len] = w;
+                self.len += 1;
+            }
+            None => return Err(PatchError::TooManyNodes),
+        }
+        Ok(())
     }
 
     /// Whether this contact is spread over the tissue: a 2D patch or a 3D disc.
