@@ -11,8 +11,9 @@ scene's default contact and cutting models) run two trajectories through the rea
   the axial force at 70 mm depth, and the largest tick-to-tick step of the axial force during
   steady insertion (depth 10-70 mm, the base moving), as a share of the force.
 
-Usage: refine3d.py NEEDLESIM_SERVER [N ...]   (default N: 16 21 26 31). Prints a Markdown table;
-a mesh that does not run is reported with simulate's error.
+Usage: refine3d.py NEEDLESIM_SERVER [--near-field] [N ...]   (default N: 16 21 26 31). Prints a
+Markdown table; a mesh that does not run is reported with simulate's error. `--near-field` adds
+`near_field = true` to the scene's `[needle]` (the needle's sub-grid compliance; off as shipped).
 """
 import csv
 import math
@@ -42,8 +43,11 @@ def issue_trajectory(path):
             f.write(f"{t!r},{x!r},0.05,{z!r},{QUAT}\n")
 
 
-def refined_scene(n, trajectory, path):
+def refined_scene(n, trajectory, path, near_field=False):
     text = open(os.path.join(SCENES, "cube-phantom-3d.toml")).read()
+    if near_field:
+        text, k = re.subn(r"(?m)^\[needle\]$", "[needle]\nnear_field = true", text)
+        assert k == 1, "[needle] in cube-phantom-3d.toml"
     for axis in "xyz":
         text, k = re.subn(rf"(?m)^n{axis} = \d+$", f"n{axis} = {n}", text)
         assert k == 1, f"n{axis} in cube-phantom-3d.toml"
@@ -97,7 +101,9 @@ def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     server = sys.argv[1]
-    ns = [int(a) for a in sys.argv[2:]] or [16, 21, 26, 31]
+    args = sys.argv[2:]
+    near_field = "--near-field" in args
+    ns = [int(a) for a in args if a != "--near-field"] or [16, 21, 26, 31]
     table = []
     with tempfile.TemporaryDirectory() as tmp:
         traj = os.path.join(tmp, "issue37.csv")
@@ -107,7 +113,7 @@ def main():
             row = {"n": n}
             for label, trajectory, metrics in [("issue", traj, issue_metrics), ("vertical", shipped, vertical_metrics)]:
                 scene = os.path.join(tmp, f"cube-{n}-{label}.toml")
-                refined_scene(n, trajectory, scene)
+                refined_scene(n, trajectory, scene, near_field)
                 out = os.path.join(tmp, f"cube-{n}-{label}.csv")
                 err = run(server, scene, out)
                 if err:

@@ -19,7 +19,8 @@
 //!   `model = "flexible"` makes it an elastic rod ([`needlesim_core::rod3`]) with `gauge` (its
 //!   stainless steel EI) or `flexural_rigidity_nm2`, `n_links` (default: 2 mm links, 16..=400),
 //!   and a bevel tip with `bevel_force_ratio` (default 0: symmetric) and `bevel_side` (±1,
-//!   default +1: towards the base frame's $n$);
+//!   default +1: towards the base frame's $n$), and `near_field = true` adds the needle's near
+//!   field at each contact point (`needlesim_core::sim3::NearField3`; default false);
 //! * `[[targets]]` are spheres: `center_m = [x, y, z]`, `radius_m`;
 //! * `trajectory = "file.csv"` (optional, relative to the scene file): a
 //!   `t_s,x_m,y_m,z_m,qw,qx,qy,qz` base trajectory ([`Trajectory3`]).
@@ -178,6 +179,11 @@ pub struct Needle3dSpec {
     pub bevel_force_ratio: Option<f64>,
     /// Flexible: the bevel's side, +1 towards the base frame's n, −1 away (default +1).
     pub bevel_side: Option<f64>,
+    /// The needle's near field (a sub-grid compliance between its radius and the element's
+    /// equivalent radius at each contact point, `needlesim_core::sim3::NearField3`; default
+    /// false).
+    #[serde(default)]
+    pub near_field: bool,
 }
 
 /// The needle model of a 3D scene.
@@ -243,6 +249,8 @@ pub struct Needle3d {
     pub max_points: usize,
     /// A flexible (and bevel-tip) needle's rod; `None` for a rigid needle.
     pub flexible: Option<needlesim_core::needle::FlexibleNeedle>,
+    /// `near_field`: the needle's near field at each contact point.
+    pub near_field: bool,
 }
 
 /// A target sphere (it moves with the tissue in the simulation).
@@ -475,7 +483,14 @@ fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
     if !finite(&n.base_m) {
         bail!("needle.base_m = {:?}: must be finite", n.base_m);
     }
-    Ok(Needle3d { length_m: n.length_m, diameter_m, contact_spacing_m: spacing, max_points: n.max_points, flexible: flexible(n)? })
+    Ok(Needle3d {
+        length_m: n.length_m,
+        diameter_m,
+        contact_spacing_m: spacing,
+        max_points: n.max_points,
+        flexible: flexible(n)?,
+        near_field: n.near_field,
+    })
 }
 
 /// The flexible needle's rod from `model = "flexible"` and its keys; those keys with a rigid
@@ -878,7 +893,10 @@ mod tests {
         assert_eq!((cube.mesh.n_nodes(), cube.mesh.n_tets()), (21 * 21 * 21, 6 * 20 * 20 * 20));
         assert_eq!(cube.fixed_nodes.len(), 21 * 21);
         assert!(cube.fixed_nodes.iter().all(|&n| cube.mesh.nodes_m()[n][2] == 0.0));
-        assert_eq!(cube.needle, Needle3d { length_m: 0.1, diameter_m: 1.270e-3, contact_spacing_m: 0.002, max_points: 64, flexible: None });
+        assert_eq!(
+            cube.needle,
+            Needle3d { length_m: 0.1, diameter_m: 1.270e-3, contact_spacing_m: 0.002, max_points: 64, flexible: None, near_field: false }
+        );
         assert_eq!(cube.regions[0].material.young_modulus_pa, 30e3);
         assert!(matches!(cube.mesh_source, MeshSource3d::Box { n: [21, 21, 21], .. }));
         let s = std::f64::consts::FRAC_1_SQRT_2;
