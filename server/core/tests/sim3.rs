@@ -9,8 +9,7 @@ use needlesim_alloc_count::{CountingAlloc, count_on_this_thread, thread_allocati
 use needlesim_core::fixtures::{box_phantom3, box_phantom3_params};
 use needlesim_core::ids::{Axis, Slot};
 use needlesim_core::sim3::{
-    BasePose3, NearField3, PointState3, PoseError, Sim3BlockWorker, Sim3Stats, SimError3, Simulation3, StepOutput3, StoreKind3,
-    unit_axis,
+    BasePose3, NearField3, PointState3, PoseError, Sim3BlockWorker, Sim3Stats, SimError3, Simulation3, StepOutput3, StoreKind3, unit_axis,
 };
 
 #[global_allocator]

@@ -801,6 +801,18 @@ mod tests {
         parse_with(text, &read, &server())
     }
 
+    /// Issue 37: `[needle] near_field` is off unless set, and a boolean.
+    #[test]
+    fn issue_37_near_field_key() {
+        let cube = include_str!("../../scenes/cube-phantom-3d.toml");
+        assert!(!parse(cube, None).unwrap().needle.near_field);
+        let on = cube.replacen("[needle]", "[needle]\nnear_field = true", 1);
+        assert!(parse(&on, None).unwrap().needle.near_field);
+        let bad = cube.replacen("[needle]", "[needle]\nnear_field = 1", 1);
+        let e = format!("{:#}", parse(&bad, None).unwrap_err());
+        assert!(e.contains("near_field"), "{e}");
+    }
+
     /// Issue 35: a 3D scene's `name` and `description` are bounded as a 2D scene's, and so is
     /// its TOML, before it is parsed.
     #[test]

@@ -67,7 +67,6 @@ impl<const D: usize> MixedSolver<D> {
 
 #[cfg(test)]
 mod tests {
-    use crate::compliance::ContactBlocks;
     use crate::contact::ContactPoint;
     use crate::fixtures::random_spd_compliance;
     use crate::ids::{Axis, NodeIdx, Slot};

@@ -80,6 +80,11 @@ impl Simulation3 {
             let p = &self.pts[k];
             let Some(tet) = p.contact.tet_idx() else { continue };
             let h_m = (6.0 * mesh.volume_m3(tet).abs()).cbrt();
+            if nf.beta_axial.max(nf.beta_lateral) * h_m <= nf.needle_radius_m {
+                // The mesh resolves the needle here: nothing to add (checked before the
+                // $O(m)$ search below, which would otherwise run every tick).
+                continue;
+            }
             let nearest =
                 (0..self.pts.len()).filter(|&j| j != k).map(|j| dist(self.pts[j].x_ref_m, p.x_ref_m)).fold(f64::INFINITY, f64::min);
             let s_m = if nearest.is_finite() { nearest } else { self.params.spacing_m.max(self.setup.tet_diam_m[tet]) };
