@@ -11,10 +11,12 @@ scene's default contact and cutting models) run two trajectories through the rea
   the axial force at 70 mm depth, and the largest tick-to-tick step of the axial force during
   steady insertion (depth 10-70 mm, the base moving), as a share of the force.
 
-Usage: refine3d.py [--spread-contact] NEEDLESIM_SERVER [N ...]   (default N: 16 21 26 31). Prints
-a Markdown table; a mesh that does not run is reported with simulate's error. `--spread-contact`
-adds `spread_contact = true` to the scene's `[needle]` (each contact a disc of the needle's radius
-across the shaft, issue 37 item 1); without it every key but the grid is the shipped scene's.
+Usage: refine3d.py [--spread-contact] [--near-field] NEEDLESIM_SERVER [N ...]   (default N: 16 21 26
+31). Prints a Markdown table; a mesh that does not run is reported with simulate's error.
+`--spread-contact` adds `spread_contact = true` to the scene's `[needle]` (each contact a disc of
+the needle's radius across the shaft, issue 37 item 1); `--near-field` adds `near_field = true`
+(the needle's sub-grid compliance; off as shipped). Without them every key but the grid is the
+shipped scene's.
 """
 import csv
 import math
@@ -44,10 +46,11 @@ def issue_trajectory(path):
             f.write(f"{t!r},{x!r},0.05,{z!r},{QUAT}\n")
 
 
-def refined_scene(n, trajectory, path, spread=False):
+def refined_scene(n, trajectory, path, spread=False, near_field=False):
     text = open(os.path.join(SCENES, "cube-phantom-3d.toml")).read()
-    if spread:
-        text, k = re.subn(r"(?m)^\[needle\]$", "[needle]\nspread_contact = true", text)
+    keys = (["spread_contact = true"] if spread else []) + (["near_field = true"] if near_field else [])
+    if keys:
+        text, k = re.subn(r"(?m)^\[needle\]$", "[needle]\n" + "\n".join(keys), text)
         assert k == 1, "[needle] in cube-phantom-3d.toml"
     for axis in "xyz":
         text, k = re.subn(rf"(?m)^n{axis} = \d+$", f"n{axis} = {n}", text)
@@ -101,7 +104,8 @@ def vertical_metrics(rs):
 def main():
     args = sys.argv[1:]
     spread = "--spread-contact" in args
-    args = [a for a in args if a != "--spread-contact"]
+    near_field = "--near-field" in args
+    args = [a for a in args if a not in ("--spread-contact", "--near-field")]
     if not args:
         sys.exit(__doc__)
     server = args[0]
@@ -115,7 +119,7 @@ def main():
             row = {"n": n}
             for label, trajectory, metrics in [("issue", traj, issue_metrics), ("vertical", shipped, vertical_metrics)]:
                 scene = os.path.join(tmp, f"cube-{n}-{label}.toml")
-                refined_scene(n, trajectory, scene, spread)
+                refined_scene(n, trajectory, scene, spread, near_field)
                 out = os.path.join(tmp, f"cube-{n}-{label}.csv")
                 err = run(server, scene, out)
                 if err:

@@ -20,7 +20,9 @@
 //!   stainless steel EI) or `flexural_rigidity_nm2`, `n_links` (default: 2 mm links, 16..=400),
 //!   and a bevel tip with `bevel_force_ratio` (default 0: symmetric) and `bevel_side` (±1,
 //!   default +1: towards the base frame's $n$); `spread_contact = true` spreads each contact over a
-//!   disc of the needle's radius across the shaft instead of a material point (issue 37);
+//!   disc of the needle's radius across the shaft instead of a material point (issue 37), and
+//!   `near_field = true` adds the needle's near field at each contact point
+//!   (`needlesim_core::sim3::NearField3`; default false);
 //! * `[[targets]]` are spheres: `center_m = [x, y, z]`, `radius_m`;
 //! * `trajectory = "file.csv"` (optional, relative to the scene file): a
 //!   `t_s,x_m,y_m,z_m,qw,qx,qy,qz` base trajectory ([`Trajectory3`]).
@@ -183,6 +185,11 @@ pub struct Needle3dSpec {
     /// the shaft) instead of a material point (default false; issue 37).
     #[serde(default)]
     pub spread_contact: bool,
+    /// The needle's near field (a sub-grid compliance between its radius and the element's
+    /// equivalent radius at each contact point, `needlesim_core::sim3::NearField3`; default
+    /// false).
+    #[serde(default)]
+    pub near_field: bool,
 }
 
 /// The needle model of a 3D scene.
@@ -251,6 +258,8 @@ pub struct Needle3d {
     /// Contacts spread over discs of radius `diameter_m / 2` across the shaft
     /// (`spread_contact`; `needlesim_core::sim3::Sim3Params::disc_radius_m`).
     pub spread_contact: bool,
+    /// `near_field`: the needle's near field at each contact point.
+    pub near_field: bool,
 }
 
 /// A target sphere (it moves with the tissue in the simulation).
@@ -490,6 +499,7 @@ fn needle(n: &Needle3dSpec) -> Result<Needle3d> {
         max_points: n.max_points,
         flexible: flexible(n)?,
         spread_contact: n.spread_contact,
+        near_field: n.near_field,
     })
 }
 
@@ -801,6 +811,18 @@ mod tests {
         parse_with(text, &read, &server())
     }
 
+    /// Issue 37: `[needle] near_field` is off unless set, and a boolean.
+    #[test]
+    fn issue_37_near_field_key() {
+        let cube = include_str!("../../scenes/cube-phantom-3d.toml");
+        assert!(!parse(cube, None).unwrap().needle.near_field);
+        let on = cube.replacen("[needle]", "[needle]\nnear_field = true", 1);
+        assert!(parse(&on, None).unwrap().needle.near_field);
+        let bad = cube.replacen("[needle]", "[needle]\nnear_field = 1", 1);
+        let e = format!("{:#}", parse(&bad, None).unwrap_err());
+        assert!(e.contains("near_field"), "{e}");
+    }
+
     /// Issue 35: a 3D scene's `name` and `description` are bounded as a 2D scene's, and so is
     /// its TOML, before it is parsed.
     #[test]
@@ -901,7 +923,8 @@ mod tests {
                 contact_spacing_m: 0.002,
                 max_points: 64,
                 flexible: None,
-                spread_contact: false
+                spread_contact: false,
+                near_field: false
             }
         );
         assert_eq!(cube.regions[0].material.young_modulus_pa, 30e3);

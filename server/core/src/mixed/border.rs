@@ -123,6 +123,7 @@ impl<const D: usize> MixedSolver<D> {
         self.angle_rad[slot] = angle_rad;
         self.frame[slot] = frame;
         self.c_self[slot] = c_nn_world;
+        self.series[slot] = [[0.0; D]; D];
         for c in 0..D {
             self.kind[d + c] = Condition::Force;
             self.x[d + c] = 0.0;
@@ -173,6 +174,7 @@ impl<const D: usize> MixedSolver<D> {
         self.angle_rad.swap(a, b);
         self.frame.swap(a, b);
         self.c_self.swap(a, b);
+        self.series.swap(a, b);
     }
 }
 

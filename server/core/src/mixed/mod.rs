@@ -63,6 +63,11 @@
 //! the generic one ([`MixedSolver::add_contact_in_frame`], [`MixedSolver::set_frame`]); local
 //! components are named by [`Axis`] (`Axial`, `Lateral` and, in 3D, `Binormal`).
 //!
+//! **Series compliance.** A slot may carry a compliance $S_i$ (world) in series with the tissue,
+//! added to its own block: $W_{ii} \to W_{ii} + S_i$ ([`MixedSolver::add_series_compliance`];
+//! the 3D needle's near field, [`crate::sim3`]). Its displacement is then the tissue's plus
+//! $S_i f_i$ ([`MixedSolver::series_displacement_world`] is the second part).
+//!
 //! **Compliance source.** The solver reads the compliance only as contact blocks
 //! $W_{ab} = P_a C P_b^\top$ when it borders $H$ or rebuilds it, through the trait
 //! [`ContactBlocks`]: the column cache [`ComplianceCache`](crate::compliance::ComplianceCache) in 2D and 3D, or the 3D node-block
@@ -76,6 +81,7 @@ mod border;
 mod frame_change;
 mod pivot;
 mod rebuild;
+mod series;
 mod solve;
 
 #[cfg(doc)]
@@ -150,8 +156,12 @@ pub struct MixedSolver<const D: usize = 2> {
     angle_rad: Vec<f64>,
     /// The frame of each slot, rows $[t, n, (b)]$: $u_L = F u$.
     frame: Vec<Block<D>>,
-    /// World self-compliance block of each slot, to know each DOF's own compliance.
+    /// World self-compliance block of each slot, to know each DOF's own compliance (the
+    /// series compliance included).
     c_self: Vec<Block<D>>,
+    /// World compliance in series with the tissue at each slot, added to its own block
+    /// ([`MixedSolver::add_series_compliance`]; zero unless added).
+    series: Vec<Block<D>>,
     kind: Vec<Condition>,
     x: Vec<f64>,
     y: Vec<f64>,
@@ -192,6 +202,7 @@ impl<const D: usize> MixedSolver<D> {
             angle_rad: vec![0.0; cap_nodes],
             frame: vec![identity; cap_nodes],
             c_self: vec![[[0.0; D]; D]; cap_nodes],
+            series: vec![[[0.0; D]; D]; cap_nodes],
             kind: vec![Condition::Force; stride],
             x: vec![0.0; stride],
             y: vec![0.0; stride],
@@ -214,6 +225,7 @@ impl<const D: usize> MixedSolver<D> {
         self.angle_rad.copy_from_slice(&other.angle_rad);
         self.frame.copy_from_slice(&other.frame);
         self.c_self.copy_from_slice(&other.c_self);
+        self.series.copy_from_slice(&other.series);
         self.kind.copy_from_slice(&other.kind);
         self.x.copy_from_slice(&other.x);
         self.y.copy_from_slice(&other.y);

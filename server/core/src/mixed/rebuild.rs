@@ -7,8 +7,9 @@ use crate::compliance::ContactBlocks;
 use crate::ids::Axis;
 
 impl<const D: usize> MixedSolver<D> {
-    /// Rebuilds $H$ from $C_{\mathcal{WW}}$ from scratch with a dense factorisation: the reference
-    /// for the $O(d^2)$ updates, $O(d^3)$ and allocating, never called inside a real-time step.
+    /// Rebuilds $H$ from $C_{\mathcal{WW}}$ (plus each slot's series compliance) from scratch with
+    /// a dense factorisation: the reference for the $O(d^2)$ updates, $O(d^3)$ and allocating,
+    /// never called inside a real-time step.
     ///
     /// Errors: those of [`MixedSolver::hybrid_from_scratch`].
     pub fn rebuild<C: ContactBlocks<D> + ?Sized>(&mut self, cache: &C) -> Result<(), MixedError> {
@@ -35,7 +36,14 @@ impl<const D: usize> MixedSolver<D> {
         for a in 0..self.n_nodes {
             for b in 0..self.n_nodes {
                 let (ca, cb) = (&self.contact_of_slot[a], &self.contact_of_slot[b]);
-                let blk = cache.contact_block(ca, cb).ok_or(MixedError::NotCached { contact: cb.id() })?;
+                let mut blk = cache.contact_block(ca, cb).ok_or(MixedError::NotCached { contact: cb.id() })?;
+                if a == b {
+                    for (row, srow) in blk.iter_mut().zip(&self.series[a]) {
+                        for (v, s) in row.iter_mut().zip(srow) {
+                            *v += s;
+                        }
+                    }
+                }
                 let l = to_local(&blk, &self.frame[a], &self.frame[b]);
                 for i in 0..D {
                     for j in 0..D {

@@ -39,7 +39,8 @@
 //!    \int_{\mathcal D} N_k\,\mathrm dA$ ([`crate::d3::disc`], exact), so its conditions are on the
 //!    tissue's mean displacement over the needle's cross-section; a disc with more than
 //!    [`crate::contact::MAX_TERMS`] nodes or not wholly inside the tissue stays a point
-//!    ([`Sim3Stats::patch_fallbacks`]).
+//!    ([`Sim3Stats::patch_fallbacks`]). With [`Sim3Params::near_field`] each new point gets the needle's near field, a
+//!    compliance in series with the tissue on its own block ([`near_field`]).
 //! 5. **Friction**: each shaft point gets the integral of the friction distribution of the
 //!    paper's Fig. 2b over its tributary segment ([`RegionNeedleParams::friction_integral_n`]),
 //!    plus the rate-dependent part $b_v |v| \lambda$ of [`crate::needle`] ($v$ the base's speed
@@ -92,6 +93,7 @@ mod capture;
 mod error;
 mod flex;
 mod frames;
+mod near_field;
 mod output;
 mod params;
 mod pose;
@@ -116,6 +118,7 @@ pub use crate::compliance::store::{
 pub use crate::compliance::worker::{ROWS_BATCH, Sim3BlockWorker, WorkerStats};
 pub use error::SimError3;
 pub use flex::{FRAME_TOL as FLEX_FRAME_TOL, SHAPE_GAP_TOL_M, SHAPE_PASSES};
+pub use near_field::{NEAR_FIELD_BETA_AXIAL, NEAR_FIELD_BETA_LATERAL, NearField3};
 pub use output::{ContactOut3, Sim3Stats, Snapshot3, SnapshotPoint3, StepOutput3};
 pub use params::{AUTO_BLOCKS_MIN_NODES, NeedleShape3, Sim3Params, StoreKind3};
 pub use pose::{BasePose3, PoseError, UNIT_QUATERNION_TOL, unit_axis};
@@ -237,6 +240,8 @@ impl Simulation3 {
             let cut = self.params.regions[self.last_tip_region.unwrap_or(0)].cutting_force_n;
             fx.update_bevel(advance, inside, cut, self.stats.captures != captures_before);
         }
+        // The needle's near field on the points captured this tick ([`near_field`]).
+        self.apply_near_field()?;
         // 5, 6. Friction and active set.
         self.update_friction(&frame, false, 0.0);
         let (mut iterations, mut converged) = self.resolve_active_set(&frame)?;

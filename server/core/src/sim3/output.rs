@@ -66,7 +66,8 @@ pub struct ContactOut3 {
     pub frame: [[f64; 3]; 3],
     /// Reference position $X$, m.
     pub x_ref_m: [f64; 3],
-    /// Current position $X + u$, m.
+    /// Current position $X + u$ of the tissue's material point, m (with the needle's near field,
+    /// [`Sim3Params::near_field`], the needle's surface point less the near-field part).
     pub x_m: [f64; 3],
     /// Force of the needle on the tissue there, world, N.
     pub force_n: [f64; 3],
@@ -126,7 +127,8 @@ pub struct SnapshotPoint3 {
     pub disc: Option<Disc>,
     /// Frame rows $[t, n, b]$ as the solver holds them.
     pub frame: [[f64; 3]; 3],
-    /// Prescribed displacement components (m), `None` where free.
+    /// Prescribed displacement components (m), `None` where free: the tissue's (with a needle near
+    /// field, the needle's values less its near-field part, so that the tissue alone re-solves it).
     pub ut: Option<f64>,
     pub un: Option<f64>,
     pub ub: Option<f64>,
@@ -157,8 +159,13 @@ impl Simulation3 {
             .map(|slot| {
                 let p = &self.pts[slot.index()];
                 let frame = self.solver.frame(slot);
-                let disp =
-                    |a: Axis| (self.solver.condition(slot, a) == Condition::Displacement).then(|| self.solver.prescribed_value(slot, a));
+                // The tissue's problem: the needle's near field taken off the prescribed
+                // displacements (the solved forces give it; zero without a near field).
+                let nf = self.solver.series_displacement_world(slot);
+                let nf_local = |a: Axis| dot(frame[a.index()], nf);
+                let disp = |a: Axis| {
+                    (self.solver.condition(slot, a) == Condition::Displacement).then(|| self.solver.prescribed_value(slot, a) - nf_local(a))
+                };
                 let mut f = [0.0; 3];
                 let mut any_force = false;
                 for a in Axis::ALL3 {
@@ -180,7 +187,7 @@ impl Simulation3 {
                     ub: disp(Axis::Binormal),
                     f_n: any_force.then_some(f),
                     force_n: self.solver.force_world(slot),
-                    u_m: self.solver.displacement_world(slot),
+                    u_m: sub(self.solver.displacement_world(slot), nf),
                 }
             })
             .collect();
@@ -232,7 +239,7 @@ impl Simulation3 {
                 state: p.state,
                 frame: point_frame,
                 x_ref_m: p.x_ref_m,
-                x_m: x,
+                x_m: sub(x, self.solver.series_displacement_world(slot)),
                 force_n: f,
                 friction_n: p.friction_n,
             });

@@ -2,6 +2,7 @@
 
 use crate::needle::{FlexibleNeedle, RegionNeedleParams};
 
+use super::near_field::NearField3;
 use super::pose::BasePose3;
 use super::targets::{MAX_TARGETS, Target3};
 
@@ -60,6 +61,9 @@ pub struct Sim3Params {
     /// its region's largest cutting resistance, `max(puncture_force_n, cutting_force_n)`
     /// (`needlesim_core::sim3::tear`; default [`super::DEFAULT_TEAR_FORCE_FACTOR`]).
     pub tear_force_factor: f64,
+    /// The needle's near field ([`super::near_field`]): a sub-grid compliance in series with the
+    /// tissue at each point; `None` (the default) for none.
+    pub near_field: Option<NearField3>,
 }
 
 /// The needle of a 3D simulation.
@@ -143,6 +147,7 @@ impl Sim3Params {
             max_block_nodes: 384,
             needle: NeedleShape3::Rigid,
             tear_force_factor: super::DEFAULT_TEAR_FORCE_FACTOR,
+            near_field: None,
         }
     }
 
@@ -191,6 +196,11 @@ impl Sim3Params {
         }
         for (k, r) in self.regions.iter().enumerate() {
             r.validate(&format!("{k}"))?;
+        }
+        if let Some(nf) = &self.near_field {
+            pos("near_field.needle_radius_m", nf.needle_radius_m)?;
+            pos("near_field.beta_axial", nf.beta_axial)?;
+            pos("near_field.beta_lateral", nf.beta_lateral)?;
         }
         self.validate_targets()?;
         self.validate_needle()
