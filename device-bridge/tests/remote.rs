@@ -3,7 +3,8 @@
 //! Rendering from the local linear model keeps the light, lightly damped hand still during the hold;
 //! rendering only the last (40 ms stale) force makes it oscillate.
 //!
-//! Needs `target/debug/needlesim-server` (`cargo build --workspace --bins`; tests/run does).
+//! Needs `needlesim-server` built beside the bridge binary (in `$CARGO_TARGET_DIR/debug`;
+//! `cargo build --workspace --bins`; tests/run does).
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -41,7 +42,9 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn start_server(dir: &Path) -> Server {
-    let bin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/debug/needlesim-server");
+    // Beside the bridge binary cargo built for this test: the same target directory, wherever
+    // CARGO_TARGET_DIR puts it.
+    let bin = Path::new(BRIDGE).with_file_name("needlesim-server");
     if !bin.exists() {
         panic!("{} is missing: run `cargo build --workspace --bins` first (tests/run does)", bin.display());
     }

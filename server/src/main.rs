@@ -443,6 +443,7 @@ fn run_simulate(
         unconverged_ticks = summary.unconverged_ticks,
         active_set_capped_ticks = summary.active_set_capped_ticks,
         shape_capped_ticks = summary.shape_capped_ticks,
+        patch_fallbacks = summary.patch_fallbacks,
         wall_s = t0.elapsed().as_secs_f64(),
         "simulated"
     );
@@ -537,6 +538,7 @@ fn run_simulate3(
         prefetched_columns = summary.prefetched_columns,
         clamped_ticks = summary.clamped_ticks,
         unconverged_ticks = summary.unconverged_ticks,
+        patch_fallbacks = summary.patch_fallbacks,
         numeric_factorisations = summary.numeric_factorisations,
         wall_s = t0.elapsed().as_secs_f64(),
         "simulated"

@@ -28,6 +28,9 @@ pub struct RunSummary {
     pub active_set_capped_ticks: u64,
     /// Ticks whose flexible needle's shape passes stopped at their cap (issue 19).
     pub shape_capped_ticks: u64,
+    /// Contacts that asked for a patch across the needle's width and stayed material points
+    /// (`spread_contact`; a patch not wholly inside the tissue).
+    pub patch_fallbacks: u64,
     pub numeric_factorisations: u64,
     /// Step compute times, seconds, one per tick.
     pub step_times_s: Vec<f64>,
@@ -133,6 +136,7 @@ pub fn run_observed(
     summary.unconverged_ticks = st.unconverged_ticks;
     summary.active_set_capped_ticks = st.active_set_capped_ticks;
     summary.shape_capped_ticks = st.shape_capped_ticks;
+    summary.patch_fallbacks = st.patch_fallbacks;
     summary.numeric_factorisations = sim.model().cholesky().n_numeric_factorisations();
     Ok((sim, summary))
 }

@@ -108,6 +108,9 @@ pub struct RunSummary3 {
     /// Ticks that did not converge (the stick/slip or the shape-pass cap): kept only by
     /// [`ConvergencePolicy::Keep`].
     pub unconverged_ticks: u64,
+    /// Contacts that asked for a disc across the shaft and stayed points (`spread_contact`; more
+    /// nodes than a contact holds, or a disc not wholly inside the tissue).
+    pub patch_fallbacks: u64,
     pub numeric_factorisations: u64,
     pub max_points: usize,
     pub targets: Vec<TargetReport3>,
@@ -252,6 +255,7 @@ pub fn run3(
     summary.prefetched_columns = totals.prefetched_columns;
     summary.clamped_ticks = st.clamped_ticks;
     summary.column_deferrals = st.column_deferrals;
+    summary.patch_fallbacks = st.patch_fallbacks;
     summary.numeric_factorisations = model.cholesky().n_numeric_factorisations();
     summary.targets = reports;
     Ok((sim, summary, dumps))
@@ -624,6 +628,21 @@ radius_m = 0.001
         let sc = needlesim_scene::parse_scene3d(&text, std::path::Path::new("."), &needlesim_core::MeshLimits::default()).unwrap();
         assert!(sc.needle.spread_contact);
         assert_eq!(sim3_params(&sc, base_pose3(&sc.initial_pose).unwrap()).disc_radius_m, 0.0004);
+        // The run's summary counts the discs that stayed points: with a 9.5 mm needle on 5 mm
+        // tetrahedra every disc touches more nodes than a contact holds; none without the key.
+        let wide = needlesim_scene::parse_scene3d(
+            &SCENE.replace("[needle]\n", "[needle]\nspread_contact = true\ndiameter_m = 0.0095\n"),
+            std::path::Path::new("."),
+            &needlesim_core::MeshLimits::default(),
+        )
+        .unwrap();
+        let traj = Trajectory3::parse_csv(TRAJ).unwrap();
+        let (_, points, _) = run3(&scene(), &traj, 10_000, &[], ConvergencePolicy::Fail, None).unwrap();
+        let (sim, discs, _) = run3(&wide, &traj, 10_000, &[], ConvergencePolicy::Fail, None).unwrap();
+        assert_eq!(points.patch_fallbacks, 0);
+        let st = sim.stats();
+        assert!(st.captures > 0 && st.patch_fallbacks > 0, "{st:?}");
+        assert_eq!(discs.patch_fallbacks, st.patch_fallbacks);
     }
 
     /// The run driver's first-pose check in 3D: a trajectory whose first quaternion is not a
