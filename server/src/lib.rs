@@ -13,6 +13,7 @@ pub mod convert;
 pub mod foxglove_live;
 pub mod grpc;
 pub mod grpc_identify;
+pub mod idle;
 pub mod jobs;
 pub mod listener;
 pub mod quota;

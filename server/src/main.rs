@@ -137,6 +137,12 @@ struct ServeArgs {
     #[arg(long, value_name = "MS", default_value_t = grpc::ServerLimits::default().control_first_message_ms,
           value_parser = clap::value_parser!(u64).range(1..))]
     control_first_message_ms: u64,
+    /// A session that nobody drives (no pose from a client or its device), watches (no open
+    /// stream) or holds control of for this long is closed as CloseSession closes it (its
+    /// recording finished, an exercise's report written), in s; 0: never. The default session
+    /// (--default-scene) is never closed this way.
+    #[arg(long, value_name = "S", default_value_t = grpc::ServerLimits::default().session_idle_timeout_s)]
+    session_idle_timeout_s: u64,
     /// The example scene of the default session ("none" for no default session).
     #[arg(long, default_value = "paper-phantom")]
     default_scene: String,
@@ -807,6 +813,7 @@ fn run_serve(args: ServeArgs, limits: &MeshLimits) -> Result<()> {
             max_reports_bytes: needlesim_server::quota::mib(args.max_reports_mb),
             control_first_message_ms: args.control_first_message_ms,
             answer_deadline_ms: args.answer_deadline_ms,
+            session_idle_timeout_s: args.session_idle_timeout_s,
             ..Default::default()
         },
         max_message_bytes: args.max_message_bytes,

@@ -540,6 +540,9 @@ where
     if let (Some(s), None) = (&default_session, &demo_session) {
         println!("default session {}: controller token {}, observer token {}", s.id, s.controller_token, s.observer_token);
     }
+    // The sessions the server made itself (the default one, --exercise's) are never closed for
+    // being idle: they are what the printed URLs point to.
+    let mut kept_sessions: Vec<String> = default_session.iter().map(|s| s.id.clone()).collect();
     if let Some(name) = &config.exercise {
         let st = state.clone();
         let name = name.clone();
@@ -553,6 +556,7 @@ where
         println!("  trainee:    {scheme}://{addr}/?session={}&token={}", s.id, s.controller_token);
         println!("  instructor: {scheme}://{addr}/?session={}&token={}&instructor={}", s.id, s.observer_token, ex.instructor_token());
         println!("  observers:  {scheme}://{addr}/?session={}&token={}", s.id, s.observer_token);
+        kept_sessions.push(s.id.clone());
     }
     drop(demo_session);
     drop(default_session);
@@ -573,6 +577,10 @@ where
         closed_tx.notify_one();
     };
     tokio::spawn(give_back_stream_memory(state.clone(), answers, conns.clone()));
+    if state.limits.session_idle_timeout_s > 0 {
+        let timeout = std::time::Duration::from_secs(state.limits.session_idle_timeout_s);
+        tokio::spawn(crate::idle::close_idle_sessions(Arc::downgrade(&state), timeout, kept_sessions));
+    }
     // Tells each connection when its requests arrive and end (the deadlines of `listener.rs`) and
     // bounds the pauses of HTTP/1.1 request bodies.
     let guard = crate::listener::ConnGuardLayer::new(conns.clone(), config.connections);

@@ -271,3 +271,53 @@ async fn issue_35_sigterm_ends_the_sessions_streams_and_the_server_exits() {
     };
     assert!(status.success(), "the server exited with {status}: {}", server.stderr.lock().unwrap());
 }
+
+/// The ids of the server's sessions (ListSessions).
+async fn session_ids(ch: &tonic::transport::Channel) -> Vec<String> {
+    let mut c = pb::session_service_client::SessionServiceClient::new(ch.clone());
+    let list = c.list_sessions(pb::ListSessionsRequest {}).await.expect("ListSessions").into_inner();
+    list.sessions.into_iter().map(|s| s.session_id).collect()
+}
+
+/// Issue 35 (bounded by design): a session its client abandoned (created, never driven, watched
+/// or controlled) is closed after `--session-idle-timeout-s`, so that clients that go away cannot
+/// hold every session slot; a session with a stream open stays for as long as the stream does,
+/// then goes the same way; the server's own default session stays.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn issue_35_an_abandoned_session_is_closed_after_the_idle_timeout() {
+    let _turn = REALTIME.lock().await;
+    let server = ServerProcess::start(&["--session-idle-timeout-s", "2"]);
+    let ch = connect(&server).await;
+    let ids = session_ids(&ch).await;
+    assert_eq!(ids.len(), 1, "the default session: {ids:?}");
+    let default = ids[0].clone();
+    let abandoned = create_example_session(&ch, "paper-phantom").await.session.unwrap().session_id;
+    let watched = create_example_session(&ch, "paper-phantom").await;
+    let watched_id = watched.session.clone().unwrap().session_id;
+    let mut ob = pb::observe_service_client::ObserveServiceClient::new(ch.clone());
+    let req = pb::ObserveRequest { session_id: watched_id.clone(), rate_hz: 30.0, include_displacements: false };
+    let observe = ob.observe(with_token(req, &watched.observer_token)).await.expect("Observe").into_inner();
+    let reader = drain(observe);
+    // Closed within the timeout plus a check period (2.5 s); 20 s for a loaded machine.
+    let t0 = Instant::now();
+    while session_ids(&ch).await.contains(&abandoned) {
+        assert!(t0.elapsed() < BOUND, "the abandoned session {abandoned} is still open after {BOUND:?}");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    let closed_after = t0.elapsed();
+    assert!(closed_after >= Duration::from_millis(1900), "closed before its timeout: {closed_after:?}");
+    // Watched the whole time: still open, and well past the timeout.
+    tokio::time::sleep(Duration::from_secs(3)).await;
+    let ids = session_ids(&ch).await;
+    assert!(ids.contains(&watched_id) && ids.contains(&default), "{ids:?}");
+    assert!(!reader.is_finished(), "the observer's stream is still open");
+    reader.abort();
+    let t1 = Instant::now();
+    while session_ids(&ch).await.contains(&watched_id) {
+        assert!(t1.elapsed() < BOUND, "the session {watched_id} is still open {BOUND:?} after its last stream closed");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    println!("abandoned session closed {closed_after:?} after creation; the watched one {:?} after its stream closed", t1.elapsed());
+    until_metric(&server, "needlesim_sessions_alive", 1.0).await;
+    assert_eq!(session_ids(&ch).await, vec![default], "the default session stays");
+}

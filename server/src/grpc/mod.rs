@@ -71,6 +71,9 @@ pub struct ServerLimits {
     /// How long a client has to take a counted answer whole, and to make room for an offline
     /// job's next message, ms (`--answer-deadline-ms`; issue 35): `answers.rs`, `jobs.rs`.
     pub answer_deadline_ms: u64,
+    /// A session that nobody drives, watches or controls for this long is closed, s
+    /// (`--session-idle-timeout-s`; 0: never; `idle.rs`).
+    pub session_idle_timeout_s: u64,
 }
 
 impl ServerLimits {
@@ -99,6 +102,7 @@ impl Default for ServerLimits {
             max_reports_bytes: crate::quota::mib(1024),
             control_first_message_ms: 5000,
             answer_deadline_ms: 30_000,
+            session_idle_timeout_s: 1800,
         }
     }
 }
@@ -341,6 +345,20 @@ impl ServerState {
             .get(id)
             .cloned()
             .ok_or_else(|| Status::not_found(format!("no session '{}'", quote(id))))
+    }
+
+    /// Removes `s` from the sessions (if it is still the one under its id) and closes it: its
+    /// real-time thread stops, its recording is finished, an exercise's report is written.
+    /// Blocking: call it off the async runtime (CloseSession, `idle.rs`).
+    pub fn close_session_blocking(&self, s: &Arc<Session>) {
+        {
+            let mut sessions = self.sessions.write().expect("sessions lock");
+            if sessions.get(&s.id).is_some_and(|held| Arc::ptr_eq(held, s)) {
+                sessions.remove(&s.id);
+            }
+        }
+        s.close();
+        crate::training_live::on_close(&self.training, &self.data_dir, &self.reports_quota, s);
     }
 
     /// Closes every session (server shutdown).

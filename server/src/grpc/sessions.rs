@@ -89,15 +89,9 @@ impl pb::session_service_server::SessionService for Api {
     async fn close_session(&self, req: Request<pb::CloseSessionRequest>) -> Result<Response<pb::CloseSessionResponse>, Status> {
         let s = self.state.session(&req.get_ref().session_id)?;
         authorize(&req, &s, Role::Controller)?;
-        self.state.sessions.write().expect("sessions lock").remove(&s.id);
         let state = self.state.clone();
-        tokio::task::spawn_blocking(move || {
-            s.close();
-            // An exercise ends with its session: its report is written (training_live.rs).
-            crate::training_live::on_close(&state.training, &state.data_dir, &state.reports_quota, &s);
-        })
-        .await
-        .map_err(|e| Status::internal(format!("close: {e}")))?;
+        // An exercise ends with its session: its report is written (training_live.rs).
+        tokio::task::spawn_blocking(move || state.close_session_blocking(&s)).await.map_err(|e| Status::internal(format!("close: {e}")))?;
         Ok(Response::new(pb::CloseSessionResponse {}))
     }
 }
