@@ -35,6 +35,7 @@ pub mod compliance;
 pub mod contact;
 pub mod d3;
 pub mod dim;
+mod drift;
 pub mod factor;
 pub mod fixtures;
 pub mod ids;
@@ -50,6 +51,7 @@ pub mod sim3;
 pub mod spatial;
 pub mod statics;
 pub mod stepper;
+pub mod viscous;
 
 pub use assembly::{ElementMaterials, MaterialMap};
 pub use beam::NeedleCurve;

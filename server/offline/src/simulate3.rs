@@ -137,6 +137,7 @@ pub fn sim3_params(scene: &Scene3d, initial: BasePose3) -> Sim3Params {
     p.regions = scene.regions.iter().map(|r| r.needle).collect();
     p.tick_rate_hz = scene.tick_rate_hz;
     p.max_contacts = scene.needle.max_points;
+    p.viscoelastic = scene.viscoelastic;
     if scene.needle.near_field {
         p.near_field = Some(needlesim_core::sim3::NearField3::new(0.5 * scene.needle.diameter_m));
     }

@@ -81,6 +81,26 @@ pub struct ViscoelasticSpec {
     pub relaxation_time_s: f64,
 }
 
+impl ViscoelasticSpec {
+    /// Checks the values (2D and 3D scenes); the message names the key.
+    pub fn check(&self) -> Result<()> {
+        let g = self.long_term_ratio;
+        if !(g.is_finite() && g > 0.0 && g <= 1.0) {
+            bail!("viscoelastic.long_term_ratio = {}: must be in (0, 1] (E∞/E₀)", num(g));
+        }
+        let tau = self.relaxation_time_s;
+        if !(tau.is_finite() && tau > 0.0) {
+            bail!("viscoelastic.relaxation_time_s = {}: must be finite and > 0", num(tau));
+        }
+        Ok(())
+    }
+
+    /// The core's model.
+    pub fn model(&self) -> Viscoelastic {
+        Viscoelastic { long_term_ratio: self.long_term_ratio, relaxation_time_s: self.relaxation_time_s }
+    }
+}
+
 fn default_rate() -> f64 {
     1000.0
 }
@@ -668,15 +688,8 @@ fn check_values(f: &SceneFile) -> Result<()> {
             bail!("regions[{k}] ('{}').friction_damping_n_s_per_m2 = {}: must be finite and ≥ 0", r.name, num(b));
         }
     }
-    if let Some(v) = f.viscoelastic {
-        let g = v.long_term_ratio;
-        if !(g.is_finite() && g > 0.0 && g <= 1.0) {
-            bail!("viscoelastic.long_term_ratio = {}: must be in (0, 1] (E∞/E₀)", num(g));
-        }
-        let tau = v.relaxation_time_s;
-        if !(tau.is_finite() && tau > 0.0) {
-            bail!("viscoelastic.relaxation_time_s = {}: must be finite and > 0", num(tau));
-        }
+    if let Some(v) = &f.viscoelastic {
+        v.check()?;
     }
     if let Some(d) = f.dim
         && d != 2
@@ -878,7 +891,7 @@ fn build_scene(f: &SceneFile, files: SceneFiles, scene_limits: &SceneLimits) -> 
         max_base_step_rad: f.limits.max_base_step_rad,
         max_active_set_iterations: f.limits.max_active_set_iterations,
         lookahead_m: f.limits.lookahead_m,
-        viscoelastic: f.viscoelastic.map(|v| Viscoelastic { long_term_ratio: v.long_term_ratio, relaxation_time_s: v.relaxation_time_s }),
+        viscoelastic: f.viscoelastic.map(|v| v.model()),
     };
     // Everything else the simulation checks (the needle's shape; a target outside the mesh, …):
     // a scene that loads makes a simulation.

@@ -86,6 +86,9 @@ pub struct Scene3dFile {
     pub trajectory: Option<String>,
     #[serde(default)]
     pub limits: LimitsSpec,
+    /// Viscoelastic tissue: the 2D scene's `[viscoelastic]` table (`long_term_ratio = E∞/E₀`,
+    /// `relaxation_time_s = τ`; the regions' `E` are the instantaneous moduli E₀). Absent: elastic.
+    pub viscoelastic: Option<crate::ViscoelasticSpec>,
 }
 
 /// The mesh: a structured box or a Gmsh file.
@@ -292,6 +295,8 @@ pub struct Scene3d {
     /// The scene's base trajectory (its `trajectory` file, or a shipped example's).
     pub trajectory: Option<Trajectory3>,
     pub limits: LimitsSpec,
+    /// Viscoelastic tissue (`[viscoelastic]`); `None`: elastic.
+    pub viscoelastic: Option<needlesim_core::sim::Viscoelastic>,
 }
 
 impl Scene3d {
@@ -572,6 +577,9 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
         bail!("regions: at least one region is needed");
     }
     check_scene_text(f.name.as_deref(), f.description.as_deref())?;
+    if let Some(v) = &f.viscoelastic {
+        v.check()?;
+    }
     check_names(f.regions.iter().map(|r| r.name.as_str()), f.targets.iter().map(|t| t.name.as_str()))?;
     let needle = needle(&f.needle)?;
     let quat = base_orientation(&f.needle)?;
@@ -713,6 +721,7 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
         targets: f.targets.iter().map(|t| Target3d { name: t.name.clone(), center_m: t.center_m, radius_m: t.radius_m }).collect(),
         trajectory,
         limits: f.limits.clone(),
+        viscoelastic: f.viscoelastic.map(|v| v.model()),
     })
 }
 
@@ -809,6 +818,20 @@ mod tests {
             std::fs::read_to_string(&p).with_context(|| format!("cannot read {}", p.display()))
         };
         parse_with(text, &read, &server())
+    }
+
+    /// Issue 37: the 2D scene's `[viscoelastic]` table in a 3D scene, off unless given, checked
+    /// as in 2D (the message names the key).
+    #[test]
+    fn issue_37_viscoelastic_key() {
+        assert_eq!(parse(CUBE, None).unwrap().viscoelastic, None);
+        let table = |g: &str, tau: &str| format!("{CUBE}\n[viscoelastic]\nlong_term_ratio = {g}\nrelaxation_time_s = {tau}\n");
+        let v = parse(&table("0.5", "2.0"), None).unwrap().viscoelastic.unwrap();
+        assert_eq!((v.long_term_ratio, v.relaxation_time_s), (0.5, 2.0));
+        let e = format!("{:#}", parse(&table("0", "2.0"), None).unwrap_err());
+        assert!(e.contains("viscoelastic.long_term_ratio = 0: must be in (0, 1]"), "{e}");
+        let e = format!("{:#}", parse(&table("0.5", "-1"), None).unwrap_err());
+        assert!(e.contains("viscoelastic.relaxation_time_s = -1: must be finite and > 0"), "{e}");
     }
 
     /// Issue 37: `[needle] near_field` is off unless set, and a boolean.

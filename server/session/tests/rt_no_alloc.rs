@@ -140,6 +140,7 @@ fn sim3_params(scene: &needlesim_scene::Scene3d) -> needlesim_core::sim3::Sim3Pa
     p.regions = scene.regions.iter().map(|r| r.needle).collect();
     p.tick_rate_hz = scene.tick_rate_hz;
     p.max_contacts = scene.needle.max_points;
+    p.viscoelastic = scene.viscoelastic;
     p.targets =
         scene.targets.iter().enumerate().map(|(k, t)| Target3 { centre_m: t.center_m, radius_m: t.radius_m, name_idx: k }).collect();
     p

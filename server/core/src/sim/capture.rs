@@ -14,8 +14,8 @@ use crate::mixed::Condition;
 use super::frames::Geometry;
 use super::param_limits::{MAX_APPROACHING, MAX_CAPTURES_PER_TICK};
 use super::state::{NeedleNode, NodeState, State, WorkingSet};
-use super::viscous::{History, ScaledBlocks};
 use super::{Ctx, SimError, SimStats};
+use crate::viscous::{History, ScaledBlocks};
 
 /// A node the tip passed this tick and its arc length in the tip's frame.
 #[derive(Debug, Clone, Copy)]

@@ -1,133 +1,12 @@
-//! The hybrid matrix's round-off check (issue 19): $H$ is kept by $O(d^2)$ updates for hours at
-//! 1 kHz, so the step checks that its solution still satisfies the tissue's compliance relation
-//! and rebuilds $H$ from scratch when it does not.
-//!
-//! Every [`param_limits::HYBRID_CHECK_EVERY_TICKS`] ticks, one working contact $a$ (round robin)
-//! is checked against the solver's own solution (its prescribed values and the unknowns its last
-//! solve gave, in world components):
-//! $$r_a = u_a - \sum_{b \in \mathcal{W}} W_{ab} f_b, \qquad
-//!   \rho_a = \frac{\lVert r_a \rVert_\infty}{\max\big(\lVert u_a \rVert_\infty,\ \max_i \sum_b \lvert W_{ab}\rvert_{i\cdot} \lvert f_b \rvert\big)},$$
-//! with $W_{ab}$ the world compliance block of the two contacts (from the column cache), so a
-//! check costs $O(d)$ block reads and nothing else. The hybrid matrix's solve is exact in exact
-//! arithmetic, so $\rho_a$ measures the drift of $H$ from its definition (plus one product's
-//! round-off). When $\rho_a$ exceeds [`param_limits::HYBRID_DRIFT_TOL`], $H$ is rebuilt from
-//! $C_{\mathcal{W}\mathcal{W}}$ ([`crate::mixed::MixedSolver::rebuild`], $O(d^3)$ and allocating:
-//! the one exception to a step's allocation-free rule, counted in
-//! [`super::SimStats::hybrid_rebuilds`] and not expected to happen) and used from the next tick.
-//!
-//! [`param_limits::HYBRID_CHECK_EVERY_TICKS`]: super::param_limits::HYBRID_CHECK_EVERY_TICKS
-//! [`param_limits::HYBRID_DRIFT_TOL`]: super::param_limits::HYBRID_DRIFT_TOL
-
-use crate::compliance::ContactBlocks;
-use crate::ids::{Axis, Slot};
-use crate::mixed::Condition;
-
-use super::param_limits::HYBRID_DRIFT_TOL;
-use super::state::WorkingSet;
-
-/// The check's state between ticks.
-#[derive(Debug, Clone)]
-pub(super) struct DriftCheck {
-    /// The slot index the next check visits.
-    pub cursor: usize,
-    /// The largest residual $\rho_a$ seen.
-    pub max_residual: f64,
-    /// The rebuild threshold ([`HYBRID_DRIFT_TOL`] unless a test set another).
-    pub tol: f64,
-    /// The recomputed unknowns $y = H x$, capacity the solver's DOFs.
-    pub y: Vec<f64>,
-}
-
-impl DriftCheck {
-    /// A check for a working set of up to `cap` contacts (2 DOFs each).
-    pub fn new(cap: usize) -> Self {
-        Self { cursor: 0, max_residual: 0.0, tol: HYBRID_DRIFT_TOL, y: Vec::with_capacity(2 * cap) }
-    }
-}
-
-/// The relative residual $\rho_a$ of contact `slot_idx` (see the module documentation); `None`
-/// when a block is not cached (a contact whose columns were evicted: not expected, the cache
-/// keeps working contacts' columns) or the row carries nothing (no force, no displacement).
-/// The unknowns are recomputed as $y = H x$ from the prescribed values into `y` (capacity: the
-/// solver's DOFs), so a prescribed value changed after the last solve (the bevel force's update)
-/// does not read as drift; $O(d^2)$.
-pub(super) fn row_residual<C: ContactBlocks<2> + ?Sized>(ws: &WorkingSet, cache: &C, slot_idx: usize, y: &mut Vec<f64>) -> Option<f64> {
-    let solver = &ws.solver;
-    let contacts = solver.contacts();
-    let a = contacts.get(slot_idx)?;
-    let d = solver.n_dofs();
-    let x = |k: usize| solver.prescribed_value(Slot::new(k / 2), Axis::of_local_dof::<2>(k));
-    y.clear();
-    y.extend((0..d).map(|i| (0..d).map(|j| solver.hybrid(i, j) * x(j)).sum::<f64>()));
-    // Local (u, f) of DOF k: the prescribed one from x, the other from y.
-    let local = |k: usize| match solver.condition(Slot::new(k / 2), Axis::of_local_dof::<2>(k)) {
-        Condition::Displacement => (x(k), y[k]),
-        Condition::Force => (y[k], x(k)),
-    };
-    let world = |slot: usize, v: [f64; 2]| {
-        let fr = solver.frame(Slot::new(slot));
-        [fr[0][0] * v[0] + fr[1][0] * v[1], fr[0][1] * v[0] + fr[1][1] * v[1]]
-    };
-    let mut wf = [0.0f64; 2];
-    let mut scale = [0.0f64; 2];
-    for (k, b) in contacts.iter().enumerate() {
-        let w = cache.contact_block(a, b)?;
-        let f = world(k, [local(2 * k).1, local(2 * k + 1).1]);
-        for r in 0..2 {
-            for c in 0..2 {
-                wf[r] += w[r][c] * f[c];
-                scale[r] += (w[r][c] * f[c]).abs();
-            }
-        }
-    }
-    let u = world(slot_idx, [local(2 * slot_idx).0, local(2 * slot_idx + 1).0]);
-    let denom = scale[0].max(scale[1]).max(u[0].abs()).max(u[1].abs());
-    if denom <= 0.0 || !denom.is_finite() {
-        return None;
-    }
-    Some((u[0] - wf[0]).abs().max((u[1] - wf[1]).abs()) / denom)
-}
-
-/// What one check did.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Checked {
-    /// Nothing to check (no contact, or a row with no load).
-    Nothing,
-    /// Within the tolerance.
-    Fine,
-    /// Past the tolerance: $H$ rebuilt, used from the next tick.
-    Rebuilt,
-    /// Past the tolerance, and the rebuild refused ([`crate::mixed::MixedError`]: a contact's columns missing
-    /// or $C_{PP}$ not positive definite); the solver keeps its old $H$.
-    RebuildFailed,
-}
-
-/// One check of the round robin: checks the contact at `drift.cursor` (then advances it),
-/// records the residual, and rebuilds $H$ when it exceeds `drift.tol`.
-pub(super) fn check_one<C: ContactBlocks<2> + ?Sized>(ws: &mut WorkingSet, cache: &C, drift: &mut DriftCheck) -> Checked {
-    let d = ws.solver.contacts().len();
-    if d == 0 {
-        return Checked::Nothing;
-    }
-    let slot_idx = drift.cursor % d;
-    drift.cursor = (slot_idx + 1) % d;
-    let Some(rho) = row_residual(ws, cache, slot_idx, &mut drift.y) else { return Checked::Nothing };
-    drift.max_residual = drift.max_residual.max(rho);
-    if rho <= drift.tol {
-        return Checked::Fine;
-    }
-    match ws.solver.rebuild(cache) {
-        Ok(()) => Checked::Rebuilt,
-        Err(_) => Checked::RebuildFailed,
-    }
-}
+//! The 2D step's round-off checks of the hybrid matrix ([`crate::drift`], one code with 3D's):
+//! a long random session keeps $H$ exact, a drifted row is found.
 
 #[cfg(test)]
 mod tests {
     use rand::rngs::SmallRng;
     use rand::{Rng, SeedableRng};
 
-    use super::*;
+    use crate::drift::{Checked, DriftCheck, check_one, row_residual};
     use crate::fixtures::{phantom, phantom_params};
     use crate::ids::{Axis, Slot};
     use crate::mixed::Condition;
@@ -295,17 +174,17 @@ mod tests {
         let ws = &mut a.state.ws;
         assert!(ws.len() > 2, "the session ended with {} contacts", ws.len());
         let mut y = Vec::new();
-        let before = row_residual(ws, &a.state.cache, 1, &mut y).unwrap();
+        let before = row_residual(&ws.solver, &a.state.cache, 1, &mut y).unwrap();
         assert!(before < 1e-9, "{before:e}");
         let node = ws.solver.contacts()[1].terms().next().unwrap().0.index();
         let cache = &mut a.state.cache;
         let mut columns: Vec<f64> = (0..2).flat_map(|c| cache.column(node, c).unwrap().to_vec()).collect();
         columns.iter_mut().for_each(|v| *v *= 1.0 + 1e-5);
         cache.insert(node, &columns);
-        let after = row_residual(ws, &a.state.cache, 1, &mut y).unwrap();
+        let after = row_residual(&ws.solver, &a.state.cache, 1, &mut y).unwrap();
         assert!(after > 1e-7, "a perturbed force gave a residual of only {after:e}");
-        let mut check = DriftCheck { cursor: 1, ..DriftCheck::new(48) };
-        assert_eq!(check_one(ws, &a.state.cache, &mut check), Checked::Rebuilt);
+        let mut check = DriftCheck { cursor: 1, ..DriftCheck::new::<2>(48) };
+        assert_eq!(check_one(&mut ws.solver, &a.state.cache, &mut check), Checked::Rebuilt);
         assert_eq!(check.cursor, 2 % ws.len());
     }
 }

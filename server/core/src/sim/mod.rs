@@ -70,7 +70,6 @@ mod scratch;
 mod setup;
 mod state;
 mod unconverged;
-mod viscous;
 
 use std::sync::Arc;
 
@@ -79,12 +78,12 @@ use crate::compliance::{ComplianceCache, TissueModel};
 use crate::mixed::MixedSolver;
 use crate::needle::BasePose;
 
+pub use crate::viscous::Viscoelastic;
 pub use divergence::DivergenceBounds;
 pub use error::{Divergence, SimError};
 pub use output::{LocalCondition, NeedleNodeOut, SimStats, StateSnapshot, StepOutput, TargetOut};
 pub use params::{ContactModel, SimParams, TargetParams, param_limits};
 pub use unconverged::Unconverged;
-pub use viscous::Viscoelastic;
 
 pub use state::NodeState;
 
@@ -178,7 +177,7 @@ impl Simulation {
             diverged: None,
             updates_at_tick_start: 0,
             columns_lru: state::ColumnLru::new(n_nodes),
-            drift: drift::DriftCheck::new(cap),
+            drift: crate::drift::DriftCheck::new::<2>(cap),
         };
         let scratch = Scratch::new(&model, &params);
         Ok(Self { model, params, setup, state, scratch, out, stage_clock: None })
@@ -375,16 +374,19 @@ impl Simulation {
         out.active_set_capped = capped;
         out.shape_passes_capped = shape_capped;
         if let Some(c) = &setup.visc {
-            viscous::advance(c, &mut st.ws);
+            // Each contact's history from its true displacement (written by the output stage).
+            for (nn, u) in st.ws.nodes.iter_mut().zip(&st.ws.u_world) {
+                nn.visc.advance(c, *u);
+            }
         }
         lap(clock, &mut t_last, &mut stage_ns, 6);
         touch_and_sweep(params, model.mesh().nodes_m(), st, out);
         if st.tick % param_limits::HYBRID_CHECK_EVERY_TICKS == param_limits::HYBRID_CHECK_EVERY_TICKS - 1 {
-            let blocks = viscous::ScaledBlocks { cache: &st.cache, scale: setup.compliance_scale };
-            let checked = drift::check_one(&mut st.ws, &blocks, &mut st.drift);
-            st.stats.hybrid_checks += (checked != drift::Checked::Nothing) as u64;
-            st.stats.hybrid_rebuilds += (checked == drift::Checked::Rebuilt) as u64;
-            st.stats.hybrid_rebuild_failures += (checked == drift::Checked::RebuildFailed) as u64;
+            let blocks = crate::viscous::ScaledBlocks { cache: &st.cache, scale: setup.compliance_scale };
+            let checked = crate::drift::check_one(&mut st.ws.solver, &blocks, &mut st.drift);
+            st.stats.hybrid_checks += (checked != crate::drift::Checked::Nothing) as u64;
+            st.stats.hybrid_rebuilds += (checked == crate::drift::Checked::Rebuilt) as u64;
+            st.stats.hybrid_rebuild_failures += (checked == crate::drift::Checked::RebuildFailed) as u64;
         }
         lap(clock, &mut t_last, &mut stage_ns, 7);
         out.stage_ns = stage_ns;

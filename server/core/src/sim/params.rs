@@ -5,7 +5,7 @@ use crate::mesh::Mesh;
 use crate::needle::{BasePose, NeedleShape, RegionNeedleParams};
 
 use super::SimError;
-use super::viscous::Viscoelastic;
+use crate::viscous::Viscoelastic;
 
 /// A target embedded in the tissue: a point (radius 0) or a small disc.
 #[derive(Debug, Clone, PartialEq)]
@@ -82,7 +82,7 @@ pub struct SimParams {
     /// How far ahead of the tip nodes are reported as approaching (for column prefetch).
     pub lookahead_m: f64,
     /// Viscoelastic tissue: one proportional relaxation of every modulus (`None`: elastic; see
-    /// `viscous.rs`). The tissue model's moduli are then the instantaneous ones, $E_0$.
+    /// [`crate::viscous`]). The tissue model's moduli are then the instantaneous ones, $E_0$.
     pub viscoelastic: Option<Viscoelastic>,
 }
 

@@ -6,8 +6,8 @@ use crate::compliance::TissueModel;
 use crate::mesh::Mesh;
 use crate::spatial::NodeGrid;
 
-use super::viscous::ViscCoeffs;
 use super::{DivergenceBounds, SimError, SimParams};
+use crate::viscous::ViscCoeffs;
 
 /// A target located in the mesh: the triangle containing its centre and the barycentric
 /// weights of the centre in it (the target moves with the tissue as $\sum_k w_k (X_k + u_k)$).
@@ -38,7 +38,7 @@ pub(super) struct Setup {
     /// The longest edge of the mesh (m): every node of a triangle a line crosses lies within it
     /// of the line.
     pub max_edge_m: f64,
-    /// The viscous recursion's constants (`None`: elastic tissue; `viscous.rs`).
+    /// The viscous recursion's constants (`None`: elastic tissue; [`crate::viscous`]).
     pub visc: Option<ViscCoeffs>,
     /// The working solver's scale of every compliance block: $1/\gamma$, exactly 1 when elastic.
     pub compliance_scale: f64,

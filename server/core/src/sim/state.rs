@@ -65,14 +65,14 @@ pub(super) struct NeedleNode {
     pub lateral_ref_m: f64,
     /// The node's force on the tissue (in its frame) the reference shape carries.
     pub force_ref_local_n: [f64; 2],
-    /// Viscous history (all zero in an elastic tissue; `viscous.rs`).
-    pub visc: super::viscous::History,
+    /// Viscous history (all zero in an elastic tissue; [`crate::viscous`]).
+    pub visc: crate::viscous::History<2>,
 }
 
 impl NeedleNode {
     /// The position the working solver's displacement is measured from: the reference
     /// position shifted by the viscous history, $X + \tilde u$ is where the tissue point is
-    /// (`viscous.rs`; $X$ itself in an elastic tissue).
+    /// ([`crate::viscous`]; $X$ itself in an elastic tissue).
     #[inline]
     pub fn x_kin_m(&self) -> [f64; 2] {
         [self.x_ref_m[0] + self.visc.shift_m[0], self.x_ref_m[1] + self.visc.shift_m[1]]
@@ -232,7 +232,7 @@ pub(super) struct State {
     /// The cache's use stamps and eviction sweep.
     pub columns_lru: ColumnLru,
     /// The hybrid matrix's round-off check (`drift.rs`).
-    pub drift: super::drift::DriftCheck,
+    pub drift: crate::drift::DriftCheck,
 }
 
 /// When each node's cached columns were last used, for eviction: `stamp[j]` is 1 + the last

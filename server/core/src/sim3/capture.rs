@@ -10,6 +10,7 @@ use crate::d3::locate::{BARYCENTRIC_TOL, barycentric};
 use crate::ids::{Axis, Slot};
 use crate::mixed::{Condition, MixedError};
 use crate::needle::RegionNeedleParams;
+use crate::viscous::{History, ScaledBlocks};
 
 use super::state::Point;
 use super::{
@@ -55,6 +56,16 @@ impl Simulation3 {
             }
         }
         Some(u)
+    }
+
+    /// The viscous history of a contact captured now ([`crate::viscous`]): $h = u = v$ with $v$
+    /// its pseudo-elastic displacement $C_0 f$ from the working forces (`fallback_m`, the
+    /// capture's fixed point's, if a block is missing); zero in an elastic tissue.
+    fn captured_history(&self, contact: &ContactPoint, fallback_m: [f64; 3]) -> History<3> {
+        match &self.setup.visc {
+            None => History::default(),
+            Some(c) => History::captured(c, self.contact_displacement(contact).unwrap_or(fallback_m)),
+        }
     }
 
     /// The material point $X$ at deformed position `p_m`: the fixed point of $X = p - u(X)$
@@ -146,7 +157,8 @@ impl Simulation3 {
             self.defer_capture(prev_tip, t);
             return Ok(());
         }
-        let d = sub(x, base);
+        let visc = self.captured_history(&contact, sub(prev_tip, x));
+        let d = sub(visc.shifted(x), base);
         let s_new = dot(t, sub(prev_tip, base));
         let region = self.region_of(&contact);
         let entering = self.pts.is_empty() || self.last_tip_region != Some(region);
@@ -175,6 +187,7 @@ impl Simulation3 {
             lat_ref_m: [-dot(frame[1], d), -dot(frame[2], d)],
             f_ref_local_n: [0.0; 3],
             disc,
+            visc,
         });
         self.stats.captures += 1;
         Ok(())
@@ -224,7 +237,8 @@ impl Simulation3 {
     ///
     /// Errors: [`SimError3::Mixed`] when the solver refuses it for another reason.
     fn add_held_point(&mut self, contact: ContactPoint, frame: &[[f64; 3]; 3], d: [f64; 3], s_m: f64) -> Result<bool, SimError3> {
-        let slot = self.solver.add_contact_in_frame(&self.cache, contact, *frame)?;
+        let blocks = ScaledBlocks { cache: &self.cache, scale: self.setup.compliance_scale };
+        let slot = self.solver.add_contact_in_frame(&blocks, contact, *frame)?;
         let r = self
             .solver
             .set_condition(slot, Axis::Lateral, Condition::Displacement, -dot(frame[1], d))
@@ -333,7 +347,8 @@ impl Simulation3 {
                 continue;
             }
             self.pending.remove(k);
-            let d = sub(x, base);
+            let visc = self.captured_history(&contact, sub(q, x));
+            let d = sub(visc.shifted(x), base);
             let region = self.region_of(&contact);
             if !self.add_held_point(contact, frame, d, s)? {
                 continue;
@@ -356,6 +371,7 @@ impl Simulation3 {
                 lat_ref_m: [-dot(frame[1], d), -dot(frame[2], d)],
                 f_ref_local_n: [0.0; 3],
                 disc,
+                visc,
             });
             self.stats.captures += 1;
             self.stats.late_captures += 1;

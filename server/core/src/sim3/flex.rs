@@ -163,7 +163,7 @@ impl Flex3 {
     /// displacement's axial component adds to it): $s_i + t\cdot(X - c(s_i))$.
     pub fn ref_arc(&self, p: &Point, frame: &Frame3) -> f64 {
         let s = self.s_ref(p);
-        s + dot(frame[0], sub(p.x_ref_m, self.rod.point_at(s)))
+        s + dot(frame[0], sub(p.x_kin_m(), self.rod.point_at(s)))
     }
 
     /// The arc length of a deformed position $x$ of a point in frame $F$.
@@ -196,7 +196,7 @@ impl Flex3 {
         for slot in Slot::all(pts.len()) {
             let p = &pts[slot.index()];
             let f = solver.frame(slot);
-            let d = sub(self.rod.point_at(self.s_ref(p)), p.x_ref_m);
+            let d = sub(self.rod.point_at(self.s_ref(p)), p.x_kin_m());
             let u = [dot(f[0], d), dot(f[1], d), dot(f[2], d)];
             for (c, &ax) in LAT.iter().enumerate() {
                 if solver.condition(slot, ax) == Condition::Displacement {
@@ -324,7 +324,7 @@ impl Flex3 {
             let p = &pts[slot.index()];
             let f = solver.frame(slot);
             let s = match p.state {
-                PointState3::Slipping => self.arc_of(p, &f, super::add(p.x_ref_m, solver.displacement_world(slot))),
+                PointState3::Slipping => self.arc_of(p, &f, super::add(p.x_kin_m(), solver.displacement_world(slot))),
                 _ => self.s_ref(p),
             }
             .min(len);
@@ -346,7 +346,7 @@ impl Flex3 {
             pts[slot.index()].f_ref_local_n = solver.force_local(slot);
             let p = &pts[slot.index()];
             let f = solver.frame(slot);
-            let x = super::add(p.x_ref_m, solver.displacement_world(slot));
+            let x = super::add(p.x_kin_m(), solver.displacement_world(slot));
             let off = sub(x, self.rod.point_at(self.s_ref(p)));
             for (c, &ax) in LAT.iter().enumerate() {
                 if solver.condition(slot, ax) == Condition::Displacement {

@@ -46,7 +46,7 @@ impl Simulation3 {
     pub(super) fn ref_arc(&self, slot: Slot, frame: &[[f64; 3]; 3], base: [f64; 3]) -> f64 {
         let p = &self.pts[slot.index()];
         match &self.flex {
-            None => dot(frame[0], sub(p.x_ref_m, base)),
+            None => dot(frame[0], sub(p.x_kin_m(), base)),
             Some(fx) => fx.ref_arc(p, &self.solver.frame(slot)),
         }
     }
@@ -56,7 +56,7 @@ impl Simulation3 {
         let len = self.params.needle_length_m;
         for slot in Slot::all(self.pts.len()) {
             let p = &self.pts[slot.index()];
-            let d = sub(p.x_ref_m, base);
+            let d = sub(p.x_kin_m(), base);
             self.solver.set_value(slot, Axis::Lateral, -dot(frame[1], d));
             self.solver.set_value(slot, Axis::Binormal, -dot(frame[2], d));
             match p.state {

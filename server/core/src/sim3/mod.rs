@@ -203,6 +203,8 @@ pub struct Simulation3 {
     targets: targets::TargetTracker,
     /// The flexible needle ([`flex`]); `None` for a rigid one.
     flex: Option<flex::Flex3>,
+    /// The round-off check of the hybrid matrix ([`crate::drift`]).
+    drift: crate::drift::DriftCheck,
 }
 
 impl Simulation3 {
@@ -278,10 +280,48 @@ impl Simulation3 {
         // 7. Output.
         self.write_output(&frame, clamped, iterations, converged);
         self.out.shape_passes_capped = shape_capped;
+        if let Some(c) = &self.setup.visc {
+            // Each point's history from its true displacement (written by the output stage).
+            for p in &mut self.pts {
+                p.visc.advance(c, p.u_world);
+            }
+        }
         let target_frame = if self.flex.is_some() { axis_frame_now(self) } else { frame };
         self.update_targets(&target_frame);
+        self.check_drift();
         self.tick += 1;
         Ok(&self.out)
+    }
+}
+
+impl Simulation3 {
+    /// One row of the hybrid matrix checked every
+    /// [`crate::sim::param_limits::HYBRID_CHECK_EVERY_TICKS`] ticks against the blocks the solver
+    /// was built from, and the matrix rebuilt on drift ([`crate::drift`], one code with 2D's).
+    fn check_drift(&mut self) {
+        use crate::drift::{Checked, check_one};
+        use crate::sim::param_limits::HYBRID_CHECK_EVERY_TICKS;
+        if self.tick % HYBRID_CHECK_EVERY_TICKS != HYBRID_CHECK_EVERY_TICKS - 1 {
+            return;
+        }
+        let blocks = crate::viscous::ScaledBlocks { cache: &self.cache, scale: self.setup.compliance_scale };
+        let checked = check_one(&mut self.solver, &blocks, &mut self.drift);
+        self.stats.hybrid_checks += (checked != Checked::Nothing) as u64;
+        self.stats.hybrid_rebuilds += (checked == Checked::Rebuilt) as u64;
+        self.stats.hybrid_rebuild_failures += (checked == Checked::RebuildFailed) as u64;
+    }
+
+    /// The largest relative residual of the hybrid matrix's solution found by the step's
+    /// round-off checks so far ([`crate::drift`]; [`Sim3Stats::hybrid_checks`] of them).
+    pub fn hybrid_max_residual(&self) -> f64 {
+        self.drift.max_residual
+    }
+
+    /// Sets the residual above which a check rebuilds the hybrid matrix (default
+    /// [`crate::sim::param_limits::HYBRID_DRIFT_TOL`]); a negative value rebuilds at every
+    /// check, which tests use to exercise the rebuild.
+    pub fn set_hybrid_drift_tol(&mut self, tol: f64) {
+        self.drift.tol = tol;
     }
 }
 

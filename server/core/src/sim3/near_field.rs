@@ -94,8 +94,10 @@ impl Simulation3 {
                 continue;
             }
             let t = self.solver.frame(slot)[0];
+            // Scaled as the tissue's blocks in a viscoelastic tissue (1/γ, [`crate::viscous`]).
+            let scale = self.setup.compliance_scale;
             let block: [[f64; 3]; 3] = std::array::from_fn(|i| {
-                std::array::from_fn(|j| c_perp * (if i == j { 1.0 } else { 0.0 }) + (c_par - c_perp) * t[i] * t[j])
+                std::array::from_fn(|j| (c_perp * (if i == j { 1.0 } else { 0.0 }) + (c_par - c_perp) * t[i] * t[j]) * scale)
             });
             self.solver.add_series_compliance(slot, block)?;
         }

@@ -56,6 +56,15 @@ pub struct Sim3Stats {
     /// or outside the mesh, or the waiting list ([`MAX_PENDING_CAPTURES`]) or the working set
     /// was full.
     pub pending_dropped: u64,
+    /// Round-off checks of the hybrid matrix made (one row every
+    /// [`crate::sim::param_limits::HYBRID_CHECK_EVERY_TICKS`] ticks, [`crate::drift`], as 2D's).
+    pub hybrid_checks: u64,
+    /// Of them, rebuilds of the hybrid matrix: a residual over
+    /// [`crate::sim::param_limits::HYBRID_DRIFT_TOL`] (not expected; each one $O(d^3)$ and
+    /// allocating).
+    pub hybrid_rebuilds: u64,
+    /// Rebuilds the solver refused (its old matrix kept).
+    pub hybrid_rebuild_failures: u64,
 }
 
 /// One contact point in a step's output.
@@ -214,8 +223,10 @@ impl Simulation3 {
         let (mut force, mut torque, mut s_min) = ([0.0; 3], [0.0; 3], f64::INFINITY);
         for slot in Slot::all(self.pts.len()) {
             let f = self.solver.force_world(slot);
-            let u = self.solver.displacement_world(slot);
             let p = &mut self.pts[slot.index()];
+            // The true displacement (the solver's is measured from the shifted reference,
+            // [`crate::viscous`]).
+            let u = p.visc.shifted(self.solver.displacement_world(slot));
             p.f_world = f;
             p.u_world = u;
             let x = add(p.x_ref_m, u);

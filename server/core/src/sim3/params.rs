@@ -1,6 +1,7 @@
 //! The parameters of the 3D simulation ([`Sim3Params`]) and their validation.
 
 use crate::needle::{FlexibleNeedle, RegionNeedleParams};
+use crate::viscous::Viscoelastic;
 
 use super::near_field::NearField3;
 use super::pose::BasePose3;
@@ -64,6 +65,10 @@ pub struct Sim3Params {
     /// The needle's near field ([`super::near_field`]): a sub-grid compliance in series with the
     /// tissue at each point; `None` (the default) for none.
     pub near_field: Option<NearField3>,
+    /// Viscoelastic tissue: one proportional relaxation of every modulus ([`crate::viscous`],
+    /// one code with 2D's [`crate::SimParams::viscoelastic`]); `None` (the default) for an
+    /// elastic tissue. The tissue model's moduli are then the instantaneous ones, $E_0$.
+    pub viscoelastic: Option<Viscoelastic>,
 }
 
 /// The needle of a 3D simulation.
@@ -148,6 +153,7 @@ impl Sim3Params {
             needle: NeedleShape3::Rigid,
             tear_force_factor: super::DEFAULT_TEAR_FORCE_FACTOR,
             near_field: None,
+            viscoelastic: None,
         }
     }
 
@@ -201,6 +207,9 @@ impl Sim3Params {
             pos("near_field.needle_radius_m", nf.needle_radius_m)?;
             pos("near_field.beta_axial", nf.beta_axial)?;
             pos("near_field.beta_lateral", nf.beta_lateral)?;
+        }
+        if let Some(v) = &self.viscoelastic {
+            v.validate()?;
         }
         self.validate_targets()?;
         self.validate_needle()

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use crate::compliance::ComplianceCache3;
 use crate::d3::TetTissueModel;
 use crate::mixed::MixedSolver3;
+use crate::viscous::ViscCoeffs;
 
 use crate::d3::disc::DiscWeights;
 
@@ -39,6 +40,7 @@ impl Simulation3 {
             }
         };
         let pose = params.initial_pose;
+        let visc = ViscCoeffs::new(params.viscoelastic, params.tick_rate_hz);
         let targets = targets::TargetTracker::new(&model, &params.targets)?;
         let flex = params.needle.flexible().map(|f| flex::Flex3::new(f, pose.position_m, pose.frame(), cap));
         let mut out = StepOutput3 {
@@ -60,7 +62,13 @@ impl Simulation3 {
         };
         targets.initial_output(out.tip_m, pose.axis(), &mut out.targets);
         let mut sim = Self {
-            setup: Setup3 { tet_diam_m, sample_step_m: 0.25 * min_diam, max_diam_m },
+            setup: Setup3 {
+                tet_diam_m,
+                sample_step_m: 0.25 * min_diam,
+                max_diam_m,
+                visc,
+                compliance_scale: visc.map_or(1.0, |c| c.compliance_scale()),
+            },
             pose,
             solver: MixedSolver3::with_capacity(cap),
             pts: Vec::with_capacity(cap),
@@ -87,6 +95,7 @@ impl Simulation3 {
             stiffness: stiffness::StiffnessScratch::with_capacity(cap, flex.is_some()),
             targets,
             flex,
+            drift: crate::drift::DriftCheck::new::<3>(cap),
             model,
             params,
         };
@@ -160,4 +169,9 @@ pub(super) struct Setup3 {
     pub sample_step_m: f64,
     /// The largest tetrahedron diameter, m.
     pub max_diam_m: f64,
+    /// The viscous recursion's constants (`None`: elastic tissue; [`crate::viscous`]).
+    pub visc: Option<ViscCoeffs>,
+    /// The working solver's scale of every compliance block (and of the near field's): $1/\gamma$,
+    /// exactly 1 when elastic.
+    pub compliance_scale: f64,
 }

@@ -5,6 +5,7 @@ use crate::contact::ContactPoint;
 use crate::d3::disc::Disc;
 use crate::ids::Slot;
 use crate::mixed::MixedError;
+use crate::viscous::History;
 
 use super::Simulation3;
 
@@ -46,6 +47,18 @@ pub(super) struct Point {
     /// The disc `contact` spreads over (centre `x_ref_m`, the tangent at capture), `None` for a
     /// material point ([`super::Sim3Params::disc_radius_m`]).
     pub disc: Option<Disc>,
+    /// Viscous history (all zero in an elastic tissue; [`crate::viscous`]).
+    pub visc: History<3>,
+}
+
+impl Point {
+    /// The position the working solver's displacement is measured from: the reference
+    /// position shifted by the viscous history ([`crate::viscous`]; $X$ itself in an elastic
+    /// tissue). Where the prescribed values and the arc lengths put the point.
+    #[inline]
+    pub fn x_kin_m(&self) -> [f64; 3] {
+        self.visc.shifted(self.x_ref_m)
+    }
 }
 
 impl Simulation3 {

@@ -245,6 +245,7 @@ impl Simulation3 {
         let d = 3 * m;
         let base = self.pose.position_m;
         let frame0 = self.pose.frame();
+        let scale = self.setup.compliance_scale;
         let s = &mut self.stiffness;
         let solver = &self.solver;
         let contacts = solver.contacts();
@@ -254,13 +255,16 @@ impl Simulation3 {
             let f = solver.force_world(slot);
             let u = solver.displacement_world(slot);
             s.f[i] = f;
-            s.r[i] = sub(add(self.pts[i].x_ref_m, u), base);
+            s.r[i] = sub(add(self.pts[i].x_kin_m(), u), base);
             s.frame[i] = solver.frame(slot);
         }
         for a in 0..m {
             for b in 0..m {
                 let blk = super::targets::point_block(&self.cache, &contacts[a], &contacts[b])
                     .ok_or(MixedError::NotCached { contact: contacts[b].id() })?;
+                // The working solver's blocks: $W/\gamma$ in a viscoelastic tissue (a tick's
+                // instantaneous stiffness, [`crate::viscous`]); as they are when elastic.
+                let blk = if scale == 1.0 { blk } else { blk.map(|row| row.map(|x| x * scale)) };
                 for (r, row) in blk.iter().enumerate() {
                     s.w[(3 * a + r) * d + 3 * b..(3 * a + r) * d + 3 * b + 3].copy_from_slice(row);
                 }
@@ -416,7 +420,7 @@ impl Simulation3 {
         for slot in Slot::all(self.pts.len()).filter(|_| self.flex.is_none()) {
             solver.set_frame(slot, frame)?;
             let p = &self.pts[slot.index()];
-            let dref = sub(p.x_ref_m, base);
+            let dref = sub(p.x_kin_m(), base);
             solver.set_value(slot, Axis::Lateral, -dot(frame[1], dref));
             solver.set_value(slot, Axis::Binormal, -dot(frame[2], dref));
             match p.state {
@@ -429,7 +433,7 @@ impl Simulation3 {
         let (mut force, mut torque) = ([0.0; 3], [0.0; 3]);
         for slot in Slot::all(pts.len()) {
             let f = solver.force_world(slot);
-            let x = add(pts[slot.index()].x_ref_m, solver.displacement_world(slot));
+            let x = add(pts[slot.index()].x_kin_m(), solver.displacement_world(slot));
             let neg = f.map(|v| -v);
             force = add(force, neg);
             torque = add(torque, cross(sub(x, base), neg));

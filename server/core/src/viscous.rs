@@ -1,6 +1,7 @@
 //! Viscoelastic tissue, a standard linear solid with one proportional relaxation, applied
-//! through the condensed compliance: the working set's history adds two 2-vectors per contact
-//! and $O(d)$ work per tick.
+//! through the condensed compliance: the working set's history adds two $N$-vectors per contact
+//! ($N$ = 2 or 3, the dimension: one code for both simulations, [`crate::sim`] and
+//! [`crate::sim3`]) and $O(d)$ work per tick.
 //!
 //! **The law.** Every modulus of the tissue relaxes alike (same $\nu$, one time constant for the
 //! tissue): $E(t) = E_\infty + (E_0 - E_\infty)\,e^{-t/\tau}$, i.e. the stiffness matrix is
@@ -44,11 +45,15 @@
 //!
 //! An elastic scene ($g_\infty = 1$, or no viscoelasticity) runs none of this: its results are
 //! unchanged bit for bit.
+//!
+//! **In 3D** the same holds contact by contact ([`crate::sim3`]): the material points' history is
+//! that of the solver's displacement (the needle's surface point: the tissue's plus the needle's
+//! near field, [`crate::sim3::NearField3`], whose series compliance is scaled by $1/\gamma$ with
+//! the blocks, since it is tissue too), and the wrench stiffness a device renders is the
+//! instantaneous one of a tick, the blocks $W/\gamma$.
 
-use crate::compliance::{ComplianceCache, ContactBlocks};
+use crate::compliance::ContactBlocks;
 use crate::contact::ContactPoint;
-
-use super::state::WorkingSet;
 
 /// A standard linear solid with one relaxation for the whole tissue (module docs):
 /// $E(t) = E_\infty + (E_0 - E_\infty)\,e^{-t/\tau}$ with $E_0$ the tissue's moduli.
@@ -83,7 +88,7 @@ impl Viscoelastic {
 
 /// The recursion's constants for one tick length (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct ViscCoeffs {
+pub(crate) struct ViscCoeffs {
     /// $a = e^{-\Delta t/\tau}$.
     pub a: f64,
     /// $b = (\tau/\Delta t)(1 - a)$.
@@ -118,26 +123,33 @@ impl ViscCoeffs {
 }
 
 /// A contact's viscous history (world components, m): $h_{n-1}$, $u_{n-1}$ and the shift
-/// $-r_n/\gamma$ of its reference position for the coming tick. All zero in an elastic tissue.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub(super) struct History {
-    pub h_m: [f64; 2],
-    pub u_prev_m: [f64; 2],
-    pub shift_m: [f64; 2],
+/// $-r_n/\gamma$ of its reference position for the coming tick, in the `D` world components
+/// of the dimension. All zero in an elastic tissue.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct History<const D: usize> {
+    pub h_m: [f64; D],
+    pub u_prev_m: [f64; D],
+    pub shift_m: [f64; D],
 }
 
-impl History {
+impl<const D: usize> Default for History<D> {
+    fn default() -> Self {
+        Self { h_m: [0.0; D], u_prev_m: [0.0; D], shift_m: [0.0; D] }
+    }
+}
+
+impl<const D: usize> History<D> {
     /// The history of a contact captured with pseudo-elastic displacement `v_m`: $h = u = v$.
-    pub fn captured(c: &ViscCoeffs, v_m: [f64; 2]) -> Self {
-        let mut hist = Self { h_m: v_m, u_prev_m: v_m, shift_m: [0.0; 2] };
+    pub fn captured(c: &ViscCoeffs, v_m: [f64; D]) -> Self {
+        let mut hist = Self { h_m: v_m, u_prev_m: v_m, shift_m: [0.0; D] };
         hist.shift_m = hist.next_shift(c);
         hist
     }
 
     /// One tick on: $h_n = a h_{n-1} + b (u_n - u_{n-1})$, $u_{n-1} \leftarrow u_n$, and the
-    /// shift for the next tick.
-    pub fn advance(&mut self, c: &ViscCoeffs, u_m: [f64; 2]) {
-        for k in 0..2 {
+    /// shift for the next tick. $O(1)$, no allocation.
+    pub fn advance(&mut self, c: &ViscCoeffs, u_m: [f64; D]) {
+        for k in 0..D {
             self.h_m[k] = c.a * self.h_m[k] + c.b * (u_m[k] - self.u_prev_m[k]);
             self.u_prev_m[k] = u_m[k];
         }
@@ -145,31 +157,30 @@ impl History {
     }
 
     /// $-r/\gamma$ with $r = (1 - g_\infty)(a h - b u)$ from the stored $h$, $u$.
-    fn next_shift(&self, c: &ViscCoeffs) -> [f64; 2] {
+    fn next_shift(&self, c: &ViscCoeffs) -> [f64; D] {
         let k = -c.one_minus_g / c.gamma;
-        [k * (c.a * self.h_m[0] - c.b * self.u_prev_m[0]), k * (c.a * self.h_m[1] - c.b * self.u_prev_m[1])]
+        std::array::from_fn(|i| k * (c.a * self.h_m[i] - c.b * self.u_prev_m[i]))
+    }
+
+    /// `x_m` shifted by the history: the position the working solver's displacement is
+    /// measured from when `x_m` is the contact's reference position (module docs).
+    #[inline]
+    pub fn shifted(&self, x_m: [f64; D]) -> [f64; D] {
+        std::array::from_fn(|i| x_m[i] + self.shift_m[i])
     }
 }
 
-/// After a tick's output: each contact's $h_n = a h_{n-1} + b (u_n - u_{n-1})$ from its true
-/// displacement `ws.u_world` (written by the output stage), and its shift for the next tick.
-/// $O(d)$, no allocation.
-pub(super) fn advance(c: &ViscCoeffs, ws: &mut WorkingSet) {
-    for (nn, u) in ws.nodes.iter_mut().zip(&ws.u_world) {
-        nn.visc.advance(c, *u);
-    }
-}
-
-/// The column cache's elastic blocks scaled by a constant (the working solver's
-/// $W_{ab}/\gamma$); a scale of exactly 1 returns the blocks bit for bit.
-pub(super) struct ScaledBlocks<'a> {
-    pub cache: &'a ComplianceCache,
+/// A store's elastic blocks scaled by a constant (the working solver's $W_{ab}/\gamma$), in
+/// either dimension and over any store ([`ContactBlocks`]: the column cache, 3D's node blocks);
+/// a scale of exactly 1 returns the blocks bit for bit.
+pub(crate) struct ScaledBlocks<'a, C: ?Sized> {
+    pub cache: &'a C,
     pub scale: f64,
 }
 
-impl ContactBlocks<2> for ScaledBlocks<'_> {
+impl<const D: usize, C: ContactBlocks<D> + ?Sized> ContactBlocks<D> for ScaledBlocks<'_, C> {
     #[inline]
-    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; 2]; 2]> {
+    fn contact_block(&self, a: &ContactPoint, b: &ContactPoint) -> Option<[[f64; D]; D]> {
         let w = self.cache.contact_block(a, b)?;
         Some(w.map(|row| row.map(|x| x * self.scale)))
     }
@@ -191,7 +202,7 @@ mod tests {
         // A seeded zig-zag history of one component.
         let n = 400;
         let u: Vec<f64> = (0..=n).map(|k| 1e-3 * ((k as f64 * 0.037).sin() + 0.3 * ((k * 7 % 13) as f64 / 13.0))).collect();
-        let mut hist = History::captured(&c, [u[0], 0.0]);
+        let mut hist = History::<2>::captured(&c, [u[0], 0.0]);
         for k in 1..=n {
             // v_n from the recursion: γ u_n + r_n = γ (u_n − shift), the shift being −r_n/γ.
             let v_rec = c.gamma * (u[k] - hist.shift_m[0]);
