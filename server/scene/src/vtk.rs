@@ -223,9 +223,10 @@ fn from_piece(piece: vtkio::model::UnstructuredGridPiece, dim: usize, opts: &Vtk
     }
     let cells = cell_lists(&piece.cells.cell_verts, piece.cells.types.len())?;
     let types = &piece.cells.types;
-    // Labels: the named array, else the first default one present.
-    let arrays: Vec<&Attribute> = piece.data.cell.iter().collect();
-    let names: Vec<&str> = arrays.iter().map(|a| a.name()).collect();
+    // Labels: the named array, else the first default one present (a legacy FIELD's arrays by
+    // their own names).
+    let arrays = cell_arrays(&piece.data.cell);
+    let names: Vec<&str> = arrays.iter().map(|a| a.0).collect();
     let array_name = match &opts.label_array {
         Some(n) => {
             if !names.contains(&n.as_str()) {
@@ -242,8 +243,9 @@ fn from_piece(piece: vtkio::model::UnstructuredGridPiece, dim: usize, opts: &Vtk
             ),
         },
     };
-    let attr = arrays.iter().find(|a| a.name() == array_name).expect("found above");
-    let labels = label_values(attr, types.len()).with_context(|| format!("the cell-data array '{}'", limit::quote(&array_name)))?;
+    let attr = arrays.iter().find(|a| a.0 == array_name).expect("found above");
+    let labels =
+        label_values(attr.1, attr.2, types.len()).with_context(|| format!("the cell-data array '{}'", limit::quote(&array_name)))?;
 
     // Which cells are elements and which boundary cells.
     let (element_type, boundary_type) = if dim == 3 { (CellType::Tetra, CellType::Triangle) } else { (CellType::Triangle, CellType::Line) };
@@ -413,7 +415,8 @@ fn parse_piece(text: &str) -> Result<vtkio::model::UnstructuredGridPiece> {
         if binary {
             bail!("a binary legacy VTK file is not supported: write it as ASCII (or as .vtu)");
         }
-        guarded(|| vtkio::Vtk::parse_legacy_be(head.as_bytes())).map_err(|e| anyhow::anyhow!("malformed legacy VTK file: {}", clip(&e)))?
+        let text = legacy_field_types(head);
+        guarded(|| vtkio::Vtk::parse_legacy_be(text.as_bytes())).map_err(|e| anyhow::anyhow!("malformed legacy VTK file: {}", clip(&e)))?
     } else {
         bail!("not a VTK file: neither XML (<VTKFile …>) nor legacy VTK ('# vtk DataFile Version …')");
     };
@@ -428,6 +431,35 @@ fn parse_piece(text: &str) -> Result<vtkio::model::UnstructuredGridPiece> {
         Piece::Inline(p) => Ok(*p),
         _ => bail!("the grid's piece is in another file (a parallel .pvtu); give the piece's .vtu"),
     }
+}
+
+/// VTK 5.1's sized type names in a FIELD array's header (`name 1 n vtktypeint64`, as meshio
+/// writes them) as the classic names the reader knows (`long`, `int`); the `OFFSETS` and
+/// `CONNECTIVITY` headers keep theirs.
+fn legacy_field_types(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.contains("vtktypeint") {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let t: Vec<&str> = line.split_whitespace().collect();
+        let classic = match t.as_slice() {
+            [_, c, n, ty] if c.parse::<u32>().is_ok() && n.parse::<u64>().is_ok() => match *ty {
+                "vtktypeint64" => Some("long"),
+                "vtktypeint32" => Some("int"),
+                _ => None,
+            },
+            _ => None,
+        };
+        match classic {
+            Some(c) => {
+                out.push_str(&format!("{} {} {} {c}", t[0], t[1], t[2]));
+                out.push('\n');
+            }
+            None => out.push_str(line),
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 fn dataset_name(d: &DataSet) -> &'static str {
@@ -498,29 +530,31 @@ fn buffer_f64(b: &IOBuffer) -> Option<Vec<f64>> {
     }
 }
 
+/// The cell-data arrays: (name, data, components), a legacy FIELD's arrays each by its name.
+fn cell_arrays(attrs: &[Attribute]) -> Vec<(&str, &IOBuffer, u32)> {
+    use vtkio::model::ElementType;
+    let mut out = Vec::new();
+    for a in attrs {
+        match a {
+            Attribute::DataArray(a) => {
+                let comps = match &a.elem {
+                    ElementType::Scalars { num_comp, .. } => *num_comp,
+                    ElementType::Generic(n) => *n,
+                    _ => 3,
+                };
+                out.push((a.name.as_str(), &a.data, comps));
+            }
+            Attribute::Field { data_array, .. } => out.extend(data_array.iter().map(|f| (f.name.as_str(), &f.data, f.elem))),
+        }
+    }
+    out
+}
+
 /// One integer label per cell; floats are accepted when integral.
-fn label_values(attr: &Attribute, n_cells: usize) -> Result<Vec<i64>> {
-    let data = match attr {
-        Attribute::DataArray(a) => {
-            use vtkio::model::ElementType;
-            let comps = match &a.elem {
-                ElementType::Scalars { num_comp, .. } => *num_comp,
-                ElementType::Generic(n) => *n,
-                _ => 3,
-            };
-            if comps != 1 {
-                bail!("has {comps} components per cell; labels need one");
-            }
-            &a.data
-        }
-        Attribute::Field { data_array, .. } => {
-            let [f] = data_array.as_slice() else { bail!("is a field of {} arrays; labels need one array", data_array.len()) };
-            if f.elem != 1 {
-                bail!("has {} components per cell; labels need one", f.elem);
-            }
-            &f.data
-        }
-    };
+fn label_values(data: &IOBuffer, comps: u32, n_cells: usize) -> Result<Vec<i64>> {
+    if comps != 1 {
+        bail!("has {comps} components per cell; labels need one");
+    }
     let values: Vec<i64> = match data {
         IOBuffer::F32(_) | IOBuffer::F64(_) => {
             let f = buffer_f64(data).expect("floats");
@@ -816,6 +850,13 @@ mod tests {
         let back = needlesim_core::msh::parse_msh(&c.msh, &MeshLimits::default()).unwrap().mesh;
         assert_eq!(back.region_names(), ["left", "right"]);
         assert_eq!(back.boundary_set("bottom").unwrap(), &[0, 1]);
+        // VTK 5.1 as meshio writes it: OFFSETS and CONNECTIVITY, the labels in a FIELD.
+        let v51 = "# vtk DataFile Version 5.1\nsquare\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n0 0 0 1 0 0 1 1 0 0 1 0\n\
+                   CELLS 4 8\nOFFSETS vtktypeint64\n0 3 6 8\nCONNECTIVITY vtktypeint64\n0 1 2 0 2 3 0 1\nCELL_TYPES 3\n5\n5\n3\n\
+                   CELL_DATA 3\nFIELD FieldData 1\ngmsh:physical 1 3 vtktypeint64\n1 2 5\n";
+        let m51 = read_vtk(v51, 2, &o).unwrap();
+        assert_eq!((m51.region_names(), m51.label_array.as_str()), (vec!["left".to_owned(), "right".to_owned()], "gmsh:physical"));
+        assert_eq!(m51.elements, m.elements);
         // A 2D mesh must be planar.
         let tilted = legacy.replace("0 0 0 1 0 0 1 1 0 0 1 0", "0 0 0 1 0 0 1 1 0.5 0 1 0");
         assert!(err(&tilted, 2, &o).contains("a 2D mesh lies in a plane z = const"));
@@ -879,6 +920,73 @@ mod tests {
         assert!(e.contains("labelmaps (NIfTI, NRRD) are not yet supported"), "{e}");
         let e = format!("{:#}", convert_to_msh("head.stl", "", &o).err().unwrap());
         assert!(e.contains("must be a VTK mesh (.vtu, .vtk) or a labelmap"), "{e}");
+    }
+
+    /// 3D scenes on a VTU: regions and fixed sets from the labels, materials from the library
+    /// with written keys overriding; over the API the file comes uploaded or is refused unread.
+    #[test]
+    fn scenes_on_a_vtu_take_labels_materials_and_the_file_rule() {
+        use crate::{SceneFiles, SceneLimits, parse_scene3d_with};
+        let limits = SceneLimits::from(&MeshLimits::default());
+        let vtu = cube_vtu("labels", &[]);
+        let toml = |labels: &str, lesion: &str| {
+            format!(
+                "dim = 3\nfixed = [\"bottom\"]\n[mesh]\ntype = \"vtu\"\nfile = \"cube.vtu\"\nlabels = {{ {labels} }}\n\n\
+                 [[regions]]\nname = \"tissue\"\nmaterial = \"liver\"\n\n[[regions]]\nname = \"lesion\"\n{lesion}\n\n\
+                 [needle]\nlength_m = 0.1\nbase_m = [0.5, 0.5, 1.2]\nbase_axis = [0.0, 0.0, -1.0]\n"
+            )
+        };
+        let labels = "1 = \"tissue\", 2 = \"lesion\", 11 = \"bottom\"";
+        let given = [("cube.vtu", vtu.as_str())];
+        let s = parse_scene3d_with(&toml(labels, "material = \"prostate\"\nyoung_modulus_pa = 90e3"), SceneFiles::Given(&given), &limits)
+            .unwrap();
+        let liver = crate::tissues::tissue("liver").unwrap();
+        assert_eq!(s.regions[0].material.young_modulus_pa, liver.young_modulus_pa);
+        assert_eq!(s.regions[0].needle.cutting_force_n, liver.cutting_force_n.unwrap());
+        assert_eq!(s.regions[1].material.young_modulus_pa, 90e3, "the written key overrides the material");
+        assert_eq!(s.regions[1].needle.puncture_force_n, crate::tissues::tissue("prostate").unwrap().puncture_force_n.unwrap());
+        assert_eq!(s.fixed_nodes, [0, 1, 2, 3]);
+        assert_eq!(s.mesh_source, crate::scene3d::MeshSource3d::Vtu { file: "cube.vtu".into(), label_array: "labels".into() });
+        // An unknown material, a region without values, a label the scene lacks.
+        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "material = \"livr\""), SceneFiles::Given(&given), &limits).unwrap_err());
+        assert!(e.contains("material = \"livr\" is not in the tissue library"), "{e}");
+        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "poisson_ratio = 0.4"), SceneFiles::Given(&given), &limits).unwrap_err());
+        assert!(e.contains("region 'lesion': young_modulus_pa is missing"), "{e}");
+        let e = format!(
+            "{:#}",
+            parse_scene3d_with(&toml("1 = \"tissue\", 2 = \"lesion\"", "material = \"fat\""), SceneFiles::Given(&given), &limits)
+                .unwrap_err()
+        );
+        assert!(e.contains("mesh.file = \"cube.vtu\"") && e.contains("unknown label"), "{e}");
+        // From a client: nothing is opened.
+        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "material = \"fat\""), SceneFiles::None, &limits).unwrap_err());
+        assert!(e.contains("mesh.file = \"cube.vtu\": a scene sent to the server cannot name files"), "{e}");
+    }
+
+    /// A 2D scene on a triangle VTU with materials (the toughness of the library's material
+    /// applies with energy-based cutting only).
+    #[test]
+    fn a_2d_scene_on_a_vtu_with_materials() {
+        use crate::{SceneFiles, parse_scene_with};
+        let vtk = "# vtk DataFile Version 4.2\nsquare\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n0 0 0 0.1 0 0 0.1 0.1 0 0 0.1 0\n\
+                   CELLS 3 11\n3 0 1 2\n3 0 2 3\n2 0 1\nCELL_TYPES 3\n5\n5\n3\nCELL_DATA 3\nSCALARS region int 1\nLOOKUP_TABLE default\n1\n1\n5\n";
+        let given = [("square.vtk", vtk)];
+        let scene = |cutting: &str| {
+            format!(
+                "fixed = [\"bottom\"]\n[mesh]\ntype = \"vtk\"\nfile = \"square.vtk\"\nlabels = {{ 1 = \"gel\", 5 = \"bottom\" }}\n\n\
+                 [[regions]]\nname = \"gel\"\nmaterial = \"gelatine_phantom\"\n\n[needle]\nlength_m = 0.1\nbase = [0.05, 0.205, -1.5707963267948966]\n{cutting}"
+            )
+        };
+        let s = parse_scene_with(&scene(""), SceneFiles::Given(&given), &MeshLimits::default()).unwrap();
+        let gel = crate::tissues::tissue("gelatine_phantom").unwrap();
+        assert_eq!(s.params.regions[0].friction_n_per_m, gel.friction_n_per_m.unwrap());
+        assert_eq!(s.params.regions[0].toughness_cutting_force_n, None);
+        assert_eq!(s.tissue.mesh().n_triangles(), 2);
+        let s =
+            parse_scene_with(&scene("cutting = \"toughness\"\ndiameter_m = 0.001\n"), SceneFiles::Given(&given), &MeshLimits::default())
+                .unwrap();
+        let fc = s.params.regions[0].toughness_cutting_force_n.unwrap();
+        assert!((fc - gel.fracture_toughness_j_per_m2.unwrap() * 0.001).abs() < 1e-15, "{fc}");
     }
 
     /// Every truncation of a valid file is refused with an error, never a panic.
