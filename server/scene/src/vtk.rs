@@ -938,7 +938,7 @@ mod tests {
         };
         let labels = "1 = \"tissue\", 2 = \"lesion\", 11 = \"bottom\"";
         let given = [("cube.vtu", vtu.as_str())];
-        let s = parse_scene3d_with(&toml(labels, "material = \"prostate\"\nyoung_modulus_pa = 90e3"), SceneFiles::Given(&given), &limits)
+        let s = parse_scene3d_with(&toml(labels, "material = \"prostate\"\nyoung_modulus_pa = 90e3"), SceneFiles::Given(&given), limits)
             .unwrap();
         let liver = crate::tissues::tissue("liver").unwrap();
         assert_eq!(s.regions[0].material.young_modulus_pa, liver.young_modulus_pa);
@@ -948,18 +948,18 @@ mod tests {
         assert_eq!(s.fixed_nodes, [0, 1, 2, 3]);
         assert_eq!(s.mesh_source, crate::scene3d::MeshSource3d::Vtu { file: "cube.vtu".into(), label_array: "labels".into() });
         // An unknown material, a region without values, a label the scene lacks.
-        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "material = \"livr\""), SceneFiles::Given(&given), &limits).unwrap_err());
+        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "material = \"livr\""), SceneFiles::Given(&given), limits).unwrap_err());
         assert!(e.contains("material = \"livr\" is not in the tissue library"), "{e}");
-        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "poisson_ratio = 0.4"), SceneFiles::Given(&given), &limits).unwrap_err());
+        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "poisson_ratio = 0.4"), SceneFiles::Given(&given), limits).unwrap_err());
         assert!(e.contains("region 'lesion': young_modulus_pa is missing"), "{e}");
         let e = format!(
             "{:#}",
-            parse_scene3d_with(&toml("1 = \"tissue\", 2 = \"lesion\"", "material = \"fat\""), SceneFiles::Given(&given), &limits)
+            parse_scene3d_with(&toml("1 = \"tissue\", 2 = \"lesion\"", "material = \"fat\""), SceneFiles::Given(&given), limits)
                 .unwrap_err()
         );
         assert!(e.contains("mesh.file = \"cube.vtu\"") && e.contains("unknown label"), "{e}");
         // From a client: nothing is opened.
-        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "material = \"fat\""), SceneFiles::None, &limits).unwrap_err());
+        let e = format!("{:#}", parse_scene3d_with(&toml(labels, "material = \"fat\""), SceneFiles::None, limits).unwrap_err());
         assert!(e.contains("mesh.file = \"cube.vtu\": a scene sent to the server cannot name files"), "{e}");
     }
 
