@@ -233,6 +233,23 @@ enum Command {
     },
     /// Plan an insertion that reaches a target despite the tissue deformation it causes.
     Plan(PlanArgs),
+    /// Convert a VTK mesh (.vtu, ASCII .vtk; tetrahedra, or triangles in 2D) with integer cell
+    /// labels to Gmsh MSH 4.1 whose physical groups are named by the labels.
+    Mesh {
+        /// The input mesh (.vtu or .vtk; labelmaps .nii/.nii.gz/.nrrd are not yet supported).
+        input: PathBuf,
+        /// The labels' names: LABEL=NAME,... (e.g. 1=tissue,2=lesion,11=back); every label of
+        /// the file must be named.
+        #[arg(long)]
+        labels: String,
+        /// The cell-data array holding the labels (default: gmsh:physical, CellEntityIds,
+        /// labels or region, the first present).
+        #[arg(long)]
+        label_array: Option<String>,
+        /// The MSH file to write.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Training exercises (needlesim-training): `run` one scripted, `list` the shipped ones.
     #[command(subcommand)]
     Exercise(ExerciseCommand),
@@ -378,6 +395,7 @@ fn main() -> ExitCode {
             &limits,
         ),
         Some(Command::Exercise(ExerciseCommand::List)) => needlesim_training::cli::list_command(),
+        Some(Command::Mesh { input, labels, label_array, output }) => mesh(&input, &labels, label_array, &output),
         Some(Command::Summary) => summary(&limits),
         Some(Command::Serve(args)) => run_serve(args, &limits),
         None => run_serve(cli.serve, &limits),
@@ -389,6 +407,31 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// The `mesh` command: reads, converts and checks (needlesim_scene::vtk::convert_to_msh), writes.
+fn mesh(input: &std::path::Path, labels: &str, label_array: Option<String>, output: &std::path::Path) -> Result<()> {
+    use needlesim_scene::vtk;
+    let name = input.display().to_string();
+    vtk::check_mesh_input(&name)?;
+    let opts = vtk::VtkOptions { labels: vtk::LabelMap::parse_list(labels)?, label_array };
+    let text = read_local(input)?;
+    let c = vtk::convert_to_msh(&name, &text, &opts).with_context(|| name.clone())?;
+    std::fs::write(output, &c.msh).with_context(|| format!("cannot write {}", output.display()))?;
+    let regions: Vec<String> =
+        c.mesh.regions.iter().zip(c.mesh.region_measures()).map(|((l, n), v)| format!("{l}={n} ({v:.6e})")).collect();
+    let sets: Vec<String> = c.mesh.boundary.iter().map(|(l, n, cells)| format!("{l}={n} ({} cells)", cells.len())).collect();
+    println!(
+        "{}: {}D, {} nodes, {} elements; regions (label=name (measure)): {}; boundary sets: {}; labels from '{}'",
+        output.display(),
+        c.mesh.dim,
+        c.mesh.nodes_m.len(),
+        c.mesh.elements.len(),
+        regions.join(", "),
+        if sets.is_empty() { "none".to_owned() } else { sets.join(", ") },
+        c.mesh.label_array
+    );
+    Ok(())
 }
 
 fn solve(scenario: &std::path::Path, output: Option<&std::path::Path>, limits: &MeshLimits) -> Result<()> {

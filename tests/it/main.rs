@@ -44,4 +44,5 @@ mod training_device;
 mod training_live;
 mod transport;
 mod validation;
+mod vtk_meshes;
 mod web;

@@ -8,6 +8,8 @@ pub mod exchange3d;
 pub mod files;
 pub mod limit;
 pub mod scene3d;
+pub mod tissues;
+pub mod vtk;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -122,6 +124,17 @@ pub enum MeshSpec {
     },
     /// A Gmsh ASCII file (2.2 or 4.1), relative to the scene file.
     Msh { file: PathBuf },
+    /// A VTK unstructured grid of triangles (`.vtu`, or legacy `.vtk` as ASCII), relative to the
+    /// scene file: regions from an integer cell-data array, named by `labels` ([`vtk`]).
+    #[serde(alias = "vtk")]
+    Vtu {
+        file: PathBuf,
+        /// `{ 1 = "tissue", 2 = "lesion" }`: every label of the file, named.
+        #[serde(default)]
+        labels: std::collections::BTreeMap<String, String>,
+        /// The cell-data array of the labels (default: the first of [`vtk::DEFAULT_LABEL_ARRAYS`]).
+        label_array: Option<String>,
+    },
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, Default)]
@@ -146,56 +159,97 @@ impl Default for PlaneSpec {
     }
 }
 
-/// A tissue region: elasticity and needle interaction.
+/// A tissue region: elasticity and needle interaction. Written as [`RegionToml`]: a `material`
+/// from the tissue library ([`tissues`]) gives the keys the region does not write; the
+/// defaults fill the rest.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "RegionToml")]
 pub struct RegionSpec {
     pub name: String,
+    /// The tissue library's material the region names, if any.
+    pub material: Option<String>,
     pub young_modulus_pa: f64,
     pub poisson_ratio: f64,
     /// For grid meshes: the triangles whose centroid lies in this disc belong to the region
     /// (later regions win). Absent for the first (background) region; for .msh files regions are
     /// matched by physical-group name.
     pub disc: Option<DiscSpec>,
-    #[serde(default = "d_friction")]
     pub friction_n_per_m: f64,
-    #[serde(default = "d_static")]
     pub static_friction_ratio: f64,
-    #[serde(default = "d_peak")]
     pub tip_peak_ratio: f64,
-    #[serde(default = "d_peak_w")]
     pub tip_peak_width_m: f64,
-    #[serde(default = "d_puncture")]
     pub puncture_force_n: f64,
-    #[serde(default = "d_cutting")]
     pub cutting_force_n: f64,
     /// Viscous friction per unit length and unit slip speed, N·s/m² (rate-dependent friction,
     /// `q₀ + b·|v|`; 0: rate-independent). 2D and 3D.
-    #[serde(default)]
     pub friction_damping_n_s_per_m2: f64,
     /// Fracture toughness $G_c$, J/m², with `needle.cutting = "toughness"` (required then, for
     /// every region): the tip cuts with the force $G_c w$ ($w$ the needle's diameter) instead of
     /// cutting past contacts at `cutting_force_n`.
     pub fracture_toughness_j_per_m2: Option<f64>,
+    /// The material's $G_c$, applied with `needle.cutting = "toughness"` when the region writes
+    /// none.
+    pub material_toughness_j_per_m2: Option<f64>,
 }
 
-fn d_friction() -> f64 {
-    RegionNeedleParams::default().friction_n_per_m
+/// A region as written in TOML: every value key optional when a `material` gives it.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionToml {
+    pub name: String,
+    /// A material of the tissue library ([`tissues::tissues`]).
+    pub material: Option<String>,
+    pub young_modulus_pa: Option<f64>,
+    pub poisson_ratio: Option<f64>,
+    pub disc: Option<DiscSpec>,
+    pub friction_n_per_m: Option<f64>,
+    pub static_friction_ratio: Option<f64>,
+    pub tip_peak_ratio: Option<f64>,
+    pub tip_peak_width_m: Option<f64>,
+    pub puncture_force_n: Option<f64>,
+    pub cutting_force_n: Option<f64>,
+    pub friction_damping_n_s_per_m2: Option<f64>,
+    pub fracture_toughness_j_per_m2: Option<f64>,
 }
-fn d_static() -> f64 {
-    RegionNeedleParams::default().static_friction_ratio
+
+impl RegionToml {
+    fn keys(&self) -> tissues::MaterialKeys {
+        tissues::MaterialKeys {
+            material: self.material.clone(),
+            young_modulus_pa: self.young_modulus_pa,
+            poisson_ratio: self.poisson_ratio,
+            friction_n_per_m: self.friction_n_per_m,
+            static_friction_ratio: self.static_friction_ratio,
+            tip_peak_ratio: self.tip_peak_ratio,
+            tip_peak_width_m: self.tip_peak_width_m,
+            puncture_force_n: self.puncture_force_n,
+            cutting_force_n: self.cutting_force_n,
+            friction_damping_n_s_per_m2: self.friction_damping_n_s_per_m2,
+        }
+    }
 }
-fn d_peak() -> f64 {
-    RegionNeedleParams::default().tip_peak_ratio
-}
-fn d_peak_w() -> f64 {
-    RegionNeedleParams::default().tip_peak_width_m
-}
-fn d_puncture() -> f64 {
-    RegionNeedleParams::default().puncture_force_n
-}
-fn d_cutting() -> f64 {
-    RegionNeedleParams::default().cutting_force_n
+
+impl TryFrom<RegionToml> for RegionSpec {
+    type Error = String;
+    fn try_from(t: RegionToml) -> Result<Self, String> {
+        let r = t.keys().resolve(&t.name)?;
+        Ok(Self {
+            name: t.name,
+            material: t.material,
+            young_modulus_pa: r.young_modulus_pa,
+            poisson_ratio: r.poisson_ratio,
+            disc: t.disc,
+            friction_n_per_m: r.friction_n_per_m,
+            static_friction_ratio: r.static_friction_ratio,
+            tip_peak_ratio: r.tip_peak_ratio,
+            tip_peak_width_m: r.tip_peak_width_m,
+            puncture_force_n: r.puncture_force_n,
+            cutting_force_n: r.cutting_force_n,
+            friction_damping_n_s_per_m2: r.friction_damping_n_s_per_m2,
+            fracture_toughness_j_per_m2: t.fracture_toughness_j_per_m2,
+            material_toughness_j_per_m2: r.material_toughness_j_per_m2,
+        })
+    }
 }
 
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -575,7 +629,14 @@ pub fn parse_scene_with(text: &str, files: SceneFiles, limits: impl Into<SceneLi
     if scene_dim(text)? == 3 {
         bail!("dim = 3: this is a 3D scene; load it with the 3D scene loader (needlesim_scene::load_scene3d)");
     }
-    let file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e, text)))?;
+    let mut file: SceneFile = toml::from_str(text).map_err(|e| anyhow::anyhow!("{}", limit::toml_message(&e, text)))?;
+    // A material's fracture toughness applies with energy-based cutting only, when the region
+    // writes none.
+    if file.needle.cutting == CuttingSpec::Toughness {
+        for r in &mut file.regions {
+            r.fracture_toughness_j_per_m2 = r.fracture_toughness_j_per_m2.or(r.material_toughness_j_per_m2);
+        }
+    }
     build_scene(&file, files, &limits.into())
 }
 
@@ -801,6 +862,13 @@ fn build_scene(f: &SceneFile, files: SceneFiles, scene_limits: &SceneLimits) -> 
             let key = || format!("mesh.file = \"{}\"", limit::quote(&file));
             let text = files.read(&file).with_context(key)?;
             needlesim_core::msh::parse_msh(&text, limits).with_context(key)?.mesh
+        }
+        MeshSpec::Vtu { file, labels, label_array } => {
+            let file = file.to_string_lossy();
+            let key = || format!("mesh.file = \"{}\"", limit::quote(&file));
+            let opts = vtk::VtkOptions { labels: vtk::LabelMap::from_table(labels).context("mesh")?, label_array: label_array.clone() };
+            let text = files.read(&file).with_context(key)?;
+            vtk::read_vtk(&text, 2, &opts).and_then(|m| m.to_tri_mesh(limits)).with_context(key)?
         }
     };
     // Materials and needle parameters in the mesh's region order, matched by name.

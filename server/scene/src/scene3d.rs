@@ -45,8 +45,7 @@ use serde::Deserialize;
 use crate::limit::{self, SizeLimit};
 use crate::{
     GAUGES, LimitsSpec, MAX_LOCAL_FILE_BYTES, MAX_TOML_BRACKETS, SceneFiles, SceneLimits, check_length, check_limits, check_names,
-    check_region_bounds, check_region_needle_values, check_scene_text, check_toml_size, d_cutting, d_friction, d_peak, d_peak_w,
-    d_puncture, d_static, default_rate, read_local_file,
+    check_region_bounds, check_region_needle_values, check_scene_text, check_toml_size, default_rate, read_local_file,
 };
 
 /// The mesh files a shipped example names: (file, text).
@@ -106,35 +105,97 @@ pub enum Mesh3dSpec {
     },
     /// A Gmsh ASCII file (2.2 or 4.1) with tetrahedra, relative to the scene file.
     Msh { file: String },
+    /// A VTK unstructured grid of tetrahedra (`.vtu`, or legacy `.vtk` as ASCII), relative to
+    /// the scene file: regions and boundary sets (labelled triangles) from an integer cell-data
+    /// array, named by `labels` ([`crate::vtk`]).
+    #[serde(alias = "vtk")]
+    Vtu {
+        file: String,
+        /// `{ 1 = "tissue", 2 = "lesion", 11 = "back" }`: every label of the file, named.
+        #[serde(default)]
+        labels: std::collections::BTreeMap<String, String>,
+        /// The cell-data array of the labels (default: the first of
+        /// [`crate::vtk::DEFAULT_LABEL_ARRAYS`]).
+        label_array: Option<String>,
+    },
 }
 
-/// A tissue region: elasticity and needle interaction (the 2D region's keys).
+/// A tissue region: elasticity and needle interaction (the 2D region's keys, with `material`
+/// from the tissue library). Written as [`Region3dToml`].
 #[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "Region3dToml")]
 pub struct Region3dSpec {
     pub name: String,
+    /// The tissue library's material the region names, if any.
+    pub material: Option<String>,
     pub young_modulus_pa: f64,
     pub poisson_ratio: f64,
     /// Box meshes: the tetrahedra whose centroid lies in this sphere (later regions win).
     pub sphere: Option<SphereSpec>,
     /// Box meshes: the tetrahedra whose centroid lies in this axis-aligned box.
     pub cuboid: Option<CuboidSpec>,
-    #[serde(default = "d_friction")]
     pub friction_n_per_m: f64,
-    #[serde(default = "d_static")]
     pub static_friction_ratio: f64,
-    #[serde(default = "d_peak")]
     pub tip_peak_ratio: f64,
-    #[serde(default = "d_peak_w")]
     pub tip_peak_width_m: f64,
-    #[serde(default = "d_puncture")]
     pub puncture_force_n: f64,
-    #[serde(default = "d_cutting")]
     pub cutting_force_n: f64,
     /// Viscous friction per unit length and unit slip speed, N·s/m² (rate-dependent friction,
     /// `q₀ + b·|v|`, as in 2D; 0: rate-independent).
-    #[serde(default)]
     pub friction_damping_n_s_per_m2: f64,
+}
+
+/// A 3D region as written in TOML: every value key optional when a `material` gives it.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Region3dToml {
+    pub name: String,
+    pub material: Option<String>,
+    pub young_modulus_pa: Option<f64>,
+    pub poisson_ratio: Option<f64>,
+    pub sphere: Option<SphereSpec>,
+    pub cuboid: Option<CuboidSpec>,
+    pub friction_n_per_m: Option<f64>,
+    pub static_friction_ratio: Option<f64>,
+    pub tip_peak_ratio: Option<f64>,
+    pub tip_peak_width_m: Option<f64>,
+    pub puncture_force_n: Option<f64>,
+    pub cutting_force_n: Option<f64>,
+    pub friction_damping_n_s_per_m2: Option<f64>,
+}
+
+impl TryFrom<Region3dToml> for Region3dSpec {
+    type Error = String;
+    fn try_from(t: Region3dToml) -> Result<Self, String> {
+        let r = crate::tissues::MaterialKeys {
+            material: t.material.clone(),
+            young_modulus_pa: t.young_modulus_pa,
+            poisson_ratio: t.poisson_ratio,
+            friction_n_per_m: t.friction_n_per_m,
+            static_friction_ratio: t.static_friction_ratio,
+            tip_peak_ratio: t.tip_peak_ratio,
+            tip_peak_width_m: t.tip_peak_width_m,
+            puncture_force_n: t.puncture_force_n,
+            cutting_force_n: t.cutting_force_n,
+            friction_damping_n_s_per_m2: t.friction_damping_n_s_per_m2,
+        }
+        .resolve(&t.name)?;
+        Ok(Self {
+            name: t.name,
+            material: t.material,
+            young_modulus_pa: r.young_modulus_pa,
+            poisson_ratio: r.poisson_ratio,
+            sphere: t.sphere,
+            cuboid: t.cuboid,
+            friction_n_per_m: r.friction_n_per_m,
+            static_friction_ratio: r.static_friction_ratio,
+            tip_peak_ratio: r.tip_peak_ratio,
+            tip_peak_width_m: r.tip_peak_width_m,
+            puncture_force_n: r.puncture_force_n,
+            cutting_force_n: r.cutting_force_n,
+            friction_damping_n_s_per_m2: r.friction_damping_n_s_per_m2,
+        })
+    }
 }
 
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -235,6 +296,11 @@ pub enum MeshSource3d {
     Msh {
         file: String,
         version: String,
+    },
+    /// A VTK file as named in the scene, and the label array read.
+    Vtu {
+        file: String,
+        label_array: String,
     },
 }
 
@@ -640,6 +706,20 @@ fn build(f: &Scene3dFile, read: &dyn Fn(&str) -> Result<String>, scene_limits: &
             let text = read(file).with_context(key)?;
             let m = needlesim_core::msh::parse_msh3d(&text, &tet_limits).with_context(key)?;
             (m.mesh, MeshSource3d::Msh { file: file.clone(), version: m.version })
+        }
+        Mesh3dSpec::Vtu { file, labels, label_array } => {
+            if let Some((k, r)) = f.regions.iter().enumerate().find(|(_, r)| r.sphere.is_some() || r.cuboid.is_some()) {
+                bail!("regions[{k}] ('{}'): sphere and cuboid apply to box meshes; a VTK mesh's regions are its labels", r.name);
+            }
+            let key = || format!("mesh.file = \"{}\"", limit::quote(file));
+            let opts = crate::vtk::VtkOptions {
+                labels: crate::vtk::LabelMap::from_table(labels).context("mesh")?,
+                label_array: label_array.clone(),
+            };
+            let text = read(file).with_context(key)?;
+            let m = crate::vtk::read_vtk(&text, 3, &opts).with_context(key)?;
+            let mesh = m.to_tet_mesh(&tet_limits).with_context(key)?;
+            (mesh, MeshSource3d::Vtu { file: file.clone(), label_array: m.label_array })
         }
     };
     check_session_memory_3d(mesh.n_nodes(), needle.max_points, scene_limits).context("mesh")?;
@@ -1084,7 +1164,7 @@ mod tests {
             ("gauge = 18", "gauge = 18\nmodel = \"flexible\"\nbevel_side = 0.5", "needle.bevel_side = 0.5: must be +1 or -1"),
             ("nx = 6", "nx = 1", "mesh.nx = 1: must be at least 2"),
             ("size_m = [0.1, 0.1, 0.1]", "size_m = [0.1, -0.1, 0.1]", "mesh.size_m = [0.1, -0.1, 0.1]: must be finite and > 0"),
-            ("type = \"box\"", "type = \"grid\"", "unknown variant `grid`, expected `box` or `msh`"),
+            ("type = \"box\"", "type = \"grid\"", "unknown variant `grid`, expected one of `box`, `msh`, `vtk`, `vtu`"),
             ("young_modulus_pa = 30e3", "young_modulus_pa = -1", "regions"),
             ("poisson_ratio = 0.45", "poisson_ratio = 0.5", "regions"),
             ("friction_n_per_m = 10", "friction_n_per_m = -3", "regions[0] ('gel').friction_n_per_m = -3: must be finite and ≥ 0"),
